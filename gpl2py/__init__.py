@@ -1,0 +1,12 @@
+"""gpl2py: transpile GPL robot-controller projects into Python packages that run on ``gplrt``.
+
+Layers (each ignorant of the others' business):
+
+* ``gpl2py.syntax``    characters -> tokens -> AST (lexer, parser)
+* ``gpl2py.project``   Project.gpr / folder / single file -> ordered source set
+* ``gpl2py.semantics`` names, scopes, static types, conversions
+* ``gpl2py.lower``     typed AST -> libcst -> Python source
+* ``gpl2py.cli``       the ``gpl2py`` command
+"""
+
+__version__ = "0.1.0"

@@ -1,0 +1,154 @@
+"""GPL exceptions: the Exception class of GPL, which is also the Python exception that carries it.
+
+One class plays both roles so that a ``Catch ex`` in transpiled code receives exactly the object
+that was thrown (``Throw ex`` raises it, ``Catch`` stores it) and so that runtime faults (divide by
+zero, bad index, robot refusals) arrive as GPL exceptions with the controller's error codes.
+
+Message format (gpl-dictionary.md §8): ``*<text>*``, then ``: <qualifier>`` for a general exception
+with a non-zero qualifier, or `` Robot <n>: <axis>`` for a robot exception.  A ``detail`` string
+(not part of the controller's data) may name what failed, e.g. the file that could not be opened;
+it is appended after `` - `` so that Python tracebacks say what went wrong.
+"""
+
+from __future__ import annotations
+
+from gplrt.lang.error_codes import ERROR_MESSAGES
+
+# Codes the runtime itself raises; names follow the controller's message texts.
+INVALID_ARGUMENT = -202
+MISSING_ARGUMENT = -205
+NOT_IMPLEMENTED = -204
+READ_ONLY = -209
+VALUE_OUT_OF_RANGE = -707
+DIVISION_BY_ZERO = -709
+ARITHMETIC_OVERFLOW = -710
+OBJECT_NOT_INSTANTIATED = -757
+NOT_CARTESIAN = -762
+NOT_ANGLES = -763
+FRAME_WRONG_TYPE = -769
+NOTHING_VALUE = -782
+PROJECT_ERROR = -786
+XML_ERROR = -799
+NO_XML_NODE = -801
+
+
+def error_text(code: int) -> str:
+    """The controller's short text for ``code``; unknown codes read ``Error <code>``."""
+    return ERROR_MESSAGES.get(code, f"Error {code}")
+
+
+class GplException(Exception):
+    """GPL's ``Exception`` class: ``New Exception``, ``Throw``, ``Catch ex``.
+
+    GPL members keep their GPL spelling (``ErrorCode``, ``Message``, ...); Python-side helpers are
+    snake_case.  Construct with ``GplException(code, detail=...)`` to raise a runtime fault.
+    """
+
+    def __init__(
+        self,
+        ErrorCode: int = 0,
+        Qualifier: int = 0,
+        *,
+        detail: str | None = None,
+        robot_num: int | None = None,
+        axis: int = 0,
+    ) -> None:
+        super().__init__()
+        self._code = int(ErrorCode)
+        self._qualifier = int(Qualifier)
+        self._robot_error = robot_num is not None
+        self._robot_num = robot_num if robot_num is not None else 0
+        self._axis = int(axis)
+        self.detail = detail
+        # Where the fault was raised in GPL terms ("Module.gpl:12"), filled in by the runtime.
+        self.gpl_location: str | None = None
+
+    # -- GPL members -----------------------------------------------------------------------------
+
+    @property
+    def ErrorCode(self) -> int:
+        return self._code
+
+    @ErrorCode.setter
+    def ErrorCode(self, value: int) -> None:
+        self._code = int(value)
+
+    @property
+    def Qualifier(self) -> int:
+        return self._qualifier
+
+    @Qualifier.setter
+    def Qualifier(self, value: int) -> None:
+        value = int(value)
+        if not 0 <= value <= 65535:
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"Qualifier {value}")
+        self._qualifier = value
+        self._robot_error = False
+
+    @property
+    def RobotError(self) -> bool:
+        return self._robot_error
+
+    @RobotError.setter
+    def RobotError(self, value: bool) -> None:
+        value = bool(value)
+        if self._robot_error and not value:
+            self._qualifier = 0  # switching robot -> general resets the qualifier (§8)
+        self._robot_error = value
+
+    @property
+    def RobotNum(self) -> int:
+        return self._robot_num
+
+    @RobotNum.setter
+    def RobotNum(self, value: int) -> None:
+        self._robot_num = int(value)
+
+    @property
+    def Axis(self) -> int:
+        return self._axis
+
+    @Axis.setter
+    def Axis(self, value: int) -> None:
+        self._axis = int(value)
+
+    def Message(self) -> str:
+        text = f"*{error_text(self._code)}*"
+        if self._robot_error:
+            text += f" Robot {self._robot_num}: {self._axis}"
+        elif self._qualifier:
+            text += f": {self._qualifier}"
+        return text
+
+    def Clone(self) -> GplException:
+        twin = GplException(self._code, self._qualifier, detail=self.detail)
+        twin._robot_error = self._robot_error
+        twin._robot_num = self._robot_num
+        twin._axis = self._axis
+        twin.gpl_location = self.gpl_location
+        return twin
+
+    def UpdateErrorCode(self) -> None:
+        """Replace a generic asynchronous code by the specific one posted since.
+
+        The simulated controller posts its specific code together with the generic one, so the
+        specific code is already in place: nothing to update.
+        """
+
+    # -- Python side ------------------------------------------------------------------------------
+
+    def __str__(self) -> str:
+        text = self.Message()
+        if self.detail:
+            text += f" - {self.detail}"
+        if self.gpl_location:
+            text += f" (at {self.gpl_location})"
+        return f"GPL error {self._code}: {text}"
+
+    def __repr__(self) -> str:
+        return f"GplException({self._code}, detail={self.detail!r})"
+
+
+def gpl_error(code: int, detail: str | None = None) -> GplException:
+    """A new exception for ``code`` (the caller raises it): ``raise gpl_error(-709)``."""
+    return GplException(code, detail=detail)

@@ -1,0 +1,5 @@
+#!/usr/bin/env bash
+# Runs the whole test suite; sets up .venv first if needed.  Extra arguments go to pytest.
+# pytest exits 5 when it collects no test: that is a failure here, never a silent pass.
+source "$(dirname "$0")/_venv.sh"
+python -m pytest -q "$@"
