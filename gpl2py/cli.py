@@ -1,0 +1,321 @@
+"""The ``gpl2py`` command: argument parsing, running one subcommand, printing diagnostics, exit codes.
+
+Structure: every subcommand is a :class:`Command` (its name, help, how it adds its arguments, and the
+function that runs it) in ``COMMANDS``.  Adding ``gpl2py run PROJECT`` later means appending one
+``Command``.  The bare form ``gpl2py PROJECT -o OUT`` is anticipated by :func:`_route`: when the
+first argument is not a known command, it is handed to the command marked ``default=True`` (none is
+marked yet, so today such input is a usage error naming the known commands).
+
+Output contract:
+
+* text mode: diagnostics (sorted by file, line, column, each with a caret excerpt) on **stderr**,
+  a one-line summary on stderr unless ``--quiet``; stdout carries only the command's product (the
+  AST dump), so it can be piped;
+* ``--json``: stdout is exactly one JSON object with a ``"diagnostics"`` list (plus the command's
+  product, e.g. ``"ast"``), nothing on stderr.
+
+Exit status: 0 no errors (warnings allowed), 1 errors in the input (or an internal error, GPL9000),
+2 the command line itself is wrong (GPL9001/GPL9002).  No input produces a Python traceback: an
+unexpected exception becomes GPL9000 (set ``GPL2PY_TRACEBACK=1`` to see the traceback instead).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import NoReturn, TextIO
+
+from gpl2py import __version__
+from gpl2py import messages as msg
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.project import SOURCE_SUFFIXES, Project, load_project
+from gpl2py.source import SourceFile
+
+EXIT_OK = 0
+EXIT_ERRORS = 1
+EXIT_USAGE = 2
+
+_EPILOG = """\
+exit status:
+  0  no errors (warnings do not change the status)
+  1  errors in the GPL input, or an internal gpl2py error (GPL9000)
+  2  the command line is wrong (unknown command or option, missing argument)
+
+Every diagnostic has a stable code, e.g. "Main.gpl:12:5: error GPL1101: ...";
+docs/diagnostics.md explains each code.
+"""
+
+
+class UsageError(Exception):
+    """The command line is wrong; carries the message for GPL9001."""
+
+
+@dataclass
+class Outcome:
+    """What a command produced: the diagnostics, the files they point into, and stdout content."""
+
+    sink: DiagnosticSink = field(default_factory=DiagnosticSink)
+    files: dict[str, SourceFile] = field(default_factory=dict)
+    product: str | None = None  # printed on stdout in text mode, under "ast" etc. in JSON mode
+    product_key: str = "output"
+    usage_error: bool = False
+    checked: int = 0
+
+
+@dataclass(frozen=True)
+class Command:
+    """One subcommand: ``configure`` adds its arguments, ``run`` does the work."""
+
+    name: str
+    help: str
+    description: str
+    configure: Callable[[argparse.ArgumentParser], None]
+    run: Callable[[argparse.Namespace], Outcome]
+    default: bool = False  # receives the arguments when the first one is not a command name
+
+
+# --- commands -----------------------------------------------------------------------------------
+
+
+def _configure_check(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "path",
+        metavar="PATH",
+        help="a project folder (with or without Project.gpr), a Project.gpr file, "
+        "or a single .gpl/.gpo file",
+    )
+
+
+def _run_check(args: argparse.Namespace) -> Outcome:
+    """Load the project and parse every source, collecting all diagnostics in one run."""
+    out = Outcome()
+    project = load_project(args.path, out.sink)
+    if project is None:
+        return out
+    _remember(out, project)
+    for source in project.sources:
+        _parse(source, out.sink)
+        out.checked += 1
+    return out
+
+
+def _configure_dump_ast(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", metavar="FILE", help="one .gpl or .gpo source file")
+
+
+def _run_dump_ast(args: argparse.Namespace) -> Outcome:
+    """Parse one file and print its syntax tree (for debugging the front end)."""
+    from gpl2py.syntax.ast import dump
+
+    out = Outcome(product_key="ast")
+    path = Path(args.file)
+    if path.exists() and (path.is_dir() or path.suffix.lower() not in SOURCE_SUFFIXES):
+        out.sink.report(msg.DUMP_AST_NEEDS_FILE, None, path=str(path))
+        out.usage_error = True
+        return out
+    project = load_project(path, out.sink)
+    if project is None or not project.sources:
+        return out
+    _remember(out, project)
+    unit = _parse(project.sources[0], out.sink)
+    out.checked = 1
+    out.product = dump(unit)
+    return out
+
+
+COMMANDS: list[Command] = [
+    Command(
+        name="check",
+        help="load a project and report every diagnostic, without translating",
+        description="Load a GPL project (or one file), parse every source file and print all "
+        "diagnostics, sorted by file and line, each with the offending source line.",
+        configure=_configure_check,
+        run=_run_check,
+    ),
+    Command(
+        name="dump-ast",
+        help="print the syntax tree of one source file",
+        description="Parse one .gpl/.gpo file and print its abstract syntax tree. Meant for "
+        "people working on gpl2py itself, or for finding out how a line was understood.",
+        configure=_configure_dump_ast,
+        run=_run_dump_ast,
+    ),
+]
+
+
+def _parse(source: SourceFile, sink: DiagnosticSink) -> object:
+    from gpl2py.syntax.parser import parse
+
+    return parse(source, sink)
+
+
+def _remember(out: Outcome, project: Project) -> None:
+    for f in project.files():
+        out.files[f.path] = f
+
+
+# --- argument parsing ---------------------------------------------------------------------------
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but a bad command line raises :class:`UsageError` instead of exiting."""
+
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def _output_options(parser: argparse.ArgumentParser, top: bool) -> None:
+    """--json/--quiet, accepted before or after the command name.
+
+    Subcommand copies default to SUPPRESS so that they do not overwrite a value given before the
+    command name.
+    """
+    default: object = False if top else argparse.SUPPRESS
+    parser.add_argument(
+        "--json",
+        action="store_true",
+        default=default,
+        help="print diagnostics as one JSON object on stdout (for editors and scripts)",
+    )
+    parser.add_argument(
+        "-q",
+        "--quiet",
+        action="store_true",
+        default=default,
+        help="print errors only: no warnings and no summary line",
+    )
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="gpl2py",
+        description="gpl2py translates GPL programs (Brooks / Precise Automation PreciseFlex "
+        "robot controllers) into Python that runs on the gplrt simulated controller.",
+        epilog=_EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("--version", action="version", version=f"gpl2py {__version__}")
+    _output_options(parser, top=True)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for command in COMMANDS:
+        child = sub.add_parser(
+            command.name,
+            help=command.help,
+            description=command.description,
+            epilog=_EPILOG,
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+        )
+        _output_options(child, top=False)
+        command.configure(child)
+        child.set_defaults(handler=command)
+    return parser
+
+
+def _route(argv: list[str]) -> list[str]:
+    """Insert the default command's name when the first argument is not a command (see module doc)."""
+    names = {c.name for c in COMMANDS}
+    default = next((c for c in COMMANDS if c.default), None)
+    first = next((a for a in argv if not a.startswith("-")), None)
+    if default is not None and first is not None and first not in names:
+        return [default.name, *argv]
+    return argv
+
+
+# --- output -------------------------------------------------------------------------------------
+
+
+def _emit(out: Outcome, as_json: bool, quiet: bool, stdout: TextIO, stderr: TextIO) -> None:
+    diags = out.sink.sorted()
+    if as_json:
+        doc: dict[str, object] = {"diagnostics": [d.to_json() for d in diags]}
+        if out.product is not None:
+            doc[out.product_key] = out.product
+        doc["summary"] = _counts(diags)
+        stdout.write(json.dumps(doc, indent=2) + "\n")
+        return
+    for d in diags:
+        if quiet and d.severity is not Severity.ERROR:
+            continue
+        source = out.files.get(d.span.file) if d.span is not None else None
+        stderr.write(d.render(source) + "\n")
+    if out.product is not None:
+        stdout.write(out.product.rstrip("\n") + "\n")
+    if not quiet and not out.usage_error:
+        counts = _counts(diags)
+        files = "file" if out.checked == 1 else "files"
+        stderr.write(
+            f"checked {out.checked} {files}: {_plural(counts['errors'], 'error')}, "
+            f"{_plural(counts['warnings'], 'warning')}\n"
+        )
+
+
+def _counts(diags: Sequence[Diagnostic]) -> dict[str, int]:
+    return {
+        "errors": sum(d.severity is Severity.ERROR for d in diags),
+        "warnings": sum(d.severity is Severity.WARNING for d in diags),
+    }
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+def _wants_json(argv: Sequence[str]) -> bool:
+    """Whether --json was asked for, even on a command line too broken for argparse."""
+    return "--json" in argv
+
+
+# --- entry point --------------------------------------------------------------------------------
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the gpl2py command line; returns the exit status (see ``gpl2py --help``)."""
+    args_list = list(sys.argv[1:] if argv is None else argv)
+    stdout, stderr = sys.stdout, sys.stderr
+    parser = build_parser()
+    try:
+        args = parser.parse_args(_route(args_list))
+    except UsageError as exc:
+        return _usage_failure(str(exc), parser, _wants_json(args_list), stdout, stderr)
+    except SystemExit as exc:  # --help and --version print and "exit" successfully
+        return exc.code if isinstance(exc.code, int) else EXIT_OK
+    command: Command | None = getattr(args, "handler", None)
+    if command is None:
+        names = ", ".join(c.name for c in COMMANDS)
+        return _usage_failure(
+            f"gpl2py: missing COMMAND (one of: {names})", parser, args.json, stdout, stderr
+        )
+    try:
+        out = command.run(args)
+    except KeyboardInterrupt:
+        stderr.write("gpl2py: interrupted\n")
+        return 130
+    except Exception as exc:  # noqa: BLE001 - the promise is: never a traceback
+        if os.environ.get("GPL2PY_TRACEBACK"):
+            raise
+        out = Outcome()
+        out.sink.report(msg.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+    _emit(out, args.json, args.quiet, stdout, stderr)
+    if out.usage_error:
+        return EXIT_USAGE
+    return EXIT_ERRORS if out.sink.has_errors() else EXIT_OK
+
+
+def _usage_failure(
+    detail: str, parser: argparse.ArgumentParser, as_json: bool, stdout: TextIO, stderr: TextIO
+) -> int:
+    out = Outcome(usage_error=True)
+    out.sink.report(msg.USAGE_ERROR, None, detail=detail)
+    if not as_json:
+        stderr.write(parser.format_usage())
+    _emit(out, as_json, False, stdout, stderr)
+    return EXIT_USAGE
+
+
+if __name__ == "__main__":
+    sys.exit(main())

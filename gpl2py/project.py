@@ -1,0 +1,356 @@
+"""Project loading: a path on disk -> the ordered set of GPL sources to compile.
+
+Three kinds of input are accepted, mirroring how code reaches a PreciseFlex controller:
+
+* a **project folder** holding ``Project.gpr`` (or the ``Project.gpr`` file itself): the sources are
+  the ``ProjectSource`` lines, in order, because module initialisation follows that order;
+* a **folder without Project.gpr**: every ``.gpl``/``.gpo`` file in it, sorted case-insensitively by
+  name so that the result does not depend on the file system's listing order;
+* a **single** ``.gpl``/``.gpo`` **file**.
+
+``.gpo`` files are ordinary GPL (a global module of Location and Profile objects). ``.gpp`` files are
+vendor-protected (``'#Protected|`` followed by binary) and are skipped with a warning naming them.
+
+Nothing here raises on bad input: problems are diagnostics in the caller's sink, positioned at the
+``Project.gpr`` line that caused them where there is one.  File bytes are decoded leniently (UTF-8 if
+valid, latin-1 otherwise) so that a stray non-ASCII character reaches the lexer, which reports it
+with its exact position, instead of failing here.
+
+Decisions where the manuals are silent (gpl-language.md §12.3 recommends the format):
+
+* keys are case-insensitive, blank lines and ``'`` comment lines are ignored anywhere, ``KEY = "v"``
+  with spaces and an unquoted value are tolerated;
+* ``ProjectName``/``ProjectStart`` given twice: the first wins, with a warning;
+* a missing ``ProjectStart`` is a warning (the project can still be checked), ``start`` is ``None``;
+* file names are resolved case-insensitively (the controller's flash file system is); if several
+  files differ only in case, an exact match wins, otherwise the first in sorted order, with a warning;
+* ``load_project`` returns ``None`` only when nothing at all could be read (the path does not exist
+  or is not a project); a project with some bad files is still returned so that every problem is
+  reported in one run.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gpl2py import messages as msg
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.source import Position, SourceFile, Span
+
+PROJECT_FILE = "Project.gpr"
+SOURCE_SUFFIXES = (".gpl", ".gpo")
+PROTECTED_SUFFIX = ".gpp"
+PROTECTED_MAGIC = b"'#Protected|"
+
+_KNOWN_KEYS = {"projectname", "projectstart", "projectsource"}
+_KEY_VALUE = re.compile(r'^\s*([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(?:"([^"]*)"|([^"\s].*?))?\s*$')
+
+
+@dataclass
+class Project:
+    """What a transpiler needs to know about one GPL project.
+
+    ``start`` is the start procedure as written in Project.gpr (``"Main"`` or ``"Module.Main"``), or
+    ``None`` when there is none (a folder or single file, or a Project.gpr without ProjectStart).
+    ``extra_keys`` keeps unknown Project.gpr entries as ``(key, value)`` in file order.
+    """
+
+    name: str
+    start: str | None
+    root: Path
+    sources: list[SourceFile] = field(default_factory=list)
+    protected: list[Path] = field(default_factory=list)
+    extra_keys: list[tuple[str, str]] = field(default_factory=list)
+    project_file: SourceFile | None = None
+
+    def source(self, path: str) -> SourceFile | None:
+        """The loaded file whose diagnostic path is ``path`` (Project.gpr included)."""
+        for src in self.files():
+            if src.path == path:
+                return src
+        return None
+
+    def files(self) -> list[SourceFile]:
+        """Project.gpr (if any) and every source, for rendering diagnostics with excerpts."""
+        head = [self.project_file] if self.project_file is not None else []
+        return head + self.sources
+
+
+def load_project(path: str | os.PathLike[str], sink: DiagnosticSink) -> Project | None:
+    """Load the project at ``path`` (folder, Project.gpr, or one .gpl/.gpo file); never raises."""
+    p = Path(path)
+    if not p.exists():
+        sink.report(msg.PATH_NOT_FOUND, None, path=str(p))
+        return None
+    if p.is_dir():
+        gpr = _find_case_insensitive(p, PROJECT_FILE)
+        if gpr is not None and gpr.is_file():
+            return _load_gpr(gpr, sink)
+        return _load_folder(p, sink)
+    if p.name.lower() == PROJECT_FILE.lower():
+        return _load_gpr(p, sink)
+    suffix = p.suffix.lower()
+    if suffix in SOURCE_SUFFIXES or suffix == PROTECTED_SUFFIX:
+        project = Project(name=p.stem, start=None, root=p.parent)
+        _add_source(project, p, str(p), None, sink)
+        return project
+    sink.report(msg.NOT_A_PROJECT, None, path=str(p))
+    return None
+
+
+# --- the three input kinds ----------------------------------------------------------------------
+
+
+def _load_folder(folder: Path, sink: DiagnosticSink) -> Project:
+    project = Project(name=_folder_name(folder), start=None, root=folder)
+    try:
+        entries = sorted(folder.iterdir(), key=lambda e: (e.name.lower(), e.name))
+    except OSError as exc:
+        sink.report(msg.CANNOT_READ, None, path=str(folder), reason=exc.strerror or str(exc))
+        return project
+    candidates = [
+        e for e in entries
+        if e.suffix.lower() in SOURCE_SUFFIXES + (PROTECTED_SUFFIX,) and e.is_file()
+    ]
+    for entry in candidates:
+        _add_source(project, entry, str(entry), None, sink)
+    if not candidates:
+        sink.report(msg.NO_SOURCES, None, path=str(folder))
+    return project
+
+
+def _load_gpr(gpr: Path, sink: DiagnosticSink) -> Project | None:
+    folder = gpr.parent
+    text = _read_text(gpr, str(gpr), None, sink)
+    if text is None:
+        return None
+    gpr_file = SourceFile(str(gpr), text)
+    project = Project(name=_folder_name(folder), start=None, root=folder, project_file=gpr_file)
+    entries = _parse_gpr(gpr_file, sink)
+
+    seen_scalar: dict[str, str] = {}
+    seen_sources: set[str] = set()
+    source_count = 0
+    for entry in entries:
+        key = entry.key.lower()
+        if key not in _KNOWN_KEYS:
+            sink.report(msg.GPR_UNKNOWN_KEY, entry.key_span, key=entry.key)
+            project.extra_keys.append((entry.key, entry.value))
+            continue
+        if not entry.value:
+            sink.report(msg.GPR_EMPTY_VALUE, entry.key_span, key=entry.key)
+            continue
+        if key == "projectsource":
+            source_count += 1
+            folded = entry.value.replace("\\", "/").lower()
+            if folded in seen_sources:
+                sink.report(msg.GPR_DUPLICATE_SOURCE, entry.value_span, name=entry.value)
+                continue
+            seen_sources.add(folded)
+            _add_listed_source(project, entry, sink)
+        elif key in seen_scalar:
+            sink.report(msg.GPR_DUPLICATE_KEY, entry.key_span, key=entry.key, value=seen_scalar[key])
+        else:
+            seen_scalar[key] = entry.value
+            if key == "projectname":
+                project.name = entry.value
+            else:
+                project.start = entry.value
+
+    whole_file = Span(Position(gpr_file.path, 1, 1), 1, 1)
+    if "projectstart" not in seen_scalar:
+        sink.report(msg.GPR_NO_START, whole_file)
+    if source_count == 0:
+        sink.report(msg.GPR_NO_SOURCES, whole_file)
+    return project
+
+
+def _add_listed_source(project: Project, entry: _GprEntry, sink: DiagnosticSink) -> None:
+    """Resolve one ProjectSource value against the project folder and load it."""
+    name = entry.value.replace("\\", "/")
+    parts = [part for part in name.split("/") if part not in ("", ".")]
+    if name.startswith("/") or re.match(r"^[A-Za-z]:", name) or ".." in parts or not parts:
+        sink.report(msg.GPR_BAD_SOURCE_NAME, entry.value_span, name=entry.value)
+        return
+    suffix = Path(parts[-1]).suffix.lower()
+    if suffix not in SOURCE_SUFFIXES and suffix != PROTECTED_SUFFIX:
+        sink.report(msg.GPR_BAD_EXTENSION, entry.value_span, name=entry.value)
+        return
+    current = project.root
+    for part in parts:
+        found = _find_case_insensitive(current, part, sink, entry.value_span)
+        if found is None:
+            sink.report(
+                msg.SOURCE_NOT_FOUND, entry.value_span, name=entry.value, folder=str(project.root)
+            )
+            return
+        current = found
+    _add_source(project, current, str(current), entry.value_span, sink)
+
+
+def _add_source(
+    project: Project, path: Path, shown: str, cause: Span | None, sink: DiagnosticSink
+) -> None:
+    """Read one source file into the project, or record it as protected, or report why not."""
+    if path.suffix.lower() == PROTECTED_SUFFIX:
+        sink.report(msg.PROTECTED_SKIPPED, cause, name=shown)
+        project.protected.append(path)
+        return
+    data = _read_bytes(path, shown, cause, sink)
+    if data is None:
+        return
+    if data.startswith(PROTECTED_MAGIC):
+        sink.report(msg.PROTECTED_SKIPPED, cause, name=shown)
+        project.protected.append(path)
+        return
+    text = _decode(data, shown, sink)
+    if text is not None:
+        project.sources.append(SourceFile(shown, text))
+
+
+# --- Project.gpr syntax -------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _GprEntry:
+    key: str
+    value: str
+    key_span: Span
+    value_span: Span
+
+
+def _parse_gpr(gpr: SourceFile, sink: DiagnosticSink) -> list[_GprEntry]:
+    """The KEY="value" lines between ProjectBegin and ProjectEnd, reporting malformed lines."""
+    entries: list[_GprEntry] = []
+    state = "before"  # -> "inside" at ProjectBegin -> "after" at ProjectEnd
+    last_line = 1
+    for number, raw in enumerate(gpr.text.splitlines(), start=1):
+        line = raw.strip()
+        last_line = number
+        if not line or line.startswith("'"):
+            continue
+        indent = len(raw) - len(raw.lstrip())
+        word_span = Span(Position(gpr.path, number, indent + 1), number, indent + 1 + len(line))
+        lowered = line.lower()
+        if state == "after":
+            sink.report(msg.GPR_TEXT_AFTER_END, word_span)
+            break
+        if lowered == "projectbegin":
+            state = "inside"
+            continue
+        if lowered == "projectend":
+            state = "after"
+            continue
+        if state == "before":
+            sink.report(msg.GPR_MISSING_BEGIN, word_span)
+            state = "inside"  # carry on: the remaining lines are still useful
+        match = _KEY_VALUE.match(raw)
+        if match is None:
+            sink.report(msg.GPR_BAD_LINE, word_span)
+            continue
+        key = match.group(1)
+        value = match.group(2) if match.group(2) is not None else (match.group(3) or "")
+        key_span = Span(Position(gpr.path, number, match.start(1) + 1), number, match.end(1) + 1)
+        value_group = 2 if match.group(2) is not None else 3
+        if match.group(value_group) is not None:
+            start, end = match.start(value_group) + 1, match.end(value_group) + 1
+            value_span = Span(Position(gpr.path, number, start), number, end)
+        else:
+            value_span = key_span
+        entries.append(_GprEntry(key, value, key_span, value_span))
+    if state != "after":
+        sink.report(msg.GPR_MISSING_END, Span(Position(gpr.path, last_line, 1), last_line, 1))
+    return entries
+
+
+# --- files and bytes ----------------------------------------------------------------------------
+
+
+def _find_case_insensitive(
+    folder: Path, name: str, sink: DiagnosticSink | None = None, cause: Span | None = None
+) -> Path | None:
+    """The entry of ``folder`` called ``name`` ignoring case, as the controller would find it."""
+    exact = folder / name
+    try:
+        matches = sorted(e for e in folder.iterdir() if e.name.lower() == name.lower())
+    except OSError:
+        return exact if exact.exists() else None
+    if not matches:
+        return None
+    chosen = exact if exact in matches else matches[0]
+    if len(matches) > 1 and sink is not None:
+        sink.report(
+            msg.AMBIGUOUS_FILE_NAME,
+            cause,
+            name=name,
+            candidates=", ".join(m.name for m in matches),
+            chosen=chosen.name,
+        )
+    return chosen
+
+
+def _read_bytes(path: Path, shown: str, cause: Span | None, sink: DiagnosticSink) -> bytes | None:
+    try:
+        return path.read_bytes()
+    except IsADirectoryError:
+        sink.report(msg.CANNOT_READ, cause, path=shown, reason="it is a folder, not a file")
+    except OSError as exc:
+        sink.report(msg.CANNOT_READ, cause, path=shown, reason=exc.strerror or str(exc))
+    return None
+
+
+def _read_text(path: Path, shown: str, cause: Span | None, sink: DiagnosticSink) -> str | None:
+    data = _read_bytes(path, shown, cause, sink)
+    return None if data is None else _decode(data, shown, sink)
+
+
+_TEXT_CONTROLS = {0x09, 0x0A, 0x0C, 0x0D, 0x1A}  # tab, LF, FF, CR, DOS end-of-file
+
+
+def _decode(data: bytes, shown: str, sink: DiagnosticSink) -> str | None:
+    """Bytes -> text, or ``None`` with a diagnostic if the bytes are not a text file.
+
+    Non-ASCII is not an error here: GPL forbids it only in names and literals, which the lexer
+    knows about, so it is passed on (as UTF-8 when the bytes are valid UTF-8, else as latin-1).
+    """
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        sink.report(msg.BINARY_FILE, _file_start(shown), path=shown, what="it is encoded as UTF-16")
+        return None
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    nul = data.find(b"\x00")
+    if nul >= 0:
+        sink.report(msg.BINARY_FILE, _byte_span(shown, data, nul), path=shown, what="it contains NUL bytes")
+        return None
+    sample = data[:8192]
+    controls = [i for i, b in enumerate(sample) if b < 0x20 and b not in _TEXT_CONTROLS]
+    if sample and len(controls) * 10 > len(sample):
+        sink.report(
+            msg.BINARY_FILE,
+            _byte_span(shown, data, controls[0]),
+            path=shown,
+            what="it is mostly control characters",
+        )
+        return None
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data.decode("latin-1")
+
+
+def _file_start(shown: str) -> Span:
+    return Span(Position(shown, 1, 1), 1, 2)
+
+
+def _byte_span(shown: str, data: bytes, offset: int) -> Span:
+    """The line:col of byte ``offset``, counting bytes as characters (the file is not text)."""
+    line = data.count(b"\n", 0, offset) + 1
+    col = offset - (data.rfind(b"\n", 0, offset) + 1) + 1
+    return Span(Position(shown, line, col), line, col + 1)
+
+
+def _folder_name(folder: Path) -> str:
+    return folder.resolve().name or str(folder)
