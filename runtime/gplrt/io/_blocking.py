@@ -1,0 +1,48 @@
+"""The one place where a GPL thread waits on the outside world.
+
+Every blocking wait in ``gplrt.io`` (socket accept/receive/connect/send, a Modbus transaction, a
+serial read) runs through :func:`blocking_call`.  Why one helper: the GPL scheduler (``gplrt.threads``,
+written separately) may run GPL threads one at a time, or advance a *virtual* clock when every thread
+waits.  A thread blocked on a real socket must release the scheduler so other GPL threads keep
+running, and must not count as "waiting on virtual time".  Hooking that in one function is enough:
+
+    from gplrt.io import _blocking
+    _blocking.set_blocking_hook(my_hook)
+
+``my_hook(timeout)`` must return a context manager; it is entered just before the wait and exited
+right after it (also when the wait raises).  ``timeout`` is the real-time bound in seconds the
+operation will wait at most, or ``None`` for "no bound" (e.g. ``AcceptSocket`` with no timeout).
+The default hook does nothing.
+
+Timeouts themselves stay real: sockets talk to real peers, so their deadlines are wall-clock
+deadlines, enforced by the operation ``fn`` (socket timeouts), not by this helper.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Callable
+from typing import ContextManager, TypeVar
+
+T = TypeVar("T")
+
+BlockingHook = Callable[[float | None], ContextManager[object]]
+
+
+def _no_hook(timeout: float | None) -> ContextManager[object]:
+    return contextlib.nullcontext()
+
+
+_hook: BlockingHook = _no_hook
+
+
+def set_blocking_hook(hook: BlockingHook | None) -> None:
+    """Install the scheduler's hook (``None`` restores the no-op default)."""
+    global _hook
+    _hook = hook if hook is not None else _no_hook
+
+
+def blocking_call(fn: Callable[[], T], timeout: float | None) -> T:
+    """Run ``fn()``, a call that may block for up to ``timeout`` seconds, inside the hook."""
+    with _hook(timeout):
+        return fn()

@@ -1,0 +1,161 @@
+"""Controller paths (``/flash/...``, ``/ROMDISK/...``, ``/NVRAM/...``) mapped into a sandbox folder.
+
+The simulated controller's disks live under one host folder, :attr:`FlashRoot.root`:
+
+    /flash/a/b.txt      -> <root>/flash/a/b.txt       (permanent user flash disk)
+    /flash2 .. /flash8  -> <root>/flash2 ..            (optional sub-partitions, D0:3812-3813)
+    /ROMDISK/x          -> <root>/ROMDISK/x            (RAM disk, cleared when a session starts)
+    /NVRAM/file1        -> <root>/NVRAM/file1          (record store, see ``nvram.py``)
+
+``/dev/comN`` is not a file: :func:`classify` reports it as a serial device for ``serial.py``.
+
+Device names are matched case-insensitively (``/ROMDISK`` and ``/romdisk``); file and folder names
+are case-sensitive, as on the controller (D0:3620-3624).
+
+Refusals, each with the controller code that fits best (the manual names none for this case):
+
+* a component ``..`` or ``.`` or any name with a leading ``.``, an empty name, a name longer than
+  43 characters, or a non-printable character -> **-516 Invalid file name** (D0:3620-3624 forbids
+  leading dots, so ``..`` is simply an invalid name on the controller too);
+* a path that is not absolute, or whose first component is not a controller device (a host path
+  such as ``/etc/passwd`` or ``C:\\x``) -> **-301 Undefined device**;
+* a path longer than 255 characters -> **-517 File path too long** (limit chosen by us);
+* a path that resolves outside the sandbox through a symbolic link -> **-208 Protection error**.
+"""
+
+from __future__ import annotations
+
+import atexit
+import shutil
+import tempfile
+import threading
+from dataclasses import dataclass
+from enum import Enum
+from pathlib import Path
+
+from gplrt.lang.errors import GplException
+
+UNDEFINED_DEVICE = -301
+INVALID_FILE_NAME = -516
+PATH_TOO_LONG = -517
+PROTECTION_ERROR = -208
+
+MAX_NAME = 43
+MAX_PATH = 255
+
+#: Disk devices, by lower-case name, with the folder used under the root.
+DISK_DEVICES: dict[str, str] = {
+    "flash": "flash",
+    **{f"flash{n}": f"flash{n}" for n in range(2, 9)},
+    "romdisk": "ROMDISK",
+    "nvram": "NVRAM",
+}
+
+
+class DeviceKind(Enum):
+    DISK = "disk"
+    NVRAM = "nvram"
+    SERIAL = "serial"
+
+
+@dataclass(frozen=True)
+class ControllerPath:
+    """A checked controller path: its device, the host path (disks) and the original text."""
+
+    text: str
+    kind: DeviceKind
+    device: str  # "flash", "ROMDISK", "NVRAM", or the serial name "com1"
+    host: Path | None  # None for serial devices
+
+
+@dataclass
+class FlashRoot:
+    """The sandbox folder holding the simulated controller's disks."""
+
+    root: Path
+
+    def __post_init__(self) -> None:
+        self.root = Path(self.root).resolve()
+        self.root.mkdir(parents=True, exist_ok=True)
+        for folder in DISK_DEVICES.values():
+            (self.root / folder).mkdir(exist_ok=True)
+
+    def clear_romdisk(self) -> None:
+        """Empty ``/ROMDISK`` — the RAM disk is lost on every controller restart (D0:3806-3810)."""
+        romdisk = self.root / "ROMDISK"
+        shutil.rmtree(romdisk, ignore_errors=True)
+        romdisk.mkdir()
+
+    def resolve(self, path: str) -> ControllerPath:
+        """Check ``path`` and map it onto the sandbox (or onto a serial device)."""
+        if not isinstance(path, str):
+            raise GplException(INVALID_FILE_NAME, detail=f"path {path!r} is not a String")
+        if len(path) > MAX_PATH:
+            raise GplException(PATH_TOO_LONG, detail=f"{len(path)} characters: {path[:40]}...")
+        if not path.startswith("/"):
+            raise GplException(UNDEFINED_DEVICE, detail=f"{path!r}: a path starts with /device")
+        parts = path.split("/")[1:]
+        device = parts[0]
+        names = [p for p in parts[1:] if p != ""]  # tolerate "//" and a trailing "/"
+        low = device.lower()
+        if low == "dev" and names and _is_serial(names[0]):
+            if len(names) != 1:
+                raise GplException(INVALID_FILE_NAME, detail=path)
+            return ControllerPath(path, DeviceKind.SERIAL, names[0].lower(), None)
+        if low not in DISK_DEVICES:
+            raise GplException(UNDEFINED_DEVICE, detail=f"{path!r}: no device /{device} on the controller")
+        for name in names:
+            _check_name(name, path)
+        folder = self.root / DISK_DEVICES[low]
+        host = folder.joinpath(*names)
+        # Symbolic links may point anywhere on the host: the resolved target must stay inside.
+        real = host.resolve()
+        if not real.is_relative_to(folder.resolve()):
+            raise GplException(PROTECTION_ERROR, detail=f"{path!r} leads outside the controller's disks")
+        kind = DeviceKind.NVRAM if low == "nvram" else DeviceKind.DISK
+        return ControllerPath(path, kind, DISK_DEVICES[low], host)
+
+
+def _is_serial(name: str) -> bool:
+    return name.lower().startswith("com") and len(name) > 3
+
+
+def _check_name(name: str, path: str) -> None:
+    if name.startswith("."):
+        raise GplException(INVALID_FILE_NAME, detail=f"{path!r}: name {name!r} starts with '.'")
+    if len(name) > MAX_NAME:
+        raise GplException(INVALID_FILE_NAME, detail=f"{path!r}: name longer than {MAX_NAME} characters")
+    if any(not (32 <= ord(c) < 127) or c == "\\" for c in name):
+        raise GplException(INVALID_FILE_NAME, detail=f"{path!r}: name {name!r} has a non-printable character")
+
+
+_lock = threading.Lock()
+_current: FlashRoot | None = None
+_session_dir: tempfile.TemporaryDirectory[str] | None = None
+
+
+def set_flash_root(root: Path | str, *, clear_romdisk: bool = True) -> FlashRoot:
+    """Use ``root`` as the controller's disks from now on (the simulator calls this at start)."""
+    global _current
+    flash = FlashRoot(Path(root))
+    if clear_romdisk:
+        flash.clear_romdisk()
+    with _lock:
+        _current = flash
+    return flash
+
+
+def get_flash_root() -> FlashRoot:
+    """The configured root; by default a temporary folder that lives as long as the process."""
+    global _current, _session_dir
+    with _lock:
+        if _current is None:
+            _session_dir = tempfile.TemporaryDirectory(prefix="gplrt-flash-")
+            atexit.register(_session_dir.cleanup)
+            _current = FlashRoot(Path(_session_dir.name))
+        return _current
+
+
+def resolve(path: str) -> ControllerPath:
+    """Check and map a controller path against the current root."""
+    return get_flash_root().resolve(path)

@@ -1,0 +1,151 @@
+"""The ``/NVRAM`` record store (D0:3992-4158), with the controller's exact space accounting.
+
+NVRAM files are sequences of atomic **records** of at most 255 bytes.  A file's capacity is fixed
+when it is created (``-size n``, 4 <= n <= 7872, default 1024) and is charged **1 byte per file
+plus 1 byte per record** on top of the data (D0:4068-4083).  A full file raises -323 *Device full*
+unless it was created with ``-wrap``, in which case the oldest records are dropped until the new one
+fits.  EX-27 and EX-28 are the test oracles: ``WriteLine("Record n")`` with the default
+``AutoFlush = True`` writes one record of 10-11 bytes including CR-LF.
+
+Host format (private to this module): ``b"GPLNV"``, size (2 bytes, big-endian), wrap flag
+(1 byte), then each record as one length byte followed by its data.  Only file names ``file1`` ..
+``file16`` exist (D0:4037-4040).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gplrt.lang.errors import GplException
+
+DEVICE_FULL = -323
+INVALID_FILE_NAME = -516
+INVALID_FILE_FORMAT = -519
+VALUE_OUT_OF_RANGE = -707
+
+MAGIC = b"GPLNV"
+MIN_SIZE, MAX_SIZE, DEFAULT_SIZE = 4, 7872, 1024
+MAX_RECORD = 255
+_NAME = re.compile(r"file([1-9]|1[0-6])")
+
+
+@dataclass(frozen=True)
+class NvramSwitches:
+    """``-size n`` and ``-wrap`` parsed from the text after an NVRAM path."""
+
+    size: int | None = None
+    wrap: bool = False
+
+
+def split_switches(path: str) -> tuple[str, NvramSwitches]:
+    """``"/NVRAM/file2 -size 64 -wrap"`` -> ``("/NVRAM/file2", NvramSwitches(64, True))``."""
+    words = path.split()
+    if not words:
+        return path, NvramSwitches()
+    size: int | None = None
+    wrap = False
+    rest = words[1:]
+    i = 0
+    while i < len(rest):
+        word = rest[i].lower()
+        if word == "-wrap":
+            wrap = True
+        elif word == "-size" and i + 1 < len(rest) and rest[i + 1].isdigit():
+            size = int(rest[i + 1])
+            i += 1
+        else:
+            raise GplException(-202, detail=f"{path!r}: unknown NVRAM switch {rest[i]!r}")
+        i += 1
+    if size is not None and not MIN_SIZE <= size <= MAX_SIZE:
+        raise GplException(VALUE_OUT_OF_RANGE, detail=f"NVRAM -size {size}: must be {MIN_SIZE}..{MAX_SIZE}")
+    return words[0], NvramSwitches(size, wrap)
+
+
+def check_name(host: Path) -> None:
+    """Only ``file1`` .. ``file16`` exist on the NVRAM device."""
+    if host.parent.name != "NVRAM" or not _NAME.fullmatch(host.name):
+        raise GplException(INVALID_FILE_NAME, detail=f"NVRAM files are file1..file16, not {host.name!r}")
+
+
+@dataclass
+class NvramFile:
+    """One NVRAM file: capacity, wrap mode and its records."""
+
+    size: int = DEFAULT_SIZE
+    wrap: bool = False
+    records: list[bytes] = field(default_factory=list)
+
+    @property
+    def used(self) -> int:
+        return 1 + sum(len(r) + 1 for r in self.records)
+
+    def append(self, data: bytes) -> None:
+        """Store ``data`` as records (split at 255 bytes), each atomic."""
+        for start in range(0, len(data), MAX_RECORD):
+            self._append_record(data[start : start + MAX_RECORD])
+
+    def _append_record(self, record: bytes) -> None:
+        need = len(record) + 1
+        if 1 + need > self.size:
+            raise GplException(DEVICE_FULL, detail=f"record of {len(record)} bytes exceeds the NVRAM file")
+        if self.used + need > self.size:
+            if not self.wrap:
+                raise GplException(DEVICE_FULL, detail=f"NVRAM file of {self.size} bytes is full")
+            while self.used + need > self.size:
+                self.records.pop(0)
+        self.records.append(record)
+
+    def data(self) -> bytes:
+        return b"".join(self.records)
+
+    # -- host storage ---------------------------------------------------------------------------
+
+    @classmethod
+    def load(cls, host: Path) -> NvramFile:
+        raw = host.read_bytes()
+        if not raw.startswith(MAGIC) or len(raw) < len(MAGIC) + 3:
+            raise GplException(INVALID_FILE_FORMAT, detail=f"{host.name} is not an NVRAM file")
+        pos = len(MAGIC)
+        size = int.from_bytes(raw[pos : pos + 2], "big")
+        wrap = bool(raw[pos + 2])
+        pos += 3
+        records: list[bytes] = []
+        while pos < len(raw):
+            length = raw[pos]
+            records.append(raw[pos + 1 : pos + 1 + length])
+            pos += 1 + length
+        return cls(size, wrap, records)
+
+    def save(self, host: Path) -> None:
+        out = bytearray(MAGIC)
+        out += self.size.to_bytes(2, "big")
+        out.append(1 if self.wrap else 0)
+        for record in self.records:
+            out.append(len(record))
+            out += record
+        tmp = host.with_name(host.name + ".tmp")
+        tmp.write_bytes(bytes(out))
+        tmp.replace(host)  # atomic, like the controller's record writes
+
+
+def open_for_write(host: Path, switches: NvramSwitches, append: bool) -> NvramFile:
+    """The NVRAM file to write: existing (size fixed until deleted) or created with the switches."""
+    check_name(host)
+    if host.exists():
+        nv = NvramFile.load(host)
+        if not append:
+            nv.records.clear()
+        if switches.wrap:
+            nv.wrap = True
+    else:
+        nv = NvramFile(switches.size or DEFAULT_SIZE, switches.wrap)
+    nv.save(host)
+    return nv
+
+
+def read_data(host: Path) -> bytes:
+    """All bytes of an NVRAM file, records concatenated (what a StreamReader sees)."""
+    check_name(host)
+    return NvramFile.load(host).data()
