@@ -1,0 +1,19 @@
+' Robot calibration parameter data file
+' Controller: PrecisePlace-style XYZ-Theta gantry (gplrt default)
+' System software: gplrt default database (ours, not from a real controller)
+' File creation date: 11-21-2026
+
+Begin: 1.0
+
+DI: 16000, 0, 0, 0, "Robot serial number" = "GPLRT-GANTRY4"
+DI: 16050, 0, 0, 0, "Kinematic dimensional constants" = 0, 0, 0, 0
+DI: 16051, 0, 0, 0, "Tool set at restart" = 0, 0, 0, 0, 0, 0
+DI: 16052, 0, 0, 0, "Base set at restart" = 0, 0, 0, 0, 0, 0
+DI: 16075, 0, 0, 0, "Joint max hard stop limit" = 802, 602, 302, 362
+DI: 16076, 0, 0, 0, "Joint min hard stop limit" = -2, -2, -2, -362
+DI: 16077, 0, 0, 0, "Joint max soft stop limit" = 800, 600, 300, 360
+DI: 16078, 0, 0, 0, "Joint min soft stop limit" = 0, 0, 0, -360
+
+End:
+
+' End of file
