@@ -1,0 +1,167 @@
+"""GPL's Profile class: how a motion moves (speed, acceleration, ramps, path type, in-position rule).
+
+Spec: gpl-classes.md §6, gpl-dictionary.md §3, robot-models.md §2.4.
+
+Defaults are the controller's parameter-database defaults for a new Profile (robot-models.md
+§2.4; identical in every shipped PF400 set under /work/shared/data/robots/): Speed 50 % (DataID
+2708), Speed2 0 % = not used (2709), Accel and Decel 100 % (2710/2711), AccelRamp and DecelRamp
+0.1 s (2712/2713), Straight False (GD straight.htm), InRange 0 [P: stop at the end without a
+position-error check — the Dictionary gives no default; the planner treats 0 as "done when the
+last set-point is issued"], Text "".
+
+Range checks (the Dictionary names no codes; we use the controller's generic ones): NaN or an
+infinite value -> -708 *Value infinite or NAN*; Speed, Accel, Decel <= 0 -> -705 *Value too
+small* (a zero speed could never finish a motion); Speed2, AccelRamp, DecelRamp < 0 -> -705.
+Upper caps depend on the robot (DataIDs 2704-2706, e.g. 150/300/300 % on a PF400); a Profile is not
+bound to a robot, so the planner clamps with ``min(value, cap)`` when it plans a segment
+(``robot-models.md`` §2.4 mapping) — it is not an error to ask for more.
+"""
+
+from __future__ import annotations
+
+import math
+
+from gplrt.lang.errors import GplException
+from gplrt.lang.gpltypes import Boolean, Double, String
+
+VALUE_TOO_SMALL = -705
+VALUE_INFINITE_OR_NAN = -708
+
+DEFAULT_SPEED = 50.0
+DEFAULT_SPEED2 = 0.0
+DEFAULT_ACCEL = 100.0
+DEFAULT_DECEL = 100.0
+DEFAULT_RAMP = 0.1
+DEFAULT_INRANGE = 0.0
+
+
+def _checked(value: float, name: str, *, positive: bool) -> float:
+    v = float(value)
+    if not math.isfinite(v):
+        raise GplException(VALUE_INFINITE_OR_NAN, detail=f"Profile.{name} = {v}")
+    if v < 0.0 or (positive and v == 0.0):
+        bound = "> 0" if positive else ">= 0"
+        raise GplException(VALUE_TOO_SMALL, detail=f"Profile.{name} = {v}, must be {bound}")
+    return v
+
+
+class Profile:
+    """GPL ``Profile``.  ``New Profile`` (no arguments) gives the controller defaults above."""
+
+    __slots__ = ("_speed", "_speed2", "_accel", "_decel", "_accel_ramp", "_decel_ramp", "_straight", "_inrange", "_text")
+
+    def __init__(self) -> None:
+        self._speed = DEFAULT_SPEED
+        self._speed2 = DEFAULT_SPEED2
+        self._accel = DEFAULT_ACCEL
+        self._decel = DEFAULT_DECEL
+        self._accel_ramp = DEFAULT_RAMP
+        self._decel_ramp = DEFAULT_RAMP
+        self._straight = False
+        self._inrange = DEFAULT_INRANGE
+        self._text = ""
+
+    @property
+    def Speed(self) -> Double:
+        """Peak speed, % of the robot's 100 % speeds (DataID 2700 joint / 2701 Cartesian)."""
+        return self._speed  # type: ignore[return-value]
+
+    @Speed.setter
+    def Speed(self, value: Double) -> None:
+        self._speed = _checked(value, "Speed", positive=True)
+
+    @property
+    def Speed2(self) -> Double:
+        """Secondary peak speed (%) for selected axes in Cartesian motions; 0 = not used."""
+        return self._speed2  # type: ignore[return-value]
+
+    @Speed2.setter
+    def Speed2(self, value: Double) -> None:
+        self._speed2 = _checked(value, "Speed2", positive=False)
+
+    @property
+    def Accel(self) -> Double:
+        """Peak acceleration, % of the robot's 100 % accelerations (DataID 2702/2703)."""
+        return self._accel  # type: ignore[return-value]
+
+    @Accel.setter
+    def Accel(self, value: Double) -> None:
+        self._accel = _checked(value, "Accel", positive=True)
+
+    @property
+    def Decel(self) -> Double:
+        """Peak deceleration, % of the robot's 100 % accelerations."""
+        return self._decel  # type: ignore[return-value]
+
+    @Decel.setter
+    def Decel(self, value: Double) -> None:
+        self._decel = _checked(value, "Decel", positive=True)
+
+    @property
+    def AccelRamp(self) -> Double:
+        """Seconds to ramp up to peak acceleration (the jerk limit; 0 = trapezoidal)."""
+        return self._accel_ramp  # type: ignore[return-value]
+
+    @AccelRamp.setter
+    def AccelRamp(self, value: Double) -> None:
+        self._accel_ramp = _checked(value, "AccelRamp", positive=False)
+
+    @property
+    def DecelRamp(self) -> Double:
+        """Seconds to ramp up to peak deceleration."""
+        return self._decel_ramp  # type: ignore[return-value]
+
+    @DecelRamp.setter
+    def DecelRamp(self, value: Double) -> None:
+        self._decel_ramp = _checked(value, "DecelRamp", positive=False)
+
+    @property
+    def Straight(self) -> Boolean:
+        """True: straight-line Cartesian path of the tool tip; False: joint-interpolated."""
+        return self._straight  # type: ignore[return-value]
+
+    @Straight.setter
+    def Straight(self, value: Boolean) -> None:
+        self._straight = bool(value)
+
+    @property
+    def InRange(self) -> Double:
+        """< 0: blend into the next motion; 0: stop, no position check; > 0: stop within a tolerance."""
+        return self._inrange  # type: ignore[return-value]
+
+    @InRange.setter
+    def InRange(self, value: Double) -> None:
+        v = float(value)
+        if not math.isfinite(v):
+            raise GplException(VALUE_INFINITE_OR_NAN, detail=f"Profile.InRange = {v}")
+        self._inrange = v
+
+    @property
+    def Text(self) -> String:
+        """Free user string."""
+        return self._text  # type: ignore[return-value]
+
+    @Text.setter
+    def Text(self, value: String) -> None:
+        self._text = str(value)
+
+    def Clone(self) -> Profile:
+        """An independent copy."""
+        twin = Profile.__new__(Profile)
+        for name in Profile.__slots__:
+            setattr(twin, name, getattr(self, name))
+        return twin
+
+    # -- Python side -------------------------------------------------------------------------------
+
+    @property
+    def blends(self) -> bool:
+        """True when the motion should blend into the next one (InRange < 0)."""
+        return self._inrange < 0.0
+
+    def __repr__(self) -> str:
+        return (
+            f"Profile(Speed={self._speed:g}, Speed2={self._speed2:g}, Accel={self._accel:g}, "
+            f"Decel={self._decel:g}, AccelRamp={self._accel_ramp:g}, DecelRamp={self._decel_ramp:g}, "
+            f"Straight={self._straight}, InRange={self._inrange:g})"
+        )
