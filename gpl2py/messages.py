@@ -62,7 +62,165 @@ def all_messages() -> list[Message]:
 
 # --- lexer (GPL1000-GPL1099) -------------------------------------------------------------------
 
+LEX_INVALID_CHAR = _error(
+    "GPL1001",
+    "invalid character {char} in GPL source",
+    "GPL source is 7-bit ASCII outside comments; a stray character (often a typographic quote or dash "
+    "pasted from a document) cannot start any token.",
+)
+LEX_UNTERMINATED_STRING = _error(
+    "GPL1002",
+    "unterminated string literal: add the closing '\"' on this line",
+    "String literals cannot span lines; use ' _' continuation and '&' to build long strings.",
+)
+LEX_LONG_STRING = _warning(
+    "GPL1003",
+    "string literal is {length} characters long; GPL controllers accept at most 128",
+    "The manual limits literals (not String values) to 128 characters (spec AMB-35).",
+)
+LEX_NON_ASCII_STRING = _error(
+    "GPL1004",
+    "non-ASCII character {char} in a string literal; GPL strings are 7-bit ASCII (use Chr())",
+)
+LEX_COMMENT_AFTER_CONTINUATION = _warning(
+    "GPL1005",
+    "comment after the line continuation ' _'; GPL may reject this, the comment is kept as a "
+    "trailing comment of the statement",
+    "VB forbids it; exported GPL code sometimes has it, so gpl2py accepts it and keeps the text.",
+)
+LEX_LITERAL_SUFFIX = _error(
+    "GPL1006",
+    "type character or suffix '{suffix}' after the number {number} is not supported in GPL",
+    "GPL has no literal type characters (725L, 1.5!, ...); separate the number from the next word.",
+)
+LEX_LITERAL_RANGE = _error(
+    "GPL1007",
+    "numeric literal {text} is out of range",
+    "Hex and octal literals are 32-bit; reals must fit in a Double.",
+)
+LEX_CONDITIONAL_DIRECTIVE = _warning(
+    "GPL1008",
+    "'{directive}' line is ignored: GPL has no conditional compilation, both branches are compiled",
+    "Lines starting with '#' are ignored by GPL (spec §1.4, AMB-27).",
+)
+LEX_LONG_IDENTIFIER = _error(
+    "GPL1009",
+    "name '{name}...' is {length} characters long; GPL names have at most 128 characters",
+)
+LEX_MISPLACED_HASH = _error(
+    "GPL1010",
+    "'#' must be the first character of a line (a '#Region' style line)",
+)
+
 # --- parser (GPL1100-GPL1399) ------------------------------------------------------------------
+
+PARSE_EXPECTED = _error("GPL1100", "expected {expected}, found {found}")
+PARSE_EXPECTED_EXPRESSION = _error("GPL1101", "expected an expression, found {found}")
+PARSE_TRAILING_TOKENS = _error(
+    "GPL1102",
+    "unexpected {found} after the end of the statement",
+    "GPL allows one statement per line; anything after a complete statement must be a comment.",
+)
+PARSE_UNSUPPORTED = _error(
+    "GPL1103",
+    "{what} is not supported in GPL{hint}",
+    "A Visual Basic construct that the GPL manuals exclude or never document (spec §15).",
+)
+PARSE_UNMATCHED_END = _error(
+    "GPL1104",
+    "'{closer}' without a matching '{opener}'",
+)
+PARSE_UNCLOSED_BLOCK = _error(
+    "GPL1105",
+    "'{opener}' block is not closed: expected '{closer}' before {found}",
+    "Reported at the statement that opens the block.",
+)
+PARSE_NESTED_DECLARATION = _error(
+    "GPL1106",
+    "declarations are allowed only at the outermost level of a procedure, not inside {block}",
+    "Manual §3.2.6: move the Dim to the top level of the procedure (its scope is the whole procedure).",
+)
+PARSE_MISSING_TYPE = _error(
+    "GPL1107",
+    "'{name}' has no type: add an 'As' clause",
+    "The data type must always be specified (manual §3.2.8).",
+)
+PARSE_NOT_A_STATEMENT = _error(
+    "GPL1108",
+    "{what} cannot be used as a statement",
+)
+PARSE_STATEMENT_OUTSIDE_PROCEDURE = _error(
+    "GPL1109",
+    "statements must be inside a Sub, Function or Property; found {found} in {container}",
+)
+PARSE_OUTSIDE_MODULE = _error(
+    "GPL1110",
+    "{what} must be declared inside a Module",
+    "Only modules (and, as an extension, classes) may appear at the outer level of a file.",
+)
+PARSE_COLON_SEPARATOR = _error(
+    "GPL1111",
+    "':' cannot separate statements in GPL (one statement per line)",
+    "A ':' is only valid after a label at the start of a line.  A line with only ':' is a "
+    "documentation ellipsis in the manuals, not code.",
+)
+PARSE_NEW_NEEDS_ONE_NAME = _error(
+    "GPL1112",
+    "a declaration with 'New' or '=' must declare exactly one variable",
+    "Manual §3.2.9-3.2.11.",
+)
+PARSE_ARRAY_INITIALIZER = _error(
+    "GPL1113",
+    "array variables cannot have an initializer in GPL",
+)
+PARSE_ARRAY_RANK = _error(
+    "GPL1114",
+    "arrays have 1 to 4 dimensions; '{name}' has {rank}",
+)
+PARSE_DUPLICATE_CLAUSE = _error(
+    "GPL1115",
+    "a Try statement has at most one {clause}",
+)
+PARSE_CATCH_NEEDS_VARIABLE = _error(
+    "GPL1116",
+    "Catch needs an exception variable in GPL (for example 'Catch ex')",
+)
+PARSE_TOO_DEEP = _error(
+    "GPL1117",
+    "{what} nested too deeply (more than {limit} levels)",
+)
+PARSE_ELSE_IF = _warning(
+    "GPL1118",
+    "'Else If' on one line is read as 'ElseIf'",
+)
+PARSE_BLOCK_IN_SINGLE_LINE_IF = _error(
+    "GPL1119",
+    "{what} cannot appear in a single-line If; use a block If ... End If",
+)
+PARSE_FUNCTION_NEEDS_TYPE = _error(
+    "GPL1120",
+    "{what} '{name}' needs a return type ('As type')",
+)
+PARSE_PROPERTY_NEEDS_ACCESSOR = _error(
+    "GPL1121",
+    "Property '{name}' needs a Get or a Set block",
+)
+PARSE_DO_TWO_CONDITIONS = _error(
+    "GPL1122",
+    "a Do loop can test its condition at the top or at the bottom, not both",
+)
+PARSE_MISPLACED_DECLARATION = _error(
+    "GPL1123",
+    "{what} cannot be declared {where}",
+)
+PARSE_CASE_OUTSIDE_SELECT = _error(
+    "GPL1124",
+    "statements in a Select must follow a 'Case' line",
+)
+PARSE_BAD_MODIFIER = _error(
+    "GPL1125",
+    "'{modifier}' is not allowed {where}",
+)
 
 # --- project loading (GPL1400-GPL1499) ---------------------------------------------------------
 

@@ -1,0 +1,675 @@
+"""The GPL abstract syntax tree: plain dataclasses, one per construct, in the style of pycparser's c_ast.
+
+Conventions
+-----------
+* Every node has ``span`` (a :class:`~gpl2py.source.Span`) as its first field.
+* ``_children`` names the fields that hold nodes or lists of nodes, in source order; :meth:`Node.children`
+  and the visitors use it, so a node's shape is visible at a glance.
+* Nodes compare and hash by identity (``eq=False``) so later passes can key dictionaries on them
+  (symbol tables, inferred types).
+* Names keep their source spelling; GPL is case-insensitive, so semantics compares ``name.lower()``.
+* Operators are stored as canonical strings: ``"+"``, ``"Mod"``, ``"AndAlso"``, ``"<<="`` ...
+* ``a(1)`` is an :class:`Invoke` whatever it means (call, array index, indexed property, delegate
+  invocation): the parser cannot know, semantics decides (spec §3.7).
+* Parentheses are not kept as nodes; precedence is already in the tree shape.
+
+Comments
+--------
+GPL comments must survive into the generated Python.  Every statement and declaration (subclasses of
+:class:`Stmt`) carries ``leading_comments`` (full-line comments and ``#`` lines directly above it) and
+``trailing_comment`` (the comment at the end of its line; for a block statement, the comment on its
+first line).  A :class:`Block` keeps ``header_comment`` (the comment on the line that opens it, such
+as ``Else ' why``) and ``end_comments`` (comments after its last statement, before ``End If`` /
+``Next`` / ``Case`` ...).  Block statements keep the comment on their closing line in ``end_comment``.
+Containers (:class:`SourceUnit`, :class:`ModuleDecl`, :class:`ClassDecl`) keep their trailing
+comments in ``end_comments``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import KW_ONLY, dataclass, field, fields
+from typing import Any, ClassVar, Iterator
+
+from gpl2py.source import Span
+
+
+@dataclass(slots=True, frozen=True)
+class Comment:
+    """One comment. ``text`` excludes the leading ``'``; ``directive`` marks a kept ``#`` line."""
+
+    span: Span
+    text: str
+    directive: bool = False
+
+
+# --------------------------------------------------------------------------------------------------
+# base classes
+
+
+@dataclass(slots=True, eq=False)
+class Node:
+    span: Span
+    _children: ClassVar[tuple[str, ...]] = ()
+
+    def children(self) -> Iterator[Node]:
+        """The child nodes, in source order (lists are flattened, ``None`` skipped)."""
+        for name in self._children:
+            value = getattr(self, name)
+            if value is None:
+                continue
+            if isinstance(value, list):
+                for item in value:
+                    if item is not None:
+                        yield item
+            else:
+                yield value
+
+
+@dataclass(slots=True, eq=False)
+class Expr(Node):
+    """Base of expressions."""
+
+
+@dataclass(slots=True, eq=False)
+class Stmt(Node):
+    """Base of statements and declarations: anything that occupies a line and can carry comments."""
+
+    _: KW_ONLY
+    leading_comments: list[Comment] = field(default_factory=list)
+    trailing_comment: Comment | None = None
+
+
+# --------------------------------------------------------------------------------------------------
+# expressions
+
+
+@dataclass(slots=True, eq=False)
+class Name(Expr):
+    name: str
+
+
+@dataclass(slots=True, eq=False)
+class IntegerLiteral(Expr):
+    """Decimal, ``&H`` or ``&O`` literal. ``value`` is already 32-bit two's complement for hex/octal."""
+
+    value: int
+    text: str
+
+
+@dataclass(slots=True, eq=False)
+class RealLiteral(Expr):
+    value: float
+    text: str
+
+
+@dataclass(slots=True, eq=False)
+class StringLiteral(Expr):
+    """``value`` is decoded (``""`` -> ``"``)."""
+
+    value: str
+
+
+@dataclass(slots=True, eq=False)
+class BooleanLiteral(Expr):
+    value: bool
+
+
+@dataclass(slots=True, eq=False)
+class NothingLiteral(Expr):
+    pass
+
+
+@dataclass(slots=True, eq=False)
+class MeExpr(Expr):
+    pass
+
+
+@dataclass(slots=True, eq=False)
+class MemberAccess(Expr):
+    """``target.name``; may also be a zero-argument call (``Move.WaitForEOM``), semantics decides."""
+
+    target: Expr
+    name: str
+    _children: ClassVar[tuple[str, ...]] = ("target",)
+
+
+@dataclass(slots=True, eq=False)
+class Invoke(Expr):
+    """``target(args)``: call, array index, indexed property or delegate invocation (semantics decides)."""
+
+    target: Expr
+    args: list[Expr]
+    _children: ClassVar[tuple[str, ...]] = ("target", "args")
+
+
+@dataclass(slots=True, eq=False)
+class Unary(Expr):
+    """``-x``, ``+x`` or ``Not x``."""
+
+    op: str
+    operand: Expr
+    _children: ClassVar[tuple[str, ...]] = ("operand",)
+
+
+@dataclass(slots=True, eq=False)
+class Binary(Expr):
+    """``left op right``; ``op`` is one of ``^ * / \\ Mod + - & << >> = <> < > <= >= Is And AndAlso
+    Or OrElse Xor``."""
+
+    op: str
+    left: Expr
+    right: Expr
+    _children: ClassVar[tuple[str, ...]] = ("left", "right")
+
+
+@dataclass(slots=True, eq=False)
+class TypeRef(Node):
+    """A type name as written: ``Integer``, ``Location``, ``MyMod.My_class``."""
+
+    name: str
+
+    @property
+    def parts(self) -> list[str]:
+        return self.name.split(".")
+
+
+@dataclass(slots=True, eq=False)
+class New(Expr):
+    """``New T`` or ``New T(args)``; ``args`` is ``None`` when no parentheses were written."""
+
+    type: TypeRef
+    args: list[Expr] | None
+    _children: ClassVar[tuple[str, ...]] = ("type", "args")
+
+
+@dataclass(slots=True, eq=False)
+class AddressOf(Expr):
+    """``AddressOf f`` or ``AddressOf obj.f``; ``target`` is a :class:`Name` or :class:`MemberAccess`."""
+
+    target: Expr
+    _children: ClassVar[tuple[str, ...]] = ("target",)
+
+
+@dataclass(slots=True, eq=False)
+class ErrorExpr(Expr):
+    """Stands in for an expression that failed to parse (a diagnostic was reported)."""
+
+
+# --------------------------------------------------------------------------------------------------
+# blocks and statements
+
+
+@dataclass(slots=True, eq=False)
+class Block(Node):
+    """A statement list (procedure body, loop body, If branch ...)."""
+
+    statements: list[Stmt]
+    header_comment: Comment | None = None
+    end_comments: list[Comment] = field(default_factory=list)
+    _children: ClassVar[tuple[str, ...]] = ("statements",)
+
+
+@dataclass(slots=True, eq=False)
+class Label(Stmt):
+    """``name:`` or ``100:`` at the start of a line; a statement on the same line follows it in the
+    enclosing block."""
+
+    name: str
+
+
+@dataclass(slots=True, eq=False)
+class Assign(Stmt):
+    """``target op value`` where ``op`` is ``=`` or a compound operator (``+=``, ``<<=``, ``&=`` ...)."""
+
+    target: Expr
+    op: str
+    value: Expr
+    _children: ClassVar[tuple[str, ...]] = ("target", "value")
+
+
+@dataclass(slots=True, eq=False)
+class CallStmt(Stmt):
+    """A procedure/method call used as a statement: ``Foo(1)``, ``Move.WaitForEOM``, ``Call Foo(1)``.
+
+    ``expr`` is a :class:`Name`, :class:`MemberAccess` or :class:`Invoke`.
+    """
+
+    expr: Expr
+    call_keyword: bool = False
+    _children: ClassVar[tuple[str, ...]] = ("expr",)
+
+
+@dataclass(slots=True, eq=False)
+class ElseIfClause(Stmt):
+    condition: Expr
+    body: Block
+    _children: ClassVar[tuple[str, ...]] = ("condition", "body")
+
+
+@dataclass(slots=True, eq=False)
+class If(Stmt):
+    """Block or single-line If.  A single-line If has one statement in ``then_body`` (and maybe in
+    ``else_body``) and ``single_line=True``."""
+
+    condition: Expr
+    then_body: Block
+    elseifs: list[ElseIfClause] = field(default_factory=list)
+    else_body: Block | None = None
+    single_line: bool = False
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("condition", "then_body", "elseifs", "else_body")
+
+
+@dataclass(slots=True, eq=False)
+class For(Stmt):
+    """``For var = start To end [Step step] ... Next [next_var]``; ``var`` may be an array element or
+    a field (any postfix expression)."""
+
+    var: Expr
+    start: Expr
+    end: Expr
+    step: Expr | None
+    body: Block
+    next_var: Expr | None = None
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("var", "start", "end", "step", "body", "next_var")
+
+
+@dataclass(slots=True, eq=False)
+class ForEach(Stmt):
+    """``For Each var In collection ... Next``."""
+
+    var: Expr
+    collection: Expr
+    body: Block
+    next_var: Expr | None = None
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("var", "collection", "body", "next_var")
+
+
+@dataclass(slots=True, eq=False)
+class While(Stmt):
+    condition: Expr
+    body: Block
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("condition", "body")
+
+
+@dataclass(slots=True, eq=False)
+class DoLoop(Stmt):
+    """All ``Do``/``Loop`` forms.  ``condition`` is ``None`` for the plain infinite loop;
+    ``test_at_top`` says where it is tested; ``until`` is True for ``Until`` (loop while it is False)."""
+
+    condition: Expr | None
+    test_at_top: bool
+    until: bool
+    body: Block
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("condition", "body")
+
+
+@dataclass(slots=True, eq=False)
+class CaseValue(Node):
+    """``Case 3`` / ``Case "red"``."""
+
+    value: Expr
+    _children: ClassVar[tuple[str, ...]] = ("value",)
+
+
+@dataclass(slots=True, eq=False)
+class CaseRange(Node):
+    """``Case 1 To 5`` (VB form; not documented for GPL, accepted)."""
+
+    low: Expr
+    high: Expr
+    _children: ClassVar[tuple[str, ...]] = ("low", "high")
+
+
+@dataclass(slots=True, eq=False)
+class CaseIs(Node):
+    """``Case Is > 5`` (VB form; not documented for GPL, accepted). ``op`` is a comparison."""
+
+    op: str
+    value: Expr
+    _children: ClassVar[tuple[str, ...]] = ("value",)
+
+
+@dataclass(slots=True, eq=False)
+class CaseClause(Stmt):
+    """``Case a, b To c, Is > d`` and its block; ``items`` is empty for ``Case Else``."""
+
+    items: list[CaseValue | CaseRange | CaseIs]
+    body: Block
+    is_else: bool = False
+    _children: ClassVar[tuple[str, ...]] = ("items", "body")
+
+
+@dataclass(slots=True, eq=False)
+class Select(Stmt):
+    """``Select [Case] subject``; ``cases`` in order, the ``Case Else`` clause (if any) last."""
+
+    subject: Expr
+    cases: list[CaseClause]
+    end_comment: Comment | None = None
+    end_comments: list[Comment] = field(default_factory=list)
+    _children: ClassVar[tuple[str, ...]] = ("subject", "cases")
+
+
+@dataclass(slots=True, eq=False)
+class GoTo(Stmt):
+    label: str
+
+
+@dataclass(slots=True, eq=False)
+class Exit(Stmt):
+    """``Exit Sub|Function|Property|For|Do|While|Select|Try``; ``kind`` in canonical case."""
+
+    kind: str
+
+
+@dataclass(slots=True, eq=False)
+class Return(Stmt):
+    value: Expr | None
+    _children: ClassVar[tuple[str, ...]] = ("value",)
+
+
+@dataclass(slots=True, eq=False)
+class Throw(Stmt):
+    """``Throw exc``; ``value`` is ``None`` for a bare ``Throw`` (rethrow, not documented for GPL)."""
+
+    value: Expr | None
+    _children: ClassVar[tuple[str, ...]] = ("value",)
+
+
+@dataclass(slots=True, eq=False)
+class CatchClause(Stmt):
+    """``Catch ex`` (GPL: a predeclared variable) or ``Catch ex As Exception`` (extension: ``type``)."""
+
+    variable: str | None
+    type: TypeRef | None
+    body: Block
+    _children: ClassVar[tuple[str, ...]] = ("type", "body")
+
+
+@dataclass(slots=True, eq=False)
+class FinallyClause(Stmt):
+    body: Block
+    _children: ClassVar[tuple[str, ...]] = ("body",)
+
+
+@dataclass(slots=True, eq=False)
+class Try(Stmt):
+    body: Block
+    catch: CatchClause | None
+    finally_: FinallyClause | None
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("body", "catch", "finally_")
+
+
+@dataclass(slots=True, eq=False)
+class ReDim(Stmt):
+    """``ReDim target(bounds)``; ``preserve`` records a (reported, unsupported) ``ReDim Preserve``."""
+
+    target: Expr
+    bounds: list[Expr]
+    preserve: bool = False
+    _children: ClassVar[tuple[str, ...]] = ("target", "bounds")
+
+
+# --------------------------------------------------------------------------------------------------
+# declarations
+
+
+@dataclass(slots=True, eq=False)
+class VarDeclarator(Node):
+    """One declared name.
+
+    ``bounds`` is ``None`` for a scalar; for an array it has one entry per dimension: the upper-bound
+    expression, or ``None`` when not given (``x()`` -> ``[None]``, ``x(,)`` -> ``[None, None]``).
+    ``As New T(args)`` sets ``new=True`` and ``new_args``; ``= expr`` sets ``initializer``.  In
+    ``Dim a, b As Integer`` both declarators share the same ``type`` node (spec §3.4).
+    """
+
+    name: str
+    bounds: list[Expr | None] | None
+    type: TypeRef | None
+    new: bool = False
+    new_args: list[Expr] | None = None
+    initializer: Expr | None = None
+    _children: ClassVar[tuple[str, ...]] = ("bounds", "type", "new_args", "initializer")
+
+
+@dataclass(slots=True, eq=False)
+class VarDecl(Stmt):
+    """``Dim``/``Static``/``Const`` or modifier-only (``Public x As Integer``) declarations.
+
+    ``keyword`` is ``"Dim"``, ``"Static"``, ``"Const"`` or ``None``; ``modifiers`` holds ``Public``,
+    ``Private``, ``Shared`` in source order (canonical case).
+    """
+
+    keyword: str | None
+    modifiers: list[str]
+    declarators: list[VarDeclarator]
+    _children: ClassVar[tuple[str, ...]] = ("declarators",)
+
+    @property
+    def is_const(self) -> bool:
+        return self.keyword == "Const"
+
+
+@dataclass(slots=True, eq=False)
+class Param(Node):
+    """``[Optional] [ByVal|ByRef] name[()] As T [= default]``.
+
+    ``by_ref`` is False by default (GPL default is ByVal); ``array_rank`` is 0 for scalars.
+    ``Optional``/defaults are an extension that real code uses (the manual excludes them).
+    """
+
+    name: str
+    type: TypeRef | None
+    by_ref: bool = False
+    array_rank: int = 0
+    optional: bool = False
+    default: Expr | None = None
+    _children: ClassVar[tuple[str, ...]] = ("type", "default")
+
+
+@dataclass(slots=True, eq=False)
+class ProcDecl(Stmt):
+    """``Sub`` or ``Function`` (``kind``); a constructor is a Sub named ``New``."""
+
+    kind: str
+    name: str
+    modifiers: list[str]
+    params: list[Param]
+    return_type: TypeRef | None
+    body: Block
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("params", "return_type", "body")
+
+
+@dataclass(slots=True, eq=False)
+class Accessor(Stmt):
+    """A property's ``Get`` or ``Set`` block; ``param`` is the Set parameter (``None`` if omitted:
+    then it is implicitly ``value``)."""
+
+    kind: str
+    param: Param | None
+    body: Block
+    end_comment: Comment | None = None
+    _children: ClassVar[tuple[str, ...]] = ("param", "body")
+
+
+@dataclass(slots=True, eq=False)
+class PropertyDecl(Stmt):
+    name: str
+    modifiers: list[str]
+    type: TypeRef | None
+    getter: Accessor | None
+    setter: Accessor | None
+    end_comment: Comment | None = None
+    end_comments: list[Comment] = field(default_factory=list)
+    _children: ClassVar[tuple[str, ...]] = ("type", "getter", "setter")
+
+
+@dataclass(slots=True, eq=False)
+class DelegateDecl(Stmt):
+    kind: str
+    name: str
+    modifiers: list[str]
+    params: list[Param]
+    return_type: TypeRef | None
+    _children: ClassVar[tuple[str, ...]] = ("params", "return_type")
+
+
+@dataclass(slots=True, eq=False)
+class ClassDecl(Stmt):
+    name: str
+    modifiers: list[str]
+    members: list[Stmt]
+    end_comment: Comment | None = None
+    end_comments: list[Comment] = field(default_factory=list)
+    _children: ClassVar[tuple[str, ...]] = ("members",)
+
+
+@dataclass(slots=True, eq=False)
+class ModuleDecl(Stmt):
+    name: str
+    members: list[Stmt]
+    end_comment: Comment | None = None
+    end_comments: list[Comment] = field(default_factory=list)
+    _children: ClassVar[tuple[str, ...]] = ("members",)
+
+
+@dataclass(slots=True, eq=False)
+class SourceUnit(Node):
+    """One parsed file: its modules (and top-level classes, AMB-1).  Members that were misplaced at
+    the top level (reported) are kept too, so later errors can still be found."""
+
+    path: str
+    members: list[Stmt]
+    end_comments: list[Comment] = field(default_factory=list)
+    _children: ClassVar[tuple[str, ...]] = ("members",)
+
+
+# --------------------------------------------------------------------------------------------------
+# visitors and dump
+
+
+class NodeVisitor:
+    """Calls ``visit_<ClassName>(node)``; falls back to :meth:`generic_visit`, which visits children."""
+
+    def visit(self, node: Node) -> Any:
+        method = getattr(self, "visit_" + type(node).__name__, None)
+        if method is None:
+            return self.generic_visit(node)
+        return method(node)
+
+    def generic_visit(self, node: Node) -> Any:
+        for child in node.children():
+            self.visit(child)
+        return None
+
+
+class NodeTransformer(NodeVisitor):
+    """Like :class:`NodeVisitor`, but the result of each visit replaces the child.
+
+    Returning ``None`` from a visit removes a child that lives in a list (and sets a single child
+    to ``None``); returning a list splices several nodes into a list field.
+    """
+
+    def generic_visit(self, node: Node) -> Any:
+        for name in node._children:
+            value = getattr(node, name)
+            if isinstance(value, list):
+                new: list[Any] = []
+                for item in value:
+                    if not isinstance(item, Node):
+                        new.append(item)
+                        continue
+                    result = self.visit(item)
+                    if result is None:
+                        continue
+                    if isinstance(result, list):
+                        new.extend(result)
+                    else:
+                        new.append(result)
+                value[:] = new
+            elif isinstance(value, Node):
+                setattr(node, name, self.visit(value))
+        return node
+
+
+_DUMP_SKIP = frozenset(
+    {"span", "leading_comments", "trailing_comment", "end_comment", "end_comments", "header_comment"}
+)
+
+
+def dump(node: Node, *, comments: bool = True, positions: bool = True) -> str:
+    """A readable, indented rendering of ``node`` (used by ``gpl2py dump-ast``).
+
+    One line per node: ``ClassName field=value ... @line:col``; child nodes are indented below,
+    list fields get a ``field:`` heading.  Comments are shown as ``' text`` lines when ``comments``.
+    """
+    out: list[str] = []
+    _dump(node, 0, out, comments, positions)
+    return "\n".join(out) + "\n"
+
+
+def _dump(node: Node, depth: int, out: list[str], comments: bool, positions: bool) -> None:
+    pad = "  " * depth
+    if comments:
+        for c in getattr(node, "leading_comments", ()):
+            out.append(f"{pad}{_comment(c)}")
+    scalars: list[str] = []
+    nested: list[tuple[str, Any]] = []
+    for f in fields(node):
+        if f.name in _DUMP_SKIP or f.name == "_":
+            continue
+        value = getattr(node, f.name)
+        if isinstance(value, Node) or (
+            isinstance(value, list) and any(isinstance(v, Node) for v in value)
+        ):
+            nested.append((f.name, value))
+        elif isinstance(value, list) and f.name in node._children:
+            if value:  # e.g. bounds [None]
+                scalars.append(f"{f.name}={value!r}")
+        elif value is None or value is False or value == [] or value == "":
+            continue
+        else:
+            scalars.append(f"{f.name}={value!r}")
+    head = f"{pad}{type(node).__name__}"
+    if scalars:
+        head += " " + " ".join(scalars)
+    if positions:
+        head += f" @{node.span.line}:{node.span.col}"
+    if comments:
+        for attr in ("trailing_comment", "header_comment"):
+            c = getattr(node, attr, None)
+            if c is not None:
+                head += f"  {_comment(c)}"
+    out.append(head)
+    for name, value in nested:
+        if isinstance(value, Node):
+            if len(nested) > 1 or not isinstance(node, (Block,)):
+                out.append(f"{pad}  {name}:")
+                _dump(value, depth + 2, out, comments, positions)
+            else:
+                _dump(value, depth + 1, out, comments, positions)
+        else:
+            out.append(f"{pad}  {name}:")
+            for item in value:
+                if item is None:
+                    out.append(f"{pad}    None")
+                else:
+                    _dump(item, depth + 2, out, comments, positions)
+    if comments:
+        for c in getattr(node, "end_comments", ()):
+            out.append(f"{pad}  {_comment(c)}")
+        c = getattr(node, "end_comment", None)
+        if c is not None:
+            out.append(f"{pad}  (end) {_comment(c)}")
+
+
+def _comment(c: Comment) -> str:
+    return c.text if c.directive else "'" + c.text

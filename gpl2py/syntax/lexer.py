@@ -1,0 +1,247 @@
+"""The GPL lexer: source text -> a flat list of :class:`~gpl2py.syntax.tokens.Token`.
+
+It is the only layer that knows characters (spec §1).  One compiled master regular expression with
+named groups scans the whole file (``re.finditer``); each match is one token plus the blanks before
+it, so there is no per-character Python loop.  The token stream it produces is *logical-line* shaped:
+
+* ``NEWLINE`` ends every logical line that holds at least one token.  Blank lines produce nothing.
+* A line continuation (`` _`` at the end of a physical line, spec §1.3) produces nothing; the next
+  physical line simply continues the statement.
+* ``'`` comments become ``COMMENT`` tokens (value: the text after the apostrophe) right before the
+  ``NEWLINE`` of their line, so the parser can attach them to statements (leading/trailing comments).
+* Lines whose first non-blank character is ``#`` (``#Region "x"``, ``#End Region``) are ignored by GPL
+  (spec §1.4); they become ``DIRECTIVE`` tokens so the parser can keep them as comments.
+  ``#If``/``#Else``/``#ElseIf``/``#End If``/``#Const`` lines get a warning (AMB-27): GPL has no
+  conditional compilation.
+
+Decisions documented here (the spec leaves them open):
+
+* **Comment after a continuation** (`` _ ' note``): VB forbids it and the spec recommends an error, but
+  real exported GPL code contains it.  We accept it with warning GPL1005 and keep the comment: it is
+  emitted just before the ``NEWLINE`` of the logical line, i.e. it becomes part of the statement's
+  trailing comment.
+* A `` _`` must be preceded by a blank (spec §1.3); ``x_`` is an identifier and ``)_`` is an error.
+* ``&H``/``&O`` literals are lexed greedily (spec §1.9), so ``String &HEAD`` is ``String`` followed by
+  the hex literal ``&HEAD``.  Values are 32-bit two's complement (``&HFFFFFFFF`` = -1, AMB-36).
+* String literals over 128 characters get a warning (AMB-35), non-ASCII characters in them an error.
+* A letter directly after a number (``725L``, ``1.5F``) is reported: GPL has no type suffixes.
+* A run of consecutive invalid characters (for example a non-ASCII word) is one diagnostic.
+"""
+
+from __future__ import annotations
+
+import re
+
+from gpl2py import messages as M
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.source import Position, SourceFile, Span
+from gpl2py.syntax.tokens import KEYWORDS, OPERATORS, Token, TokenKind
+
+_MASTER = re.compile(
+    r"""[ \t\f\v]*(?:
+     (?P<W>[A-Za-z][A-Za-z0-9_]*|_+[A-Za-z0-9][A-Za-z0-9_]*)
+    |(?P<N>(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?)
+    |(?P<H>&[Hh][0-9A-Fa-f]+|&[Oo][0-7]+)
+    |(?P<O><<=|>>=|<>|<=|>=|<<|>>|[\^*/\\+\-&]=|[-+*/\\^&=<>(),.:])
+    |(?P<NL>\r\n|\n|\r)
+    |(?P<S>"(?:[^"\r\n]|"")*")
+    |(?P<C>'[^\r\n]*)
+    |(?P<CONT>_[ \t\f\v]*(?P<CC>'[^\r\n]*)?(?:\r\n|\n|\r|\Z))
+    |(?P<US>"[^\r\n]*)
+    |(?P<D>\#[^\r\n]*)
+    |(?P<X>[^\x00-\x7f]+|.)
+    )""",
+    re.VERBOSE,
+)
+
+_CONDITIONAL = re.compile(r"#\s*(if|else|elseif|end\s+if|const)\b", re.IGNORECASE)
+_MAX_NAME = 128
+_MAX_STRING = 128
+
+_K = TokenKind
+
+
+def tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
+    """Split ``source`` into tokens; problems go to ``sink``, never raised.
+
+    The result always ends with an ``EOF`` token, and every non-empty logical line ends with
+    ``NEWLINE`` (also the last one, even without a final line break).
+    """
+    text = source.text
+    path = source.path
+    toks: list[Token] = []
+    append = toks.append
+    kw = KEYWORDS.get
+    ops = OPERATORS
+    IDENT = _K.IDENT
+    NEWLINE = _K.NEWLINE
+    line = 1
+    line_start = 0
+    has_tokens = False  # does the current logical line hold a token yet?
+    deferred: list[Token] = []  # comments after ' _' continuations, emitted before NEWLINE
+
+    for m in _MASTER.finditer(text):
+        g = m.lastgroup
+        if g == "W":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            kind = kw(t.lower(), IDENT)
+            if kind is IDENT and len(t) > _MAX_NAME:
+                sink.report(
+                    M.LEX_LONG_IDENTIFIER,
+                    Span(Position(path, line, col), line, col + len(t)),
+                    name=t[:20],
+                    length=len(t),
+                )
+            append(Token(kind, t, None, Span(Position(path, line, col), line, col + len(t))))
+            has_tokens = True
+        elif g == "O":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            append(Token(ops[t], t, None, Span(Position(path, line, col), line, col + len(t))))
+            has_tokens = True
+        elif g == "NL":
+            if has_tokens:
+                col = m.start(g) - line_start + 1
+                if deferred:
+                    toks.extend(deferred)
+                    deferred.clear()
+                append(Token(NEWLINE, "", None, Span(Position(path, line, col), line, col)))
+                has_tokens = False
+            line += 1
+            line_start = m.end()
+        elif g == "N":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            span = Span(Position(path, line, col), line, col + len(t))
+            if "." in t or "e" in t or "E" in t:
+                value: object = float(t)
+                if value == float("inf"):
+                    sink.report(M.LEX_LITERAL_RANGE, span, text=t)
+                    value = 0.0
+                append(Token(_K.REAL, t, value, span))
+            else:
+                append(Token(_K.INTEGER, t, int(t), span))
+            has_tokens = True
+            _check_suffix(text, m.end(g), t, span, sink)
+        elif g == "S":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            span = Span(Position(path, line, col), line, col + len(t))
+            value = t[1:-1].replace('""', '"')
+            _check_string(value, span, sink)
+            append(Token(_K.STRING, t, value, span))
+            has_tokens = True
+        elif g == "C":
+            if deferred:  # keep source order: continuation comments come first
+                toks.extend(deferred)
+                deferred.clear()
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            append(Token(_K.COMMENT, t, t[1:], Span(Position(path, line, col), line, col + len(t))))
+            has_tokens = True
+        elif g == "H":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            span = Span(Position(path, line, col), line, col + len(t))
+            raw = int(t[2:], 16 if t[1] in "Hh" else 8)
+            if raw > 0xFFFFFFFF:
+                sink.report(M.LEX_LITERAL_RANGE, span, text=t)
+                raw = 0
+            elif raw >= 0x80000000:
+                raw -= 0x100000000
+            append(Token(_K.INTEGER, t, raw, span))
+            has_tokens = True
+            _check_suffix(text, m.end(g), t, span, sink)
+        elif g == "CONT":
+            start = m.start(g)
+            col = start - line_start + 1
+            if start == 0 or text[start - 1] not in " \t\f\v":
+                # '_' glued to the previous token is not a continuation (spec §1.3).
+                sink.report(
+                    M.LEX_INVALID_CHAR, Span(Position(path, line, col), line, col + 1), char="'_'"
+                )
+                append(Token(_K.ERROR, "_", None, Span(Position(path, line, col), line, col + 1)))
+                has_tokens = True
+            cc = m.group("CC")
+            if cc is not None:
+                ccol = m.start("CC") - line_start + 1
+                cspan = Span(Position(path, line, ccol), line, ccol + len(cc))
+                sink.report(M.LEX_COMMENT_AFTER_CONTINUATION, cspan)
+                deferred.append(Token(_K.COMMENT, cc, cc[1:], cspan))
+            line += 1
+            line_start = m.end()
+        elif g == "D":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            span = Span(Position(path, line, col), line, col + len(t))
+            if has_tokens:
+                sink.report(M.LEX_MISPLACED_HASH, span)
+                append(Token(_K.ERROR, "#", None, Span(Position(path, line, col), line, col + 1)))
+            else:
+                d = t.rstrip()
+                if _CONDITIONAL.match(d):
+                    sink.report(M.LEX_CONDITIONAL_DIRECTIVE, span, directive=d.split("'")[0][:30])
+                append(Token(_K.DIRECTIVE, t, d, span))
+            has_tokens = True
+        elif g == "US":
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            span = Span(Position(path, line, col), line, col + len(t))
+            sink.report(M.LEX_UNTERMINATED_STRING, span)
+            value = t[1:].replace('""', '"')
+            if not value.isascii():
+                _check_string(value, span, sink)
+            append(Token(_K.STRING, t, value, span))
+            has_tokens = True
+        else:  # "X": a character (or a run of non-ASCII characters) no token can start with
+            start = m.start(g)
+            t = m.group(g)
+            col = start - line_start + 1
+            span = Span(Position(path, line, col), line, col + len(t))
+            sink.report(M.LEX_INVALID_CHAR, span, char=_show(t))
+            append(Token(_K.ERROR, t, None, span))
+            has_tokens = True
+
+    end = len(text)
+    col = end - line_start + 1
+    if has_tokens or deferred:
+        toks.extend(deferred)
+        append(Token(NEWLINE, "", None, Span(Position(path, line, col), line, col)))
+    append(Token(_K.EOF, "", None, Span(Position(path, line, col), line, col)))
+    return toks
+
+
+def _show(chars: str) -> str:
+    """A readable rendering of offending characters: ``'é' (U+00E9)``."""
+    if len(chars) == 1:
+        return f"{chars!r} (U+{ord(chars):04X})"
+    shown = chars if len(chars) <= 20 else chars[:20] + "..."
+    return f"{shown!r} (starting with U+{ord(chars[0]):04X})"
+
+
+def _check_string(value: str, span: Span, sink: DiagnosticSink) -> None:
+    if len(value) > _MAX_STRING:
+        sink.report(M.LEX_LONG_STRING, span, length=len(value))
+    if not value.isascii():
+        bad = next(c for c in value if not c.isascii())
+        sink.report(M.LEX_NON_ASCII_STRING, span, char=_show(bad))
+
+
+def _check_suffix(text: str, end: int, number: str, span: Span, sink: DiagnosticSink) -> None:
+    """Report ``725L``-style suffixes: a letter or ``_`` glued to the end of a number."""
+    if end < len(text):
+        c = text[end]
+        if c.isalpha() or c == "_":
+            stop = end
+            while stop < len(text) and (text[stop].isalnum() or text[stop] == "_"):
+                stop += 1
+            sink.report(M.LEX_LITERAL_SUFFIX, span, suffix=text[end:stop], number=number)
