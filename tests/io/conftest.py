@@ -24,6 +24,12 @@ class Cell:
 
 
 @pytest.fixture
+def cell() -> type[Cell]:
+    """The ByRef cell class (test modules are not a package, so they receive it as a fixture)."""
+    return Cell
+
+
+@pytest.fixture
 def flash(tmp_path: Path) -> FlashRoot:
     """A fresh controller disk tree for one test."""
     return set_flash_root(tmp_path / "controller")

@@ -1,0 +1,482 @@
+"""GPL networking on real sockets: IPEndPoint, Socket, TcpClient, TcpListener, UdpClient (D0 §12).
+
+All network I/O goes through :class:`Socket` objects obtained from ``TcpClient.Client``,
+``TcpListener.AcceptSocket`` and ``UdpClient.Client``.  Strings are bytes, one per character
+(Latin-1), so binary protocols such as the TFTP examples (EX-20/21) work unchanged.
+
+Simulation switch: a server endpoint with a blank IP address (``New IPEndPoint("", 1234)`` = "any
+address" on a controller) binds to :attr:`NetworkConfig.bind_address`, ``127.0.0.1`` by default, so
+a simulated cell is not reachable from the network unless :func:`configure_network` says so.
+
+Every wait (connect, accept, receive, send) goes through :func:`gplrt.io._blocking.blocking_call`.
+
+Error codes (gpl-dictionary.md §14; the mapping is ours, the manual gives none):
+
+* receive/accept/connect/send timeout -> -1705 *Network timeout*
+* connection refused -> -1702 *Connection refused*; address not parseable -> -1704
+* using a closed or never-connected socket -> -1707 *Socket not open*
+* peer reset the connection, or sending after the peer closed it -> -1708 *Connection closed*;
+  an orderly close by the peer makes ``Receive`` return 0 (EX-18 loops until it does)
+* port already bound by someone else -> -304 *Device already in use* (no network-specific code
+  exists in the controller's table; the port is the "device" that is in use)
+* ``Receive`` on a non-blocking socket with no data -> -523 *No data available* (returning 0 would
+  read as "connection closed")
+* a connected socket connected again -> -1706 *Already connected*
+"""
+
+from __future__ import annotations
+
+import array
+import errno
+import fcntl
+import select
+import socket as _socket
+import termios
+import threading
+from dataclasses import dataclass
+from typing import Any
+
+from gplrt.io._blocking import blocking_call
+from gplrt.io._codec import as_text, from_bytes, to_bytes
+from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
+
+PORT_IN_USE = -304
+NO_DATA = -523
+CONNECTION_REFUSED = -1702
+NO_CONNECTION = -1703
+INVALID_ADDRESS = -1704
+NETWORK_TIMEOUT = -1705
+ALREADY_CONNECTED = -1706
+SOCKET_NOT_OPEN = -1707
+CONNECTION_CLOSED = -1708
+
+
+@dataclass
+class NetworkConfig:
+    """How simulated servers bind: ``bind_address`` replaces the blank "any" address."""
+
+    bind_address: str = "127.0.0.1"
+    connect_timeout: float | None = 30.0  # seconds; a real controller's TCP gives up eventually
+
+
+_config = NetworkConfig()
+
+
+def configure_network(bind_address: str | None = None, connect_timeout: float | None = -1.0) -> NetworkConfig:
+    """Change the network switches (``bind_address="0.0.0.0"`` exposes servers to the LAN)."""
+    if bind_address is not None:
+        _config.bind_address = bind_address
+    if connect_timeout is None or connect_timeout >= 0:
+        _config.connect_timeout = connect_timeout
+    return _config
+
+
+def _os_error(exc: OSError, what: str) -> GplException:
+    """Translate a socket OSError into the controller's code."""
+    if isinstance(exc, TimeoutError | _socket.timeout):
+        return GplException(NETWORK_TIMEOUT, detail=f"{what}: timed out")
+    code = exc.errno
+    if code == errno.EADDRINUSE:
+        return GplException(PORT_IN_USE, detail=f"{what}: address already in use")
+    if code == errno.ECONNREFUSED:
+        return GplException(CONNECTION_REFUSED, detail=what)
+    if code in (errno.ECONNRESET, errno.EPIPE, errno.ECONNABORTED, errno.ESHUTDOWN):
+        return GplException(CONNECTION_CLOSED, detail=f"{what}: {exc.strerror}")
+    if code == errno.EISCONN:
+        return GplException(ALREADY_CONNECTED, detail=what)
+    if code in (errno.ENOTCONN, errno.EBADF):
+        return GplException(SOCKET_NOT_OPEN, detail=what)
+    if code in (errno.EADDRNOTAVAIL, errno.EINVAL, errno.EAFNOSUPPORT):
+        return GplException(INVALID_ADDRESS, detail=f"{what}: {exc.strerror}")
+    if code in (errno.ENETUNREACH, errno.EHOSTUNREACH):
+        return GplException(NO_CONNECTION, detail=f"{what}: {exc.strerror}")
+    return GplException(NO_CONNECTION, detail=f"{what}: {exc}")
+
+
+class IPEndPoint:
+    """``New IPEndPoint(ip [, port])``: an IP address (dotted quad text) and a port.
+
+    ``""`` means "any address"; an omitted port is 0 (for a UDP/TCP local endpoint: any port; for
+    Modbus: the standard port 502).
+    """
+
+    def __init__(self, ip: String = String(""), port: Integer = Integer(0)) -> None:
+        self._ip = ""
+        self._port = 0
+        self.IPAddress = ip
+        self.Port = port
+
+    @property
+    def IPAddress(self) -> String:
+        return String(self._ip)
+
+    @IPAddress.setter
+    def IPAddress(self, value: String) -> None:
+        text = str(value).strip()
+        if text:
+            try:
+                _socket.inet_aton(text)
+            except OSError:
+                raise GplException(INVALID_ADDRESS, detail=f"{text!r} is not a dotted IP address") from None
+        self._ip = text
+
+    @property
+    def Port(self) -> Integer:
+        return Integer(self._port)
+
+    @Port.setter
+    def Port(self, value: Integer) -> None:
+        port = int(value)
+        if not 0 <= port <= 65535:
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"port {port}")
+        self._port = port
+
+    def Clone(self) -> IPEndPoint:
+        return IPEndPoint(String(self._ip), Integer(self._port))
+
+    def _local(self) -> tuple[str, int]:
+        """Address to bind to: a blank IP binds to the configured simulation address."""
+        return (self._ip or _config.bind_address, self._port)
+
+    def _remote(self) -> tuple[str, int]:
+        """Address to reach: a blank IP means this machine."""
+        return (self._ip or "127.0.0.1", self._port)
+
+    def __repr__(self) -> str:
+        return f"IPEndPoint({self._ip!r}, {self._port})"
+
+
+def _endpoint(address: Any) -> IPEndPoint:
+    return IPEndPoint(String(address[0]), Integer(address[1]))
+
+
+def _seconds(ms: int) -> float | None:
+    """GPL timeouts are milliseconds; 0 (or less) means wait forever, as in .NET."""
+    return ms / 1000.0 if ms > 0 else None
+
+
+class Socket:
+    """A TCP connection or UDP endpoint.  Not useful to create with ``New`` (D0:3057-3061):
+    obtain one from ``TcpClient.Client``, ``TcpListener.AcceptSocket`` or ``UdpClient.Client``."""
+
+    def __init__(self, sock: _socket.socket | None = None, *, kind: int = _socket.SOCK_STREAM) -> None:
+        self._sock = sock if sock is not None else _socket.socket(_socket.AF_INET, kind)
+        self._kind = self._sock.type
+        self._closed = False
+        self._peer_closed = False
+        self._connected = sock is not None and kind == _socket.SOCK_STREAM and _peer(sock) is not None
+        self._blocking = True
+        self._recv_ms = 0
+        self._send_ms = 0
+        self._lock = threading.RLock()
+        self._sock.settimeout(None)
+
+    # -- state ---------------------------------------------------------------------------------
+
+    def _open(self) -> _socket.socket:
+        if self._closed:
+            raise GplException(SOCKET_NOT_OPEN, detail="the socket is closed")
+        return self._sock
+
+    def _connected_tcp(self) -> _socket.socket:
+        sock = self._open()
+        if self._kind == _socket.SOCK_STREAM and not self._connected:
+            raise GplException(SOCKET_NOT_OPEN, detail="the TCP socket is not connected")
+        return sock
+
+    @property
+    def Available(self) -> Integer:
+        """Bytes that can be received now without waiting."""
+        sock = self._open()
+        count = array.array("i", [0])
+        fcntl.ioctl(sock.fileno(), termios.FIONREAD, count)
+        return Integer(count[0])
+
+    @property
+    def Blocking(self) -> Boolean:
+        return Boolean(self._blocking)
+
+    @Blocking.setter
+    def Blocking(self, value: Boolean) -> None:
+        self._blocking = bool(value)
+
+    @property
+    def Connected(self) -> Boolean:
+        """[P] True while a TCP connection is open and the peer has not closed it (.NET name)."""
+        return Boolean(self._connected and not self._closed and not self._peer_closed)
+
+    @property
+    def KeepAlive(self) -> Boolean:
+        return Boolean(bool(self._open().getsockopt(_socket.SOL_SOCKET, _socket.SO_KEEPALIVE)))
+
+    @KeepAlive.setter
+    def KeepAlive(self, value: Boolean) -> None:
+        self._open().setsockopt(_socket.SOL_SOCKET, _socket.SO_KEEPALIVE, 1 if value else 0)
+
+    @property
+    def NoDelay(self) -> Boolean:
+        """[P] TCP_NODELAY (Nagle off); not in the seed manuals, offered as .NET has it."""
+        return Boolean(bool(self._open().getsockopt(_socket.IPPROTO_TCP, _socket.TCP_NODELAY)))
+
+    @NoDelay.setter
+    def NoDelay(self, value: Boolean) -> None:
+        self._open().setsockopt(_socket.IPPROTO_TCP, _socket.TCP_NODELAY, 1 if value else 0)
+
+    @property
+    def ReceiveTimeout(self) -> Integer:
+        """Milliseconds ``Receive``/``ReceiveFrom`` wait before -1705; 0 = forever."""
+        return Integer(self._recv_ms)
+
+    @ReceiveTimeout.setter
+    def ReceiveTimeout(self, value: Integer) -> None:
+        self._recv_ms = max(0, int(value))
+
+    @property
+    def SendTimeout(self) -> Integer:
+        """Milliseconds ``Send``/``SendTo`` wait for buffer space before -1705; 0 = forever."""
+        return Integer(self._send_ms)
+
+    @SendTimeout.setter
+    def SendTimeout(self, value: Integer) -> None:
+        self._send_ms = max(0, int(value))
+
+    @property
+    def RemoteEndPoint(self) -> IPEndPoint | None:
+        """The peer of a connected socket (``Nothing`` if not connected)."""
+        address = _peer(self._open())
+        return _endpoint(address) if address is not None else None
+
+    # -- operations ----------------------------------------------------------------------------
+
+    def Close(self) -> None:
+        """Close the connection (a second Close does nothing)."""
+        with self._lock:
+            if not self._closed:
+                self._closed = True
+                self._connected = False
+                self._sock.close()
+
+    def Connect(self, remote_endpoint: IPEndPoint) -> None:
+        """Connect to a TCP server (for UDP: fix the default peer of Send/Receive)."""
+        sock = self._open()
+        if self._connected and self._kind == _socket.SOCK_STREAM:
+            raise GplException(ALREADY_CONNECTED, detail=repr(remote_endpoint))
+        if remote_endpoint is None:
+            raise GplException(-757, detail="Connect needs an IPEndPoint")
+        address = remote_endpoint._remote()
+        timeout = _config.connect_timeout
+
+        def connect() -> None:
+            sock.settimeout(timeout)
+            try:
+                sock.connect(address)
+            finally:
+                sock.settimeout(None)
+
+        try:
+            blocking_call(connect, timeout)
+        except OSError as exc:
+            raise _os_error(exc, f"connect to {address[0]}:{address[1]}") from None
+        self._connected = True
+
+    def Receive(self, input_buffer: Ref[String], max_length: Integer = Integer(1500)) -> Integer:
+        """Receive up to ``max_length`` bytes into ``input_buffer``; returns the count.
+
+        0 means the peer closed the connection (EX-18).  Waits up to ``ReceiveTimeout`` ms.
+        """
+        sock = self._connected_tcp() if self._kind == _socket.SOCK_STREAM else self._open()
+        if max_length <= 0:
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"max_length {max_length}")
+        data, _ = self._receive(sock, int(max_length), from_=False)
+        if not data and self._kind == _socket.SOCK_STREAM:
+            self._peer_closed = True
+        input_buffer.set(String(from_bytes(data)))
+        return Integer(len(data))
+
+    def ReceiveFrom(
+        self, input_buffer: Ref[String], max_length: Integer, remote_endpoint: Ref[IPEndPoint]
+    ) -> Integer:
+        """Receive one datagram; the sender is stored in ``remote_endpoint`` (allocated if Nothing)."""
+        sock = self._open()
+        data, address = self._receive(sock, int(max_length), from_=True)
+        input_buffer.set(String(from_bytes(data)))
+        current = remote_endpoint.get()
+        if isinstance(current, IPEndPoint) and address is not None:
+            current.IPAddress, current.Port = address[0], address[1]
+        elif address is not None:
+            remote_endpoint.set(_endpoint(address))
+        return Integer(len(data))
+
+    def _receive(self, sock: _socket.socket, size: int, *, from_: bool) -> tuple[bytes, Any]:
+        timeout = _seconds(self._recv_ms) if self._blocking else 0.0
+
+        def wait_and_receive() -> tuple[bytes, Any]:
+            ready, _, _ = select.select([sock], [], [], timeout)
+            if not ready:
+                if not self._blocking:
+                    raise GplException(NO_DATA, detail="non-blocking socket has no data")
+                raise GplException(NETWORK_TIMEOUT, detail=f"no data within {self._recv_ms} ms")
+            if from_:
+                return sock.recvfrom(size)
+            return sock.recv(size), None
+
+        try:
+            return blocking_call(wait_and_receive, timeout)
+        except OSError as exc:
+            raise _os_error(exc, "receive") from None
+
+    def Send(self, output_buffer: String, max_length: Integer = Integer(-1)) -> Integer:
+        """Send a String (its first ``max_length`` bytes if given); returns the bytes sent."""
+        sock = self._connected_tcp() if self._kind == _socket.SOCK_STREAM else self._open()
+        if self._peer_closed:
+            raise GplException(CONNECTION_CLOSED, detail="the peer closed the connection")
+        data = to_bytes(as_text(output_buffer))
+        if max_length >= 0:
+            data = data[: int(max_length)]
+        self._send(lambda: sock.sendall(data), "send")
+        return Integer(len(data))
+
+    def SendTo(self, output_buffer: String, max_length: Integer, remote_endpoint: IPEndPoint) -> Integer:
+        """Send one datagram to ``remote_endpoint``; ``max_length`` > 0 truncates (0 = all, EX-20)."""
+        sock = self._open()
+        if remote_endpoint is None:
+            raise GplException(-757, detail="SendTo needs an IPEndPoint")
+        data = to_bytes(as_text(output_buffer))
+        if max_length > 0:
+            data = data[: int(max_length)]
+        address = remote_endpoint._remote()
+        self._send(lambda: sock.sendto(data, address), f"send to {address[0]}:{address[1]}")
+        return Integer(len(data))
+
+    def _send(self, fn: Any, what: str) -> None:
+        timeout = _seconds(self._send_ms)
+
+        def send() -> None:
+            self._sock.settimeout(timeout)
+            try:
+                fn()
+            finally:
+                if not self._closed:
+                    self._sock.settimeout(None)
+
+        try:
+            blocking_call(send, timeout)
+        except OSError as exc:
+            raise _os_error(exc, what) from None
+
+    def __repr__(self) -> str:
+        state = "closed" if self._closed else ("connected" if self._connected else "open")
+        return f"<Socket {state}>"
+
+
+def _peer(sock: _socket.socket) -> Any:
+    try:
+        return sock.getpeername()
+    except OSError:
+        return None
+
+
+class TcpClient:
+    """``New TcpClient([ep])``: a TCP client, connected immediately when ``ep`` is given."""
+
+    def __init__(self, remote_endpoint: IPEndPoint | None = None) -> None:
+        self._socket = Socket(kind=_socket.SOCK_STREAM)
+        if remote_endpoint is not None:
+            self._socket.Connect(remote_endpoint)
+
+    def Client(self) -> Socket:
+        """The embedded Socket used for I/O."""
+        return self._socket
+
+    def Connect(self, remote_endpoint: IPEndPoint) -> None:
+        """[P] Same as ``Client.Connect``."""
+        self._socket.Connect(remote_endpoint)
+
+    def Close(self) -> None:
+        self._socket.Close()
+
+
+class TcpListener:
+    """``New TcpListener(ep)``: a TCP server for the local endpoint ``ep`` (blank IP = any)."""
+
+    BACKLOG = 8
+
+    def __init__(self, local_endpoint: IPEndPoint) -> None:
+        if local_endpoint is None:
+            raise GplException(-757, detail="TcpListener needs an IPEndPoint")
+        self._endpoint = local_endpoint.Clone()
+        self._sock: _socket.socket | None = None
+
+    def Start(self) -> None:
+        """Bind and listen; a port already bound elsewhere raises -304."""
+        if self._sock is not None:
+            return
+        sock = _socket.socket(_socket.AF_INET, _socket.SOCK_STREAM)
+        # Like a controller (and .NET), allow re-binding a port whose old connections linger in
+        # TIME_WAIT; a port actively bound by another socket is still refused.
+        sock.setsockopt(_socket.SOL_SOCKET, _socket.SO_REUSEADDR, 1)
+        address = self._endpoint._local()
+        try:
+            sock.bind(address)
+            sock.listen(self.BACKLOG)
+        except OSError as exc:
+            sock.close()
+            raise _os_error(exc, f"listen on {address[0]}:{address[1]}") from None
+        self._sock = sock
+
+    def _listening(self) -> _socket.socket:
+        if self._sock is None:
+            raise GplException(SOCKET_NOT_OPEN, detail="TcpListener not started")
+        return self._sock
+
+    def Pending(self) -> Boolean:
+        """True if a connection request waits, so ``AcceptSocket`` will not block."""
+        ready, _, _ = select.select([self._listening()], [], [], 0)
+        return Boolean(bool(ready))
+
+    def AcceptSocket(self) -> Socket:
+        """Wait for a connection and return a new Socket for it."""
+        sock = self._listening()
+        try:
+            conn, _ = blocking_call(sock.accept, None)
+        except OSError as exc:
+            raise _os_error(exc, "accept") from None
+        return Socket(conn, kind=_socket.SOCK_STREAM)
+
+    def LocalEndPoint(self) -> IPEndPoint:
+        """[P] The bound endpoint (useful when listening on port 0)."""
+        return _endpoint(self._listening().getsockname())
+
+    def Stop(self) -> None:
+        """Stop listening and close the listener socket (accepted Sockets stay open)."""
+        if self._sock is not None:
+            self._sock.close()
+            self._sock = None
+
+    def Close(self) -> None:
+        self.Stop()
+
+
+class UdpClient:
+    """``New UdpClient([local_ep])``: a UDP endpoint, bound to ``local_ep`` if given (port 0 = any)."""
+
+    def __init__(self, local_endpoint: IPEndPoint | None = None) -> None:
+        self._socket = Socket(kind=_socket.SOCK_DGRAM)
+        if local_endpoint is not None:
+            address = local_endpoint._local()
+            try:
+                self._socket._sock.bind(address)
+            except OSError as exc:
+                self._socket.Close()
+                raise _os_error(exc, f"bind {address[0]}:{address[1]}") from None
+
+    def Client(self) -> Socket:
+        """The embedded Socket used for I/O."""
+        return self._socket
+
+    def Close(self) -> None:
+        self._socket.Close()
+
+
+__all__ = ["IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "NetworkConfig", "configure_network"]
