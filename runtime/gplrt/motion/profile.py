@@ -3,7 +3,8 @@
 Spec: gpl-classes.md §6, gpl-dictionary.md §3, robot-models.md §2.4.
 
 Defaults are the controller's parameter-database defaults for a new Profile (robot-models.md
-§2.4; identical in every shipped PF400 set under /work/shared/data/robots/): Speed 50 % (DataID
+§2.4; the PF400 sets under /work/shared/data/robots/ give these, the GCU default set says Speed
+100 %, so the controller calls ``set_profile_defaults`` after loading its PDb): Speed 50 % (DataID
 2708), Speed2 0 % = not used (2709), Accel and Decel 100 % (2710/2711), AccelRamp and DecelRamp
 0.1 s (2712/2713), Straight False (GD straight.htm), InRange 0 [P: stop at the end without a
 position-error check — the Dictionary gives no default; the planner treats 0 as "done when the
@@ -34,6 +35,34 @@ DEFAULT_DECEL = 100.0
 DEFAULT_RAMP = 0.1
 DEFAULT_INRANGE = 0.0
 
+_defaults: dict[str, float] = {
+    "_speed": DEFAULT_SPEED,
+    "_speed2": DEFAULT_SPEED2,
+    "_accel": DEFAULT_ACCEL,
+    "_decel": DEFAULT_DECEL,
+    "_accel_ramp": DEFAULT_RAMP,
+    "_decel_ramp": DEFAULT_RAMP,
+}
+
+
+def set_profile_defaults(
+    speed: float = DEFAULT_SPEED,
+    speed2: float = DEFAULT_SPEED2,
+    accel: float = DEFAULT_ACCEL,
+    decel: float = DEFAULT_DECEL,
+    accel_ramp: float = DEFAULT_RAMP,
+    decel_ramp: float = DEFAULT_RAMP,
+) -> None:
+    """Defaults for profiles created from now on (DataIDs 2708-2713 of the loaded robot)."""
+    _defaults.update(
+        _speed=_checked(speed, "Speed", positive=True),
+        _speed2=_checked(speed2, "Speed2", positive=False),
+        _accel=_checked(accel, "Accel", positive=True),
+        _decel=_checked(decel, "Decel", positive=True),
+        _accel_ramp=_checked(accel_ramp, "AccelRamp", positive=False),
+        _decel_ramp=_checked(decel_ramp, "DecelRamp", positive=False),
+    )
+
 
 def _checked(value: float, name: str, *, positive: bool) -> float:
     v = float(value)
@@ -51,12 +80,13 @@ class Profile:
     __slots__ = ("_speed", "_speed2", "_accel", "_decel", "_accel_ramp", "_decel_ramp", "_straight", "_inrange", "_text")
 
     def __init__(self) -> None:
-        self._speed = DEFAULT_SPEED
-        self._speed2 = DEFAULT_SPEED2
-        self._accel = DEFAULT_ACCEL
-        self._decel = DEFAULT_DECEL
-        self._accel_ramp = DEFAULT_RAMP
-        self._decel_ramp = DEFAULT_RAMP
+        d = _defaults
+        self._speed = d["_speed"]
+        self._speed2 = d["_speed2"]
+        self._accel = d["_accel"]
+        self._decel = d["_decel"]
+        self._accel_ramp = d["_accel_ramp"]
+        self._decel_ramp = d["_decel_ramp"]
         self._straight = False
         self._inrange = DEFAULT_INRANGE
         self._text = ""
