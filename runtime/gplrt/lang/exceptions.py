@@ -1,0 +1,103 @@
+"""Lowering helpers for Try/Catch: every fault reaches a ``Catch`` as a GPL exception.
+
+GPL's Catch catches every run-time error, each with its controller error code (spec
+gpl-language.md §11.1).  The runtime raises ``GplException`` itself wherever it can; this module
+maps the Python faults that may still escape (from plain Python emitted for typed code, or from
+hand-written Python) to the best-matching controller code (gpl-dictionary.md §14):
+
+==============================================  ======  ===================================
+Python fault                                    code    controller text
+==============================================  ======  ===================================
+ZeroDivisionError (``x / 0`` in plain code)      -709    Division by 0
+OverflowError (``2.0 ** 5000``, int -> float)    -710    Arithmetic overflow
+RecursionError                                   -755    Thread stack too small
+IndexError (a list used as an array)             -767    Invalid array index
+``None(...)`` -- calling a Nothing delegate      -796    No delegate defined
+AttributeError/TypeError on ``None``             -757    Object not instantiated
+ValueError "math domain error" (Sqrt(-1) ...)    -707    Value out-of-range
+ValueError "could not convert string to float"   -717    Invalid number format
+ValueError "cannot convert float NaN ..."        -708    Value infinite or NAN
+MemoryError                                      -200    No memory available
+anything else                                    -201    System internal consistency error
+==============================================  ======  ===================================
+
+Why -757 (and not -782 *Object value is Nothing*) for using a Nothing object: the typical GPL
+fault is a variable declared without ``New`` (``Dim loc As Location`` then ``loc.X = 1``), which is
+an object that was never instantiated; -782 is kept for places that receive Nothing as a *value*
+where an object is required (e.g. ``CStr(Nothing)``).
+
+Only ``Exception`` subclasses are converted: ``KeyboardInterrupt``, ``SystemExit``,
+``GeneratorExit`` and the thread machinery's own ``BaseException`` signals (thread abort) are
+re-raised unchanged by ``as_gpl_exception`` so that a GPL Catch never swallows them.  The original
+Python exception is kept as ``__cause__`` of the GplException for debugging.
+"""
+
+from __future__ import annotations
+
+from typing import Final
+
+from gplrt.lang.errors import (
+    ARITHMETIC_OVERFLOW,
+    DIVISION_BY_ZERO,
+    OBJECT_NOT_INSTANTIATED,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
+
+THREAD_STACK_TOO_SMALL: Final = -755
+INVALID_ARRAY_INDEX: Final = -767
+NO_DELEGATE_DEFINED: Final = -796
+INVALID_NUMBER_FORMAT: Final = -717
+VALUE_INFINITE_OR_NAN: Final = -708
+NO_MEMORY: Final = -200
+INTERNAL_ERROR: Final = -201
+
+__all__ = ["as_gpl_exception", "gpl_code_for"]
+
+
+def gpl_code_for(exc: BaseException) -> int:
+    """The controller error code for a Python fault (table in the module docstring)."""
+    if isinstance(exc, GplException):
+        return exc.ErrorCode
+    if isinstance(exc, ZeroDivisionError):
+        return DIVISION_BY_ZERO
+    if isinstance(exc, OverflowError):
+        return ARITHMETIC_OVERFLOW
+    if isinstance(exc, RecursionError):
+        return THREAD_STACK_TOO_SMALL
+    if isinstance(exc, IndexError):
+        return INVALID_ARRAY_INDEX
+    if isinstance(exc, MemoryError):
+        return NO_MEMORY
+    text = str(exc)
+    if isinstance(exc, (AttributeError, TypeError)) and "NoneType" in text:
+        if "not callable" in text:
+            return NO_DELEGATE_DEFINED
+        return OBJECT_NOT_INSTANTIATED
+    if isinstance(exc, ValueError):
+        if "convert string to float" in text or "invalid literal" in text:
+            return INVALID_NUMBER_FORMAT
+        if "NaN" in text:
+            return VALUE_INFINITE_OR_NAN
+        if "domain" in text:
+            return VALUE_OUT_OF_RANGE
+        return VALUE_OUT_OF_RANGE
+    return INTERNAL_ERROR
+
+
+def as_gpl_exception(exc: BaseException) -> GplException:
+    """The GplException a ``Catch`` receives for ``exc``.
+
+    A GplException is returned as is (``Catch ex`` gets exactly the thrown object).  Other
+    ``Exception``s become a new GplException with the code from ``gpl_code_for``, the Python
+    message as ``detail`` and the original as ``__cause__``.  Non-``Exception`` BaseExceptions are
+    re-raised (see module docstring).  Lowering: ``except BaseException as _e:
+    ex = as_gpl_exception(_e)``.
+    """
+    if isinstance(exc, GplException):
+        return exc
+    if not isinstance(exc, Exception):
+        raise exc
+    gex = GplException(gpl_code_for(exc), detail=f"{type(exc).__name__}: {exc}")
+    gex.__cause__ = exc
+    return gex

@@ -1,0 +1,141 @@
+"""The procedure registry: GPL procedures looked up by name at run time.
+
+Threads and String-named delegates name their procedure in a String (``New Thread("Worker")``,
+``New D("Module.Proc")``, spec gpl-language.md §9.4, §13), so generated code registers every
+procedure when its module is imported::
+
+    register_procedure("Station", "PickPart", PickPart, public=True)
+
+and the runtime resolves names with ``find_procedure``.  The rules (§6.4, [000 L1653-1683]):
+
+* Names are **case-insensitive** (§1.7).
+* ``"Module.Proc"`` (or ``"Class.Proc"`` / ``"Module.Class.Proc"`` for a Shared procedure of a
+  class, registered with the dotted ``module_name`` ``"Module.Class"``) names one procedure.
+* A bare ``"Proc"`` resolves first to the procedure of that name in the **caller's module**
+  (``module=``; Private allowed), then to the **single Public module-level procedure** of that name
+  in all modules ("if item_name is unambiguous within all loaded modules, the module_name may be
+  omitted").
+* Errors (GplException): two Public candidates -> **-772 Ambiguous Public reference**; an unknown
+  module or class qualifier -> **-798 No module defined**; no such procedure, or only Private
+  ones in other modules -> **-729 Undefined symbol**.
+
+Registration replaces an earlier entry for the same qualified name, so re-importing a module (a
+new simulation session) is harmless; ``clear_procedures`` empties the registry for tests.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Final
+
+from gplrt.lang.errors import GplException
+
+UNDEFINED_SYMBOL: Final = -729
+AMBIGUOUS_PUBLIC_REFERENCE: Final = -772
+NO_MODULE_DEFINED: Final = -798
+
+__all__ = [
+    "ProcedureEntry",
+    "register_procedure",
+    "find_procedure",
+    "find_procedure_entry",
+    "clear_procedures",
+    "registered_procedures",
+    "UNDEFINED_SYMBOL",
+    "AMBIGUOUS_PUBLIC_REFERENCE",
+    "NO_MODULE_DEFINED",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class ProcedureEntry:
+    """One registered procedure: ``path`` is the lower-cased qualifier (``("station",)`` or
+    ``("station", "gripper")``), ``qualified_name`` the declared spelling ``"Station.PickPart"``."""
+
+    path: tuple[str, ...]
+    name: str
+    qualified_name: str
+    func: Callable[..., Any]
+    public: bool
+
+
+_lock = threading.Lock()
+_by_name: dict[str, list[ProcedureEntry]] = {}
+_qualifiers: set[str] = set()
+
+
+def register_procedure(
+    module_name: str, proc_name: str, func: Callable[..., Any], *, public: bool = True
+) -> Callable[..., Any]:
+    """Register ``func`` as ``module_name.proc_name``; returns ``func`` (usable as a decorator
+    helper).  ``public`` is the GPL access level (module members are Private by default in GPL,
+    but the lowering always passes it explicitly)."""
+    path = tuple(part.lower() for part in module_name.split("."))
+    entry = ProcedureEntry(path, proc_name, f"{module_name}.{proc_name}", func, public)
+    key = proc_name.lower()
+    with _lock:
+        entries = [e for e in _by_name.get(key, ()) if e.path != path]
+        entries.append(entry)
+        _by_name[key] = entries
+        _qualifiers.update(path)
+    return func
+
+
+def clear_procedures() -> None:
+    """Forget every registration (tests, or a fresh session in one process)."""
+    with _lock:
+        _by_name.clear()
+        _qualifiers.clear()
+
+
+def registered_procedures() -> list[ProcedureEntry]:
+    """All entries, sorted by qualified name (diagnostics and tooling)."""
+    with _lock:
+        return sorted((e for es in _by_name.values() for e in es), key=lambda e: e.qualified_name.lower())
+
+
+def find_procedure_entry(name: str, module: str | None = None) -> ProcedureEntry:
+    """Like ``find_procedure`` but returns the registry entry (name, access, qualifier)."""
+    parts = [p.strip().lower() for p in name.strip().split(".")]
+    if not parts or not all(parts):
+        raise GplException(UNDEFINED_SYMBOL, detail=f"invalid procedure name {name!r}")
+    proc, qual = parts[-1], tuple(parts[:-1])
+    caller = tuple(p.lower() for p in module.split(".")) if module else None
+    candidates = _by_name.get(proc, [])
+
+    if not qual:
+        if caller is not None:
+            for e in candidates:
+                if e.path == caller:
+                    return e
+        public = [e for e in candidates if e.public and len(e.path) == 1]
+        if len(public) == 1:
+            return public[0]
+        if len(public) > 1:
+            where = ", ".join(sorted(e.qualified_name for e in public))
+            raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
+        private = [e.qualified_name for e in candidates]
+        hint = f" (Private: {', '.join(sorted(private))})" if private else ""
+        raise GplException(UNDEFINED_SYMBOL, detail=f"no Public procedure {name!r}{hint}")
+
+    matches = [e for e in candidates if e.path[-len(qual):] == qual]
+    if not matches:
+        if not all(q in _qualifiers for q in qual):
+            raise GplException(NO_MODULE_DEFINED, detail=f"no module or class {'.'.join(qual)!r} for {name!r}")
+        raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure {name!r}")
+    allowed = [e for e in matches if e.public or (caller is not None and e.path[: len(caller)] == caller)]
+    if len(allowed) == 1:
+        return allowed[0]
+    if not allowed:
+        raise GplException(UNDEFINED_SYMBOL, detail=f"{matches[0].qualified_name} is Private")
+    where = ", ".join(sorted(e.qualified_name for e in allowed))
+    raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
+
+
+def find_procedure(name: str, module: str | None = None) -> Callable[..., Any]:
+    """The procedure called ``name`` (``"Proc"`` or ``"Module.Proc"``), looked up as seen from
+    procedures of ``module`` (``None``: from outside any module).  Raises GplException -729,
+    -772 or -798 as described in the module docstring."""
+    return find_procedure_entry(name, module).func
