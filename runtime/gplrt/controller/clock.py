@@ -1,0 +1,137 @@
+"""The simulated controller's time: a VIRTUAL clock and a REAL clock, and the waits built on them.
+
+Two time sources, one vocabulary (seconds as ``float``, counted from the simulated boot):
+
+* :class:`VirtualClock` — time is a number that only the scheduler moves.  It jumps to the
+  earliest pending deadline when every GPL thread is waiting (an hour of cell time runs in
+  milliseconds) and it advances by one scheduling slice each time a thread computes for a whole
+  slice (so a loop that polls ``Controller.Timer`` still sees time pass).  Runs are deterministic.
+* :class:`RealClock` — wall-clock time (``time.monotonic``) scaled by ``speed``: ``speed=2`` makes a
+  ``Thread.Sleep(1000)`` last half a real second.  For servers talking to real clients.
+
+Who runs while someone waits is the scheduler's job (``gplrt.threads.scheduler``): a clock only
+tells the time and, for the virtual clock, is moved forward.  The functions at the bottom of this
+module (:func:`now`, :func:`sleep`, :func:`sleep_until`, :func:`wait`, :func:`notify_all`,
+:func:`call_at`) are the entry points the rest of the runtime uses — e.g. the motion work's
+``Move.WaitForEOM`` calls ``clock.sleep_until(segment_end_time)`` — and they act on the active
+simulation (``gplrt.sim.current()``), from a GPL thread or from any other Python thread.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import TYPE_CHECKING, Callable, Protocol
+
+if TYPE_CHECKING:
+    from gplrt.threads.scheduler import WaitQueue
+
+
+class Clock(Protocol):
+    """A source of simulated-controller time in seconds since the simulated boot."""
+
+    def now(self) -> float:
+        """Current time in seconds."""
+        ...
+
+    def real_seconds(self, dt: float) -> float:
+        """Wall-clock seconds that ``dt`` clock seconds last (0 for a virtual clock)."""
+        ...
+
+
+class VirtualClock:
+    """Time that moves only when the scheduler moves it: deterministic and as fast as possible."""
+
+    def __init__(self, start: float = 0.0) -> None:
+        self._t = float(start)
+
+    def now(self) -> float:
+        return self._t
+
+    def real_seconds(self, dt: float) -> float:
+        return 0.0
+
+    def advance_to(self, t: float) -> None:
+        """Move time forward to ``t`` (never backwards: a stale deadline leaves time unchanged)."""
+        if t > self._t:
+            self._t = float(t)
+
+    def advance_by(self, dt: float) -> None:
+        self.advance_to(self._t + dt)
+
+
+class RealClock:
+    """Wall-clock time, optionally sped up (``speed > 1``) or slowed down (``speed < 1``)."""
+
+    def __init__(self, speed: float = 1.0, start: float = 0.0) -> None:
+        if not speed > 0.0 or math.isinf(speed):
+            raise ValueError(f"RealClock speed must be a positive finite number, not {speed!r}")
+        self.speed = float(speed)
+        self._origin_real = time.monotonic()
+        self._origin = float(start)
+
+    def now(self) -> float:
+        return self._origin + (time.monotonic() - self._origin_real) * self.speed
+
+    def real_seconds(self, dt: float) -> float:
+        return max(0.0, dt) / self.speed
+
+
+# ---- time-of-day and quantisation (Controller.Timer) -------------------------------------------
+
+TIMER_RESOLUTION = 1.0 / 8000.0
+"""Controller.Timer is quantised to the 125 µs system tick (GPL Dictionary, timer.htm)."""
+
+
+def quantise(t: float) -> float:
+    """``t`` rounded down to the 125 µs tick.
+
+    The tiny bias stops ``3600.0 * 8000`` computed as ``28799999.999…`` from losing a whole tick.
+    """
+    return math.floor(t * 8000.0 + 1e-6) / 8000.0
+
+
+# ---- the entry points used by the rest of the runtime ------------------------------------------
+
+
+def _scheduler():  # type: ignore[no-untyped-def]
+    from gplrt.sim import current
+
+    return current().scheduler
+
+
+def now() -> float:
+    """Current controller time (seconds since the simulated boot) of the active simulation."""
+    return _scheduler().clock.now()
+
+
+def sleep(dt: float) -> None:
+    """Block the calling thread for ``dt`` seconds of controller time (``dt <= 0`` yields)."""
+    _scheduler().sleep(dt)
+
+
+def sleep_until(t: float) -> None:
+    """Block the calling thread until controller time ``t`` (returns at once if already past)."""
+    _scheduler().sleep_until(t)
+
+
+def wait(queue: WaitQueue, deadline: float | None = None) -> bool:
+    """Block on ``queue`` until :func:`notify_all` or the controller-time ``deadline``.
+
+    Returns True when notified, False on timeout.  Use it in a predicate loop::
+
+        while not ready():
+            if not clock.wait(q, deadline):
+                break
+    """
+    return _scheduler().wait(queue, deadline)
+
+
+def notify_all(queue: WaitQueue) -> None:
+    """Wake every thread blocked on ``queue`` (they re-check their condition)."""
+    _scheduler().notify_all(queue)
+
+
+def call_at(t: float, callback: Callable[[], None]) -> None:
+    """Run ``callback`` (short, non-blocking) when controller time reaches ``t``."""
+    _scheduler().call_at(t, callback)

@@ -1,0 +1,258 @@
+"""Digital and analog I/O of the simulated controller: GPL's ``Signal`` class and the I/O map.
+
+Signal numbering (decision; the manuals only say ``Signal.DIO(1)`` is "the first digital I/O
+signal", D0:1906-1910, gpl-classes §23 item 30).  We follow the PreciseFlex convention, each range
+configurable through :class:`SignalMap`:
+
+=================  ===============  ==================================================
+range              kind             GPL access
+=================  ===============  ==================================================
+1 – 64             digital outputs  read/write
+10001 – 10064      digital inputs   read; writing raises -1519 *Output signal required*
+20001 – 22048      soft signals     read/write (virtual flags shared between threads)
+=================  ===============  ==================================================
+
+Analog channels: outputs 1 – 8 (read/write), inputs 10001 – 10008 (read only).  A number in no
+range raises -1518 *Undefined signal number*; 0 raises -1517 *Invalid signal number*.  A negative
+number addresses the same signal with inverted logic (``Signal.DIO(-10001)`` is True while input
+10001 is off) — the controller's convention for signal numbers in its configuration.
+
+Inputs are driven from outside the program — a test, a notebook, or *rules* evaluated on the
+controller clock::
+
+    io.when_output(1, True).set_input(10001, True, after=2.0)
+
+means "input 10001 goes high 2 s after output 1 goes high".  Every change of any signal is
+recorded in :attr:`IoMap.trace` as a time-stamped :class:`SignalChange`.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+from gplrt.lang.errors import GplException
+from gplrt.lang.gpltypes import Boolean, Double, Integer
+
+INVALID_SIGNAL_NUMBER = -1517
+UNDEFINED_SIGNAL_NUMBER = -1518
+OUTPUT_SIGNAL_REQUIRED = -1519
+
+
+@dataclass(frozen=True)
+class SignalMap:
+    """Which signal numbers exist and which of them GPL may write."""
+
+    digital_outputs: range = range(1, 65)
+    digital_inputs: range = range(10001, 10065)
+    soft_signals: range = range(20001, 22049)
+    analog_outputs: range = range(1, 9)
+    analog_inputs: range = range(10001, 10009)
+
+
+@dataclass(frozen=True)
+class SignalChange:
+    """One recorded change: ``source`` is "gpl" (written by the program) or "sim" (driven input)."""
+
+    time: float
+    kind: str  # "DIO" or "AIO"
+    signal: int
+    value: bool | float
+    source: str
+
+
+@dataclass
+class Rule:
+    """Actions run when a digital signal changes to ``value`` (built by ``IoMap.when_*``)."""
+
+    io: IoMap
+    signal: int
+    value: bool
+    actions: list[tuple[float, Callable[[], None]]] = field(default_factory=list)
+    fired: int = 0
+
+    def set_input(self, signal: int, value: bool = True, after: float = 0.0) -> Rule:
+        """Drive digital input ``signal`` to ``value`` ``after`` controller seconds."""
+        self.actions.append((after, lambda: self.io.set_input(signal, value)))
+        return self
+
+    def set_analog_input(self, channel: int, value: float, after: float = 0.0) -> Rule:
+        self.actions.append((after, lambda: self.io.set_analog_input(channel, value)))
+        return self
+
+    def call(self, callback: Callable[[], None], after: float = 0.0) -> Rule:
+        """Run an arbitrary short, non-blocking ``callback``."""
+        self.actions.append((after, callback))
+        return self
+
+
+class IoMap:
+    """The simulated I/O: current values, the rules that drive inputs, and the change trace."""
+
+    def __init__(self, signal_map: SignalMap | None = None) -> None:
+        self.map = signal_map if signal_map is not None else SignalMap()
+        self._digital: dict[int, bool] = {}
+        self._analog: dict[int, float] = {}
+        self._rules: list[Rule] = []
+        self._listeners: list[Callable[[SignalChange], None]] = []
+        self.trace: list[SignalChange] = []
+        self._lock = threading.RLock()
+        self._sim: Any = None
+
+    def bind(self, sim: Any) -> None:
+        """Attach to the simulation whose clock times the trace and the rules."""
+        self._sim = sim
+
+    def _now(self) -> float:
+        return float(self._sim.scheduler.clock.now()) if self._sim is not None else 0.0
+
+    # -- numbering -------------------------------------------------------------------------------
+
+    def _digital_number(self, signal: int, write: bool) -> tuple[int, bool]:
+        signal = int(signal)
+        if signal == 0:
+            raise GplException(INVALID_SIGNAL_NUMBER, detail="signal 0")
+        n, inverted = abs(signal), signal < 0
+        m = self.map
+        if n in m.digital_outputs or n in m.soft_signals:
+            return n, inverted
+        if n in m.digital_inputs:
+            if write:
+                raise GplException(OUTPUT_SIGNAL_REQUIRED, detail=f"signal {signal} is an input")
+            return n, inverted
+        raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"signal {signal}")
+
+    def _analog_number(self, channel: int, write: bool) -> int:
+        channel = int(channel)
+        if channel <= 0:
+            raise GplException(INVALID_SIGNAL_NUMBER, detail=f"analog channel {channel}")
+        if channel in self.map.analog_outputs:
+            return channel
+        if channel in self.map.analog_inputs:
+            if write:
+                raise GplException(OUTPUT_SIGNAL_REQUIRED, detail=f"analog channel {channel} is an input")
+            return channel
+        raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"analog channel {channel}")
+
+    # -- GPL access --------------------------------------------------------------------------------
+
+    def read_dio(self, signal: int) -> bool:
+        n, inverted = self._digital_number(signal, write=False)
+        return self._digital.get(n, False) != inverted
+
+    def write_dio(self, signal: int, value: bool) -> None:
+        n, inverted = self._digital_number(signal, write=True)
+        self._change_digital(n, bool(value) != inverted, "gpl")
+
+    def read_aio(self, channel: int) -> float:
+        return self._analog.get(self._analog_number(channel, write=False), 0.0)
+
+    def write_aio(self, channel: int, value: float) -> None:
+        self._change_analog(self._analog_number(channel, write=True), float(value), "gpl")
+
+    # -- test / notebook API -------------------------------------------------------------------------
+
+    def set_input(self, signal: int, value: bool = True) -> None:
+        """Drive a digital input (or soft signal) from outside the program."""
+        n = abs(int(signal))
+        if n not in self.map.digital_inputs and n not in self.map.soft_signals:
+            raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"{signal} is not a digital input")
+        self._change_digital(n, bool(value), "sim")
+
+    def set_analog_input(self, channel: int, value: float) -> None:
+        if int(channel) not in self.map.analog_inputs:
+            raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"{channel} is not an analog input")
+        self._change_analog(int(channel), float(value), "sim")
+
+    def schedule_input(self, signal: int, value: bool, at: float) -> None:
+        """Drive digital input ``signal`` to ``value`` at controller time ``at``."""
+        self._sim.scheduler.call_at(at, lambda: self.set_input(signal, value))
+
+    def when(self, signal: int, value: bool = True) -> Rule:
+        """A rule triggered each time digital ``signal`` changes to ``value``."""
+        rule = Rule(self, abs(int(signal)), bool(value))
+        with self._lock:
+            self._rules.append(rule)
+        return rule
+
+    def when_output(self, signal: int, value: bool = True) -> Rule:
+        if abs(int(signal)) not in self.map.digital_outputs and abs(int(signal)) not in self.map.soft_signals:
+            raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"{signal} is not a digital output")
+        return self.when(signal, value)
+
+    def when_input(self, signal: int, value: bool = True) -> Rule:
+        if abs(int(signal)) not in self.map.digital_inputs and abs(int(signal)) not in self.map.soft_signals:
+            raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"{signal} is not a digital input")
+        return self.when(signal, value)
+
+    def on_change(self, listener: Callable[[SignalChange], None]) -> None:
+        """Call ``listener`` (short, non-blocking) for every change, e.g. latch emulation or plots."""
+        self._listeners.append(listener)
+
+    def output_trace(self) -> list[SignalChange]:
+        """Changes written by the program."""
+        return [c for c in self.trace if c.source == "gpl"]
+
+    def value(self, signal: int) -> bool:
+        """Current state of a digital signal, whatever its kind (no GPL access rules)."""
+        return self._digital.get(abs(int(signal)), False)
+
+    # -- internals ---------------------------------------------------------------------------------
+
+    def _change_digital(self, n: int, value: bool, source: str) -> None:
+        with self._lock:
+            old = self._digital.get(n, False)
+            self._digital[n] = value
+            if old == value:
+                return
+            change = SignalChange(self._now(), "DIO", n, value, source)
+            self.trace.append(change)
+            rules = [r for r in self._rules if r.signal == n and r.value == value]
+        self._notify(change)
+        for rule in rules:
+            rule.fired += 1
+            for after, action in rule.actions:
+                if after <= 0:
+                    action()
+                else:
+                    self._sim.scheduler.call_at(change.time + after, action)
+
+    def _change_analog(self, n: int, value: float, source: str) -> None:
+        with self._lock:
+            old = self._analog.get(n, 0.0)
+            self._analog[n] = value
+            if old == value:
+                return
+            change = SignalChange(self._now(), "AIO", n, value, source)
+            self.trace.append(change)
+        self._notify(change)
+
+    def _notify(self, change: SignalChange) -> None:
+        for listener in list(self._listeners):
+            listener(change)
+
+
+class _SignalClass:
+    """GPL's global ``Signal`` class: ``Signal.DIO(n)``, ``Signal.DIO(n) = v``, ``Signal.AIO(n)``."""
+
+    @staticmethod
+    def _io() -> IoMap:
+        from gplrt.sim import current
+
+        return current().io  # type: ignore[no-any-return]
+
+    def DIO(self, signal: Integer) -> Boolean:
+        return self._io().read_dio(signal)  # type: ignore[return-value]
+
+    def set_DIO(self, signal: Integer, value: Boolean) -> None:
+        self._io().write_dio(signal, value)
+
+    def AIO(self, channel: Integer) -> Double:
+        return self._io().read_aio(channel)  # type: ignore[return-value]
+
+    def set_AIO(self, channel: Integer, value: Double) -> None:
+        self._io().write_aio(channel, value)
+
+
+Signal = _SignalClass()

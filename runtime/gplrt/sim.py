@@ -1,0 +1,236 @@
+"""The simulation session: one simulated controller that GPL code (generated or hand-written) runs on.
+
+A notebook, a test or ``python -m out.project`` makes a :class:`Simulation` (or lets
+:func:`current` make a default one) and chooses:
+
+* the clock — ``clock="virtual"`` (default: deterministic, waits cost no wall time) or
+  ``clock="real"`` with a ``speed`` factor (servers talking to real clients);
+* the I/O map (``io``: digital/analog signals, scripted input rules, output trace);
+* the console sink (``console``: stdout, or ``capture=True`` to collect the text);
+* the flash root (``flash_root``: folder standing in for ``/flash``);
+* the robots registry (``robots``: filled by the motion work) and the parameter database
+  (``pdb``: wired by the lead; ``Controller.PDb`` reads it).
+
+Program lifetime (decision; D0:1493 and D0 §17): a thread ends when its top-level procedure
+returns, and the other threads keep running — the main procedure (ProjectStart) returning does not
+stop the threads it started.  :meth:`Simulation.run_main` therefore returns when *every* GPL
+thread has ended, or, in virtual mode, when the program has stalled (all remaining threads wait
+for something no GPL thread or timer can ever provide — on a controller they would wait forever).
+"""
+
+from __future__ import annotations
+
+import io as _io
+import sys
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Literal, TextIO
+
+from gplrt.controller.clock import RealClock, VirtualClock
+from gplrt.threads.scheduler import RealScheduler, Scheduler, VirtualScheduler, current_ctx
+
+
+class SimulationStalled(RuntimeError):
+    """``Simulation.call`` cannot finish: every GPL thread waits for something that never comes.
+
+    This is a fault of the *session* (a notebook waiting on a deadlocked program), not a GPL error,
+    so it is a Python exception rather than a GplException.
+    """
+
+
+class ConsoleSink:
+    """Where the program's console output and the controller's log lines go.
+
+    ``write`` carries program output (``Console.WriteLine``); ``log`` carries controller reports
+    (unhandled thread errors, system messages).  With ``capture=True`` both are kept in memory
+    (``output``, ``log_text``) instead of being printed — tests compare them byte for byte.
+    """
+
+    def __init__(self, capture: bool = False, stream: TextIO | None = None, log_stream: TextIO | None = None) -> None:
+        self.capture = capture
+        self._out: TextIO = _io.StringIO() if capture else (stream or sys.stdout)
+        self._log: TextIO = _io.StringIO() if capture else (log_stream or sys.stderr)
+        self._lock = threading.Lock()
+
+    def write(self, text: str) -> None:
+        with self._lock:
+            self._out.write(text)
+            if not self.capture:
+                self._out.flush()
+
+    def log(self, line: str) -> None:
+        with self._lock:
+            self._log.write(line + "\n")
+            if not self.capture:
+                self._log.flush()
+
+    @property
+    def output(self) -> str:
+        return self._out.getvalue() if isinstance(self._out, _io.StringIO) else ""
+
+    @property
+    def log_text(self) -> str:
+        return self._log.getvalue() if isinstance(self._log, _io.StringIO) else ""
+
+
+@dataclass
+class LogEntry:
+    """One line of the system-message log or of the error log."""
+
+    time: float
+    thread: str
+    text: str
+    code: int = 0
+
+
+@dataclass
+class ControllerState:
+    """The controller's non-motion state (read by motion checks: power, speed, E-stop)."""
+
+    power_state: int = 7  # off, waiting for the power request (gpl-dictionary §13.3)
+    system_speed: float = 100.0
+    soft_estop: bool = False
+    record_button: bool = False
+    tick: float = 0.001  # trajectory-generator period (gpl-classes §22.3 item 8)
+    power_up_time: float = 0.3  # virtual seconds from the power request to "on"
+    time_of_day_origin: float = 1135641600.0  # Timer(0) at boot: 2024-01-01 UTC in s since 1988
+    system_messages: list[LogEntry] = field(default_factory=list)
+    error_log: list[LogEntry] = field(default_factory=list)
+    dialog_handler: Callable[[list[str], str], int] | None = None
+    dialog_answers: list[int] = field(default_factory=list)
+
+
+class Simulation:
+    """One simulated controller session (see module docstring)."""
+
+    def __init__(
+        self,
+        *,
+        clock: Literal["virtual", "real"] = "virtual",
+        speed: float = 1.0,
+        io: Any = None,
+        console: ConsoleSink | None = None,
+        capture: bool = False,
+        flash_root: str | Path | None = None,
+        project: str = "",
+        max_threads: int = 32,
+        slice_checkpoints: int = 1000,
+    ) -> None:
+        self.scheduler: Scheduler
+        if clock == "virtual":
+            self.scheduler = VirtualScheduler(VirtualClock(), slice_checkpoints=slice_checkpoints)
+        elif clock == "real":
+            self.scheduler = RealScheduler(RealClock(speed), slice_checkpoints=slice_checkpoints)
+        else:
+            raise ValueError(f"clock must be 'virtual' or 'real', not {clock!r}")
+        self.mode = clock
+        self.scheduler.sim = self
+        from gplrt.controller.signals import IoMap
+
+        self.io: IoMap = io if io is not None else IoMap()
+        self.io.bind(self)
+        self.console = console if console is not None else ConsoleSink(capture=capture)
+        self.flash_root = Path(flash_root) if flash_root is not None else None
+        self.project = project
+        self.max_threads = max_threads
+        self.controller = ControllerState()
+        self.robots: dict[int, Any] = {}
+        self.pdb: Any = None
+        self.trace: list[Any] = []
+        self.thread_exit_hooks: list[Callable[[Any], None]] = []
+        self.threads: list[Any] = []  # every GPL Thread object started in this session
+        self._previous: Simulation | None = None
+
+    # -- activation --------------------------------------------------------------------------------
+
+    def activate(self) -> Simulation:
+        """Make this the session that ``current()`` returns."""
+        set_current(self)
+        return self
+
+    def __enter__(self) -> Simulation:
+        self._previous = _state.sim
+        set_current(self)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        set_current(self._previous)
+
+    # -- time ------------------------------------------------------------------------------------
+
+    def now(self) -> float:
+        return float(self.scheduler.clock.now())
+
+    # -- running GPL code ----------------------------------------------------------------------------
+
+    def run_main(self, proc: Callable[[], Any] | str, *, name: str | None = None, timeout: float | None = None) -> list[str]:
+        """Run ``proc`` as the main GPL thread (ProjectStart) and wait for the program to end.
+
+        Returns the names of threads still alive when it returned (empty when all ended; in
+        virtual mode non-empty means the program stalled; ``timeout`` is in real seconds).
+        """
+        from gplrt.threads.thread import Thread
+
+        with self:
+            main = Thread(proc, 0, name or "", _sim=self)
+            main.Start()
+            self.scheduler.wait_until_quiet(None, timeout)
+            alive = [c.name for c in list(self.scheduler.live) if c.phase != "done"]
+            if alive:
+                self.console.log(f"Program stalled; threads still waiting: {', '.join(alive)}")
+            return alive
+
+    def call(self, proc: Callable[..., Any] | str, *args: Any, timeout: float | None = None) -> Any:
+        """Call a GPL procedure from outside (a notebook) as a GPL thread under the scheduler.
+
+        Returns its result; a GPL exception it does not handle is raised here (not reported as an
+        unhandled thread error, since the caller receives it).
+        """
+        from gplrt.threads.thread import Thread
+
+        with self:
+            t = Thread(proc, 0, "", _sim=self, _args=args, _propagate=True)
+            t.Start()
+            ended = self.scheduler.wait_until_quiet([t._ctx], timeout)
+            if not ended:
+                raise SimulationStalled(f"{t.Name} did not finish: {'stalled' if timeout is None else 'timeout'}")
+            if t._error is not None:
+                raise t._error
+            return t._result
+
+    def report(self, thread_name: str, text: str, code: int = 0) -> None:
+        """Record a controller-level error (error log + console log)."""
+        entry = LogEntry(self.now(), thread_name, text, code)
+        self.controller.error_log.append(entry)
+        self.console.log(f"[{entry.time:.6f}] thread {thread_name}: {text}")
+
+
+class _State:
+    sim: Simulation | None = None
+
+
+_state = _State()
+_create_lock = threading.Lock()
+
+
+def current() -> Simulation:
+    """The active simulation (a default virtual-clock one is created on first use).
+
+    Code running on a GPL thread always gets the simulation that thread belongs to, so sessions
+    made one after another (tests) never see each other's threads.
+    """
+    ctx = current_ctx()
+    if ctx is not None:
+        return ctx.sched.sim  # type: ignore[no-any-return]
+    sim = _state.sim
+    if sim is None:
+        with _create_lock:
+            if _state.sim is None:
+                _state.sim = Simulation()
+            sim = _state.sim
+    return sim
+
+
+def set_current(sim: Simulation | None) -> None:
+    _state.sim = sim

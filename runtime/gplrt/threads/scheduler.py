@@ -1,0 +1,630 @@
+"""Schedulers: who runs, who waits, and how controller time moves.
+
+Every GPL thread runs on its own Python thread.  The scheduler decides when it may run.
+
+VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* scheduler:
+
+* Exactly one GPL thread holds the token and runs; the others wait on their own ``Event``.  The
+  token changes hands only at scheduling points: ``Thread.Sleep`` (``Sleep(0)`` included),
+  ``WaitEvent``, ``Join``, clock waits (``sleep_until``, ``WaitForEOM``), thread start/end (the new
+  thread queues; the starter keeps running), :func:`external_wait`, and :func:`checkpoint` — which
+  the transpiler puts on every loop back-edge.
+* Round-robin in a FIFO of runnable threads.  A thread gets a *slice* of ``slice_checkpoints``
+  checkpoint calls (fast path: one integer decrement); when the slice is used up, virtual time
+  advances by ``slice_time`` (the controller's 1 ms round-robin slice) and the thread moves to the
+  back of the queue.  The remaining slice is kept across sleeps, as on the controller (D0 §17.2).
+  Charging compute time is what lets ``While Controller.Timer < t0 + 1 : End While`` terminate.
+* When no thread is runnable, time jumps to the earliest deadline; ties wake in the order the
+  waits began.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
+* A thread in :func:`external_wait` (socket accept/receive, an operator dialog) is neither
+  runnable nor a virtual waiter.  While one exists and nobody is runnable, virtual time advances
+  no faster than real time: a real-time timer fires the earliest virtual deadline when it falls
+  due, and when the external wait ends, time catches up with the real time spent idle.  So a
+  server's timeout still means something to a real client, and no deadline is skipped.
+* Code running on Python threads the scheduler does not know (a notebook, pytest) never holds the
+  token, so it cannot deadlock the scheduler: ``checkpoint`` is a no-op there, and a blocking call
+  (``Thread.Sleep``, ``WaitEvent``, ``clock.sleep``) *adopts* the thread for the duration of that
+  call only.
+
+Same program, same inputs ⇒ same interleaving ⇒ byte-identical output.
+
+REAL mode (:class:`RealScheduler`): threads run preemptively, waits sleep for real time divided by
+the clock's speed, ``TestAndSet`` is atomic under a lock, and ``checkpoint`` only services
+Suspend/Abort requests.
+
+Suspend and Abort are cooperative (Python threads cannot be killed): the target notices at its
+next checkpoint or scheduling point; a blocked target is woken to notice.  Abort raises
+:class:`ThreadAbort`, a ``BaseException`` so that GPL ``Catch`` blocks (``except GplException``)
+do not swallow it while ``Finally`` blocks still run.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import threading
+import time
+from collections import deque
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Any, Callable, Iterator
+
+from gplrt.controller.clock import RealClock, VirtualClock
+
+
+class ThreadAbort(BaseException):
+    """Unwinds a GPL thread stopped by ``Thread.Abort`` (not catchable by GPL ``Catch``)."""
+
+
+class Phase:
+    """Scheduler-level state of a :class:`ThreadCtx` (the GPL-visible ThreadState is derived)."""
+
+    NEW = "new"
+    READY = "ready"
+    RUNNING = "running"
+    BLOCKED = "blocked"
+    EXTERNAL = "external"
+    DONE = "done"
+
+
+@dataclass(eq=False)
+class ThreadCtx:
+    """What the scheduler keeps about one thread that runs (or waits for) GPL code."""
+
+    name: str
+    sched: "Scheduler"
+    budget: int = 0
+    phase: str = Phase.NEW
+    go: threading.Event = field(default_factory=threading.Event)
+    wait_id: int = 0
+    notified: bool = False
+    timed_out: bool = False
+    waiting_on: str = ""
+    abort_requested: bool = False
+    suspend_requested: bool = False
+    saved_budget: int | None = None
+    owner: Any = None  # the GPL Thread object, if any
+    resume_q: "WaitQueue" = field(default_factory=lambda: WaitQueue("resume"))
+
+    def force_slow_path(self) -> None:
+        """Make the next :func:`checkpoint` take the slow path (to notice Suspend/Abort)."""
+        if self.saved_budget is None:
+            self.saved_budget = self.budget
+        self.budget = 0
+
+
+class WaitQueue:
+    """Threads blocked until someone calls ``notify_all`` (a condition variable without a lock)."""
+
+    def __init__(self, label: str = "") -> None:
+        self.label = label
+        self.waiters: list[tuple[ThreadCtx, int]] = []
+
+
+class _Local(threading.local):
+    ctx: ThreadCtx | None = None
+
+
+_tls = _Local()
+
+
+def current_ctx() -> ThreadCtx | None:
+    """The calling Python thread's scheduler record, or None for a thread unknown to the scheduler."""
+    return _tls.ctx
+
+
+def bind_current(ctx: ThreadCtx | None) -> None:
+    _tls.ctx = ctx
+
+
+def checkpoint() -> None:
+    """A scheduling point the transpiler emits at loop back-edges (cheap: one decrement).
+
+    In virtual mode it hands the token on once the thread's slice is used up; in both modes it is
+    where a Suspend or Abort aimed at this thread takes effect.
+    """
+    ctx = _tls.ctx
+    if ctx is None:
+        return
+    ctx.budget -= 1
+    if ctx.budget <= 0:
+        ctx.sched._checkpoint_slow(ctx)
+
+
+@contextmanager
+def external_wait() -> Iterator[None]:
+    """Mark the calling GPL thread as blocked on the outside world for the ``with`` body.
+
+    Every blocking call to the outside (socket accept/receive, a console prompt) goes through this,
+    so the virtual scheduler lets other GPL threads run meanwhile and knows not to race virtual
+    time ahead.  Harmless in real mode and on threads unknown to the scheduler.
+    """
+    ctx = _tls.ctx
+    if ctx is None:
+        yield
+        return
+    ctx.sched._enter_external(ctx)
+    try:
+        yield
+    finally:
+        ctx.sched._leave_external(ctx)
+
+
+class Scheduler:
+    """Common surface of both schedulers (see the module docstring for the policies)."""
+
+    clock: Any
+    slice_checkpoints: int
+    sim: Any = None  # the owning gplrt.sim.Simulation
+
+    def __init__(self) -> None:
+        self._lock = threading.RLock()
+        self._changed = threading.Condition(self._lock)  # signalled on idle / thread end
+        self.live: list[ThreadCtx] = []
+        self._seq = itertools.count()
+        self.test_and_set_lock = threading.Lock()
+
+    # -- thread lifecycle --------------------------------------------------------------------------
+
+    def new_ctx(self, name: str, owner: Any = None) -> ThreadCtx:
+        return ThreadCtx(name=name, sched=self, budget=self.slice_checkpoints, owner=owner)
+
+    def spawn(self, ctx: ThreadCtx, body: Callable[[], None]) -> threading.Thread:
+        """Start a Python thread that runs ``body`` as the GPL thread ``ctx``."""
+
+        def run() -> None:
+            bind_current(ctx)
+            try:
+                self._wait_first_turn(ctx)
+                body()
+            finally:
+                bind_current(None)
+
+        with self._lock:
+            self.live.append(ctx)
+            self._make_ready(ctx)
+            self._kick()
+        py = threading.Thread(target=run, name=f"gpl:{ctx.name}", daemon=True)
+        py.start()
+        return py
+
+    @contextmanager
+    def adopted(self) -> Iterator[ThreadCtx]:
+        """Run the ``with`` body as a GPL thread; a no-op for threads that already are one."""
+        ctx = _tls.ctx
+        if ctx is not None:
+            yield ctx
+            return
+        ctx = self.new_ctx("<external caller>")
+        bind_current(ctx)
+        with self._lock:
+            self.live.append(ctx)
+            self._make_ready(ctx)
+            self._kick()
+        try:
+            self._wait_first_turn(ctx)
+            yield ctx
+        finally:
+            bind_current(None)
+            self.finish(ctx)
+
+    def is_stalled(self) -> bool:
+        """True when no GPL thread can ever run again without help from outside."""
+        return False
+
+    def wait_until_quiet(self, threads: list[ThreadCtx] | None, timeout: float | None) -> bool:
+        """Block a non-GPL caller until ``threads`` (default: all) ended or the scheduler stalled.
+
+        Returns True if they all ended.
+        """
+        end = None if timeout is None else time.monotonic() + timeout
+        with self._changed:
+            while True:
+                pending = [c for c in (self.live if threads is None else threads) if c.phase != Phase.DONE]
+                if not pending:
+                    return True
+                if self.is_stalled():
+                    return False
+                remaining = None if end is None else end - time.monotonic()
+                if remaining is not None and remaining <= 0:
+                    return False
+                self._changed.wait(0.05 if remaining is None else min(0.05, remaining))
+
+    # -- waits (public) ----------------------------------------------------------------------------
+
+    def sleep(self, dt: float) -> None:
+        if dt <= 0:
+            self.yield_now()
+        else:
+            with self.adopted():
+                self.sleep_until(self.clock.now() + dt)
+
+    def sleep_until(self, t: float) -> None:
+        with self.adopted() as ctx:
+            ctx.waiting_on = "sleep"
+            while self.clock.now() < t:
+                self.wait(None, t)
+
+    def wait(self, queue: WaitQueue | None, deadline: float | None) -> bool:
+        """Block until ``queue`` is notified (True) or controller time reaches ``deadline`` (False)."""
+        with self.adopted() as ctx:
+            self._service_requests(ctx)
+            notified = self._block(ctx, queue, deadline)
+            self._service_requests(ctx)
+            return notified
+
+    def notify_all(self, queue: WaitQueue) -> None:
+        with self._lock:
+            waiters, queue.waiters = queue.waiters, []
+            for ctx, wid in waiters:
+                if ctx.wait_id == wid and ctx.phase == Phase.BLOCKED:
+                    self._wake(ctx, timed_out=False)
+            self._kick()
+
+    def call_at(self, t: float, callback: Callable[[], None]) -> None:
+        raise NotImplementedError
+
+    def yield_now(self) -> None:
+        raise NotImplementedError
+
+    # -- Suspend / Abort ---------------------------------------------------------------------------
+
+    def request_abort(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            ctx.abort_requested = True
+            ctx.force_slow_path()
+            self._interrupt(ctx)
+            self._kick()
+
+    def request_suspend(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            ctx.suspend_requested = True
+            ctx.force_slow_path()
+
+    def request_resume(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            ctx.suspend_requested = False
+        self.notify_all(ctx.resume_q)
+
+    def _service_requests(self, ctx: ThreadCtx) -> None:
+        """At a scheduling point: die if aborted, park while suspended."""
+        while True:
+            if ctx.abort_requested:
+                raise ThreadAbort()
+            if not ctx.suspend_requested:
+                return
+            ctx.waiting_on = "suspended"
+            self._block(ctx, ctx.resume_q, None)
+
+    def _interrupt(self, ctx: ThreadCtx) -> None:
+        """Wake ``ctx`` from whatever it waits on so that it notices a request."""
+        if ctx.phase == Phase.BLOCKED:
+            self._wake(ctx, timed_out=False)
+
+    # -- hooks for the concrete schedulers ----------------------------------------------------------
+
+    def _wait_first_turn(self, ctx: ThreadCtx) -> None:
+        raise NotImplementedError
+
+    def _make_ready(self, ctx: ThreadCtx) -> None:
+        raise NotImplementedError
+
+    def _kick(self) -> None:
+        """Called (lock held) after making threads ready: start one if nobody is running."""
+
+    def _block(self, ctx: ThreadCtx, queue: WaitQueue | None, deadline: float | None) -> bool:
+        raise NotImplementedError
+
+    def _wake(self, ctx: ThreadCtx, timed_out: bool) -> None:
+        raise NotImplementedError
+
+    def finish(self, ctx: ThreadCtx) -> None:
+        raise NotImplementedError
+
+    def _checkpoint_slow(self, ctx: ThreadCtx) -> None:
+        raise NotImplementedError
+
+    def _enter_external(self, ctx: ThreadCtx) -> None:
+        pass
+
+    def _leave_external(self, ctx: ThreadCtx) -> None:
+        pass
+
+
+class VirtualScheduler(Scheduler):
+    """Token scheduler on a :class:`VirtualClock` (deterministic; see module docstring)."""
+
+    def __init__(
+        self,
+        clock: VirtualClock | None = None,
+        slice_checkpoints: int = 1000,
+        slice_time: float = 0.001,
+    ) -> None:
+        super().__init__()
+        self.clock = clock if clock is not None else VirtualClock()
+        self.slice_checkpoints = slice_checkpoints
+        self.slice_time = slice_time
+        self._ready: deque[ThreadCtx] = deque()
+        self._running: ThreadCtx | None = None
+        self._timers: list[tuple[float, int, ThreadCtx | None, int, Callable[[], None] | None]] = []
+        self._external = 0
+        self._idle_real: float | None = None  # monotonic() when the token went idle
+        self._idle_virtual = 0.0
+        self._pacer_gen = 0
+        self._in_dispatch = False
+
+    # -- token handling (call with the lock held) ----------------------------------------------------
+
+    def _make_ready(self, ctx: ThreadCtx) -> None:
+        ctx.phase = Phase.READY
+        self._ready.append(ctx)
+
+    def _kick(self) -> None:
+        if self._running is None and not self._in_dispatch:
+            self._dispatch()
+
+    def _fire_due(self) -> None:
+        t_now = self.clock.now()
+        while self._timers and self._timers[0][0] <= t_now:
+            _, _, ctx, wid, callback = heapq.heappop(self._timers)
+            if callback is not None:
+                callback()
+            elif ctx is not None and ctx.wait_id == wid and ctx.phase == Phase.BLOCKED:
+                self._wake(ctx, timed_out=True)
+
+    def _next_deadline(self) -> float | None:
+        while self._timers:
+            _, _, ctx, wid, callback = self._timers[0]
+            if callback is not None or (ctx is not None and ctx.wait_id == wid and ctx.phase == Phase.BLOCKED):
+                return self._timers[0][0]
+            heapq.heappop(self._timers)  # a wait that already ended
+        return None
+
+    def _catch_up_idle_time(self) -> None:
+        """After an idle spell with external waiters, virtual time has run at real-time pace."""
+        if self._idle_real is not None:
+            elapsed = time.monotonic() - self._idle_real
+            target = self._idle_virtual + elapsed
+            nd = self._next_deadline()
+            if nd is not None:
+                target = min(target, nd)
+            self.clock.advance_to(target)
+            self._idle_real = None
+            self._fire_due()
+
+    def _dispatch(self) -> None:
+        """Give the token to the next runnable thread, jumping time forward if nobody is runnable.
+
+        Timer callbacks fired from here may make threads ready; ``_in_dispatch`` stops them from
+        dispatching recursively.
+        """
+        self._in_dispatch = True
+        try:
+            self._catch_up_idle_time()
+            self._fire_due()
+            while not self._ready:
+                nd = self._next_deadline()
+                # With no GPL thread alive, time stands still (nothing could observe it pass).
+                if nd is None or self._external > 0 or not self.live:
+                    self._go_idle(nd)
+                    return
+                self.clock.advance_to(nd)
+                self._fire_due()
+            nxt = self._ready.popleft()
+            nxt.phase = Phase.RUNNING
+            self._running = nxt
+            nxt.go.set()
+        finally:
+            self._in_dispatch = False
+
+    def _go_idle(self, next_deadline: float | None) -> None:
+        self._running = None
+        # Only external waits make idle time count: otherwise a stalled program stays frozen.
+        if self._external > 0 and self._idle_real is None:
+            self._idle_real = time.monotonic()
+            self._idle_virtual = self.clock.now()
+        self._pacer_gen += 1
+        if next_deadline is not None and self._external > 0:
+            gen = self._pacer_gen
+            delay = max(0.0, next_deadline - self.clock.now())
+            timer = threading.Timer(delay, self._pacer_fire, args=(gen, next_deadline))
+            timer.daemon = True
+            timer.start()
+        self._changed.notify_all()
+
+    def _pacer_fire(self, gen: int, deadline: float) -> None:
+        with self._lock:
+            if gen != self._pacer_gen or self._running is not None:
+                return
+            self._idle_real = None
+            self.clock.advance_to(deadline)
+            self._dispatch()
+
+    def _switch_away(self, ctx: ThreadCtx) -> None:
+        """``ctx`` (the token holder, lock held) has parked itself: pass the token, then wait."""
+        self._running = None
+        self._dispatch()
+
+    def _await_token(self, ctx: ThreadCtx) -> None:
+        ctx.go.wait()
+        ctx.go.clear()
+
+    # -- scheduler hooks ---------------------------------------------------------------------------
+
+    def _wait_first_turn(self, ctx: ThreadCtx) -> None:
+        self._await_token(ctx)
+
+    def _block(self, ctx: ThreadCtx, queue: WaitQueue | None, deadline: float | None) -> bool:
+        with self._lock:
+            ctx.wait_id += 1
+            ctx.phase = Phase.BLOCKED
+            ctx.timed_out = False
+            if queue is not None:
+                queue.waiters.append((ctx, ctx.wait_id))
+            if deadline is not None:
+                heapq.heappush(self._timers, (deadline, next(self._seq), ctx, ctx.wait_id, None))
+            self._switch_away(ctx)
+        self._await_token(ctx)
+        if queue is not None:
+            with self._lock:
+                queue.waiters = [w for w in queue.waiters if w[0] is not ctx]
+        return not ctx.timed_out
+
+    def _wake(self, ctx: ThreadCtx, timed_out: bool) -> None:
+        ctx.wait_id += 1  # invalidates the other half of the wait (timer or queue entry)
+        ctx.timed_out = timed_out
+        self._make_ready(ctx)
+
+    def finish(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            ctx.phase = Phase.DONE
+            if ctx in self.live:
+                self.live.remove(ctx)
+            self._running = None
+            self._dispatch()
+            self._changed.notify_all()
+
+    def yield_now(self) -> None:
+        with self.adopted() as ctx:
+            self._service_requests(ctx)
+            self._yield(ctx)
+            self._service_requests(ctx)
+
+    def _yield(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            if not self._ready:
+                return
+            ctx.phase = Phase.READY
+            self._ready.append(ctx)
+            self._switch_away(ctx)
+        self._await_token(ctx)
+
+    def _checkpoint_slow(self, ctx: ThreadCtx) -> None:
+        if ctx.saved_budget is not None:  # forced by a Suspend/Abort request, not a used-up slice
+            ctx.budget, ctx.saved_budget = ctx.saved_budget, None
+            self._service_requests(ctx)
+            return
+        ctx.budget = self.slice_checkpoints
+        with self._lock:
+            self.clock.advance_by(self.slice_time)
+            self._fire_due()
+        self._yield(ctx)
+        self._service_requests(ctx)
+
+    def call_at(self, t: float, callback: Callable[[], None]) -> None:
+        with self._lock:
+            if t <= self.clock.now():
+                callback()
+                return
+            heapq.heappush(self._timers, (t, next(self._seq), None, 0, callback))
+            if self._running is None and not self._in_dispatch:
+                self._dispatch()  # idle: jump to it now, or re-arm the real-time pacer
+
+    def _enter_external(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            ctx.phase = Phase.EXTERNAL
+            self._external += 1
+            self._switch_away(ctx)
+
+    def _leave_external(self, ctx: ThreadCtx) -> None:
+        with self._lock:
+            self._external -= 1
+            self._make_ready(ctx)
+            self._kick()
+        self._await_token(ctx)
+
+    def is_stalled(self) -> bool:
+        with self._lock:
+            return (
+                self._running is None
+                and not self._ready
+                and self._external == 0
+                and self._next_deadline() is None
+                and any(c.phase == Phase.BLOCKED for c in self.live)
+            )
+
+
+class RealScheduler(Scheduler):
+    """Preemptive scheduling on real (optionally scaled) time."""
+
+    def __init__(self, clock: RealClock | None = None, slice_checkpoints: int = 1000) -> None:
+        super().__init__()
+        self.clock = clock if clock is not None else RealClock()
+        self.slice_checkpoints = slice_checkpoints
+
+    def _make_ready(self, ctx: ThreadCtx) -> None:
+        ctx.phase = Phase.RUNNING
+
+    def _wait_first_turn(self, ctx: ThreadCtx) -> None:
+        pass
+
+    def _block(self, ctx: ThreadCtx, queue: WaitQueue | None, deadline: float | None) -> bool:
+        with self._changed:
+            ctx.wait_id += 1
+            ctx.phase = Phase.BLOCKED
+            ctx.notified = False
+            ctx.timed_out = False
+            if queue is not None:
+                queue.waiters.append((ctx, ctx.wait_id))
+            while not ctx.notified:
+                if deadline is None:
+                    self._changed.wait()
+                    continue
+                remaining = self.clock.real_seconds(deadline - self.clock.now())
+                if remaining <= 0:
+                    ctx.timed_out = True
+                    break
+                self._changed.wait(remaining)
+            ctx.wait_id += 1
+            ctx.phase = Phase.RUNNING
+            if queue is not None:
+                queue.waiters = [w for w in queue.waiters if w[0] is not ctx]
+            return not ctx.timed_out
+
+    def _wake(self, ctx: ThreadCtx, timed_out: bool) -> None:
+        ctx.notified = True
+        self._changed.notify_all()
+
+    def finish(self, ctx: ThreadCtx) -> None:
+        with self._changed:
+            ctx.phase = Phase.DONE
+            if ctx in self.live:
+                self.live.remove(ctx)
+            self._changed.notify_all()
+
+    def yield_now(self) -> None:
+        ctx = _tls.ctx
+        if ctx is not None:
+            self._service_requests(ctx)
+        time.sleep(0)
+
+    def _checkpoint_slow(self, ctx: ThreadCtx) -> None:
+        if ctx.saved_budget is not None:
+            ctx.saved_budget = None
+        ctx.budget = self.slice_checkpoints
+        self._service_requests(ctx)
+        time.sleep(0)  # let a preempted lock holder run
+
+    def sleep_until(self, t: float) -> None:
+        ctx = _tls.ctx
+        if ctx is None:
+            delay = self.clock.real_seconds(t - self.clock.now())
+            if delay > 0:
+                time.sleep(delay)
+            return
+        ctx.waiting_on = "sleep"
+        while self.clock.now() < t:
+            self.wait(None, t)
+
+    def call_at(self, t: float, callback: Callable[[], None]) -> None:
+        def fire() -> None:
+            with self._lock:
+                callback()
+
+        delay = self.clock.real_seconds(t - self.clock.now())
+        if delay <= 0:
+            fire()
+            return
+        timer = threading.Timer(delay, fire)
+        timer.daemon = True
+        timer.start()

@@ -1,0 +1,324 @@
+"""GPL's ``Thread`` class (gpl-dictionary §7, gpl-classes §17, D0 §17).
+
+Decisions where the manuals are silent (documented here, tested in tests/threads):
+
+* ``New Thread(start_procedure [, argument [, thread_name]])`` — the procedure is a String naming a
+  Public procedure (``"Proc"`` or ``"Module.Proc"``, case-insensitive, resolved through
+  ``gplrt.lang.procedures.find_procedure`` when the object is created) or, for hand-written Python,
+  a callable.  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.
+  The thread name defaults to the procedure name (without module); starting a thread whose name
+  is already used by an active thread raises -749 *Thread already exists*, so several threads on
+  one procedure need explicit names.
+* ``Start`` on an active thread raises -750; more than ``Simulation.max_threads`` (32, D0:4584)
+  active threads raises -207 *Too many*.  Start clears pending events.  The starter keeps
+  running; the new thread runs at the starter's next scheduling point.
+* ``Join(timeout_ms)`` — timeout in milliseconds, negative or omitted = forever, 0 = poll; returns
+  True when the thread is not running (finished, aborted, failed or never started), False on
+  timeout.  Joining the calling thread itself raises -750.
+* ``Abort`` requests the stop and waits (up to 1 s of controller time) for the thread to unwind;
+  ``Finally`` blocks run, ``Catch`` blocks do not see it.  Aborting the calling thread stops it at once.
+* ``Suspend``/``Resume`` are cooperative: the target parks at its next checkpoint or scheduling
+  point (a sleeping target finishes its sleep first).
+* ``ThreadState`` codes are undocumented; we use the five states the controller's console shows
+  (``Show Thread``): 0 Idle (never started, or ended normally or by Abort), 1 Running (including
+  sleeping/waiting), 2 Stopped (suspended), 3 Error (ended by an unhandled exception),
+  4 Stopping (abort requested, not yet unwound) — see :class:`ThreadStateValue`.
+* ``WaitEvent(mask, timeout_ms)`` follows Table 19-107 (waitevent.htm): mask 0 → returns all
+  received events without clearing or waiting; timeout 0 → clears and returns the matching
+  events without waiting; timeout > 0 → waits for a matching event, then clears and returns the
+  matches (0 on timeout); timeout < 0 → never times out.  Mask outside 0..&HFFFF, or a timeout
+  over 2147 s, raises -707.
+* ``SendEvent(mask)`` ORs the mask into the target's pending events (event n = bit n−1); events
+  sent before the target waits stay pending.  A mask outside 0..&HFFFF raises -707.
+* An unhandled GPL exception ends only its own thread: ThreadState becomes 3, the error goes into
+  ``Controller.ErrorLog`` and the simulator's console log, and joiners return.
+"""
+
+from __future__ import annotations
+
+import threading
+from enum import IntEnum
+from typing import Any, Callable
+
+from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
+from gplrt.threads.scheduler import ThreadAbort, ThreadCtx, WaitQueue, current_ctx
+
+THREAD_ALREADY_EXISTS = -749
+INVALID_WHEN_THREAD_ACTIVE = -750
+TOO_MANY = -207
+UNDEFINED_SYMBOL = -729
+INTERNAL_ERROR = -201
+MAX_EVENT_MASK = 0xFFFF
+MAX_WAIT_MS = 2147 * 1000
+ABORT_GRACE = 1.0  # controller seconds Abort waits for the target to unwind
+
+_TAS_LOCK = threading.Lock()
+
+
+class ThreadStateValue(IntEnum):
+    """Values of ``Thread.ThreadState`` (our decision; see module docstring)."""
+
+    IDLE = 0
+    RUNNING = 1
+    STOPPED = 2
+    ERROR = 3
+    STOPPING = 4
+
+
+def _resolve(procedure: str) -> Callable[..., Any]:
+    """Find the procedure named ``"Proc"`` or ``"Module.Proc"`` in the generated-code registry."""
+    try:
+        from gplrt.lang.procedures import find_procedure
+    except ImportError as exc:
+        raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure registry to find {procedure!r}") from exc
+    module, _, name = procedure.rpartition(".")
+    proc = find_procedure(name, module or None)
+    if proc is None:
+        raise GplException(UNDEFINED_SYMBOL, detail=f"procedure {procedure!r}")
+    return proc
+
+
+class _Foreign(threading.local):
+    thread: "Thread | None" = None
+
+
+_foreign = _Foreign()
+
+
+class Thread:
+    """A GPL thread object: ``Dim t As New Thread("Module.Proc", arg, "name")``."""
+
+    def __init__(
+        self,
+        StartProcedure: String | Callable[..., Any] | None = None,
+        Argument: Double = 0.0,  # type: ignore[assignment]
+        Name: String = "",  # type: ignore[assignment]
+        *,
+        _sim: Any = None,
+        _args: tuple[Any, ...] = (),
+        _propagate: bool = False,
+    ) -> None:
+        from gplrt.sim import current
+
+        self._sim = _sim if _sim is not None else current()
+        self._target: Callable[..., Any] | None
+        if StartProcedure is None:
+            self._target, self._start_name = None, ""
+        elif callable(StartProcedure):
+            self._target = StartProcedure
+            self._start_name = str(getattr(StartProcedure, "__gpl_name__", StartProcedure.__qualname__))
+        else:
+            self._start_name = str(StartProcedure)
+            self._target = _resolve(self._start_name)
+        self._argument: Any = Argument
+        self._name = str(Name) if Name else self._start_name.rpartition(".")[2]
+        self._args = _args
+        self._propagate = _propagate
+        self._events = 0
+        self._event_q = WaitQueue("event")
+        self._join_q = WaitQueue("join")
+        self._ctx: ThreadCtx | None = None
+        self._active = False
+        self._failed = False
+        self._result: Any = None
+        self._error: BaseException | None = None
+
+    # -- GPL properties -------------------------------------------------------------------------------
+
+    @property
+    def Argument(self) -> Double:
+        return self._argument  # type: ignore[no-any-return]
+
+    @Argument.setter
+    def Argument(self, value: Double) -> None:
+        self._argument = value
+
+    @property
+    def Name(self) -> String:
+        return self._name  # type: ignore[return-value]
+
+    @property
+    def Project(self) -> String:
+        return str(self._sim.project)  # type: ignore[return-value]
+
+    @property
+    def StartProcedure(self) -> String:
+        return self._start_name  # type: ignore[return-value]
+
+    @property
+    def ThreadState(self) -> Integer:
+        if not self._active:
+            state = ThreadStateValue.ERROR if self._failed else ThreadStateValue.IDLE
+        elif self._ctx is not None and self._ctx.abort_requested:
+            state = ThreadStateValue.STOPPING
+        elif self._ctx is not None and self._ctx.suspend_requested:
+            state = ThreadStateValue.STOPPED
+        else:
+            state = ThreadStateValue.RUNNING
+        return int(state)  # type: ignore[return-value]
+
+    # -- GPL methods ----------------------------------------------------------------------------------
+
+    def Start(self) -> None:
+        """Start the procedure in its own thread (it runs at the starter's next scheduling point)."""
+        if self._active:
+            raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail=f"thread {self._name}")
+        if self._target is None:
+            raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail="the calling thread cannot be started")
+        sim = self._sim
+        active = [t for t in sim.threads if t._active]
+        if any(t._name.lower() == self._name.lower() for t in active):
+            raise GplException(THREAD_ALREADY_EXISTS, detail=f"thread {self._name}")
+        if len(active) >= sim.max_threads:
+            raise GplException(TOO_MANY, detail=f"more than {sim.max_threads} threads")
+        self._events = 0
+        self._failed = False
+        self._error = None
+        self._result = None
+        self._active = True
+        if self not in sim.threads:
+            sim.threads.append(self)
+        self._ctx = sim.scheduler.new_ctx(self._name, owner=self)
+        sim.scheduler.spawn(self._ctx, self._body)
+
+    def Join(self, timeout: Integer = -1) -> Boolean:  # type: ignore[assignment]
+        """Wait for the thread to end; ``timeout`` in ms (<0 forever, 0 poll). True if it ended."""
+        if not self._active:
+            return True  # type: ignore[return-value]
+        if self._ctx is not None and self._ctx is current_ctx():
+            raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail="a thread cannot join itself")
+        sched = self._sim.scheduler
+        deadline = None if timeout < 0 else sched.clock.now() + timeout / 1000.0
+        if timeout == 0:
+            return (not self._active)  # type: ignore[return-value]
+        while self._active:
+            if not sched.wait(self._join_q, deadline):
+                break
+        return (not self._active)  # type: ignore[return-value]
+
+    def Abort(self) -> None:
+        if not self._active or self._ctx is None:
+            return
+        sched = self._sim.scheduler
+        if self._ctx is current_ctx():
+            raise ThreadAbort()
+        sched.request_abort(self._ctx)
+        self.Join(int(ABORT_GRACE * 1000))  # type: ignore[arg-type]
+
+    def Suspend(self) -> None:
+        if not self._active or self._ctx is None:
+            return
+        sched = self._sim.scheduler
+        sched.request_suspend(self._ctx)
+        if self._ctx is current_ctx():
+            sched._service_requests(self._ctx)
+
+    def Resume(self) -> None:
+        if self._active and self._ctx is not None:
+            self._sim.scheduler.request_resume(self._ctx)
+
+    def SendEvent(self, event_mask: Integer) -> None:
+        mask = _check_mask(event_mask)
+        sched = self._sim.scheduler
+        with sched._lock:
+            self._events |= mask
+        sched.notify_all(self._event_q)
+
+    # -- Shared members -------------------------------------------------------------------------------
+
+    @staticmethod
+    def CurrentThread() -> Thread:
+        ctx = current_ctx()
+        if ctx is not None and isinstance(ctx.owner, Thread):
+            return ctx.owner
+        me = _foreign.thread
+        if me is None:
+            me = Thread(None, 0.0, threading.current_thread().name)  # type: ignore[arg-type]
+            _foreign.thread = me
+        return me
+
+    @staticmethod
+    def Sleep(milliseconds: Integer) -> None:
+        """Suspend the calling thread; ``Sleep(0)`` (or negative) just yields."""
+        from gplrt.sim import current
+
+        current().scheduler.sleep(max(0, milliseconds) / 1000.0)
+
+    @staticmethod
+    def WaitEvent(event_mask: Integer, time_out: Integer) -> Integer:
+        me = Thread.CurrentThread()
+        mask = _check_mask(event_mask)
+        if time_out > MAX_WAIT_MS:
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"WaitEvent timeout {time_out} ms")
+        sched = me._sim.scheduler
+        if mask == 0:
+            return me._events  # type: ignore[return-value]
+        if time_out != 0:
+            deadline = None if time_out < 0 else sched.clock.now() + time_out / 1000.0
+            ctx = current_ctx()
+            if ctx is not None:
+                ctx.waiting_on = "event"
+            while not me._events & mask:
+                if not sched.wait(me._event_q, deadline):
+                    break
+        with sched._lock:
+            got = me._events & mask
+            me._events &= ~got
+        return got  # type: ignore[return-value]
+
+    @staticmethod
+    def TestAndSet(variable: Ref[Integer], new_value: Integer) -> Integer:
+        """Atomically read ``variable``, store ``new_value``, return the old value."""
+        with _TAS_LOCK:
+            old = variable.get()
+            variable.set(new_value)
+        return old
+
+    @staticmethod
+    def Schedule(priority: Integer = 0, period: Double = 0.0, high_priority_time: Double = 0.0, phase: Double = 0.0) -> None:  # type: ignore[assignment]
+        """Accepted and ignored: a PC has no real-time priorities (gpl-classes §22.5)."""
+
+    # -- Python side ----------------------------------------------------------------------------------
+
+    def _body(self) -> None:
+        ctx = self._ctx
+        assert ctx is not None and self._target is not None
+        sim = self._sim
+        try:
+            sim.scheduler._service_requests(ctx)  # aborted/suspended before it first ran
+            self._result = self._target(*self._args)
+        except ThreadAbort:
+            pass
+        except GplException as exc:
+            self._fail(exc, exc.ErrorCode, str(exc))
+        except Exception as exc:  # a bug in generated or hand-written Python: still only this thread
+            self._fail(exc, INTERNAL_ERROR, f"Python error {type(exc).__name__}: {exc}")
+        finally:
+            for hook in list(sim.thread_exit_hooks):
+                try:
+                    hook(self)
+                except Exception as exc:  # noqa: BLE001 - a hook must not kill the scheduler
+                    sim.report(self._name, f"thread exit hook failed: {exc!r}")
+            with sim.scheduler._lock:
+                self._active = False
+            sim.scheduler.notify_all(self._join_q)
+            sim.scheduler.finish(ctx)
+
+    def _fail(self, exc: BaseException, code: int, text: str) -> None:
+        if self._propagate:
+            self._error = exc
+            return
+        self._failed = True
+        self._error = exc
+        self._sim.report(self._name, f"unhandled error: {text}", code)
+
+    def __repr__(self) -> str:
+        return f"<GPL Thread {self._name!r} state={self.ThreadState}>"
+
+
+def _check_mask(mask: int) -> int:
+    mask = int(mask)
+    if not 0 <= mask <= MAX_EVENT_MASK:
+        raise GplException(VALUE_OUT_OF_RANGE, detail=f"event mask {mask}")
+    return mask
