@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import finite, in_range, not_nothing, to_integer
 from gplrt.geometry.kinematics_provider import get_kinematics_provider
-from gplrt.geometry.transforms import IDENTITY, Pose, normalize_angle, pose_mul
+from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
 from gplrt.lang.errors import NOT_ANGLES, NOT_CARTESIAN, VALUE_OUT_OF_RANGE, GplException
 from gplrt.lang.gpltypes import Boolean, Double, Integer, String
 
@@ -166,7 +166,7 @@ class Location:
     def _set_ypr(self, yaw: float, pitch: float, roll: float) -> None:
         p = self._pose
         self._pose = tf.pose_from_xyzypr(p[9], p[10], p[11], yaw, pitch, roll)
-        self._ypr = (normalize_angle(yaw), normalize_angle(pitch), normalize_angle(roll))
+        self._ypr = (wrap_angle(yaw), wrap_angle(pitch), wrap_angle(roll))
 
     def __repr__(self) -> str:
         if self._type == ANGLES:
@@ -325,7 +325,7 @@ class Location:
         """Set all six PosWrtRef components (every argument optional, default 0); makes it Cartesian."""
         yaw, pitch, roll = finite(Yaw, "Yaw"), finite(Pitch, "Pitch"), finite(Roll, "Roll")
         self._pose = tf.pose_from_xyzypr(finite(X, "X"), finite(Y, "Y"), finite(Z, "Z"), yaw, pitch, roll)
-        self._ypr = (normalize_angle(yaw), normalize_angle(pitch), normalize_angle(roll))
+        self._ypr = (wrap_angle(yaw), wrap_angle(pitch), wrap_angle(roll))
         self._type = CARTESIAN
 
     def XYZInc(self, X: Double = 0.0, Y: Double = 0.0, Z: Double = 0.0) -> None:  # type: ignore[assignment]

@@ -66,12 +66,18 @@ def sincos_deg(angle: float) -> tuple[float, float]:
     return math.sin(rad), math.cos(rad)
 
 
-def normalize_angle(deg: float) -> float:
-    """Wrap ``deg`` into (-180, 180], snap near-integers, and turn -0.0 into 0.0."""
+def wrap_angle(deg: float) -> float:
+    """Wrap ``deg`` into (-180, 180] and turn -0.0 into 0.0 (no snapping: for values a user wrote)."""
     if not -180.0 < deg <= 180.0:
         deg = math.remainder(deg, 360.0)
         if deg == -180.0:
             deg = 180.0
+    return deg + 0.0
+
+
+def normalize_angle(deg: float) -> float:
+    """Wrap ``deg`` into (-180, 180], snap near-integers, and turn -0.0 into 0.0 (computed angles)."""
+    deg = wrap_angle(deg)
     n = round(deg)
     if abs(deg - n) <= _SNAP:
         deg = float(n)
