@@ -1,0 +1,301 @@
+"""The gpl2py command: exit codes, diagnostic format, --json, --quiet, internal errors, docs in sync."""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import gpl2py.cli as cli
+from gpl2py import messages
+from gpl2py.cli import main
+
+REPO = Path(__file__).resolve().parents[2]
+SAMPLE = REPO / "samples" / "tcp_command_server"
+HEADER = re.compile(r"^(?P<path>.+?):(?P<line>\d+):(?P<col>\d+): (?P<sev>error|warning|note) (?P<code>GPL\d{4}): (?P<msg>.+)$")
+
+
+def run(capsys: pytest.CaptureFixture[str], *argv: str) -> tuple[int, str, str]:
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def headers(text: str) -> list[re.Match[str]]:
+    return [m for line in text.splitlines() if (m := HEADER.match(line))]
+
+
+def make_project(folder: Path, gpr_lines: list[str], files: dict[str, bytes]) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "Project.gpr").write_text("\r\n".join(gpr_lines) + "\r\n")
+    for name, data in files.items():
+        (folder / name).write_bytes(data)
+    return folder
+
+
+GOOD_MODULE = b"Module Main\r\n    Public Sub Main()\r\n        Console.WriteLine(\"hi\")\r\n    End Sub\r\nEnd Module\r\n"
+
+
+# --- exit codes ---------------------------------------------------------------------------------
+
+
+def test_clean_sample_project_exits_0(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run(capsys, "check", str(SAMPLE))
+    assert err.strip().splitlines()[-1] == "checked 6 files: 0 errors, 0 warnings", err
+    assert code == 0
+    assert out == ""
+
+
+def test_load_errors_exit_1_with_caret_excerpt(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = make_project(
+        tmp_path / "P",
+        ["ProjectBegin", 'ProjectStart="Main"', 'ProjectSource="Missing.gpl"', "ProjectEnd"],
+        {},
+    )
+    code, out, err = run(capsys, "check", str(proj))
+    assert code == 1
+    lines = err.splitlines()
+    gpr = str(proj / "Project.gpr")
+    assert lines[0] == f"{gpr}:3:16: error GPL1405: source file Missing.gpl named in Project.gpr not found in {proj}"
+    assert lines[1] == '    ProjectSource="Missing.gpl"'
+    assert lines[2] == "                   ^^^^^^^^^^^"
+    assert lines[-1] == "checked 0 files: 1 error, 0 warnings"
+
+
+def test_multiple_errors_in_one_run_are_sorted(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = make_project(
+        tmp_path / "P",
+        [
+            "ProjectBegin",
+            'ProjectSource="Zed.gpl"',
+            "garbage line",
+            'ProjectSource="Gone.gpl"',
+            'ProjectStart="Main"',
+            "ProjectEnd",
+        ],
+        {"Zed.gpl": b"Module Zed\r\n\x00\x00\r\n"},
+    )
+    code, _, err = run(capsys, "check", str(proj))
+    assert code == 1
+    found = [(Path(m["path"]).name, int(m["line"]), m["code"]) for m in headers(err)]
+    assert found == [
+        ("Project.gpr", 3, "GPL1407"),
+        ("Project.gpr", 4, "GPL1405"),
+        ("Zed.gpl", 2, "GPL1404"),
+    ]
+    assert err.splitlines()[-1] == "checked 0 files: 3 errors, 0 warnings"
+
+
+def test_syntax_errors_in_two_files_are_all_reported(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    folder = tmp_path / "Broken"
+    folder.mkdir()
+    (folder / "A.gpl").write_text("Module A\n    Public Sub Main()\n        x = (1 +\n    End Sub\nEnd Module\n")
+    (folder / "B.gpl").write_text("Module B\n    Public Sub F()\n        If x Then\n    End Sub\nEnd Module\n")
+    code, _, err = run(capsys, "check", str(folder))
+    assert code == 1
+    found = headers(err)
+    files = {Path(m["path"]).name for m in found if m["sev"] == "error"}
+    assert files == {"A.gpl", "B.gpl"}
+    assert all(m["code"].startswith("GPL1") for m in found)
+    # Each header is followed by the source line it points into and a caret under the column.
+    lines = err.splitlines()
+    for i, line in enumerate(lines):
+        m = HEADER.match(line)
+        if m and m["path"].endswith("A.gpl"):
+            src = (folder / "A.gpl").read_text().splitlines()[int(m["line"]) - 1]
+            assert lines[i + 1] == "    " + src
+            assert lines[i + 2].index("^") == 4 + int(m["col"]) - 1
+
+
+def test_warnings_only_exit_0(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    folder = tmp_path / "OnlyProtected"
+    folder.mkdir()
+    (folder / "Vendor.gpp").write_bytes(b"'#Protected|\x00\x01\x02")
+    code, _, err = run(capsys, "check", str(folder))
+    assert code == 0
+    assert [m["code"] for m in headers(err)] == []  # no position: the warning has none
+    assert "warning GPL1406" in err and "Vendor.gpp" in err
+    assert err.splitlines()[-1] == "checked 0 files: 0 errors, 1 warning"
+
+
+def test_quiet_prints_errors_only(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = make_project(
+        tmp_path / "P",
+        ["ProjectBegin", 'ProjectStart="Main"', 'Color="blue"', 'ProjectSource="Gone.gpl"', "ProjectEnd"],
+        {},
+    )
+    code, out, err = run(capsys, "check", "--quiet", str(proj))
+    assert code == 1 and out == ""
+    assert [m["code"] for m in headers(err)] == ["GPL1405"]
+    assert "checked" not in err
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        [],
+        ["frobnicate", "x"],
+        ["check"],
+        ["check", "a", "b"],
+        ["check", "--no-such-option", "x"],
+        ["--json"],
+    ],
+)
+def test_usage_errors_exit_2(argv: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run(capsys, *argv)
+    assert code == 2
+    text = out + err
+    assert "GPL9001" in text
+    assert "Traceback" not in text
+
+
+def test_dump_ast_on_a_folder_is_a_usage_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run(capsys, "dump-ast", str(tmp_path))
+    assert code == 2 and out == ""
+    assert "error GPL9002" in err
+
+
+def test_missing_path_is_an_input_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run(capsys, "check", str(tmp_path / "nope"))
+    assert code == 1
+    assert f"error GPL1400: no such file or folder: {tmp_path / 'nope'}" in err
+
+
+def test_help_explains_commands_and_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, "--help")
+    assert code == 0
+    for text in ("check", "dump-ast", "exit status", "0  no errors", "1  errors", "2  the command line"):
+        assert text in out
+    code, out, _ = run(capsys, "check", "--help")
+    assert code == 0 and "Project.gpr" in out and "exit status" in out
+
+
+def test_version(capsys: pytest.CaptureFixture[str]) -> None:
+    from gpl2py import __version__
+
+    code, out, _ = run(capsys, "--version")
+    assert code == 0 and out.strip() == f"gpl2py {__version__}"
+
+
+# --- --json -------------------------------------------------------------------------------------
+
+
+def test_json_output_parses_and_carries_positions(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = make_project(
+        tmp_path / "P",
+        ["ProjectBegin", 'ProjectStart="Main"', 'Color="blue"', 'ProjectSource="Gone.gpl"', "ProjectEnd"],
+        {},
+    )
+    for argv in (["--json", "check", str(proj)], ["check", str(proj), "--json"]):
+        code, out, err = run(capsys, *argv)
+        assert code == 1 and err == ""
+        doc = json.loads(out)
+        assert doc["summary"] == {"errors": 1, "warnings": 1}
+        assert [(d["code"], d["severity"], d["line"], d["column"]) for d in doc["diagnostics"]] == [
+            ("GPL1408", "warning", 3, 1),
+            ("GPL1405", "error", 4, 16),
+        ]
+        assert doc["diagnostics"][1]["file"] == str(proj / "Project.gpr")
+        assert "Gone.gpl" in doc["diagnostics"][1]["message"]
+
+
+def test_json_usage_error_is_json_too(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run(capsys, "--json", "frobnicate")
+    assert code == 2 and err == ""
+    doc = json.loads(out)
+    assert [d["code"] for d in doc["diagnostics"]] == ["GPL9001"]
+
+
+def test_dump_ast_json_has_ast_and_diagnostics(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "Main.gpl"
+    path.write_bytes(GOOD_MODULE)
+    code, out, _ = run(capsys, "dump-ast", "--json", str(path))
+    assert code == 0
+    doc = json.loads(out)
+    assert doc["diagnostics"] == []
+    assert "Main" in doc["ast"]
+
+
+def test_dump_ast_prints_the_tree(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from gpl2py.diagnostics import DiagnosticSink
+    from gpl2py.source import SourceFile
+    from gpl2py.syntax.ast import dump
+    from gpl2py.syntax.parser import parse
+
+    path = tmp_path / "Main.gpl"
+    path.write_bytes(GOOD_MODULE)
+    code, out, err = run(capsys, "dump-ast", str(path))
+    assert code == 0
+    expected = dump(parse(SourceFile(str(path), GOOD_MODULE.decode()), DiagnosticSink()))
+    assert out == expected.rstrip("\n") + "\n"
+    assert "WriteLine" in out
+
+
+# --- internal errors never become tracebacks ----------------------------------------------------
+
+
+def test_internal_error_becomes_gpl9000(monkeypatch: pytest.MonkeyPatch, tmp_path: Path,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    def boom(path: object, sink: object) -> None:
+        raise RuntimeError("simulated bug")
+
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    monkeypatch.setattr(cli, "load_project", boom)
+    code, out, err = run(capsys, "check", str(tmp_path))
+    assert code == 1
+    assert "error GPL9000: internal error in gpl2py while processing this input: RuntimeError: simulated bug" in err
+    assert "Traceback" not in out + err
+    code, out, _ = run(capsys, "check", "--json", str(tmp_path))
+    assert code == 1
+    assert [d["code"] for d in json.loads(out)["diagnostics"]] == ["GPL9000"]
+
+
+def test_internal_error_in_the_parser_becomes_gpl9000(monkeypatch: pytest.MonkeyPatch, tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    def broken_parse(source: object, sink: object) -> None:
+        raise IndexError("list index out of range")
+
+    (tmp_path / "Main.gpl").write_bytes(GOOD_MODULE)
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    monkeypatch.setattr(cli, "_parse", broken_parse)
+    code, _, err = run(capsys, "check", str(tmp_path))
+    assert code == 1 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
+
+
+# --- the installed command and python -m --------------------------------------------------------
+
+
+def _script() -> Path:
+    return Path(sys.executable).with_name("gpl2py")
+
+
+def test_installed_command_runs(tmp_path: Path) -> None:
+    script = _script()
+    assert script.exists(), f"console script not installed next to {sys.executable}"
+    proj = make_project(tmp_path / "P", ["ProjectBegin", 'ProjectSource="Gone.gpl"', "ProjectEnd"], {})
+    done = subprocess.run([str(script), "check", str(proj)], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 1
+    assert "error GPL1405" in done.stderr and "Traceback" not in done.stderr
+    done = subprocess.run([str(script), "--help"], capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0 and "exit status" in done.stdout
+
+
+def test_python_dash_m_runs(tmp_path: Path) -> None:
+    done = subprocess.run([sys.executable, "-m", "gpl2py", "frobnicate"], capture_output=True, text=True,
+                          timeout=60)
+    assert done.returncode == 2 and "GPL9001" in done.stderr
+
+
+# --- docs ---------------------------------------------------------------------------------------
+
+
+def test_diagnostics_doc_is_in_sync() -> None:
+    doc = REPO / "docs" / "diagnostics.md"
+    assert doc.read_text() == messages.markdown(), (
+        "docs/diagnostics.md is stale: run  python -m gpl2py.messages > docs/diagnostics.md"
+    )
+
