@@ -1,0 +1,242 @@
+"""``RobotModel``: the interface every kinematic module implements, plus shared PDb readers.
+
+Interface (GPL units at this boundary: mm for linear axes and Cartesian XYZ, degrees for rotary
+axes; poses are 4×4 homogeneous transforms with translation in mm):
+
+* ``axis_count``, ``joint_names``, ``joints`` (``JointInfo``: name, kind, role, soft limits),
+  ``lower_limits`` / ``upper_limits``, ``module`` (DataID 116 value), ``robot`` (robot number);
+* ``tool`` / ``base``: 4×4 (mm), initialised from DataIDs 16051 / 16052 ("Tool/Base set at
+  restart"); the motion layer may assign new matrices (``Robot.Tool = ...``);
+* ``forward(joints) -> 4×4``: ``Base · Flange(q) · Tool`` (``Robot.Where``, gpl-classes §22.1.10);
+* ``flange(joints) -> 4×4``: the flange pose without Base and Tool;
+* ``inverse(T, config_bits=0, current_joints=None) -> list[float]``: solves
+  ``Flange(q) = Base⁻¹ · T · Tool⁻¹`` for the branch the bits ask for, unwinding multi-turn axes
+  toward ``current_joints`` (axes that do not affect the pose — gripper, rail — keep their
+  current values); raises GplException -1033 (orientation impossible for the robot), -1039 /
+  -1040 (position too close / too far), -1012 (joint out of range, with ``Axis``), -1036
+  (no kinematics for this robot type);
+* ``config_of(joints) -> int``: the configuration bits of a joint vector (what ``Where`` reports);
+* ``check_limits(joints)``: -1012 for the first axis outside its soft limits.
+
+Internally everything is SI (m, rad) and conversions happen only in ``units.py``.  The forward
+kinematics always goes through the Pinocchio model (``pin_model``), which is built from the
+parameter database like a controller builds its kinematic module; closed-form solvers are used
+for the inverse where the geometry allows.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from enum import Enum
+
+import numpy as np
+import pinocchio as pin
+
+from gplrt.controller.pdb import ParameterDatabase
+from gplrt.geometry.transforms import xyzypr_to_matrix
+from gplrt.lang.errors import GplException
+from gplrt.motion.kinematics import units
+from gplrt.motion.kinematics.config import LIMIT_SLACK, unwind
+from gplrt.motion.kinematics.units import Matrix
+
+JOINT_OUT_OF_RANGE = -1012
+INVALID_CARTESIAN = -1033
+KINEMATICS_NOT_INSTALLED = -1036
+POSITION_TOO_CLOSE = -1039
+POSITION_TOO_FAR = -1040
+INVALID_AXIS_COUNT = -1516
+#: FLT_MAX as written in .pac files: "no limit".
+_FLT_MAX = 3.4e38
+
+
+class JointKind(Enum):
+    LINEAR = "linear"  # mm
+    ROTARY = "rotary"  # degrees
+
+
+@dataclass(frozen=True)
+class JointInfo:
+    """One axis as GPL sees it: soft limits in mm or degrees (±inf when the PDb says FLT_MAX)."""
+
+    name: str
+    kind: JointKind
+    role: str
+    lower: float
+    upper: float
+
+    @property
+    def linear(self) -> bool:
+        return self.kind is JointKind.LINEAR
+
+
+class RobotModel:
+    """Base class; subclasses set up ``pin_model`` and implement ``_solve`` and ``_config``.
+
+    A bare ``RobotModel`` (unknown kinematic module) still knows its axes and limits, so joint
+    moves work, but every Cartesian operation raises -1036 (robot-models.md §3 step 1)."""
+
+    #: index (GPL axis order) of the axis that ``GPL_Single`` restricts to ±180°, if any.
+    single_axis: int | None = None
+
+    def __init__(self, name: str, robot: int, module: int, joints: list[JointInfo],
+                 tool: Matrix | None = None, base: Matrix | None = None) -> None:
+        self.name = name
+        self.robot = robot
+        self.module = module
+        self.joints = joints
+        self.tool = np.eye(4) if tool is None else np.asarray(tool, dtype=float)
+        self.base = np.eye(4) if base is None else np.asarray(base, dtype=float)
+        self._linear = [j.linear for j in joints]
+        self._lower_si = np.array([units.joint_to_si(j.lower, j.linear) for j in joints])
+        self._upper_si = np.array([units.joint_to_si(j.upper, j.linear) for j in joints])
+        self.pin_model: pin.Model | None = None
+        self.pin_data: pin.Data | None = None
+        self.flange_frame: int = -1
+        # pin q index of each GPL axis (GPL axis order differs from tree order, e.g. the rail).
+        self._q_index: list[int] = []
+
+    # -- description ----------------------------------------------------------------------------
+
+    @property
+    def axis_count(self) -> int:
+        return len(self.joints)
+
+    @property
+    def joint_names(self) -> list[str]:
+        return [j.name for j in self.joints]
+
+    @property
+    def lower_limits(self) -> list[float]:
+        return [j.lower for j in self.joints]
+
+    @property
+    def upper_limits(self) -> list[float]:
+        return [j.upper for j in self.joints]
+
+    @property
+    def has_kinematics(self) -> bool:
+        return self.pin_model is not None
+
+    def ready_joints(self) -> list[float]:
+        """The posture assumed when no current joints are given: 0 clipped into each axis's limits."""
+        return [min(max(0.0, j.lower), j.upper) for j in self.joints]
+
+    # -- Pinocchio plumbing ---------------------------------------------------------------------
+
+    def _finish_pin_model(self, model: pin.Model, gpl_joint_ids: Sequence[int], flange_frame: int) -> None:
+        """Record the built model; ``gpl_joint_ids[i]`` is the pin joint id of GPL axis i."""
+        self.pin_model = model
+        self.pin_data = model.createData()
+        self.flange_frame = flange_frame
+        self._q_index = [model.joints[jid].idx_q for jid in gpl_joint_ids]
+
+    def q_pin(self, q_gpl_si: Sequence[float]) -> np.ndarray:
+        """GPL-ordered SI joint vector → Pinocchio configuration vector."""
+        assert self.pin_model is not None
+        q = np.zeros(self.pin_model.nq)
+        q[self._q_index] = q_gpl_si
+        return q
+
+    def q_gpl(self, q_pin: np.ndarray) -> np.ndarray:
+        """Pinocchio configuration vector → GPL-ordered SI joint vector."""
+        return np.asarray(q_pin)[self._q_index]
+
+    def flange_se3(self, q_gpl_si: Sequence[float]) -> pin.SE3:
+        """Flange placement (SI) for a GPL-ordered SI joint vector, through Pinocchio."""
+        if self.pin_model is None:
+            raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
+        assert self.pin_data is not None
+        pin.forwardKinematics(self.pin_model, self.pin_data, self.q_pin(q_gpl_si))
+        return pin.updateFramePlacement(self.pin_model, self.pin_data, self.flange_frame).copy()
+
+    # -- public GPL-unit API --------------------------------------------------------------------
+
+    def _to_si(self, joints: Sequence[float]) -> np.ndarray:
+        if len(joints) != self.axis_count:
+            raise GplException(-202, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
+        return units.joints_to_q(joints, self._linear)
+
+    def flange(self, joints: Sequence[float]) -> Matrix:
+        """Flange pose (mm) of a joint vector (mm/deg), without Base and Tool."""
+        return units.se3_to_matrix(self.flange_se3(self._to_si(joints)))
+
+    def forward(self, joints: Sequence[float]) -> Matrix:
+        """``Base · Flange(joints) · Tool`` (mm): what ``Robot.Where`` reports."""
+        return self.base @ self.flange(joints) @ self.tool
+
+    def inverse(self, T: Matrix, config_bits: int = 0, current_joints: Sequence[float] | None = None) -> list[float]:
+        """Joints (mm/deg) that put ``Base · Flange · Tool`` at ``T`` (4×4, mm); see module docstring."""
+        if self.pin_model is None:
+            raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
+        current = self.ready_joints() if current_joints is None else list(current_joints)
+        target = np.linalg.solve(self.base, np.asarray(T, dtype=float)) @ np.linalg.inv(self.tool)
+        q = self._solve(units.matrix_to_se3(target), int(config_bits), self._to_si(current))
+        joints = units.q_to_joints(q, self._linear)
+        self.check_limits(joints)
+        return joints
+
+    def config_of(self, joints: Sequence[float]) -> int:
+        """Configuration bits of a joint vector (mm/deg)."""
+        if self.pin_model is None:
+            return 0
+        return self._config(self._to_si(joints))
+
+    def check_limits(self, joints: Sequence[float]) -> None:
+        """-1012 *Joint out-of-range* (with ``Axis``) for the first axis outside its soft limits."""
+        for i, (value, info) in enumerate(zip(joints, self.joints, strict=True)):
+            slack = LIMIT_SLACK * (units.MM_PER_M if info.linear else 180.0 / math.pi)
+            if not info.lower - slack <= value <= info.upper + slack:
+                raise GplException(JOINT_OUT_OF_RANGE, robot_num=self.robot, axis=i + 1,
+                                   detail=f"{info.name} = {value:.6g} outside [{info.lower:g}, {info.upper:g}]")
+
+    # -- for subclasses -------------------------------------------------------------------------
+
+    def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
+        """Flange target (SI) → GPL-ordered SI joints."""
+        raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
+
+    def _config(self, q: np.ndarray) -> int:
+        return 0
+
+    def _unwind(self, i: int, angle: float, current: np.ndarray, single: bool = False) -> float:
+        """Choose the turn of rotary axis ``i``: (−π, π] under ``GPL_Single`` for the single axis,
+        otherwise nearest the current value within limits."""
+        if single and i == self.single_axis:
+            return unwind(angle, 0.0, -math.pi + 1e-15, math.pi)
+        return unwind(angle, float(current[i]), float(self._lower_si[i]), float(self._upper_si[i]))
+
+
+# -- reading the parameter database -------------------------------------------------------------
+
+
+def read_limits(pdb: ParameterDatabase, robot: int, n: int) -> tuple[list[float], list[float]]:
+    """Soft limits 16078 (min) / 16077 (max), FLT_MAX → ±inf; missing entries are unlimited."""
+
+    def one(data_id: int, i: int, default: float) -> float:
+        v = pdb.get_num(data_id, robot, 1, i + 1, default=default)
+        return math.copysign(math.inf, v) if abs(v) >= _FLT_MAX else v
+
+    return [one(16078, i, -math.inf) for i in range(n)], [one(16077, i, math.inf) for i in range(n)]
+
+
+def read_transform(pdb: ParameterDatabase, data_id: int, robot: int) -> Matrix:
+    """Tool (16051) or Base (16052) at restart: (x, y, z, yaw, pitch, roll) → 4×4 (mm); identity if absent."""
+    if not pdb.has(data_id, robot):
+        return np.eye(4)
+    vals = (pdb.get_nums(data_id, robot) + [0.0] * 6)[:6]
+    return xyzypr_to_matrix(*vals)
+
+
+def axis_roles(mask: int, required: Sequence[str], optional: Sequence[tuple[int, str]]) -> list[str]:
+    """Axis roles in GPL order from the axis mask (DataID 2003): the required axes first, then
+    the optional ones whose bit is set, numbered consecutively (robot-models.md §4.1)."""
+    return [*required, *(role for bit, role in optional if mask & bit)]
+
+
+def check_axis_count(pdb: ParameterDatabase, robot: int, roles: Sequence[str], name: str) -> None:
+    """DataID 2000 (Number of axes) must agree with the axes the mask implies (-1516 otherwise)."""
+    n = int(pdb.get_num(2000, robot))
+    if n != len(roles):
+        raise GplException(INVALID_AXIS_COUNT, detail=f"{name}: 2000 = {n} axes but the axis mask gives {roles}")

@@ -1,0 +1,99 @@
+"""Cartesian XYZ-Theta gantry (kinematic module 116 = 2, the generic "XYZTheta" module).
+
+Module semantics from Brooks' Kinematic Library page for XYZTheta (robot-models.md §7 [EXT]):
+1–4 optional axes; axis 1 moves +X, axis 2 +Y, **axis 3 positive moves toward −Z**, **axis 4
+positive is a negative rotation about world Z**.  Which axes exist comes from the axis mask 2003
+(&H1 X, &H2 Y, &H4 Z, &H8 theta, numbered consecutively; &H10 = servo gripper after them, as
+TCS reads it for the PrecisePlace 100).  Our PP100-style default ``GANTRY4`` and the GCU default
+set both use this module.  16050 carries no dimensions for this module.
+
+Flange frame (our decision; the module page does not say): ``Trans(X, Y, −Z_axis) · Rz(−theta)``,
+so the flange keeps world-Z up and yaw = −theta.  A Cartesian target must therefore be a pure
+rotation about Z (else -1033, tolerance 1e-6°); a missing axis must have 0 in its coordinate
+(else -1033).  Config bits have no branch to choose on a gantry: ``config_of`` reports 0,
+``GPL_Single`` puts theta in (−180°, 180°], otherwise theta is unwound toward its current value
+within the soft limits (multi-turn theta).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+
+from gplrt.controller.pdb import ParameterDatabase
+from gplrt.lang.errors import GplException
+from gplrt.motion.kinematics.base import (
+    INVALID_CARTESIAN,
+    JointInfo,
+    JointKind,
+    RobotModel,
+    axis_roles,
+    check_axis_count,
+    read_limits,
+    read_transform,
+)
+from gplrt.motion.kinematics.config import GPL_SINGLE
+
+MODULE_XYZTHETA = 2
+_AXES = ((0x01, "x"), (0x02, "y"), (0x04, "z"), (0x08, "theta"), (0x10, "gripper"))
+_NAMES = {"x": "X", "y": "Y", "z": "Z", "theta": "Theta", "gripper": "Gripper"}
+_TOLERANCE = math.sin(math.radians(1e-6))
+#: Allowed coordinate error (m) for a coordinate whose axis is missing.
+_POSITION_TOLERANCE = 1e-9
+
+
+class GantryModel(RobotModel):
+    """An XYZ-Theta gantry; see the module docstring."""
+
+    def __init__(self, pdb: ParameterDatabase, robot: int = 1) -> None:
+        roles = axis_roles(int(pdb.get_num(2003, robot)), (), _AXES)
+        name = pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
+        check_axis_count(pdb, robot, roles, name)
+        lower, upper = read_limits(pdb, robot, len(roles))
+        joints = [JointInfo(_NAMES[r], JointKind.ROTARY if r == "theta" else JointKind.LINEAR, r, lo, hi)
+                  for r, lo, hi in zip(roles, lower, upper, strict=True)]
+        super().__init__(name, robot, MODULE_XYZTHETA, joints,
+                         read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))
+        self.roles = roles
+        self._i = {role: roles.index(role) for role in roles}
+        self.single_axis = self._i.get("theta")
+        self._build_pin_model()
+
+    def _build_pin_model(self) -> None:
+        model = pin.Model()
+        model.name = self.name
+        ids: dict[str, int] = {}
+        parent = 0
+        kinds = {"x": pin.JointModelPX(), "y": pin.JointModelPY(),
+                 "z": pin.JointModelPrismaticUnaligned(np.array([0.0, 0.0, -1.0])),
+                 "theta": pin.JointModelRevoluteUnaligned(np.array([0.0, 0.0, -1.0]))}
+        for role in ("x", "y", "z", "theta"):
+            if role in self._i:
+                parent = ids[role] = model.addJoint(parent, kinds[role], pin.SE3.Identity(), _NAMES[role])
+        flange = model.addFrame(pin.Frame("flange", parent, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
+        if "gripper" in self._i:
+            ids["gripper"] = model.addJoint(parent, pin.JointModelPY(), pin.SE3.Identity(), "Gripper")
+        if parent == 0:
+            raise GplException(-1516, detail=f"{self.name}: no X, Y, Z or theta axis in the axis mask")
+        self._finish_pin_model(model, [ids[r] for r in self.roles], flange)
+
+    def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
+        R, p = target.rotation, target.translation
+        if math.hypot(R[0, 2], R[1, 2]) > _TOLERANCE or R[2, 2] < 0.0:
+            raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="a gantry tool stays vertical")
+        yaw = math.atan2(R[1, 0], R[0, 0])
+        q = current.copy()
+        wanted = {"x": p[0], "y": p[1], "z": -p[2]}
+        for role, value in wanted.items():
+            if role in self._i:
+                q[self._i[role]] = value
+            elif abs(value) > _POSITION_TOLERANCE:
+                raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail=f"no {_NAMES[role]} axis")
+        if "theta" in self._i:
+            k = self._i["theta"]
+            q[k] = self._unwind(k, -yaw, current, single=bool(bits & GPL_SINGLE))
+        elif abs(yaw) > _TOLERANCE:
+            raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="no theta axis")
+        return q

@@ -1,0 +1,150 @@
+"""PreciseFlex 400 family (kinematic module 116 = 12): PF400 S/SX/SXL, PF3400SX.
+
+Geometry (robot-models.md §4, all read from the parameter database of the robot):
+
+* axes from the axis mask 2003: J1 Z (column), J2 shoulder, J3 elbow, then in order the optional
+  wrist (&H8), servo gripper (&H20), linear rail (&H40), second gripper (&H80);
+* links l1 = 16050[2], l2 = 16050[3]; rail direction a = 16050[5] (deg) moves the robot base
+  along d(a) = (−sin a, cos a, 0);
+* soft limits 16077/16078; Tool/Base at restart 16051/16052.
+
+The Pinocchio model is a chain rail → Z → shoulder → elbow → wrist with the world origin on the
+shoulder axis at J1 = 0 and rail = 0 (§4.2); the flange frame sits on the wrist axis with
+orientation Rz(ψ)·Ry(90°)·Rz(180°), ψ = J2 + J3 + J4, i.e. flange x up and z along the gripper.
+The gripper is a prismatic joint on the hand that moves no frame we report (§4.3: "J5 does not
+enter the pose").
+
+Inverse (closed form, §4.4): orientation must have flange x = world up (else -1033; tolerance
+1e-6°, the spec's [P]); reach outside [|l1 − l2|, l1 + l2] → -1039 / -1040; elbow branch by
+Config: **Righty** (&H01) → J3 in (0°, 180°], **Lefty** (&H02) → [180°, 360°), neither or both →
+the current branch; J2 wrapped to (−180°, 180°]; J4 = ψ − J2 − J3 unwound toward the current J4
+within ±960° (``GPL_Single``: J4 in (−180°, 180°]); rail and gripper keep their current values;
+then every axis is checked against the soft limits (-1012).  Above/Below/Flip/NoFlip have no
+meaning on this arm and are ignored (§5.2 [P]).  ``config_of`` reports Righty when
+J3 mod 360 < 180, else Lefty (§4.3 [INF]); it never reports ``GPL_Single`` (unknown whether the
+controller does, §8 q.4).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+
+from gplrt.controller.pdb import ParameterDatabase
+from gplrt.lang.errors import GplException
+from gplrt.motion.kinematics import units
+from gplrt.motion.kinematics.base import (
+    INVALID_CARTESIAN,
+    POSITION_TOO_CLOSE,
+    POSITION_TOO_FAR,
+    JointInfo,
+    JointKind,
+    RobotModel,
+    axis_roles,
+    check_axis_count,
+    read_limits,
+    read_transform,
+)
+from gplrt.motion.kinematics.config import GPL_LEFTY, GPL_RIGHTY, GPL_SINGLE, TWO_PI, preference, wrap_pi
+
+MODULE_PF400 = 12
+_OPTIONAL_AXES = ((0x08, "wrist"), (0x20, "gripper"), (0x40, "rail"), (0x80, "gripper2"))
+_NAMES = {"z": "Z", "shoulder": "Shoulder", "elbow": "Elbow", "wrist": "Wrist", "gripper": "Gripper",
+          "rail": "Rail", "gripper2": "Gripper2"}
+_LINEAR_ROLES = {"z", "gripper", "rail", "gripper2"}
+#: Flange orientation at ψ = 0: Ry(90°)·Rz(180°) (x up, z along the hand).
+FLANGE_ROTATION = np.array([[0.0, 0.0, 1.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]])
+#: Allowed tilt of the flange x axis from vertical: 1e-6 degree.
+ORIENTATION_TOLERANCE = math.sin(math.radians(1e-6))
+#: Slack on the reach checks (m) so that poses computed at full stretch are not refused.
+_REACH_SLACK = 1e-12
+
+
+class Pf400Model(RobotModel):
+    """A PF400-family arm; see the module docstring for the geometry and the Config rules."""
+
+    def __init__(self, pdb: ParameterDatabase, robot: int = 1) -> None:
+        mask = int(pdb.get_num(2003, robot))
+        roles = axis_roles(mask, ("z", "shoulder", "elbow"), _OPTIONAL_AXES)
+        name = pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
+        check_axis_count(pdb, robot, roles, name)
+        lower, upper = read_limits(pdb, robot, len(roles))
+        joints = [JointInfo(_NAMES[r], JointKind.LINEAR if r in _LINEAR_ROLES else JointKind.ROTARY, r, lo, hi)
+                  for r, lo, hi in zip(roles, lower, upper, strict=True)]
+        super().__init__(name, robot, MODULE_PF400, joints,
+                         read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))
+        self.roles = roles
+        self.l1 = units.length_to_si(pdb.get_num(16050, robot, 1, 2))
+        self.l2 = units.length_to_si(pdb.get_num(16050, robot, 1, 3))
+        self.rail_angle = math.radians(pdb.get_num(16050, robot, 1, 5, default=0.0))
+        self.rail_direction = np.array([-math.sin(self.rail_angle), math.cos(self.rail_angle), 0.0])
+        self._i = {role: roles.index(role) for role in roles}
+        self.single_axis = self._i.get("wrist")
+        self._build_pin_model()
+
+    def _build_pin_model(self) -> None:
+        model = pin.Model()
+        model.name = self.name
+        ids: dict[str, int] = {}
+        parent = 0
+        if "rail" in self._i:
+            parent = ids["rail"] = model.addJoint(0, pin.JointModelPrismaticUnaligned(self.rail_direction),
+                                                  pin.SE3.Identity(), "Rail")
+        ids["z"] = model.addJoint(parent, pin.JointModelPZ(), pin.SE3.Identity(), "Z")
+        ids["shoulder"] = model.addJoint(ids["z"], pin.JointModelRZ(), pin.SE3.Identity(), "Shoulder")
+        ids["elbow"] = model.addJoint(ids["shoulder"], pin.JointModelRZ(),
+                                      pin.SE3(np.eye(3), np.array([self.l1, 0.0, 0.0])), "Elbow")
+        to_wrist = pin.SE3(np.eye(3), np.array([self.l2, 0.0, 0.0]))
+        if "wrist" in self._i:
+            hand = ids["wrist"] = model.addJoint(ids["elbow"], pin.JointModelRZ(), to_wrist, "Wrist")
+            hand_placement = pin.SE3.Identity()
+        else:
+            hand, hand_placement = ids["elbow"], to_wrist
+        flange = model.addFrame(pin.Frame("flange", hand, hand_placement * pin.SE3(FLANGE_ROTATION, np.zeros(3)),
+                                          pin.FrameType.OP_FRAME))
+        model.addFrame(pin.Frame("hand", hand, hand_placement, pin.FrameType.OP_FRAME))
+        for role in ("gripper", "gripper2"):
+            if role in self._i:
+                ids[role] = model.addJoint(hand, pin.JointModelPY(), hand_placement, _NAMES[role])
+        self._finish_pin_model(model, [ids[r] for r in self.roles], flange)
+
+    # -- inverse --------------------------------------------------------------------------------
+
+    def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
+        R, p = target.rotation, target.translation.copy()
+        if math.hypot(R[0, 0], R[1, 0]) > ORIENTATION_TOLERANCE or R[2, 0] < 0.0:
+            raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
+                               detail="a PF400 flange must be horizontal (pitch 90, roll 180)")
+        psi = math.atan2(R[1, 2], R[0, 2])
+        i = self._i
+        q = current.copy()
+        if "rail" in i:
+            p -= current[i["rail"]] * self.rail_direction
+        l1, l2 = self.l1, self.l2
+        rho2 = p[0] * p[0] + p[1] * p[1]
+        rho = math.sqrt(rho2)
+        if rho > l1 + l2 + _REACH_SLACK:
+            raise GplException(POSITION_TOO_FAR, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
+        if rho < abs(l1 - l2) - _REACH_SLACK:
+            raise GplException(POSITION_TOO_CLOSE, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
+        c3 = max(-1.0, min(1.0, (rho2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)))
+        righty = preference(bits, GPL_RIGHTY, GPL_LEFTY)
+        if righty is None:
+            righty = math.fmod(current[i["elbow"]], TWO_PI) % TWO_PI < math.pi
+        s3 = math.sqrt(1.0 - c3 * c3) * (1.0 if righty else -1.0)
+        j3 = math.atan2(s3, c3) % TWO_PI
+        j2 = wrap_pi(math.atan2(p[1], p[0]) - math.atan2(l2 * s3, l1 + l2 * c3))
+        q[i["z"]] = p[2]
+        q[i["shoulder"]] = self._unwind(i["shoulder"], j2, current)
+        q[i["elbow"]] = self._unwind(i["elbow"], j3, current)
+        if "wrist" in i:
+            q[i["wrist"]] = self._unwind(i["wrist"], psi - q[i["shoulder"]] - q[i["elbow"]], current,
+                                         single=bool(bits & GPL_SINGLE))
+        elif abs(wrap_pi(psi - q[i["shoulder"]] - q[i["elbow"]])) > ORIENTATION_TOLERANCE:
+            raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="yaw not reachable without a wrist axis")
+        return q
+
+    def _config(self, q: np.ndarray) -> int:
+        return GPL_RIGHTY if q[self._i["elbow"]] % TWO_PI < math.pi else GPL_LEFTY
