@@ -25,6 +25,7 @@ import argparse
 import json
 import os
 import sys
+import textwrap
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -194,8 +195,12 @@ def _output_options(parser: argparse.ArgumentParser, top: bool) -> None:
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="gpl2py",
-        description="gpl2py translates GPL programs (Brooks / Precise Automation PreciseFlex "
-        "robot controllers) into Python that runs on the gplrt simulated controller.",
+        description=textwrap.fill(
+            "gpl2py translates GPL programs (Brooks / Precise Automation PreciseFlex robot "
+            "controllers) into Python that runs on the gplrt simulated controller. "
+            "Start with: gpl2py check PROJECT_FOLDER",
+            width=78,
+        ),
         epilog=_EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -206,7 +211,7 @@ def build_parser() -> argparse.ArgumentParser:
         child = sub.add_parser(
             command.name,
             help=command.help,
-            description=command.description,
+            description=textwrap.fill(command.description, width=78),
             epilog=_EPILOG,
             formatter_class=argparse.RawDescriptionHelpFormatter,
         )

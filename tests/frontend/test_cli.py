@@ -299,3 +299,28 @@ def test_diagnostics_doc_is_in_sync() -> None:
         "docs/diagnostics.md is stale: run  python -m gpl2py.messages > docs/diagnostics.md"
     )
 
+
+
+# --- room for later commands --------------------------------------------------------------------
+
+
+def test_a_default_command_would_receive_a_bare_project_path(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`gpl2py PROJECT -o OUT` needs only a Command marked default=True: the parser is not reshaped."""
+    seen: dict[str, object] = {}
+
+    def configure(parser: object) -> None:
+        parser.add_argument("project")  # type: ignore[attr-defined]
+        parser.add_argument("-o", dest="out", required=True)  # type: ignore[attr-defined]
+
+    def run_transpile(args: object) -> cli.Outcome:
+        seen.update(project=args.project, out=args.out, json=args.json)  # type: ignore[attr-defined]
+        return cli.Outcome()
+
+    extra = cli.Command("transpile", "translate", "Translate a project.", configure, run_transpile, default=True)
+    monkeypatch.setattr(cli, "COMMANDS", [*cli.COMMANDS, extra])
+    code, _, _ = run(capsys, "--json", "cell", "-o", "out")
+    assert code == 0 and seen == {"project": "cell", "out": "out", "json": True}
+    code, _, err = run(capsys, "check", str(tmp_path / "missing"))
+    assert code == 1 and "GPL1400" in err  # named commands are unaffected
