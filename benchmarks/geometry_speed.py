@@ -1,0 +1,59 @@
+"""Location speed against a bare numpy 4x4 product, measured side by side in one run.
+
+Times (best of REPEATS, each NUMBER calls) per operation, and prints each as a ratio to the
+bare ``a @ b`` of two (4, 4) float arrays.  Target (issue "Geometry"): Mul <= 3x the bare product.
+
+    python benchmarks/geometry_speed.py
+"""
+
+from __future__ import annotations
+
+import timeit
+
+import numpy as np
+
+from gplrt.geometry import Location, RefFrame, xyzypr_to_matrix
+
+NUMBER = 50_000
+REPEATS = 7
+
+
+def best_us(stmt: str, env: dict[str, object]) -> float:
+    """Best time per call in microseconds."""
+    return min(timeit.repeat(stmt, globals=env, number=NUMBER, repeat=REPEATS)) / NUMBER * 1e6
+
+
+def main() -> None:
+    a = Location.XYZValue(10, 25, -40, 30, 45, 60)
+    b = Location.XYZValue(1, 2, 3, -20, 100, 5)
+    frame = RefFrame()
+    frame.Loc.XYZ(100, 0, 0, 0, 0, 90)
+    c = b.Clone()
+    c.RefFrame = frame
+    ma = xyzypr_to_matrix(10, 25, -40, 30, 45, 60)
+    mb = xyzypr_to_matrix(1, 2, 3, -20, 100, 5)
+    env: dict[str, object] = {"a": a, "b": b, "c": c, "ma": ma, "mb": mb, "np": np}
+
+    base = best_us("ma @ mb", env)
+    cases = [
+        ("Mul", "a.Mul(b)"),
+        ("Mul (right operand on a frame)", "a.Mul(c)"),
+        ("Inverse", "a.Inverse()"),
+        ("numpy inv (reference)", "np.linalg.inv(ma)"),
+        ("X read", "a.X"),
+        ("X write", "a.X = 12.5"),
+        ("XYZ(6 values) write", "a.XYZ(1, 2, 3, 30, 45, 60)"),
+        ("Yaw read after Mul", "a.Mul(b).Yaw"),
+        ("Pos through a frame", "c.Pos"),
+    ]
+    print(f"bare numpy (4,4) a @ b: {base:.3f} us  (best of {REPEATS} x {NUMBER})")
+    print(f"{'operation':34s} {'us/op':>8s} {'ratio':>7s}")
+    for name, stmt in cases:
+        t = best_us(stmt, env)
+        print(f"{name:34s} {t:8.3f} {t / base:7.2f}x")
+    mul_ratio = best_us("a.Mul(b)", env) / base
+    print(f"Mul target <= 3.00x: {'met' if mul_ratio <= 3.0 else 'NOT met'} ({mul_ratio:.2f}x)")
+
+
+if __name__ == "__main__":
+    main()
