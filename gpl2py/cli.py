@@ -12,7 +12,8 @@ Output contract:
   a one-line summary on stderr unless ``--quiet``; stdout carries only the command's product (the
   AST dump), so it can be piped;
 * ``--json``: stdout is exactly one JSON object with a ``"diagnostics"`` list (plus the command's
-  product, e.g. ``"ast"``), nothing on stderr.
+  product, e.g. ``"ast"``), nothing on stderr.  ``--quiet`` does not filter JSON: a program reading
+  it can filter by ``severity`` itself.
 
 Exit status: 0 no errors (warnings allowed), 1 errors in the input (or an internal error, GPL9000),
 2 the command line itself is wrong (GPL9001/GPL9002).  No input produces a Python traceback: an
