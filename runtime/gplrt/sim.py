@@ -145,17 +145,22 @@ class Simulation:
     # -- activation --------------------------------------------------------------------------------
 
     def activate(self) -> Simulation:
-        """Make this the session that ``current()`` returns."""
+        """Make this the session that ``current()`` returns, and send ``Console`` output to it."""
         set_current(self)
+        _install_console(self)
         return self
 
     def __enter__(self) -> Simulation:
         self._previous = _state.sim
-        set_current(self)
+        self.activate()
         return self
 
     def __exit__(self, *exc: object) -> None:
-        set_current(self._previous)
+        # With no session before, this one stays active: a notebook's later direct calls
+        # (``Controller.Timer``) should see the session it just used, not a fresh default one.
+        if self._previous is not None:
+            set_current(self._previous)
+            _install_console(self._previous)
 
     # -- time ------------------------------------------------------------------------------------
 
@@ -204,6 +209,15 @@ class Simulation:
         entry = LogEntry(self.now(), thread_name, text, code)
         self.controller.error_log.append(entry)
         self.console.log(f"[{entry.time:.6f}] thread {thread_name}: {text}")
+
+
+def _install_console(sim: Simulation) -> None:
+    """Route GPL ``Console`` output (gplrt.lang.console) into the session's console sink."""
+    try:
+        from gplrt.lang.console import set_console_sink
+    except ImportError:  # the language runtime is not there: nothing to route
+        return
+    set_console_sink(sim.console.write)
 
 
 class _State:

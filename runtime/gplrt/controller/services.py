@@ -1,0 +1,220 @@
+"""GPL's global ``Controller`` class: its non-motion members (gpl-classes §9, gpl-dictionary §6).
+
+State lives in ``Simulation.controller`` (:class:`gplrt.sim.ControllerState`) so that the motion
+work reads the same power state, system speed and E-stop flag.  Decisions where the manuals are
+silent:
+
+* ``Timer(select)`` — ``select`` 1: seconds since boot (the active clock); 0 (default): seconds
+  since 1 Jan 1988, i.e. boot time plus ``ControllerState.time_of_day_origin`` (fixed by default
+  so that virtual runs are reproducible).  Quantised to 125 µs (timer.htm).
+* ``Tick`` — trajectory-generator period, 0.001 s by default.  ``SleepTick(n)`` sleeps ``n`` ticks
+  (default 1) on the active clock.
+* ``PowerEnabled = True`` walks ``PowerState`` through 8 (enabling amplifiers) and 10 (enabling
+  servos) to 20 (ready for a program to attach a robot) over ``power_up_time`` controller seconds,
+  and returns when power is on — the next statement (typically a homing) can rely on it.  It
+  raises -1046 *Power not enabled* while a soft E-stop is set.  ``False`` drops to 7 at once.
+  ``PowerEnabled`` reads True in every "on" state of gpl-dictionary §13.3.
+* ``PowerState(mode)`` — the sequencer state (``mode`` accepted, ignored: undocumented).
+* ``SoftEStop = True`` drops power (state 7) and blocks power-on until set False.
+* ``SystemSpeed`` — percent, 0 < v ≤ 100, else -707; the value only (motion applies it).
+* ``SystemMessage(msg)`` — appended to ``ControllerState.system_messages`` and echoed to the
+  console *log* channel (not the program's output).
+* ``ErrorLog(entry)`` — entry 1 is the most recent; an entry past the end reads "".  Assigning
+  (``Controller.ErrorLog(0) = ""``) clears the log.  Entries read ``"<code> <message> (<thread>)"``.
+* ``ShowDialog(buttons, prompt, ByRef button)`` — answered by ``ControllerState.dialog_answers``
+  (scripted, 1-based button positions, consumed in order) or ``ControllerState.dialog_handler``;
+  with neither, it raises -204 *Not implemented* naming the prompt, rather than hanging.
+* ``PDb``/``PDbNum`` — read ``Simulation.pdb`` when set: an object with ``get(data_id, unit,
+  unit2, index)`` and ``set(data_id, unit, unit2, index, value)``; otherwise -204.
+* ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not emulated: -204 with a detail.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from gplrt.controller import clock as _clock
+from gplrt.lang.errors import NOT_IMPLEMENTED, VALUE_OUT_OF_RANGE, GplException, error_text
+from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
+
+POWER_NOT_ENABLED = -1046
+POWER_OFF_WAITING = 7
+POWER_ENABLING_AMPS = 8
+POWER_ENABLING_SERVOS = 10
+POWER_READY = 20
+POWER_ON_STATES = frozenset({9, 11, 12, *range(20, 32)})
+
+
+def _sim() -> Any:
+    from gplrt.sim import current
+
+    return current()
+
+
+def _thread_name() -> str:
+    from gplrt.threads.scheduler import current_ctx
+
+    ctx = current_ctx()
+    return ctx.name if ctx is not None else "<external>"
+
+
+class _ControllerClass:
+    """GPL ``Controller`` (global class: one instance; see the module docstring)."""
+
+    # -- time ------------------------------------------------------------------------------------
+
+    def Timer(self, select: Integer = 0) -> Double:  # type: ignore[assignment]
+        sim = _sim()
+        t = sim.scheduler.clock.now()
+        if int(select) == 0:
+            t += sim.controller.time_of_day_origin
+        return _clock.quantise(t)  # type: ignore[return-value]
+
+    @property
+    def Tick(self) -> Double:
+        return _sim().controller.tick  # type: ignore[no-any-return]
+
+    def SleepTick(self, ticks: Integer = 1) -> None:  # type: ignore[assignment]
+        sim = _sim()
+        sim.scheduler.sleep(max(0, int(ticks)) * sim.controller.tick)
+
+    # -- power and speed -------------------------------------------------------------------------
+
+    @property
+    def PowerEnabled(self) -> Boolean:
+        return _sim().controller.power_state in POWER_ON_STATES  # type: ignore[return-value]
+
+    @PowerEnabled.setter
+    def PowerEnabled(self, value: Boolean) -> None:
+        sim = _sim()
+        state = sim.controller
+        if not value:
+            state.power_state = POWER_OFF_WAITING
+            return
+        if state.power_state in POWER_ON_STATES:
+            return
+        if state.soft_estop:
+            raise GplException(POWER_NOT_ENABLED, detail="soft E-stop is set")
+        step = state.power_up_time / 2.0
+        for phase in (POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS):
+            state.power_state = phase
+            sim.scheduler.sleep(step)
+            if state.power_state != phase:  # E-stop or power-off request meanwhile
+                raise GplException(POWER_NOT_ENABLED, detail="power-up interrupted")
+        state.power_state = POWER_READY
+
+    def PowerState(self, mode: Integer = 0) -> Integer:  # type: ignore[assignment]
+        return _sim().controller.power_state  # type: ignore[no-any-return]
+
+    @property
+    def SoftEStop(self) -> Boolean:
+        return _sim().controller.soft_estop  # type: ignore[no-any-return]
+
+    @SoftEStop.setter
+    def SoftEStop(self, value: Boolean) -> None:
+        state = _sim().controller
+        state.soft_estop = bool(value)
+        if value:
+            state.power_state = POWER_OFF_WAITING
+
+    @property
+    def SystemSpeed(self) -> Double:
+        return _sim().controller.system_speed  # type: ignore[no-any-return]
+
+    @SystemSpeed.setter
+    def SystemSpeed(self, value: Double) -> None:
+        v = float(value)
+        if not 0.0 < v <= 100.0:
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"SystemSpeed {v}")
+        _sim().controller.system_speed = v
+
+    @property
+    def RecordButton(self) -> Boolean:
+        return _sim().controller.record_button  # type: ignore[no-any-return]
+
+    @RecordButton.setter
+    def RecordButton(self, value: Boolean) -> None:
+        _sim().controller.record_button = bool(value)
+
+    # -- messages and logs -----------------------------------------------------------------------
+
+    def SystemMessage(self, message: String) -> None:
+        from gplrt.sim import LogEntry
+
+        sim = _sim()
+        entry = LogEntry(sim.now(), _thread_name(), str(message))
+        sim.controller.system_messages.append(entry)
+        sim.console.log(f"[{entry.time:.6f}] SystemMessage: {entry.text}")
+
+    def ErrorLog(self, entry: Integer = 1) -> String:  # type: ignore[assignment]
+        log = _sim().controller.error_log
+        i = int(entry)
+        if not 1 <= i <= len(log):
+            return ""  # type: ignore[return-value]
+        e = log[-i]
+        return f"{e.code} {error_text(e.code)} ({e.thread})"  # type: ignore[return-value]
+
+    def set_ErrorLog(self, entry: Integer, value: String) -> None:
+        _sim().controller.error_log.clear()
+
+    def ShowDialog(self, buttons: String, prompt: String, button: Ref[Integer]) -> None:
+        from gplrt.threads.scheduler import external_wait
+
+        state = _sim().controller
+        labels = [b.strip() for b in str(buttons).split(",")]
+        if state.dialog_answers:
+            choice = state.dialog_answers.pop(0)
+        elif state.dialog_handler is not None:
+            with external_wait():
+                choice = state.dialog_handler(labels, str(prompt))
+        else:
+            raise GplException(NOT_IMPLEMENTED, detail=f"no operator to answer the dialog {prompt!r}")
+        if not 1 <= int(choice) <= len(labels):
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"dialog answer {choice} for {labels}")
+        button.set(int(choice))
+
+    def ShowDialogMCP(self, button_mask: Integer, message: String, button_return: Ref[Integer]) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail="ShowDialogMCP: no Manual Control Pendant in simulation")
+
+    def Command(self, command: String) -> String:
+        raise GplException(NOT_IMPLEMENTED, detail=f"Controller.Command({command!r}) is not emulated")
+
+    def Load(self, project_path: String) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail="Controller.Load is not emulated")
+
+    def Unload(self, project: String) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail="Controller.Unload is not emulated")
+
+    # -- parameter database ------------------------------------------------------------------------
+
+    def PDb(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 0) -> String:  # type: ignore[assignment]
+        return str(_pdb().get(int(data_id), int(unit), int(unit2), int(array_index)))  # type: ignore[return-value]
+
+    def set_PDb(self, data_id: Integer, *rest: Any) -> None:
+        """``Controller.PDb(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
+        unit, unit2, index = _pdb_args(rest[:-1], (1, 1, 0))
+        _pdb().set(int(data_id), int(unit), int(unit2), int(index), str(rest[-1]))
+
+    def PDbNum(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 1) -> Double:  # type: ignore[assignment]
+        return float(_pdb().get(int(data_id), int(unit), int(unit2), int(array_index)))  # type: ignore[return-value]
+
+    def set_PDbNum(self, data_id: Integer, *rest: Any) -> None:
+        """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
+        unit, unit2, index = _pdb_args(rest[:-1], (1, 1, 1))
+        _pdb().set(int(data_id), int(unit), int(unit2), int(index), float(rest[-1]))
+
+
+def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int]) -> tuple[int, int, int]:
+    """unit, unit2, array_index from the optional arguments (a trailing ``key`` is ignored)."""
+    merged = [int(v) for v in given[:3]] + list(defaults[len(given[:3]) :])
+    return merged[0], merged[1], merged[2]
+
+
+def _pdb() -> Any:
+    pdb = _sim().pdb
+    if pdb is None:
+        raise GplException(NOT_IMPLEMENTED, detail="no parameter database loaded in this simulation")
+    return pdb
+
+
+Controller = _ControllerClass()
