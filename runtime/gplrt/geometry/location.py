@@ -32,7 +32,7 @@ Decisions where the manuals are silent (documented per the team rules):
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -44,8 +44,9 @@ from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
 from gplrt.lang.errors import NOT_ANGLES, NOT_CARTESIAN, VALUE_OUT_OF_RANGE, GplException
 from gplrt.lang.gpltypes import Boolean, Double, Integer, String
 
-if TYPE_CHECKING:
-    from gplrt.geometry.refframe import RefFrame
+# The RefFrame class, bound here by refframe.py when it loads (it imports this module, so this
+# module cannot import it); annotations below name it and get_type_hints resolves it at run time.
+RefFrame: Any = None
 
 CARTESIAN = 0
 ANGLES = 1

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from gplrt.geometry import location as _location_module
 from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import finite, in_range, not_nothing, to_integer
 from gplrt.geometry.location import CARTESIAN, FRAME_UNDEFINED_DATA, MAX_FRAME_DEPTH, Location
@@ -311,3 +312,8 @@ class RefFrame:
         if t == PALLET:
             p = self._cell(p)
         return p
+
+
+# Location's annotations name RefFrame, which location.py cannot import (refframe imports it);
+# bind the name there so ``typing.get_type_hints`` — and so the transpiler's catalogue — resolves it.
+_location_module.RefFrame = RefFrame  # type: ignore[attr-defined]
