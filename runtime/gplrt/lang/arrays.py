@@ -27,7 +27,7 @@ from collections.abc import Iterable, Iterator
 from typing import Any, Final
 
 from gplrt.lang.conversions import to_int32
-from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_OUT_OF_RANGE, GplException
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 
 ARRAY_INDEX_MISMATCH: Final = -766
@@ -167,7 +167,13 @@ class GplArray:
             )
         flat = 0
         for k, ub, stride in zip(idx, self._ub, self._strides):
-            k = to_int32(k)
+            if type(k) is not int:
+                try:
+                    k = to_int32(k)
+                except GplException as exc:
+                    if exc.ErrorCode != ARITHMETIC_OVERFLOW:
+                        raise
+                    raise _bad_index(f"index {k} outside 0..{ub}") from None
             if not 0 <= k <= ub:
                 raise _bad_index(f"index {k} outside 0..{ub}")
             flat += k * stride

@@ -246,9 +246,12 @@ def to_single(x: Any) -> float:
     if type(x) is not float:
         x = to_double(x)
     try:
-        return _F32.unpack(_F32.pack(x))[0]
+        r: float = _F32.unpack(_F32.pack(x))[0]
     except OverflowError:
-        raise GplException(ARITHMETIC_OVERFLOW, detail=f"{x} does not fit a Single") from None
+        r = math.inf
+    if (r == math.inf or r == -math.inf) and x == x and x not in (math.inf, -math.inf):
+        raise GplException(ARITHMETIC_OVERFLOW, detail=f"{x} does not fit a Single")
+    return r
 
 
 # -- Boolean --------------------------------------------------------------------------------------------
