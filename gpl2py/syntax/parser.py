@@ -1,0 +1,1596 @@
+"""The GPL parser: tokens -> :class:`~gpl2py.syntax.ast.SourceUnit` (hand-written recursive descent).
+
+:func:`parse` never raises on bad input.  It reports diagnostics to the sink and recovers at
+statement boundaries, so one run reports every error:
+
+* Within a line, only the first error is reported; the rest of the logical line is skipped.
+* Block statements always open their block even when their header line is broken, so the matching
+  ``End …`` is still found and no cascade follows.
+* A block ends at any line that closes a construct that is open *somewhere* on the stack of open
+  constructs (``End If``, ``Next``, ``Loop``, ``Case``, ``Catch``, ``End Sub``, a new ``Sub`` …).
+  If it is not the innermost construct's own end, that construct reports "not closed" once, at its
+  opening line, and the enclosing construct carries on.  A closer that matches nothing open
+  (``End If`` with no ``If``) is reported once and skipped.
+
+Grammar decisions beyond the spec's EBNF (spec §3), each an extension that real code uses:
+
+* ``Select Case x`` and ``Select x``; ``Case a To b`` and ``Case Is > x`` are accepted (VB forms).
+* ``Else If c Then`` at the end of a line is read as ``ElseIf`` (warning GPL1118).
+* Single-line ``If c Then stmt Else stmt`` (AMB-15); nested single-line Ifs are allowed.
+* ``For Each v In xs`` is parsed into :class:`~gpl2py.syntax.ast.ForEach`.
+* ``Catch ex As Exception`` is accepted (AMB-32); a bare ``Catch`` is an error (manual §10.1).
+* ``Optional`` parameters with defaults are accepted; ``ParamArray`` is reported.
+* ``Throw`` without an operand parses (``value=None``); semantics decides.
+* ``Exit Property`` is accepted (AMB-34).
+* A ``Class`` at the top level of a file is accepted (AMB-1).
+* ``ReDim Preserve`` and ``IsNot`` are parsed and reported as not supported in GPL (spec §15); VB
+  statements (``GoSub``, ``With``, ``On Error``, ``Enum`` …) get a "not supported in GPL" diagnostic
+  when they appear in statement or member position.  They remain usable as names otherwise.
+* A line holding only ``:`` (a documentation ellipsis in the manuals) is an error, like any other
+  use of ``:`` as a statement separator.
+"""
+
+from __future__ import annotations
+
+from gpl2py import messages as M
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.messages import Message
+from gpl2py.source import SourceFile, Span
+from gpl2py.syntax import ast as A
+from gpl2py.syntax.lexer import tokenize
+from gpl2py.syntax.tokens import COMPOUND_ASSIGN, KEYWORD_KINDS, Token, TokenKind
+
+K = TokenKind
+
+# precedence (higher binds tighter), spec §3.7
+_P_XOR, _P_OR, _P_AND, _P_NOT, _P_REL, _P_SHIFT, _P_CONCAT = 1, 2, 3, 4, 5, 6, 7
+_P_ADD, _P_MOD, _P_IDIV, _P_MUL, _P_UNARY, _P_POW = 8, 9, 10, 11, 12, 13
+
+_BINOPS: dict[TokenKind, tuple[int, str]] = {
+    K.XOR: (_P_XOR, "Xor"),
+    K.OR: (_P_OR, "Or"),
+    K.ORELSE: (_P_OR, "OrElse"),
+    K.AND: (_P_AND, "And"),
+    K.ANDALSO: (_P_AND, "AndAlso"),
+    K.EQ: (_P_REL, "="),
+    K.NE: (_P_REL, "<>"),
+    K.LT: (_P_REL, "<"),
+    K.GT: (_P_REL, ">"),
+    K.LE: (_P_REL, "<="),
+    K.GE: (_P_REL, ">="),
+    K.IS: (_P_REL, "Is"),
+    K.SHL: (_P_SHIFT, "<<"),
+    K.SHR: (_P_SHIFT, ">>"),
+    K.AMP: (_P_CONCAT, "&"),
+    K.PLUS: (_P_ADD, "+"),
+    K.MINUS: (_P_ADD, "-"),
+    K.MOD: (_P_MOD, "Mod"),
+    K.BACKSLASH: (_P_IDIV, "\\"),
+    K.STAR: (_P_MUL, "*"),
+    K.SLASH: (_P_MUL, "/"),
+    K.CARET: (_P_POW, "^"),
+}
+
+_CASE_IS_OPS = {K.EQ: "=", K.NE: "<>", K.LT: "<", K.GT: ">", K.LE: "<=", K.GE: ">="}
+
+# Closing lines: kind of the construct they close.  "END" needs the next token; "MOD" means a
+# modifier that may start a declaration; "<decl>" closes any procedure, class or module.
+_END_KINDS: dict[TokenKind, str] = {
+    K.IF: "If",
+    K.SUB: "Sub",
+    K.FUNCTION: "Function",
+    K.PROPERTY: "Property",
+    K.GET: "Get",
+    K.SET: "Set",
+    K.CLASS: "Class",
+    K.MODULE: "Module",
+    K.SELECT: "Select",
+    K.TRY: "Try",
+    K.WHILE: "While",
+}
+_CLOSERS: dict[TokenKind, str] = {
+    K.END: "END",
+    K.ELSE: "If",
+    K.ELSEIF: "If",
+    K.CASE: "Select",
+    K.CATCH: "Try",
+    K.FINALLY: "Try",
+    K.NEXT: "For",
+    K.LOOP: "Do",
+    K.SUB: "<decl>",
+    K.FUNCTION: "<decl>",
+    K.PROPERTY: "<decl>",
+    K.CLASS: "<decl>",
+    K.MODULE: "<decl>",
+    K.DELEGATE: "<decl>",
+    K.PUBLIC: "MOD",
+    K.PRIVATE: "MOD",
+    K.SHARED: "MOD",
+}
+_DECL_CONTAINERS = frozenset({"Sub", "Function", "Property", "Get", "Set", "Class", "Module"})
+_DECL_WORDS = frozenset({K.SUB, K.FUNCTION, K.PROPERTY, K.CLASS, K.DELEGATE, K.MODULE})
+_MODIFIER_KINDS = frozenset({K.PUBLIC, K.PRIVATE, K.SHARED})
+_END_TEXT = {"If": "End If", "For": "Next", "Do": "Loop", "Select": "End Select", "Try": "End Try"}
+_OPENER_TEXT = {"Select": "Select", "Try": "Try", "For": "For", "Do": "Do", "If": "If"}
+
+_EXIT_KINDS = {
+    K.SUB: "Sub",
+    K.FUNCTION: "Function",
+    K.PROPERTY: "Property",
+    K.FOR: "For",
+    K.DO: "Do",
+    K.WHILE: "While",
+    K.SELECT: "Select",
+    K.TRY: "Try",
+}
+
+# VB words that are not GPL, recognised in statement position (not reserved: spec §1.8).
+_UNSUPPORTED_STATEMENTS: dict[str, str] = {
+    "gosub": "GoSub",
+    "with": "With",
+    "on": "On Error",
+    "resume": "Resume",
+    "erase": "Erase",
+    "continue": "Continue",
+    "option": "Option",
+    "imports": "Imports",
+    "stop": "Stop",
+    "using": "Using",
+    "synclock": "SyncLock",
+    "enum": "Enum",
+    "structure": "Structure",
+    "interface": "Interface",
+    "namespace": "Namespace",
+    "event": "Event",
+    "raiseevent": "RaiseEvent",
+    "addhandler": "AddHandler",
+    "removehandler": "RemoveHandler",
+    "inherits": "Inherits",
+    "implements": "Implements",
+    "wend": "Wend",
+    "rem": "REM comments",
+    "let": "Let",
+    "print": "Print",
+    "mid": "Mid statement",
+    "error": "Error statement",
+    "yield": "Yield",
+}
+_UNSUPPORTED_HINTS: dict[str, str] = {
+    "Wend": " (use 'End While')",
+    "REM comments": " (start comments with ')",
+    "On Error": " (use Try ... Catch)",
+    "Resume": " (use Try ... Catch)",
+    "GoSub": " (call a Sub instead)",
+    "Continue": " (use GoTo a label before 'Next'/'Loop')",
+}
+_UNSUPPORTED_MODIFIERS: dict[str, str] = {
+    "friend": "Friend",
+    "protected": "Protected",
+    "overrides": "Overrides",
+    "overridable": "Overridable",
+    "overloads": "Overloads",
+    "readonly": "ReadOnly",
+    "writeonly": "WriteOnly",
+    "mustoverride": "MustOverride",
+    "notoverridable": "NotOverridable",
+    "mustinherit": "MustInherit",
+    "notinheritable": "NotInheritable",
+    "shadows": "Shadows",
+    "partial": "Partial",
+    "withevents": "WithEvents",
+    "async": "Async",
+    "iterator": "Iterator",
+}
+# Tokens that may follow a name used as a variable/procedure (so an unsupported VB word followed
+# by one of these is just a name).
+_NAME_FOLLOWERS = frozenset(
+    {K.EQ, K.LPAREN, K.DOT, K.COLON, *COMPOUND_ASSIGN.keys()}
+)
+_STMT_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF, K.ELSE})
+_LINE_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF})
+
+_MAX_EXPR_DEPTH = 200
+_MAX_BLOCK_DEPTH = 200
+
+
+def parse(source: SourceFile, sink: DiagnosticSink) -> A.SourceUnit:
+    """Parse one GPL file.  Never raises on bad input: problems are reported to ``sink``."""
+    return Parser(source, sink).parse_unit()
+
+
+def parse_expression(source: SourceFile, sink: DiagnosticSink) -> A.Expr:
+    """Parse ``source`` as one expression (tests, REPL-style tools).  Trailing tokens are reported."""
+    p = Parser(source, sink)
+    expr = p.expression()
+    p.end_of_line(None)
+    if p.tok.kind is not K.EOF:
+        p.error(M.PARSE_TRAILING_TOKENS, p.tok, found=p.tok.describe())
+    return expr
+
+
+class Parser:
+    """Recursive-descent parser over the token list; see the module docstring for recovery rules."""
+
+    def __init__(self, source: SourceFile, sink: DiagnosticSink) -> None:
+        self.source = source
+        self.sink = sink
+        self.toks = tokenize(source, sink)
+        self.pos = 0
+        self.last = len(self.toks) - 1
+        self.tok: Token = self.toks[0]
+        self.prev: Token = self.tok
+        self.failed = False  # an error was reported on the current logical line
+        self.open: list[str] = []  # constructs whose end has not been seen, innermost last
+        self.nest = 0  # block depth inside the current procedure body (0 = outermost level)
+        self.in_proc = False
+        self.depth = 0  # expression nesting depth (recursion guard)
+
+    # ---------------------------------------------------------------------------------- tokens
+
+    def next(self) -> Token:
+        tok = self.tok
+        if self.pos < self.last:
+            self.pos += 1
+            self.tok = self.toks[self.pos]
+        self.prev = tok
+        return tok
+
+    def peek(self, offset: int = 1) -> Token:
+        i = self.pos + offset
+        return self.toks[i] if i <= self.last else self.toks[self.last]
+
+    def span_from(self, start: Token | Span) -> Span:
+        s = start.span if isinstance(start, Token) else start
+        end = self.prev.span
+        if end.end_line < s.start.line or (
+            end.end_line == s.start.line and end.end_col < s.start.col
+        ):
+            return s
+        return Span(s.start, end.end_line, end.end_col)
+
+    def error(self, message: Message, where: Token | Span, **args: object) -> None:
+        """Report a line-local error: only the first one per logical line is reported."""
+        if self.failed:
+            return
+        self.failed = True
+        if isinstance(where, Token):
+            if where.kind is K.ERROR:
+                return  # the lexer already reported this character
+            where = where.span
+        self.sink.report(message, where, **args)
+
+    def expect(self, kind: TokenKind, what: str | None = None) -> Token | None:
+        tok = self.tok
+        if tok.kind is kind:
+            return self.next()
+        self.error(M.PARSE_EXPECTED, tok, expected=what or f"'{kind.value}'", found=tok.describe())
+        return None
+
+    def word(self, what: str) -> Token | None:
+        """An identifier, or any keyword (member names after '.' may be keywords: ``tl.Stop``)."""
+        tok = self.tok
+        if tok.kind is K.IDENT or tok.kind in KEYWORD_KINDS:
+            return self.next()
+        self.error(M.PARSE_EXPECTED, tok, expected=what, found=tok.describe())
+        return None
+
+    def ident(self, what: str) -> Token | None:
+        tok = self.tok
+        if tok.kind is K.IDENT:
+            return self.next()
+        self.error(M.PARSE_EXPECTED, tok, expected=what, found=tok.describe())
+        return None
+
+    # ---------------------------------------------------------------------------- line handling
+
+    def comments(self) -> list[A.Comment]:
+        """Full-line comments and '#' lines at the current position (consumed)."""
+        out: list[A.Comment] = []
+        while True:
+            tok = self.tok
+            k = tok.kind
+            if k is K.COMMENT or k is K.DIRECTIVE:
+                self.next()
+                out.append(A.Comment(tok.span, tok.value, k is K.DIRECTIVE))  # type: ignore[arg-type]
+                if self.tok.kind is K.NEWLINE:
+                    self.next()
+            else:
+                return out
+
+    def end_of_line(self, node: A.Stmt | None) -> A.Comment | None:
+        """Finish a logical line: attach its comment to ``node`` and consume the ``NEWLINE``.
+
+        Anything else before the end of the line is reported (unless the line already failed)
+        and skipped.  Returns the trailing comment.
+        """
+        tok = self.tok
+        k = tok.kind
+        if k is not K.NEWLINE and k is not K.COMMENT and k is not K.EOF:
+            if k is K.COLON:
+                self.error(M.PARSE_COLON_SEPARATOR, tok)
+            else:
+                self.error(M.PARSE_TRAILING_TOKENS, tok, found=tok.describe())
+            while k is not K.NEWLINE and k is not K.COMMENT and k is not K.EOF:
+                self.next()
+                k = self.tok.kind
+        comment = None
+        if k is K.COMMENT:
+            comment = self._trailing_comment()
+            k = self.tok.kind
+        if k is K.NEWLINE:
+            self.next()
+        self.failed = False
+        if comment is not None and node is not None:
+            node.trailing_comment = comment
+        return comment
+
+    def _trailing_comment(self) -> A.Comment:
+        first = self.next()
+        comment = A.Comment(first.span, first.value)  # type: ignore[arg-type]
+        while self.tok.kind is K.COMMENT:  # several (a continuation comment + the line's own)
+            more = self.next()
+            comment = A.Comment(first.span, f"{comment.text} {more.value}")
+        return comment
+
+    def skip_line(self) -> A.Comment | None:
+        self.failed = True
+        return self.end_of_line(None)
+
+    def at_line_end(self) -> bool:
+        return self.tok.kind in _LINE_END
+
+    # -------------------------------------------------------------------------------- closers
+
+    def closer(self) -> str | None:
+        """If the current line closes a construct, the kind it closes (else ``None``)."""
+        c = _CLOSERS.get(self.tok.kind)
+        if c is None:
+            return None
+        if c == "END":
+            return _END_KINDS.get(self.peek().kind)
+        if c == "MOD":
+            i = self.pos + 1
+            toks = self.toks
+            while i < self.last and toks[i].kind in _MODIFIER_KINDS:
+                i += 1
+            return "<decl>" if toks[i].kind in _DECL_WORDS else None
+        return c
+
+    def is_open(self, kind: str) -> bool:
+        if kind == "<decl>":
+            return any(k in _DECL_CONTAINERS for k in self.open)
+        return kind in self.open
+
+    def stray_closer(self, kind: str) -> None:
+        """A closing line that matches no open construct: report once, skip the line."""
+        tok = self.tok
+        if kind == "<decl>":
+            # a declaration where statements were expected and no container is open: handled
+            # by the caller (top level), never reached from blocks
+            self.skip_line()
+            return
+        text = tok.text
+        if tok.kind is K.END:
+            text = f"End {self.peek().text}"
+        opener = "Select" if kind == "Select" else kind
+        self.sink.report(M.PARSE_UNMATCHED_END, tok.span, closer=text, opener=opener)
+        self.skip_line()
+
+    def unclosed(self, opener: str, closer: str, start: Token) -> None:
+        tok = self.tok
+        found = tok.describe()
+        if tok.kind is K.END:
+            found = f"'End {self.peek().text}'"
+        elif tok.kind is not K.EOF and tok.kind is not K.NEWLINE:
+            found = f"'{tok.text}'"
+        self.sink.report(M.PARSE_UNCLOSED_BLOCK, start.span, opener=opener, closer=closer, found=found)
+
+    # --------------------------------------------------------------------------------- blocks
+
+    def block(self) -> A.Block:
+        """Statements up to (not including) a line that closes an open construct, or EOF."""
+        start = self.tok
+        stmts: list[A.Stmt] = []
+        pending: list[A.Comment] = []
+        while True:
+            comments = self.comments()
+            if pending:
+                comments = pending + comments
+                pending = []
+            k = self.tok.kind
+            if k is K.EOF:
+                break
+            kind = self.closer()
+            if kind is not None:
+                if self.is_open(kind):
+                    break
+                self.stray_closer(kind)
+                pending = comments
+                continue
+            n = len(stmts)
+            self.statement(stmts)
+            if len(stmts) > n:
+                if comments:
+                    stmts[n].leading_comments[:0] = comments
+            elif comments:
+                pending = comments
+        return A.Block(self.span_from(start) if stmts else start.span, stmts, end_comments=comments)
+
+    def body(self, kind: str) -> A.Block:
+        """The block of a construct of ``kind`` (pushed on the open stack while it is parsed)."""
+        if len(self.open) > _MAX_BLOCK_DEPTH:
+            self.sink.report(M.PARSE_TOO_DEEP, self.tok.span, what="blocks", limit=_MAX_BLOCK_DEPTH)
+            # Skip everything: recursion this deep would exhaust the Python stack.
+            while self.tok.kind is not K.EOF:
+                self.next()
+            return A.Block(self.tok.span, [])
+        self.open.append(kind)
+        self.nest += 1
+        try:
+            return self.block()
+        finally:
+            self.nest -= 1
+            self.open.pop()
+
+    def proc_body(self, kind: str) -> A.Block:
+        saved = (self.nest, self.in_proc)
+        self.nest = -1  # body() adds one: the procedure's own block is level 0
+        self.in_proc = True
+        try:
+            return self.body(kind)
+        finally:
+            self.nest, self.in_proc = saved
+
+    def close_end(self, kind: str, start: Token, node: A.Stmt) -> bool:
+        """Consume ``End <kind>`` (attaching its comment to ``node.end_comment``) or report."""
+        tok = self.tok
+        if tok.kind is K.END and _END_KINDS.get(self.peek().kind) == kind:
+            self.next()
+            self.next()
+            comment = self.end_of_line(None)
+            if comment is not None:
+                node.end_comment = comment  # type: ignore[attr-defined]
+            return True
+        self.unclosed(kind, f"End {kind}", start)
+        return False
+
+    # ----------------------------------------------------------------------------- top level
+
+    def parse_unit(self) -> A.SourceUnit:
+        start = self.tok
+        members: list[A.Stmt] = []
+        while True:
+            comments = self.comments()
+            tok = self.tok
+            if tok.kind is K.EOF:
+                break
+            c = _CLOSERS.get(tok.kind)
+            if c is not None and c != "<decl>" and c != "MOD":
+                kind = self.closer()
+                if kind is not None:
+                    self.stray_closer(kind)
+                    continue
+            member = self.member("file")
+            if member is not None:
+                member.leading_comments[:0] = comments
+                members.append(member)
+        return A.SourceUnit(self.span_from(start), self.source.path, members, end_comments=comments)
+
+    def members(self, container: str, start: Token, node: A.Stmt) -> list[A.Stmt]:
+        """Members of a Module or Class up to its ``End``; sets ``node.end_comments``."""
+        out: list[A.Stmt] = []
+        self.open.append(container)
+        try:
+            while True:
+                comments = self.comments()
+                tok = self.tok
+                k = tok.kind
+                if k is K.EOF:
+                    self.unclosed(container, f"End {container}", start)
+                    break
+                if k is K.END:
+                    kind = _END_KINDS.get(self.peek().kind)
+                    if kind == container:
+                        self.next()
+                        self.next()
+                        c = self.end_of_line(None)
+                        if c is not None:
+                            node.end_comment = c  # type: ignore[attr-defined]
+                        break
+                    if kind is not None and kind in self.open:
+                        self.unclosed(container, f"End {container}", start)
+                        break
+                    if kind is not None:
+                        self.stray_closer(kind)
+                        continue
+                if k is K.MODULE:  # modules do not nest: the current one was not closed
+                    self.unclosed(container, f"End {container}", start)
+                    break
+                member = self.member(container)
+                if member is not None:
+                    member.leading_comments[:0] = comments
+                    out.append(member)
+            node.end_comments = comments  # type: ignore[attr-defined]
+        finally:
+            self.open.pop()
+        return out
+
+    def modifiers(self) -> list[str]:
+        mods: list[str] = []
+        while True:
+            tok = self.tok
+            k = tok.kind
+            if k is K.PUBLIC or k is K.PRIVATE or k is K.SHARED:
+                mods.append(k.value)
+                self.next()
+            elif k is K.IDENT and tok.text.lower() in _UNSUPPORTED_MODIFIERS:
+                nxt = self.peek().kind
+                if nxt in _NAME_FOLLOWERS or nxt is K.AS or nxt in _LINE_END:
+                    return mods  # a variable that happens to be called e.g. 'Friend'
+                word = _UNSUPPORTED_MODIFIERS[tok.text.lower()]
+                self.error(M.PARSE_UNSUPPORTED, tok, what=f"'{word}'", hint="")
+                self.next()
+            else:
+                return mods
+
+    def member(self, container: str) -> A.Stmt | None:
+        """One declaration in a Module, a Class or (misplaced) at the top of the file."""
+        start = self.tok
+        mods = self.modifiers()
+        tok = self.tok
+        k = tok.kind
+        if container == "file" and k is not K.MODULE and k is not K.CLASS:
+            if k in _DECL_WORDS or k in (K.DIM, K.CONST, K.STATIC) or mods:
+                what = "a variable" if k not in _DECL_WORDS else f"a {k.value}"
+                self.sink.report(M.PARSE_OUTSIDE_MODULE, start.span, what=what)
+        if k is K.SUB or k is K.FUNCTION:
+            return self.procedure(start, mods)
+        if k is K.PROPERTY:
+            if container != "Class":
+                self.sink.report(
+                    M.PARSE_MISPLACED_DECLARATION,
+                    tok.span,
+                    what="a Property",
+                    where="outside a Class (properties are class members)",
+                )
+            return self.property_decl(start, mods)
+        if k is K.CLASS:
+            return self.class_decl(start, mods)
+        if k is K.MODULE:
+            if container != "file":
+                self.sink.report(
+                    M.PARSE_MISPLACED_DECLARATION, tok.span, what="a Module", where=f"inside a {container}"
+                )
+            if mods:
+                self.sink.report(M.PARSE_BAD_MODIFIER, start.span, modifier=mods[0], where="on a Module")
+            return self.module_decl(start)
+        if k is K.DELEGATE:
+            return self.delegate_decl(start, mods)
+        if k is K.DIM or k is K.CONST:
+            self.next()
+            return self._member_var(start, tok.kind.value, mods)
+        if k is K.STATIC:
+            self.next()
+            if self.tok.kind is K.SUB or self.tok.kind is K.FUNCTION:
+                self.error(M.PARSE_UNSUPPORTED, tok, what="'Static' procedures", hint="")
+                self.failed = False
+                return self.procedure(start, mods)
+            self.error(
+                M.PARSE_MISPLACED_DECLARATION, tok, what="a Static variable", where="outside a procedure"
+            )
+            self.failed = False
+            return self._member_var(start, "Static", mods)
+        if mods and k is K.IDENT:
+            return self._member_var(start, None, mods)
+        if k is K.IDENT:
+            low = tok.text.lower()
+            word = _UNSUPPORTED_STATEMENTS.get(low)
+            if word is not None and self.peek().kind not in _NAME_FOLLOWERS:
+                self.error(M.PARSE_UNSUPPORTED, tok, what=f"'{word}'", hint=_UNSUPPORTED_HINTS.get(word, ""))
+                self.skip_line()
+                return None
+        where = "the file" if container == "file" else f"a {container}"
+        self.error(M.PARSE_STATEMENT_OUTSIDE_PROCEDURE, tok, found=tok.describe(), container=where)
+        self.skip_line()
+        return None
+
+    def _member_var(self, start: Token, keyword: str | None, mods: list[str]) -> A.VarDecl:
+        node = self.var_decl(start, keyword, mods)
+        self.end_of_line(node)
+        return node
+
+    def module_decl(self, start: Token) -> A.ModuleDecl:
+        self.next()  # Module
+        name = self.ident("a module name")
+        node = A.ModuleDecl(start.span, name.text if name else "", [])
+        self.end_of_line(node)
+        node.members = self.members("Module", start, node)
+        node.span = self.span_from(start)
+        return node
+
+    def class_decl(self, start: Token, mods: list[str]) -> A.ClassDecl:
+        self.next()  # Class
+        name = self.ident("a class name")
+        node = A.ClassDecl(start.span, name.text if name else "", mods, [])
+        self.end_of_line(node)
+        saved = (self.in_proc, self.nest)
+        self.in_proc = False
+        try:
+            node.members = self.members("Class", start, node)
+        finally:
+            self.in_proc, self.nest = saved
+        node.span = self.span_from(start)
+        return node
+
+    # ------------------------------------------------------------------------- declarations
+
+    def type_ref(self) -> A.TypeRef | None:
+        first = self.ident("a type name")
+        if first is None:
+            return None
+        parts = [first.text]
+        while self.tok.kind is K.DOT:
+            self.next()
+            w = self.word("a type name after '.'")
+            if w is None:
+                break
+            parts.append(w.text)
+        return A.TypeRef(self.span_from(first), ".".join(parts))
+
+    def var_decl(self, start: Token, keyword: str | None, mods: list[str]) -> A.VarDecl:
+        """``[mods] [Dim|Static|Const] name[(bounds)] {, …} As [New] T [= init] {, group}``."""
+        declarators: list[A.VarDeclarator] = []
+        pending: list[A.VarDeclarator] = []
+        is_const = keyword == "Const"
+        while True:
+            name = self.ident("a variable name")
+            if name is None:
+                break
+            bounds: list[A.Expr | None] | None = None
+            if self.tok.kind is K.LPAREN:
+                bounds = self.array_suffix()
+                if len(bounds) > 4:
+                    self.error(M.PARSE_ARRAY_RANK, name, name=name.text, rank=len(bounds))
+            d = A.VarDeclarator(self.span_from(name), name.text, bounds, None)
+            pending.append(d)
+            k = self.tok.kind
+            if k is K.COMMA:
+                self.next()
+                continue
+            if k is K.AS:
+                self.next()
+                group_new = False
+                new_args: list[A.Expr] | None = None
+                if self.tok.kind is K.NEW:
+                    self.next()
+                    group_new = True
+                    type_ = self.type_ref()
+                    if self.tok.kind is K.LPAREN:
+                        new_args = self.arguments()
+                else:
+                    type_ = self.type_ref()
+                init: A.Expr | None = None
+                if self.tok.kind is K.EQ:
+                    self.next()
+                    init = self.expression()
+                elif is_const:
+                    self.error(M.PARSE_EXPECTED, self.tok, expected="'=' and the constant's value", found=self.tok.describe())
+                if (group_new or init is not None) and len(pending) > 1:
+                    self.error(M.PARSE_NEW_NEEDS_ONE_NAME, pending[0].span)
+                for p in pending:
+                    p.type = type_
+                    p.new = group_new
+                    p.span = Span(p.span.start, self.prev.span.end_line, self.prev.span.end_col)
+                last = pending[-1]
+                last.new_args = new_args
+                last.initializer = init
+                if init is not None and last.bounds is not None:
+                    self.error(M.PARSE_ARRAY_INITIALIZER, init.span)
+                declarators.extend(pending)
+                pending = []
+                if self.tok.kind is K.COMMA:
+                    self.next()
+                    continue
+                break
+            break
+        if pending:
+            self.error(M.PARSE_MISSING_TYPE, pending[-1].span, name=pending[-1].name)
+            if self.tok.kind is K.EQ:  # 'Const x = 1': parse the value anyway
+                self.next()
+                pending[-1].initializer = self.expression()
+            declarators.extend(pending)
+        node = A.VarDecl(self.span_from(start), keyword, mods, declarators)
+        return node
+
+    def array_suffix(self) -> list[A.Expr | None]:
+        self.next()  # (
+        k = self.tok.kind
+        if k is K.RPAREN:
+            self.next()
+            return [None]
+        if k is K.COMMA:
+            rank = 1
+            while self.tok.kind is K.COMMA:
+                self.next()
+                rank += 1
+            self.expect(K.RPAREN)
+            return [None] * rank
+        bounds: list[A.Expr | None] = [self.expression()]
+        while self.tok.kind is K.COMMA:
+            self.next()
+            bounds.append(self.expression())
+        if self.tok.kind is K.TO:
+            self.error(M.PARSE_UNSUPPORTED, self.tok, what="an array lower bound ('x To y')", hint=" (arrays start at 0)")
+        self.expect(K.RPAREN)
+        return bounds
+
+    def params(self) -> list[A.Param]:
+        """``( [param {, param}] )``; the current token is ``(``."""
+        self.next()
+        out: list[A.Param] = []
+        if self.tok.kind is K.RPAREN:
+            self.next()
+            return out
+        while True:
+            p = self.param()
+            if p is None:
+                break
+            out.append(p)
+            if self.tok.kind is K.COMMA:
+                self.next()
+                continue
+            self.expect(K.RPAREN, "',' or ')'")
+            break
+        return out
+
+    def param(self) -> A.Param | None:
+        start = self.tok
+        by_ref = False
+        optional = False
+        while True:
+            tok = self.tok
+            k = tok.kind
+            if k is K.BYVAL:
+                self.next()
+            elif k is K.BYREF:
+                by_ref = True
+                self.next()
+            elif k is K.IDENT and self.peek().kind is K.IDENT:
+                low = tok.text.lower()
+                if low == "optional":
+                    optional = True
+                    self.next()
+                elif low == "paramarray":
+                    self.error(M.PARSE_UNSUPPORTED, tok, what="'ParamArray'", hint="")
+                    self.next()
+                else:
+                    break
+            else:
+                break
+        name = self.ident("a parameter name")
+        if name is None:
+            return None
+        rank = 0
+        if self.tok.kind is K.LPAREN:
+            self.next()
+            rank = 1
+            while self.tok.kind is K.COMMA:
+                self.next()
+                rank += 1
+            self.expect(K.RPAREN, "')' (array parameters are written 'name()')")
+        type_: A.TypeRef | None = None
+        if self.tok.kind is K.AS:
+            self.next()
+            type_ = self.type_ref()
+        else:
+            self.error(M.PARSE_MISSING_TYPE, name, name=name.text)
+        default: A.Expr | None = None
+        if self.tok.kind is K.EQ:
+            self.next()
+            default = self.expression()
+        return A.Param(self.span_from(start), name.text, type_, by_ref, rank, optional, default)
+
+    def procedure(self, start: Token, mods: list[str]) -> A.ProcDecl:
+        kw = self.next()  # Sub | Function
+        kind = kw.kind.value
+        tok = self.tok
+        if tok.kind is K.IDENT or (tok.kind is K.NEW and kind == "Sub"):
+            self.next()
+            name = tok.text
+        else:
+            self.error(M.PARSE_EXPECTED, tok, expected=f"a {kind} name", found=tok.describe())
+            name = ""
+        params: list[A.Param] = []
+        if self.tok.kind is K.LPAREN:
+            params = self.params()
+        ret: A.TypeRef | None = None
+        if self.tok.kind is K.AS:
+            self.next()
+            ret = self.type_ref()
+            if kind == "Sub":
+                self.error(M.PARSE_UNSUPPORTED, kw, what="a return type on a Sub", hint=" (use a Function)")
+        elif kind == "Function":
+            self.error(M.PARSE_FUNCTION_NEEDS_TYPE, self.tok, what="Function", name=name)
+        node = A.ProcDecl(self.span_from(start), kind, name, mods, params, ret, A.Block(start.span, []))
+        self.end_of_line(node)
+        node.body = self.proc_body(kind)
+        self.close_end(kind, start, node)
+        node.span = self.span_from(start)
+        return node
+
+    def property_decl(self, start: Token, mods: list[str]) -> A.PropertyDecl:
+        self.next()  # Property
+        name_tok = self.ident("a property name")
+        name = name_tok.text if name_tok else ""
+        if self.tok.kind is K.LPAREN:
+            self.error(M.PARSE_UNSUPPORTED, self.tok, what="a property with parameters", hint="")
+            self.params()
+        type_: A.TypeRef | None = None
+        if self.tok.kind is K.AS:
+            self.next()
+            type_ = self.type_ref()
+        else:
+            self.error(M.PARSE_FUNCTION_NEEDS_TYPE, self.tok, what="Property", name=name)
+        node = A.PropertyDecl(self.span_from(start), name, mods, type_, None, None)
+        self.end_of_line(node)
+        self.open.append("Property")
+        try:
+            while True:
+                comments = self.comments()
+                tok = self.tok
+                k = tok.kind
+                if k is K.GET or k is K.SET:
+                    acc = self.accessor()
+                    acc.leading_comments[:0] = comments
+                    if k is K.GET:
+                        if node.getter is not None:
+                            self.sink.report(M.PARSE_EXPECTED, tok.span, expected="one Get block", found="a second 'Get'")
+                        node.getter = acc
+                    else:
+                        if node.setter is not None:
+                            self.sink.report(M.PARSE_EXPECTED, tok.span, expected="one Set block", found="a second 'Set'")
+                        node.setter = acc
+                    continue
+                node.end_comments = comments
+                if k is K.END and self.peek().kind is K.PROPERTY:
+                    self.next()
+                    self.next()
+                    c = self.end_of_line(None)
+                    if c is not None:
+                        node.end_comment = c
+                    break
+                kind = self.closer()
+                if k is K.EOF or (kind is not None and self.is_open(kind)):
+                    self.unclosed("Property", "End Property", start)
+                    break
+                self.error(M.PARSE_EXPECTED, tok, expected="'Get', 'Set' or 'End Property'", found=tok.describe())
+                self.skip_line()
+        finally:
+            self.open.pop()
+        if node.getter is None and node.setter is None:
+            self.sink.report(M.PARSE_PROPERTY_NEEDS_ACCESSOR, start.span, name=name)
+        node.span = self.span_from(start)
+        return node
+
+    def accessor(self) -> A.Accessor:
+        start = self.next()  # Get | Set
+        kind = start.kind.value
+        param: A.Param | None = None
+        if self.tok.kind is K.LPAREN:
+            params = self.params()
+            if kind == "Get" and params:
+                self.error(M.PARSE_UNSUPPORTED, start, what="parameters on Get", hint="")
+            if kind == "Set":
+                if len(params) > 1:
+                    self.error(M.PARSE_EXPECTED, start, expected="one Set parameter", found=f"{len(params)}")
+                param = params[0] if params else None
+        node = A.Accessor(self.span_from(start), kind, param, A.Block(start.span, []))
+        self.end_of_line(node)
+        node.body = self.proc_body(kind)
+        self.close_end(kind, start, node)
+        node.span = self.span_from(start)
+        return node
+
+    def delegate_decl(self, start: Token, mods: list[str]) -> A.DelegateDecl:
+        self.next()  # Delegate
+        kw = self.tok
+        if kw.kind is not K.SUB and kw.kind is not K.FUNCTION:
+            self.error(M.PARSE_EXPECTED, kw, expected="'Sub' or 'Function'", found=kw.describe())
+            self.skip_line()
+            return A.DelegateDecl(self.span_from(start), "Sub", "", mods, [], None)
+        self.next()
+        kind = kw.kind.value
+        name = self.ident("a delegate name")
+        params: list[A.Param] = []
+        if self.tok.kind is K.LPAREN:
+            params = self.params()
+        ret: A.TypeRef | None = None
+        if self.tok.kind is K.AS:
+            self.next()
+            ret = self.type_ref()
+        elif kind == "Function":
+            self.error(M.PARSE_FUNCTION_NEEDS_TYPE, self.tok, what="Delegate Function", name=name.text if name else "")
+        node = A.DelegateDecl(self.span_from(start), kind, name.text if name else "", mods, params, ret)
+        self.end_of_line(node)
+        return node
+
+    # --------------------------------------------------------------------------- statements
+
+    def statement(self, out: list[A.Stmt]) -> None:
+        """Parse one logical line of a procedure body into ``out`` (a label may add two nodes)."""
+        tok = self.tok
+        k = tok.kind
+        if (k is K.IDENT or k is K.INTEGER) and self.peek().kind is K.COLON:
+            self.next()
+            self.next()
+            label = A.Label(self.span_from(tok), tok.text)
+            out.append(label)
+            if self.tok.kind in _LINE_END:
+                self.end_of_line(label)
+                return
+            tok = self.tok
+            k = tok.kind
+        if k is K.COLON:
+            self.error(M.PARSE_COLON_SEPARATOR, tok)
+            self.skip_line()
+            return
+        handler = _BLOCK_STATEMENTS.get(k)
+        if handler is not None:
+            node = handler(self)
+            if node is not None:
+                out.append(node)
+            return
+        node = self.simple_statement()
+        if node is not None:
+            out.append(node)
+            self.end_of_line(node)
+        else:
+            self.skip_line()
+
+    def simple_statement(self) -> A.Stmt | None:
+        """A statement that fits on one line (does not consume the end of the line)."""
+        tok = self.tok
+        k = tok.kind
+        if k is K.IDENT:
+            nk = self.peek().kind
+            if nk not in _NAME_FOLLOWERS:
+                word = _UNSUPPORTED_STATEMENTS.get(tok.text.lower())
+                if word is not None:
+                    self.error(M.PARSE_UNSUPPORTED, tok, what=f"'{word}'", hint=_UNSUPPORTED_HINTS.get(word, ""))
+                    return None
+            return self.expression_statement()
+        handler = _SIMPLE_STATEMENTS.get(k)
+        if handler is not None:
+            return handler(self)
+        return self.expression_statement()
+
+    def expression_statement(self) -> A.Stmt | None:
+        start = self.tok
+        target = self.postfix()
+        k = self.tok.kind
+        if k is K.EQ:
+            self.next()
+            value = self.expression()
+            return A.Assign(self.span_from(start), target, "=", value)
+        op = COMPOUND_ASSIGN.get(k)
+        if op is not None:
+            self.next()
+            value = self.expression()
+            return A.Assign(self.span_from(start), target, op, value)
+        if isinstance(target, (A.Name, A.MemberAccess, A.Invoke)):
+            if self.tok.kind is K.IDENT and self.tok.text.lower() == "isnot":
+                self.error(M.PARSE_UNSUPPORTED, self.tok, what="'IsNot'", hint=" (write 'Not a Is b')")
+            return A.CallStmt(self.span_from(start), target)
+        if isinstance(target, A.ErrorExpr):
+            return None
+        what = {
+            A.New: "a New expression",
+            A.MeExpr: "'Me'",
+            A.AddressOf: "an AddressOf expression",
+        }.get(type(target), "a value")
+        self.error(M.PARSE_NOT_A_STATEMENT, target.span, what=what)
+        return None
+
+    def _declaration_statement(self) -> A.Stmt | None:
+        start = self.tok
+        mods = self.modifiers()
+        if mods:
+            self.error(M.PARSE_BAD_MODIFIER, start, modifier=mods[0], where="inside a procedure (locals use Dim or Static)")
+            self.failed = False
+        tok = self.tok
+        if tok.kind in (K.DIM, K.STATIC, K.CONST):
+            self.next()
+            keyword = tok.kind.value
+        else:
+            keyword = None
+        if self.nest > 0 and self.open:
+            self.sink.report(M.PARSE_NESTED_DECLARATION, start.span, block=f"a {self._innermost_block()} block")
+        node = self.var_decl(start, keyword, mods)
+        self.end_of_line(node)
+        return node
+
+    def _innermost_block(self) -> str:
+        for kind in reversed(self.open):
+            if kind not in _DECL_CONTAINERS:
+                return kind
+        return self.open[-1]
+
+    # -- block statements (each consumes its own lines)
+
+    def if_statement(self) -> A.Stmt | None:
+        start = self.next()  # If
+        cond = self.expression()
+        if self.tok.kind is K.THEN:
+            self.next()
+        else:
+            self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=self.tok.describe())
+        if not self.failed and self.tok.kind not in _LINE_END:
+            node = self.single_line_if(start, cond)
+            self.end_of_line(node)
+            return node
+        node = A.If(start.span, cond, A.Block(start.span, []))
+        node.then_body = self._if_body(node)
+        while True:
+            tok = self.tok
+            if tok.kind is K.ELSEIF or (tok.kind is K.ELSE and self.peek().kind is K.IF):
+                if tok.kind is K.ELSE:
+                    self.sink.report(M.PARSE_ELSE_IF, tok.span)
+                    self.next()
+                self.next()
+                c = self.expression()
+                if self.tok.kind is K.THEN:
+                    self.next()
+                else:
+                    self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=self.tok.describe())
+                clause = A.ElseIfClause(self.span_from(tok), c, A.Block(tok.span, []))
+                clause.body = self._if_body(clause)
+                node.elseifs.append(clause)
+                continue
+            if tok.kind is K.ELSE:
+                self.next()
+                else_comment = self.end_of_line(None)
+                body = self.body("If")
+                body.header_comment = else_comment
+                if node.else_body is not None:
+                    self.sink.report(M.PARSE_EXPECTED, tok.span, expected="'End If' (only one Else per If)", found="'Else'")
+                node.else_body = body
+                continue
+            break
+        if self.tok.kind is K.END and self.peek().kind is K.IF:
+            self.next()
+            self.next()
+            c2 = self.end_of_line(None)
+            node.end_comment = c2
+        else:
+            self.unclosed("If", "End If", start)
+        node.span = self.span_from(start)
+        return node
+
+    def _if_body(self, owner: A.Stmt) -> A.Block:
+        self.end_of_line(owner)
+        return self.body("If")
+
+    def single_line_if(self, start: Token, cond: A.Expr) -> A.If:
+        then_stmt = self._single_line_part()
+        else_body: A.Block | None = None
+        if self.tok.kind is K.ELSE:
+            else_tok = self.next()
+            else_stmt = self._single_line_part()
+            else_body = A.Block(else_tok.span, [else_stmt] if else_stmt else [])
+        then_body = A.Block(then_stmt.span if then_stmt else start.span, [then_stmt] if then_stmt else [])
+        return A.If(self.span_from(start), cond, then_body, [], else_body, single_line=True)
+
+    def _single_line_part(self) -> A.Stmt | None:
+        tok = self.tok
+        k = tok.kind
+        if k is K.IF:
+            self.depth += 1
+            if self.depth > _MAX_EXPR_DEPTH:
+                self.error(M.PARSE_TOO_DEEP, tok, what="single-line If statements", limit=_MAX_EXPR_DEPTH)
+                self.depth -= 1
+                return None
+            try:
+                start = self.next()
+                cond = self.expression()
+                self.expect(K.THEN)
+                if self.tok.kind in _LINE_END:
+                    self.error(M.PARSE_BLOCK_IN_SINGLE_LINE_IF, tok, what="a block If")
+                    return None
+                return self.single_line_if(start, cond)
+            finally:
+                self.depth -= 1
+        if k in _BLOCK_STATEMENTS or k in (K.DIM, K.STATIC, K.CONST, K.PUBLIC, K.PRIVATE, K.SHARED):
+            what = f"'{tok.text}'"
+            self.error(M.PARSE_BLOCK_IN_SINGLE_LINE_IF, tok, what=what)
+            return None
+        if (k is K.IDENT or k is K.INTEGER) and self.peek().kind is K.COLON:
+            self.error(M.PARSE_BLOCK_IN_SINGLE_LINE_IF, tok, what="a label")
+            return None
+        if k in _LINE_END:
+            self.error(M.PARSE_EXPECTED, tok, expected="a statement after 'Then'", found=tok.describe())
+            return None
+        return self.simple_statement()
+
+    def for_statement(self) -> A.Stmt | None:
+        start = self.next()  # For
+        node: A.For | A.ForEach
+        if self.tok.kind is K.IDENT and self.tok.text.lower() == "each":
+            self.next()
+            var = self.postfix()
+            if self.tok.kind is K.IDENT and self.tok.text.lower() == "in":
+                self.next()
+            else:
+                self.error(M.PARSE_EXPECTED, self.tok, expected="'In'", found=self.tok.describe())
+            coll = self.expression()
+            node = A.ForEach(self.span_from(start), var, coll, A.Block(start.span, []))
+        else:
+            var = self.postfix()
+            if self.tok.kind is K.AS:
+                self.error(M.PARSE_UNSUPPORTED, self.tok, what="declaring the loop variable in 'For'", hint=" (declare it with Dim at the top of the procedure)")
+            self.expect(K.EQ, "'='")
+            first = self.expression()
+            self.expect(K.TO, "'To'")
+            last = self.expression()
+            step = None
+            if self.tok.kind is K.STEP:
+                self.next()
+                step = self.expression()
+            node = A.For(self.span_from(start), var, first, last, step, A.Block(start.span, []))
+        self.end_of_line(node)
+        node.body = self.body("For")
+        if self.tok.kind is K.NEXT:
+            self.next()
+            if self.tok.kind not in _LINE_END:
+                node.next_var = self.postfix()
+                if self.tok.kind is K.COMMA:
+                    self.error(M.PARSE_UNSUPPORTED, self.tok, what="'Next' with several loop variables", hint=" (close each For with its own Next)")
+            node.end_comment = self.end_of_line(None)
+        else:
+            self.unclosed("For", "Next", start)
+        node.span = self.span_from(start)
+        return node
+
+    def while_statement(self) -> A.Stmt | None:
+        start = self.next()
+        cond = self.expression()
+        node = A.While(self.span_from(start), cond, A.Block(start.span, []))
+        self.end_of_line(node)
+        node.body = self.body("While")
+        self.close_end("While", start, node)
+        node.span = self.span_from(start)
+        return node
+
+    def do_statement(self) -> A.Stmt | None:
+        start = self.next()
+        cond: A.Expr | None = None
+        until = False
+        top = False
+        k = self.tok.kind
+        if k is K.WHILE or k is K.UNTIL:
+            self.next()
+            until = k is K.UNTIL
+            top = True
+            cond = self.expression()
+        node = A.DoLoop(self.span_from(start), cond, top, until, A.Block(start.span, []))
+        self.end_of_line(node)
+        node.body = self.body("Do")
+        if self.tok.kind is K.LOOP:
+            loop_tok = self.next()
+            k = self.tok.kind
+            if k is K.WHILE or k is K.UNTIL:
+                self.next()
+                c = self.expression()
+                if top:
+                    self.error(M.PARSE_DO_TWO_CONDITIONS, loop_tok)
+                else:
+                    node.condition = c
+                    node.until = k is K.UNTIL
+            node.end_comment = self.end_of_line(None)
+        else:
+            self.unclosed("Do", "Loop", start)
+        node.span = self.span_from(start)
+        return node
+
+    def select_statement(self) -> A.Stmt | None:
+        start = self.next()  # Select
+        if self.tok.kind is K.CASE:
+            self.next()
+        subject = self.expression()
+        node = A.Select(self.span_from(start), subject, [])
+        self.end_of_line(node)
+        self.open.append("Select")
+        self.nest += 1
+        try:
+            pre = self.block()
+            if pre.statements:
+                self.sink.report(M.PARSE_CASE_OUTSIDE_SELECT, pre.statements[0].span)
+            pending = pre.end_comments  # comments between 'Select' and the first 'Case'
+            seen_else = False
+            while self.tok.kind is K.CASE:
+                case_tok = self.next()
+                clause = self.case_clause(case_tok)
+                if seen_else:
+                    self.sink.report(M.PARSE_EXPECTED, case_tok.span, expected="'End Select' after the 'Case Else' block", found="'Case'")
+                seen_else = seen_else or clause.is_else
+                clause.leading_comments[:0] = pending
+                pending = []
+                node.cases.append(clause)
+            node.end_comments = pending
+        finally:
+            self.nest -= 1
+            self.open.pop()
+        self.close_end("Select", start, node)
+        node.span = self.span_from(start)
+        return node
+
+    def case_clause(self, case_tok: Token) -> A.CaseClause:
+        items: list[A.CaseValue | A.CaseRange | A.CaseIs] = []
+        is_else = False
+        if self.tok.kind is K.ELSE:
+            self.next()
+            is_else = True
+        else:
+            while True:
+                tok = self.tok
+                if tok.kind is K.IS:
+                    self.next()
+                    op = _CASE_IS_OPS.get(self.tok.kind)
+                    if op is None:
+                        self.error(M.PARSE_EXPECTED, self.tok, expected="a comparison operator after 'Case Is'", found=self.tok.describe())
+                        break
+                    self.next()
+                    value = self.expression()
+                    items.append(A.CaseIs(self.span_from(tok), op, value))
+                else:
+                    op = _CASE_IS_OPS.get(tok.kind)
+                    if op is not None and tok.kind is not K.EQ:  # VB shorthand 'Case > 5'
+                        self.next()
+                        value = self.expression()
+                        items.append(A.CaseIs(self.span_from(tok), op, value))
+                    else:
+                        low = self.expression()
+                        if self.tok.kind is K.TO:
+                            self.next()
+                            high = self.expression()
+                            items.append(A.CaseRange(self.span_from(tok), low, high))
+                        else:
+                            items.append(A.CaseValue(low.span, low))
+                if self.tok.kind is K.COMMA:
+                    self.next()
+                    continue
+                break
+        clause = A.CaseClause(self.span_from(case_tok), items, A.Block(case_tok.span, []), is_else)
+        self.end_of_line(clause)
+        clause.body = self.block()
+        return clause
+
+    def try_statement(self) -> A.Stmt | None:
+        start = self.next()  # Try
+        node = A.Try(start.span, A.Block(start.span, []), None, None)
+        self.end_of_line(node)
+        node.body = self.body("Try")
+        while True:
+            tok = self.tok
+            if tok.kind is K.CATCH:
+                self.next()
+                var: str | None = None
+                type_: A.TypeRef | None = None
+                if self.tok.kind is K.IDENT:
+                    var = self.next().text
+                    if self.tok.kind is K.AS:
+                        self.next()
+                        type_ = self.type_ref()
+                    if self.tok.kind is K.IDENT and self.tok.text.lower() == "when":
+                        self.error(M.PARSE_UNSUPPORTED, self.tok, what="'Catch … When'", hint=" (a Catch catches every error)")
+                elif self.tok.kind in _LINE_END:
+                    self.error(M.PARSE_CATCH_NEEDS_VARIABLE, tok)
+                clause = A.CatchClause(self.span_from(tok), var, type_, A.Block(tok.span, []))
+                self.end_of_line(clause)
+                clause.body = self.body("Try")
+                if node.catch is not None:
+                    self.sink.report(M.PARSE_DUPLICATE_CLAUSE, tok.span, clause="Catch")
+                elif node.finally_ is not None:
+                    self.sink.report(M.PARSE_EXPECTED, tok.span, expected="'End Try' after Finally", found="'Catch'")
+                else:
+                    node.catch = clause
+                continue
+            if tok.kind is K.FINALLY:
+                self.next()
+                fin = A.FinallyClause(tok.span, A.Block(tok.span, []))
+                self.end_of_line(fin)
+                fin.body = self.body("Try")
+                if node.finally_ is not None:
+                    self.sink.report(M.PARSE_DUPLICATE_CLAUSE, tok.span, clause="Finally")
+                else:
+                    node.finally_ = fin
+                continue
+            break
+        if node.catch is None and node.finally_ is None:
+            self.sink.report(M.PARSE_EXPECTED, start.span, expected="a Catch or Finally block in this Try", found=self.tok.describe())
+        self.close_end("Try", start, node)
+        node.span = self.span_from(start)
+        return node
+
+    # -- simple statements (do not consume the end of the line)
+
+    def goto_statement(self) -> A.Stmt | None:
+        start = self.next()
+        tok = self.tok
+        if tok.kind is K.IDENT or tok.kind is K.INTEGER:
+            self.next()
+            return A.GoTo(self.span_from(start), tok.text)
+        self.error(M.PARSE_EXPECTED, tok, expected="a label after 'GoTo'", found=tok.describe())
+        return None
+
+    def exit_statement(self) -> A.Stmt | None:
+        start = self.next()
+        kind = _EXIT_KINDS.get(self.tok.kind)
+        if kind is None:
+            self.error(M.PARSE_EXPECTED, self.tok, expected="Sub, Function, Property, For, Do, While, Select or Try after 'Exit'", found=self.tok.describe())
+            return None
+        self.next()
+        return A.Exit(self.span_from(start), kind)
+
+    def return_statement(self) -> A.Stmt | None:
+        start = self.next()
+        value = None if self.tok.kind in _STMT_END else self.expression()
+        return A.Return(self.span_from(start), value)
+
+    def throw_statement(self) -> A.Stmt | None:
+        start = self.next()
+        value = None if self.tok.kind in _STMT_END else self.expression()
+        return A.Throw(self.span_from(start), value)
+
+    def call_statement(self) -> A.Stmt | None:
+        start = self.next()  # Call
+        expr = self.postfix()
+        if isinstance(expr, A.ErrorExpr):
+            return None
+        if not isinstance(expr, (A.Name, A.MemberAccess, A.Invoke)):
+            self.error(M.PARSE_EXPECTED, expr.span, expected="a procedure after 'Call'", found="an expression")
+            return None
+        return A.CallStmt(self.span_from(start), expr, call_keyword=True)
+
+    def redim_statement(self) -> A.Stmt | None:
+        start = self.next()  # ReDim
+        preserve = False
+        tok = self.tok
+        if tok.kind is K.IDENT and tok.text.lower() == "preserve" and self.peek().kind is K.IDENT:
+            self.sink.report(M.PARSE_UNSUPPORTED, tok.span, what="'ReDim Preserve'", hint=" (ReDim reallocates the array with default values)")
+            self.next()
+            preserve = True
+        expr = self.postfix()
+        if isinstance(expr, A.Invoke) and expr.args:
+            return A.ReDim(self.span_from(start), expr.target, expr.args, preserve)
+        if not isinstance(expr, A.ErrorExpr):
+            self.error(M.PARSE_EXPECTED, expr.span, expected="an array with its new bounds, e.g. 'ReDim a(9)'", found=self.tok.describe())
+        return None
+
+    def end_statement(self) -> A.Stmt | None:
+        tok = self.tok
+        nxt = self.peek()
+        if nxt.kind in _LINE_END:
+            self.error(M.PARSE_UNSUPPORTED, tok, what="the 'End' statement", hint=" (use Exit Sub or Controller methods)")
+        else:
+            self.error(M.PARSE_UNSUPPORTED, tok, what=f"'End {nxt.text}'", hint="")
+        return None
+
+    def set_statement(self) -> A.Stmt | None:
+        self.error(M.PARSE_UNSUPPORTED, self.tok, what="'Set' assignment", hint=" (assign object variables with '=')")
+        return None
+
+    def misplaced_keyword(self) -> A.Stmt | None:
+        tok = self.tok
+        self.error(M.PARSE_EXPECTED, tok, expected="a statement", found=tok.describe())
+        return None
+
+    # --------------------------------------------------------------------------- expressions
+
+    def expression(self, min_prec: int = 0) -> A.Expr:
+        """Precedence climbing over :data:`_BINOPS` (spec §3.7), all operators left-associative."""
+        left = self.unary()
+        binops = _BINOPS
+        while True:
+            tok = self.tok
+            info = binops.get(tok.kind)
+            if info is None:
+                if tok.kind is K.IDENT and tok.text.lower() == "isnot" and min_prec <= _P_REL:
+                    self.error(M.PARSE_UNSUPPORTED, tok, what="'IsNot'", hint=" (write 'Not a Is b')")
+                    self.next()
+                    right = self.expression(_P_REL + 1)
+                    span = Span(left.span.start, right.span.end_line, right.span.end_col)
+                    left = A.Unary(span, "Not", A.Binary(span, "Is", left, right))
+                    continue
+                return left
+            prec = info[0]
+            if prec < min_prec:
+                return left
+            self.next()
+            if prec == _P_POW:
+                right = self.pow_operand()
+            else:
+                right = self.expression(prec + 1)
+            left = A.Binary(
+                Span(left.span.start, right.span.end_line, right.span.end_col), info[1], left, right
+            )
+
+    def pow_operand(self) -> A.Expr:
+        """The right operand of ``^``: a postfix expression, optionally negated (``x ^ -1``)."""
+        tok = self.tok
+        if tok.kind is K.MINUS or tok.kind is K.PLUS:
+            self.next()
+            operand = self.pow_operand()
+            return A.Unary(self.span_from(tok), tok.kind.value, operand)
+        return self.postfix()
+
+    def unary(self) -> A.Expr:
+        tok = self.tok
+        k = tok.kind
+        if k is K.MINUS or k is K.PLUS or k is K.NOT:
+            self.depth += 1
+            if self.depth > _MAX_EXPR_DEPTH:
+                self.error(M.PARSE_TOO_DEEP, tok, what="expressions", limit=_MAX_EXPR_DEPTH)
+                self.depth -= 1
+                return A.ErrorExpr(tok.span)
+            self.next()
+            operand = self.expression(_P_UNARY if k is not K.NOT else _P_REL)
+            self.depth -= 1
+            return A.Unary(
+                Span(tok.span.start, operand.span.end_line, operand.span.end_col), k.value, operand
+            )
+        return self.postfix()
+
+    def postfix(self) -> A.Expr:
+        expr = self.primary()
+        while True:
+            k = self.tok.kind
+            if k is K.DOT:
+                self.next()
+                name = self.word("a member name after '.'")
+                if name is None:
+                    return expr
+                expr = A.MemberAccess(
+                    Span(expr.span.start, name.span.end_line, name.span.end_col), expr, name.text
+                )
+            elif k is K.LPAREN:
+                args = self.arguments()
+                expr = A.Invoke(Span(expr.span.start, self.prev.span.end_line, self.prev.span.end_col), expr, args)
+            else:
+                return expr
+
+    def arguments(self) -> list[A.Expr]:
+        """``( [expr {, expr}] )``; the current token is ``(``."""
+        self.next()
+        args: list[A.Expr] = []
+        if self.tok.kind is K.RPAREN:
+            self.next()
+            return args
+        self.depth += 1
+        if self.depth > _MAX_EXPR_DEPTH:
+            self.error(M.PARSE_TOO_DEEP, self.tok, what="expressions", limit=_MAX_EXPR_DEPTH)
+            self.depth -= 1
+            return args
+        while True:
+            if self.tok.kind is K.COMMA or self.tok.kind is K.RPAREN:
+                self.error(M.PARSE_EXPECTED, self.tok, expected="an argument (arguments cannot be omitted)", found=self.tok.describe())
+                break
+            args.append(self.expression())
+            k = self.tok.kind
+            if k is K.COMMA:
+                self.next()
+                continue
+            if k is K.RPAREN:
+                self.next()
+            elif k is K.COLON and self.peek().kind is K.EQ:
+                self.error(M.PARSE_UNSUPPORTED, self.tok, what="named arguments (':=')", hint="")
+            else:
+                self.error(M.PARSE_EXPECTED, self.tok, expected="',' or ')'", found=self.tok.describe())
+            break
+        self.depth -= 1
+        return args
+
+    def primary(self) -> A.Expr:
+        tok = self.tok
+        k = tok.kind
+        if k is K.IDENT:
+            self.next()
+            return A.Name(tok.span, tok.text)
+        if k is K.INTEGER:
+            self.next()
+            return A.IntegerLiteral(tok.span, tok.value, tok.text)  # type: ignore[arg-type]
+        if k is K.STRING:
+            self.next()
+            return A.StringLiteral(tok.span, tok.value)  # type: ignore[arg-type]
+        if k is K.REAL:
+            self.next()
+            return A.RealLiteral(tok.span, tok.value, tok.text)  # type: ignore[arg-type]
+        if k is K.LPAREN:
+            self.depth += 1
+            if self.depth > _MAX_EXPR_DEPTH:
+                self.error(M.PARSE_TOO_DEEP, tok, what="parentheses", limit=_MAX_EXPR_DEPTH)
+                self.depth -= 1
+                return A.ErrorExpr(tok.span)
+            self.next()
+            inner = self.expression()
+            self.expect(K.RPAREN, "')'")
+            self.depth -= 1
+            return inner
+        if k is K.TRUE or k is K.FALSE:
+            self.next()
+            return A.BooleanLiteral(tok.span, k is K.TRUE)
+        if k is K.NOTHING:
+            self.next()
+            return A.NothingLiteral(tok.span)
+        if k is K.ME:
+            self.next()
+            return A.MeExpr(tok.span)
+        if k is K.NEW:
+            self.next()
+            type_ = self.type_ref()
+            if type_ is None:
+                return A.ErrorExpr(tok.span)
+            args = self.arguments() if self.tok.kind is K.LPAREN else None
+            return A.New(self.span_from(tok), type_, args)
+        if k is K.ADDRESSOF:
+            self.next()
+            name = self.ident("a procedure name after 'AddressOf'")
+            if name is None:
+                return A.ErrorExpr(tok.span)
+            target: A.Expr = A.Name(name.span, name.text)
+            while self.tok.kind is K.DOT:
+                self.next()
+                member = self.word("a member name after '.'")
+                if member is None:
+                    break
+                target = A.MemberAccess(self.span_from(name), target, member.text)
+            return A.AddressOf(self.span_from(tok), target)
+        self.error(M.PARSE_EXPECTED_EXPRESSION, tok, found=tok.describe())
+        return A.ErrorExpr(tok.span)
+
+
+def _block_declaration(p: Parser) -> A.Stmt | None:
+    return p._declaration_statement()
+
+
+def _closer_as_statement(p: Parser) -> A.Stmt | None:  # pragma: no cover - closers end blocks first
+    p.error(M.PARSE_EXPECTED, p.tok, expected="a statement", found=p.tok.describe())
+    p.skip_line()
+    return None
+
+
+# Statements that consume their own lines (block statements and declarations).
+_BLOCK_STATEMENTS = {
+    K.IF: Parser.if_statement,
+    K.FOR: Parser.for_statement,
+    K.WHILE: Parser.while_statement,
+    K.DO: Parser.do_statement,
+    K.SELECT: Parser.select_statement,
+    K.TRY: Parser.try_statement,
+    K.DIM: _block_declaration,
+    K.STATIC: _block_declaration,
+    K.CONST: _block_declaration,
+    K.PUBLIC: _block_declaration,
+    K.PRIVATE: _block_declaration,
+    K.SHARED: _block_declaration,
+}
+
+# One-line statements introduced by a keyword.
+_SIMPLE_STATEMENTS = {
+    K.GOTO: Parser.goto_statement,
+    K.EXIT: Parser.exit_statement,
+    K.RETURN: Parser.return_statement,
+    K.THROW: Parser.throw_statement,
+    K.CALL: Parser.call_statement,
+    K.REDIM: Parser.redim_statement,
+    K.END: Parser.end_statement,
+    K.SET: Parser.set_statement,
+    K.GET: Parser.misplaced_keyword,
+    K.THEN: Parser.misplaced_keyword,
+    K.TO: Parser.misplaced_keyword,
+    K.STEP: Parser.misplaced_keyword,
+    K.AS: Parser.misplaced_keyword,
+    K.UNTIL: Parser.misplaced_keyword,
+    K.BYVAL: Parser.misplaced_keyword,
+    K.BYREF: Parser.misplaced_keyword,
+    K.DELEGATE: Parser.misplaced_keyword,
+}
