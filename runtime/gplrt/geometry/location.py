@@ -248,7 +248,7 @@ class Location:
     def X(self, value: Double) -> None:
         self._need_cartesian("X")
         p = self._pose
-        self._pose = p[:9] + (float(value), p[10], p[11])  # type: ignore[assignment]
+        self._pose = p[:9] + (finite(value, "X"), p[10], p[11])  # type: ignore[assignment]
 
     @property
     def Y(self) -> Double:
@@ -261,7 +261,7 @@ class Location:
     def Y(self, value: Double) -> None:
         self._need_cartesian("Y")
         p = self._pose
-        self._pose = p[:10] + (float(value), p[11])  # type: ignore[assignment]
+        self._pose = p[:10] + (finite(value, "Y"), p[11])  # type: ignore[assignment]
 
     @property
     def Z(self) -> Double:
@@ -274,7 +274,7 @@ class Location:
     def Z(self, value: Double) -> None:
         self._need_cartesian("Z")
         p = self._pose
-        self._pose = p[:11] + (float(value),)  # type: ignore[assignment]
+        self._pose = p[:11] + (finite(value, "Z"),)  # type: ignore[assignment]
 
     @property
     def Yaw(self) -> Double:
@@ -333,7 +333,8 @@ class Location:
         """Add X, Y, Z (mm) to the translation of PosWrtRef (parent-frame axes; orientation kept)."""
         self._need_cartesian("XYZInc")
         p = self._pose
-        self._pose = p[:9] + (p[9] + float(X), p[10] + float(Y), p[11] + float(Z))  # type: ignore[assignment]
+        dx, dy, dz = finite(X, "X"), finite(Y, "Y"), finite(Z, "Z")
+        self._pose = p[:9] + (p[9] + dx, p[10] + dy, p[11] + dz)  # type: ignore[assignment]
 
     @staticmethod
     def XYZValue(

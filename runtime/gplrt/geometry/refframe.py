@@ -150,8 +150,8 @@ class RefFrame:
             p = self._cell(p)
         return Location.from_pose(p)
 
-    def Clone(self) -> RefFrame:
-        """A copy of the frame's data (the Loc pointer is shared, like Location.Clone shares RefFrame)."""
+    def copy(self) -> RefFrame:
+        """Python side (GPL documents no RefFrame.Clone): a copy sharing the same Loc object."""
         twin = RefFrame()
         twin.__dict__.update(self.__dict__)
         twin._max, twin._pitch, twin._index = list(self._max), list(self._pitch), list(self._index)
