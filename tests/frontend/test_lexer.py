@@ -1,0 +1,239 @@
+"""Lexer tests: token kinds, values and positions for every lexical rule in spec §1."""
+
+from __future__ import annotations
+
+import pytest
+
+from gpl2py.diagnostics import DiagnosticSink, Severity
+from gpl2py.source import SourceFile
+from gpl2py.syntax.lexer import tokenize
+from gpl2py.syntax.tokens import Token, TokenKind as K
+
+
+def lex(text: str) -> tuple[list[Token], DiagnosticSink]:
+    sink = DiagnosticSink()
+    return tokenize(SourceFile("t.gpl", text), sink), sink
+
+
+def kinds(text: str) -> list[K]:
+    toks, _ = lex(text)
+    return [t.kind for t in toks]
+
+
+def codes(sink: DiagnosticSink) -> list[str]:
+    return [d.code for d in sink]
+
+
+def test_keywords_are_case_insensitive_and_keep_their_spelling() -> None:
+    toks, sink = lex("dIM x aS InTeGeR\n")
+    assert [t.kind for t in toks] == [K.DIM, K.IDENT, K.AS, K.IDENT, K.NEWLINE, K.EOF]
+    assert toks[0].text == "dIM"
+    assert len(sink) == 0
+
+
+def test_words_the_spec_keeps_usable_are_identifiers() -> None:
+    # spec §1.8: these appear as variable names in the manual's examples
+    words = "value str out inp err file send recv line input output bool node name count mode"
+    toks, _ = lex(words + " GoSub With Enum Optional Each Preserve IsNot\n")
+    assert all(t.kind is K.IDENT for t in toks[:-2])
+
+
+def test_every_token_carries_file_line_and_column() -> None:
+    toks, _ = lex("Module M\n\tDim  x As Integer\n")
+    dim = toks[3]
+    assert dim.kind is K.DIM
+    assert (dim.span.file, dim.span.line, dim.span.col) == ("t.gpl", 2, 2)  # a tab is one column
+    x = toks[4]
+    assert (x.line, x.col, x.span.end_col) == (2, 7, 8)
+
+
+def test_crlf_and_lf_give_identical_tokens() -> None:
+    a, _ = lex("x = 1\r\ny = 2\r\n")
+    b, _ = lex("x = 1\ny = 2\n")
+    assert [(t.kind, t.text, t.line, t.col) for t in a] == [(t.kind, t.text, t.line, t.col) for t in b]
+
+
+def test_blank_lines_produce_no_newline_tokens_and_last_line_needs_no_break() -> None:
+    assert kinds("\n\n  \nx\n\n") == [K.IDENT, K.NEWLINE, K.EOF]
+    assert kinds("x") == [K.IDENT, K.NEWLINE, K.EOF]
+    assert kinds("") == [K.EOF]
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "value"),
+    [
+        ("100", K.INTEGER, 100),
+        ("2.34", K.REAL, 2.34),
+        (".9", K.REAL, 0.9),
+        ("2.", K.REAL, 2.0),
+        ("1E+32", K.REAL, 1e32),
+        ("1.5e-3", K.REAL, 0.0015),
+        ("&H20", K.INTEGER, 32),
+        ("&h1000", K.INTEGER, 4096),
+        ("&HFFFFFFFF", K.INTEGER, -1),
+        ("&H7FFFFFFF", K.INTEGER, 2147483647),
+        ("&O17", K.INTEGER, 15),
+        ('"Joe\'s"', K.STRING, "Joe's"),
+        ('"Tom said, ""Hello world"""', K.STRING, 'Tom said, "Hello world"'),
+        ('""""', K.STRING, '"'),
+        ('""', K.STRING, ""),
+    ],
+)
+def test_literals(text: str, kind: K, value: object) -> None:
+    toks, sink = lex(f"x = {text}\n")
+    assert toks[2].kind is kind
+    assert toks[2].value == value
+    assert toks[2].text == text
+    assert len(sink) == 0
+
+
+def test_head_trap_lexes_a_hex_literal() -> None:
+    # spec §1.9: 'String &HEAD' is String followed by the hex literal &HEAD (0xEAD), not & HEAD
+    toks, _ = lex("s = String &HEAD\n")
+    assert [t.kind for t in toks[2:4]] == [K.IDENT, K.INTEGER]
+    assert toks[3].text == "&HEAD" and toks[3].value == 0xEAD
+    toks, _ = lex("s = String &O2\n")
+    assert toks[3].value == 2
+    toks, _ = lex("s = a & HEAD\n")  # with a space it is concatenation
+    assert [t.kind for t in toks[2:5]] == [K.IDENT, K.AMP, K.IDENT]
+    toks, _ = lex("s = a &Hxyz\n")  # no hex digit after &H: '&' then a name
+    assert [t.kind for t in toks[2:5]] == [K.IDENT, K.AMP, K.IDENT]
+
+
+def test_hex_literal_out_of_range_is_reported() -> None:
+    _, sink = lex("x = &H100000000\n")
+    assert codes(sink) == ["GPL1007"]
+
+
+def test_literal_suffix_is_reported() -> None:
+    _, sink = lex("x = 725L\n")
+    assert codes(sink) == ["GPL1006"]
+    assert sink.errors[0].span.col == 5
+
+
+@pytest.mark.parametrize(
+    "op",
+    ["+", "-", "*", "/", "\\", "^", "&", "=", "<>", "<", ">", "<=", ">=", "<<", ">>",
+     "^=", "*=", "/=", "\\=", "+=", "-=", "<<=", ">>=", "&=", "(", ")", ",", ".", ":"],
+)
+def test_operators_longest_match(op: str) -> None:
+    toks, sink = lex(f"a {op} b\n")
+    assert toks[1].text == op
+    assert toks[1].kind.value == op
+    assert len(sink) == 0
+
+
+def test_operators_without_spaces() -> None:
+    toks, _ = lex("x<<=y>>=z<>w<=v\n")
+    assert [t.text for t in toks[:-2]] == ["x", "<<=", "y", ">>=", "z", "<>", "w", "<=", "v"]
+
+
+def test_comment_is_a_token_before_newline_and_apostrophe_in_string_is_not() -> None:
+    toks, _ = lex('s1 = "Joe\'s" \' says hi\n')
+    assert [t.kind for t in toks] == [K.IDENT, K.EQ, K.STRING, K.COMMENT, K.NEWLINE, K.EOF]
+    assert toks[3].value == " says hi"
+    assert toks[3].col == 14
+
+
+def test_hash_lines_become_directives_and_conditional_ones_warn() -> None:
+    toks, sink = lex('#Region "x"\n  #End Region\nx = 1\n')
+    assert [t.kind for t in toks[:4]] == [K.DIRECTIVE, K.NEWLINE, K.DIRECTIVE, K.NEWLINE]
+    assert toks[0].value == '#Region "x"'
+    assert len(sink) == 0
+    _, sink = lex("#If DEBUG Then\nx = 1\n#End If\n")
+    assert codes(sink) == ["GPL1008", "GPL1008"]
+    assert all(d.severity is Severity.WARNING for d in sink)
+
+
+def test_hash_in_the_middle_of_a_line_is_an_error() -> None:
+    _, sink = lex("x = 1 # 2\n")
+    assert codes(sink) == ["GPL1010"]
+
+
+def test_continuation_joins_lines_and_tolerates_trailing_blanks() -> None:
+    toks, sink = lex("x = a + _   \n    b\ny = 2\n")
+    assert [t.text for t in toks if t.kind is not K.NEWLINE][:5] == ["x", "=", "a", "+", "b"]
+    assert [t.kind for t in toks].count(K.NEWLINE) == 2
+    b = toks[4]
+    assert (b.line, b.col) == (2, 5)  # tokens keep their physical position
+    assert len(sink) == 0
+
+
+def test_continuation_over_25_lines_is_one_logical_line() -> None:
+    lines = ["x = 1 _"] + ["    + 1 _" for _ in range(24)] + ["    + 1"]
+    toks, sink = lex("\n".join(lines) + "\nz = 0\n")
+    newlines = [t for t in toks if t.kind is K.NEWLINE]
+    assert len(newlines) == 2
+    assert newlines[0].line == 26
+    assert sum(1 for t in toks if t.kind is K.PLUS) == 25
+    assert len(sink) == 0
+
+
+def test_underscore_identifiers_are_not_continuations() -> None:
+    toks, sink = lex("GoTo _exit\n_exit:\nx_ = __a1\n")
+    names = [t.text for t in toks if t.kind is K.IDENT]
+    assert names == ["_exit", "_exit", "x_", "__a1"]
+    assert len(sink) == 0
+
+
+def test_underscore_glued_to_a_token_is_not_a_continuation() -> None:
+    _, sink = lex("x = f(a)_\n+ 1\n")
+    assert codes(sink) == ["GPL1001"]
+
+
+def test_comment_after_continuation_is_a_warning_and_kept() -> None:
+    toks, sink = lex("x = a + _ ' why\n    b ' end\n")
+    assert codes(sink) == ["GPL1005"]
+    assert sink.warnings[0].span.line == 1
+    comments = [t.value for t in toks if t.kind is K.COMMENT]
+    assert comments == [" why", " end"]  # source order, both before the NEWLINE
+    assert [t.kind for t in toks][-4:] == [K.COMMENT, K.COMMENT, K.NEWLINE, K.EOF]
+
+
+def test_labels_lex_as_name_or_number_then_colon() -> None:
+    toks, _ = lex("retry:\n    _exit: x = 1\n100: GoTo 100\n")
+    assert [(t.kind, t.text) for t in toks[:2]] == [(K.IDENT, "retry"), (K.COLON, ":")]
+    assert [(t.kind, t.col) for t in toks[3:5]] == [(K.IDENT, 5), (K.COLON, 10)]
+    assert toks[9].kind is K.INTEGER and toks[10].kind is K.COLON
+
+
+def test_string_limits_and_errors() -> None:
+    _, sink = lex('s = "' + "a" * 129 + '"\n')
+    assert codes(sink) == ["GPL1003"] and sink.warnings
+    _, sink = lex('s = "' + "a" * 128 + '"\n')
+    assert len(sink) == 0
+    toks, sink = lex('s = "abc\nx = 1\n')
+    assert codes(sink) == ["GPL1002"]
+    assert toks[2].kind is K.STRING and toks[3].kind is K.NEWLINE  # recovers on the next line
+    _, sink = lex('s = "café"\n')
+    assert codes(sink) == ["GPL1004"]
+
+
+def test_non_ascii_outside_comments_is_an_error_inside_comments_fine() -> None:
+    _, sink = lex("x = 1 ' café – ok\n")
+    assert len(sink) == 0
+    _, sink = lex("x = a – b\n")  # en dash from a PDF
+    assert codes(sink) == ["GPL1001"]
+    assert (sink.errors[0].span.line, sink.errors[0].span.col) == (1, 7)
+    _, sink = lex("dïm = 1\n")
+    assert codes(sink) == ["GPL1001"]
+
+
+def test_a_run_of_invalid_characters_is_one_diagnostic() -> None:
+    _, sink = lex("x = ☃☃☃ + 1\n")
+    assert codes(sink) == ["GPL1001"]
+
+
+def test_long_identifier_is_reported() -> None:
+    _, sink = lex("x" * 129 + " = 1\n")
+    assert codes(sink) == ["GPL1009"]
+    _, sink = lex("x" * 128 + " = 1\n")
+    assert len(sink) == 0
+
+
+def test_tokens_have_no_gaps_on_a_realistic_line() -> None:
+    line = "        If (ep.IPAddress<>rem_ep.IPAddress) Or _"
+    toks, _ = lex(line + "\n            (ep.Port<>rem_ep.Port) Then\n")
+    texts = [t.text for t in toks if t.kind not in (K.NEWLINE, K.EOF)]
+    assert "".join(texts[:11]) == "If(ep.IPAddress<>rem_ep.IPAddress)Or"
+    assert toks[-3].kind is K.THEN and toks[-3].line == 2
