@@ -288,6 +288,8 @@ class Scheduler:
 
     def _service_requests(self, ctx: ThreadCtx) -> None:
         """At a scheduling point: die if aborted, park while suspended."""
+        if ctx.saved_budget is not None:  # the slice forced to 0 by a request: give it back
+            ctx.budget, ctx.saved_budget = ctx.saved_budget, None
         while True:
             if ctx.abort_requested:
                 raise ThreadAbort()
@@ -344,6 +346,7 @@ class VirtualScheduler(Scheduler):
         self.clock = clock if clock is not None else VirtualClock()
         self.slice_checkpoints = slice_checkpoints
         self.slice_time = slice_time
+        self.yield_cost = max(1, slice_checkpoints // 10)
         self._ready: deque[ThreadCtx] = deque()
         self._running: ThreadCtx | None = None
         self._timers: list[tuple[float, int, ThreadCtx | None, int, Callable[[], None] | None]] = []
@@ -485,9 +488,18 @@ class VirtualScheduler(Scheduler):
             self._changed.notify_all()
 
     def yield_now(self) -> None:
+        """``Thread.Sleep(0)``: costs ``yield_cost`` checkpoints of the slice, then yields.
+
+        Charging it keeps EX-31's ``While TestAndSet(...) <> 0 : Thread.Sleep(0)`` spin cheap in
+        wall time and lets time pass for a thread that only yields.
+        """
         with self.adopted() as ctx:
             self._service_requests(ctx)
-            self._yield(ctx)
+            ctx.budget -= self.yield_cost
+            if ctx.budget <= 0:
+                self._end_slice(ctx)
+            else:
+                self._yield(ctx)
             self._service_requests(ctx)
 
     def _yield(self, ctx: ThreadCtx) -> None:
@@ -501,15 +513,18 @@ class VirtualScheduler(Scheduler):
 
     def _checkpoint_slow(self, ctx: ThreadCtx) -> None:
         if ctx.saved_budget is not None:  # forced by a Suspend/Abort request, not a used-up slice
-            ctx.budget, ctx.saved_budget = ctx.saved_budget, None
             self._service_requests(ctx)
             return
+        self._end_slice(ctx)
+        self._service_requests(ctx)
+
+    def _end_slice(self, ctx: ThreadCtx) -> None:
+        """The slice is used up: charge its virtual time, go to the back of the queue."""
         ctx.budget = self.slice_checkpoints
         with self._lock:
             self.clock.advance_by(self.slice_time)
             self._fire_due()
         self._yield(ctx)
-        self._service_requests(ctx)
 
     def call_at(self, t: float, callback: Callable[[], None]) -> None:
         with self._lock:
