@@ -27,6 +27,11 @@ Decisions where the manuals are silent (documented per the team rules):
 * A chain of frames that loops back on itself is GPL error -770 *Reference frame undefined data*.
 * ``XYZInc`` adds to X, Y, Z of PosWrtRef, i.e. in the axes of the parent frame.
 * ``Here3(p0, px, pxy)``: origin p0, +X towards px, pxy in the X-Y plane on the +Y side.
+* No arithmetic operators: the manuals define none on Locations (composition is only ``Mul``,
+  inversion only ``Inverse``; gpl-classes.md §5.2), so ``loc1 * loc2`` is deliberately a Python
+  TypeError that the transpiler's type check reports before run time.
+* ``Config`` is stored as given; the kinematics provider interprets the bits (contradictory pairs
+  such as Righty|Lefty are its business, the controller's behaviour being unconfirmed).
 """
 
 from __future__ import annotations
