@@ -164,3 +164,10 @@ def test_cstr_round_trips_to_15_digits(x: float) -> None:
     text = CStr(x)
     back = float(text)
     assert back == float("%.15g" % x)
+
+
+def test_nothing_or_object_as_number() -> None:
+    from gplrt.lang.conversions import to_number
+
+    assert code_of(to_number, None) == -782
+    assert code_of(to_number, object()) == -202

@@ -41,7 +41,7 @@ import struct
 from collections.abc import Callable
 from typing import Any, Final
 
-from gplrt.lang.errors import ARITHMETIC_OVERFLOW, GplException
+from gplrt.lang.errors import ARITHMETIC_OVERFLOW, INVALID_ARGUMENT, NOTHING_VALUE, GplException
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 
 INVALID_NUMBER_FORMAT: Final = -717
@@ -108,7 +108,8 @@ def parse_number(text: str) -> float | int:
 def to_number(x: Any) -> float | int:
     """``x`` as a GPL number: Booleans become -1/0, Strings are parsed (§4.2 rules 6, 9).
 
-    Ints and floats are returned unchanged; anything else (an object, Nothing) is -202.
+    Ints and floats are returned unchanged; Nothing is -782 Object value is Nothing and any other
+    object -202 Invalid argument.
     """
     t = type(x)
     if t is float or t is int:
@@ -121,7 +122,9 @@ def to_number(x: Any) -> float | int:
         return int(x)
     if isinstance(x, numbers.Real):
         return float(x)
-    raise GplException(-202, detail=f"a number is required, not {_describe(x)}")
+    if x is None:
+        raise GplException(NOTHING_VALUE, detail="Nothing where a number is required")
+    raise GplException(INVALID_ARGUMENT, detail=f"a number is required, not {_describe(x)}")
 
 
 def bool_num(b: bool) -> int:
@@ -304,12 +307,12 @@ def to_string(x: Any) -> str:
     if t is bool:
         return "True" if x else "False"
     if x is None:
-        raise GplException(-782, detail="Nothing cannot be converted to a String")
+        raise GplException(NOTHING_VALUE, detail="Nothing cannot be converted to a String")
     if isinstance(x, float):
         return _format_real(float(x), "%.15g")
     if isinstance(x, int):
         return str(int(x))
-    raise GplException(-202, detail=f"a {_describe(x)} cannot be converted to a String")
+    raise GplException(INVALID_ARGUMENT, detail=f"a {_describe(x)} cannot be converted to a String")
 
 
 def to_string_single(x: Any) -> str:
