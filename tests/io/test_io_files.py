@@ -176,7 +176,9 @@ def test_file_shared_members(flash: FlashRoot) -> None:
         File.Copy("/flash/a/f1", "/flash/a/f2")
     assert code_of(exc) == -510
     File.Copy("/flash/a/f1", "/flash/a/f2", True)
-    assert list(File.GetFiles("/flash/a")) == ["f1", "f2"]
+    StreamWriter("/flash/a/z.tmp").Close()
+    assert list(File.GetFiles("/flash/a")) == ["f1", "f2", "z.tmp"]
+    File.DeleteFile("/flash/a/z.tmp")
     with pytest.raises(GplException) as exc:
         File.DeleteDirectory("/flash/a/b")
     assert code_of(exc) == -202  # not empty

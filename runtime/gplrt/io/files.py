@@ -184,7 +184,7 @@ class File:
             raise GplException(FILE_NOT_FOUND, detail=path)
         if not cp.host.is_dir():
             raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a directory")
-        return sorted(p for p in cp.host.iterdir() if not p.name.endswith(".tmp") or p.is_dir())
+        return sorted(p for p in cp.host.iterdir() if not p.name.startswith("."))  # no controller name starts with "."
 
 
 class _SerialSource:

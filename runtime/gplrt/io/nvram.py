@@ -125,7 +125,7 @@ class NvramFile:
         for record in self.records:
             out.append(len(record))
             out += record
-        tmp = host.with_name(host.name + ".tmp")
+        tmp = host.with_name("." + host.name + ".new")  # a leading dot: never a controller name
         tmp.write_bytes(bytes(out))
         tmp.replace(host)  # atomic, like the controller's record writes
 

@@ -133,6 +133,7 @@ class IPEndPoint:
         self._port = port
 
     def Clone(self) -> IPEndPoint:
+        """[P] An independent copy ("many classes" have Clone, D0:596-637)."""
         return IPEndPoint(String(self._ip), Integer(self._port))
 
     def _local(self) -> tuple[str, int]:
@@ -160,7 +161,9 @@ class Socket:
     """A TCP connection or UDP endpoint.  Not useful to create with ``New`` (D0:3057-3061):
     obtain one from ``TcpClient.Client``, ``TcpListener.AcceptSocket`` or ``UdpClient.Client``."""
 
-    def __init__(self, sock: _socket.socket | None = None, *, kind: int = _socket.SOCK_STREAM) -> None:
+    def __init__(self, *, _sock: _socket.socket | None = None, _kind: int = _socket.SOCK_STREAM) -> None:
+        # Keyword-only, underscored: Python-side plumbing, not GPL constructor arguments.
+        sock, kind = _sock, _kind
         self._sock = sock if sock is not None else _socket.socket(_socket.AF_INET, kind)
         self._kind = self._sock.type
         self._closed = False
@@ -381,7 +384,7 @@ class TcpClient:
     """``New TcpClient([ep])``: a TCP client, connected immediately when ``ep`` is given."""
 
     def __init__(self, remote_endpoint: IPEndPoint | None = None) -> None:
-        self._socket = Socket(kind=_socket.SOCK_STREAM)
+        self._socket = Socket(_kind=_socket.SOCK_STREAM)
         if remote_endpoint is not None:
             self._socket.Connect(remote_endpoint)
 
@@ -390,7 +393,7 @@ class TcpClient:
         return self._socket
 
     def Connect(self, remote_endpoint: IPEndPoint) -> None:
-        """[P] Same as ``Client.Connect``."""
+        """[P] Same as ``Client.Connect`` (.NET has it; not in the seed manuals)."""
         self._socket.Connect(remote_endpoint)
 
     def Close(self) -> None:
@@ -442,10 +445,10 @@ class TcpListener:
             conn, _ = blocking_call(sock.accept, None)
         except OSError as exc:
             raise _os_error(exc, "accept") from None
-        return Socket(conn, kind=_socket.SOCK_STREAM)
+        return Socket(_sock=conn, _kind=_socket.SOCK_STREAM)
 
     def LocalEndPoint(self) -> IPEndPoint:
-        """[P] The bound endpoint (useful when listening on port 0)."""
+        """[P] The bound endpoint (.NET ``LocalEndpoint``; tells the port chosen for port 0)."""
         return _endpoint(self._listening().getsockname())
 
     def Stop(self) -> None:
@@ -462,7 +465,7 @@ class UdpClient:
     """``New UdpClient([local_ep])``: a UDP endpoint, bound to ``local_ep`` if given (port 0 = any)."""
 
     def __init__(self, local_endpoint: IPEndPoint | None = None) -> None:
-        self._socket = Socket(kind=_socket.SOCK_DGRAM)
+        self._socket = Socket(_kind=_socket.SOCK_DGRAM)
         if local_endpoint is not None:
             address = local_endpoint._local()
             try:

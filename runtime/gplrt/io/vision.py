@@ -110,7 +110,7 @@ def _connect() -> VisionServer:
 class VisResult:
     """``New VisResult``: one result set (normally returned by ``Vision.Result``)."""
 
-    def __init__(self, _data: VisionToolResult | None = None, _process_id: int = 0) -> None:
+    def __init__(self, *, _data: VisionToolResult | None = None, _process_id: int = 0) -> None:
         self._data = _data if _data is not None else VisionToolResult()
         self._process_id = _process_id
 
@@ -223,7 +223,7 @@ class Vision:
         sets = self._tool(str(vision_tool_name))
         if not 1 <= int(index) <= len(sets):
             raise GplException(INVALID_INDEX, detail=f"Result({vision_tool_name!r}, {index}) of {len(sets)}")
-        return VisResult(sets[int(index) - 1], self._process_id)
+        return VisResult(_data=sets[int(index) - 1], _process_id=self._process_id)
 
     def ToolProperty(self, tool: String, prop: String) -> String:
         """A tool property (or a ``"system"`` property) of the vision server."""
