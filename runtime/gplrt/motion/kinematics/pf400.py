@@ -129,12 +129,17 @@ class Pf400Model(RobotModel):
             raise GplException(POSITION_TOO_FAR, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
         if rho < abs(l1 - l2) - _REACH_SLACK:
             raise GplException(POSITION_TOO_CLOSE, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
-        c3 = max(-1.0, min(1.0, (rho2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)))
         righty = preference(bits, GPL_RIGHTY, GPL_LEFTY)
         if righty is None:
-            righty = math.fmod(current[i["elbow"]], TWO_PI) % TWO_PI < math.pi
-        s3 = math.sqrt(1.0 - c3 * c3) * (1.0 if righty else -1.0)
-        j3 = math.atan2(s3, c3) % TWO_PI
+            righty = current[i["elbow"]] % TWO_PI < math.pi
+        # Half-angle form of the law of cosines: tan(J3/2) = √((L−ρ)(L+ρ) / ((ρ−D)(ρ+D))), L = l1 + l2,
+        # D = |l1 − l2|.  It keeps full precision near the stretched and folded poses, where
+        # acos / √(1 − c²) lose half the digits.
+        big, small = l1 + l2, abs(l1 - l2)
+        elbow = 2.0 * math.atan2(math.sqrt(max(0.0, (big - rho) * (big + rho))),
+                                 math.sqrt(max(0.0, (rho - small) * (rho + small))))
+        j3 = elbow if righty else TWO_PI - elbow
+        s3, c3 = math.sin(j3), math.cos(j3)
         j2 = wrap_pi(math.atan2(p[1], p[0]) - math.atan2(l2 * s3, l1 + l2 * c3))
         q[i["z"]] = p[2]
         q[i["shoulder"]] = self._unwind(i["shoulder"], j2, current)
