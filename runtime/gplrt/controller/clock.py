@@ -34,30 +34,49 @@ class Clock(Protocol):
         """Current time in seconds."""
         ...
 
+    def reached(self, t: float) -> bool:
+        """Whether time ``t`` has come (the one comparison every wait loop uses)."""
+        ...
+
     def real_seconds(self, dt: float) -> float:
         """Wall-clock seconds that ``dt`` clock seconds last (0 for a virtual clock)."""
         ...
 
 
+def to_ns(t: float) -> int:
+    """Seconds to whole nanoseconds: virtual time is an integer, so sums of sleeps are exact."""
+    return round(t * 1e9)
+
+
 class VirtualClock:
-    """Time that moves only when the scheduler moves it: deterministic and as fast as possible."""
+    """Time that moves only when the scheduler moves it: deterministic and as fast as possible.
+
+    Kept as integer nanoseconds: ``1.0 + 200 × 0.01`` s of sleeps lands exactly on 3.0 s, where a
+    rule scheduled for 3.0 s also fires, instead of one float ulp before it.
+    """
 
     def __init__(self, start: float = 0.0) -> None:
-        self._t = float(start)
+        self.ns = to_ns(start)
 
     def now(self) -> float:
-        return self._t
+        return self.ns / 1e9
+
+    def reached(self, t: float) -> bool:
+        return self.ns >= to_ns(t)
 
     def real_seconds(self, dt: float) -> float:
         return 0.0
 
     def advance_to(self, t: float) -> None:
         """Move time forward to ``t`` (never backwards: a stale deadline leaves time unchanged)."""
-        if t > self._t:
-            self._t = float(t)
+        self.advance_to_ns(to_ns(t))
+
+    def advance_to_ns(self, ns: int) -> None:
+        if ns > self.ns:
+            self.ns = ns
 
     def advance_by(self, dt: float) -> None:
-        self.advance_to(self._t + dt)
+        self.advance_to_ns(self.ns + to_ns(dt))
 
 
 class RealClock:
@@ -72,6 +91,9 @@ class RealClock:
 
     def now(self) -> float:
         return self._origin + (time.monotonic() - self._origin_real) * self.speed
+
+    def reached(self, t: float) -> bool:
+        return self.now() >= t
 
     def real_seconds(self, dt: float) -> float:
         return max(0.0, dt) / self.speed

@@ -24,8 +24,9 @@ silent:
 * ``ShowDialog(buttons, prompt, ByRef button)`` — answered by ``ControllerState.dialog_answers``
   (scripted, 1-based button positions, consumed in order) or ``ControllerState.dialog_handler``;
   with neither, it raises -204 *Not implemented* naming the prompt, rather than hanging.
-* ``PDb``/``PDbNum`` — read ``Simulation.pdb`` when set: an object with ``get(data_id, unit,
-  unit2, index)`` and ``set(data_id, unit, unit2, index, value)``; otherwise -204.
+* ``PDb``/``PDbNum`` — served by ``Simulation.pdb`` when set (a
+  ``gplrt.controller.pdb.ParameterDatabase``: ``pdb_text``/``set_pdb_text``/``pdb_num``/
+  ``set_pdb_num``); with no database loaded they raise -204.
 * ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not emulated: -204 with a detail.
 """
 
@@ -188,29 +189,30 @@ class _ControllerClass:
     # -- parameter database ------------------------------------------------------------------------
 
     def PDb(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 0) -> String:  # type: ignore[assignment]
-        return str(_pdb().get(int(data_id), int(unit), int(unit2), int(array_index)))  # type: ignore[return-value]
+        return _pdb().pdb_text(int(data_id), int(unit), int(unit2), int(array_index))  # type: ignore[no-any-return]
 
     def set_PDb(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDb(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
-        unit, unit2, index = _pdb_args(rest[:-1], (1, 1, 0))
-        _pdb().set(int(data_id), int(unit), int(unit2), int(index), str(rest[-1]))
+        unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 0, 0))
+        _pdb().set_pdb_text(str(rest[-1]), int(data_id), unit, unit2, index, key)
 
     def PDbNum(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 1) -> Double:  # type: ignore[assignment]
-        return float(_pdb().get(int(data_id), int(unit), int(unit2), int(array_index)))  # type: ignore[return-value]
+        return float(_pdb().pdb_num(int(data_id), int(unit), int(unit2), int(array_index)))  # type: ignore[return-value]
 
     def set_PDbNum(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
-        unit, unit2, index = _pdb_args(rest[:-1], (1, 1, 1))
-        _pdb().set(int(data_id), int(unit), int(unit2), int(index), float(rest[-1]))
+        unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 1, 0))
+        _pdb().set_pdb_num(float(rest[-1]), int(data_id), unit, unit2, index, key)
 
 
-def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int]) -> tuple[int, int, int]:
-    """unit, unit2, array_index from the optional arguments (a trailing ``key`` is ignored)."""
-    merged = [int(v) for v in given[:3]] + list(defaults[len(given[:3]) :])
-    return merged[0], merged[1], merged[2]
+def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tuple[int, int, int, int]:
+    """unit, unit2, array_index, key from the optional arguments that were given."""
+    merged = [int(v) for v in given[:4]] + list(defaults[len(given[:4]) :])
+    return merged[0], merged[1], merged[2], merged[3]
 
 
 def _pdb() -> Any:
+    """The session's parameter database (``gplrt.controller.pdb.ParameterDatabase``), if loaded."""
     pdb = _sim().pdb
     if pdb is None:
         raise GplException(NOT_IMPLEMENTED, detail="no parameter database loaded in this simulation")

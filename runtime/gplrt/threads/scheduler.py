@@ -49,7 +49,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator
 
-from gplrt.controller.clock import RealClock, VirtualClock
+from gplrt.controller.clock import RealClock, VirtualClock, to_ns
 
 
 class ThreadAbort(BaseException):
@@ -242,7 +242,7 @@ class Scheduler:
     def sleep_until(self, t: float) -> None:
         with self.adopted() as ctx:
             ctx.waiting_on = "sleep"
-            while self.clock.now() < t:
+            while not self.clock.reached(t):
                 self.wait(None, t)
 
     def wait(self, queue: WaitQueue | None, deadline: float | None) -> bool:
@@ -349,10 +349,11 @@ class VirtualScheduler(Scheduler):
         self.yield_cost = max(1, slice_checkpoints // 10)
         self._ready: deque[ThreadCtx] = deque()
         self._running: ThreadCtx | None = None
-        self._timers: list[tuple[float, int, ThreadCtx | None, int, Callable[[], None] | None]] = []
+        # (deadline ns, sequence, waiting thread, its wait id, or a callback): a min-heap
+        self._timers: list[tuple[int, int, ThreadCtx | None, int, Callable[[], None] | None]] = []
         self._external = 0
         self._idle_real: float | None = None  # monotonic() when the token went idle
-        self._idle_virtual = 0.0
+        self._idle_virtual = 0  # ns
         self._pacer_gen = 0
         self._in_dispatch = False
 
@@ -367,7 +368,7 @@ class VirtualScheduler(Scheduler):
             self._dispatch()
 
     def _fire_due(self) -> None:
-        t_now = self.clock.now()
+        t_now = self.clock.ns
         while self._timers and self._timers[0][0] <= t_now:
             _, _, ctx, wid, callback = heapq.heappop(self._timers)
             if callback is not None:
@@ -375,7 +376,8 @@ class VirtualScheduler(Scheduler):
             elif ctx is not None and ctx.wait_id == wid and ctx.phase == Phase.BLOCKED:
                 self._wake(ctx, timed_out=True)
 
-    def _next_deadline(self) -> float | None:
+    def _next_deadline(self) -> int | None:
+        """Earliest live deadline in ns (stale entries are dropped on the way)."""
         while self._timers:
             _, _, ctx, wid, callback = self._timers[0]
             if callback is not None or (ctx is not None and ctx.wait_id == wid and ctx.phase == Phase.BLOCKED):
@@ -387,11 +389,11 @@ class VirtualScheduler(Scheduler):
         """After an idle spell with external waiters, virtual time has run at real-time pace."""
         if self._idle_real is not None:
             elapsed = time.monotonic() - self._idle_real
-            target = self._idle_virtual + elapsed
+            target = self._idle_virtual + to_ns(elapsed)
             nd = self._next_deadline()
             if nd is not None:
                 target = min(target, nd)
-            self.clock.advance_to(target)
+            self.clock.advance_to_ns(target)
             self._idle_real = None
             self._fire_due()
 
@@ -411,7 +413,7 @@ class VirtualScheduler(Scheduler):
                 if nd is None or self._external > 0 or not self.live:
                     self._go_idle(nd)
                     return
-                self.clock.advance_to(nd)
+                self.clock.advance_to_ns(nd)
                 self._fire_due()
             nxt = self._ready.popleft()
             nxt.phase = Phase.RUNNING
@@ -420,27 +422,27 @@ class VirtualScheduler(Scheduler):
         finally:
             self._in_dispatch = False
 
-    def _go_idle(self, next_deadline: float | None) -> None:
+    def _go_idle(self, next_deadline: int | None) -> None:
         self._running = None
         # Only external waits make idle time count: otherwise a stalled program stays frozen.
         if self._external > 0 and self._idle_real is None:
             self._idle_real = time.monotonic()
-            self._idle_virtual = self.clock.now()
+            self._idle_virtual = self.clock.ns
         self._pacer_gen += 1
         if next_deadline is not None and self._external > 0:
             gen = self._pacer_gen
-            delay = max(0.0, next_deadline - self.clock.now())
+            delay = max(0.0, (next_deadline - self.clock.ns) / 1e9)
             timer = threading.Timer(delay, self._pacer_fire, args=(gen, next_deadline))
             timer.daemon = True
             timer.start()
         self._changed.notify_all()
 
-    def _pacer_fire(self, gen: int, deadline: float) -> None:
+    def _pacer_fire(self, gen: int, deadline: int) -> None:
         with self._lock:
             if gen != self._pacer_gen or self._running is not None:
                 return
             self._idle_real = None
-            self.clock.advance_to(deadline)
+            self.clock.advance_to_ns(deadline)
             self._dispatch()
 
     def _switch_away(self, ctx: ThreadCtx) -> None:
@@ -465,7 +467,7 @@ class VirtualScheduler(Scheduler):
             if queue is not None:
                 queue.waiters.append((ctx, ctx.wait_id))
             if deadline is not None:
-                heapq.heappush(self._timers, (deadline, next(self._seq), ctx, ctx.wait_id, None))
+                heapq.heappush(self._timers, (to_ns(deadline), next(self._seq), ctx, ctx.wait_id, None))
             self._switch_away(ctx)
         self._await_token(ctx)
         if queue is not None:
@@ -528,10 +530,10 @@ class VirtualScheduler(Scheduler):
 
     def call_at(self, t: float, callback: Callable[[], None]) -> None:
         with self._lock:
-            if t <= self.clock.now():
+            if self.clock.reached(t):
                 callback()
                 return
-            heapq.heappush(self._timers, (t, next(self._seq), None, 0, callback))
+            heapq.heappush(self._timers, (to_ns(t), next(self._seq), None, 0, callback))
             if self._running is None and not self._in_dispatch:
                 self._dispatch()  # idle: jump to it now, or re-arm the real-time pacer
 
@@ -628,7 +630,7 @@ class RealScheduler(Scheduler):
                 time.sleep(delay)
             return
         ctx.waiting_on = "sleep"
-        while self.clock.now() < t:
+        while not self.clock.reached(t):
             self.wait(None, t)
 
     def call_at(self, t: float, callback: Callable[[], None]) -> None:

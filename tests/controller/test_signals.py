@@ -1,0 +1,129 @@
+"""Signal.DIO / Signal.AIO on the simulated I/O map: ranges, rules on the clock, output trace."""
+
+from __future__ import annotations
+
+import pytest
+
+from gplrt.controller.services import Controller
+from gplrt.controller.signals import Signal, SignalChange, SignalMap
+from gplrt.lang.errors import GplException
+from gplrt.sim import Simulation
+from gplrt.threads import Thread, checkpoint
+
+
+def test_ex12_read_the_first_digital_signal(vsim: Simulation) -> None:
+    signal_state = Signal.DIO(1)  # EX-12
+    assert signal_state is False
+    Signal.set_DIO(1, True)
+    assert Signal.DIO(1) is True
+
+
+def test_writing_an_input_is_refused_with_1519(vsim: Simulation) -> None:
+    with pytest.raises(GplException) as info:
+        Signal.set_DIO(10001, True)
+    assert info.value.ErrorCode == -1519
+    with pytest.raises(GplException) as info:
+        Signal.set_AIO(10001, 2.5)
+    assert info.value.ErrorCode == -1519
+    assert vsim.io.trace == []
+
+
+@pytest.mark.parametrize(("signal", "code"), [(0, -1517), (65, -1518), (10065, -1518), (30000, -1518)])
+def test_undefined_and_invalid_signal_numbers(vsim: Simulation, signal: int, code: int) -> None:
+    with pytest.raises(GplException) as info:
+        Signal.DIO(signal)
+    assert info.value.ErrorCode == code
+
+
+def test_soft_signals_are_read_write_and_negative_numbers_invert(vsim: Simulation) -> None:
+    Signal.set_DIO(20001, True)
+    assert Signal.DIO(20001) is True
+    assert Signal.DIO(-20001) is False
+    Signal.set_DIO(-2, False)  # inverted write: output 2 goes on
+    assert Signal.DIO(2) is True
+    assert Signal.DIO(-10003) is True  # input 10003 is off
+
+
+def test_analog_channels(vsim: Simulation) -> None:
+    Signal.set_AIO(3, 4.25)
+    assert Signal.AIO(3) == 4.25
+    vsim.io.set_analog_input(10002, -1.5)
+    assert Signal.AIO(10002) == -1.5
+    assert [(c.kind, c.signal, c.value, c.source) for c in vsim.io.trace] == [
+        ("AIO", 3, 4.25, "gpl"),
+        ("AIO", 10002, -1.5, "sim"),
+    ]
+
+
+def test_rule_fires_at_the_right_virtual_time_and_trace_is_stamped(vsim: Simulation) -> None:
+    """'DIO 10001 goes high 2 s after output 1 goes high'; the program waits for it by polling."""
+    vsim.io.when_output(1, True).set_input(10001, True, after=2.0)
+    vsim.io.when_output(1, False).set_input(10001, False, after=0.5)
+    seen: list[float] = []
+
+    def main() -> None:
+        Thread.Sleep(1000)
+        Signal.set_DIO(1, True)  # at 1.0
+        t0 = Controller.Timer(1)
+        while not Signal.DIO(10001):
+            Thread.Sleep(10)
+        seen.append(Controller.Timer(1) - t0)
+        Signal.set_DIO(1, False)
+        while Signal.DIO(10001):
+            Thread.Sleep(0)
+            checkpoint()
+        seen.append(Controller.Timer(1))
+
+    vsim.run_main(main)
+    assert seen[0] == 2.0
+    assert 3.5 <= seen[1] < 3.5 + 0.001 * 2  # the off edge, observed by a Sleep(0) spin
+    assert vsim.io.trace == [
+        SignalChange(1.0, "DIO", 1, True, "gpl"),
+        SignalChange(3.0, "DIO", 10001, True, "sim"),
+        SignalChange(3.0, "DIO", 1, False, "gpl"),
+        SignalChange(3.5, "DIO", 10001, False, "sim"),
+    ]
+    assert [c.signal for c in vsim.io.output_trace()] == [1, 1]
+
+
+def test_rules_wake_a_sleeping_program_in_time_order(vsim: Simulation) -> None:
+    """Several pending actions: time jumps from one to the next, firing in deadline order."""
+    vsim.io.when_output(5).set_input(10005, True, after=3.0).set_input(10004, True, after=1.0)
+    log: list[tuple[float, bool, bool]] = []
+
+    def main() -> None:
+        Signal.set_DIO(5, True)
+        for _ in range(4):
+            Thread.Sleep(1000)
+            log.append((Controller.Timer(1), Signal.DIO(10004), Signal.DIO(10005)))
+
+    vsim.run_main(main)
+    assert log == [(1.0, True, False), (2.0, True, False), (3.0, True, True), (4.0, True, True)]
+
+
+def test_scheduled_inputs_and_listener(vsim: Simulation) -> None:
+    changes: list[SignalChange] = []
+    vsim.io.on_change(changes.append)
+    vsim.io.schedule_input(10010, True, at=0.75)
+    seen: list[float] = []
+
+    def main() -> None:
+        while not Signal.DIO(10010):
+            Thread.Sleep(50)
+        seen.append(Controller.Timer(1))
+
+    vsim.run_main(main)
+    assert seen == [0.75]
+    assert changes == [SignalChange(0.75, "DIO", 10010, True, "sim")]
+
+
+def test_custom_signal_map() -> None:
+    sim = Simulation(capture=True, io=None)
+    from gplrt.controller.signals import IoMap
+
+    sim = Simulation(capture=True, io=IoMap(SignalMap(digital_outputs=range(97, 105), digital_inputs=range(1, 9))))
+    with sim:
+        Signal.set_DIO(97, True)
+        with pytest.raises(GplException) as info:
+            Signal.set_DIO(1, True)
+        assert info.value.ErrorCode == -1519
