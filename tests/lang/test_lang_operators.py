@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from gplrt.lang.conversions import CStr, to_int32
 from gplrt.lang.errors import GplException
@@ -193,3 +195,10 @@ def test_overflow_of_runtime_arithmetic_is_710() -> None:
     assert code_of(mul, 1e308, "10") == -710
     assert code_of(add, 1e308, "1e308") == -710
     assert math.isfinite(add(1e308, "1"))
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.integers(-(2**31), 2**31 - 1), st.integers(-(2**31), 2**31 - 1).filter(lambda b: b != 0))
+def test_integer_fast_paths_match_double_semantics(a: int, b: int) -> None:
+    assert idiv(a, b) == math.trunc(float(a) / float(b))
+    assert mod(a, b) == math.fmod(float(a), float(b))

@@ -118,6 +118,10 @@ def idiv(a: Any, b: Any) -> int:
     Unlike VB.NET the operands are not rounded first (AMB-12: ``7.9 \\ 2`` = 3).  Zero divisor:
     -709.  The result is an int (an integral Double value).
     """
+    if type(a) is int and type(b) is int and b:
+        # Exact integer truncation equals trunc of the Double quotient for these operands.
+        q = abs(a) // abs(b)
+        return q if (a < 0) == (b < 0) else -q
     b = _num(b)
     if b == 0:
         raise _div_zero("\\ by zero")
@@ -133,6 +137,9 @@ def idiv(a: Any, b: Any) -> int:
 def mod(a: Any, b: Any) -> float | int:
     """GPL ``Mod``: the real remainder, sign of the dividend (``13.3 Mod 2`` = 1.3,
     ``-7 Mod 3`` = -1, ``7 Mod -3`` = 1); zero divisor -709 (spec recommendation)."""
+    if type(a) is int and type(b) is int and b:
+        r = abs(a) % abs(b)
+        return -r if a < 0 else r
     a = _num(a)
     b = _num(b)
     if b == 0:
