@@ -31,7 +31,7 @@ import shutil
 import threading
 import zlib
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import BinaryIO
 
 from gplrt.io import nvram
 from gplrt.io._arrays import make_array
@@ -166,12 +166,12 @@ class File:
         cp.host.unlink()
 
     @staticmethod
-    def GetDirectories(path: String) -> Any:
+    def GetDirectories(path: String) -> list[String]:
         """Names (not paths) of the sub-directories of ``path``, sorted, as a String array."""
         return make_array(p.name for p in File._listing(path) if p.is_dir())
 
     @staticmethod
-    def GetFiles(path: String) -> Any:
+    def GetFiles(path: String) -> list[String]:
         """Names (not paths) of the files in ``path``, sorted, as a String array."""
         return make_array(p.name for p in File._listing(path) if p.is_file())
 

@@ -20,6 +20,8 @@ Semantics:
   exception code n; no reply within ``Timeout`` (or no connection within it) -> -1731
   *Modbus/RIO device timeout*; connection refused -> -1702; the slave closed the connection ->
   -1708; a malformed reply -> -1709 *Invalid protocol*; bad count/address/value -> -707.
+* Array parameters are annotated ``list[T]`` (a one-dimensional GPL array of T); values are built
+  by ``gplrt.io._arrays.make_array``.
 * The Modbus/TCP unit identifier is 1 by default (Python-side ``unit_id`` attribute).
 """
 
@@ -75,19 +77,19 @@ class Modbus:
         with self._lock:
             self._disconnect()
 
-    def ReadCoils(self, start: Integer, number: Integer, value_array: Ref[Any]) -> None:
+    def ReadCoils(self, start: Integer, number: Integer, value_array: Ref[list[Boolean]]) -> None:
         """FC1: ``number`` coils from ``start`` into a Boolean array (element 0 = ``start``)."""
         value_array.set(make_array(self._read_bits(1, start, number)))
 
-    def ReadDiscreteInputs(self, start: Integer, number: Integer, value_array: Ref[Any]) -> None:
+    def ReadDiscreteInputs(self, start: Integer, number: Integer, value_array: Ref[list[Boolean]]) -> None:
         """FC2: discrete inputs into a Boolean array."""
         value_array.set(make_array(self._read_bits(2, start, number)))
 
-    def ReadHoldingRegisters(self, start: Integer, number: Integer, value_array: Ref[Any]) -> None:
+    def ReadHoldingRegisters(self, start: Integer, number: Integer, value_array: Ref[list[Integer]]) -> None:
         """FC3: holding registers into an Integer array (0..65535)."""
         value_array.set(make_array(self._read_registers(3, start, number)))
 
-    def ReadInputRegisters(self, start: Integer, number: Integer, value_array: Ref[Any]) -> None:
+    def ReadInputRegisters(self, start: Integer, number: Integer, value_array: Ref[list[Integer]]) -> None:
         """FC4: input registers into an Integer array (0..65535)."""
         value_array.set(make_array(self._read_registers(4, start, number)))
 
@@ -101,7 +103,7 @@ class Modbus:
         payload = struct.pack(">HH", _address(register), _register(value))
         self._expect_echo(6, payload)
 
-    def WriteMultipleCoils(self, start: Integer, value_array: Any) -> None:
+    def WriteMultipleCoils(self, start: Integer, value_array: list[Boolean]) -> None:
         """FC15: all elements of a Boolean array, element 0 to coil ``start``."""
         bits = [bool(v) for v in to_list(value_array)]
         _count(len(bits), 1968)
@@ -112,7 +114,7 @@ class Modbus:
         payload = struct.pack(">HHB", _address(start), len(bits), len(packed)) + bytes(packed)
         self._expect_header(15, start, len(bits), payload)
 
-    def WriteMultipleRegisters(self, start: Integer, value_array: Any) -> None:
+    def WriteMultipleRegisters(self, start: Integer, value_array: list[Integer]) -> None:
         """FC16: all elements of an Integer array, element 0 to register ``start``."""
         values = [_register(v) for v in to_list(value_array)]
         _count(len(values), 123)
