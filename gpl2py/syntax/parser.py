@@ -32,6 +32,8 @@ Grammar decisions beyond the spec's EBNF (spec §3), each an extension that real
 
 from __future__ import annotations
 
+import sys
+
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.messages import Message
@@ -189,13 +191,27 @@ _NAME_FOLLOWERS = frozenset(
 _STMT_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF, K.ELSE})
 _LINE_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF})
 
-_MAX_EXPR_DEPTH = 200
-_MAX_BLOCK_DEPTH = 200
+# Nesting limits.  Each block level costs about six Python frames and each expression level about
+# four; parse() makes sure the recursion limit covers both limits at once.
+_MAX_EXPR_DEPTH = 150
+_MAX_BLOCK_DEPTH = 100
+_RECURSION_NEEDED = 4000
 
 
 def parse(source: SourceFile, sink: DiagnosticSink) -> A.SourceUnit:
-    """Parse one GPL file.  Never raises on bad input: problems are reported to ``sink``."""
-    return Parser(source, sink).parse_unit()
+    """Parse one GPL file.  Never raises on bad input: problems are reported to ``sink``.
+
+    Pathologically nested input is cut off with diagnostic GPL1117 at fixed depths; the Python
+    recursion limit is raised (if lower) for the duration of the call so those depths are reachable.
+    """
+    limit = sys.getrecursionlimit()
+    if limit < _RECURSION_NEEDED:
+        sys.setrecursionlimit(_RECURSION_NEEDED)
+    try:
+        return Parser(source, sink).parse_unit()
+    finally:
+        if limit < _RECURSION_NEEDED:
+            sys.setrecursionlimit(limit)
 
 
 def parse_expression(source: SourceFile, sink: DiagnosticSink) -> A.Expr:
@@ -232,7 +248,9 @@ class Parser:
         if self.pos < self.last:
             self.pos += 1
             self.tok = self.toks[self.pos]
-        self.prev = tok
+        k = tok.kind
+        if k is not K.NEWLINE and k is not K.COMMENT:  # spans end at the last real token
+            self.prev = tok
         return tok
 
     def peek(self, offset: int = 1) -> Token:
@@ -755,7 +773,7 @@ class Parser:
             elif k is K.BYREF:
                 by_ref = True
                 self.next()
-            elif k is K.IDENT and self.peek().kind is K.IDENT:
+            elif k is K.IDENT and self.peek().kind in (K.IDENT, K.BYVAL, K.BYREF):
                 low = tok.text.lower()
                 if low == "optional":
                     optional = True
