@@ -23,6 +23,7 @@
 
 from __future__ import annotations
 
+import types
 from collections.abc import Iterable, Iterator
 from typing import Any, Final
 
@@ -78,6 +79,9 @@ class GplArray:
     """
 
     __slots__ = ("_data", "_ub", "_etype", "_n1", "_strides")
+
+    # ``GplArray[String]`` in annotations: the catalogue reads the element type from it.
+    __class_getitem__ = classmethod(types.GenericAlias)
 
     _data: list[Any]
     _ub: tuple[int, ...]

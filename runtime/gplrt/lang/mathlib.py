@@ -2,8 +2,8 @@
 gpl-dictionary.md §10.3).
 
 * ``Math`` is a global class (no instances in GPL), exported as the single instance of
-  ``_Math`` per CATALOGUE.md rule 6; every member is a staticmethod, ``E`` and ``PI`` are
-  class constants.
+  ``_Math`` per CATALOGUE.md rule 6; every method is a staticmethod, ``E`` and ``PI`` are
+  read-only properties (so the catalogue sees them as Double members).
 * **Trig works in radians** (AMB-14, resolved by the spec from vendor code that writes
   ``Math.Cos(theta - Math.PI / 2.0)`` and converts Atan2 results with ``180.0 * ... / Math.PI``).
   Location angles elsewhere in gplrt stay in degrees.
@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 import random
 import threading
-from typing import Any, Final
+from typing import Any
 
 from gplrt.lang.conversions import to_number
 from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_OUT_OF_RANGE, GplException
@@ -53,8 +53,15 @@ class _Math:
 
     __slots__ = ()
 
-    E: Final[float] = math.e
-    PI: Final[float] = math.pi
+    @property
+    def E(self) -> Double:
+        """``Math.E``: the natural logarithmic base (a read-only property of the global class)."""
+        return math.e  # type: ignore[return-value]
+
+    @property
+    def PI(self) -> Double:
+        """``Math.PI``."""
+        return math.pi  # type: ignore[return-value]
 
     @staticmethod
     def Abs(value: Double) -> Double:

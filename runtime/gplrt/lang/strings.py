@@ -124,7 +124,7 @@ class StringMembers:
         return s.find(_s(string_s), start)  # type: ignore[return-value]
 
     @staticmethod
-    def Split(s: String, separator: String | None = None) -> GplArray:
+    def Split(s: String, separator: String | None = None) -> GplArray[String]:
         """``s.Split(sep)``: the pieces between separator characters, as a 1-D String array.
 
         Every character of ``sep`` is a separator (.NET ``Split(ParamArray chars)``); without one,
