@@ -186,3 +186,20 @@ def test_refused_and_default_port() -> None:
         mb.WriteSingleCoil(1, True)
     assert exc.value.ErrorCode == -1702
     assert Modbus(IPEndPoint("192.168.0.150"))._address == ("192.168.0.150", 502)
+
+
+def test_reads_return_gpl_arrays(slave: Slave) -> None:
+    from gplrt.lang.arrays import GplArray
+
+    mb = Modbus(IPEndPoint("127.0.0.1", slave.port))
+    mb.Timeout = 2000
+    bools, regs = Cell(), Cell()
+    mb.ReadCoils(1, 16, bools)
+    mb.ReadHoldingRegisters(1, 3, regs)
+    assert isinstance(bools.get(), GplArray) and bools.get().GetUpperBound(0) == 15
+    assert isinstance(regs.get(), GplArray) and regs.get().Length == 3
+    ReDim = GplArray.from_list([True, False, True])
+    mb.WriteMultipleCoils(20, ReDim)  # a GPL array argument is read element by element
+    mb.ReadCoils(20, 3, bools)
+    assert list(bools.get()) == [True, False, True]
+    mb.Close()

@@ -12,15 +12,15 @@ from collections.abc import Iterable
 from typing import Any
 
 
-def make_array(values: Iterable[Any]) -> Any:
-    """A one-dimensional GPL array holding ``values`` (index 0 = first value)."""
+def make_array(values: Iterable[Any], element_type: object = None) -> Any:
+    """A one-dimensional GPL array of ``element_type`` holding ``values`` (index 0 = first)."""
     items = list(values)
     try:
         from gplrt.lang.arrays import GplArray  # type: ignore[import-not-found]
     except ImportError:
         return items
     factory = getattr(GplArray, "from_list", None)
-    return factory(items) if factory is not None else items
+    return factory(items, element_type) if factory is not None else items
 
 
 def to_list(values: Any) -> list[Any]:

@@ -168,12 +168,12 @@ class File:
     @staticmethod
     def GetDirectories(path: String) -> list[String]:
         """Names (not paths) of the sub-directories of ``path``, sorted, as a String array."""
-        return make_array(p.name for p in File._listing(path) if p.is_dir())
+        return make_array((p.name for p in File._listing(path) if p.is_dir()), String)
 
     @staticmethod
     def GetFiles(path: String) -> list[String]:
         """Names (not paths) of the files in ``path``, sorted, as a String array."""
-        return make_array(p.name for p in File._listing(path) if p.is_file())
+        return make_array((p.name for p in File._listing(path) if p.is_file()), String)
 
     @staticmethod
     def _listing(path: str) -> list[Path]:

@@ -79,19 +79,19 @@ class Modbus:
 
     def ReadCoils(self, start: Integer, number: Integer, value_array: Ref[list[Boolean]]) -> None:
         """FC1: ``number`` coils from ``start`` into a Boolean array (element 0 = ``start``)."""
-        value_array.set(make_array(self._read_bits(1, start, number)))
+        value_array.set(make_array(self._read_bits(1, start, number), Boolean))
 
     def ReadDiscreteInputs(self, start: Integer, number: Integer, value_array: Ref[list[Boolean]]) -> None:
         """FC2: discrete inputs into a Boolean array."""
-        value_array.set(make_array(self._read_bits(2, start, number)))
+        value_array.set(make_array(self._read_bits(2, start, number), Boolean))
 
     def ReadHoldingRegisters(self, start: Integer, number: Integer, value_array: Ref[list[Integer]]) -> None:
         """FC3: holding registers into an Integer array (0..65535)."""
-        value_array.set(make_array(self._read_registers(3, start, number)))
+        value_array.set(make_array(self._read_registers(3, start, number), Integer))
 
     def ReadInputRegisters(self, start: Integer, number: Integer, value_array: Ref[list[Integer]]) -> None:
         """FC4: input registers into an Integer array (0..65535)."""
-        value_array.set(make_array(self._read_registers(4, start, number)))
+        value_array.set(make_array(self._read_registers(4, start, number), Integer))
 
     def WriteSingleCoil(self, coil: Integer, value: Boolean) -> None:
         """FC5: one coil (any non-zero value is on; EX-23 passes ``ii And 1``)."""
