@@ -127,3 +127,46 @@ def test_custom_signal_map() -> None:
         with pytest.raises(GplException) as info:
             Signal.set_DIO(1, True)
         assert info.value.ErrorCode == -1519
+
+
+def test_latch_results_queue_per_robot_with_timestamps_and_event(vsim: Simulation) -> None:
+    from gplrt.controller.signals import Latch
+
+    class FakeRobot:
+        def latch_angles(self) -> list[float]:
+            return [10.0 * vsim.now(), 5.0]
+
+    vsim.robots[1] = FakeRobot()
+    vsim.io.configure_latch(10007, robot=1)
+    vsim.io.schedule_input(10007, True, at=0.5)
+    vsim.io.schedule_input(10007, False, at=0.6)  # falling edge: no latch
+    vsim.io.schedule_input(10007, True, at=0.8)
+    got: list[tuple[int, float, float, float, int]] = []
+
+    def main() -> None:
+        Latch.set_ThreadEvent(1, 3)
+        while len(got) < 2:
+            ev = Thread.WaitEvent(0b100, 5000)
+            while Latch.Count(1) > 0:
+                lt = Latch.Result(1)
+                got.append((ev, lt.Timestamp(1), lt.Angle(1), lt.Location().Angle(2), lt.Signal))
+
+    vsim.run_main(main)
+    assert got == [(4, 0.5, 5.0, 5.0, 10007), (4, 0.8, 8.0, 5.0, 10007)]
+    assert Latch.Result(1) is None and Latch.ThreadEvent(1) == 3
+
+
+def test_latch_overrun_raises_526_once(vsim: Simulation) -> None:
+    from gplrt.controller.signals import LATCH_QUEUE_SIZE, Latch
+
+    vsim.io.configure_latch(10008, robot=2)
+    for _ in range(LATCH_QUEUE_SIZE + 1):
+        vsim.io.set_input(10008, True)
+        vsim.io.set_input(10008, False)
+    assert Latch.Count(2) == LATCH_QUEUE_SIZE
+    with pytest.raises(GplException) as info:
+        Latch.Result(2)
+    assert info.value.ErrorCode == -526
+    assert Latch.Result(2) is not None
+    Latch.Flush(2)
+    assert Latch.Count(2) == 0

@@ -17,6 +17,11 @@ range raises -1518 *Undefined signal number*; 0 raises -1517 *Invalid signal num
 number addresses the same signal with inverted logic (``Signal.DIO(-10001)`` is True while input
 10001 is off) — the controller's convention for signal numbers in its configuration.
 
+Latches (gpl-classes §11) are emulated: ``io.configure_latch(signal, robot)`` makes a change of
+that input queue a :class:`Latch` result for the robot, time-stamped on the controller clock, with
+the axis positions that ``Simulation.robots[robot].latch_angles()`` reports (the motion work
+provides it; without a robot the result has no axes).
+
 Inputs are driven from outside the program — a test, a notebook, or *rules* evaluated on the
 controller clock::
 
@@ -29,6 +34,7 @@ recorded in :attr:`IoMap.trace` as a time-stamped :class:`SignalChange`.
 from __future__ import annotations
 
 import threading
+from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
@@ -38,6 +44,8 @@ from gplrt.lang.gpltypes import Boolean, Double, Integer
 INVALID_SIGNAL_NUMBER = -1517
 UNDEFINED_SIGNAL_NUMBER = -1518
 OUTPUT_SIGNAL_REQUIRED = -1519
+LATCH_DATA_OVERRUN = -526
+LATCH_QUEUE_SIZE = 128
 
 
 @dataclass(frozen=True)
@@ -99,6 +107,10 @@ class IoMap:
         self.trace: list[SignalChange] = []
         self._lock = threading.RLock()
         self._sim: Any = None
+        self._latch_inputs: dict[int, list[tuple[int, bool]]] = {}
+        self.latch_queues: dict[int, deque[Latch]] = {}
+        self.latch_overrun: set[int] = set()
+        self.latch_events: dict[int, tuple[Any, int]] = {}  # robot -> (GPL Thread, event mask)
 
     def bind(self, sim: Any) -> None:
         """Attach to the simulation whose clock times the trace and the rules."""
@@ -186,6 +198,29 @@ class IoMap:
             raise GplException(UNDEFINED_SIGNAL_NUMBER, detail=f"{signal} is not a digital input")
         return self.when(signal, value)
 
+    def configure_latch(self, signal: int, robot: int = 1, edge: bool = True) -> None:
+        """Make digital ``signal`` a latch input for ``robot`` (it latches when it becomes ``edge``)."""
+        self._digital_number(signal, write=False)
+        self._latch_inputs.setdefault(abs(int(signal)), []).append((int(robot), bool(edge)))
+
+    def _latch(self, change: SignalChange) -> None:
+        for robot, edge in self._latch_inputs.get(change.signal, ()):
+            if change.value != edge:
+                continue
+            angles: tuple[float, ...] = ()
+            provider = self._sim.robots.get(robot) if self._sim is not None else None
+            if provider is not None and hasattr(provider, "latch_angles"):
+                angles = tuple(float(a) for a in provider.latch_angles())
+            queue = self.latch_queues.setdefault(robot, deque())
+            if len(queue) >= LATCH_QUEUE_SIZE:
+                self.latch_overrun.add(robot)
+                continue
+            tod = self._sim.controller.time_of_day_origin if self._sim is not None else 0.0
+            queue.append(Latch(_robot=robot, _signal=change.signal, _time=change.time, _tod=tod, _angles=angles))
+            target = self.latch_events.get(robot)
+            if target is not None:
+                target[0].SendEvent(target[1])
+
     def on_change(self, listener: Callable[[SignalChange], None]) -> None:
         """Call ``listener`` (short, non-blocking) for every change, e.g. latch emulation or plots."""
         self._listeners.append(listener)
@@ -209,6 +244,8 @@ class IoMap:
             change = SignalChange(self._now(), "DIO", n, value, source)
             self.trace.append(change)
             rules = [r for r in self._rules if r.signal == n and r.value == value]
+        if n in self._latch_inputs:
+            self._latch(change)
         self._notify(change)
         for rule in rules:
             rule.fired += 1
@@ -231,6 +268,104 @@ class IoMap:
     def _notify(self, change: SignalChange) -> None:
         for listener in list(self._listeners):
             listener(change)
+
+
+class Latch:
+    """A latch result (gpl-classes §11): where the robot's axes were when a latch input changed.
+
+    Results are queued per robot, oldest first, up to 128; further latches are lost and the next
+    ``Latch.Result`` raises -526 *Latch data overrun* (once).  ``Timestamp(select)`` uses the
+    ``Controller.Timer(select)`` time base.  ``Location`` returns an Angles Location (the
+    Cartesian form would need the robot's kinematics: -204 for now).
+    """
+
+    def __init__(
+        self, *, _robot: int = 0, _signal: int = 0, _time: float = 0.0, _tod: float = 0.0, _angles: tuple[float, ...] = ()
+    ) -> None:
+        self._robot = _robot
+        self._signal = _signal
+        self._time = _time
+        self._tod = _tod
+        self._angles = _angles
+
+    # -- shared members ------------------------------------------------------------------------------
+
+    @staticmethod
+    def _io() -> IoMap:
+        return _SignalClass._io()
+
+    @staticmethod
+    def Result(robot: Integer = 1, noException: Boolean = False) -> Latch | None:  # type: ignore[assignment]
+        io = Latch._io()
+        robot = int(robot)
+        if robot in io.latch_overrun:
+            io.latch_overrun.discard(robot)
+            if not noException:
+                raise GplException(LATCH_DATA_OVERRUN, detail=f"robot {robot}")
+        queue = io.latch_queues.get(robot)
+        return queue.popleft() if queue else None
+
+    @staticmethod
+    def Count(robot: Integer = 1) -> Integer:  # type: ignore[assignment]
+        return len(Latch._io().latch_queues.get(int(robot), ()))  # type: ignore[return-value]
+
+    @staticmethod
+    def Flush(robot: Integer = 1) -> None:  # type: ignore[assignment]
+        io = Latch._io()
+        io.latch_queues.pop(int(robot), None)
+        io.latch_overrun.discard(int(robot))
+
+    @staticmethod
+    def ThreadEvent(robot: Integer = 1) -> Integer:  # type: ignore[assignment]
+        """The event number bound to the robot's latch queue (0 = none)."""
+        target = Latch._io().latch_events.get(int(robot))
+        return (target[1].bit_length() if target else 0)  # type: ignore[return-value]
+
+    @staticmethod
+    def set_ThreadEvent(robot: Integer, value: Integer) -> None:
+        """``Latch.ThreadEvent(robot) = n``: send event ``n`` to the calling thread on each latch."""
+        from gplrt.threads.thread import Thread
+
+        io = Latch._io()
+        n = int(value)
+        if n == 0:
+            io.latch_events.pop(int(robot), None)
+            return
+        if not 1 <= n <= 16:
+            raise GplException(-707, detail=f"latch thread event {n}")
+        io.latch_events[int(robot)] = (Thread.CurrentThread(), 1 << (n - 1))
+
+    # -- instance members ------------------------------------------------------------------------------
+
+    def Angle(self, axis: Integer) -> Double:
+        i = int(axis)
+        if not 1 <= i <= 12:
+            raise GplException(-707, detail=f"latch axis {i}")
+        return self._angles[i - 1] if i <= len(self._angles) else 0.0  # type: ignore[return-value]
+
+    @property
+    def ErrorCode(self) -> Integer:
+        return 0  # type: ignore[return-value]
+
+    def Location(self, type: Integer = 1) -> Any:  # noqa: A002 - GPL's argument name
+        if int(type) != 1:
+            raise GplException(-204, detail="Cartesian latch Location needs the robot kinematics")
+        from gplrt.geometry.location import Location
+
+        loc = Location()
+        loc.Angles(*self._angles[:12])
+        return loc
+
+    @property
+    def RawTime(self) -> Double:
+        return self._time  # type: ignore[return-value]
+
+    @property
+    def Signal(self) -> Integer:
+        return self._signal  # type: ignore[return-value]
+
+    def Timestamp(self, select: Integer = 0) -> Double:  # type: ignore[assignment]
+        return self._time + (self._tod if int(select) == 0 else 0.0)  # type: ignore[return-value]
 
 
 class _SignalClass:
