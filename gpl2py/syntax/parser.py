@@ -188,6 +188,9 @@ _UNSUPPORTED_MODIFIERS: dict[str, str] = {
 _NAME_FOLLOWERS = frozenset(
     {K.EQ, K.LPAREN, K.DOT, K.COLON, *COMPOUND_ASSIGN.keys()}
 )
+_EXPR_STARTS = frozenset(
+    {K.IDENT, K.ME, K.INTEGER, K.REAL, K.STRING, K.TRUE, K.FALSE, K.NOTHING, K.NEW, K.ADDRESSOF, K.LPAREN}
+)
 _STMT_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF, K.ELSE})
 _LINE_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF})
 
@@ -984,6 +987,9 @@ class Parser:
 
     def expression_statement(self) -> A.Stmt | None:
         start = self.tok
+        if start.kind not in _EXPR_STARTS:
+            self.error(M.PARSE_EXPECTED, start, expected="a statement", found=start.describe())
+            return None
         target = self.postfix()
         k = self.tok.kind
         if k is K.EQ:
