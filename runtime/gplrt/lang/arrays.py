@@ -28,11 +28,15 @@ from collections.abc import Iterable, Iterator
 from typing import Any, Final
 
 from gplrt.lang.conversions import to_int32
-from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import (
+    ARITHMETIC_OVERFLOW,
+    ARRAY_INDEX_MISMATCH,
+    INVALID_ARRAY_INDEX,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 
-ARRAY_INDEX_MISMATCH: Final = -766
-INVALID_ARRAY_INDEX: Final = -767
 
 __all__ = ["GplArray", "redim", "default_value", "ARRAY_INDEX_MISMATCH", "INVALID_ARRAY_INDEX"]
 

@@ -41,10 +41,15 @@ import struct
 from collections.abc import Callable
 from typing import Any, Final
 
-from gplrt.lang.errors import ARITHMETIC_OVERFLOW, INVALID_ARGUMENT, NOTHING_VALUE, GplException
+from gplrt.lang.errors import (
+    ARITHMETIC_OVERFLOW,
+    INVALID_ARGUMENT,
+    INVALID_NUMBER_FORMAT,
+    NOTHING_VALUE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 
-INVALID_NUMBER_FORMAT: Final = -717
 
 _INT32_MIN: Final = -2147483648
 _INT32_MAX: Final = 2147483647

@@ -22,11 +22,13 @@ import inspect
 from collections.abc import Callable
 from typing import Any, ClassVar, Final
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    ARGUMENT_MISMATCH,
+    NO_DELEGATE_DEFINED,
+    GplException,
+)
 from gplrt.lang.procedures import find_procedure
 
-NO_DELEGATE_DEFINED: Final = -796
-ARGUMENT_MISMATCH: Final = -741
 
 __all__ = ["Delegate", "delegate_type", "invoke", "NO_DELEGATE_DEFINED", "ARGUMENT_MISMATCH"]
 

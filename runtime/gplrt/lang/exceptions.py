@@ -34,23 +34,22 @@ Python exception is kept as ``__cause__`` of the GplException for debugging.
 
 from __future__ import annotations
 
-from typing import Final
 
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
     DIVISION_BY_ZERO,
+    INTERNAL_ERROR,
+    INVALID_ARRAY_INDEX,
+    INVALID_NUMBER_FORMAT,
+    NO_DELEGATE_DEFINED,
+    NO_MEMORY,
     OBJECT_NOT_INSTANTIATED,
+    THREAD_STACK_TOO_SMALL,
+    VALUE_INFINITE_OR_NAN,
     VALUE_OUT_OF_RANGE,
     GplException,
 )
 
-THREAD_STACK_TOO_SMALL: Final = -755
-INVALID_ARRAY_INDEX: Final = -767
-NO_DELEGATE_DEFINED: Final = -796
-INVALID_NUMBER_FORMAT: Final = -717
-VALUE_INFINITE_OR_NAN: Final = -708
-NO_MEMORY: Final = -200
-INTERNAL_ERROR: Final = -201
 
 __all__ = ["as_gpl_exception", "gpl_code_for"]
 

@@ -28,13 +28,15 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Final
+from typing import Any
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    AMBIGUOUS_PUBLIC_REFERENCE,
+    NO_MODULE_DEFINED,
+    UNDEFINED_SYMBOL,
+    GplException,
+)
 
-UNDEFINED_SYMBOL: Final = -729
-AMBIGUOUS_PUBLIC_REFERENCE: Final = -772
-NO_MODULE_DEFINED: Final = -798
 
 __all__ = [
     "ProcedureEntry",

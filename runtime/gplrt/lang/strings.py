@@ -24,15 +24,21 @@ property in GPL; here it is a one-argument staticmethod like the others.
 
 from __future__ import annotations
 
+import re
 import struct
 from typing import Any, Final
 
 from gplrt.lang.arrays import GplArray
 from gplrt.lang.conversions import parse_number, to_int16, to_int32, to_number, to_single, to_string, to_uint8
-from gplrt.lang.errors import INVALID_ARGUMENT, VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import (
+    INVALID_ARGUMENT,
+    SHORT_STRING,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 
-SHORT_STRING: Final = -783
+_VAL_RE: Final = re.compile(r"[+-]?(?:&[hH][0-9a-fA-F]+|&[oO][0-7]+|\d*\.?\d*(?:[eE][+-]?\d+)?)")
 WHITESPACE: Final = " \t\r\n\v\f"
 
 __all__ = [
@@ -349,15 +355,14 @@ def StrComp(string1: String, string2: String, compare: Integer = 0) -> Integer: 
 
 def Val(string: String) -> Double:
     """VB ``Val(s)``: the number at the start of ``s`` (blanks ignored), 0 if none; never fails."""
-    s = _s(string).replace(" ", "").replace("\t", "")
-    best = 0.0
-    for end in range(len(s), 0, -1):
-        try:
-            best = float(parse_number(s[:end]))
-            break
-        except GplException:
-            continue
-    return best  # type: ignore[return-value]
+    m = _VAL_RE.match(_s(string).replace(" ", "").replace("\t", ""))
+    if m is None or not m.group(0) or m.group(0) in "+-":
+        return 0.0  # type: ignore[return-value]
+    try:
+        return float(parse_number(m.group(0)))  # type: ignore[return-value]
+    except GplException:  # a bare "." or "1e" prefix: retry without the dangling part
+        text = m.group(0).rstrip("eE+-.")
+        return float(parse_number(text)) if text and text not in "+-" else 0.0  # type: ignore[return-value]
 
 
 def Str(number: Any) -> String:
