@@ -205,8 +205,9 @@ class Articulated6Model(RobotModel):
     def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
         seed = self.analytic(target, bits, current)
         assert self.pin_model is not None and self.pin_data is not None
-        q_pin, err, self.last_iterations = solve_dls(self.pin_model, self.pin_data, self.flange_frame, target,
-                                                     self.q_pin(seed))
+        with self.lock:
+            q_pin, err, self.last_iterations = solve_dls(self.pin_model, self.pin_data, self.flange_frame, target,
+                                                         self.q_pin(seed))
         if err > 1e-9:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail=f"numeric IK did not converge ({err:.2e})")
         q = self.q_gpl(q_pin)

@@ -27,6 +27,7 @@ for the inverse where the geometry allows.
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
@@ -96,6 +97,8 @@ class RobotModel:
         self.flange_frame: int = -1
         # pin q index of each GPL axis (GPL axis order differs from tree order, e.g. the rail).
         self._q_index: list[int] = []
+        # One pin.Data per model: GPL threads sharing a robot must not interleave computations in it.
+        self.lock = threading.RLock()
 
     # -- description ----------------------------------------------------------------------------
 
@@ -148,8 +151,9 @@ class RobotModel:
         if self.pin_model is None:
             raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
         assert self.pin_data is not None
-        pin.forwardKinematics(self.pin_model, self.pin_data, self.q_pin(q_gpl_si))
-        return pin.updateFramePlacement(self.pin_model, self.pin_data, self.flange_frame).copy()
+        with self.lock:
+            pin.forwardKinematics(self.pin_model, self.pin_data, self.q_pin(q_gpl_si))
+            return pin.updateFramePlacement(self.pin_model, self.pin_data, self.flange_frame).copy()
 
     # -- public GPL-unit API --------------------------------------------------------------------
 
