@@ -204,6 +204,29 @@ class Simulation:
                 raise t._error
             return t._result
 
+    def start(self, proc: Callable[..., Any] | str, *args: Any, name: str = "") -> Any:
+        """Start ``proc`` as a background GPL thread (e.g. a server) and return its Thread object."""
+        from gplrt.threads.thread import Thread
+
+        self.activate()
+        t = Thread(proc, 0, name, _sim=self, _args=args)
+        t.Start()
+        return t
+
+    def run_for(self, seconds: float) -> None:
+        """Let the session's GPL threads run for ``seconds`` of controller time, then return."""
+        self.activate()
+        self.scheduler.sleep(seconds)
+
+    def as_gpl_thread(self) -> Any:
+        """Context manager: run the ``with`` body on the calling Python thread as a GPL thread.
+
+        While inside, the body holds the virtual scheduler's token: other GPL threads run only at
+        its scheduling points (sleeps, waits, checkpoints).
+        """
+        self.activate()
+        return self.scheduler.adopted()
+
     def report(self, thread_name: str, text: str, code: int = 0) -> None:
         """Record a controller-level error (error log + console log)."""
         entry = LogEntry(self.now(), thread_name, text, code)

@@ -118,7 +118,6 @@ def test_scheduled_inputs_and_listener(vsim: Simulation) -> None:
 
 
 def test_custom_signal_map() -> None:
-    sim = Simulation(capture=True, io=None)
     from gplrt.controller.signals import IoMap
 
     sim = Simulation(capture=True, io=IoMap(SignalMap(digital_outputs=range(97, 105), digital_inputs=range(1, 9))))

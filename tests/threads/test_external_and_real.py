@@ -142,3 +142,23 @@ def test_thread_exit_hooks_run_on_the_ending_thread(vsim: Simulation) -> None:
 
     vsim.run_main(main)
     assert ended == [("main", 0.0), ("Child", 0.3)]
+
+
+def test_notebook_helpers_start_run_for_and_as_gpl_thread(vsim: Simulation) -> None:
+    beats: list[float] = []
+
+    def heartbeat() -> None:
+        while True:
+            beats.append(clock.now())
+            Thread.Sleep(1000)
+
+    t = vsim.start(heartbeat, name="Heartbeat")
+    vsim.run_for(3.5)
+    assert beats == [0.0, 1.0, 2.0, 3.0]
+    with vsim.as_gpl_thread():
+        me = Thread.CurrentThread()
+        Thread.Sleep(1000)
+        assert clock.now() == 4.5 and beats[-1] == 4.0
+        assert me.Name != "Heartbeat"
+    t.Abort()
+    assert t.ThreadState == 0

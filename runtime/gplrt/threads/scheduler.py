@@ -15,7 +15,9 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   back of the queue.  The remaining slice is kept across sleeps, as on the controller (D0 §17.2).
   Charging compute time is what lets ``While Controller.Timer < t0 + 1 : End While`` terminate.
 * When no thread is runnable, time jumps to the earliest deadline; ties wake in the order the
-  waits began.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
+  waits began.  Jumps happen only while someone outside drives the run (``run_main``, ``call``,
+  ``run_for``, a blocking call from a notebook): between calls, a notebook's background threads
+  freeze instead of racing virtual time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
 * A thread in :func:`external_wait` (socket accept/receive, an operator dialog) is neither
   runnable nor a virtual waiter.  While one exists and nobody is runnable, virtual time advances
   no faster than real time: a real-time timer fires the earliest virtual deadline when it falls
@@ -163,6 +165,10 @@ class Scheduler:
         self.live: list[ThreadCtx] = []
         self._seq = itertools.count()
         self.test_and_set_lock = threading.Lock()
+        # Outside callers currently waiting on the program (run_main, call, an adopted Sleep...).
+        # Virtual time only jumps while there is one: a notebook that started a background thread
+        # and went idle does not see the cell run on to infinity behind its back.
+        self.drivers = 0
 
     # -- thread lifecycle --------------------------------------------------------------------------
 
@@ -198,6 +204,7 @@ class Scheduler:
         ctx = self.new_ctx("<external caller>")
         bind_current(ctx)
         with self._lock:
+            self.drivers += 1
             self.live.append(ctx)
             self._make_ready(ctx)
             self._kick()
@@ -206,6 +213,8 @@ class Scheduler:
             yield ctx
         finally:
             bind_current(None)
+            with self._lock:
+                self.drivers -= 1
             self.finish(ctx)
 
     def is_stalled(self) -> bool:
@@ -219,16 +228,21 @@ class Scheduler:
         """
         end = None if timeout is None else time.monotonic() + timeout
         with self._changed:
-            while True:
-                pending = [c for c in (self.live if threads is None else threads) if c.phase != Phase.DONE]
-                if not pending:
-                    return True
-                if self.is_stalled():
-                    return False
-                remaining = None if end is None else end - time.monotonic()
-                if remaining is not None and remaining <= 0:
-                    return False
-                self._changed.wait(0.05 if remaining is None else min(0.05, remaining))
+            self.drivers += 1
+            self._kick()
+            try:
+                while True:
+                    pending = [c for c in (self.live if threads is None else threads) if c.phase != Phase.DONE]
+                    if not pending:
+                        return True
+                    if self.is_stalled():
+                        return False
+                    remaining = None if end is None else end - time.monotonic()
+                    if remaining is not None and remaining <= 0:
+                        return False
+                    self._changed.wait(0.05 if remaining is None else min(0.05, remaining))
+            finally:
+                self.drivers -= 1
 
     # -- waits (public) ----------------------------------------------------------------------------
 
@@ -409,8 +423,8 @@ class VirtualScheduler(Scheduler):
             self._fire_due()
             while not self._ready:
                 nd = self._next_deadline()
-                # With no GPL thread alive, time stands still (nothing could observe it pass).
-                if nd is None or self._external > 0 or not self.live:
+                # With no GPL thread alive, or nobody outside driving the run, time stands still.
+                if nd is None or self._external > 0 or not self.live or self.drivers == 0:
                     self._go_idle(nd)
                     return
                 self.clock.advance_to_ns(nd)
@@ -429,7 +443,7 @@ class VirtualScheduler(Scheduler):
             self._idle_real = time.monotonic()
             self._idle_virtual = self.clock.ns
         self._pacer_gen += 1
-        if next_deadline is not None and self._external > 0:
+        if next_deadline is not None and self._external > 0 and self.drivers > 0:
             gen = self._pacer_gen
             delay = max(0.0, (next_deadline - self.clock.ns) / 1e9)
             timer = threading.Timer(delay, self._pacer_fire, args=(gen, next_deadline))

@@ -232,8 +232,12 @@ class Thread:
         ctx = current_ctx()
         if ctx is not None and isinstance(ctx.owner, Thread):
             return ctx.owner
+        # A Python thread the scheduler does not run (notebook, pytest): one stand-in object per
+        # Python thread and session, so its events persist between calls.
+        from gplrt.sim import current
+
         me = _foreign.thread
-        if me is None:
+        if me is None or me._sim is not current():
             me = Thread(None, 0.0, threading.current_thread().name)  # type: ignore[arg-type]
             _foreign.thread = me
         return me
