@@ -380,11 +380,12 @@ class ParameterDatabase:
     def set_pdb_text(self, text: str, data_id: int, unit: int = 1, unit2: int = 1, index: int = 0, key: int = 0) -> None:
         """``Controller.PDb(...) = text``: for numeric DataIDs the text is parsed as number(s)."""
         entry = self._writable(data_id, unit, unit2, key)
-        parts = [text] if entry.is_string and index != 0 else [p.strip() for p in text.split(",")]
-        if entry.is_string and index == 0 and len(entry.values) == 1:
-            parts = [text]
-        values: list[Value] = parts if entry.is_string else [self._parse_number(p, data_id) for p in parts]
-        self._store(entry, values, index)
+        if entry.is_string:
+            # One element, or a one-element DataID: the text as given (it may contain commas).
+            whole = index == 0 and len(entry.values) > 1
+            self._store(entry, [p.strip() for p in text.split(",")] if whole else [text], index)
+        else:
+            self._store(entry, [self._parse_number(p.strip(), data_id) for p in text.split(",")], index)
 
     def set_pdb_num(self, value: float, data_id: int, unit: int = 1, unit2: int = 1, index: int = 1, key: int = 0) -> None:
         """``Controller.PDbNum(...) = value``; index 0 writes element 1."""
