@@ -110,3 +110,19 @@ def test_busy_polling_of_the_timer_terminates(vsim: Simulation) -> None:
 
     vsim.run_main(main)
     assert 0.05 <= seen[0] < 0.05 + 0.002
+
+
+def test_same_output_in_a_fresh_interpreter() -> None:
+    """No hidden dependence on thread ids, hash seeds or import order: another process agrees."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    here = Path(__file__).parent
+    code = "import sys; sys.path.insert(0, sys.argv[1]); from test_determinism import run_once; print(run_once()[0], end='')"
+    env = dict(os.environ, PYTHONHASHSEED="12345")
+    other = subprocess.run(
+        [sys.executable, "-c", code, str(here)], capture_output=True, text=True, env=env, timeout=60, check=True
+    ).stdout
+    assert other == run_once()[0]

@@ -84,10 +84,11 @@ def test_real_mode_events_join_abort_and_errors() -> None:
             t.Start()
         Thread.Sleep(50)
         w.SendEvent(0b110)
-        m.joined = w.Join(5000)
+        m.joined = w.Join(60_000)  # generous: the machine may be busy; returns as soon as done
         s.Abort()
+        s.Join(60_000)
         m.spinner_state = s.ThreadState
-        m.faulty_joined = f.Join(5000)
+        m.faulty_joined = f.Join(60_000)
 
     assert sim.run_main(main, timeout=30) == []
     assert m.events == [0b100, 0]

@@ -140,6 +140,20 @@ def test_start_an_active_thread_raises_750_and_duplicate_names_749(vsim: Simulat
     assert codes == [-750, -749]
 
 
+def test_join_on_itself_raises_750_and_negative_sleep_yields(vsim: Simulation) -> None:
+    codes: list[int] = []
+
+    def main() -> None:
+        Thread.Sleep(-5)
+        try:
+            Thread.CurrentThread().Join(100)
+        except GplException as exc:
+            codes.append(exc.ErrorCode)
+
+    vsim.run_main(main)
+    assert codes == [-750] and vsim.now() == 0.0
+
+
 def test_thread_limit_raises_207() -> None:
     sim = Simulation(capture=True, max_threads=3)
     codes: list[int] = []
