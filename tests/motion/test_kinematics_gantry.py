@@ -150,3 +150,13 @@ def test_joint_count_mismatch_is_an_argument_error() -> None:
     with pytest.raises(GplException) as exc:
         _gantry().forward([1, 2, 3])
     assert exc.value.ErrorCode == -202
+
+
+@pytest.mark.parametrize("bad", [np.eye(3), np.full((4, 4), np.nan)])
+def test_malformed_targets_are_argument_errors(bad: np.ndarray) -> None:
+    with pytest.raises(GplException) as exc:
+        _gantry().inverse(bad, 0)
+    assert exc.value.ErrorCode == -202
+    with pytest.raises(GplException) as exc:
+        _gantry().forward([1, 2, math.inf, 0])
+    assert exc.value.ErrorCode == -202

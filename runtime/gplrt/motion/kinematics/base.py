@@ -42,6 +42,7 @@ from gplrt.motion.kinematics import units
 from gplrt.motion.kinematics.config import LIMIT_SLACK, unwind
 from gplrt.motion.kinematics.units import Matrix
 
+INVALID_ARGUMENT = -202
 JOINT_OUT_OF_RANGE = -1012
 INVALID_CARTESIAN = -1033
 KINEMATICS_NOT_INSTALLED = -1036
@@ -159,8 +160,11 @@ class RobotModel:
 
     def _to_si(self, joints: Sequence[float]) -> np.ndarray:
         if len(joints) != self.axis_count:
-            raise GplException(-202, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
-        return units.joints_to_q(joints, self._linear)
+            raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
+        q = units.joints_to_q(joints, self._linear)
+        if not np.all(np.isfinite(q)):
+            raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {list(joints)}")
+        return q
 
     def flange(self, joints: Sequence[float]) -> Matrix:
         """Flange pose (mm) of a joint vector (mm/deg), without Base and Tool."""
@@ -175,7 +179,10 @@ class RobotModel:
         if self.pin_model is None:
             raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
         current = self.ready_joints() if current_joints is None else list(current_joints)
-        target = np.linalg.solve(self.base, np.asarray(T, dtype=float)) @ np.linalg.inv(self.tool)
+        T = np.asarray(T, dtype=float)
+        if T.shape != (4, 4) or not np.all(np.isfinite(T)):
+            raise GplException(INVALID_ARGUMENT, detail="target must be a finite 4x4 homogeneous transform")
+        target = np.linalg.solve(self.base, T) @ np.linalg.inv(self.tool)
         q = self._solve(units.matrix_to_se3(target), int(config_bits), self._to_si(current))
         joints = units.q_to_joints(q, self._linear)
         self.check_limits(joints)
