@@ -164,7 +164,6 @@ class Scheduler:
         self._changed = threading.Condition(self._lock)  # signalled on idle / thread end
         self.live: list[ThreadCtx] = []
         self._seq = itertools.count()
-        self.test_and_set_lock = threading.Lock()
         # Outside callers currently waiting on the program (run_main, call, an adopted Sleep...).
         # Virtual time only jumps while there is one: a notebook that started a background thread
         # and went idle does not see the cell run on to infinity behind its back.
@@ -453,7 +452,7 @@ class VirtualScheduler(Scheduler):
 
     def _pacer_fire(self, gen: int, deadline: int) -> None:
         with self._lock:
-            if gen != self._pacer_gen or self._running is not None:
+            if gen != self._pacer_gen or self._running is not None or self.drivers == 0:
                 return
             self._idle_real = None
             self.clock.advance_to_ns(deadline)
