@@ -269,7 +269,7 @@ class Parser:
             return s
         return Span(s.start, end.end_line, end.end_col)
 
-    def error(self, message: Message, where: Token | Span, **args: object) -> None:
+    def error(self, message: Message, where: Token | Span, /, **args: object) -> None:
         """Report a line-local error: only the first one per logical line is reported."""
         if self.failed:
             return
