@@ -104,7 +104,10 @@ def test_builder_dispatches_on_dataid_116_and_reads_tool_base_limits() -> None:
     model = build_model(db)
     assert model.tool == pytest.approx(xyzypr_to_matrix(1, 2, 3, 0, 0, 90))
     assert model.axis_count == 6 and model.upper_limits[5] == 360
-    assert isinstance(build_model(default_database("PF400SX")), RobotModel)
+    rail_arm = build_model(default_database("PF400SXL"))
+    assert rail_arm.pin_model is not None
+    # Pinocchio's limits are the PDb soft limits in SI, in tree order (the rail is the root joint)
+    assert rail_arm.pin_model.upperPositionLimit == pytest.approx([0.5, 0.4015, *np.radians([93, 348, 960]), 0.134])
 
 
 def test_unknown_module_moves_joints_but_refuses_cartesian() -> None:

@@ -135,6 +135,9 @@ class RobotModel:
         self.pin_data = model.createData()
         self.flange_frame = flange_frame
         self._q_index = [model.joints[jid].idx_q for jid in gpl_joint_ids]
+        # The soft limits from the PDb (16077/16078), not any URDF's, bound the model (spec §3 step 4).
+        model.lowerPositionLimit = self.q_pin(self._lower_si)
+        model.upperPositionLimit = self.q_pin(self._upper_si)
 
     def q_pin(self, q_gpl_si: Sequence[float]) -> np.ndarray:
         """GPL-ordered SI joint vector → Pinocchio configuration vector."""
