@@ -332,7 +332,189 @@ GPR_EMPTY_VALUE = _error(
 
 # --- semantic analysis (GPL2000-GPL2999) -------------------------------------------------------
 
+UNDECLARED_NAME = _error(
+    "GPL2001",
+    "'{name}' is not declared",
+    "Every variable must be declared with Dim, Static, Const, Public or Private (spec §6.1); "
+    "check the spelling, or qualify a name from another module as Module.Name.",
+)
+DUPLICATE_DECLARATION = _error(
+    "GPL2002",
+    "'{name}' is already declared in this {scope} (line {line})",
+    "Names must be unique within a procedure, class or module regardless of their kind (§6.4).",
+)
+UNKNOWN_TYPE = _error(
+    "GPL2003",
+    "unknown type '{name}'",
+    "A type is a primitive (Integer, Double, String ...), a built-in class or a class declared in "
+    "the project (qualified as Module.Class from another module).",
+)
+WRONG_ARG_COUNT = _error(
+    "GPL2004",
+    "'{name}' takes {expected} argument(s), {given} given",
+    "GPL has no ParamArray; Optional parameters (an extension) may be left out.",
+)
+TYPE_MISMATCH = _error(
+    "GPL2005",
+    "type mismatch: a {src} value cannot be used as {dst}",
+    "Numbers, Booleans and Strings convert into each other (§4.2); objects and arrays only "
+    "match their own class or element type (§4.2 rule 12).",
+)
+AMBIGUOUS_NAME = _error(
+    "GPL2006",
+    "'{name}' is ambiguous: it is Public in modules {where}; qualify it as Module.{name}",
+    "The module prefix may be omitted only when the Public name is unique among all modules (§6.4).",
+)
+NO_SUCH_MEMBER = _error(
+    "GPL2007",
+    "{owner} has no member '{member}'",
+    "",
+)
+NOT_ASSIGNABLE = _error(
+    "GPL2008",
+    "cannot assign to {what}",
+    "Only variables, array elements, fields and properties with a Set block can be assigned (§10.1).",
+)
+SUB_AS_VALUE = _error(
+    "GPL2009",
+    "'{name}' is a Sub and has no value",
+    "A Sub call is a statement by itself; only a Function can appear in an expression (§9.1).",
+)
+PRIVATE_MEMBER = _error(
+    "GPL2010",
+    "'{name}' is Private to {owner}",
+    "Module and class members are Private by default (§6.4); declare it Public to use it here.",
+)
+DECL_IN_BLOCK = _error(
+    "GPL2011",
+    "'{name}' is declared inside a block; declare locals at the outermost level of the procedure",
+    "Locals are visible in the whole procedure and may only be declared at its outermost level (§6.2).",
+)
+NOT_INDEXABLE = _error(
+    "GPL2012",
+    "'{name}' is not an array, procedure or delegate and cannot take arguments",
+    "",
+)
+NO_CTOR_OVERLOAD = _error(
+    "GPL2013",
+    "no Sub New of {cls} takes {count} argument(s) of these types",
+    "Overloads of New are chosen by argument count, then by argument types (§8.3).",
+)
+BAD_OPERANDS = _error(
+    "GPL2014",
+    "operator {op} cannot be applied to {left} and {right}",
+    "Arithmetic needs numbers, Booleans or Strings; 'Is' compares object references (§4.4).",
+)
+BAD_RETURN = _error(
+    "GPL2015",
+    "{detail}",
+    "A Function returns a value with 'Return expr'; a Sub uses 'Return' without a value (§9.1).",
+)
+EXIT_OUTSIDE = _error(
+    "GPL2016",
+    "'Exit {kind}' is not inside a {kind} block",
+    "",
+)
+UNKNOWN_LABEL = _error(
+    "GPL2017",
+    "label '{name}' is not defined in this procedure",
+    "GoTo targets a label in the same procedure (§10.7).",
+)
+DUPLICATE_LABEL = _error(
+    "GPL2018",
+    "label '{name}' is defined twice in this procedure",
+    "",
+)
+START_NOT_FOUND = _error(
+    "GPL2019",
+    "the start procedure '{name}' is not a Sub of this project",
+    "ProjectStart names a Public Sub without parameters, as 'Proc' or 'Module.Proc' (§12.3).",
+)
+BYREF_TEMPORARY = _warning(
+    "GPL2020",
+    "argument for ByRef parameter '{name}' is not a variable; the procedure gets a temporary copy",
+    "Only variables, array elements and fields can be passed by reference (§9.3, AMB-33).",
+)
+ME_OUTSIDE_INSTANCE = _error(
+    "GPL2021",
+    "'Me' can only be used in a non-Shared procedure of a class",
+    "§8.3: Me is the object of the current instance procedure.",
+)
+PROPERTY_ACCESS = _error(
+    "GPL2022",
+    "property '{name}' is {what}",
+    "A property with only Get cannot be assigned; one with only Set cannot be read (§8.3).",
+)
+NOT_A_VALUE = _error(
+    "GPL2023",
+    "'{name}' is a {what}, not a value",
+    "",
+)
+SUBSCRIPT_COUNT = _error(
+    "GPL2024",
+    "'{name}' has {rank} dimension(s) but {given} subscript(s) are given",
+    "",
+)
+START_NOT_PUBLIC = _warning(
+    "GPL2025",
+    "the start procedure '{name}' should be declared Public",
+    "The manual requires a Public start procedure (§12.3); it is started anyway (AMB-20).",
+)
+NOT_AN_ARRAY = _error(
+    "GPL2026",
+    "'{name}' is not an array",
+    "ReDim and array members apply to array variables (§7).",
+)
+CONST_ASSIGN = _error(
+    "GPL2027",
+    "'{name}' is a Const and cannot be assigned",
+    "Only the declaration's initializer sets a Const (§6.2).",
+)
+NOT_AN_OBJECT = _error(
+    "GPL2028",
+    "a {type} value has no member '{member}'",
+    "",
+)
+ADDRESSOF_TARGET = _error(
+    "GPL2029",
+    "AddressOf needs a procedure, not {what}",
+    "A delegate is bound to a Sub or Function, or to a method of an object (§9.4).",
+)
+RESERVED_NAME = _error(
+    "GPL2030",
+    "'{name}' is reserved for procedures the controller generates",
+    "_Init and _New are generated by the GPL compiler and cannot be declared (§8.3, §12.2).",
+)
+
 # --- lowering and output (GPL3000-GPL3499) -----------------------------------------------------
+
+GOTO_INTO_BLOCK = _error(
+    "GPL3001",
+    "GoTo {name} jumps into a block from outside it; only jumps to the same or an enclosing block "
+    "(and from a Catch back into its Try) are supported",
+    "Jumps into an If, loop or Select body from outside are rejected; a jump into a For body would "
+    "leave its saved limit and step undefined (§10.7).",
+)
+GOTO_ACROSS_TRY = _error(
+    "GPL3002",
+    "GoTo {name} leaves or enters a Try block; only a Catch may jump back into its own Try",
+    "Branches into or out of Try, Catch and Finally blocks are illegal in GPL (§11.3).",
+)
+EXIT_TRY_IN_FINALLY = _error(
+    "GPL3003",
+    "'Exit Try' is not allowed in a Finally block",
+    "§11.4.",
+)
+OUTPUT_ERROR = _error(
+    "GPL3004",
+    "cannot write {path}: {detail}",
+    "",
+)
+NOT_SUPPORTED = _error(
+    "GPL3005",
+    "{what} is not supported by the transpiler",
+    "",
+)
 
 # --- stubs for missing code (GPL3500-GPL3999) --------------------------------------------------
 

@@ -1,0 +1,928 @@
+"""The typing pass: the static type and meaning of every expression, checked statements (spec §4-§11).
+
+:func:`analyze` runs the whole semantic analysis of a project and returns a :class:`Model` that the
+lowering reads.  For every expression node it records an :class:`Info`: the static type and *what
+the node is* (a local variable, a call of a user procedure, an array element, a built-in member,
+...), so the lowering never has to look a name up again.  Errors are reported to the sink with
+positions and analysis carries on with the ERROR type, which silences follow-on errors, so one run
+reports every independent mistake.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gpl2py import messages as M
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.semantics import types as t
+from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Catalogue, Member
+from gpl2py.semantics.resolve import TOP_MODULE, Collector, Found, Resolver, visible
+from gpl2py.semantics.symbols import (
+    ClassSym,
+    DelegateSym,
+    ModuleSym,
+    ProcSym,
+    ProjectSyms,
+    PropSym,
+    VarSym,
+)
+from gpl2py.syntax import ast as A
+
+
+@dataclass(frozen=True)
+class ParamInfo:
+    """What the lowering needs to pass one argument: the parameter's type and passing mode."""
+
+    name: str
+    type: t.GplType
+    byref: bool = False
+    optional: bool = False
+
+
+@dataclass(eq=False)
+class Info:
+    """The meaning of one expression node (see module docstring for ``kind``)."""
+
+    type: t.GplType
+    kind: str
+    sym: object = None
+    owner: object = None  # BuiltinClass for built-in members; ClassSym/ModuleSym for user members
+    params: list[ParamInfo] | None = None
+    receiver: A.Expr | None = None  # the object expression of a member access, if any
+    static: bool = False  # a Shared member reached through a class or global class
+
+
+@dataclass
+class Model:
+    """The result of semantic analysis."""
+
+    project: ProjectSyms
+    resolver: Resolver
+    info: dict[A.Node, Info] = field(default_factory=dict)
+    # Statement-level facts the lowering needs.
+    proc_of_decl: dict[A.Node, ProcSym] = field(default_factory=dict)
+    class_of_decl: dict[A.Node, ClassSym] = field(default_factory=dict)
+    delegate_of_decl: dict[A.Node, DelegateSym] = field(default_factory=dict)
+    catch_var: dict[A.CatchClause, A.Expr] = field(default_factory=dict)
+    start: ProcSym | None = None
+    byref_temps: set[A.Expr] = field(default_factory=set)
+    decl_new: dict[A.VarDeclarator, A.New] = field(default_factory=dict)
+
+    def type_of(self, e: A.Expr) -> t.GplType:
+        i = self.info.get(e)
+        return i.type if i is not None else t.ERROR
+
+
+def _pinfo_user(params: list[VarSym]) -> list[ParamInfo]:
+    return [ParamInfo(p.name, p.type, p.byref, p.optional) for p in params]
+
+
+def _pinfo_builtin(params: tuple) -> list[ParamInfo]:  # type: ignore[type-arg]
+    return [ParamInfo(p.name, p.type, p.byref, p.optional) for p in params]
+
+
+def assignable(src: t.GplType, dst: t.GplType) -> bool:
+    """Can a ``src`` value be stored in a ``dst`` variable (§4.2)?"""
+    if src is t.ERROR or dst is t.ERROR:
+        return True
+    if isinstance(dst, t.PrimitiveType):
+        return isinstance(src, t.PrimitiveType)
+    if src is t.NOTHING:
+        return dst.is_reference
+    if isinstance(dst, t.ClassType):
+        return isinstance(src, t.ClassType) and src.key == dst.key
+    if isinstance(dst, t.ArrayType):
+        return isinstance(src, t.ArrayType) and src.rank == dst.rank and (
+            src.element == dst.element or t.ERROR in (src.element, dst.element))
+    return False
+
+
+_ARITH = {"+", "-", "*"}
+_COMPARE = {"=", "<>", "<", ">", "<=", ">="}
+
+
+def _scalar(typ: t.GplType) -> bool:
+    return isinstance(typ, t.PrimitiveType) or typ is t.ERROR
+
+
+class _Ctx:
+    """Where an expression is being checked."""
+
+    def __init__(self, module: ModuleSym, cls: ClassSym | None, proc: ProcSym | None) -> None:
+        self.module = module
+        self.cls = cls
+        self.proc = proc
+        self.blocks: list[str] = []  # enclosing constructs, for Exit checks
+
+    @property
+    def instance(self) -> bool:
+        if self.proc is not None:
+            return self.cls is not None and not self.proc.shared
+        return self.cls is not None  # instance field initializers
+
+
+class Checker:
+    def __init__(self, project: ProjectSyms, catalogue: Catalogue, sink: DiagnosticSink) -> None:
+        self.sink = sink
+        self.r = Resolver(project, catalogue, sink)
+        self.model = Model(project, self.r)
+        self.cat = catalogue
+
+    # -- driver ----------------------------------------------------------------------------------
+
+    def run(self, units: list[A.SourceUnit], start: str | None) -> Model:
+        col = Collector(self.r, self.sink)
+        col.collect_units(units)
+        col.resolve_pending()
+        project = self.model.project
+        for mod in list(project.modules.values()):
+            self._module(mod)
+        if start:
+            self._start(start)
+        return self.model
+
+    def _start(self, start: str) -> None:
+        parts = start.split(".")
+        proc: object = None
+        project = self.model.project
+        if len(parts) == 2:
+            mod = project.modules.get(parts[0].lower())
+            proc = mod.members.get(parts[1].lower()) if mod else None
+        elif len(parts) == 1:
+            cands = [m.members.get(parts[0].lower()) for m in project.module_list]
+            cands = [c for c in cands if isinstance(c, ProcSym)]
+            proc = cands[0] if len(cands) == 1 else None
+        if not isinstance(proc, ProcSym) or proc.params:
+            self.sink.report(M.START_NOT_FOUND, None, name=start)
+            return
+        if not proc.public:
+            self.sink.report(M.START_NOT_PUBLIC, proc.span, name=start)
+        self.model.start = proc
+
+    def _module(self, mod: ModuleSym) -> None:
+        self._container(mod, None, list(mod.members.values()))
+
+    def _container(self, mod: ModuleSym, cls: ClassSym | None, members: list[object]) -> None:
+        for m in members:
+            if isinstance(m, VarSym):
+                self._field_init(m, mod, cls)
+            elif isinstance(m, ProcSym):
+                self._proc(m, mod, cls)
+            elif isinstance(m, PropSym):
+                for acc in (m.getter, m.setter):
+                    if acc is not None:
+                        self._proc(acc, mod, cls)
+            elif isinstance(m, ClassSym):
+                self.model.class_of_decl[m.decl] = m  # type: ignore[index]
+                for ctor in m.ctors:
+                    self._proc(ctor, mod, m)
+                self._container(mod, m, list(m.members.values()))
+            elif isinstance(m, DelegateSym):
+                self.model.delegate_of_decl[m.decl] = m  # type: ignore[index]
+
+    def _field_init(self, v: VarSym, mod: ModuleSym, cls: ClassSym | None) -> None:
+        d = v.decl
+        if d is None:
+            return
+        ctx = _Ctx(mod, cls if cls is not None else None, None)
+        if cls is not None and v.shared:
+            ctx = _Ctx(mod, cls, None)
+            ctx.cls = cls
+        self._declarator_exprs(d, v, ctx)
+
+    def _declarator_exprs(self, d: A.VarDeclarator, v: VarSym, ctx: _Ctx) -> None:
+        if d.bounds:
+            for b in d.bounds:
+                if b is not None:
+                    self._value(b, ctx)
+            if d.initializer is not None:
+                self.sink.report(M.TYPE_MISMATCH, d.initializer.span, src="initializer", dst="an array")
+        if d.new:
+            n = A.New(d.span, d.type or A.TypeRef(d.span, "?"), d.new_args)
+            self._expr(n, ctx)
+            self.model.decl_new[d] = n  # the declarator's As New, as an expression to lower
+        if d.initializer is not None and not d.bounds:
+            self._store_value(d.initializer, v.type, ctx)
+
+    # -- procedures ------------------------------------------------------------------------------------
+
+    def _proc(self, p: ProcSym, mod: ModuleSym, cls: ClassSym | None) -> None:
+        decl = p.decl
+        if decl is None:
+            return
+        self.model.proc_of_decl[decl] = p
+        ctx = _Ctx(mod, cls, p)
+        if isinstance(decl, A.ProcDecl):
+            for prm, v in zip(decl.params, p.params):
+                if prm.default is not None:
+                    self._store_value(prm.default, v.type, ctx)
+        # locals are visible in the whole procedure (§6.2): declare them all first
+        self._declare_locals(decl.body, p, ctx, top=True)
+        self._block(decl.body, ctx)
+
+    def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx, top: bool) -> None:
+        for s in block.statements:
+            if isinstance(s, A.VarDecl):
+                if not top:
+                    self.sink.report(M.DECL_IN_BLOCK, s.span, name=s.declarators[0].name)
+                storage = "static" if s.keyword == "Static" else "local"
+                for d in s.declarators:
+                    typ = self.r.resolve_type(d.type, ctx.module, ctx.cls)
+                    if d.bounds is not None and typ is not t.ERROR:
+                        typ = t.ArrayType(typ, len(d.bounds))
+                    v = VarSym(d.name, d.span, typ, storage, owner=p, const=s.is_const, decl=d)
+                    key = d.name.lower()
+                    if key in p.locals:
+                        prev = p.locals[key]
+                        self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
+                                         line=prev.span.line if prev.span else 0)
+                    else:
+                        p.locals[key] = v
+            elif isinstance(s, A.Label):
+                key = s.name.lower()
+                if key in p.labels:
+                    self.sink.report(M.DUPLICATE_LABEL, s.span, name=s.name)
+                p.labels[key] = s
+            for child in _child_blocks(s):
+                self._declare_locals(child, p, ctx, top=False)
+            if isinstance(s, A.Try) and s.catch is not None and s.catch.type is not None and s.catch.variable:
+                key = s.catch.variable.lower()
+                if key not in p.locals:
+                    typ = self.r.resolve_type(s.catch.type, ctx.module, ctx.cls)
+                    p.locals[key] = VarSym(s.catch.variable, s.catch.span, typ, "local", owner=p)
+
+    # -- statements ---------------------------------------------------------------------------------------
+
+    def _block(self, block: A.Block, ctx: _Ctx) -> None:
+        for s in block.statements:
+            try:
+                self._stmt(s, ctx)
+            except RecursionError:  # pragma: no cover - absurdly deep expressions
+                self.sink.report(M.NOT_SUPPORTED, s.span, what="an expression this deeply nested")
+
+    def _stmt(self, s: A.Stmt, ctx: _Ctx) -> None:
+        p = ctx.proc
+        assert p is not None
+        if isinstance(s, A.VarDecl):
+            for d in s.declarators:
+                v = p.locals.get(d.name.lower())
+                if v is not None and v.decl is d:
+                    self._declarator_exprs(d, v, ctx)
+        elif isinstance(s, A.Assign):
+            self._assign(s, ctx)
+        elif isinstance(s, A.CallStmt):
+            self._call_stmt(s.expr, ctx)
+        elif isinstance(s, A.If):
+            self._cond(s.condition, ctx)
+            self._block(s.then_body, ctx)
+            for ei in s.elseifs:
+                self._cond(ei.condition, ctx)
+                self._block(ei.body, ctx)
+            if s.else_body is not None:
+                self._block(s.else_body, ctx)
+        elif isinstance(s, A.For):
+            vt = self._target(s.var, ctx, for_var=True)
+            if vt is not t.ERROR and not (isinstance(vt, t.PrimitiveType) and vt.is_numeric and vt is not t.BOOLEAN):
+                self.sink.report(M.TYPE_MISMATCH, s.var.span, src=str(vt), dst="a For loop variable")
+            for e in (s.start, s.end, s.step):
+                if e is not None:
+                    self._numeric(e, ctx)
+            self._loop(s.body, ctx, "For")
+        elif isinstance(s, A.ForEach):
+            vt = self._target(s.var, ctx)
+            ct = self._value(s.collection, ctx)
+            if isinstance(ct, t.ArrayType):
+                if not assignable(ct.element, vt):
+                    self.sink.report(M.TYPE_MISMATCH, s.var.span, src=str(ct.element), dst=str(vt))
+            elif ct is not t.ERROR:
+                self.sink.report(M.NOT_AN_ARRAY, s.collection.span, name=_text(s.collection))
+            self._loop(s.body, ctx, "For")
+        elif isinstance(s, A.While):
+            self._cond(s.condition, ctx)
+            self._loop(s.body, ctx, "While")
+        elif isinstance(s, A.DoLoop):
+            if s.condition is not None:
+                self._cond(s.condition, ctx)
+            self._loop(s.body, ctx, "Do")
+        elif isinstance(s, A.Select):
+            st = self._value(s.subject, ctx)
+            if not _scalar(st):
+                self.sink.report(M.TYPE_MISMATCH, s.subject.span, src=str(st), dst="a Select value")
+            for c in s.cases:
+                for item in c.items:
+                    for e in item.children():
+                        self._value(e, ctx)  # type: ignore[arg-type]
+                self._loop(c.body, ctx, "Select")
+        elif isinstance(s, A.Try):
+            self._loop(s.body, ctx, "Try")
+            if s.catch is not None:
+                self._catch(s.catch, ctx)
+                self._loop(s.catch.body, ctx, "Try")
+            if s.finally_ is not None:
+                self._loop(s.finally_.body, ctx, "Finally")
+        elif isinstance(s, A.GoTo):
+            if s.label.lower() not in p.labels:
+                self.sink.report(M.UNKNOWN_LABEL, s.span, name=s.label)
+        elif isinstance(s, A.Exit):
+            self._exit(s, ctx)
+        elif isinstance(s, A.Return):
+            self._return(s, ctx)
+        elif isinstance(s, A.Throw):
+            if s.value is not None:
+                vt = self._value(s.value, ctx)
+                if vt is not t.ERROR and not (isinstance(vt, t.ClassType) and vt.key == "exception"):
+                    self.sink.report(M.TYPE_MISMATCH, s.value.span, src=str(vt), dst="an Exception to Throw")
+        elif isinstance(s, A.ReDim):
+            tt = self._target(s.target, ctx)
+            for b in s.bounds:
+                self._numeric(b, ctx)
+            if isinstance(tt, t.ArrayType):
+                if tt.rank != len(s.bounds):
+                    self.sink.report(M.SUBSCRIPT_COUNT, s.span, name=_text(s.target), rank=tt.rank,
+                                     given=len(s.bounds))
+            elif tt is not t.ERROR:
+                self.sink.report(M.NOT_AN_ARRAY, s.target.span, name=_text(s.target))
+        elif isinstance(s, (A.Label,)):
+            pass
+        elif isinstance(s, (A.ProcDecl, A.ClassDecl, A.ModuleDecl, A.PropertyDecl, A.DelegateDecl)):
+            pass  # misplaced; the parser reported it
+
+    def _loop(self, body: A.Block, ctx: _Ctx, kind: str) -> None:
+        ctx.blocks.append(kind)
+        try:
+            self._block(body, ctx)
+        finally:
+            ctx.blocks.pop()
+
+    def _catch(self, c: A.CatchClause, ctx: _Ctx) -> None:
+        if not c.variable:
+            return
+        ref = A.Name(c.span, c.variable)
+        vt = self._target(ref, ctx)
+        if vt is not t.ERROR and not (isinstance(vt, t.ClassType) and vt.key == "exception"):
+            self.sink.report(M.TYPE_MISMATCH, c.span, src="Exception", dst=f"the {vt} variable {c.variable}")
+        self.model.catch_var[c] = ref
+
+    def _exit(self, s: A.Exit, ctx: _Ctx) -> None:
+        kind = s.kind
+        p = ctx.proc
+        assert p is not None
+        if kind in ("Sub", "Function", "Property"):
+            ok = (kind == "Sub" and p.kind in ("Sub", "New", "Set")) or (kind == "Function" and p.kind == "Function") \
+                or (kind == "Property" and p.kind in ("Get", "Set"))
+        elif kind == "Try":
+            if ctx.blocks and "Finally" in ctx.blocks and ctx.blocks[-1] == "Finally":
+                self.sink.report(M.EXIT_TRY_IN_FINALLY, s.span)
+                return
+            ok = "Try" in ctx.blocks
+        else:
+            ok = kind in ctx.blocks
+        if not ok:
+            self.sink.report(M.EXIT_OUTSIDE, s.span, kind=kind)
+
+    def _return(self, s: A.Return, ctx: _Ctx) -> None:
+        p = ctx.proc
+        assert p is not None
+        wants = p.result if p.kind == "Function" else (p.prop.type if p.kind == "Get" and p.prop else t.VOID)
+        if s.value is None:
+            if wants is not t.VOID and p.kind == "Get":
+                self.sink.report(M.BAD_RETURN, s.span, detail="a property Get must return a value")
+            return
+        if wants is t.VOID:
+            self.sink.report(M.BAD_RETURN, s.span, detail=f"'{p.name}' is a {p.kind} and cannot return a value")
+            self._value(s.value, ctx)
+            return
+        self._store_value(s.value, wants, ctx)
+
+    def _assign(self, s: A.Assign, ctx: _Ctx) -> None:
+        tt = self._target(s.target, ctx)
+        if s.op == "=":
+            self._store_value(s.value, tt, ctx)
+            return
+        vt = self._value(s.value, ctx)
+        op = s.op[:-1]
+        rt = self._binary_type(op, tt, vt, s)
+        if not assignable(rt, tt):
+            self.sink.report(M.TYPE_MISMATCH, s.value.span, src=str(rt), dst=str(tt))
+
+    def _call_stmt(self, e: A.Expr, ctx: _Ctx) -> None:
+        info = self._expr(e, ctx, as_statement=True)
+        if info.kind not in ("call", "bfunc", "bmember", "vmember", "delegate_call", "error"):
+            self.sink.report(M.NOT_SUPPORTED, e.span, what=f"'{_text(e)}' as a statement (it is not a call)")
+
+    # -- expressions: entry points ------------------------------------------------------------------------
+
+    def _value(self, e: A.Expr, ctx: _Ctx) -> t.GplType:
+        info = self._expr(e, ctx)
+        if info.type is t.VOID:
+            self.sink.report(M.SUB_AS_VALUE, e.span, name=_text(e))
+            info.type = t.ERROR
+        elif info.kind in ("module", "class", "bclass"):
+            self.sink.report(M.NOT_A_VALUE, e.span, name=_text(e),
+                             what="module" if info.kind == "module" else "class")
+            info.type = t.ERROR
+        return info.type
+
+    def _numeric(self, e: A.Expr, ctx: _Ctx) -> t.GplType:
+        vt = self._value(e, ctx)
+        if not _scalar(vt):
+            self.sink.report(M.TYPE_MISMATCH, e.span, src=str(vt), dst="a number")
+        return vt
+
+    def _cond(self, e: A.Expr, ctx: _Ctx) -> None:
+        vt = self._value(e, ctx)
+        if not _scalar(vt):
+            self.sink.report(M.TYPE_MISMATCH, e.span, src=str(vt), dst="a condition")
+
+    def _store_value(self, e: A.Expr, dst: t.GplType, ctx: _Ctx) -> None:
+        vt = self._value(e, ctx)
+        if vt is t.NOTHING and isinstance(dst, t.PrimitiveType):
+            self.sink.report(M.TYPE_MISMATCH, e.span, src="Nothing", dst=str(dst))
+        elif not assignable(vt, dst):
+            self.sink.report(M.TYPE_MISMATCH, e.span, src=str(vt), dst=str(dst))
+
+    def _target(self, e: A.Expr, ctx: _Ctx, for_var: bool = False) -> t.GplType:
+        """Check an assignment target; returns its type."""
+        info = self._expr(e, ctx, as_target=True)
+        k = info.kind
+        if k == "var":
+            v: VarSym = info.sym  # type: ignore[assignment]
+            if v.const:
+                self.sink.report(M.CONST_ASSIGN, e.span, name=v.name)
+            v.assigned = True
+            return info.type
+        if k in ("result", "index", "error"):
+            return info.type
+        if k == "prop":
+            prop: PropSym = info.sym  # type: ignore[assignment]
+            if prop.setter is None:
+                self.sink.report(M.PROPERTY_ACCESS, e.span, name=prop.name, what="read-only")
+            return prop.type
+        if k == "bmember":
+            m: Member = info.sym  # type: ignore[assignment]
+            if m.settable:
+                return info.type if m.kind == "property" else m.result
+            self.sink.report(M.PROPERTY_ACCESS, e.span, name=m.name, what="read-only")
+            return t.ERROR
+        self.sink.report(M.NOT_ASSIGNABLE, e.span, what=f"'{_text(e)}'")
+        return t.ERROR
+
+    # -- expressions ------------------------------------------------------------------------------------
+
+    def _record(self, e: A.Node, info: Info) -> Info:
+        self.model.info[e] = info
+        return info
+
+    def _expr(self, e: A.Expr, ctx: _Ctx, as_statement: bool = False, as_target: bool = False) -> Info:
+        if isinstance(e, A.IntegerLiteral):
+            typ = t.INTEGER if -(2**31) <= e.value < 2**31 else t.DOUBLE
+            return self._record(e, Info(typ, "literal"))
+        if isinstance(e, A.RealLiteral):
+            return self._record(e, Info(t.DOUBLE, "literal"))
+        if isinstance(e, A.StringLiteral):
+            return self._record(e, Info(t.STRING, "literal"))
+        if isinstance(e, A.BooleanLiteral):
+            return self._record(e, Info(t.BOOLEAN, "literal"))
+        if isinstance(e, A.NothingLiteral):
+            return self._record(e, Info(t.NOTHING, "nothing"))
+        if isinstance(e, A.MeExpr):
+            if not ctx.instance:
+                self.sink.report(M.ME_OUTSIDE_INSTANCE, e.span)
+                return self._record(e, Info(t.ERROR, "error"))
+            assert ctx.cls is not None
+            return self._record(e, Info(ctx.cls.type, "me"))
+        if isinstance(e, A.Name):
+            return self._record(e, self._name(e, ctx, as_statement, as_target))
+        if isinstance(e, A.MemberAccess):
+            return self._record(e, self._member(e, ctx, as_statement, as_target))
+        if isinstance(e, A.Invoke):
+            return self._record(e, self._invoke(e, ctx))
+        if isinstance(e, A.Unary):
+            ot = self._value(e.operand, ctx)
+            if e.op == "Not":
+                typ: t.GplType = t.BOOLEAN
+            elif ot in (t.BOOLEAN, t.BYTE, t.SHORT):
+                typ = t.INTEGER
+            elif ot is t.STRING:
+                typ = t.DOUBLE
+            else:
+                typ = ot
+            if not _scalar(ot):
+                self.sink.report(M.BAD_OPERANDS, e.span, op=e.op, left="", right=str(ot))
+                typ = t.ERROR
+            return self._record(e, Info(typ, "unary"))
+        if isinstance(e, A.Binary):
+            if e.op == "Is":
+                lt = self._expr(e.left, ctx).type
+                rt = self._expr(e.right, ctx).type
+                for side, st in ((e.left, lt), (e.right, rt)):
+                    if st is not t.ERROR and not (st.is_reference or st is t.NOTHING):
+                        self.sink.report(M.BAD_OPERANDS, side.span, op="Is", left=str(lt), right=str(rt))
+                        break
+                return self._record(e, Info(t.BOOLEAN, "binary"))
+            lt = self._value(e.left, ctx)
+            rt = self._value(e.right, ctx)
+            return self._record(e, Info(self._binary_type(e.op, lt, rt, e), "binary"))
+        if isinstance(e, A.New):
+            return self._record(e, self._new(e, ctx))
+        if isinstance(e, A.AddressOf):
+            return self._record(e, self._addressof(e, ctx))
+        return self._record(e, Info(t.ERROR, "error"))
+
+    def _binary_type(self, op: str, lt: t.GplType, rt: t.GplType, node: A.Node) -> t.GplType:
+        if lt is t.ERROR or rt is t.ERROR:
+            return t.ERROR
+        if not (_scalar(lt) and _scalar(rt)):
+            if op in ("=", "<>") and (lt.is_reference or rt.is_reference):
+                pass
+            self.sink.report(M.BAD_OPERANDS, node.span, op=op, left=str(lt), right=str(rt))
+            return t.ERROR
+        if op in _COMPARE or op in ("AndAlso", "OrElse"):
+            return t.BOOLEAN
+        if op == "&":
+            return t.STRING
+        if op in ("And", "Or", "Xor"):
+            return t.BOOLEAN if lt is t.BOOLEAN and rt is t.BOOLEAN else t.INTEGER
+        if op in ("<<", ">>", "\\"):
+            return t.INTEGER
+        if op in ("/", "^"):
+            return t.DOUBLE
+        if op == "+" and lt is t.STRING and rt is t.STRING:
+            return t.STRING
+        if lt.is_integral and rt.is_integral:  # Booleans count as -1/0
+            return t.INTEGER
+        return t.DOUBLE
+
+    # -- names and members ------------------------------------------------------------------------------
+
+    def _found_info(self, found: Found, name: str, span: object, ctx: _Ctx, receiver: A.Expr | None,
+                    as_statement: bool, as_target: bool, in_invoke: bool = False) -> Info:
+        k = found.kind
+        s = found.sym
+        if k == "result":
+            assert isinstance(s, ProcSym)
+            if as_statement:
+                return self._proc_call_info(s, [], span, ctx, None)
+            s.uses_result = True
+            return Info(s.result, "result", s)
+        if k == "module":
+            return Info(t.VOID, "module", s)
+        if k == "builtin_class":
+            assert isinstance(s, BuiltinClass)
+            return Info(s.type if not s.is_global else t.VOID, "bclass", s)
+        if k == "builtin_function":
+            assert isinstance(s, BuiltinFunction)
+            if sum(1 for p in s.params if not p.optional) > 0:
+                self.sink.report(M.WRONG_ARG_COUNT, span, name=s.name,  # type: ignore[arg-type]
+                                 expected=len(s.params), given=0)
+            return Info(s.result, "bfunc", s, params=_pinfo_builtin(s.params))
+        if k == "builtin_constant":
+            assert isinstance(s, BuiltinConstant)
+            return Info(s.type, "bconst", s)
+        # user member
+        if isinstance(s, VarSym):
+            return Info(s.type, "var", s, receiver=receiver)
+        if isinstance(s, ProcSym):
+            if in_invoke:
+                return Info(s.result, "procref", s, receiver=receiver)
+            return self._proc_call_info(s, [], span, ctx, receiver)
+        if isinstance(s, PropSym):
+            if s.getter is None and not as_target:
+                self.sink.report(M.PROPERTY_ACCESS, span, name=s.name, what="write-only")  # type: ignore[arg-type]
+            return Info(s.type, "prop", s, receiver=receiver)
+        if isinstance(s, ClassSym):
+            return Info(t.VOID, "class", s)
+        if isinstance(s, DelegateSym):
+            return Info(t.VOID, "class", s)
+        return Info(t.ERROR, "error")
+
+    def _name(self, e: A.Name, ctx: _Ctx, as_statement: bool, as_target: bool) -> Info:
+        found = self.r.lookup(e.name, ctx.proc, ctx.cls, ctx.module)
+        if found is None:
+            if e.name.lower() == "string":
+                return Info(t.VOID, "bclass", self.cat.type_members.get("string"))
+            self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
+            return Info(t.ERROR, "error")
+        if isinstance(found, str):
+            self.sink.report(M.AMBIGUOUS_NAME, e.span, name=e.name, where=found)
+            return Info(t.ERROR, "error")
+        s = found.sym
+        if isinstance(s, (VarSym, ProcSym, PropSym)) and s.owner is ctx.cls and ctx.cls is not None:
+            if not getattr(s, "shared", False) and not ctx.instance:
+                self.sink.report(M.ME_OUTSIDE_INSTANCE, e.span)
+                return Info(t.ERROR, "error")
+        return self._found_info(found, e.name, e.span, ctx, None, as_statement, as_target)
+
+    def _member(self, e: A.MemberAccess, ctx: _Ctx, as_statement: bool, as_target: bool,
+                in_invoke: bool = False) -> Info:
+        tinfo = self._expr(e.target, ctx)
+        k = tinfo.kind
+        if tinfo.type is t.ERROR and k == "error":
+            return Info(t.ERROR, "error")
+        if k == "module":
+            mod: ModuleSym = tinfo.sym  # type: ignore[assignment]
+            m = mod.members.get(e.name.lower())
+            if m is None:
+                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"module {mod.name}", member=e.name)
+                return Info(t.ERROR, "error")
+            if not visible(m, ctx.module, ctx.cls):
+                self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=mod.name)
+                return Info(t.ERROR, "error")
+            return self._found_info(Found("member", m, mod), e.name, e.span, ctx, None,
+                                    as_statement, as_target, in_invoke)
+        if k == "class" and isinstance(tinfo.sym, ClassSym):
+            cls: ClassSym = tinfo.sym
+            m = cls.members.get(e.name.lower())
+            if m is None:
+                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name}", member=e.name)
+                return Info(t.ERROR, "error")
+            if not visible(m, ctx.module, ctx.cls):
+                self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=cls.name)
+                return Info(t.ERROR, "error")
+            if isinstance(m, (VarSym, ProcSym, PropSym)) and not m.shared:
+                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name} (Shared members)",
+                                 member=e.name)
+                return Info(t.ERROR, "error")
+            return self._found_info(Found("member", m, cls.module), e.name, e.span, ctx, None,
+                                    as_statement, as_target, in_invoke)
+        if k == "bclass":
+            b: BuiltinClass = tinfo.sym  # type: ignore[assignment]
+            bm = b.member(e.name) if b is not None else None
+            if bm is None or (not bm.shared and not b.is_global):
+                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=b.name if b else "?", member=e.name)
+                return Info(t.ERROR, "error")
+            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=b.name == "String")
+        typ = tinfo.type
+        if typ is t.ERROR:
+            return Info(t.ERROR, "error")
+        ucls = self.r.class_of(typ)
+        if ucls is not None:
+            m = ucls.members.get(e.name.lower())
+            if m is None or isinstance(m, (ClassSym, DelegateSym)):
+                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {ucls.name}", member=e.name)
+                return Info(t.ERROR, "error")
+            if not visible(m, ctx.module, ctx.cls):
+                self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=ucls.name)
+                return Info(t.ERROR, "error")
+            return self._found_info(Found("member", m, ucls.module), e.name, e.span, ctx, e.target,
+                                    as_statement, as_target, in_invoke)
+        if isinstance(typ, t.ArrayType):
+            b = self.cat.type_members.get("array")
+        else:
+            b = self.r.builtin_of(typ)
+        if b is None:
+            self.sink.report(M.NOT_AN_OBJECT, e.span, type=str(typ), member=e.name)
+            return Info(t.ERROR, "error")
+        bm = b.member(e.name)
+        if bm is None:
+            self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=str(typ), member=e.name)
+            return Info(t.ERROR, "error")
+        return self._bmember_info(bm, b, e, e.target, False, in_invoke,
+                                  value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING)
+
+    def _bmember_info(self, bm: Member, b: BuiltinClass, e: A.Expr, receiver: A.Expr | None, static: bool,
+                      in_invoke: bool, value_type: bool) -> Info:
+        kind = "vmember" if value_type and b.name in ("String", "Array") else "bmember"
+        if bm.kind == "property":
+            return Info(bm.result, kind, bm, owner=b, receiver=receiver, static=static)
+        info = Info(bm.result, kind, bm, owner=b, params=_pinfo_builtin(bm.params), receiver=receiver,
+                    static=static)
+        if not in_invoke and bm.min_args > 0:
+            self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
+        return info
+
+    def _proc_call_info(self, p: ProcSym, args: list[A.Expr], span: object, ctx: _Ctx,
+                        receiver: A.Expr | None) -> Info:
+        if not (p.min_args <= len(args) <= len(p.params)):
+            self.sink.report(M.WRONG_ARG_COUNT, span, name=p.name,  # type: ignore[arg-type]
+                             expected=_count_text(p.min_args, len(p.params)), given=len(args))
+        return Info(p.result, "call", p, params=_pinfo_user(p.params), receiver=receiver)
+
+    # -- calls, indexing, New, AddressOf -----------------------------------------------------------------
+
+    def _callee(self, e: A.Expr, ctx: _Ctx) -> Info:
+        """The target of an Invoke, without turning a zero-argument procedure into a call."""
+        if isinstance(e, A.Name):
+            found = self.r.lookup(e.name, ctx.proc, ctx.cls, ctx.module)
+            if found is None:
+                self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
+                return self._record(e, Info(t.ERROR, "error"))
+            if isinstance(found, str):
+                self.sink.report(M.AMBIGUOUS_NAME, e.span, name=e.name, where=found)
+                return self._record(e, Info(t.ERROR, "error"))
+            if found.kind == "result":
+                assert isinstance(found.sym, ProcSym)
+                return self._record(e, Info(found.sym.result, "procref", found.sym))
+            if isinstance(found.sym, ProcSym):
+                return self._record(e, Info(found.sym.result, "procref", found.sym))
+            if found.kind == "builtin_function":
+                f: BuiltinFunction = found.sym  # type: ignore[assignment]
+                return self._record(e, Info(f.result, "bfuncref", f))
+            return self._record(e, self._found_info(found, e.name, e.span, ctx, None, False, False))
+        if isinstance(e, A.MemberAccess):
+            return self._record(e, self._member(e, ctx, False, False, in_invoke=True))
+        return self._expr(e, ctx)
+
+    def _invoke(self, e: A.Invoke, ctx: _Ctx) -> Info:
+        ci = self._callee(e.target, ctx)
+        k = ci.kind
+        if k == "error":
+            for a in e.args:
+                self._expr(a, ctx)
+            return Info(t.ERROR, "error")
+        if k == "procref":
+            p: ProcSym = ci.sym  # type: ignore[assignment]
+            info = self._proc_call_info(p, e.args, e.span, ctx, ci.receiver)
+            self._args(e.args, info.params or [], ctx)
+            return info
+        if k == "bfuncref":
+            f: BuiltinFunction = ci.sym  # type: ignore[assignment]
+            params = _pinfo_builtin(f.params)
+            self._check_count(f.name, params, e.args, e.span)
+            self._args(e.args, params, ctx)
+            return Info(f.result, "bfunc", f, params=params)
+        if k in ("bmember", "vmember") and isinstance(ci.sym, Member) and ci.sym.kind == "method":
+            params = ci.params or []
+            self._check_count(ci.sym.name, params, e.args, e.span)
+            self._args(e.args, params, ctx)
+            return Info(ci.type, k, ci.sym, owner=ci.owner, params=params, receiver=ci.receiver,
+                        static=ci.static)
+        typ = ci.type
+        if isinstance(typ, t.ArrayType):
+            if len(e.args) != typ.rank:
+                self.sink.report(M.SUBSCRIPT_COUNT, e.span, name=_text(e.target), rank=typ.rank, given=len(e.args))
+            for a in e.args:
+                self._numeric(a, ctx)
+            return Info(typ.element, "index")
+        d = self.r.delegate_of(typ)
+        if d is not None:
+            params = _pinfo_user(d.params)
+            self._check_count(d.name, params, e.args, e.span)
+            self._args(e.args, params, ctx)
+            return Info(d.result, "delegate_call", d, params=params)
+        if typ is not t.ERROR:
+            self.sink.report(M.NOT_INDEXABLE, e.span, name=_text(e.target))
+        for a in e.args:
+            self._expr(a, ctx)
+        return Info(t.ERROR, "error")
+
+    def _check_count(self, name: str, params: list[ParamInfo], args: list[A.Expr], span: object) -> None:
+        lo = sum(1 for p in params if not p.optional)
+        if not (lo <= len(args) <= len(params)):
+            self.sink.report(M.WRONG_ARG_COUNT, span, name=name,  # type: ignore[arg-type]
+                             expected=_count_text(lo, len(params)), given=len(args))
+
+    def _args(self, args: list[A.Expr], params: list[ParamInfo], ctx: _Ctx) -> None:
+        for i, a in enumerate(args):
+            p = params[i] if i < len(params) else None
+            if p is None:
+                self._expr(a, ctx)
+                continue
+            if p.byref:
+                info = self._expr(a, ctx)
+                if not self._mark_byref(a, info, p):
+                    self.model.byref_temps.add(a)
+                    if p.type is not t.ERROR:
+                        self.sink.report(M.BYREF_TEMPORARY, a.span, name=p.name)
+                if info.type is t.VOID:
+                    self.sink.report(M.SUB_AS_VALUE, a.span, name=_text(a))
+                elif not assignable(info.type, p.type) and p.type is not t.ERROR:
+                    self.sink.report(M.TYPE_MISMATCH, a.span, src=str(info.type), dst=str(p.type))
+            elif p.type is t.ERROR:
+                self._value(a, ctx)
+            else:
+                self._store_value(a, p.type, ctx)
+
+    def _mark_byref(self, a: A.Expr, info: Info, p: ParamInfo) -> bool:
+        """Whether ``a`` is a variable that can be passed by reference; boxes locals that are."""
+        if info.kind == "var":
+            v: VarSym = info.sym  # type: ignore[assignment]
+            if v.const:
+                return False
+            if v.storage in ("local", "param") and not v.byref:
+                v.boxed = True
+            v.assigned = True
+            return True
+        if info.kind == "index":
+            return True
+        if info.kind == "result":
+            return False
+        return False
+
+    def _new(self, e: A.New, ctx: _Ctx) -> Info:
+        typ = self.r.resolve_type(e.type, ctx.module, ctx.cls)
+        args = e.args or []
+        if typ is t.ERROR:
+            for a in args:
+                self._expr(a, ctx)
+            return Info(t.ERROR, "error")
+        if isinstance(typ, t.PrimitiveType):
+            self.sink.report(M.NOT_SUPPORTED, e.span, what=f"New {typ}")
+            return Info(t.ERROR, "error")
+        cls = self.r.class_of(typ)
+        if cls is not None:
+            if not cls.ctors:
+                if args:
+                    self.sink.report(M.NO_CTOR_OVERLOAD, e.span, cls=cls.name, count=len(args))
+                return Info(typ, "new", cls)
+            arg_types = [self._value(a, ctx) for a in args]
+            ctor = self._pick_ctor(cls, arg_types)
+            if ctor is None:
+                self.sink.report(M.NO_CTOR_OVERLOAD, e.span, cls=cls.name, count=len(args))
+                return Info(typ, "new", cls)
+            for a, prm in zip(args, ctor.params):
+                if prm.byref:
+                    info = self.model.info[a]
+                    if not self._mark_byref(a, info, ParamInfo(prm.name, prm.type, True)):
+                        self.model.byref_temps.add(a)
+            return Info(typ, "new", cls, owner=ctor, params=_pinfo_user(ctor.params))
+        d = self.r.delegate_of(typ)
+        if d is not None:
+            if len(args) != 1:
+                self.sink.report(M.WRONG_ARG_COUNT, e.span, name=d.name, expected=1, given=len(args))
+                return Info(typ, "new", d)
+            a = args[0]
+            if isinstance(a, A.AddressOf):
+                self._addressof(a, ctx, d)
+                self._record(a, self.model.info.get(a) or Info(t.ERROR, "error"))
+            else:
+                self._store_value(a, t.STRING, ctx)
+            return Info(typ, "new", d)
+        b = self.r.builtin_of(typ)
+        if b is None:
+            return Info(t.ERROR, "error")
+        params = _pinfo_builtin(b.constructor or ())
+        if b.constructor is not None and params:
+            self._check_count(b.name, params, args, e.span)
+        self._args(args, params, ctx)
+        return Info(typ, "new", b, params=params)
+
+    def _pick_ctor(self, cls: ClassSym, arg_types: list[t.GplType]) -> ProcSym | None:
+        by_count = [c for c in cls.ctors if c.min_args <= len(arg_types) <= len(c.params)]
+        exact = [c for c in by_count if all(assignable(a, p.type) for a, p in zip(arg_types, c.params))]
+        if len(exact) > 1:
+            same = [c for c in exact if all(a == p.type for a, p in zip(arg_types, c.params))]
+            if same:
+                return same[0]
+        return exact[0] if exact else None
+
+    def _addressof(self, e: A.AddressOf, ctx: _Ctx, d: DelegateSym | None = None) -> Info:
+        ci = self._callee(e.target, ctx)
+        if ci.kind != "procref":
+            self.sink.report(M.ADDRESSOF_TARGET, e.span, what=f"'{_text(e.target)}'")
+            return self._record(e, Info(t.ERROR, "error"))
+        p: ProcSym = ci.sym  # type: ignore[assignment]
+        if d is not None and len(p.params) != len(d.params):
+            self.sink.report(M.WRONG_ARG_COUNT, e.span, name=p.name, expected=len(d.params), given=len(p.params))
+        return self._record(e, Info(d.type if d else t.ERROR, "addressof", p, receiver=ci.receiver))
+
+
+def _count_text(lo: int, hi: int) -> str:
+    return str(hi) if lo == hi else f"{lo} to {hi}"
+
+
+def _child_blocks(s: A.Stmt) -> list[A.Block]:
+    out: list[A.Block] = []
+    if isinstance(s, A.If):
+        out.append(s.then_body)
+        out.extend(ei.body for ei in s.elseifs)
+        if s.else_body is not None:
+            out.append(s.else_body)
+    elif isinstance(s, (A.For, A.ForEach, A.While, A.DoLoop)):
+        out.append(s.body)
+    elif isinstance(s, A.Select):
+        out.extend(c.body for c in s.cases)
+    elif isinstance(s, A.Try):
+        out.append(s.body)
+        if s.catch is not None:
+            out.append(s.catch.body)
+        if s.finally_ is not None:
+            out.append(s.finally_.body)
+    return out
+
+
+def child_blocks(s: A.Stmt) -> list[A.Block]:
+    """The statement lists directly inside a statement (If branches, loop body, Try parts ...)."""
+    return _child_blocks(s)
+
+
+def _text(e: A.Expr) -> str:
+    if isinstance(e, A.Name):
+        return e.name
+    if isinstance(e, A.MemberAccess):
+        return f"{_text(e.target)}.{e.name}"
+    if isinstance(e, A.Invoke):
+        return f"{_text(e.target)}(...)"
+    if isinstance(e, A.MeExpr):
+        return "Me"
+    return "expression"
+
+
+def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogue,
+            project_name: str = "", start: str | None = None) -> Model:
+    """Semantic analysis of a parsed project (units in ProjectSource order)."""
+    checker = Checker(ProjectSyms(project_name), catalogue, sink)
+    return checker.run(units, start)
+
+
+__all__ = ["analyze", "Model", "Info", "ParamInfo", "assignable", "child_blocks", "TOP_MODULE"]
