@@ -340,3 +340,28 @@ def test_every_source_suffix_spelling_is_gpl(tmp_path: Path, suffix: str) -> Non
     path = write_module(tmp_path, "Mod" + suffix, "Mod")
     project, sink = load(path)
     assert project is not None and len(project.sources) == 1 and list(sink) == []
+
+
+def test_files_differing_only_in_case_prefer_the_exact_name_with_a_warning(tmp_path: Path) -> None:
+    folder = tmp_path / "P"
+    write_module(folder, "main.gpl", "Lower")
+    write_module(folder, "Main.gpl", "Exact")
+    write_module(folder, "Util.gpl")
+    write_gpr(folder, "ProjectBegin", 'ProjectStart="Main"', 'ProjectSource="Main.gpl"',
+              'ProjectSource="UTIL.gpl"', "ProjectEnd")
+    project, sink = load(folder)
+    assert project is not None
+    assert project.sources[0].text == MODULE.format(name="Exact")
+    d = only(sink, "GPL1418")
+    assert d.span is not None and d.span.line == 3 and "Main.gpl, main.gpl" in d.message
+    assert names(project) == ["Main.gpl", "Util.gpl"]
+
+
+def test_binary_project_file_stops_loading(tmp_path: Path) -> None:
+    folder = tmp_path / "P"
+    write_module(folder, "Main.gpl")
+    (folder / "Project.gpr").write_bytes(b"ProjectBegin\n\x00\x00\x00\n")
+    project, sink = load(folder)
+    assert project is None
+    d = only(sink, "GPL1404")
+    assert d.span is not None and (d.span.line, d.span.col) == (2, 1)
