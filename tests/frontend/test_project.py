@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
 from gpl2py.project import Project, load_project
@@ -365,3 +368,40 @@ def test_binary_project_file_stops_loading(tmp_path: Path) -> None:
     assert project is None
     d = only(sink, "GPL1404")
     assert d.span is not None and (d.span.line, d.span.col) == (2, 1)
+
+
+# --- robustness: no input makes loading raise ---------------------------------------------------
+
+_GPR_LINES = st.one_of(
+    st.sampled_from([
+        "ProjectBegin", "ProjectEnd", 'ProjectName="X"', 'ProjectStart="Main"', 'ProjectSource="Main.gpl"',
+        'ProjectSource="main.GPL"', 'ProjectSource="Gone.gpl"', 'ProjectSource="../x.gpl"', 'ProjectSource=""',
+        'ProjectSource="Vendor.gpp"', 'ProjectSource="Bin.gpl"', 'ProjectSource="Sub"', "'comment", "",
+        'Key="v"', "=", '"', 'ProjectSource="C:\\x.gpl"', 'ProjectSource="/etc/passwd"',
+    ]),
+    st.text(max_size=30),
+)
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    lines=st.lists(_GPR_LINES, max_size=12),
+    newline=st.sampled_from(["\n", "\r\n", "\r"]),
+    junk=st.binary(max_size=64),
+)
+def test_any_project_file_loads_without_raising(lines: list[str], newline: str, junk: bytes) -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp) / "P"
+        write_module(folder, "Main.gpl")
+        (folder / "Vendor.gpp").write_bytes(b"'#Protected|" + junk)
+        (folder / "Bin.gpl").write_bytes(junk)
+        (folder / "Sub").mkdir()
+        (folder / "Project.gpr").write_bytes(newline.join(lines).encode("utf-8", "surrogatepass") + junk[:8])
+        sink = DiagnosticSink()
+        project = load_project(folder, sink)
+        for d in sink:
+            assert d.code.startswith("GPL14"), d.header()
+        if project is not None:
+            for src in project.sources:
+                assert isinstance(src.text, str)
+            assert all(p.suffix.lower() in (".gpp", ".gpl") for p in project.protected)
