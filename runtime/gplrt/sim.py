@@ -8,8 +8,11 @@ A notebook, a test or ``python -m out.project`` makes a :class:`Simulation` (or 
 * the I/O map (``io``: digital/analog signals, scripted input rules, output trace);
 * the console sink (``console``: stdout, or ``capture=True`` to collect the text);
 * the flash root (``flash_root``: folder standing in for ``/flash``);
-* the robots registry (``robots``: filled by the motion work) and the parameter database
-  (``pdb``: wired by the lead; ``Controller.PDb`` reads it).
+* the robot (``robot="PF400SX"``: any name of ``gplrt.controller.pdb.model_names()``; its shipped
+  parameter database is loaded into ``pdb`` on first motion use unless ``pdb`` was set), the
+  robots registry (``robots``: ``gplrt.motion.robot.RobotState`` per robot number, built on first
+  use) and the parameter database (``pdb``; ``Controller.PDb`` reads it);
+* ``trace(robot)``: the sampled motion of a robot (``gplrt.motion.trace``).
 
 Program lifetime (decision; D0:1493 and D0 §17): a thread ends when its top-level procedure
 returns, and the other threads keep running — the main procedure (ProjectStart) returning does not
@@ -116,6 +119,7 @@ class Simulation:
         project: str = "",
         max_threads: int = 32,
         slice_checkpoints: int = 1000,
+        robot: str = "PF400SX",
     ) -> None:
         self.scheduler: Scheduler
         if clock == "virtual":
@@ -135,9 +139,9 @@ class Simulation:
         self.project = project
         self.max_threads = max_threads
         self.controller = ControllerState()
-        self.robots: dict[int, Any] = {}
+        self.robots: dict[int, Any] = {}  # gplrt.motion.robot.RobotState, built on first use
+        self.robot_model = robot  # shipped database loaded into ``pdb`` on first motion use
         self.pdb: Any = None
-        self.trace: list[Any] = []
         self.thread_exit_hooks: list[Callable[[Any], None]] = []
         self.threads: list[Any] = []  # every GPL Thread object started in this session
         self._previous: Simulation | None = None
@@ -226,6 +230,12 @@ class Simulation:
         """
         self.activate()
         return self.scheduler.adopted()
+
+    def trace(self, robot: int = 1, dt: float | None = None) -> Any:
+        """Sampled joint and tool trajectories of ``robot`` (``gplrt.motion.trace.Trace``)."""
+        from gplrt.motion.trace import trace
+
+        return trace(self, robot, dt)
 
     def report(self, thread_name: str, text: str, code: int = 0) -> None:
         """Record a controller-level error (error log + console log)."""

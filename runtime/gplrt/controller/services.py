@@ -91,6 +91,7 @@ class _ControllerClass:
         state = sim.controller
         if not value:
             state.power_state = POWER_OFF_WAITING
+            _power_dropped(sim)
             return
         if state.power_state in POWER_ON_STATES:
             return
@@ -117,6 +118,7 @@ class _ControllerClass:
         state.soft_estop = bool(value)
         if value:
             state.power_state = POWER_OFF_WAITING
+            _power_dropped(_sim())
 
     @property
     def SystemSpeed(self) -> Double:
@@ -203,6 +205,13 @@ class _ControllerClass:
         """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
         unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 1, 0))
         _pdb().set_pdb_num(float(rest[-1]), int(data_id), unit, unit2, index, key)
+
+
+def _power_dropped(sim: Any) -> None:
+    """Motion stops when high power goes off (gplrt.motion.registry.power_dropped)."""
+    from gplrt.motion.registry import power_dropped
+
+    power_dropped(sim)
 
 
 def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tuple[int, int, int, int]:

@@ -1,0 +1,134 @@
+"""A robot's motion limits read from its parameter database, and their scaling by a Profile.
+
+Everything here is in GPL units (mm, degrees, seconds): the planner runs Ruckig directly in these
+units, which keeps every number a user sees in a trace equal to the number Ruckig produced.
+
+DataIDs (robot-models.md §2.4-§2.5): 2700/2702 per-axis 100 % joint speed/acceleration (2702 is
+also the deceleration reference), 2701/2703 Cartesian speed/acceleration ([1] linear mm/s, [2]
+rotation deg/s), 2704-2706 caps on Profile.Speed/Accel/Decel (%), 2101 RapidDecel %,
+2601 in-range settling time (s).
+
+Profile mapping (gpl-classes §22.4, robot-models §2.4 [P]):
+``v = ref_speed · min(Speed, 2704)/100 · SystemSpeed/100``, ``a = ref_accel · min(Accel, 2705)/100``,
+``d = ref_accel · min(Decel, 2706)/100``, jerk ``a / AccelRamp`` and ``d / DecelRamp``.  Ruckig has
+one jerk per axis, so the smaller of the two is used (a ramp of 0 means no jerk limit).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gplrt.motion.profile import Profile
+
+Vec = NDArray[np.float64]
+
+#: Settling time for InRange > 0 when the database has no DataID 2601 (s).
+DEFAULT_SETTLE = 0.05
+
+
+@dataclass(frozen=True)
+class AxisLimits:
+    """Per-axis limits for one planned segment (arrays of the robot's axis count)."""
+
+    velocity: Vec
+    accel: Vec
+    decel: Vec
+    jerk: Vec
+
+
+@dataclass(frozen=True)
+class PathLimits:
+    """Limits of the tool along a Cartesian path: linear (mm) and rotation (deg) rates."""
+
+    linear_velocity: float
+    linear_accel: float
+    linear_decel: float
+    rotation_velocity: float
+    rotation_accel: float
+    rotation_decel: float
+    accel_ramp: float
+    decel_ramp: float
+
+
+@dataclass(frozen=True)
+class RobotLimits:
+    """The reference (100 %) values of one robot."""
+
+    joint_speed: Vec
+    joint_accel: Vec
+    cart_speed: tuple[float, float]
+    cart_accel: tuple[float, float]
+    max_speed_pct: float
+    max_accel_pct: float
+    max_decel_pct: float
+    rapid_decel_pct: float
+    settle_time: float
+
+    @classmethod
+    def from_pdb(cls, pdb: object, robot: int, n: int) -> RobotLimits:
+        """Read the DataIDs above; missing per-axis values repeat the last one given."""
+
+        def nums(data_id: int, default: list[float]) -> list[float]:
+            has = getattr(pdb, "has")(data_id, robot)
+            return list(getattr(pdb, "get_nums")(data_id, robot)) if has else default
+
+        def per_axis(data_id: int) -> Vec:
+            vals = [v for v in nums(data_id, [100.0]) if v > 0.0] or [100.0]
+            vals = (vals + [vals[-1]] * n)[:n]
+            return np.array(vals, dtype=float)
+
+        cs = nums(2701, [250.0, 180.0]) + [180.0]
+        ca = nums(2703, [1000.0, 720.0]) + [720.0]
+        one = lambda data_id, default: nums(data_id, [default])[0]  # noqa: E731
+        return cls(
+            joint_speed=per_axis(2700),
+            joint_accel=per_axis(2702),
+            cart_speed=(float(cs[0]), float(cs[1])),
+            cart_accel=(float(ca[0]), float(ca[1])),
+            max_speed_pct=float(one(2704, 100.0)),
+            max_accel_pct=float(one(2705, 100.0)),
+            max_decel_pct=float(one(2706, 100.0)),
+            rapid_decel_pct=float(one(2101, 100.0)),
+            settle_time=float(one(2601, DEFAULT_SETTLE)),
+        )
+
+    # -- Profile scaling ------------------------------------------------------------------------
+
+    def _pcts(self, prof: Profile, system_speed: float) -> tuple[float, float, float]:
+        speed = min(float(prof.Speed), self.max_speed_pct) / 100.0 * system_speed / 100.0
+        accel = min(float(prof.Accel), self.max_accel_pct) / 100.0
+        decel = min(float(prof.Decel), self.max_decel_pct) / 100.0
+        return speed, accel, decel
+
+    def joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
+        """Joint-interpolated move limits for ``prof`` at ``Controller.SystemSpeed``."""
+        speed, accel, decel = self._pcts(prof, system_speed)
+        a = self.joint_accel * accel
+        d = self.joint_accel * decel
+        return AxisLimits(self.joint_speed * speed, a, d, jerk_of(a, d, prof.AccelRamp, prof.DecelRamp))
+
+    def path_limits(self, prof: Profile, system_speed: float) -> PathLimits:
+        """Straight-line / arc limits: 2701/2703 [1] for translation, [2] for rotation.
+
+        ``Speed2`` > 0 replaces ``Speed`` for the rotation rate ("secondary peak speed for
+        selected axes during Cartesian motions"); 0 means "not used" (same as Speed)."""
+        speed, accel, decel = self._pcts(prof, system_speed)
+        rot_speed = speed
+        if float(prof.Speed2) > 0.0:
+            rot_speed = min(float(prof.Speed2), self.max_speed_pct) / 100.0 * system_speed / 100.0
+        return PathLimits(
+            self.cart_speed[0] * speed, self.cart_accel[0] * accel, self.cart_accel[0] * decel,
+            self.cart_speed[1] * rot_speed, self.cart_accel[1] * accel, self.cart_accel[1] * decel,
+            float(prof.AccelRamp), float(prof.DecelRamp),
+        )
+
+
+def jerk_of(a: Vec, d: Vec, accel_ramp: float, decel_ramp: float) -> Vec:
+    """Jerk = accel / ramp time; the more restrictive of the accel and decel ramps (0 s = unlimited)."""
+    ja = a / accel_ramp if accel_ramp > 0.0 else np.full_like(a, math.inf)
+    jd = d / decel_ramp if decel_ramp > 0.0 else np.full_like(d, math.inf)
+    return np.minimum(ja, jd)

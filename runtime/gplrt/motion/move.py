@@ -1,0 +1,276 @@
+"""GPL's global ``Move`` class (gpl-classes §7, gpl-dictionary §4): queue motions of the attached robot.
+
+Every method acts on the robot attached to the calling thread and returns as soon as the motion
+is planned and queued (``Move.WaitForEOM`` waits for the end).  Refusals, in this order:
+-1009 *No robot attached*, -1046 *Power not enabled*, -1021 *Robot not homed*; then the target's
+own errors (-1012 joint out of range, -1039/-1040 too close/far, -1033 invalid Cartesian value,
+-1042 configuration change in a straight line, -1036 no kinematics for Cartesian targets).
+
+Decisions [P] where the Dictionary gives only a name:
+
+* ``Rel(loc, prof)``: Cartesian ``loc`` — destination of the previous motion · loc (offset in the
+  tool frame); Angles — axis-wise sum.
+* ``Approach`` of an Angles Location: its Cartesian pose (forward kinematics), then the clearance
+  rule of ``Location.approach_location``; ZClearance not set (1.0e32) raises -1033.
+* ``OneAxis(axis, position, relative, prof)``: a joint move of one axis (1-based); bad axis -1002.
+* ``Circle(loc1, loc2, prof)``: the full circle through the previous destination, loc1 and loc2,
+  back to the start, orientation held.  ``Arc``: the arc from the previous destination through
+  loc1 to loc2, orientation slerped to loc2's.
+* ``Extra(a1[, a2, a3, a4])``: the robot's extra axes (the linear rail of a PF400 SXL) go to these
+  values during the next motion to a Cartesian Location; values beyond the robot's extra axes are
+  ignored (extra.htm).
+* Jog, velocity, torque and real-time-modification modes, ``StartSpeedDAC``, ``Trigger`` and
+  ``ForceOverlap`` are not emulated: -204 *Not implemented* with the member named
+  (gpl-classes §22.5).  ``StopSpecialModes`` has nothing to stop and returns.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable
+
+import numpy as np
+
+from gplrt.geometry.location import Location
+from gplrt.lang.errors import NOT_IMPLEMENTED, GplException
+from gplrt.lang.gpltypes import Boolean, Double, Integer
+from gplrt.motion import registry
+from gplrt.motion.profile import Profile
+from gplrt.motion.robot import QUEUE_DEPTH, RobotState
+from gplrt.motion.straight import ArcPath, LinePath
+
+NOTHING_VALUE = -782
+INVALID_ARGUMENT = -202
+INVALID_AXIS = -1002
+INVALID_CARTESIAN = -1033
+NO_ROBOT_ATTACHED = -1009
+NO_CLEARANCE = 1.0e32
+
+
+def _power_on(s: Any) -> bool:
+    from gplrt.controller.services import POWER_ON_STATES
+
+    return s.controller.power_state in POWER_ON_STATES
+
+
+def _attached(s: Any) -> RobotState:
+    robot = registry.attached_robot(s, registry.thread_key())
+    if robot is None:
+        raise GplException(NO_ROBOT_ATTACHED, detail="this thread has no robot attached (Robot.Attached)")
+    return robot  # type: ignore[no-any-return]
+
+
+def _ready(s: Any) -> RobotState:
+    """The attached robot, checked for motion, once the queue has room (waits on the clock)."""
+    robot = _attached(s)
+    robot.check_can_move(registry.thread_key(), _power_on(s))
+    sched = s.scheduler
+    while robot.queue.pending(sched.clock.now()) >= QUEUE_DEPTH:
+        t = sched.clock.now()
+        ends = [seg.end for seg in robot.queue.history[-QUEUE_DEPTH - 1:] if seg.end > t]
+        sched.sleep_until(min(ends))
+        robot.check_can_move(registry.thread_key(), _power_on(s))
+    return robot
+
+
+def _need(obj: Any, what: str) -> None:
+    if obj is None:
+        raise GplException(NOTHING_VALUE, detail=f"{what} is Nothing")
+
+
+def _angles_of(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray:
+    """Joint values of an Angles Location; axes it does not give keep ``base``'s values."""
+    vals = loc.axis_values()
+    n = robot.axis_count
+    if len(vals) > n:
+        raise GplException(INVALID_ARGUMENT, robot_num=robot.number,
+                           detail=f"{len(vals)} angles for a {n}-axis robot")
+    q = base.copy()
+    q[: len(vals)] = vals
+    return q
+
+
+def _with_extra(robot: RobotState, q: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+    """``q`` with the pending ``Move.Extra`` values on the extra axes (consumed here)."""
+    extra, robot.pending_extra = robot.pending_extra, []
+    if not extra:
+        return q, None
+    idx = [i for i, m in enumerate(robot.extra_mask) if m]
+    out = q.copy()
+    for i, v in zip(idx, extra):
+        out[i] = v
+    return out, out
+
+
+def _cartesian(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray:
+    """Total pose (4×4 mm) of a Location; Angles Locations through forward kinematics."""
+    if loc.Type == 1:
+        return robot.forward(_angles_of(robot, loc, base))
+    return loc.matrix()
+
+
+class _MoveClass:
+    """GPL ``Move`` (global class: one instance; see the module docstring)."""
+
+    # -- the motion itself -----------------------------------------------------------------------
+
+    def _go(self, loc: Location, prof: Profile, pose: Callable[[RobotState, np.ndarray], np.ndarray] | None = None,
+            joints: Callable[[RobotState, np.ndarray], np.ndarray] | None = None) -> None:
+        _need(loc, "Location")
+        _need(prof, "Profile")
+        s = registry.sim()
+        robot = _ready(s)
+        t = s.scheduler.clock.now()
+        speed = s.controller.system_speed
+        dest = robot.queue.final_joints()
+        with robot.lock:
+            if joints is not None:
+                robot.queue_joint(t, joints(robot, dest), prof, speed)
+                return
+            assert pose is not None
+            seed, extra_end = _with_extra(robot, dest)
+            T1 = pose(robot, dest)
+            if prof.Straight:
+                robot.queue_path(t, lambda T0: LinePath(T0, T1), int(loc.Config), prof, speed, extra_end)
+            else:
+                robot.queue_joint(t, robot.inverse(T1, int(loc.Config), seed), prof, speed)
+
+    def Loc(self, Location1: Location, Profile1: Profile) -> None:
+        """Move to the total position of ``Location1`` (Cartesian or Angles)."""
+        loc = Location1
+        if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
+            self._go(loc, Profile1, joints=lambda r, dest: _angles_of(r, loc, dest))
+        else:
+            self._go(loc, Profile1, pose=lambda r, dest: _cartesian(r, loc, dest))
+
+    def Approach(self, Location1: Location, Profile1: Profile) -> None:
+        """Move to the clearance position of ``Location1`` (ZClearance / ZWorld)."""
+        loc = Location1
+
+        def pose(r: RobotState, dest: np.ndarray) -> np.ndarray:
+            zc = float(loc.ZClearance)
+            if zc >= NO_CLEARANCE:
+                raise GplException(INVALID_CARTESIAN, robot_num=r.number, detail="ZClearance is not set")
+            T = _cartesian(r, loc, dest).copy()
+            if loc.ZWorld:
+                T[2, 3] = zc
+            else:
+                T[:3, 3] -= zc * T[:3, 2]
+            return T
+
+        self._go(loc, Profile1, pose=pose)
+
+    def Rel(self, Location1: Location, Profile1: Profile) -> None:
+        """Move relative to the destination of the previous motion (see the module docstring)."""
+        loc = Location1
+        if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
+            self._go(loc, Profile1, joints=lambda r, dest: dest + _angles_of(r, loc, np.zeros_like(dest)))
+        elif loc is not None and loc.Type == 1:
+            self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest + _angles_of(r, loc, np.zeros_like(dest))))
+        else:
+            self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest) @ loc.matrix())
+
+    def OneAxis(self, Axis: Integer, Position: Double, RelativeFlag: Boolean, Profile1: Profile) -> None:
+        """Move one axis (1-based) to ``Position`` (or by it, when ``RelativeFlag``)."""
+        _need(Profile1, "Profile")
+        s = registry.sim()
+        robot = _ready(s)
+        axis = int(Axis)
+        if not 1 <= axis <= robot.axis_count:
+            raise GplException(INVALID_AXIS, robot_num=robot.number, axis=axis, detail=f"axis {axis}")
+        with robot.lock:
+            q = robot.queue.final_joints()
+            q[axis - 1] = q[axis - 1] + float(Position) if RelativeFlag else float(Position)
+            robot.queue_joint(s.scheduler.clock.now(), q, Profile1, s.controller.system_speed)
+
+    def Arc(self, Location1: Location, Location2: Location, Profile1: Profile) -> None:
+        """Circular arc from the previous destination through ``Location1`` to ``Location2``."""
+        self._circular(Location1, Location2, Profile1, full=False)
+
+    def Circle(self, Location1: Location, Location2: Location, Profile1: Profile) -> None:
+        """Full circle through the previous destination, ``Location1`` and ``Location2``."""
+        self._circular(Location1, Location2, Profile1, full=True)
+
+    def _circular(self, loc1: Location, loc2: Location, prof: Profile, *, full: bool) -> None:
+        for obj, what in ((loc1, "Location1"), (loc2, "Location2"), (prof, "Profile")):
+            _need(obj, what)
+        s = registry.sim()
+        robot = _ready(s)
+        with robot.lock:
+            dest = robot.queue.final_joints()
+            _, extra_end = _with_extra(robot, dest)
+            p_mid = _cartesian(robot, loc1, dest)[:3, 3]
+            T2 = _cartesian(robot, loc2, dest)
+            robot.queue_path(s.scheduler.clock.now(), lambda T0: ArcPath(T0, p_mid, T2, full=full),
+                             int(loc2.Config), prof, s.controller.system_speed, extra_end,
+                             kind="circle" if full else "arc")
+
+    def Delay(self, Seconds: Double) -> None:
+        """Insert a pause of ``Seconds`` into the motion queue."""
+        s = registry.sim()
+        robot = _ready(s)
+        with robot.lock:
+            robot.queue_delay(s.scheduler.clock.now(), float(Seconds))
+
+    def Extra(self, Axis1: Double, Axis2: Double | None = None, Axis3: Double | None = None,
+              Axis4: Double | None = None) -> None:  # type: ignore[assignment]
+        """Positions of the extra axes for the next motion to a Cartesian Location."""
+        robot = _attached(registry.sim())
+        n_extra = int(np.count_nonzero(robot.extra_mask))
+        vals = [float(v) for v in (Axis1, Axis2, Axis3, Axis4) if v is not None]
+        robot.pending_extra = vals[:n_extra]
+
+    def WaitForEOM(self) -> None:
+        """Wait until the attached robot's queued motions have ended (and settled)."""
+        s = registry.sim()
+        robot = _attached(s)
+        sched = s.scheduler
+        while True:
+            end = robot.queue.end_time
+            if sched.clock.reached(end):
+                break
+            sched.wait(robot.eom_waiters, end)
+        robot.raise_async_error()
+
+    def StopSpecialModes(self) -> None:
+        """No special trajectory mode is ever active in the simulation: nothing to stop."""
+
+    # -- not emulated (gpl-classes §22.5) ----------------------------------------------------------
+
+    def _unsupported(self, name: str) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail=f"Move.{name} is not supported in simulation")
+
+    def ForceOverlap(self, *args: Any) -> None:
+        self._unsupported("ForceOverlap")
+
+    def Trigger(self, *args: Any) -> None:
+        self._unsupported("Trigger")
+
+    def SetJogCommand(self, *args: Any) -> None:
+        self._unsupported("SetJogCommand")
+
+    def StartJogMode(self, *args: Any) -> None:
+        self._unsupported("StartJogMode")
+
+    def SetRealTimeMod(self, *args: Any) -> None:
+        self._unsupported("SetRealTimeMod")
+
+    def StartRealTimeMod(self, *args: Any) -> None:
+        self._unsupported("StartRealTimeMod")
+
+    def SetSpeeds(self, *args: Any) -> None:
+        self._unsupported("SetSpeeds")
+
+    def SetTorques(self, *args: Any) -> None:
+        self._unsupported("SetTorques")
+
+    def StartSpeedDAC(self, *args: Any) -> None:
+        self._unsupported("StartSpeedDAC")
+
+    def StartTorqueCntrl(self, *args: Any) -> None:
+        self._unsupported("StartTorqueCntrl")
+
+    def StartVelocityCntrl(self, *args: Any) -> None:
+        self._unsupported("StartVelocityCntrl")
+
+
+Move = _MoveClass()

@@ -1,0 +1,187 @@
+"""The motion queue: planned segments with absolute start times on the controller clock.
+
+There is no servo thread: the robot's state at time ``t`` is read off the segment that covers
+``t`` (``MotionQueue.state_at``).  A segment covers ``[t0, end)`` where ``end`` is its planned
+end, or the time it was cut at (blended into the next motion, or stopped by RapidDecel / power
+loss), plus its settling time.  Every segment ever queued stays in ``history`` for the trace.
+
+Segment kinds:
+
+* :class:`JointSegment` — a synchronised Ruckig trajectory of all axes;
+* :class:`PathSegment` — a 1-D Ruckig trajectory of the path parameter of a line/arc, mapped to
+  joints by IK (velocities and accelerations by the chain rule with finite-difference ``q'``, ``q''``);
+* :class:`DwellSegment` — ``Move.Delay``: the robot holds still.
+"""
+
+from __future__ import annotations
+
+import bisect
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from gplrt.motion.limits import Vec
+from gplrt.motion.planner import Plan
+from gplrt.motion.profile import Profile
+from gplrt.motion.straight import PathJoints
+
+_H = 1e-5  # path-parameter step for q'(u), q''(u)
+
+
+@dataclass(eq=False)
+class Segment:
+    """Common part of every queued segment (times in controller seconds)."""
+
+    t0: float
+    duration: float
+    q_start: Vec
+    q_end: Vec
+    profile: Profile | None = None
+    settle: float = 0.0
+    blend: bool = False
+    blend_tolerance: float = 0.0
+    cut: float | None = None  # absolute time the motion was cut at (blend / stop)
+    kind: str = "joint"
+
+    @property
+    def motion_end(self) -> float:
+        """When this segment's own motion ends (its cut time if it was cut)."""
+        return self.cut if self.cut is not None else self.t0 + self.duration
+
+    @property
+    def end(self) -> float:
+        """End of the segment including settling (the next segment starts here)."""
+        return self.motion_end if self.cut is not None else self.t0 + self.duration + self.settle
+
+    @property
+    def target(self) -> Vec:
+        return self.q_end
+
+    def state(self, t: float) -> tuple[Vec, Vec, Vec]:
+        """(joints, joint velocities, joint accelerations) at absolute time ``t``."""
+        raise NotImplementedError
+
+    def joints(self, t: float) -> Vec:
+        return self.state(t)[0]
+
+
+@dataclass(eq=False)
+class JointSegment(Segment):
+    plan: Plan | None = None
+
+    def state(self, t: float) -> tuple[Vec, Vec, Vec]:
+        assert self.plan is not None
+        local = t - self.t0
+        if local >= self.duration:
+            z = np.zeros(len(self.q_end))
+            return self.q_end.copy(), z, z.copy()
+        p, v, a = self.plan.at(local)
+        return np.array(p), np.array(v), np.array(a)
+
+
+@dataclass(eq=False)
+class PathSegment(Segment):
+    plan: Plan | None = None
+    path_joints: PathJoints | None = None
+    u_start: float = 0.0
+
+    def parameter(self, t: float) -> tuple[float, float, float]:
+        assert self.plan is not None
+        p, v, a = self.plan.at(t - self.t0)
+        return p[0], v[0], a[0]
+
+    def joints(self, t: float) -> Vec:
+        assert self.path_joints is not None
+        if t - self.t0 >= self.duration:
+            return self.q_end.copy()
+        return self.path_joints.joints(self.parameter(t)[0])
+
+    def state(self, t: float) -> tuple[Vec, Vec, Vec]:
+        assert self.path_joints is not None
+        if t - self.t0 >= self.duration:
+            z = np.zeros(len(self.q_end))
+            return self.q_end.copy(), z, z.copy()
+        u, ud, udd = self.parameter(t)
+        pj = self.path_joints
+        lo, hi = max(0.0, u - _H), min(1.0, u + _H)
+        mid = min(max(u, lo + 1e-12), hi)
+        q_lo, q_mid, q_hi = pj.joints(lo), pj.joints(mid), pj.joints(hi)
+        d1 = (q_hi - q_lo) / (hi - lo)
+        d2 = (q_hi - 2.0 * q_mid + q_lo) / ((hi - lo) / 2.0) ** 2 if hi - lo > 1.5 * _H else np.zeros_like(d1)
+        return pj.joints(u), d1 * ud, d2 * ud * ud + d1 * udd
+
+
+@dataclass(eq=False)
+class DwellSegment(Segment):
+    kind: str = "delay"
+
+    def state(self, t: float) -> tuple[Vec, Vec, Vec]:
+        z = np.zeros(len(self.q_end))
+        return self.q_end.copy(), z, z.copy()
+
+
+@dataclass
+class MotionQueue:
+    """Segments in time order; the robot rests at ``rest`` before the first one."""
+
+    rest: Vec
+    history: list[Segment] = field(default_factory=list)
+    _starts: list[float] = field(default_factory=list)
+
+    def append(self, seg: Segment) -> None:
+        self.history.append(seg)
+        self._starts.append(seg.t0)
+
+    @property
+    def last(self) -> Segment | None:
+        return self.history[-1] if self.history else None
+
+    @property
+    def end_time(self) -> float:
+        """When the last queued segment ends (settling included)."""
+        last = self.last
+        return last.end if last is not None else float("-inf")
+
+    def final_joints(self) -> Vec:
+        """Where the robot is when everything queued has run (``Robot.DestAngles``)."""
+        last = self.last
+        return (last.q_end if last is not None else self.rest).copy()
+
+    def segment_at(self, t: float) -> Segment | None:
+        """The segment covering ``t``, or None when the robot is at rest (before/after all)."""
+        i = bisect.bisect_right(self._starts, t) - 1
+        if i < 0:
+            return None
+        seg = self.history[i]
+        # A segment cut for a blend hands over to its successor, which starts at the cut time.
+        return seg if t < seg.end else None
+
+    def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
+        seg = self.segment_at(t)
+        if seg is not None:
+            return seg.state(t)
+        q = self._resting_joints(t)
+        z = np.zeros(len(q))
+        return q, z, z.copy()
+
+    def joints_at(self, t: float) -> Vec:
+        seg = self.segment_at(t)
+        return seg.joints(t) if seg is not None else self._resting_joints(t)
+
+    def _resting_joints(self, t: float) -> Vec:
+        i = bisect.bisect_right(self._starts, t) - 1
+        return (self.history[i].q_end if i >= 0 else self.rest).copy()
+
+    def pending(self, t: float) -> int:
+        """Number of segments not finished at ``t``."""
+        return sum(1 for s in self.history[-64:] if s.end > t)
+
+    def cut_at(self, t: float, q: Vec) -> None:
+        """Stop everything at ``t`` with the robot at ``q``: later segments are dropped."""
+        while self.history and self.history[-1].t0 > t:
+            self.history.pop()
+            self._starts.pop()
+        last = self.last
+        if last is not None and last.end > t:
+            last.cut = max(t, last.t0)
+            last.q_end = q.copy()

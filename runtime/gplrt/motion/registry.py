@@ -1,0 +1,134 @@
+"""Where the motion runtime finds its robots, the calling thread and the controller state.
+
+* ``robot_of(sim, n)`` — the :class:`RobotState` of robot ``n`` in ``sim.robots``, built on first
+  use from the session's parameter database (``sim.pdb``; when the session has none yet, the
+  shipped database of ``sim.robot_model``, default PF400SX, is loaded into ``sim.pdb``).  A robot
+  number the database does not define raises -1001 *Undefined robot*.
+* ``thread_key()`` — the identity used for ``Robot.Attached``/``Selected``: the GPL thread's
+  scheduler record, or the Python thread for code outside the scheduler (a notebook).
+* Thread end releases the robots the thread had attached (gpl-classes §22.3 item 4), through the
+  session's ``thread_exit_hooks``.
+* Power: ``power_dropped(sim)`` is called by ``Controller.PowerEnabled = False`` / ``SoftEStop``
+  (controller/services.py) and stops every robot at once.  ``PowerState`` reads 21 while a robot
+  is attached and 28 while homing (gpl-dictionary §13.3).
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Any
+
+from gplrt.lang.errors import GplException
+from gplrt.threads.scheduler import WaitQueue, current_ctx
+
+UNDEFINED_ROBOT = -1001
+INVALID_ROBOT_NUMBER = -1000
+POWER_READY = 20
+POWER_ATTACHED = 21
+POWER_HOMING = 28
+POWER_NOT_ENABLED = -1046
+
+
+def sim() -> Any:
+    from gplrt.sim import current
+
+    return current()
+
+
+def now() -> float:
+    return float(sim().scheduler.clock.now())
+
+
+def thread_key() -> Any:
+    ctx = current_ctx()
+    return ctx if ctx is not None else threading.current_thread()
+
+
+def _motion(s: Any) -> dict[str, Any]:
+    """Per-session motion bookkeeping kept on the Simulation (selected robot per thread)."""
+    state = s.__dict__.get("_motion")
+    if state is None:
+        state = s.__dict__["_motion"] = {"selected": {}, "hooked": False}
+    if not state["hooked"]:
+        s.thread_exit_hooks.append(_release_on_exit)
+        state["hooked"] = True
+    return state  # type: ignore[no-any-return]
+
+
+def pdb_of(s: Any) -> Any:
+    if s.pdb is None:
+        from gplrt.controller.pdb import default_database
+
+        s.pdb = default_database(getattr(s, "robot_model", "PF400SX"))
+    return s.pdb
+
+
+def robot_numbers(s: Any) -> list[int]:
+    return [int(n) for n in pdb_of(s).robots()]
+
+
+def robot_of(s: Any, n: int) -> Any:
+    """The RobotState of robot ``n`` (1-based), built on first use."""
+    from gplrt.motion.kinematics import build_model
+    from gplrt.motion.limits import RobotLimits
+    from gplrt.motion.queue import MotionQueue
+    from gplrt.motion.robot import RobotState
+
+    n = int(n)
+    robot = s.robots.get(n)
+    if robot is not None:
+        return robot
+    if n < 1:
+        raise GplException(INVALID_ROBOT_NUMBER, detail=f"robot {n}")
+    pdb = pdb_of(s)
+    _motion(s)
+    model = build_model(pdb, n)  # -1001 when the PDb does not define robot n
+    limits = RobotLimits.from_pdb(pdb, n, model.axis_count)
+    import numpy as np
+
+    rest = np.array(model.ready_joints(), dtype=float)
+    robot = RobotState(n, model, limits, model.tool.copy(), model.base.copy(), MotionQueue(rest))
+    robot.eom_waiters = WaitQueue(f"robot {n} end of motion")
+    s.robots[n] = robot
+    return robot
+
+
+def selected(s: Any) -> int:
+    return int(_motion(s)["selected"].get(thread_key(), 1))
+
+
+def set_selected(s: Any, n: int) -> None:
+    _motion(s)["selected"][thread_key()] = int(n)
+
+
+def attached_robot(s: Any, key: Any) -> Any:
+    for robot in s.robots.values():
+        if robot.owner is key:
+            return robot
+    return None
+
+
+def refresh_power_state(s: Any) -> None:
+    """21 while some robot is attached, 20 otherwise (only while power is on and idle)."""
+    state = s.controller
+    if state.power_state in (POWER_READY, POWER_ATTACHED):
+        busy = any(r.owner is not None for r in s.robots.values())
+        state.power_state = POWER_ATTACHED if busy else POWER_READY
+
+
+def _release_on_exit(thread: Any) -> None:
+    s = sim()
+    keys = {getattr(thread, "_ctx", None)}
+    for robot in list(s.robots.values()):
+        if robot.owner is not None and robot.owner in keys:
+            robot.owner = None
+    refresh_power_state(s)
+
+
+def power_dropped(s: Any) -> None:
+    """High power went off: every robot stops where it is; moving ones report -1046."""
+    t = float(s.scheduler.clock.now())
+    for robot in s.robots.values():
+        robot.stop_now(t, POWER_NOT_ENABLED)
+        if robot.eom_waiters is not None:
+            s.scheduler.notify_all(robot.eom_waiters)

@@ -1,0 +1,252 @@
+"""Per-robot state of the simulated controller: homed, attached, Tool/Base, and the motion queue.
+
+A :class:`RobotState` lives in ``Simulation.robots[n]`` (filled on first use by
+:func:`gplrt.motion.registry.robot_of`).  ``Move.*`` calls end up in :meth:`RobotState.queue_joint`,
+:meth:`queue_path` or :meth:`queue_delay`, which plan a segment at once and append it with an
+absolute start time; the call returns as soon as the segment is queued (as on the controller).
+
+Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
+
+* **Start of a segment**: when the queue is idle the segment starts *now* from rest; otherwise it
+  starts when the last queued segment ends.  The queue holds at most ``QUEUE_DEPTH`` unfinished
+  segments; a further ``Move`` waits (on the controller clock) for room, as the controller's
+  bounded motion queue makes a program wait.
+* **Blending (InRange < 0)**: when the next motion is joint-interpolated and is queued before the
+  previous (blending) motion has finished, the previous motion is cut at the first moment the
+  tool tip is within ``|InRange|`` mm of its target (robots without kinematics: the joint-space
+  distance), but never before *now*, and the new motion is planned by Ruckig from the full state
+  (position, velocity, acceleration) at that moment — the robot never stops at the via point and
+  passes within ``|InRange|`` mm of it.  A straight-line motion cannot turn a corner without
+  leaving its line, so a straight motion queued after a blending one starts from rest at the via
+  point (no blend).
+* **Settling (InRange > 0)**: the robot stops on target and the segment is held for the
+  in-range settling time (DataID 2601, 0.05 s on a PF400); InRange = 0 ends at the last set-point.
+* **Power loss / RapidDecel**: power off stops the robot where it is at once (the brakes) and the
+  next ``Move`` or ``WaitForEOM`` of the attached thread raises -1046; RapidDecel plans a
+  Ruckig stop with the RapidDecel deceleration (DataID 2101 %) and discards the queue.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from gplrt.lang.errors import GplException
+from gplrt.motion.kinematics import RobotModel
+from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
+from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
+from gplrt.motion.profile import Profile
+from gplrt.motion.queue import DwellSegment, JointSegment, MotionQueue, PathSegment, Segment
+from gplrt.motion.straight import Path, PathJoints
+
+QUEUE_DEPTH = 8
+#: Homing duration (s) [P]: PF400 axes have absolute encoders and do not move; the gripper homes.
+HOMING_TIME = 1.0
+
+NO_ROBOT_ATTACHED = -1009
+JOINT_OUT_OF_RANGE = -1012
+ROBOT_NOT_HOMED = -1021
+CANT_CHANGE_CONFIG = -1042
+POWER_NOT_ENABLED = -1046
+EXTRA_ROLES = ("rail",)
+
+
+@dataclass(eq=False)
+class RobotState:
+    """One robot of the simulated controller (see the module docstring)."""
+
+    number: int
+    model: RobotModel
+    limits: RobotLimits
+    restart_tool: np.ndarray
+    restart_base: np.ndarray
+    queue: MotionQueue
+    homed: bool = False
+    owner: Any = None  # key of the thread that has it attached (None = free)
+    last_profile: Profile | None = None
+    source: Vec | None = None
+    pending_extra: list[float] = field(default_factory=list)
+    async_error: int = 0
+    payload: float = 0.0
+    custom: dict[int, float] = field(default_factory=dict)
+    rapid_decel_until: float = -math.inf
+    lock: threading.RLock = field(default_factory=threading.RLock)
+    eom_waiters: Any = None  # a scheduler WaitQueue, set by the registry
+
+    @property
+    def axis_count(self) -> int:
+        return self.model.axis_count
+
+    @property
+    def extra_mask(self) -> np.ndarray:
+        return np.array([j.role in EXTRA_ROLES for j in self.model.joints], dtype=bool)
+
+    # -- reading the state --------------------------------------------------------------------
+
+    def joints_at(self, t: float) -> Vec:
+        return self.queue.joints_at(t)
+
+    def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
+        return self.queue.state_at(t)
+
+    def latch_angles(self) -> list[float]:
+        """Present joints (used by the latch emulation in controller/signals.py)."""
+        from gplrt.motion.registry import now
+
+        return [float(v) for v in self.joints_at(now())]
+
+    def forward(self, joints: Vec) -> np.ndarray:
+        return self.model.forward([float(v) for v in joints])
+
+    def inverse(self, T: np.ndarray, config: int, current: Vec) -> Vec:
+        return np.array(self.model.inverse(T, int(config), [float(v) for v in current]))
+
+    # -- checks --------------------------------------------------------------------------------
+
+    def check_can_move(self, key: Any, power_on: bool) -> None:
+        """The controller's motion preconditions (gpl-classes §7): attached, power, homed."""
+        if self.owner is None or self.owner is not key:
+            raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
+                               detail=f"robot {self.number} is not attached to this thread")
+        self.raise_async_error()
+        if not power_on:
+            raise GplException(POWER_NOT_ENABLED, robot_num=self.number, detail="high power is off")
+        if not self.homed:
+            raise GplException(ROBOT_NOT_HOMED, robot_num=self.number, detail=f"robot {self.number}")
+
+    def raise_async_error(self) -> None:
+        """An error that stopped a queued motion, reported once to the attached thread."""
+        code, self.async_error = self.async_error, 0
+        if code:
+            raise GplException(code, robot_num=self.number, detail="motion stopped")
+
+    def check_joint_limits(self, q: Vec) -> None:
+        self.model.check_limits([float(v) for v in q])
+
+    # -- queueing ------------------------------------------------------------------------------
+
+    def _start(self, now: float, can_blend: bool) -> tuple[float, Vec, Vec, Vec]:
+        """Start time and state of the next segment (see the module docstring on blending)."""
+        last = self.queue.last
+        n = self.axis_count
+        zero = np.zeros(n)
+        if last is None or last.end <= now:
+            return now, self.queue.joints_at(now), zero, zero.copy()
+        if can_blend and last.blend and last.cut is None and not isinstance(last, DwellSegment):
+            t_b = max(now, self._blend_time(last))
+            if t_b < last.motion_end:
+                q, v, a = last.state(t_b)
+                last.cut = t_b
+                return t_b, q, v, a
+        return last.end, last.q_end.copy(), zero, zero.copy()
+
+    def _blend_time(self, seg: Segment) -> float:
+        """First time the tool is within the blend tolerance of the segment's target."""
+        tol = seg.blend_tolerance
+        lo, hi = seg.t0, seg.t0 + seg.duration
+        if self.model.has_kinematics:
+            goal = self.forward(seg.q_end)[:3, 3]
+
+            def far(t: float) -> bool:
+                return float(np.linalg.norm(self.forward(seg.joints(t))[:3, 3] - goal)) > tol
+        else:
+            def far(t: float) -> bool:
+                return float(np.linalg.norm(seg.joints(t) - seg.q_end)) > tol
+        if not far(lo):
+            return lo
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            if far(mid):
+                lo = mid
+            else:
+                hi = mid
+            if hi - lo < 1e-6:
+                break
+        return hi
+
+    def _settle_and_blend(self, seg: Segment, prof: Profile) -> Segment:
+        inrange = float(prof.InRange)
+        seg.blend = inrange < 0.0
+        seg.blend_tolerance = abs(inrange)
+        seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
+        seg.profile = prof.Clone()
+        return seg
+
+    def queue_joint(self, now: float, target: Vec, prof: Profile, system_speed: float) -> Segment:
+        """Plan and queue a joint-interpolated motion to ``target`` (joints, GPL units)."""
+        self.check_joint_limits(target)
+        lim = self.limits.joint_limits(prof, system_speed)
+        t0, q0, v0, a0 = self._start(now, can_blend=True)
+        plan = plan_axes(q0, v0, a0, target, lim)
+        seg = JointSegment(t0, plan.duration, q0.copy(), np.array(target, float), plan=plan)
+        return self._append(seg, prof)
+
+    def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
+                   extra_end: Vec | None = None, kind: str = "straight") -> Segment:
+        """Plan and queue a Cartesian path motion; ``make_path(T_start)`` builds the Path."""
+        t0, q0, _, _ = self._start(now, can_blend=False)
+        path: Path = make_path(self.forward(q0))
+        mask = self.extra_mask
+        q_extra = q0.copy() if extra_end is None else np.where(mask, extra_end, q0)
+        start_config = self.model.config_of([float(v) for v in q0])
+
+        def ik(T: np.ndarray, seed: Vec) -> Vec:
+            return self.inverse(T, 0, seed)
+
+        pj = PathJoints.sample(path, ik, q0, q_extra, mask)
+        if config:  # an explicit Righty/Lefty/... request must match the branch the line stays in
+            wanted = self.model.config_of([float(v) for v in self.inverse(path.pose(1.0), config, pj.q[-1])])
+            if wanted != start_config:
+                raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
+                                   detail="a straight-line motion cannot change the arm configuration")
+        joint_lim = self.limits.joint_limits(prof, system_speed)
+        cart_lim = self.limits.path_limits(prof, system_speed)
+        v, acc, dec, jerk = pj.derived_limits(joint_lim, cart_lim, float(prof.AccelRamp), float(prof.DecelRamp))
+        plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
+        seg = PathSegment(t0, plan.duration, q0.copy(), pj.q[-1].copy(), plan=plan, path_joints=pj, kind=kind)
+        return self._append(seg, prof)
+
+    def queue_delay(self, now: float, seconds: float) -> Segment:
+        t0, q0, _, _ = self._start(now, can_blend=False)
+        seg = DwellSegment(t0, max(0.0, float(seconds)), q0.copy(), q0.copy())
+        self.queue.append(seg)
+        return seg
+
+    def _append(self, seg: Segment, prof: Profile) -> Segment:
+        self._settle_and_blend(seg, prof)
+        self.queue.append(seg)
+        self.source = seg.q_start.copy()
+        self.last_profile = seg.profile
+        return seg
+
+    # -- stopping ------------------------------------------------------------------------------
+
+    def stop_now(self, t: float, error: int = 0) -> None:
+        """Power loss: the robot stops where it is at ``t``; the queue is discarded."""
+        if self.queue.end_time > t:
+            self.queue.cut_at(t, self.joints_at(t))
+            if error:
+                self.async_error = error
+
+    def rapid_decel(self, t: float) -> None:
+        """Decelerate to rest as fast as DataID 2101 allows and discard the rest of the queue."""
+        if self.queue.end_time <= t:
+            return
+        q, v, a = self.state_at(t)
+        if not np.any(np.abs(v) > 0.0):
+            self.queue.cut_at(t, q)
+            return
+        decel = self.limits.joint_accel * self.limits.rapid_decel_pct / 100.0
+        plan = plan_stop(q, v, a, decel, jerk_of(decel, decel, 0.05, 0.05))
+        q_end = np.array(plan.at(plan.duration)[0])
+        self.queue.cut_at(t, q)
+        seg = JointSegment(t, plan.duration, q.copy(), q_end, plan=plan, kind="rapid_decel")
+        self.queue.append(seg)
+        self.rapid_decel_until = t + plan.duration
+
+    def axis_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
+        return self.limits.joint_limits(prof, system_speed)

@@ -1,0 +1,304 @@
+"""GPL's global ``Robot`` class (gpl-classes §10, gpl-dictionary §5) and the geometry kinematics hook.
+
+Members that take an optional robot number (``Where(robot)``, ``Dest(robot)``, ...) are methods
+whose ``Robot`` argument defaults to 0 = the thread's Selected robot.  Assignable members with
+arguments follow CATALOGUE.md rule 5 (``Base``/``set_Base``; the value comes last).
+
+Decisions [P] where the manuals are silent:
+
+* ``Attached = n`` works with power off (a program attaches, then enables power and homes, as the
+  GDE start-up code does); a robot held by another thread refuses with -1006; ``0`` releases;
+  attaching sets ``Selected``.  A thread holds one robot at a time: attaching another releases
+  the first.  The robot is released when the thread ends.
+* ``Home`` needs the attached robot (-1009) and power (-1046) and takes ``HOMING_TIME`` (1 s) of
+  controller time with ``PowerState`` 28; ``HomeAll`` needs power only and homes every robot.
+  Joints do not move (absolute encoders, robot-models §2.5).
+* ``TrajState(robot, mode)``: 0 idle (nothing queued or executing), 1 executing a motion,
+  2 executing ``Move.Delay``, 3 settling (InRange > 0), 4 rapid deceleration; ``mode`` ignored.
+* ``Tool``/``Base`` assignments apply to later motions and to ``Where``; queued motions are joint
+  trajectories and are not changed.  ``RestartTool``/``RestartBase`` are DataIDs 16051/16052.
+* ``JointToMotor``/``MotorToJoint``/``DefLinComp``: -204 (no encoder model in the simulation).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from gplrt.geometry.kinematics_provider import set_kinematics_provider
+from gplrt.geometry.location import Location
+from gplrt.lang.errors import NOT_IMPLEMENTED, GplException
+from gplrt.lang.gpltypes import Boolean, Double, Integer
+from gplrt.motion import registry
+from gplrt.motion.profile import Profile
+from gplrt.motion.queue import DwellSegment
+from gplrt.motion.robot import HOMING_TIME, RobotState
+
+ROBOT_ALREADY_ATTACHED = -1006
+NO_ROBOT_ATTACHED = -1009
+POWER_NOT_ENABLED = -1046
+NOT_CARTESIAN = -762
+
+
+def _robot(n: int = 0) -> RobotState:
+    s = registry.sim()
+    n = int(n) or registry.selected(s)
+    return registry.robot_of(s, n)  # type: ignore[no-any-return]
+
+
+def _power_on(s: Any) -> bool:
+    from gplrt.controller.services import POWER_ON_STATES
+
+    return s.controller.power_state in POWER_ON_STATES
+
+
+def _cart(robot: RobotState, q: np.ndarray) -> Location:
+    loc = Location.from_matrix(robot.forward(q))
+    loc.Config = robot.model.config_of([float(v) for v in q])
+    return loc
+
+
+def _angles(q: np.ndarray) -> Location:
+    return Location.from_angles([float(v) for v in q])
+
+
+def _matrix_of(value: Location) -> np.ndarray:
+    if value is None:
+        raise GplException(-782, detail="Location is Nothing")
+    if value.Type != 0:
+        raise GplException(NOT_CARTESIAN, detail="Tool/Base must be a Cartesian Location")
+    return value.matrix()
+
+
+class _RobotClass:
+    """GPL ``Robot`` (global class: one instance; see the module docstring)."""
+
+    # -- attachment and selection -------------------------------------------------------------
+
+    @property
+    def Attached(self) -> Integer:
+        robot = registry.attached_robot(registry.sim(), registry.thread_key())
+        return (robot.number if robot is not None else 0)  # type: ignore[return-value]
+
+    @Attached.setter
+    def Attached(self, value: Integer) -> None:
+        s = registry.sim()
+        key = registry.thread_key()
+        n = int(value)
+        mine = registry.attached_robot(s, key)
+        if n == 0:
+            if mine is not None:
+                mine.owner = None
+            registry.refresh_power_state(s)
+            return
+        robot = registry.robot_of(s, n)
+        if robot.owner is not None and robot.owner is not key:
+            raise GplException(ROBOT_ALREADY_ATTACHED, robot_num=n, detail=f"robot {n} is attached by another thread")
+        if mine is not None and mine is not robot:
+            mine.owner = None
+        robot.owner = key
+        registry.set_selected(s, n)
+        registry.refresh_power_state(s)
+
+    @property
+    def Selected(self) -> Integer:
+        return registry.selected(registry.sim())  # type: ignore[return-value]
+
+    @Selected.setter
+    def Selected(self, value: Integer) -> None:
+        s = registry.sim()
+        n = int(value)
+        registry.robot_of(s, n)  # -1001 for a robot that does not exist
+        mine = registry.attached_robot(s, registry.thread_key())
+        if mine is not None and mine.number != n:
+            return  # Selected is forced equal to Attached while attached (attached.htm)
+        registry.set_selected(s, n)
+
+    # -- homing -------------------------------------------------------------------------------
+
+    def Home(self) -> None:
+        """Home the attached robot (takes HOMING_TIME of controller time)."""
+        s = registry.sim()
+        robot = registry.attached_robot(s, registry.thread_key())
+        if robot is None:
+            raise GplException(NO_ROBOT_ATTACHED, detail="Robot.Home needs an attached robot")
+        self._home(s, [robot])
+
+    def HomeAll(self) -> None:
+        """Home every robot of the controller."""
+        s = registry.sim()
+        self._home(s, [registry.robot_of(s, n) for n in registry.robot_numbers(s)])
+
+    def _home(self, s: Any, robots: list[RobotState]) -> None:
+        if not _power_on(s):
+            raise GplException(POWER_NOT_ENABLED, detail="homing needs high power")
+        state = s.controller
+        previous = state.power_state
+        state.power_state = registry.POWER_HOMING
+        s.scheduler.sleep(HOMING_TIME)
+        if state.power_state != registry.POWER_HOMING:  # power dropped meanwhile
+            raise GplException(POWER_NOT_ENABLED, detail="power went off during homing")
+        state.power_state = previous
+        registry.refresh_power_state(s)
+        for robot in robots:
+            robot.homed = True
+
+    # -- where the robot is -------------------------------------------------------------------
+
+    def Where(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        """Present Cartesian pose (Base and Tool included; Config = present configuration)."""
+        robot = _robot(Robot)
+        return _cart(robot, robot.joints_at(registry.now()))
+
+    def WhereAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        robot = _robot(Robot)
+        return _angles(robot.joints_at(registry.now()))
+
+    def Dest(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        """Final destination of the last queued motion."""
+        robot = _robot(Robot)
+        return _cart(robot, robot.queue.final_joints())
+
+    def DestAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        return _angles(_robot(Robot).queue.final_joints())
+
+    def Source(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        """Start of the last queued motion (the present pose before any motion)."""
+        robot = _robot(Robot)
+        q = robot.source if robot.source is not None else robot.joints_at(registry.now())
+        return _cart(robot, q)
+
+    def SourceAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        robot = _robot(Robot)
+        q = robot.source if robot.source is not None else robot.joints_at(registry.now())
+        return _angles(q)
+
+    def SpeedAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        """Present speed of every axis (mm/s or deg/s) as an Angles Location."""
+        robot = _robot(Robot)
+        return _angles(robot.state_at(registry.now())[1])
+
+    def LastProfile(self, Robot: Integer = 0) -> Profile | None:  # type: ignore[assignment]
+        robot = _robot(Robot)
+        return robot.last_profile.Clone() if robot.last_profile is not None else None
+
+    def TrajState(self, Robot: Integer = 0, Mode: Integer = 0) -> Integer:  # type: ignore[assignment]
+        robot = _robot(Robot)
+        t = registry.now()
+        seg = robot.queue.segment_at(t)
+        if seg is None:
+            return 0  # type: ignore[return-value]
+        if seg.kind == "rapid_decel":
+            return 4  # type: ignore[return-value]
+        if isinstance(seg, DwellSegment):
+            return 2  # type: ignore[return-value]
+        if t >= seg.motion_end:
+            return 3  # type: ignore[return-value]
+        return 1  # type: ignore[return-value]
+
+    # -- rapid deceleration ---------------------------------------------------------------------
+
+    def RapidDecel(self, Robot: Integer = 0) -> Boolean:  # type: ignore[assignment]
+        """True while a rapid deceleration is in progress."""
+        return (registry.now() < _robot(Robot).rapid_decel_until)  # type: ignore[return-value]
+
+    def set_RapidDecel(self, *args: Any) -> None:
+        """``Robot.RapidDecel[(robot)] = True``: stop the robot's motion as fast as allowed."""
+        robot = _robot(args[0] if len(args) > 1 else 0)
+        if args[-1]:
+            s = registry.sim()
+            with robot.lock:
+                robot.rapid_decel(registry.now())
+            s.scheduler.notify_all(robot.eom_waiters)
+
+    # -- offsets -------------------------------------------------------------------------------
+
+    def Tool(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        return Location.from_matrix(_robot(Robot).model.tool)
+
+    def set_Tool(self, *args: Any) -> None:
+        """``Robot.Tool = loc`` (attached/selected robot) or ``Robot.Tool(robot) = loc``."""
+        robot = _robot(args[0] if len(args) > 1 else 0)
+        robot.model.tool = _matrix_of(args[-1]).copy()
+
+    def Base(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        return Location.from_matrix(_robot(Robot).model.base)
+
+    def set_Base(self, *args: Any) -> None:
+        robot = _robot(args[0] if len(args) > 1 else 0)
+        robot.model.base = _matrix_of(args[-1]).copy()
+
+    def RestartTool(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        return Location.from_matrix(_robot(Robot).restart_tool)
+
+    def RestartBase(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        return Location.from_matrix(_robot(Robot).restart_base)
+
+    # -- stored values -------------------------------------------------------------------------
+
+    def Payload(self, Robot: Integer = 0) -> Double:  # type: ignore[assignment]
+        return _robot(Robot).payload  # type: ignore[return-value]
+
+    def set_Payload(self, *args: Any) -> None:
+        _robot(args[0] if len(args) > 1 else 0).payload = float(args[-1])
+
+    def Custom(self, Robot: Integer = 0, Index: Integer = 1) -> Double:  # type: ignore[assignment]
+        return _robot(Robot).custom.get(int(Index), 0.0)  # type: ignore[return-value]
+
+    def set_Custom(self, *args: Any) -> None:
+        """``Robot.Custom(index) = v`` (custom.htm: the set form has only the index)."""
+        index = int(args[0]) if len(args) > 1 else 1
+        _robot(0).custom[index] = float(args[-1])
+
+    def CartMode(self, Robot: Integer = 0) -> Integer:  # type: ignore[assignment]
+        _robot(Robot)
+        return 0  # type: ignore[return-value]
+
+    def MotorTempStatus(self, Robot: Integer = 0, Motor: Integer = 1) -> Integer:  # type: ignore[assignment]
+        _robot(Robot)
+        return 0  # type: ignore[return-value]
+
+    def RealTimeModAcm(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
+        _robot(Robot)
+        return Location()
+
+    def JointToMotor(self, *args: Any) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail="Robot.JointToMotor: no encoder model in simulation")
+
+    def MotorToJoint(self, *args: Any) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail="Robot.MotorToJoint: no encoder model in simulation")
+
+    def DefLinComp(self, *args: Any) -> None:
+        raise GplException(NOT_IMPLEMENTED, detail="Robot.DefLinComp: no encoder model in simulation")
+
+
+Robot = _RobotClass()
+
+
+class SimulatedKinematics:
+    """The ``KinematicsProvider`` for geometry: the Selected robot of the active session."""
+
+    def forward(self, angles: Location) -> Location:
+        robot = _robot(0)
+        q = robot.joints_at(registry.now())
+        vals = angles.axis_values()
+        q[: min(len(vals), len(q))] = vals[: len(q)]
+        return _cart(robot, q)
+
+    def inverse(self, loc: Location, config: int, current: Location | None) -> Location:
+        robot = _robot(0)
+        ref = robot.joints_at(registry.now())
+        if current is not None:
+            vals = current.axis_values()
+            ref[: min(len(vals), len(ref))] = vals[: len(ref)]
+        return _angles(robot.inverse(loc.matrix(), int(config), ref))
+
+    def where(self) -> Location:
+        return Robot.Where(0)
+
+    def where_angles(self) -> Location:
+        return Robot.WhereAngles(0)
+
+
+set_kinematics_provider(SimulatedKinematics())

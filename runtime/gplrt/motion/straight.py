@@ -1,0 +1,191 @@
+"""Cartesian paths (straight line, arc, circle) and the joint limits seen along them.
+
+A path maps a parameter ``u`` in [0, 1] to a tool pose (4×4, mm): the tool-tip position moves on
+the line / circle at constant rate in ``u`` and the orientation is interpolated by slerp (the
+geodesic ``R0 · exp(u · log(R0ᵀ R1))``).  ``Move.Loc`` with ``Profile.Straight`` plans a 1-D Ruckig
+profile of ``u`` whose limits come from:
+
+* the Cartesian speed/acceleration (DataIDs 2701/2703: mm/s for the tip, deg/s for rotation)
+  divided by the path's length and turning angle;
+* the joints: the path is sampled (its IK solved at ``N`` points), ``q'(u)`` and ``q''(u)`` are
+  estimated by finite differences, and ``u̇``, ``ü`` are bounded so that
+  ``|q'_j| u̇ ≤ v_j`` and ``|q'_j| ü + |q''_j| u̇² ≤ a_j`` at every sample — the binding joint
+  sets the limit.  A margin (``JOINT_MARGIN``) covers the variation between samples.
+
+Unreachable samples raise the kinematics' own codes (-1039/-1040/-1033/-1012) when the move is
+queued, as a controller refuses a straight-line move that leaves the workspace.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from gplrt.lang.errors import GplException
+from gplrt.motion.limits import AxisLimits, PathLimits, Vec
+
+JOINT_MARGIN = 0.95
+#: Sampling density for the joint-limit analysis: one interval per this many mm / degrees.
+MM_PER_SAMPLE = 25.0
+DEG_PER_SAMPLE = 15.0
+MIN_SAMPLES, MAX_SAMPLES = 4, 48
+INVALID_CARTESIAN = -1033
+
+
+class Path:
+    """A tool path: ``pose(u)`` for u in [0, 1], its length (mm) and turning angle (deg)."""
+
+    length: float
+    turn: float
+
+    def pose(self, u: float) -> np.ndarray:
+        raise NotImplementedError
+
+
+class _Slerp:
+    def __init__(self, R0: np.ndarray, R1: np.ndarray) -> None:
+        self.R0 = R0
+        self.w = pin.log3(R0.T @ R1)
+        self.turn = math.degrees(float(np.linalg.norm(self.w)))
+
+    def at(self, u: float) -> np.ndarray:
+        if u >= 1.0 or self.turn == 0.0:
+            return self.R0 @ pin.exp3(self.w) if u >= 1.0 else self.R0.copy()
+        return self.R0 @ pin.exp3(self.w * u)
+
+
+class LinePath(Path):
+    """Straight line of the tool tip from ``T0`` to ``T1`` (both 4×4, mm)."""
+
+    def __init__(self, T0: np.ndarray, T1: np.ndarray) -> None:
+        self.T0, self.T1 = np.asarray(T0, float), np.asarray(T1, float)
+        self.p0, self.p1 = self.T0[:3, 3].copy(), self.T1[:3, 3].copy()
+        self.slerp = _Slerp(self.T0[:3, :3], self.T1[:3, :3])
+        self.length = float(np.linalg.norm(self.p1 - self.p0))
+        self.turn = self.slerp.turn
+
+    def pose(self, u: float) -> np.ndarray:
+        if u >= 1.0:
+            return self.T1.copy()
+        T = np.eye(4)
+        T[:3, :3] = self.slerp.at(u)
+        T[:3, 3] = self.p0 + (self.p1 - self.p0) * u
+        return T
+
+
+class ArcPath(Path):
+    """Circular arc from ``T0`` through the point ``p_mid`` to ``T2`` (``full``: the whole circle
+    through the three points, back to ``T0`` with constant orientation)."""
+
+    def __init__(self, T0: np.ndarray, p_mid: Sequence[float], T2: np.ndarray, full: bool = False) -> None:
+        self.T0, self.T2 = np.asarray(T0, float), np.asarray(T2, float)
+        a, b, c = self.T0[:3, 3], np.asarray(p_mid, float), self.T2[:3, 3]
+        ab, ac = b - a, c - a
+        n = np.cross(ab, ac)
+        nn = float(np.dot(n, n))
+        if nn < 1e-12 * max(1.0, float(np.dot(ab, ab)) * float(np.dot(ac, ac))):
+            raise GplException(INVALID_CARTESIAN, detail="arc points are collinear or coincident")
+        centre = a + (np.dot(ac, ac) * np.cross(n, ab) + np.dot(ab, ab) * np.cross(ac, n)) / (2.0 * nn)
+        self.centre = centre
+        self.radius = float(np.linalg.norm(a - centre))
+        self.e1 = (a - centre) / self.radius
+        self.normal = n / math.sqrt(nn)
+        self.e2 = np.cross(self.normal, self.e1)
+
+        def angle(p: np.ndarray) -> float:
+            d = p - centre
+            return math.atan2(float(np.dot(d, self.e2)), float(np.dot(d, self.e1))) % (2.0 * math.pi)
+
+        # a → b → c runs counter-clockwise about ``normal`` by construction of n = ab × ac.
+        self.sweep = 2.0 * math.pi if full else angle(c)
+        self.full = full
+        self.slerp = _Slerp(self.T0[:3, :3], self.T0[:3, :3] if full else self.T2[:3, :3])
+        self.length = self.radius * self.sweep
+        self.turn = self.slerp.turn
+
+    def pose(self, u: float) -> np.ndarray:
+        if u >= 1.0 and not self.full:
+            return self.T2.copy()
+        phi = self.sweep * min(u, 1.0)
+        T = np.eye(4)
+        T[:3, :3] = self.slerp.at(u)
+        T[:3, 3] = self.centre + self.radius * (math.cos(phi) * self.e1 + math.sin(phi) * self.e2)
+        return T
+
+
+@dataclass
+class PathJoints:
+    """The IK of a path at sample points, and joints anywhere on it (seeded by the nearest sample)."""
+
+    path: Path
+    ik: Callable[[np.ndarray, Vec], Vec]  # (pose, seed joints with extra axes set) -> joints
+    u: np.ndarray
+    q: np.ndarray  # (len(u), n)
+    extra_start: Vec
+    extra_end: Vec
+    extra_mask: np.ndarray
+
+    @classmethod
+    def sample(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
+               extra_mask: np.ndarray) -> PathJoints:
+        n = int(min(MAX_SAMPLES, max(MIN_SAMPLES, math.ceil(path.length / MM_PER_SAMPLE)
+                                     + math.ceil(path.turn / DEG_PER_SAMPLE))))
+        us = np.linspace(0.0, 1.0, n + 1)
+        self = cls(path, ik, us, np.empty((n + 1, len(q0))), np.asarray(q0, float).copy(),
+                   np.asarray(q_extra_end, float), extra_mask)
+        seed = self.extra_start.copy()
+        for k, u in enumerate(us):
+            seed = self._seed(seed, u)
+            seed = self.q[k] = ik(path.pose(u), seed)
+        return self
+
+    def _seed(self, seed: Vec, u: float) -> Vec:
+        s = np.array(seed, float)
+        m = self.extra_mask
+        s[m] = self.extra_start[m] + (self.extra_end[m] - self.extra_start[m]) * u
+        return s
+
+    def joints(self, u: float) -> Vec:
+        """Joints at ``u``; the exact samples at the ends so the motion ends exactly on target."""
+        if u <= 0.0:
+            return self.q[0].copy()
+        if u >= 1.0:
+            return self.q[-1].copy()
+        k = int(round(u * (len(self.u) - 1)))
+        return self.ik(self.path.pose(u), self._seed(self.q[k], u))
+
+    def derived_limits(self, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
+                       decel_ramp: float) -> tuple[float, float, float, float]:
+        """(u̇_max, ü_max accel, ü_max decel, jerk) for the 1-D plan (see the module docstring)."""
+        h = self.u[1] - self.u[0]
+        dq = np.gradient(self.q, h, axis=0)
+        ddq = np.gradient(dq, h, axis=0)
+        d1 = np.max(np.abs(dq), axis=0)
+        d2 = np.max(np.abs(ddq), axis=0)
+        big = math.inf
+
+        def ratio(limit: float, extent: float) -> float:
+            return limit / extent if extent > 1e-12 else big
+
+        v = min(ratio(cart.linear_velocity, self.path.length), ratio(cart.rotation_velocity, self.path.turn))
+        acc = min(ratio(cart.linear_accel, self.path.length), ratio(cart.rotation_accel, self.path.turn))
+        dec = min(ratio(cart.linear_decel, self.path.length), ratio(cart.rotation_decel, self.path.turn))
+        vj = JOINT_MARGIN * joint.velocity
+        aj = JOINT_MARGIN * np.minimum(joint.accel, joint.decel)
+        for j in range(len(d1)):
+            v = min(v, ratio(vj[j], d1[j]))
+            if d2[j] > 1e-12 and d2[j] * v * v > 0.5 * aj[j]:
+                v = math.sqrt(0.5 * aj[j] / d2[j])
+        for j in range(len(d1)):
+            room = aj[j] - d2[j] * v * v
+            acc = min(acc, ratio(room, d1[j]))
+            dec = min(dec, ratio(room, d1[j]))
+        if not math.isfinite(v):  # a path of zero length and zero turn: nothing moves
+            v, acc, dec = 1.0, 1.0, 1.0
+        ja = acc / accel_ramp if accel_ramp > 0.0 else math.inf
+        jd = dec / decel_ramp if decel_ramp > 0.0 else math.inf
+        return v, acc, dec, min(ja, jd)

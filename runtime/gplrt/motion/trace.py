@@ -1,0 +1,65 @@
+"""The sampled motion of a robot: times, joints and tool positions as numpy arrays.
+
+``trace(sim, robot)`` samples every segment the robot was ever given, from the start of the
+first to the end of the last, every ``dt`` seconds (default: the trajectory-generator period,
+DataID 600, 4 ms on a PF400), and always includes the exact end, so the last row is the final
+target.  Robots without kinematics give ``xyz`` filled with NaN.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+DEFAULT_DT = 0.004
+
+
+@dataclass(frozen=True)
+class Trace:
+    """``times`` (N,), ``joints`` (N, axes) in mm/deg, ``xyz`` (N, 3) tool-tip mm, ``names`` of the axes."""
+
+    times: NDArray[np.float64]
+    joints: NDArray[np.float64]
+    xyz: NDArray[np.float64]
+    names: tuple[str, ...]
+
+    def __iter__(self):  # type: ignore[no-untyped-def]
+        """``times, joints, xyz = sim.trace(1)``."""
+        return iter((self.times, self.joints, self.xyz))
+
+
+def _default_dt(sim: Any, robot_number: int) -> float:
+    pdb = sim.pdb
+    if pdb is not None and pdb.has(600, 1):
+        return float(pdb.get_num(600, 1))
+    return DEFAULT_DT
+
+
+def trace(sim: Any, robot: int = 1, dt: float | None = None) -> Trace:
+    from gplrt.motion.registry import robot_of
+
+    state = robot_of(sim, robot)
+    step = float(dt) if dt is not None else _default_dt(sim, robot)
+    hist = state.queue.history
+    n = state.axis_count
+    if not hist:
+        q = state.queue.rest[None, :].copy()
+        times = np.array([float(sim.scheduler.clock.now())])
+    else:
+        t0, t1 = hist[0].t0, max(seg.end for seg in hist)
+        count = int(np.floor((t1 - t0) / step)) + 1
+        times = t0 + step * np.arange(count)
+        if times[-1] < t1:
+            times = np.append(times, t1)
+        q = np.empty((len(times), n))
+        queue = state.queue
+        for i, t in enumerate(times):
+            q[i] = queue.joints_at(float(t))
+    xyz = np.full((len(times), 3), np.nan)
+    if state.model.has_kinematics:
+        for i in range(len(times)):
+            xyz[i] = state.forward(q[i])[:3, 3]
+    return Trace(times, q, xyz, tuple(state.model.joint_names))
