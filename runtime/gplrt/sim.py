@@ -149,9 +149,17 @@ class Simulation:
     # -- activation --------------------------------------------------------------------------------
 
     def activate(self) -> Simulation:
-        """Make this the session that ``current()`` returns, and send ``Console`` output to it."""
+        """Make this the session that ``current()`` returns, and send ``Console`` output to it.
+
+        Also points the controller's file system (``/flash`` ...) at this session's flash root.
+        """
         set_current(self)
         _install_console(self)
+        if self.flash_root is not None:
+            from gplrt.io.flashroot import get_flash_root, set_flash_root
+
+            if get_flash_root().root != self.flash_root.resolve():
+                set_flash_root(self.flash_root, clear_romdisk=False)
         return self
 
     def __enter__(self) -> Simulation:
@@ -242,6 +250,21 @@ class Simulation:
         entry = LogEntry(self.now(), thread_name, text, code)
         self.controller.error_log.append(entry)
         self.console.log(f"[{entry.time:.6f}] thread {thread_name}: {text}")
+
+
+def _install_blocking_hook() -> None:
+    """Let every blocking I/O wait in ``gplrt.io`` release the scheduler (see io/_blocking.py).
+
+    A GPL thread waiting on a socket must not hold the virtual scheduler's token, and must not count
+    as waiting on virtual time; ``external_wait`` does both and is harmless outside GPL threads.
+    """
+    from gplrt.io import _blocking
+    from gplrt.threads.scheduler import external_wait
+
+    _blocking.set_blocking_hook(lambda timeout: external_wait())
+
+
+_install_blocking_hook()
 
 
 def _install_console(sim: Simulation) -> None:
