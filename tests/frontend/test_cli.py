@@ -9,6 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import gpl2py.cli as cli
 from gpl2py import messages
@@ -264,6 +266,27 @@ def test_internal_error_in_the_parser_becomes_gpl9000(monkeypatch: pytest.Monkey
     monkeypatch.setattr(cli, "_parse", broken_parse)
     code, _, err = run(capsys, "check", str(tmp_path))
     assert code == 1 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
+
+
+_PIECES = st.sampled_from([
+    "Module M\n", "End Module\n", "Public Sub Main()\n", "End Sub\n", "If x Then\n", "End If\n",
+    "Try\n", "Catch e\n", "End Try\n", "x = (1 + \n", " _\n", "\"unterminated\n", "&HZZ\n",
+    "GoTo 100\n", "100: \n", "Select x\n", "Case 1 To\n", "Dim a(,,,,) As\n", "\t\u00e9\n", "\x00",
+    "\r\n", "'#Protected|", "#Region\n",
+])
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(pieces=st.lists(_PIECES, max_size=25), extra=st.binary(max_size=16))
+def test_no_input_produces_a_traceback(pieces: list[str], extra: bytes, tmp_path: Path,
+                                       capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "Fuzz.gpl"
+    path.write_bytes("".join(pieces).encode("utf-8") + extra)
+    capsys.readouterr()
+    code = main(["check", str(path)])
+    out, err = capsys.readouterr()
+    assert code in (0, 1)
+    assert "Traceback" not in out + err and "GPL9000" not in err
 
 
 # --- the installed command and python -m --------------------------------------------------------
