@@ -295,3 +295,20 @@ def test_extensions_file_uses_vb_forms() -> None:
     items = [type(i).__name__ for c in nodes(unit, ast.CaseClause) for i in c.items]
     assert items == ["CaseIs", "CaseRange", "CaseRange", "CaseValue", "CaseValue", "CaseIs"]
     assert len(nodes(unit, ast.ForEach)) == 1
+
+
+def test_vendor_style_crlf_tabs_and_keyword_case() -> None:
+    raw = (SOURCES / "vendor_style.gpl").read_bytes()
+    assert b"\r\n" in raw and b"\t" in raw  # the point of the file: keep it CR-LF with tabs
+    unit = unit_of("vendor_style.gpl")
+    assert [m.name for m in unit.members if isinstance(m, ast.ModuleDecl)] == ["GModule", "Cell"]
+    main_proc = proc(unit, "Main")
+    [loop] = nodes(main_proc, ast.For)
+    assert isinstance(loop.next_var, ast.Name) and loop.next_var.name == "ii"
+    assert [g.label for g in nodes(main_proc, ast.GoTo)] == ["done"]
+    [msg] = [a for a in nodes(main_proc, ast.Assign) if isinstance(a.target, ast.Name) and a.target.name == "msg"]
+    assert msg.span.end_line == msg.span.line + 1  # joined across the " _" continuation
+    reals = [r.value for r in nodes(unit, ast.RealLiteral)]
+    assert 1e32 in reals and 412.5 in reals
+    wait = [m for m in nodes(main_proc, ast.MemberAccess) if m.name.lower() == "waitforeom"]
+    assert len(wait) == 1 and isinstance(wait[0].target, ast.Name) and wait[0].target.name == "move"
