@@ -24,7 +24,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from ruckig import ControlInterface, InputParameter, Result, Ruckig, Synchronization, Trajectory
+from ruckig import ControlInterface, InputParameter, Result, Ruckig, RuckigError, Synchronization, Trajectory
 
 from gplrt.lang.errors import GplException
 from gplrt.motion.limits import AxisLimits, Vec
@@ -54,13 +54,30 @@ class Plan:
         return self.traj.at_time(min(max(t, 0.0), self.duration))  # type: ignore[no-any-return]
 
 
+#: Ruckig occasionally fails on inputs that sit exactly on a profile boundary (for instance a
+#: jerk that reaches peak acceleration exactly at peak velocity); shaving the jerk and velocity
+#: limits by these factors moves the input off the boundary without a visible change.
+_RETRY_FACTORS = (1.0 - 1e-9, 1.0 - 1e-6, 1.0 - 1e-4)
+
+
 def _calculate(inp: InputParameter, n: int, what: str) -> Plan:
     otg = _ruckig[n][0]
-    traj = Trajectory(n)
-    result = otg.calculate(inp, traj)
-    if result not in (Result.Working, Result.Finished):
-        raise GplException(PLANNING_FAILED, detail=f"{what}: Ruckig {result.name}")
-    return Plan(traj, float(traj.duration))
+    jerk, vel = list(inp.max_jerk), list(inp.max_velocity)
+    detail = ""
+    for factor in (1.0, *_RETRY_FACTORS):
+        if factor != 1.0:
+            inp.max_jerk = [j * factor for j in jerk]
+            inp.max_velocity = [v * factor for v in vel]
+        traj = Trajectory(n)
+        try:
+            result = otg.calculate(inp, traj)
+        except RuckigError as exc:
+            detail = str(exc).strip().splitlines()[0] if str(exc).strip() else "RuckigError"
+            continue
+        if result in (Result.Working, Result.Finished):
+            return Plan(traj, float(traj.duration))
+        detail = f"Ruckig {result.name}"
+    raise GplException(PLANNING_FAILED, detail=f"{what}: {detail}")
 
 
 def _finite(values: Vec) -> list[float]:

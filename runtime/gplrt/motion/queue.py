@@ -26,6 +26,9 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.straight import PathJoints
 
 _H = 1e-5  # path-parameter step for q'(u), q''(u)
+#: The virtual clock counts whole nanoseconds: a time within this of a segment's end *is* its end,
+#: so that ``WaitForEOM`` followed by ``Where`` reads the exact target.
+CLOCK_RESOLUTION = 1e-9
 
 
 @dataclass(eq=False)
@@ -72,7 +75,7 @@ class JointSegment(Segment):
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         assert self.plan is not None
         local = t - self.t0
-        if local >= self.duration:
+        if local >= self.duration - CLOCK_RESOLUTION:
             z = np.zeros(len(self.q_end))
             return self.q_end.copy(), z, z.copy()
         p, v, a = self.plan.at(local)
@@ -92,13 +95,13 @@ class PathSegment(Segment):
 
     def joints(self, t: float) -> Vec:
         assert self.path_joints is not None
-        if t - self.t0 >= self.duration:
+        if t - self.t0 >= self.duration - CLOCK_RESOLUTION:
             return self.q_end.copy()
         return self.path_joints.joints(self.parameter(t)[0])
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         assert self.path_joints is not None
-        if t - self.t0 >= self.duration:
+        if t - self.t0 >= self.duration - CLOCK_RESOLUTION:
             z = np.zeros(len(self.q_end))
             return self.q_end.copy(), z, z.copy()
         u, ud, udd = self.parameter(t)

@@ -10,7 +10,8 @@ profile of ``u`` whose limits come from:
 * the joints: the path is sampled (its IK solved at ``N`` points), ``q'(u)`` and ``q''(u)`` are
   estimated by finite differences, and ``u̇``, ``ü`` are bounded so that
   ``|q'_j| u̇ ≤ v_j`` and ``|q'_j| ü + |q''_j| u̇² ≤ a_j`` at every sample — the binding joint
-  sets the limit.  A margin (``JOINT_MARGIN``) covers the variation between samples.
+  sets the limit.  Margins (half an interval of ``q''`` on ``|q'|``, ``CURVATURE_MARGIN`` on
+  ``|q''|``) cover the variation between samples.
 
 Unreachable samples raise the kinematics' own codes (-1039/-1040/-1033/-1012) when the move is
 queued, as a controller refuses a straight-line move that leaves the workspace.
@@ -28,7 +29,8 @@ import pinocchio as pin
 from gplrt.lang.errors import GplException
 from gplrt.motion.limits import AxisLimits, PathLimits, Vec
 
-JOINT_MARGIN = 0.95
+#: Relative margin on the sampled |q''| for its variation between samples.
+CURVATURE_MARGIN = 0.1
 #: Sampling density for the joint-limit analysis: one interval per this many mm / degrees.
 MM_PER_SAMPLE = 25.0
 DEG_PER_SAMPLE = 15.0
@@ -164,8 +166,11 @@ class PathJoints:
         h = self.u[1] - self.u[0]
         dq = np.gradient(self.q, h, axis=0)
         ddq = np.gradient(dq, h, axis=0)
-        d1 = np.max(np.abs(dq), axis=0)
         d2 = np.max(np.abs(ddq), axis=0)
+        # |q'| between samples is bounded by the sampled maximum plus the change over half an
+        # interval (first order); a joint that moves linearly along the path gets no margin.
+        d1 = np.max(np.abs(dq), axis=0) + 0.5 * h * d2
+        d2 = d2 * (1.0 + CURVATURE_MARGIN)
         big = math.inf
 
         def ratio(limit: float, extent: float) -> float:
@@ -174,8 +179,8 @@ class PathJoints:
         v = min(ratio(cart.linear_velocity, self.path.length), ratio(cart.rotation_velocity, self.path.turn))
         acc = min(ratio(cart.linear_accel, self.path.length), ratio(cart.rotation_accel, self.path.turn))
         dec = min(ratio(cart.linear_decel, self.path.length), ratio(cart.rotation_decel, self.path.turn))
-        vj = JOINT_MARGIN * joint.velocity
-        aj = JOINT_MARGIN * np.minimum(joint.accel, joint.decel)
+        vj = joint.velocity
+        aj = np.minimum(joint.accel, joint.decel)
         for j in range(len(d1)):
             v = min(v, ratio(vj[j], d1[j]))
             if d2[j] > 1e-12 and d2[j] * v * v > 0.5 * aj[j]:

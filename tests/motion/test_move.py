@@ -1,0 +1,268 @@
+"""Move.*: trajectories respect limits and end on target, straight lines stay straight, blends do not stop."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+from gplrt.controller.services import Controller
+from gplrt.geometry.location import Location
+from gplrt.motion.move import Move
+from gplrt.motion.profile import Profile
+from gplrt.motion.queue import PathSegment
+from gplrt.motion.robot_class import Robot
+from gplrt.sim import Simulation
+
+
+@pytest.fixture
+def sim() -> Iterator[Simulation]:
+    s = Simulation(capture=True)
+    with s:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        yield s
+
+
+def angles(*v: float) -> Location:
+    return Location.from_angles(v)
+
+
+def profile(**kw: float | bool) -> Profile:
+    p = Profile()
+    for k, v in kw.items():
+        setattr(p, k, v)
+    return p
+
+
+def check_limits(sim: Simulation, prof: Profile, t0: float, t1: float, n: int = 600, margin: float = 1e-9) -> None:
+    """Joint velocities/accelerations read off the queue stay within the profile's limits."""
+    robot = sim.robots[1]
+    lim = robot.limits.joint_limits(prof, sim.controller.system_speed)
+    amax = np.maximum(lim.accel, lim.decel)
+    for t in np.linspace(t0, t1, n):
+        q, v, a = robot.state_at(float(t))
+        assert np.all(np.abs(v) <= lim.velocity * (1 + margin) + 1e-9), (t, v, lim.velocity)
+        assert np.all(np.abs(a) <= amax * (1 + margin) + 1e-6), (t, a, amax)
+        robot.check_joint_limits(q)
+
+
+def test_joint_move_ends_exactly_on_target_and_wait_advances_virtual_time(sim: Simulation) -> None:
+    target = (300.0, 10.0, 90.0, -100.0, 100.0)
+    prof = profile(Speed=80.0)
+    t_start = sim.now()
+    Move.Loc(angles(*target), prof)
+    assert sim.now() == t_start  # Move returns once the motion is queued
+    seg = sim.robots[1].queue.last
+    Move.WaitForEOM()
+    assert math.isclose(sim.now(), seg.t0 + seg.duration, abs_tol=1e-9)
+    assert Robot.WhereAngles().axis_values() == target
+    check_limits(sim, prof, seg.t0, seg.end)
+
+
+def test_cartesian_joint_move_reaches_the_pose(sim: Simulation) -> None:
+    goal = Location()
+    goal.XYZ(400.0, 200.0, 300.0, 30.0, 90.0, 180.0)
+    Move.Loc(goal, Profile())
+    Move.WaitForEOM()
+    where = Robot.Where()
+    assert np.max(np.abs(where.matrix() - goal.matrix())) < 1e-9
+
+
+def test_straight_move_stays_on_the_line_and_within_joint_limits(sim: Simulation) -> None:
+    Move.Loc(angles(300.0, 10.0, 90.0, -100.0, 100.0), Profile())
+    Move.WaitForEOM()
+    start = Robot.Where()
+    goal = start.Clone()
+    goal.XYZ(start.X + 250.0, start.Y - 200.0, start.Z - 100.0, start.Yaw + 40.0, 90.0, 180.0)
+    prof = profile(Straight=True, Speed=100.0, Accel=200.0, Decel=200.0)
+    Move.Loc(goal, prof)
+    seg = sim.robots[1].queue.last
+    assert isinstance(seg, PathSegment)
+    Move.WaitForEOM()
+    p0, p1 = start.matrix()[:3, 3], goal.matrix()[:3, 3]
+    d = (p1 - p0) / np.linalg.norm(p1 - p0)
+    robot = sim.robots[1]
+    for t in np.linspace(seg.t0, seg.end, 300):
+        p = robot.forward(robot.joints_at(float(t)))[:3, 3]
+        off = (p - p0) - np.dot(p - p0, d) * d
+        assert np.linalg.norm(off) < 1e-6
+        assert -1e-6 <= np.dot(p - p0, d) <= np.linalg.norm(p1 - p0) + 1e-6
+    assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
+    check_limits(sim, prof, seg.t0, seg.end, margin=1e-3)
+
+
+def test_straight_move_speed_is_the_cartesian_reference(sim: Simulation) -> None:
+    """A long straight line away from singularities cruises at 2701[1] × Speed %."""
+    Move.Loc(angles(300.0, 0.0, 90.0, 0.0, 100.0), Profile())
+    Move.WaitForEOM()
+    goal = Robot.Where()
+    goal.Z = goal.Z + 600.0  # vertical: only the Z column moves
+    Move.Loc(goal, profile(Straight=True, Speed=50.0))
+    seg = sim.robots[1].queue.last
+    Move.WaitForEOM()
+    peak = max(abs(sim.robots[1].state_at(float(t))[1][0]) for t in np.linspace(seg.t0, seg.end, 400))
+    assert math.isclose(peak, 250.0, rel_tol=1e-6)
+
+
+def test_blended_sequence_never_stops_and_passes_within_tolerance(sim: Simulation) -> None:
+    robot = sim.robots[1]
+    Move.Loc(angles(300.0, -30.0, 90.0, 0.0, 100.0), Profile())
+    Move.WaitForEOM()
+    blend = profile(InRange=-5.0, Speed=100.0)
+    vias = [angles(500.0, 0.0, 60.0, 20.0, 100.0), angles(500.0, 30.0, 100.0, 40.0, 100.0)]
+    via_xyz = [robot.forward(np.array(v.axis_values()))[:3, 3] for v in vias]
+    t_begin = sim.now()
+    for v in vias:
+        Move.Loc(v, blend)
+    final = angles(300.0, 40.0, 120.0, 0.0, 100.0)
+    Move.Loc(final, profile(Speed=100.0))
+    Move.WaitForEOM()
+    t_end = sim.now()
+    times = np.linspace(t_begin + 0.02, t_end - 0.02, 800)
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in times]
+    assert min(speeds) > 1.0  # joint-space speed never reaches zero between start and end
+    xyz = np.array([robot.forward(robot.joints_at(float(t)))[:3, 3] for t in np.linspace(t_begin, t_end, 3000)])
+    for p in via_xyz:
+        assert np.min(np.linalg.norm(xyz - p, axis=1)) <= 5.0 + 1e-6
+    assert Robot.WhereAngles().axis_values() == final.axis_values()
+    check_limits(sim, blend, t_begin, t_end)
+    # Without blending the same sequence stops at each via point and takes longer.
+    stop = profile(InRange=0.0, Speed=100.0)
+    Move.Loc(angles(300.0, -30.0, 90.0, 0.0, 100.0), Profile())
+    Move.WaitForEOM()
+    t0 = sim.now()
+    for v in vias:
+        Move.Loc(v, stop)
+    Move.Loc(final, profile(Speed=100.0))
+    Move.WaitForEOM()
+    assert sim.now() - t0 > (t_end - t_begin) + 0.05
+
+
+def test_inrange_positive_settles(sim: Simulation) -> None:
+    q = angles(300.0, 10.0, 90.0, 0.0, 100.0)
+    Move.Loc(q, profile(InRange=10.0))
+    seg = sim.robots[1].queue.last
+    Move.WaitForEOM()
+    assert math.isclose(sim.now(), seg.t0 + seg.duration + 0.05, abs_tol=1e-9)  # DataID 2601
+
+
+def test_system_speed_scales_joint_speed(sim: Simulation) -> None:
+    target = angles(900.0, 0.0, 12.0, 0.0, 69.0)
+    Move.Loc(target, profile(Speed=100.0, AccelRamp=0.0, DecelRamp=0.0))
+    fast = sim.robots[1].queue.last
+    Move.WaitForEOM()
+    Controller.SystemSpeed = 50.0
+    Move.Loc(angles(1.5, 0.0, 12.0, 0.0, 69.0), profile(Speed=100.0, AccelRamp=0.0, DecelRamp=0.0))
+    slow = sim.robots[1].queue.last
+    Move.WaitForEOM()
+    peak = max(abs(sim.robots[1].state_at(float(t))[1][0]) for t in np.linspace(slow.t0, slow.end, 500))
+    assert math.isclose(peak, 250.0, rel_tol=1e-6)
+    assert slow.duration > fast.duration * 1.5
+
+
+def test_delay_and_approach_and_rel_and_oneaxis(sim: Simulation) -> None:
+    Move.Loc(angles(300.0, 10.0, 90.0, 0.0, 100.0), Profile())
+    Move.Delay(0.5)
+    t_queued_end = sim.robots[1].queue.end_time
+    Move.WaitForEOM()
+    assert sim.now() == pytest.approx(t_queued_end)
+    assert sim.robots[1].queue.last.duration == 0.5
+    place = Robot.Where()
+    place.ZClearance, place.ZWorld = 450.0, True
+    Move.Approach(place, Profile())
+    Move.WaitForEOM()
+    w = Robot.Where()
+    assert (w.X, w.Y) == pytest.approx((place.X, place.Y), abs=1e-9) and w.Z == pytest.approx(450.0, abs=1e-9)
+    place.ZWorld = False
+    place.ZClearance = 50.0  # along the tool's -Z (a PF400 tool Z is horizontal, along the hand)
+    Move.Approach(place, profile(Straight=True))
+    Move.WaitForEOM()
+    expected = place.matrix()[:3, 3] - 50.0 * place.matrix()[:3, 2]
+    assert np.allclose(Robot.Where().matrix()[:3, 3], expected, atol=1e-9)
+    before = Robot.WhereAngles().axis_values()
+    Move.Rel(angles(10.0, 0.0, 0.0, 5.0), Profile())
+    Move.WaitForEOM()
+    after = Robot.WhereAngles().axis_values()
+    assert np.allclose(np.subtract(after, before), [10.0, 0.0, 0.0, 5.0, 0.0], atol=1e-12)
+    offset = Location()
+    offset.XYZ(0.0, 0.0, 20.0)
+    start = Robot.Where().matrix()
+    Move.Rel(offset, profile(Straight=True))
+    Move.WaitForEOM()
+    assert np.allclose(Robot.Where().matrix(), start @ offset.matrix(), atol=1e-9)
+    Move.OneAxis(5, 120.0, False, Profile())
+    Move.OneAxis(1, -50.0, True, Profile())
+    Move.WaitForEOM()
+    q = Robot.WhereAngles().axis_values()
+    assert q[4] == 120.0 and q[0] == pytest.approx(after[0] - 50.0, abs=1e-12)
+
+
+def test_arc_and_circle_stay_on_the_circle(sim: Simulation) -> None:
+    Move.Loc(angles(300.0, 0.0, 90.0, 0.0, 100.0), Profile())
+    Move.WaitForEOM()
+    robot = sim.robots[1]
+    start = Robot.Where()
+    centre = start.matrix()[:3, 3] + np.array([-60.0, 0.0, 0.0])
+    mid, end = start.Clone(), start.Clone()
+    mid.XYZ(centre[0], centre[1] + 60.0, centre[2], start.Yaw, 90.0, 180.0)
+    end.XYZ(centre[0] - 60.0, centre[1], centre[2], start.Yaw + 30.0, 90.0, 180.0)
+    # the arc start → mid → end, then the full circle end → start → mid → back to end
+    for move, a, b in (("Arc", mid, end), ("Circle", start, mid)):
+        getattr(Move, move)(a, b, profile(Speed=30.0))
+        seg = robot.queue.last
+        Move.WaitForEOM()
+        for t in np.linspace(seg.t0, seg.end, 200):
+            p = robot.forward(robot.joints_at(float(t)))[:3, 3]
+            assert abs(np.linalg.norm(p - centre) - 60.0) < 1e-6 and abs(p[2] - centre[2]) < 1e-6
+    # The arc ends at ``end``; the circle comes back to where it started (the arc's end).
+    assert np.allclose(Robot.Where().matrix(), end.matrix(), atol=1e-9)
+
+
+def test_extra_moves_the_rail_during_the_next_cartesian_motion() -> None:
+    s = Simulation(robot="PF400SXL", capture=True)
+    with s:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        Move.Loc(angles(200.0, 10.0, 90.0, 0.0, 100.0, 0.0), Profile())
+        Move.WaitForEOM()
+        goal = Robot.Where()
+        Move.Extra(250.0)
+        Move.Loc(goal, profile(Straight=True))
+        Move.WaitForEOM()
+        assert Robot.WhereAngles().axis_values()[5] == pytest.approx(250.0, abs=1e-9)
+        assert np.allclose(Robot.Where().matrix(), goal.matrix(), atol=1e-9)
+
+
+@pytest.mark.parametrize("model", ["PF400S", "PF3400SX", "GANTRY4", "ARM6"])
+def test_other_robots_move_joint_and_straight(model: str) -> None:
+    s = Simulation(robot=model, capture=True)
+    with s:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.HomeAll()
+        robot = s.robots[1]
+        lo, hi = np.array(robot.model.lower_limits), np.array(robot.model.upper_limits)
+        lo, hi = np.where(np.isfinite(lo), lo, -90.0), np.where(np.isfinite(hi), hi, 90.0)
+        q = lo + 0.5 * (hi - lo)
+        if model == "ARM6":
+            q[1], q[2], q[4] = 20.0, 60.0, 40.0
+        Move.Loc(angles(*q), Profile())
+        Move.WaitForEOM()
+        assert np.array_equal(robot.joints_at(s.now()), q)
+        start = Robot.Where()
+        goal = start.Clone()
+        goal.XYZ(start.X + 20.0, start.Y + 10.0, start.Z - 15.0, start.Yaw, start.Pitch, start.Roll)
+        Move.Loc(goal, profile(Straight=True))
+        seg = robot.queue.last
+        Move.WaitForEOM()
+        assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
+        p0, p1 = start.matrix()[:3, 3], goal.matrix()[:3, 3]
+        d = (p1 - p0) / np.linalg.norm(p1 - p0)
+        for t in np.linspace(seg.t0, seg.end, 50):
+            p = robot.forward(robot.joints_at(float(t)))[:3, 3]
+            assert np.linalg.norm((p - p0) - np.dot(p - p0, d) * d) < 1e-6

@@ -1,0 +1,116 @@
+"""Ruckig planning: limits respected, targets reached exactly, axes synchronised, Profile mapping."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from gplrt.controller.pdb import default_database
+from gplrt.motion.limits import AxisLimits, RobotLimits
+from gplrt.motion.planner import Plan, plan_axes, plan_scalar
+from gplrt.motion.profile import Profile
+
+LIMITS = RobotLimits.from_pdb(default_database("PF400SX"), 1, 5)
+LOWER = np.array([1.5, -93.0, 12.0, -960.0, 69.0])
+UPPER = np.array([1161.5, 93.0, 348.0, 960.0, 134.0])
+
+
+def sample(plan: Plan, n: int = 400) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    ts = np.linspace(0.0, plan.duration, n)
+    p, v, a = zip(*(plan.at(float(t)) for t in ts))
+    return ts, np.array(p), np.array(v), np.array(a)
+
+
+def check_within(plan: Plan, lim: AxisLimits, q0: np.ndarray, q1: np.ndarray) -> None:
+    _, p, v, a = sample(plan)
+    assert np.all(np.abs(v) <= lim.velocity * (1 + 1e-9) + 1e-9)
+    assert np.all(np.abs(a) <= np.maximum(lim.accel, lim.decel) * (1 + 1e-9) + 1e-9)
+    lo, hi = np.minimum(q0, q1), np.maximum(q0, q1)
+    assert np.all(p >= lo - 1e-9) and np.all(p <= hi + 1e-9)  # no overshoot from rest to rest
+    end = np.array(plan.at(plan.duration)[0])
+    assert np.max(np.abs(end - q1)) < 1e-9  # Ruckig's own end; the motion queue then holds q1 exactly
+
+
+joint_vec = st.lists(st.floats(0.0, 1.0), min_size=5, max_size=5).map(lambda f: LOWER + np.array(f) * (UPPER - LOWER))
+
+
+@settings(max_examples=40, deadline=None)
+@given(joint_vec, joint_vec, st.floats(5.0, 150.0), st.floats(10.0, 300.0), st.floats(10.0, 300.0),
+       st.floats(0.0, 0.3))
+def test_joint_plans_respect_limits_and_end_on_target(q0: np.ndarray, q1: np.ndarray, speed: float, accel: float,
+                                                      decel: float, ramp: float) -> None:
+    prof = Profile()
+    prof.Speed, prof.Accel, prof.Decel, prof.AccelRamp, prof.DecelRamp = speed, accel, decel, ramp, ramp
+    lim = LIMITS.joint_limits(prof, 100.0)
+    zero = np.zeros(5)
+    plan = plan_axes(q0, zero, zero, q1, lim)
+    check_within(plan, lim, q0, q1)
+
+
+def test_axes_are_time_synchronised() -> None:
+    """Every moving axis is still moving until the common end (none finishes early)."""
+    prof = Profile()
+    lim = LIMITS.joint_limits(prof, 100.0)
+    q0, q1 = np.array([100.0, 0.0, 90.0, 0.0, 100.0]), np.array([400.0, 10.0, 200.0, -90.0, 101.0])
+    plan = plan_axes(q0, np.zeros(5), np.zeros(5), q1, lim)
+    p = np.array(plan.at(0.95 * plan.duration)[0])
+    assert np.all(np.abs(p - q1) > 1e-6)
+    assert np.all(np.abs(np.array(plan.at(plan.duration)[0]) - q1) < 1e-12)
+
+
+def test_profile_percentages_scale_the_database_references() -> None:
+    prof = Profile()
+    prof.Speed, prof.Accel, prof.Decel = 40.0, 50.0, 25.0
+    lim = LIMITS.joint_limits(prof, 50.0)
+    assert np.allclose(lim.velocity, np.array([500, 360, 720, 720, 400]) * 0.4 * 0.5)
+    assert np.allclose(lim.accel, np.array([3500, 600, 920, 4000, 10000]) * 0.5)
+    assert np.allclose(lim.decel, np.array([3500, 600, 920, 4000, 10000]) * 0.25)
+    # ramp: jerk = accel / ramp, the more restrictive of the two ramps
+    assert np.allclose(lim.jerk, np.minimum(lim.accel / 0.1, lim.decel / 0.1))
+    prof.Speed = 1000.0  # above DataID 2704 (150 %): clamped, not an error
+    assert np.allclose(LIMITS.joint_limits(prof, 100.0).velocity, np.array([500, 360, 720, 720, 400]) * 1.5)
+
+
+def test_accel_and_decel_apply_to_their_own_phases() -> None:
+    prof = Profile()
+    prof.Accel, prof.Decel, prof.AccelRamp, prof.DecelRamp = 100.0, 25.0, 0.0, 0.0
+    lim = LIMITS.joint_limits(prof, 100.0)
+    q0, q1 = np.zeros(5) + np.array([1.5, 0, 12, 0, 69]), np.array([801.5, 0, 12, 0, 69])
+    _, _, v, a = sample(plan_axes(q0, np.zeros(5), np.zeros(5), q1, lim), 2000)
+    assert math.isclose(a[:, 0].max(), 3500.0, rel_tol=1e-6)  # speeding up at Accel
+    assert math.isclose(-a[:, 0].min(), 875.0, rel_tol=1e-6)  # braking at Decel
+    # and the same for a move in the negative direction
+    _, _, v, a = sample(plan_axes(q1, np.zeros(5), np.zeros(5), q0, lim), 2000)
+    assert math.isclose(-a[:, 0].min(), 3500.0, rel_tol=1e-6)
+    assert math.isclose(a[:, 0].max(), 875.0, rel_tol=1e-6)
+
+
+def test_ramp_time_is_the_time_to_reach_peak_acceleration() -> None:
+    prof = Profile()
+    prof.AccelRamp = prof.DecelRamp = 0.2
+    prof.Speed = 150.0  # 750 mm/s: the ramp completes before the speed limit binds
+    lim = LIMITS.joint_limits(prof, 100.0)
+    q0, q1 = np.array([1.5, 0, 12, 0, 69]), np.array([1001.5, 0, 12, 0, 69])
+    plan = plan_axes(q0, np.zeros(5), np.zeros(5), q1, lim)
+    # acceleration grows linearly from 0 to 3500 mm/s² in 0.2 s
+    assert math.isclose(plan.at(0.1)[2][0], 1750.0, rel_tol=1e-9)
+    assert math.isclose(plan.at(0.2)[2][0], 3500.0, rel_tol=1e-9)
+
+
+def test_plan_from_a_moving_state_keeps_velocity_continuous() -> None:
+    lim = LIMITS.joint_limits(Profile(), 100.0)
+    q0, v0 = np.array([300.0, 0, 90, 0, 100]), np.array([200.0, 50, -30, 0, 0])
+    q1 = np.array([100.0, 20, 150, 10, 100])
+    plan = plan_axes(q0, v0, np.zeros(5), q1, lim)
+    assert np.allclose(plan.at(0.0)[1], v0, atol=1e-12)
+    assert np.allclose(plan.at(plan.duration)[0], q1, atol=1e-12)
+
+
+def test_scalar_plan_reaches_one_within_limits() -> None:
+    plan = plan_scalar(0.0, 0.0, 0.0, 1.0, 2.0, 8.0, 4.0, 80.0)
+    _, p, v, a = sample(plan)
+    assert p[-1, 0] == 1.0 or abs(p[-1, 0] - 1.0) < 1e-12
+    assert v.max() <= 2.0 + 1e-12 and a.max() <= 8.0 + 1e-12 and a.min() >= -4.0 - 1e-12
