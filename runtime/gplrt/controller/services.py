@@ -104,6 +104,7 @@ class _ControllerClass:
             if state.power_state != phase:  # E-stop or power-off request meanwhile
                 raise GplException(POWER_NOT_ENABLED, detail="power-up interrupted")
         state.power_state = POWER_READY
+        _power_ready(sim)
 
     def PowerState(self, mode: Integer = 0) -> Integer:  # type: ignore[assignment]
         return _sim().controller.power_state  # type: ignore[no-any-return]
@@ -212,6 +213,13 @@ def _power_dropped(sim: Any) -> None:
     from gplrt.motion.registry import power_dropped
 
     power_dropped(sim)
+
+
+def _power_ready(sim: Any) -> None:
+    """PowerState 21 instead of 20 when a robot is already attached (gplrt.motion.registry)."""
+    from gplrt.motion.registry import refresh_power_state
+
+    refresh_power_state(sim)
 
 
 def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tuple[int, int, int, int]:

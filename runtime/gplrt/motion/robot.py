@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from gplrt.lang.errors import GplException
-from gplrt.motion.kinematics import RobotModel
+from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY, RobotModel
 from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
@@ -197,18 +197,25 @@ class RobotState:
         def ik(T: np.ndarray, seed: Vec) -> Vec:
             return self.inverse(T, 0, seed)
 
+        self._check_config_kept(config, start_config)
         pj = PathJoints.sample(path, ik, q0, q_extra, mask)
-        if config:  # an explicit Righty/Lefty/... request must match the branch the line stays in
-            wanted = self.model.config_of([float(v) for v in self.inverse(path.pose(1.0), config, pj.q[-1])])
-            if wanted != start_config:
-                raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
-                                   detail="a straight-line motion cannot change the arm configuration")
         joint_lim = self.limits.joint_limits(prof, system_speed)
         cart_lim = self.limits.path_limits(prof, system_speed)
         v, acc, dec, jerk = pj.derived_limits(joint_lim, cart_lim, float(prof.AccelRamp), float(prof.DecelRamp))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
         seg = PathSegment(t0, plan.duration, q0.copy(), pj.q[-1].copy(), plan=plan, path_joints=pj, kind=kind)
         return self._append(seg, prof)
+
+    def _check_config_kept(self, config: int, start_config: int) -> None:
+        """-1042 when ``config`` asks for a branch other than the one the arm is in: a straight
+        line (or arc) keeps its configuration.  Only the bit pairs the robot reports count."""
+        for yes, no in ((GPL_RIGHTY, GPL_LEFTY), (GPL_ABOVE, GPL_BELOW), (GPL_NOFLIP, GPL_FLIP)):
+            if not start_config & (yes | no):
+                continue  # this robot has no such branch
+            asked = config & (yes | no)
+            if asked in (yes, no) and not start_config & asked:
+                raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
+                                   detail="a straight-line motion cannot change the arm configuration")
 
     def queue_delay(self, now: float, seconds: float) -> Segment:
         t0, q0, _, _ = self._start(now, can_blend=False)

@@ -1,0 +1,240 @@
+"""Robot and controller state: attach/power/home refusals with the controller's codes, homing time,
+PowerState values, Where/Dest/Source, Tool, RapidDecel, power loss, the geometry kinematics hook."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+from gplrt.controller.services import Controller
+from gplrt.geometry.location import Location
+from gplrt.lang.errors import GplException
+from gplrt.motion.move import Move
+from gplrt.motion.profile import Profile
+from gplrt.motion.robot_class import Robot
+from gplrt.sim import Simulation
+from gplrt.threads.thread import Thread
+
+
+@pytest.fixture
+def sim() -> Iterator[Simulation]:
+    s = Simulation(capture=True)
+    with s:
+        yield s
+
+
+def ready() -> None:
+    Robot.Attached = 1
+    Controller.PowerEnabled = True
+    Robot.Home()
+
+
+def angles(*v: float) -> Location:
+    return Location.from_angles(v)
+
+
+def code_of(fn, *args) -> int:  # type: ignore[no-untyped-def]
+    with pytest.raises(GplException) as info:
+        fn(*args)
+    return info.value.ErrorCode
+
+
+SAFE = angles(300.0, 10.0, 90.0, 0.0, 100.0)
+
+
+def test_move_refusals_in_controller_order(sim: Simulation) -> None:
+    assert code_of(Move.Loc, SAFE, Profile()) == -1009  # nothing attached
+    Robot.Attached = 1
+    assert code_of(Move.Loc, SAFE, Profile()) == -1046  # power off
+    assert code_of(Robot.Home) == -1046  # homing needs power too
+    Controller.PowerEnabled = True
+    assert code_of(Move.Loc, SAFE, Profile()) == -1021  # not homed
+    assert code_of(Move.Delay, 1.0) == -1021
+    Robot.Home()
+    Move.Loc(SAFE, Profile())
+    Move.WaitForEOM()
+    err = pytest.raises(GplException, Move.Loc, angles(2000.0, 0.0, 90.0, 0.0, 100.0), Profile()).value
+    assert (err.ErrorCode, err.RobotError, err.Axis) == (-1012, True, 1)
+
+
+@pytest.mark.parametrize(
+    ("xyz", "code"),
+    [
+        ((900.0, 0.0, 300.0, 0.0, 90.0, 180.0), -1040),  # beyond l1 + l2 + tool
+        ((0.0, 167.0, 300.0, 90.0, 90.0, 180.0), -1039),  # wrist axis 5 mm from the column (< l1 - l2)
+        ((400.0, 0.0, 300.0, 0.0, 45.0, 180.0), -1033),  # a PF400 hand is always horizontal
+    ],
+)
+def test_unreachable_cartesian_targets(sim: Simulation, xyz: tuple[float, ...], code: int) -> None:
+    ready()
+    loc = Location()
+    loc.XYZ(*xyz)
+    assert code_of(Move.Loc, loc, Profile()) == code
+    straight = Profile()
+    straight.Straight = True
+    assert code_of(Move.Loc, loc, straight) == code
+
+
+def test_straight_line_cannot_change_configuration(sim: Simulation) -> None:
+    ready()
+    Move.Loc(angles(300.0, -60.0, 90.0, 0.0, 100.0), Profile())
+    Move.WaitForEOM()
+    goal = Robot.Where()
+    goal.Config = 2  # GPL_Lefty, while the arm is Righty
+    straight = Profile()
+    straight.Straight = True
+    assert code_of(Move.Loc, goal, straight) == -1042
+    Move.Loc(goal, Profile())  # a joint move may change it
+    Move.WaitForEOM()
+    assert Robot.Where().Config == 2
+
+
+def test_straight_line_through_the_workspace_edge_is_refused(sim: Simulation) -> None:
+    ready()
+    Move.Loc(angles(300.0, -80.0, 60.0, 0.0, 100.0), Profile())
+    Move.WaitForEOM()
+    a = Robot.Where()
+    b = a.Clone()
+    b.XYZ(-a.X, a.Y, a.Z, a.Yaw, 90.0, 180.0)
+    straight = Profile()
+    straight.Straight = True
+    with pytest.raises(GplException) as info:
+        Move.Loc(b, straight)  # the line passes through the column: too close / out of range
+    assert info.value.ErrorCode in (-1039, -1012)
+
+
+def test_attach_is_exclusive_between_threads_and_released_at_thread_end(sim: Simulation) -> None:
+    codes: list[int] = []
+
+    def holder() -> None:
+        Robot.Attached = 1
+        Thread.Sleep(1000)
+
+    def intruder() -> None:
+        Thread.Sleep(100)
+        try:
+            Robot.Attached = 1
+        except GplException as exc:
+            codes.append(exc.ErrorCode)
+        Thread.Sleep(2000)
+        Robot.Attached = 1  # the holder has ended: free again
+        codes.append(Robot.Attached)
+
+    def main() -> None:
+        a, b = Thread(holder), Thread(intruder)
+        a.Start()
+        b.Start()
+        a.Join()
+        b.Join()
+
+    assert sim.run_main(main) == []
+    assert codes == [-1006, 1]
+
+
+def test_undefined_robot_and_selected(sim: Simulation) -> None:
+    assert code_of(setattr, Robot, "Attached", 2) == -1001
+    assert Robot.Selected == 1
+    Robot.Attached = 1
+    assert Robot.Attached == 1 and Robot.Selected == 1
+    Robot.Attached = 0
+    assert Robot.Attached == 0
+
+
+def test_power_states_and_homing_take_controller_time(sim: Simulation) -> None:
+    assert Controller.PowerState() == 7 and not Controller.PowerEnabled
+    Robot.Attached = 1
+    Controller.PowerEnabled = True
+    assert Controller.PowerState() == 21  # on, robot attached by a GPL project
+    seen: list[int] = []
+
+    def watcher() -> None:
+        Thread.Sleep(500)
+        seen.append(Controller.PowerState())
+
+    w = Thread(watcher)
+    w.Start()
+    t0 = sim.now()
+    Robot.Home()
+    assert sim.now() - t0 == pytest.approx(1.0)
+    assert seen == [28]  # homing
+    assert Controller.PowerState() == 21
+    Robot.Attached = 0
+    assert Controller.PowerState() == 20
+
+
+def test_power_off_stops_the_robot_and_wait_reports_it(sim: Simulation) -> None:
+    ready()
+    Move.Loc(angles(1100.0, 10.0, 90.0, 0.0, 100.0), Profile())
+    end = sim.robots[1].queue.end_time
+    stopped_at: list[np.ndarray] = []
+
+    def killer() -> None:
+        Thread.Sleep(500)
+        Controller.PowerEnabled = False
+        stopped_at.append(Robot.WhereAngles().axis_values())
+
+    Thread(killer).Start()
+    with pytest.raises(GplException) as info:
+        Move.WaitForEOM()
+    assert info.value.ErrorCode == -1046
+    assert sim.now() < end
+    z = stopped_at[0][0]
+    assert 1.5 < z < 1100.0
+    assert Robot.WhereAngles().axis_values()[0] == z  # it stays where it stopped
+
+
+def test_rapid_decel_stops_short_of_the_target(sim: Simulation) -> None:
+    ready()
+    fast = Profile()
+    fast.Speed = 100.0
+    Move.Loc(angles(1100.0, 10.0, 90.0, 0.0, 100.0), fast)
+    Thread.Sleep(600)
+    assert Robot.TrajState() == 1
+    Robot.set_RapidDecel(True)
+    assert Robot.RapidDecel() and Robot.TrajState() == 4
+    Move.WaitForEOM()
+    z = Robot.WhereAngles().axis_values()[0]
+    assert 1.5 < z < 1100.0
+    assert Robot.TrajState() == 0
+    assert np.all(Robot.SpeedAngles().axis_values() == np.zeros(5))
+
+
+def test_where_dest_source_and_tool(sim: Simulation) -> None:
+    ready()
+    home = Robot.WhereAngles().axis_values()
+    Move.Loc(SAFE, Profile())
+    assert Robot.DestAngles().axis_values() == SAFE.axis_values()
+    assert Robot.SourceAngles().axis_values() == home
+    assert Robot.WhereAngles().axis_values() == home  # not moved yet: Move only queued
+    Thread.Sleep(100)
+    assert Robot.TrajState() == 1 and any(abs(v) > 0 for v in Robot.SpeedAngles().axis_values())
+    Move.WaitForEOM()
+    assert np.allclose(Robot.Where().matrix(), Robot.Dest().matrix(), atol=1e-12)
+    assert Robot.LastProfile().Speed == Profile().Speed
+    before = Robot.Where().matrix()
+    tool = Location()
+    tool.XYZ(0.0, 0.0, 200.0)
+    assert np.allclose(Robot.RestartTool().matrix()[:3, 3], [0.0, 0.0, 162.0])
+    Robot.set_Tool(tool)
+    after = Robot.Where().matrix()
+    assert np.allclose(after[:3, 3] - before[:3, 3], 38.0 * before[:3, 2], atol=1e-9)
+    assert np.allclose(Robot.Tool().matrix(), tool.matrix())
+
+
+def test_locations_reach_the_robot_through_the_kinematics_hook(sim: Simulation) -> None:
+    ready()
+    Move.Loc(SAFE, Profile())
+    Move.WaitForEOM()
+    here = Location()
+    here.Here()
+    assert np.allclose(here.matrix(), Robot.Where().matrix(), atol=1e-12)
+    sol = here.KineSol()
+    assert np.allclose(sol.axis_values(), SAFE.axis_values(), atol=1e-9)
+    assert np.allclose(SAFE.KineSol().matrix(), here.matrix(), atol=1e-9)
+
+
+def test_unsupported_members_say_so(sim: Simulation) -> None:
+    assert code_of(Move.StartJogMode) == -204
+    assert code_of(Robot.JointToMotor, 1) == -204
