@@ -39,7 +39,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.messages import Message
 from gpl2py.source import SourceFile, Span
 from gpl2py.syntax import ast as A
-from gpl2py.syntax.lexer import tokenize
+from gpl2py.syntax.lexer import gc_paused, tokenize
 from gpl2py.syntax.tokens import COMPOUND_ASSIGN, KEYWORD_KINDS, Token, TokenKind
 
 K = TokenKind
@@ -191,6 +191,7 @@ _NAME_FOLLOWERS = frozenset(
 _EXPR_STARTS = frozenset(
     {K.IDENT, K.ME, K.INTEGER, K.REAL, K.STRING, K.TRUE, K.FALSE, K.NOTHING, K.NEW, K.ADDRESSOF, K.LPAREN}
 )
+_LAYOUT = frozenset({K.NEWLINE, K.COMMENT, K.EOF, K.DIRECTIVE})
 _STMT_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF, K.ELSE})
 _LINE_END = frozenset({K.NEWLINE, K.COMMENT, K.EOF})
 
@@ -211,7 +212,8 @@ def parse(source: SourceFile, sink: DiagnosticSink) -> A.SourceUnit:
     if limit < _RECURSION_NEEDED:
         sys.setrecursionlimit(_RECURSION_NEEDED)
     try:
-        return Parser(source, sink).parse_unit()
+        with gc_paused():
+            return Parser(source, sink).parse_unit()
     finally:
         if limit < _RECURSION_NEEDED:
             sys.setrecursionlimit(limit)
@@ -219,8 +221,9 @@ def parse(source: SourceFile, sink: DiagnosticSink) -> A.SourceUnit:
 
 def parse_expression(source: SourceFile, sink: DiagnosticSink) -> A.Expr:
     """Parse ``source`` as one expression (tests, REPL-style tools).  Trailing tokens are reported."""
-    p = Parser(source, sink)
-    expr = p.expression()
+    with gc_paused():
+        p = Parser(source, sink)
+        expr = p.expression()
     p.end_of_line(None)
     if p.tok.kind is not K.EOF:
         p.error(M.PARSE_TRAILING_TOKENS, p.tok, found=p.tok.describe())
@@ -237,7 +240,6 @@ class Parser:
         self.pos = 0
         self.last = len(self.toks) - 1
         self.tok: Token = self.toks[0]
-        self.prev: Token = self.tok
         self.failed = False  # an error was reported on the current logical line
         self.open: list[str] = []  # constructs whose end has not been seen, innermost last
         self.nest = 0  # block depth inside the current procedure body (0 = outermost level)
@@ -248,13 +250,20 @@ class Parser:
 
     def next(self) -> Token:
         tok = self.tok
-        if self.pos < self.last:
-            self.pos += 1
-            self.tok = self.toks[self.pos]
-        k = tok.kind
-        if k is not K.NEWLINE and k is not K.COMMENT:  # spans end at the last real token
-            self.prev = tok
+        pos = self.pos
+        if pos < self.last:
+            self.pos = pos = pos + 1
+            self.tok = self.toks[pos]
         return tok
+
+    @property
+    def prev(self) -> Token:
+        """The last consumed token that is not a NEWLINE or COMMENT (where spans end)."""
+        toks = self.toks
+        i = self.pos - 1 if self.tok.kind is not K.EOF or self.pos == 0 else self.pos
+        while i > 0 and toks[i].kind in _LAYOUT:
+            i -= 1
+        return toks[max(i, 0)]
 
     def peek(self, offset: int = 1) -> Token:
         i = self.pos + offset

@@ -20,6 +20,10 @@ from gpl2py.source import Span
 class TokenKind(enum.Enum):
     """What a token is.  Keyword members are named after the keyword in upper case."""
 
+    # Enum.__hash__ is written in Python; the parser looks kinds up in dicts on every token, so use
+    # the C-level identity hash (members are singletons and compare by identity anyway).
+    __hash__ = object.__hash__
+
     # literals and names
     IDENT = "identifier"
     INTEGER = "integer literal"
