@@ -3,30 +3,17 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import pytest
 
 from gplrt.io.flashroot import FlashRoot, set_flash_root
-
-
-class Cell:
-    """A ByRef argument as generated code passes it (``get``/``set``)."""
-
-    def __init__(self, value: Any = None) -> None:
-        self.value = value
-
-    def get(self) -> Any:
-        return self.value
-
-    def set(self, value: Any) -> None:
-        self.value = value
+from gplrt.lang.byref import Box
 
 
 @pytest.fixture
-def cell() -> type[Cell]:
-    """The ByRef cell class (test modules are not a package, so they receive it as a fixture)."""
-    return Cell
+def cell() -> type[Box]:
+    """The runtime's ByRef box, as generated code passes a local ByRef (``get``/``set``)."""
+    return Box
 
 
 @pytest.fixture

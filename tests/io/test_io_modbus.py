@@ -10,6 +10,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 import pytest
+
+from gplrt.lang.byref import Box
 from pymodbus.client import ModbusTcpClient
 from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock, ModbusServerContext
 from pymodbus.pdu.device import ModbusDeviceIdentification
@@ -82,17 +84,6 @@ def slave() -> Iterator[Slave]:
     loop.close()
 
 
-class Cell:
-    def __init__(self) -> None:
-        self.value: object = None
-
-    def get(self) -> object:
-        return self.value
-
-    def set(self, value: object) -> None:
-        self.value = value
-
-
 def test_ex23_writes_then_ex22_reads(slave: Slave) -> None:
     mb = Modbus(IPEndPoint("127.0.0.1", slave.port))
     mb.Timeout = 2000
@@ -100,7 +91,7 @@ def test_ex23_writes_then_ex22_reads(slave: Slave) -> None:
         mb.WriteSingleCoil(ii, ii & 1)
     mb.WriteSingleRegister(1, 600)
     bools = [bool(ii & 2) for ii in range(16)]
-    coils = Cell()
+    coils = Box(None)
     mb.ReadCoils(1, 16, coils)  # EX-22
     assert list(coils.get()) == [bool(ii & 1) for ii in range(1, 17)]
     assert slave.get(1, 1, 16) == [bool(ii & 1) for ii in range(1, 17)]
@@ -109,13 +100,13 @@ def test_ex23_writes_then_ex22_reads(slave: Slave) -> None:
     assert list(coils.get()) == bools
     output = [ii * ii for ii in range(16)]
     mb.WriteMultipleRegisters(1, output)
-    regs = Cell()
+    regs = Box(None)
     mb.ReadHoldingRegisters(1, 16, regs)
     assert list(regs.get()) == output
     assert slave.get(3, 1, 16) == output
     mb.ReadHoldingRegisters(0, 2, regs)
     assert list(regs.get()) == [0, 0]
-    inputs = Cell()
+    inputs = Box(None)
     mb.ReadDiscreteInputs(1, 16, inputs)
     assert list(inputs.get()) == slave.get(2, 1, 16)
     mb.ReadInputRegisters(1, 2, regs)
@@ -127,7 +118,7 @@ def test_register_range_and_reconnect_after_close(slave: Slave) -> None:
     mb = Modbus(IPEndPoint("127.0.0.1", slave.port))
     mb.WriteSingleRegister(5, -1)
     mb.WriteSingleRegister(6, 65535)
-    regs = Cell()
+    regs = Box(None)
     mb.ReadHoldingRegisters(5, 2, regs)
     assert list(regs.get()) == [65535, 65535]
     with pytest.raises(GplException) as exc:
@@ -146,11 +137,11 @@ def test_exception_response_maps_to_1730_with_code(slave: Slave) -> None:
     mb = Modbus(IPEndPoint("127.0.0.1", slave.port))
     mb.Timeout = 2000
     with pytest.raises(GplException) as exc:
-        mb.ReadHoldingRegisters(SIZE + 10, 5, Cell())  # illegal data address
+        mb.ReadHoldingRegisters(SIZE + 10, 5, Box(None))  # illegal data address
     assert exc.value.ErrorCode == -1730
     assert exc.value.Qualifier == 2
     assert exc.value.Message() == "*Modbus/RIO exception: n*: 2"
-    regs = Cell()
+    regs = Box(None)
     mb.ReadHoldingRegisters(0, 1, regs)  # the connection is still usable afterwards
     assert list(regs.get()) == [0]
     mb.Close()
@@ -172,7 +163,7 @@ def test_timeout_when_slave_never_answers() -> None:
     mb.Timeout = 100
     start = time.monotonic()
     with pytest.raises(GplException) as exc:
-        mb.ReadCoils(1, 1, Cell())
+        mb.ReadCoils(1, 1, Box(None))
     assert exc.value.ErrorCode == -1731
     assert 0.09 <= time.monotonic() - start < 2
     mb.Close()
@@ -193,7 +184,7 @@ def test_reads_return_gpl_arrays(slave: Slave) -> None:
 
     mb = Modbus(IPEndPoint("127.0.0.1", slave.port))
     mb.Timeout = 2000
-    bools, regs = Cell(), Cell()
+    bools, regs = Box(None), Box(None)
     mb.ReadCoils(1, 16, bools)
     mb.ReadHoldingRegisters(1, 3, regs)
     assert isinstance(bools.get(), GplArray) and bools.get().GetUpperBound(0) == 15

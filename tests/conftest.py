@@ -1,0 +1,43 @@
+"""Fixtures shared by every test package.
+
+The runtime has process-wide state a test can change: the active simulation, the Console sink it
+installs, and the controller's flash root.  ``_isolate_runtime_state`` puts them back after each
+test so that no test depends on which tests ran before it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import pytest
+
+from gplrt.io import flashroot
+from gplrt.lang.console import get_console_sink, set_console_sink
+from gplrt.sim import Simulation, _state, set_current
+
+
+@pytest.fixture(autouse=True)
+def _isolate_runtime_state() -> Iterator[None]:
+    sink = get_console_sink()
+    sim = _state.sim
+    flash = flashroot._current
+    yield
+    set_console_sink(sink)
+    set_current(sim)
+    flashroot._current = flash
+
+
+@pytest.fixture
+def vsim() -> Iterator[Simulation]:
+    """A fresh virtual-clock session with captured console, active for the test."""
+    sim = Simulation(capture=True)
+    with sim:
+        yield sim
+
+
+@pytest.fixture
+def rsim() -> Iterator[Simulation]:
+    """A fresh real-clock session (speed 1) with captured console."""
+    sim = Simulation(clock="real", capture=True)
+    with sim:
+        yield sim
