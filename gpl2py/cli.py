@@ -130,6 +130,31 @@ def _run_dump_ast(args: argparse.Namespace) -> Outcome:
     return out
 
 
+def _configure_transpile(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "path",
+        metavar="PROJECT",
+        help="a project folder (with or without Project.gpr), a Project.gpr file, or one .gpl file",
+    )
+    parser.add_argument("-o", "--output", metavar="OUT", default=".",
+                        help="folder that receives the package OUT/<project_name>/ (default: .)")
+    parser.add_argument("--keep-going", action="store_true",
+                        help="write the package even when there are errors (exit status stays 1)")
+
+
+def _run_transpile(args: argparse.Namespace) -> Outcome:
+    """Transpile a project into an importable Python package; nothing is written on errors."""
+    from gpl2py.transpile import transpile, write_package
+
+    out = Outcome()
+    output = transpile(args.path, out.sink, keep_going=args.keep_going)
+    if output is not None and output.project is not None:
+        _remember(out, output.project)
+        out.checked = len(output.project.sources)
+        write_package(output, args.output, out.sink)
+    return out
+
+
 COMMANDS: list[Command] = [
     Command(
         name="check",
@@ -146,6 +171,16 @@ COMMANDS: list[Command] = [
         "people working on gpl2py itself, or for finding out how a line was understood.",
         configure=_configure_dump_ast,
         run=_run_dump_ast,
+    ),
+    Command(
+        name="transpile",
+        help="translate a project into a Python package (the default command)",
+        description="Load, check and translate a GPL project into OUT/<project_name>/, a Python "
+        "package that runs on the gplrt simulated controller (python -m <project_name>). On "
+        "errors nothing is written unless --keep-going; the exit status is then 1.",
+        configure=_configure_transpile,
+        run=_run_transpile,
+        default=True,
     ),
 ]
 

@@ -209,12 +209,13 @@ def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bo
             elif isinstance(raw, (staticmethod, classmethod)):
                 func = raw.__func__
                 # A classmethod's first parameter is the class; a value type's staticmethods take
-                # the value itself first.
-                skip = isinstance(raw, classmethod) or value_type
+                # the value itself first, except the type's Shared members (String.Compare).
+                shared_here = not value_type or name in getattr(cls, "shared_members", ())
+                skip = isinstance(raw, classmethod) or not shared_here
                 members[name.lower()] = Member(
                     name,
                     "method",
-                    not value_type,
+                    shared_here,
                     _params(func, mapper, skip_first=skip),
                     _result(func, mapper),
                     settable=hasattr(cls, f"set_{name}"),

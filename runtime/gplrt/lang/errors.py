@@ -156,8 +156,13 @@ class GplException(Exception):
         text = self.Message()
         if self.detail:
             text += f" - {self.detail}"
-        if self.gpl_location:
-            text += f" (at {self.gpl_location})"
+        location = self.gpl_location
+        if location is None and self.__traceback__ is not None:
+            from gplrt.lang.sourcemap import locate  # transpiled frames name their GPL line
+
+            location = locate(self)
+        if location:
+            text += f" (at {location})"
         return f"GPL error {self._code}: {text}"
 
     def __repr__(self) -> str:

@@ -1,0 +1,153 @@
+"""User classes -> Python classes (docs/design/lowering.md, "Classes, delegates, built-ins").
+
+Instance fields are ``__slots__`` attributes created by ``__init__`` (initializers first, then the
+user's ``New``, AMB-7); Shared fields are class attributes whose initializers run in the module's
+``_init()`` with the module variables (§8.3).  Several ``Sub New`` overloads become ``_new_<k>``
+methods plus one ``_create_<k>`` classmethod each -- the semantic pass already chose the overload,
+so ``New C(1)`` lowers to ``C._create_1(1)`` -- and an ``__init__(*args)`` that picks by argument
+count for hand-written Python.
+"""
+
+from __future__ import annotations
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.context import ModuleContext
+from gpl2py.lower.emit import Writer
+from gpl2py.lower.expressions import default_code
+from gpl2py.lower.names import py_ident, py_string
+from gpl2py.lower.statements import ProcLowerer
+from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
+from gpl2py.syntax import ast as A
+
+
+def field_value(low: ProcLowerer, v: VarSym) -> str:
+    """The initial value of a field or module variable: array, New, initializer or default."""
+    d = v.decl
+    if d is not None:
+        value = low.declarator_value(d, v)
+        if value is not None:
+            return value
+    return default_code(v.type)
+
+
+def delegate_line(ctx: ModuleContext, d: DelegateSym) -> str:
+    fn = ctx.helper("gplrt.lang.delegates", "delegate_type")
+    return f"{py_ident(d.name)} = {fn}({py_string(d.name)}, {len(d.params)})"
+
+
+def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writer:
+    w = Writer()
+    decl = cls.decl
+    assert decl is not None
+    w.gpl_line = decl.span.line
+    w.comments(decl.leading_comments)
+    mark = w.mark()
+    w.line(f"class {py_ident(cls.name)}:")
+    w.trailing(decl.trailing_comment, mark)
+    w.indent()
+    w.line(f'"""GPL class {cls.name}."""')
+    instance_fields = [m for m in cls.fields() if not m.shared]
+    slots = ", ".join(py_string(py_ident(f.name)) for f in instance_fields)
+    w.line(f"__slots__ = ({slots}{',' if len(instance_fields) == 1 else ''})")
+    for member in decl.members:
+        if isinstance(member, A.VarDecl):
+            for d in member.declarators:
+                v = cls.members.get(d.name.lower())
+                if isinstance(v, VarSym) and v.decl is d and v.shared:
+                    w.gpl_line = member.span.line
+                    w.comments(member.leading_comments)
+                    w.line(f"{py_ident(v.name)} = {default_code(v.type)}")
+    for member in decl.members:
+        if isinstance(member, A.DelegateDecl):
+            d = cls.members.get(member.name.lower())
+            if isinstance(d, DelegateSym):
+                w.line(delegate_line(ctx, d))
+        elif isinstance(member, A.ClassDecl):
+            inner = cls.members.get(member.name.lower())
+            if isinstance(inner, ClassSym) and inner.decl is member:
+                w.blank()
+                w.extend(lower_class(ctx, inner, sink), extra_indent=w.level)
+    # constructors and field initialisation
+    init_low = ProcLowerer(ctx, None, cls, sink)
+    field_lines = [f"self.{py_ident(f.name)} = {field_value(init_low, f)}" for f in instance_fields]
+    if not cls.ctors:
+        if field_lines:
+            w.blank()
+            w.line("def __init__(self) -> None:")
+            w.indent()
+            for line in field_lines:
+                w.line(line)
+            w.dedent()
+    elif len(cls.ctors) == 1:
+        w.blank()
+        w.extend(_method(ctx, cls, cls.ctors[0], sink, field_lines), extra_indent=w.level)
+    else:
+        w.blank()
+        w.line("def __init__(self, *args) -> None:")
+        w.indent()
+        w.line("self._init_fields()")
+        for k, c in enumerate(cls.ctors):
+            w.line(f"{'if' if k == 0 else 'elif'} len(args) == {len(c.params)}:")
+            w.line(f"    self._new_{c.overload_index}(*args)")
+        w.dedent()
+        w.blank()
+        w.line("def _init_fields(self) -> None:")
+        w.indent()
+        for line in field_lines or ["pass"]:
+            w.line(line)
+        w.dedent()
+        for c in cls.ctors:
+            w.blank()
+            w.extend(_method(ctx, cls, c, sink, []), extra_indent=w.level)
+            names = ", ".join(py_ident(p.name) for p in c.params)
+            w.blank()
+            w.line("@classmethod")
+            w.line(f"def _create_{c.overload_index}(cls{', ' if names else ''}{names}):")
+            w.indent()
+            w.line("self = cls.__new__(cls)")
+            w.line("self._init_fields()")
+            w.line(f"self._new_{c.overload_index}({names})")
+            w.line("return self")
+            w.dedent()
+    for member in decl.members:
+        sym = cls.members.get(getattr(member, "name", "").lower()) if hasattr(member, "name") else None
+        if isinstance(member, A.ProcDecl) and isinstance(sym, ProcSym) and sym.decl is member:
+            w.blank()
+            w.extend(_method(ctx, cls, sym, sink, []), extra_indent=w.level)
+        elif isinstance(member, A.PropertyDecl) and isinstance(sym, PropSym) and sym.decl is member:
+            for acc in (sym.getter, sym.setter):
+                if acc is not None:
+                    w.blank()
+                    w.extend(_method(ctx, cls, acc, sink, []), extra_indent=w.level)
+    w.comments(decl.end_comments)
+    w.dedent()
+    return w
+
+
+def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink, extra: list[str]) -> Writer:
+    low = ProcLowerer(ctx, p, cls, sink)
+    out = low.procedure(p, method=True)
+    if extra:
+        # field initialisers run before the user's New (AMB-7): right after the def line
+        for i, ln in enumerate(out.lines):
+            if ln.text.startswith("def "):
+                from gpl2py.lower.emit import Line
+
+                out.lines[i + 1:i + 1] = [Line(ln.indent + 1, text, ln.gpl_line) for text in extra]
+                break
+    return out
+
+
+def register_lines(ctx: ModuleContext, cls: ClassSym) -> list[str]:
+    """Registry entries for the Shared procedures of ``cls`` and its nested classes (§9.4)."""
+    reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
+    out: list[str] = []
+    qual = ".".join(([cls.module.name] if cls.module and cls.module.name != "_Top" else []) + cls.path)
+    ref = ctx.class_ref(cls)
+    for m in cls.members.values():
+        if isinstance(m, ProcSym) and m.shared:
+            out.append(f"{reg}({py_string(qual)}, {py_string(m.name)}, {ref}.{py_ident(m.name)}, "
+                       f"public={m.public and cls.public})")
+        elif isinstance(m, ClassSym):
+            out.extend(register_lines(ctx, m))
+    return out

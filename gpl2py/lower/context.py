@@ -1,0 +1,106 @@
+"""Per-project and per-module naming state shared by the lowering steps.
+
+:class:`ProjectNames` fixes the Python name of every module and the set of identifiers GPL code
+uses; :class:`ModuleContext` collects the imports one generated module needs and hands out the
+local name of each runtime helper (aliased with a leading ``_`` only when a GPL name in the
+project is spelled the same, so ``to_int32`` stays readable and never shadows a program name).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gpl2py.lower.names import py_ident, snake_case
+from gpl2py.semantics.check import Model
+from gpl2py.semantics.resolve import TOP_MODULE
+from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, PropSym, VarSym
+
+
+@dataclass
+class ProjectNames:
+    module_py: dict[ModuleSym, str] = field(default_factory=dict)
+    taken: set[str] = field(default_factory=set)
+
+    @classmethod
+    def build(cls, model: Model) -> ProjectNames:
+        names = cls()
+        taken: set[str] = set()
+        for mod in model.project.module_list:
+            for m in mod.members.values():
+                taken.add(py_ident(m.name))
+        for p in model.project.procs:
+            taken.update(py_ident(v.name) for v in p.locals.values())
+        for c in model.project.classes:
+            taken.update(py_ident(m.name) for m in c.members.values())
+        names.taken = taken
+        used: set[str] = set()
+        mods = list(model.project.module_list)
+        top = model.project.modules.get(TOP_MODULE.lower())
+        if top is not None:
+            mods.append(top)
+        for mod in mods:
+            base = "_top_classes" if mod.name == TOP_MODULE else snake_case(mod.name)
+            name = base
+            while name in used or name in taken or name in ("init", "main"):
+                name += "_mod"
+            used.add(name)
+            names.module_py[mod] = name
+            mod.py_name = name
+        return names
+
+
+class ModuleContext:
+    """Imports and names for one generated module."""
+
+    def __init__(self, model: Model, names: ProjectNames, mod: ModuleSym) -> None:
+        self.model = model
+        self.names = names
+        self.mod = mod
+        self.imports: dict[str, dict[str, str]] = {}  # python module -> {name: alias}
+        self.siblings: set[str] = set()
+        self.needs_this = False
+        self.statics: list[tuple[str, str]] = []  # module globals holding Static locals
+
+    def helper(self, module: str, name: str) -> str:
+        """Import ``name`` from ``module`` and return how the generated code spells it."""
+        alias = "_" + name if name in self.names.taken else name
+        self.imports.setdefault(module, {})[name] = alias
+        return alias
+
+    def builtin(self, py_name: str) -> str:
+        return self.helper("gplrt.builtins", py_name)
+
+    def module_prefix(self, mod: ModuleSym | None) -> str:
+        """``""`` for this module, else ``"sibling."`` (and the sibling is imported)."""
+        if mod is None or mod is self.mod:
+            return ""
+        name = self.names.module_py[mod]
+        self.siblings.add(name)
+        return name + "."
+
+    def owner_module(self, sym: object) -> ModuleSym | None:
+        owner = getattr(sym, "owner", None)
+        if isinstance(sym, ClassSym):
+            return sym.module
+        while isinstance(owner, ClassSym):
+            owner = owner.module
+        if isinstance(owner, ProcSym):
+            return owner.module
+        return owner if isinstance(owner, ModuleSym) else None
+
+    def class_ref(self, cls: ClassSym | DelegateSym) -> str:
+        """How this module names a user class or delegate class (``Outer.Inner``, ``mod.Cls``)."""
+        if isinstance(cls, ClassSym):
+            path = [py_ident(n) for n in cls.path]
+            return self.module_prefix(cls.module) + ".".join(path)
+        owner = cls.owner
+        if isinstance(owner, ClassSym):
+            return self.class_ref(owner) + "." + py_ident(cls.name)
+        return self.module_prefix(owner if isinstance(owner, ModuleSym) else None) + py_ident(cls.name)
+
+    def member_owner_ref(self, sym: VarSym | ProcSym | PropSym) -> str:
+        """The qualifier of a module-level or Shared member (``""``, ``"mod."`` or ``"Cls."``)."""
+        owner = sym.owner
+        if isinstance(owner, ClassSym):
+            return self.class_ref(owner) + "."
+        return self.module_prefix(owner if isinstance(owner, ModuleSym) else None)

@@ -1,0 +1,483 @@
+"""Expressions -> Python source (docs/design/lowering.md, "Values and types").
+
+Every lowered expression is a ``(code, precedence)`` pair so that parentheses appear only where
+Python needs them.  Static types decide the shape: two Doubles add with a plain ``a + b``, an
+Integer store from an arithmetic result gets ``chk_int32(...)``, and the runtime is called only
+where GPL differs from Python (``\\``, ``Mod``, ``^``, string/number ``+``, Boolean -1, ...).
+"""
+
+from __future__ import annotations
+
+import struct
+
+from gpl2py.lower.context import ModuleContext
+from gpl2py.lower.names import py_float, py_ident, py_string
+from gpl2py.semantics import types as t
+from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Member
+from gpl2py.semantics.check import Info, Model, ParamInfo
+from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
+from gpl2py.syntax import ast as A
+
+# Python operator precedences (higher binds tighter)
+P_TOP, P_IF, P_OR, P_AND, P_NOT, P_CMP = 0, 1, 2, 3, 4, 5
+P_BOR, P_BXOR, P_BAND, P_SHIFT, P_ADD, P_MUL, P_UNARY, P_POW, P_ATOM = 6, 7, 8, 9, 10, 11, 12, 13, 15
+
+Code = tuple[str, int]
+
+CONV = "gplrt.lang.conversions"
+OPS = "gplrt.lang.operators"
+BYREF = "gplrt.lang.byref"
+
+_PLAIN_NUM = (t.BYTE, t.SHORT, t.INTEGER, t.SINGLE, t.DOUBLE)
+_INTS = (t.BYTE, t.SHORT, t.INTEGER)
+_INT_RANGE = {t.INTEGER: (-(2**31), 2**31 - 1), t.SHORT: (-32768, 32767), t.BYTE: (0, 255)}
+_TO_INT = {t.INTEGER: "to_int32", t.SHORT: "to_int16", t.BYTE: "to_uint8"}
+_CHK_INT = {t.INTEGER: "chk_int32", t.SHORT: "chk_int16", t.BYTE: "chk_uint8"}
+_RUNTIME_CMP = {"=": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le", ">=": "ge"}
+_PY_CMP = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
+_F32 = struct.Struct("f")
+
+
+def paren(c: Code, min_prec: int) -> str:
+    return c[0] if c[1] >= min_prec else f"({c[0]})"
+
+
+def default_code(typ: t.GplType) -> str:
+    """The Python literal for a new variable of ``typ`` (§4.1 defaults)."""
+    if typ in _INTS:
+        return "0"
+    if typ in (t.SINGLE, t.DOUBLE):
+        return "0.0"
+    if typ is t.BOOLEAN:
+        return "False"
+    if typ is t.STRING:
+        return '""'
+    return "None"
+
+
+def elem_type_code(typ: t.GplType) -> str:
+    """The element type argument of GplArray/redim: a primitive's name, else None (Nothing)."""
+    if isinstance(typ, t.PrimitiveType):
+        return py_string(typ.name)
+    return "None"
+
+
+def annotation(typ: t.GplType) -> str | None:
+    if typ in _INTS:
+        return "int"
+    if typ in (t.SINGLE, t.DOUBLE):
+        return "float"
+    if typ is t.BOOLEAN:
+        return "bool"
+    if typ is t.STRING:
+        return "str"
+    return None
+
+
+def _round_half_away(x: float) -> int:
+    i = int(x)
+    f = x - i
+    return i + 1 if f >= 0.5 else i - 1 if f <= -0.5 else i
+
+
+class ExprLowerer:
+    """Lowers expressions of one procedure (or of module/class initializers)."""
+
+    def __init__(self, ctx: ModuleContext, proc: ProcSym | None, cls: ClassSym | None) -> None:
+        self.ctx = ctx
+        self.model: Model = ctx.model
+        self.proc = proc
+        self.cls = cls
+        self.globals: set[str] = set()
+
+    # -- helpers -----------------------------------------------------------------------------------
+
+    def rt(self, module: str, name: str) -> str:
+        return self.ctx.helper(module, name)
+
+    def info(self, e: A.Node) -> Info:
+        return self.model.info[e]
+
+    def type_of(self, e: A.Expr) -> t.GplType:
+        i = self.model.info.get(e)
+        return i.type if i is not None else t.ERROR
+
+    def val(self, e: A.Expr) -> str:
+        return self.expr(e)[0]
+
+    def sub(self, e: A.Expr, min_prec: int) -> str:
+        return paren(self.expr(e), min_prec)
+
+    def call(self, func: str, *args: str) -> Code:
+        return f"{func}({', '.join(args)})", P_ATOM
+
+    # -- names of variables -------------------------------------------------------------------------
+
+    def local_name(self, v: VarSym) -> str:
+        return py_ident(v.name)
+
+    def static_name(self, v: VarSym) -> str:
+        p = v.owner
+        parts: list[str] = []
+        if isinstance(p, ProcSym):
+            owner = p.owner
+            if isinstance(owner, ClassSym):
+                parts.extend(owner.path)
+            parts.append(p.name if p.kind not in ("Get", "Set") else f"{p.name}{p.kind}")
+            if p.kind == "New":
+                parts.append(str(p.overload_index))
+        parts.append(v.name)
+        return "_s_" + "_".join(parts)
+
+    def var_code(self, v: VarSym, receiver: A.Expr | None) -> Code:
+        st = v.storage
+        if st in ("local", "param"):
+            n = self.local_name(v)
+            if st == "param" and v.byref:
+                return f"{n}.get()", P_ATOM
+            if v.boxed:
+                return f"{n}.value", P_ATOM
+            return n, P_ATOM
+        if st == "static":
+            return self.static_name(v), P_ATOM
+        if st == "module":
+            return self.ctx.member_owner_ref(v) + py_ident(v.name), P_ATOM
+        # field
+        if v.shared:
+            return self.ctx.member_owner_ref(v) + py_ident(v.name), P_ATOM
+        recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
+        return f"{recv}.{py_ident(v.name)}", P_ATOM
+
+    # -- expressions -------------------------------------------------------------------------------
+
+    def expr(self, e: A.Expr) -> Code:
+        i = self.model.info.get(e)
+        if i is None:
+            return "None", P_ATOM  # unreachable when analysis succeeded
+        k = i.kind
+        if k == "literal":
+            return self.literal(e)
+        if k == "nothing":
+            return "None", P_ATOM
+        if k == "me":
+            return "self", P_ATOM
+        if k == "var":
+            return self.var_code(i.sym, i.receiver)  # type: ignore[arg-type]
+        if k == "result":
+            return "_result", P_ATOM
+        if k == "call":
+            return self.user_call(i, e.args if isinstance(e, A.Invoke) else [])
+        if k == "prop":
+            prop: PropSym = i.sym  # type: ignore[assignment]
+            return self.prop_ref(prop, i.receiver), P_ATOM
+        if k == "index":
+            assert isinstance(e, A.Invoke)
+            return self.index_code(e), P_ATOM
+        if k == "bfunc":
+            return self.builtin_function(i, e.args if isinstance(e, A.Invoke) else [])
+        if k == "bconst":
+            c: BuiltinConstant = i.sym  # type: ignore[assignment]
+            return self.ctx.builtin(c.python_name), P_ATOM
+        if k in ("bmember", "vmember"):
+            return self.builtin_member(i, e, e.args if isinstance(e, A.Invoke) else None)
+        if k == "delegate_call":
+            assert isinstance(e, A.Invoke)
+            args = self.args_code(e.args, i.params or [])
+            return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})", P_ATOM
+        if k == "new":
+            assert isinstance(e, A.New)
+            return self.new_code(e, i)
+        if k == "addressof":
+            return self.addressof_code(i), P_ATOM
+        if k == "unary":
+            assert isinstance(e, A.Unary)
+            return self.unary(e)
+        if k == "binary":
+            assert isinstance(e, A.Binary)
+            if e.op == "Is":
+                return f"{self.sub(e.left, P_CMP + 1)} is {self.sub(e.right, P_CMP + 1)}", P_CMP
+            if e.op in ("AndAlso", "OrElse"):
+                left = paren(self.cond(e.left), P_AND + 1 if e.op == "AndAlso" else P_OR + 1)
+                right = paren(self.cond(e.right), P_AND + 1 if e.op == "AndAlso" else P_OR + 1)
+                return (f"{left} and {right}", P_AND) if e.op == "AndAlso" else (f"{left} or {right}", P_OR)
+            return self.binop(e.op, (*self.expr(e.left), self.type_of(e.left)),
+                              (*self.expr(e.right), self.type_of(e.right)))
+        return "None", P_ATOM
+
+    def literal(self, e: A.Expr) -> Code:
+        if isinstance(e, A.IntegerLiteral):
+            if -(2**31) <= e.value < 2**31:
+                return str(e.value), (P_UNARY if e.value < 0 else P_ATOM)
+            return py_float(float(e.value)), P_ATOM
+        if isinstance(e, A.RealLiteral):
+            return py_float(e.value), (P_UNARY if e.value < 0 else P_ATOM)
+        if isinstance(e, A.StringLiteral):
+            return py_string(e.value), P_ATOM
+        if isinstance(e, A.BooleanLiteral):
+            return ("True" if e.value else "False"), P_ATOM
+        return "None", P_ATOM
+
+    # -- conversions ---------------------------------------------------------------------------------
+
+    def conv(self, e: A.Expr, dst: t.GplType) -> Code:
+        """``e`` converted to ``dst`` as a store would (§4.2 rule 3)."""
+        src = self.type_of(e)
+        if isinstance(e, A.IntegerLiteral) and dst in _INT_RANGE:
+            lo, hi = _INT_RANGE[dst]
+            if lo <= e.value <= hi:
+                return str(e.value), (P_UNARY if e.value < 0 else P_ATOM)
+        if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
+            if dst in _INT_RANGE and isinstance(e, A.RealLiteral) and abs(e.value) < 2**62:
+                r = _round_half_away(e.value)
+                lo, hi = _INT_RANGE[dst]
+                if lo <= r <= hi:
+                    return str(r), (P_UNARY if r < 0 else P_ATOM)
+            if dst is t.DOUBLE:
+                return py_float(float(e.value)), (P_UNARY if e.value < 0 else P_ATOM)
+            if dst is t.SINGLE:
+                try:
+                    value = _F32.unpack(_F32.pack(float(e.value)))[0]
+                    return py_float(value), (P_UNARY if value < 0 else P_ATOM)
+                except OverflowError:
+                    pass
+        c = self.expr(e)
+        return self.coerce(c, src, dst, may_overflow=isinstance(e, (A.Binary, A.Unary)))
+
+    def coerce(self, c: Code, src: t.GplType, dst: t.GplType, may_overflow: bool = True) -> Code:
+        if dst is t.ERROR or src is t.ERROR or not isinstance(dst, t.PrimitiveType):
+            return c
+        if dst in _INT_RANGE:
+            if src is dst:
+                if may_overflow:
+                    return self.call(self.rt(CONV, _CHK_INT[dst]), c[0])
+                return c
+            if src in _INTS:
+                lo, hi = _INT_RANGE[dst]
+                slo, shi = _INT_RANGE[src]  # type: ignore[index]
+                if lo <= slo and shi <= hi and not may_overflow:
+                    return c
+                return self.call(self.rt(CONV, _CHK_INT[dst]), c[0])
+            if src is t.BOOLEAN and dst is not t.BYTE:
+                return self.call(self.rt(CONV, "bool_num"), c[0])
+            return self.call(self.rt(CONV, _TO_INT[dst]), c[0])
+        if dst is t.DOUBLE:
+            if src in (t.DOUBLE, t.SINGLE):
+                return c
+            if src in _INTS:
+                return self.call("float", c[0])
+            return self.call(self.rt(CONV, "to_double"), c[0])
+        if dst is t.SINGLE:
+            if src is t.SINGLE and not may_overflow:
+                return c
+            return self.call(self.rt(CONV, "to_single"), c[0])
+        if dst is t.BOOLEAN:
+            if src is t.BOOLEAN:
+                return c
+            if src in _PLAIN_NUM:
+                return f"{paren(c, P_CMP + 1)} != 0", P_CMP
+            return self.call(self.rt(CONV, "to_bool"), c[0])
+        if dst is t.STRING:
+            if src is t.STRING:
+                return c
+            if src is t.SINGLE:
+                return self.call(self.rt(CONV, "to_string_single"), c[0])
+            return self.call(self.rt(CONV, "to_string"), c[0])
+        return c
+
+    def cond(self, e: A.Expr) -> Code:
+        """``e`` as a Python condition (non-zero is True, §4.3)."""
+        src = self.type_of(e)
+        c = self.expr(e)
+        if src is t.BOOLEAN:
+            return c
+        if src in _PLAIN_NUM:
+            return f"{paren(c, P_CMP + 1)} != 0", P_CMP
+        return self.call(self.rt(CONV, "to_bool"), c[0])
+
+    # -- operators --------------------------------------------------------------------------------------
+
+    def unary(self, e: A.Unary) -> Code:
+        ot = self.type_of(e.operand)
+        if e.op == "Not":
+            if ot is t.BOOLEAN:
+                return f"not {self.sub(e.operand, P_NOT)}", P_NOT
+            if ot in _PLAIN_NUM:
+                return f"{self.sub(e.operand, P_CMP + 1)} == 0", P_CMP
+            return self.call(self.rt(OPS, "not_"), self.val(e.operand))
+        if e.op == "-":
+            if ot in _PLAIN_NUM:
+                return f"-{self.sub(e.operand, P_UNARY)}", P_UNARY
+            return self.call(self.rt(OPS, "neg"), self.val(e.operand))
+        # unary plus
+        if ot in _PLAIN_NUM:
+            return self.expr(e.operand)
+        return self.call(self.rt(CONV, "to_number"), self.val(e.operand))
+
+    def binop(self, op: str, left: tuple[str, int, t.GplType], right: tuple[str, int, t.GplType]) -> Code:
+        lc: Code = (left[0], left[1])
+        rc: Code = (right[0], right[1])
+        lt, rt_ = left[2], right[2]
+        plain = lt in _PLAIN_NUM and rt_ in _PLAIN_NUM
+        if op in ("+", "-", "*"):
+            if plain or (op == "+" and lt is t.STRING and rt_ is t.STRING):
+                prec = P_ADD if op != "*" else P_MUL
+                return f"{paren(lc, prec)} {op} {paren(rc, prec + 1)}", prec
+            name = {"+": "add", "-": "sub", "*": "mul"}[op]
+            return self.call(self.rt(OPS, name), lc[0], rc[0])
+        if op == "/":
+            if plain and _nonzero_literal(rc[0]):
+                return f"{paren(lc, P_MUL)} / {paren(rc, P_MUL + 1)}", P_MUL
+            return self.call(self.rt(OPS, "div"), lc[0], rc[0])
+        if op in ("\\", "Mod", "^", "<<", ">>"):
+            name = {"\\": "idiv", "Mod": "mod", "^": "power", "<<": "shl", ">>": ">>"}[op]
+            if op == ">>":
+                name = "shr"
+            return self.call(self.rt(OPS, name), lc[0], rc[0])
+        if op == "&":
+            parts = []
+            for c, typ in ((lc, lt), (rc, rt_)):
+                if typ is t.STRING:
+                    parts.append(paren(c, P_ADD + 1) if parts else paren(c, P_ADD))
+                else:
+                    parts.append(self.coerce(c, typ if typ is not t.ERROR else t.DOUBLE, t.STRING)[0]
+                                 if typ is not t.ERROR else self.call(self.rt(CONV, "to_string"), c[0])[0])
+            return f"{parts[0]} + {parts[1]}", P_ADD
+        if op in _PY_CMP:
+            both_str = lt is t.STRING and rt_ is t.STRING
+            if plain or both_str or (lt is t.BOOLEAN and rt_ is t.BOOLEAN and op in ("=", "<>")):
+                return f"{paren(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
+            if (lt is t.BOOLEAN or lt in _PLAIN_NUM) and (rt_ is t.BOOLEAN or rt_ in _PLAIN_NUM):
+                if lt is t.BOOLEAN:
+                    lc = self.call(self.rt(CONV, "bool_num"), lc[0])
+                if rt_ is t.BOOLEAN:
+                    rc = self.call(self.rt(CONV, "bool_num"), rc[0])
+                return f"{paren(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
+            return self.call(self.rt(OPS, _RUNTIME_CMP[op]), lc[0], rc[0])
+        if op in ("And", "Or", "Xor"):
+            pyop, prec = {"And": ("&", P_BAND), "Or": ("|", P_BOR), "Xor": ("^", P_BXOR)}[op]
+            if (lt is t.BOOLEAN and rt_ is t.BOOLEAN) or (lt in _INTS and rt_ in _INTS):
+                return f"{paren(lc, prec)} {pyop} {paren(rc, prec + 1)}", prec
+            name = {"And": "and_", "Or": "or_", "Xor": "xor"}[op]
+            return self.call(self.rt(OPS, name), lc[0], rc[0])
+        return self.call(self.rt(OPS, "eq"), lc[0], rc[0])
+
+    # -- calls and members -------------------------------------------------------------------------------
+
+    def args_code(self, args: list[A.Expr], params: list[ParamInfo]) -> list[str]:
+        out: list[str] = []
+        for i, a in enumerate(args):
+            p = params[i] if i < len(params) else None
+            if p is None or (p.type is t.ERROR and not p.byref):
+                out.append(self.val(a))
+            elif p.byref:
+                out.append(self.cell(a))
+            else:
+                out.append(self.conv(a, p.type)[0])
+        return out
+
+    def cell(self, a: A.Expr) -> str:
+        """The ByRef cell for argument ``a`` (§9.3: a variable, element or field aliases)."""
+        i = self.model.info.get(a)
+        if a not in self.model.byref_temps and i is not None:
+            if i.kind == "var":
+                v: VarSym = i.sym  # type: ignore[assignment]
+                if v.storage in ("local", "param"):
+                    return self.local_name(v)  # a boxed local, or a ByRef parameter's own cell
+                attr = self.rt(BYREF, "AttrRef")
+                if v.storage == "static":
+                    self.ctx.needs_this = True
+                    return f"{attr}(_this, {py_string(self.static_name(v))})"
+                if v.storage == "module":
+                    prefix = self.ctx.module_prefix(self.ctx.owner_module(v))
+                    if not prefix:
+                        self.ctx.needs_this = True
+                        return f"{attr}(_this, {py_string(py_ident(v.name))})"
+                    return f"{attr}({prefix[:-1]}, {py_string(py_ident(v.name))})"
+                if v.shared:
+                    return f"{attr}({self.ctx.member_owner_ref(v)[:-1]}, {py_string(py_ident(v.name))})"
+                recv = "self" if i.receiver is None else self.val(i.receiver)
+                return f"{attr}({recv}, {py_string(py_ident(v.name))})"
+            if i.kind == "index":
+                assert isinstance(a, A.Invoke)
+                idx = [self.val(x) for x in a.args]
+                key = idx[0] if len(idx) == 1 else "(" + ", ".join(idx) + ")"
+                return f"{self.rt(BYREF, 'ItemRef')}({self.val(a.target)}, {key})"
+        return f"{self.rt(BYREF, 'Box')}({self.val(a)})"
+
+    def user_call(self, i: Info, args: list[A.Expr]) -> Code:
+        p: ProcSym = i.sym  # type: ignore[assignment]
+        return f"{self.proc_ref(p, i.receiver)}({', '.join(self.args_code(args, i.params or []))})", P_ATOM
+
+    def proc_ref(self, p: ProcSym, receiver: A.Expr | None) -> str:
+        name = py_ident(p.name)
+        if isinstance(p.owner, ClassSym) and not p.shared:
+            recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
+            return f"{recv}.{name}"
+        return self.ctx.member_owner_ref(p) + name
+
+    def prop_ref(self, prop: PropSym, receiver: A.Expr | None) -> str:
+        if prop.shared:
+            return self.ctx.class_ref(prop.owner) + "." + py_ident(prop.name)
+        recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
+        return f"{recv}.{py_ident(prop.name)}"
+
+    def index_code(self, e: A.Invoke) -> str:
+        idx = ", ".join(self.val(x) for x in e.args)
+        return f"{self.sub(e.target, P_ATOM)}[{idx}]"
+
+    def builtin_function(self, i: Info, args: list[A.Expr]) -> Code:
+        f: BuiltinFunction = i.sym  # type: ignore[assignment]
+        if f.name == "CStr" and len(args) == 1 and self.type_of(args[0]) is t.SINGLE:
+            return self.call(self.rt(CONV, "to_string_single"), self.val(args[0]))
+        return self.call(self.ctx.builtin(f.python_name), *self.args_code(args, i.params or []))
+
+    def builtin_member(self, i: Info, e: A.Expr, args: list[A.Expr] | None) -> Code:
+        m: Member = i.sym  # type: ignore[assignment]
+        b: BuiltinClass = i.owner  # type: ignore[assignment]
+        acode = self.args_code(args or [], i.params or [])
+        if i.kind == "vmember" and b.name == "String":
+            if m.name == "Length" and i.receiver is not None:
+                return f"len({self.val(i.receiver)})", P_ATOM
+            sm = self.ctx.builtin(b.python_name)
+            if i.static:
+                return f"{sm}.{m.name}({', '.join(acode)})", P_ATOM
+            assert i.receiver is not None
+            return f"{sm}.{m.name}({', '.join([self.val(i.receiver), *acode])})", P_ATOM
+        if i.static:
+            head = f"{self.ctx.builtin(b.python_name)}.{m.name}"
+        else:
+            assert i.receiver is not None
+            head = f"{self.sub(i.receiver, P_ATOM)}.{m.name}"
+        if m.kind == "property":
+            return head, P_ATOM
+        return f"{head}({', '.join(acode)})", P_ATOM
+
+    def new_code(self, e: A.New, i: Info) -> Code:
+        target = i.sym
+        args = e.args or []
+        if isinstance(target, ClassSym):
+            ref = self.ctx.class_ref(target)
+            acode = self.args_code(args, i.params or [])
+            if len(target.ctors) > 1 and isinstance(i.owner, ProcSym):
+                return f"{ref}._create_{i.owner.overload_index}({', '.join(acode)})", P_ATOM
+            return f"{ref}({', '.join(acode)})", P_ATOM
+        if isinstance(target, DelegateSym):
+            ref = self.ctx.class_ref(target)
+            if args and isinstance(args[0], A.AddressOf):
+                return f"{ref}({self.val(args[0])})", P_ATOM
+            mod = self.ctx.mod.name
+            return f"{ref}.from_name({self.conv(args[0], t.STRING)[0]}, {py_string(mod)})", P_ATOM
+        if isinstance(target, BuiltinClass):
+            return self.call(self.ctx.builtin(target.python_name), *self.args_code(args, i.params or []))
+        return "None", P_ATOM
+
+    def addressof_code(self, i: Info) -> str:
+        p: ProcSym = i.sym  # type: ignore[assignment]
+        return self.proc_ref(p, i.receiver)
+
+
+def _nonzero_literal(code: str) -> bool:
+    try:
+        return float(code) != 0.0
+    except ValueError:
+        return False

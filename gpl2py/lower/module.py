@@ -1,0 +1,173 @@
+"""One GPL Module -> one Python module (docs/design/lowering.md, "Output layout").
+
+Layout of a generated module: docstring, imports, ``_this`` (only when a module variable is passed
+ByRef), delegate classes, module variables at their defaults, Static-local globals, classes,
+procedures, ``_init()`` (module variable and Shared field initializers in textual order, §12.2),
+then the procedure registrations.  Importing the module runs nothing of the program.
+"""
+
+from __future__ import annotations
+
+import os
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.classes import delegate_line, field_value, lower_class, register_lines
+from gpl2py.lower.context import ModuleContext, ProjectNames
+from gpl2py.lower.emit import Writer
+from gpl2py.lower.expressions import annotation, default_code
+from gpl2py.lower.names import py_ident, py_string
+from gpl2py.lower.statements import ProcLowerer
+from gpl2py.semantics.check import Model
+from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, VarSym
+from gpl2py.syntax import ast as A
+
+
+def _import_lines(ctx: ModuleContext) -> list[str]:
+    lines: list[str] = []
+    if ctx.needs_this:
+        lines.append("import sys")
+        lines.append("")
+    for module in sorted(ctx.imports):
+        names = ctx.imports[module]
+        parts = [n if a == n else f"{n} as {a}" for n, a in sorted(names.items())]
+        text = f"from {module} import {', '.join(parts)}"
+        if len(text) > 99:
+            lines.append(f"from {module} import (")
+            lines.extend(f"    {p}," for p in parts)
+            lines.append(")")
+        else:
+            lines.append(text)
+    if ctx.siblings:
+        lines.append("")
+        lines.append(f"from . import {', '.join(sorted(ctx.siblings))}")
+    return lines
+
+
+def _literal_value(e: A.Expr | None) -> bool:
+    return isinstance(e, (A.IntegerLiteral, A.RealLiteral, A.StringLiteral, A.BooleanLiteral)) or (
+        isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, (A.IntegerLiteral, A.RealLiteral)))
+
+
+def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink) -> tuple[str, list[int]]:
+    """The text of the generated module and, per line, the GPL line it came from."""
+    ctx = ModuleContext(model, names, mod)
+    body = Writer()
+    decl = mod.decl
+    members: list[A.Stmt] = decl.members if decl is not None else [
+        c.decl for c in mod.members.values() if isinstance(c, ClassSym) and c.decl is not None]
+    init_low = ProcLowerer(ctx, None, None, sink)
+    # delegates and module variables (defaults; initializers run in _init)
+    for m in members:
+        if isinstance(m, A.DelegateDecl):
+            d = mod.members.get(m.name.lower())
+            if isinstance(d, DelegateSym):
+                body.gpl_line = m.span.line
+                body.comments(m.leading_comments)
+                body.line(delegate_line(ctx, d))
+        elif isinstance(m, A.VarDecl):
+            body.gpl_line = m.span.line
+            body.comments(m.leading_comments)
+            mark = body.mark()
+            for d in m.declarators:
+                v = mod.members.get(d.name.lower())
+                if not isinstance(v, VarSym) or v.decl is not d:
+                    continue
+                ann = annotation(v.type)
+                value = default_code(v.type)
+                if _literal_value(d.initializer) and not d.bounds:
+                    value = init_low.conv(d.initializer, v.type)[0]  # type: ignore[arg-type]
+                body.line(f"{py_ident(v.name)}{': ' + ann if ann else ''} = {value}")
+            body.trailing(m.trailing_comment, mark)
+    # classes and procedures, in source order
+    procs: list[ProcSym] = []
+    classes: list[ClassSym] = []
+    defs = Writer()
+    for m in members:
+        sym = mod.members.get(getattr(m, "name", "").lower()) if hasattr(m, "name") else None
+        if isinstance(m, A.ClassDecl) and isinstance(sym, ClassSym) and sym.decl is m:
+            defs.blank(2)
+            defs.extend(lower_class(ctx, sym, sink))
+            classes.append(sym)
+        elif isinstance(m, A.ProcDecl) and isinstance(sym, ProcSym) and sym.decl is m:
+            defs.blank(2)
+            defs.extend(ProcLowerer(ctx, sym, None, sink).procedure(sym, method=False))
+            procs.append(sym)
+    # _init: module variables and Shared fields, textual order
+    init = Writer()
+    init.level = 1
+    for m in members:
+        if isinstance(m, A.VarDecl):
+            for d in m.declarators:
+                v = mod.members.get(d.name.lower())
+                if isinstance(v, VarSym) and v.decl is d:
+                    init.gpl_line = d.span.line
+                    init_low.globals.add(py_ident(v.name))
+                    init.line(f"{py_ident(v.name)} = {field_value(init_low, v)}")
+        elif isinstance(m, A.ClassDecl):
+            cls = mod.members.get(m.name.lower())
+            if isinstance(cls, ClassSym):
+                _shared_inits(ctx, cls, init, init_low)
+    defs.blank(2)
+    defs.line("def _init() -> None:")
+    defs.indent()
+    defs.line('"""Module variable and Shared field initializers, in textual order (§12.2)."""')
+    if init_low.globals:
+        defs.line("global " + ", ".join(sorted(init_low.globals)))
+    defs.dedent()
+    defs.extend(init)
+    # registrations
+    reg_lines: list[str] = []
+    for p in procs:
+        reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
+        reg_lines.append(f"{reg}({py_string(mod.name)}, {py_string(p.name)}, {py_ident(p.name)}, public={p.public})")
+    for c in classes:
+        reg_lines.extend(register_lines(ctx, c))
+    if ctx.statics:
+        body.line("")
+        body.line("# Static locals (§6.2): one per procedure, kept between calls")
+        seen: set[str] = set()
+        for name, value in ctx.statics:
+            if name not in seen:
+                seen.add(name)
+                body.line(f"{name} = {value}")
+    # assemble
+    out = Writer()
+    source = mod.path
+    what = f"Module {mod.name}" if decl is not None else "Top-level classes"
+    out.line(f'"""{what}, transpiled by gpl2py from {os.path.basename(source)}."""')
+    if decl is not None:
+        out.comments(decl.leading_comments)
+    imports = _import_lines(ctx)
+    if imports:
+        out.blank()
+        for line in imports:
+            out.line(line)
+    if ctx.needs_this:
+        out.blank()
+        out.line("_this = sys.modules[__name__]  # module variables passed ByRef alias attributes of this module")
+    if body.lines:
+        out.blank(2 if imports else 1)
+        out.extend(body)
+    out.extend(defs)
+    if decl is not None:
+        out.comments(decl.end_comments)
+    if reg_lines:
+        out.blank(2)
+        for line in reg_lines:
+            out.line(line)
+    return out.render()
+
+
+def _shared_inits(ctx: ModuleContext, cls: ClassSym, init: Writer, low: ProcLowerer) -> None:
+    shared_low = ProcLowerer(ctx, None, cls, low.sink)
+    for m in cls.decl.members if cls.decl is not None else []:
+        if isinstance(m, A.VarDecl):
+            for d in m.declarators:
+                v = cls.members.get(d.name.lower())
+                if isinstance(v, VarSym) and v.decl is d and v.shared:
+                    init.gpl_line = d.span.line
+                    init.line(f"{ctx.class_ref(cls)}.{py_ident(v.name)} = {field_value(shared_low, v)}")
+        elif isinstance(m, A.ClassDecl):
+            inner = cls.members.get(m.name.lower())
+            if isinstance(inner, ClassSym):
+                _shared_inits(ctx, inner, init, low)

@@ -1,0 +1,790 @@
+"""Statements and procedures -> Python (docs/design/lowering.md, "Statements", "Procedures").
+
+:class:`ProcLowerer` emits one procedure.  Loops that Python can express directly stay plain
+(``while``, ``for ... in range``); ``Exit`` and ``GoTo`` that must leave several Python loops set a
+flag and break level by level; a statement list holding a GoTo target becomes a dispatch loop
+(``lower/goto.py``).  Every Python loop the lowering opens is a :class:`Frame` on a stack, which is
+how a jump knows how many loops it must leave.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.context import ModuleContext
+from gpl2py.lower.emit import Writer
+from gpl2py.lower.expressions import (
+    BYREF,
+    CONV,
+    P_AND,
+    P_ATOM,
+    P_CMP,
+    P_NOT,
+    P_OR,
+    Code,
+    ExprLowerer,
+    annotation,
+    default_code,
+    elem_type_code,
+    paren,
+)
+from gpl2py.lower.goto import GotoPlan, plan_gotos
+from gpl2py.lower.names import py_ident
+from gpl2py.semantics import types as t
+from gpl2py.semantics.catalogue import Member
+from gpl2py.semantics.check import child_blocks
+from gpl2py.semantics.symbols import ClassSym, ProcSym, PropSym, VarSym
+from gpl2py.syntax import ast as A
+
+THREADS = "gplrt.threads"
+EXC = "gplrt.lang.exceptions"
+ARRAYS = "gplrt.lang.arrays"
+
+
+@dataclass(eq=False)
+class Frame:
+    """One Python loop the lowering opened."""
+
+    kind: str  # For | While | Do | Select | Try | dispatch
+    after: list[tuple[str, str]] = field(default_factory=list)  # (flag, action) checks after the loop
+    block: A.Block | None = None
+
+
+class ProcLowerer(ExprLowerer):
+    def __init__(self, ctx: ModuleContext, proc: ProcSym | None, cls: ClassSym | None,
+                 sink: DiagnosticSink) -> None:
+        super().__init__(ctx, proc, cls)
+        self.sink = sink
+        self.w = Writer()
+        self.frames: list[Frame] = []
+        self.flags: list[str] = []
+        self.flag_of: dict[tuple[int, str], str] = {}
+        self.counter = 0
+        self.plan: GotoPlan | None = None
+        self.state_var: dict[A.Block, str] = {}
+
+    def fresh(self, stem: str) -> str:
+        self.counter += 1
+        return f"_{stem}{self.counter}"
+
+    # -- stores -------------------------------------------------------------------------------------------
+
+    def target_type(self, e: A.Expr) -> t.GplType:
+        i = self.info(e)
+        if i.kind == "bmember" and isinstance(i.sym, Member) and i.sym.kind == "method":
+            return i.sym.result
+        return i.type
+
+    def store(self, target: A.Expr, value: str) -> None:
+        """Emit ``target = value`` (``value`` already converted to the target's type)."""
+        i = self.info(target)
+        k = i.kind
+        if k == "var":
+            v: VarSym = i.sym  # type: ignore[assignment]
+            if v.storage in ("local", "param"):
+                n = self.local_name(v)
+                if v.storage == "param" and v.byref:
+                    self.w.line(f"{n}.set({value})")
+                elif v.boxed:
+                    self.w.line(f"{n}.value = {value}")
+                else:
+                    self.w.line(f"{n} = {value}")
+                return
+            if v.storage == "static":
+                name = self.static_name(v)
+                self.globals.add(name)
+                self.w.line(f"{name} = {value}")
+                return
+            if v.storage == "module" and not self.ctx.module_prefix(self.ctx.owner_module(v)):
+                self.globals.add(py_ident(v.name))
+            self.w.line(f"{self.var_code(v, i.receiver)[0]} = {value}")
+            return
+        if k == "result":
+            self.w.line(f"_result = {value}")
+            return
+        if k == "index":
+            assert isinstance(target, A.Invoke)
+            self.w.line(f"{self.index_code(target)} = {value}")
+            return
+        if k == "prop":
+            prop: PropSym = i.sym  # type: ignore[assignment]
+            self.w.line(f"{self.prop_ref(prop, i.receiver)} = {value}")
+            return
+        if k == "bmember":
+            m: Member = i.sym  # type: ignore[assignment]
+            head = (self.ctx.builtin(i.owner.python_name) if i.static  # type: ignore[union-attr]
+                    else self.sub(i.receiver, P_ATOM))  # type: ignore[arg-type]
+            if m.kind == "property":
+                self.w.line(f"{head}.{m.name} = {value}")
+            else:
+                args = self.args_code(target.args if isinstance(target, A.Invoke) else [], i.params or [])
+                self.w.line(f"{head}.set_{m.name}({', '.join([*args, value])})")
+            return
+        self.w.line(f"pass  # cannot assign {type(target).__name__}")
+
+    # -- procedures -----------------------------------------------------------------------------------------
+
+    def procedure(self, p: ProcSym, method: bool) -> Writer:
+        """The ``def`` of a module procedure or class method."""
+        decl = p.decl
+        assert decl is not None
+        self.plan = plan_gotos(decl.body, self.sink)
+        body = self.w
+        body.level = 1
+        start = body.mark()
+        self.block(decl.body)
+        if p.kind == "Function":
+            body.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
+        out = Writer()
+        out.gpl_line = decl.span.line
+        params = ["self"] if method and not p.shared else []
+        for v in p.params:
+            text = py_ident(v.name)
+            ann = annotation(v.type) if not v.byref else None
+            if ann:
+                text += f": {ann}"
+            if v.optional:
+                dflt = self.conv(v.default, v.type)[0] if v.default is not None else default_code(v.type)
+                text += f" = {dflt}" if ann else f"={dflt}"
+            params.append(text)
+        ret = ""
+        if p.kind == "Function":
+            ann = annotation(p.result)
+            ret = f" -> {ann}" if ann else ""
+        elif p.kind in ("Sub", "New", "Set"):
+            ret = " -> None"
+        elif p.kind == "Get" and p.prop is not None:
+            ann = annotation(p.prop.type)
+            ret = f" -> {ann}" if ann else ""
+        name = py_ident(p.name)
+        if p.kind == "New":
+            name = "__init__" if len(p.owner.ctors) <= 1 else f"_new_{p.overload_index}"  # type: ignore[union-attr]
+        if p.kind == "Get":
+            out.line("@property")
+        elif p.kind == "Set":
+            out.line(f"@{name}.setter")
+        elif method and p.shared:
+            out.line("@staticmethod")
+        out.comments(decl.leading_comments)
+        header = out.mark()
+        out.line(f"def {name}({', '.join(params)}){ret}:")
+        out.trailing(decl.trailing_comment, header)
+        out.indent()
+        prologue = self.prologue(p)
+        for line in prologue:
+            out.line(line)
+        out.extend(body, extra_indent=0)
+        if not prologue and all(ln.text.startswith("#") for ln in body.lines[start:]):
+            out.line("pass")
+        if decl.end_comment is not None:
+            out.comments([decl.end_comment])
+        return out
+
+    def prologue(self, p: ProcSym) -> list[str]:
+        lines: list[str] = []
+        if self.globals:
+            lines.append("global " + ", ".join(sorted(self.globals)))
+        box = None
+        for v in p.params:
+            if v.boxed:
+                box = box or self.rt(BYREF, "Box")
+                lines.append(f"{py_ident(v.name)} = {box}({py_ident(v.name)})")
+        for v in p.locals.values():
+            if v.storage != "local":
+                continue
+            d = default_code(v.type)
+            if v.boxed:
+                box = box or self.rt(BYREF, "Box")
+                d = f"{box}({d})"
+            lines.append(f"{py_ident(v.name)} = {d}")
+        if p.uses_result:
+            lines.append(f"_result = {default_code(p.result)}")
+        for f in self.flags:
+            lines.append(f"{f} = False")
+        return lines
+
+    # -- blocks ----------------------------------------------------------------------------------------------
+
+    def block(self, block: A.Block) -> None:
+        start = self.w.mark()
+        dispatch = self.plan.dispatch(block) if self.plan is not None else None
+        if dispatch is None:
+            for s in block.statements:
+                self.stmt(s)
+        else:
+            self.dispatch_block(block, dispatch.labels)
+        self.w.comments(block.end_comments)
+        self.w.ensure_body(start)
+
+    def dispatch_block(self, block: A.Block, labels: list[str]) -> None:
+        state = self.state_var.get(block)
+        if state is None:
+            state = self.fresh("g")
+            self.state_var[block] = state
+            self.w.line(f"{state} = 0")
+        segments: list[list[A.Stmt]] = [[]]
+        for s in block.statements:
+            if isinstance(s, A.Label) and s.name.lower() in labels:
+                segments.append([])
+            segments[-1].append(s)
+        self.w.line("while True:")
+        self.w.indent()
+        frame = Frame("dispatch", block=block)
+        self.frames.append(frame)
+        self.w.line(f"{self.rt(THREADS, 'checkpoint')}()")
+        for k, seg in enumerate(segments):
+            if k == 0 and not seg:
+                continue
+            self.w.line(f"if {state} <= {k}:")
+            self.w.indent()
+            start = self.w.mark()
+            for s in seg:
+                self.stmt(s)
+            self.w.ensure_body(start)
+            self.w.dedent()
+        self.w.line("break")
+        self.frames.pop()
+        self.w.dedent()
+        self.after(frame)
+
+    def after(self, frame: Frame) -> None:
+        for flag, action in frame.after:
+            self.w.line(f"if {flag}:")
+            self.w.indent()
+            if action != "break-on":
+                self.w.line(f"{flag} = False")
+                self.w.line(action)
+            else:
+                self.w.line("break")
+            self.w.dedent()
+
+    def jump(self, target: Frame, action: str, pre: list[str]) -> None:
+        """Leave loops up to ``target`` and ``break``/``continue`` it."""
+        for line in pre:
+            self.w.line(line)
+        idx = self.frames.index(target)
+        inner = self.frames[idx + 1:]
+        if not inner:
+            self.w.line(action)
+            return
+        key = (id(target), action)
+        flag = self.flag_of.get(key)
+        if flag is None:
+            flag = self.fresh("jump")
+            self.flag_of[key] = flag
+            self.flags.append(flag)
+        self.w.line(f"{flag} = True")
+        self.w.line("break")
+        for j, f in enumerate(inner):
+            entry = (flag, action if j == 0 else "break-on")
+            if entry not in f.after:
+                f.after.append(entry)
+
+    def innermost(self, kind: str) -> Frame | None:
+        for f in reversed(self.frames):
+            if f.kind == kind:
+                return f
+        return None
+
+    # -- statements -----------------------------------------------------------------------------------------
+
+    def stmt(self, s: A.Stmt) -> None:
+        self.w.gpl_line = s.span.line
+        self.w.comments(s.leading_comments)
+        start = self.w.mark()
+        method = getattr(self, "s_" + type(s).__name__, None)
+        if method is not None:
+            method(s)
+        self.w.trailing(s.trailing_comment, start)
+
+    def s_Label(self, s: A.Label) -> None:
+        self.w.line(f"# {s.name}:")
+
+    def s_VarDecl(self, s: A.VarDecl) -> None:
+        p = self.proc
+        assert p is not None
+        for d in s.declarators:
+            v = p.locals.get(d.name.lower())
+            if v is None or v.decl is not d:
+                continue
+            value = self.declarator_value(d, v)
+            if value is None:
+                continue
+            if v.storage == "static":
+                name = self.static_name(v)
+                self.ctx.statics.append((name, default_code(v.type)))
+                self.ctx.statics.append((name + "_done", "False"))
+                self.globals.update({name, name + "_done"})
+                self.w.line(f"if not {name}_done:")
+                self.w.indent()
+                self.w.line(f"{name} = {value}")
+                self.w.line(f"{name}_done = True")
+                self.w.dedent()
+            else:
+                target = A.Name(d.span, d.name)
+                self.model.info[target] = self.model.info.get(target) or _var_info(v)
+                self.store(target, value)
+
+    def declarator_value(self, d: A.VarDeclarator, v: VarSym) -> str | None:
+        """The value a declaration statement stores (array, New, initializer), or None."""
+        if d.bounds and all(b is not None for b in d.bounds):
+            elem = v.type.element if isinstance(v.type, t.ArrayType) else t.ERROR
+            bounds = [self.val(b) for b in d.bounds if b is not None]
+            return f"{self.rt(ARRAYS, 'GplArray')}({', '.join([elem_type_code(elem), *bounds])})"
+        new = self.model.decl_new.get(d)
+        if new is not None:
+            return self.val(new)
+        if d.initializer is not None and not d.bounds:
+            return self.conv(d.initializer, v.type)[0]
+        return None
+
+    def s_Assign(self, s: A.Assign) -> None:
+        tt = self.target_type(s.target)
+        if s.op == "=":
+            self.store(s.target, self.conv(s.value, tt)[0])
+            return
+        target = s.target
+        if isinstance(target, A.Invoke) and self.info(target).kind == "index":
+            target = self.hoist_index(target)
+        value = self.binop(s.op[:-1], (*self.expr(target), tt), (*self.expr(s.value), self.type_of(s.value)))
+        res_type = _binary_result(s.op[:-1], tt, self.type_of(s.value))
+        self.store(target, self.coerce(value, res_type, tt)[0])
+
+    def hoist_index(self, e: A.Invoke) -> A.Invoke:
+        """Evaluate an element's array and subscripts once for ``a(i) += x`` (§10.1)."""
+        simple = all(isinstance(a, (A.Name, A.IntegerLiteral)) for a in e.args) and isinstance(e.target, A.Name)
+        if simple:
+            return e
+        names: list[A.Expr] = []
+        for sub in [e.target, *e.args]:
+            tmp = self.fresh("t")
+            self.w.line(f"{tmp} = {self.val(sub)}")
+            n = A.Name(sub.span, tmp)
+            self.model.info[n] = _raw_info(tmp, self.type_of(sub))
+            names.append(n)
+        new = A.Invoke(e.span, names[0], names[1:])
+        self.model.info[new] = self.info(e)
+        return new
+
+    def s_CallStmt(self, s: A.CallStmt) -> None:
+        self.w.line(self.val(s.expr))
+
+    def s_If(self, s: A.If) -> None:
+        self.w.line(f"if {self.cond(s.condition)[0]}:")
+        self.branch(s.then_body)
+        for ei in s.elseifs:
+            self.w.gpl_line = ei.span.line
+            self.w.comments(ei.leading_comments)
+            start = self.w.mark()
+            self.w.line(f"elif {self.cond(ei.condition)[0]}:")
+            self.w.trailing(ei.trailing_comment, start)
+            self.branch(ei.body)
+        if s.else_body is not None:
+            self.w.line("else:")
+            self.branch(s.else_body)
+        if s.end_comment is not None:
+            self.w.comments([s.end_comment])
+
+    def branch(self, body: A.Block) -> None:
+        if body.header_comment is not None:
+            self.w.lines[-1].text += "  " + _ctext(body.header_comment)
+        self.w.indent()
+        self.block(body)
+        self.w.dedent()
+
+    def loop_body(self, body: A.Block, frame: Frame, tail: list[str] | None = None) -> None:
+        self.w.indent()
+        self.frames.append(frame)
+        start = self.w.mark()
+        self.block(body)
+        for line in tail or []:
+            self.w.line(line)
+        self.w.ensure_body(start)
+        self.frames.pop()
+        self.w.dedent()
+        self.after(frame)
+
+    def s_While(self, s: A.While) -> None:
+        self.w.line(f"while {self.cond(s.condition)[0]}:")
+        self.loop_body(s.body, Frame("While"), [f"{self.rt(THREADS, 'checkpoint')}()"])
+
+    def s_DoLoop(self, s: A.DoLoop) -> None:
+        cp = f"{self.rt(THREADS, 'checkpoint')}()"
+        if s.condition is None:
+            self.w.line("while True:")
+            self.loop_body(s.body, Frame("Do"), [cp])
+            return
+        c = self.cond(s.condition)
+        if s.test_at_top:
+            test = f"not {paren(c, P_NOT)}" if s.until else c[0]
+            self.w.line(f"while {test}:")
+            self.loop_body(s.body, Frame("Do"), [cp])
+            return
+        exit_test = c[0] if s.until else f"not {paren(c, P_NOT)}"
+        self.w.line("while True:")
+        self.loop_body(s.body, Frame("Do"), [cp, f"if {exit_test}:", "    break"])
+
+    def s_For(self, s: A.For) -> None:
+        vt = self.type_of(s.var)
+        vi = self.info(s.var)
+        v = vi.sym if vi.kind == "var" else None
+        step_lit = _int_literal(s.step) if s.step is not None else 1
+        fast = (isinstance(v, VarSym) and v.storage in ("local", "param") and not v.boxed and not v.byref
+                and vt is t.INTEGER and step_lit in (1, -1)
+                and self.type_of(s.start) in (t.INTEGER, t.SHORT, t.BYTE)
+                and self.type_of(s.end) in (t.INTEGER, t.SHORT, t.BYTE)
+                and not _writes_or_leaves(s.body, v.name.lower()))
+        if fast:
+            assert isinstance(v, VarSym)
+            name = self.local_name(v)
+            start = self.once(s.start, s.body)
+            end = self.once(s.end, s.body)
+            if step_lit == 1:
+                self.w.line(f"for {name} in range({start}, {_plus(end, 1)}):")
+                final = f"{name} = max({start}, {_plus(end, 1)})"
+            else:
+                self.w.line(f"for {name} in range({start}, {_plus(end, -1)}, -1):")
+                final = f"{name} = min({start}, {_plus(end, -1)})"
+            self.loop_body(s.body, Frame("For"))
+            self.w.line(final + "  # the first value past the end (§10.3)")
+            return
+        self.store(s.var, self.conv(s.start, vt)[0])
+        end = self.once(s.end, s.body, force=True)
+        step = "1" if s.step is None else self.once(s.step, s.body, force=True)
+        cur = self.val(s.var)
+        if step_lit is not None and step_lit >= 0 or _pos_real(s.step):
+            test = f"{cur} <= {end}"
+        elif step_lit is not None or _neg_real(s.step):
+            test = f"{cur} >= {end}"
+        else:
+            test = f"({cur} <= {end} if {step} >= 0 else {cur} >= {end})"
+        self.w.line(f"while {test}:")
+        frame = Frame("For")
+        self.w.indent()
+        self.frames.append(frame)
+        mark = self.w.mark()
+        self.block(s.body)
+        inc = self.binop("+", (*self.expr(s.var), vt), (step, P_ATOM, self.type_of(s.step) if s.step else t.INTEGER))
+        res = _binary_result("+", vt, self.type_of(s.step) if s.step else t.INTEGER)
+        self.store(s.var, self.coerce(inc, res, vt)[0])
+        self.w.ensure_body(mark)
+        self.frames.pop()
+        self.w.dedent()
+        self.after(frame)
+
+    def once(self, e: A.Expr, body: A.Block, force: bool = False) -> str:
+        """A For bound: evaluated once (§10.3) -- a temporary unless it is a literal or a local the
+        body never writes."""
+        if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
+            return self.val(e)
+        i = self.info(e)
+        if isinstance(e, A.Name) and i.kind == "var" and i.sym.storage in ("local", "param") \
+                and not i.sym.boxed and not i.sym.byref and not _writes_or_leaves(body, e.name.lower(), exits=False):
+            return self.val(e)
+        tmp = self.fresh("end" if not force else "v")
+        self.w.line(f"{tmp} = {self.val(e)}")
+        return tmp
+
+    def s_ForEach(self, s: A.ForEach) -> None:
+        vi = self.info(s.var)
+        v = vi.sym if vi.kind == "var" else None
+        if isinstance(v, VarSym) and v.storage in ("local", "param") and not v.boxed and not v.byref:
+            self.w.line(f"for {self.local_name(v)} in {self.val(s.collection)}:")
+            self.loop_body(s.body, Frame("For"))
+            return
+        tmp = self.fresh("item")
+        self.w.line(f"for {tmp} in {self.val(s.collection)}:")
+        self.w.indent()
+        self.store(s.var, tmp)
+        self.w.dedent()
+        self.loop_body(s.body, Frame("For"))
+
+    def s_Select(self, s: A.Select) -> None:
+        st = self.type_of(s.subject)
+        sel = self.fresh("sel")
+        self.w.line(f"{sel} = {self.val(s.subject)}")
+        frame: Frame | None = None
+        if _has_exit(s, "Select"):
+            frame = Frame("Select")
+            self.w.line("while True:")
+            self.w.indent()
+            self.frames.append(frame)
+        first = True
+        for c in s.cases:
+            self.w.gpl_line = c.span.line
+            self.w.comments(c.leading_comments)
+            mark = self.w.mark()
+            if c.is_else:
+                if first:
+                    self.w.line("if True:")
+                else:
+                    self.w.line("else:")
+            else:
+                tests = [paren(self.case_test(sel, st, item), P_OR + 1) for item in c.items]
+                self.w.line(f"{'if' if first else 'elif'} {' or '.join(tests)}:")
+            self.w.trailing(c.trailing_comment, mark)
+            first = False
+            self.w.indent()
+            self.block(c.body)
+            self.w.dedent()
+        self.w.comments(s.end_comments)
+        if frame is not None:
+            self.w.line("break")
+            self.frames.pop()
+            self.w.dedent()
+            self.after(frame)
+
+    def case_test(self, sel: str, st: t.GplType, item: A.Node) -> Code:
+        subject = (sel, P_ATOM, st)
+        if isinstance(item, A.CaseValue):
+            v = self.conv(item.value, st)
+            return self.binop("=", subject, (*v, st if st is not t.ERROR else self.type_of(item.value)))
+        if isinstance(item, A.CaseRange):
+            lo = self.conv(item.low, st)
+            hi = self.conv(item.high, st)
+            a = self.binop(">=", subject, (*lo, st))
+            b = self.binop("<=", subject, (*hi, st))
+            return f"{paren(a, P_AND + 1)} and {paren(b, P_AND + 1)}", P_AND
+        assert isinstance(item, A.CaseIs)
+        v = self.conv(item.value, st)
+        return self.binop(item.op, subject, (*v, st))
+
+    def s_Try(self, s: A.Try) -> None:
+        assert self.plan is not None
+        retry = s in self.plan.retry_tries
+        needs_frame = retry or _has_exit(s, "Try")
+        if retry:
+            state = self.fresh("g")
+            self.state_var[s.body] = state
+            self.w.line(f"{state} = 0")
+        if not needs_frame:
+            self.w.line("try:")
+            self.w.indent()
+            self.block(s.body)
+            self.w.dedent()
+            self.catch(s)
+            self.finally_(s)
+            return
+        if s.finally_ is not None:
+            self.w.line("try:")
+            self.w.indent()
+        self.w.line("while True:")
+        self.w.indent()
+        frame = Frame("Try")
+        self.frames.append(frame)
+        self.w.line("try:")
+        self.w.indent()
+        self.block(s.body)
+        self.w.dedent()
+        self.catch(s)
+        if s.catch is None:
+            self.w.line("finally:")
+            self.w.indent()
+            self.w.line("pass")
+            self.w.dedent()
+        self.w.line("break")
+        self.frames.pop()
+        self.w.dedent()
+        self.after(frame)
+        if s.finally_ is not None:
+            self.w.dedent()
+            self.finally_(s)
+
+    def catch(self, s: A.Try) -> None:
+        c = s.catch
+        if c is None:
+            return
+        self.w.gpl_line = c.span.line
+        self.w.comments(c.leading_comments)
+        mark = self.w.mark()
+        self.w.line("except BaseException as _e:")
+        self.w.trailing(c.trailing_comment, mark)
+        self.w.indent()
+        exc = f"{self.rt(EXC, 'as_gpl_exception')}(_e)"
+        ref = self.model.catch_var.get(c)
+        if ref is not None and ref in self.model.info:
+            self.store(ref, exc)
+        else:
+            self.w.line(exc)
+        self.block(c.body)
+        self.w.dedent()
+
+    def finally_(self, s: A.Try) -> None:
+        f = s.finally_
+        if f is None:
+            return
+        self.w.gpl_line = f.span.line
+        self.w.comments(f.leading_comments)
+        mark = self.w.mark()
+        self.w.line("finally:")
+        self.w.trailing(f.trailing_comment, mark)
+        self.w.indent()
+        self.block(f.body)
+        self.w.dedent()
+        if s.end_comment is not None:
+            self.w.comments([s.end_comment])
+
+    def s_GoTo(self, s: A.GoTo) -> None:
+        assert self.plan is not None
+        j = self.plan.jumps.get(s)
+        if j is None:
+            self.w.line(f"pass  # GoTo {s.label}: not lowered (reported)")
+            return
+        block = j.target.block
+        state = self.state_var[block]
+        if j.retry_try is not None:
+            frame = next(f for f in reversed(self.frames) if f.kind == "Try")
+        else:
+            frame = next(f for f in reversed(self.frames) if f.kind == "dispatch" and f.block is block)
+        self.jump(frame, "continue", [f"{state} = {j.segment}"])
+
+    def s_Exit(self, s: A.Exit) -> None:
+        p = self.proc
+        assert p is not None
+        if s.kind in ("Sub", "Property"):
+            if p.kind == "Get" and p.prop is not None:
+                self.w.line(f"return {default_code(p.prop.type)}")
+            else:
+                self.w.line("return")
+            return
+        if s.kind == "Function":
+            self.w.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
+            return
+        frame = self.innermost(s.kind)
+        if frame is None:
+            self.w.line("pass")
+            return
+        self.jump(frame, "break", [])
+
+    def s_Return(self, s: A.Return) -> None:
+        p = self.proc
+        assert p is not None
+        if s.value is None:
+            self.w.line("return")
+            return
+        if p.kind == "Function":
+            self.w.line(f"return {self.conv(s.value, p.result)[0]}")
+        elif p.kind == "Get" and p.prop is not None:
+            self.w.line(f"return {self.conv(s.value, p.prop.type)[0]}")
+        else:
+            self.w.line(f"return {self.val(s.value)}")
+
+    def s_Throw(self, s: A.Throw) -> None:
+        self.w.line("raise" if s.value is None else f"raise {self.val(s.value)}")
+
+    def s_ReDim(self, s: A.ReDim) -> None:
+        tt = self.type_of(s.target)
+        elem = tt.element if isinstance(tt, t.ArrayType) else t.ERROR
+        bounds = [self.val(b) for b in s.bounds]
+        self.store(s.target, f"{self.rt(ARRAYS, 'redim')}({', '.join([self.val(s.target), elem_type_code(elem), *bounds])})")
+
+
+# -- helpers ---------------------------------------------------------------------------------------
+
+
+def _ctext(c: A.Comment) -> str:
+    from gpl2py.lower.emit import comment_text
+
+    return comment_text(c)
+
+
+def _var_info(v: VarSym):  # type: ignore[no-untyped-def]
+    from gpl2py.semantics.check import Info
+
+    return Info(v.type, "var", v)
+
+
+def _raw_info(name: str, typ: t.GplType):  # type: ignore[no-untyped-def]
+    from gpl2py.semantics.check import Info
+
+    v = VarSym(name, None, typ, "local")
+    v.name = name
+    return Info(typ, "var", v)
+
+
+def _binary_result(op: str, lt: t.GplType, rt: t.GplType) -> t.GplType:
+    if op == "&":
+        return t.STRING
+    if op in ("/", "^"):
+        return t.DOUBLE
+    if op in ("<<", ">>", "\\"):
+        return t.INTEGER
+    if op == "+" and lt is t.STRING and rt is t.STRING:
+        return t.STRING
+    if lt.is_integral and rt.is_integral:
+        return t.INTEGER
+    return t.DOUBLE
+
+
+def _int_literal(e: A.Expr | None) -> int | None:
+    if isinstance(e, A.IntegerLiteral):
+        return e.value
+    if isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, A.IntegerLiteral):
+        return -e.operand.value
+    return None
+
+
+def _pos_real(e: A.Expr | None) -> bool:
+    return isinstance(e, A.RealLiteral) and e.value >= 0
+
+
+def _neg_real(e: A.Expr | None) -> bool:
+    return isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, (A.RealLiteral, A.IntegerLiteral))
+
+
+def _plus(code: str, n: int) -> str:
+    try:
+        return str(int(code) + n)
+    except ValueError:
+        return f"{code} + {n}" if n > 0 else f"{code} - {-n}"
+
+
+def _walk_stmts(block: A.Block):  # type: ignore[no-untyped-def]
+    for s in block.statements:
+        yield s
+        for child in child_blocks(s):
+            yield from _walk_stmts(child)
+
+
+def _writes_or_leaves(body: A.Block, name: str, exits: bool = True) -> bool:
+    """Whether the loop body may assign ``name`` or (``exits``) leave the loop early."""
+    for s in _walk_stmts(body):
+        if exits and isinstance(s, (A.GoTo, A.Label)):
+            return True
+        if exits and isinstance(s, A.Exit) and s.kind in ("For", "Sub", "Function", "Property", "Try"):
+            return True
+        if exits and isinstance(s, (A.Return, A.Throw, A.Try)):
+            return True
+        targets: list[A.Expr] = []
+        if isinstance(s, A.Assign):
+            targets.append(s.target)
+        elif isinstance(s, (A.For, A.ForEach)):
+            targets.append(s.var)
+        elif isinstance(s, A.ReDim):
+            targets.append(s.target)
+        for tgt in targets:
+            if isinstance(tgt, A.Name) and tgt.name.lower() == name:
+                return True
+    return False
+
+
+def _has_exit(s: A.Stmt, kind: str) -> bool:
+    """Whether an ``Exit <kind>`` inside ``s`` belongs to ``s`` (not to a nested construct of the
+    same kind)."""
+    def scan(block: A.Block) -> bool:
+        for st in block.statements:
+            if isinstance(st, A.Exit) and st.kind == kind:
+                return True
+            if kind == "Select" and isinstance(st, A.Select):
+                continue
+            if kind == "Try" and isinstance(st, A.Try):
+                continue
+            if any(scan(b) for b in child_blocks(st)):
+                return True
+        return False
+
+    return any(scan(b) for b in child_blocks(s))
+
+
+__all__ = ["ProcLowerer", "Frame", "CONV", "P_CMP"]

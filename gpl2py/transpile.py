@@ -1,0 +1,95 @@
+"""The pipeline: project -> diagnostics -> files (issue "Core language", part 1).
+
+``transpile(path, sink)`` loads the project, parses every source, runs the semantic analysis and
+lowers each module; it returns the generated files (relative path -> text) or ``None`` when there
+were errors (unless ``keep_going``).  ``write_package`` writes them below an output folder.  Output
+is deterministic: identical input gives byte-identical files.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gpl2py import messages as M
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.context import ProjectNames
+from gpl2py.lower.module import lower_module
+from gpl2py.lower.names import snake_case
+from gpl2py.lower.package import package_init, package_main
+from gpl2py.lower.sourcemap import sourcemap_json
+from gpl2py.project import Project, load_project
+from gpl2py.semantics.catalogue import load_catalogue
+from gpl2py.semantics.check import analyze
+from gpl2py.semantics.resolve import TOP_MODULE
+from gpl2py.syntax.parser import parse
+
+
+@dataclass
+class Output:
+    """The generated package: ``files`` maps paths relative to the output folder to their text."""
+
+    package: str
+    files: dict[str, str] = field(default_factory=dict)
+    project: Project | None = None
+
+
+def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False) -> Output | None:
+    project = load_project(path, sink)
+    if project is None:
+        return None
+    units = [parse(src, sink) for src in project.sources]
+    if sink.has_errors() and not keep_going:
+        # still run the semantic pass so every error is reported in one run
+        analyze(units, sink, load_catalogue(), project.name, project.start)
+        return None
+    model = analyze(units, sink, load_catalogue(), project.name, project.start)
+    if sink.has_errors() and not keep_going:
+        return None
+    try:
+        return _lower(project, model, sink)
+    except Exception as exc:  # a bug in gpl2py: a diagnostic, never a traceback
+        sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+        return None
+
+
+def _lower(project: Project, model, sink: DiagnosticSink) -> Output:  # type: ignore[no-untyped-def]
+    names = ProjectNames.build(model)
+    package = snake_case(project.name) if project.name else "gpl_project"
+    out = Output(package, project=project)
+    smap: dict[str, tuple[str, list[int]]] = {}
+    modules = list(model.project.module_list)
+    extra = []
+    top = model.project.modules.get(TOP_MODULE.lower())
+    if top is not None:
+        extra.append(top)
+    for mod in extra + modules:
+        text, gmap = lower_module(model, names, mod, sink)
+        fname = f"{mod.py_name}.py"
+        out.files[f"{package}/{fname}"] = text
+        smap[fname] = (mod.path, gmap)
+    out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra)
+    out.files[f"{package}/__main__.py"] = package_main()
+    out.files[f"{package}/_sourcemap.json"] = sourcemap_json(smap)
+    return out
+
+
+def write_package(output: Output, out_dir: str | os.PathLike[str], sink: DiagnosticSink) -> bool:
+    """Write the files below ``out_dir`` (a previous package of the same name is replaced file by
+    file; stale modules of an earlier run are removed)."""
+    root = Path(out_dir)
+    pkg = root / output.package
+    try:
+        pkg.mkdir(parents=True, exist_ok=True)
+        wanted = {Path(rel).name for rel in output.files}
+        for old in pkg.glob("*.py"):
+            if old.name not in wanted:
+                old.unlink()
+        for rel, text in sorted(output.files.items()):
+            target = root / rel
+            target.write_text(text, encoding="utf-8", newline="\n")
+    except OSError as exc:
+        sink.report(M.OUTPUT_ERROR, None, path=str(pkg), detail=exc.strerror or str(exc))
+        return False
+    return True

@@ -1,0 +1,89 @@
+"""GPL file:line for frames of transpiled code (docs/design/lowering.md, "Traceability").
+
+gpl2py writes ``_sourcemap.json`` next to a generated package: for every generated module, the
+GPL source file and the runs of Python lines that came from each GPL line.  The package registers
+it on import (``register_package``), which costs nothing at run time; only when an error is
+reported are frames translated:
+
+* ``locate(exc)`` -- "Startup.gpl:42" for the innermost transpiled frame of ``exc``'s traceback
+  (``GplException.__str__`` uses it, so an unhandled error names the GPL line);
+* ``gpl_frames(tb)`` / ``format_gpl_traceback(exc)`` -- every frame, each with its GPL location.
+"""
+
+from __future__ import annotations
+
+import bisect
+import json
+import os
+import threading
+import traceback
+from types import TracebackType
+
+__all__ = ["register_package", "register_module_map", "locate", "gpl_frames", "format_gpl_traceback", "gpl_line_of"]
+
+_lock = threading.Lock()
+# absolute path of a generated .py -> (GPL file, python line starts, GPL lines)
+_maps: dict[str, tuple[str, list[int], list[int]]] = {}
+
+
+def register_module_map(py_file: str, gpl_file: str, runs: list[list[int]]) -> None:
+    """``runs`` is ``[[first_python_line, gpl_line], ...]`` in increasing Python line order."""
+    starts = [r[0] for r in runs]
+    lines = [r[1] for r in runs]
+    with _lock:
+        _maps[os.path.normcase(os.path.abspath(py_file))] = (gpl_file, starts, lines)
+
+
+def register_package(init_file: str) -> None:
+    """Load the ``_sourcemap.json`` of the generated package whose ``__init__.py`` is ``init_file``."""
+    folder = os.path.dirname(os.path.abspath(init_file))
+    path = os.path.join(folder, "_sourcemap.json")
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except (OSError, ValueError):
+        return
+    for module, entry in data.get("modules", {}).items():
+        register_module_map(os.path.join(folder, module), entry["source"], entry["runs"])
+
+
+def gpl_line_of(py_file: str, py_line: int) -> tuple[str, int] | None:
+    entry = _maps.get(os.path.normcase(os.path.abspath(py_file)))
+    if entry is None:
+        return None
+    gpl_file, starts, lines = entry
+    i = bisect.bisect_right(starts, py_line) - 1
+    if i < 0 or lines[i] <= 0:
+        return None
+    return gpl_file, lines[i]
+
+
+def gpl_frames(tb: TracebackType | None) -> list[tuple[str, int, str, tuple[str, int] | None]]:
+    """(python file, python line, function, (GPL file, GPL line) or None) for every frame."""
+    out = []
+    while tb is not None:
+        code = tb.tb_frame.f_code
+        out.append((code.co_filename, tb.tb_lineno, code.co_name, gpl_line_of(code.co_filename, tb.tb_lineno)))
+        tb = tb.tb_next
+    return out
+
+
+def locate(exc: BaseException) -> str | None:
+    """``"File.gpl:line"`` of the innermost transpiled frame that ``exc`` passed through."""
+    if not _maps:
+        return None
+    found = None
+    for _, _, _, gpl in gpl_frames(exc.__traceback__):
+        if gpl is not None:
+            found = gpl
+    return f"{found[0]}:{found[1]}" if found else None
+
+
+def format_gpl_traceback(exc: BaseException) -> str:
+    """A Python traceback in which each transpiled frame also names its GPL file and line."""
+    lines = ["Traceback (most recent call last):"]
+    for py_file, py_line, func, gpl in gpl_frames(exc.__traceback__):
+        where = f"  [GPL {gpl[0]}:{gpl[1]}]" if gpl else ""
+        lines.append(f'  File "{py_file}", line {py_line}, in {func}{where}')
+    lines.extend(traceback.format_exception_only(type(exc), exc))
+    return "\n".join(line.rstrip("\n") for line in lines) + "\n"
