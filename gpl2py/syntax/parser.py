@@ -112,8 +112,6 @@ _CLOSERS: dict[TokenKind, str] = {
 _DECL_CONTAINERS = frozenset({"Sub", "Function", "Property", "Get", "Set", "Class", "Module"})
 _DECL_WORDS = frozenset({K.SUB, K.FUNCTION, K.PROPERTY, K.CLASS, K.DELEGATE, K.MODULE})
 _MODIFIER_KINDS = frozenset({K.PUBLIC, K.PRIVATE, K.SHARED})
-_END_TEXT = {"If": "End If", "For": "Next", "Do": "Loop", "Select": "End Select", "Try": "End Try"}
-_OPENER_TEXT = {"Select": "Select", "Try": "Try", "For": "For", "Do": "Do", "If": "If"}
 
 _EXIT_KINDS = {
     K.SUB: "Sub",
@@ -245,6 +243,7 @@ class Parser:
         self.nest = 0  # block depth inside the current procedure body (0 = outermost level)
         self.in_proc = False
         self.depth = 0  # expression nesting depth (recursion guard)
+        self.aborted = False  # the block nesting limit was hit and the rest of the file skipped
 
     # ---------------------------------------------------------------------------------- tokens
 
@@ -407,6 +406,8 @@ class Parser:
         self.skip_line()
 
     def unclosed(self, opener: str, closer: str, start: Token) -> None:
+        if self.aborted:
+            return  # everything after the nesting limit was skipped: do not cascade
         tok = self.tok
         found = tok.describe()
         if tok.kind is K.END:
@@ -451,6 +452,7 @@ class Parser:
         if len(self.open) > _MAX_BLOCK_DEPTH:
             self.sink.report(M.PARSE_TOO_DEEP, self.tok.span, what="blocks", limit=_MAX_BLOCK_DEPTH)
             # Skip everything: recursion this deep would exhaust the Python stack.
+            self.aborted = True
             while self.tok.kind is not K.EOF:
                 self.next()
             return A.Block(self.tok.span, [])
@@ -1057,6 +1059,12 @@ class Parser:
             self.next()
         else:
             self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=self.tok.describe())
+            if self.tok.kind not in _LINE_END:
+                # 'If c stmt': more on the line means a single-line If with a missing Then; a
+                # block If would swallow the rest of the procedure and report a second error.
+                node = A.If(self.span_from(start), cond, A.Block(start.span, []), single_line=True)
+                self.end_of_line(node)
+                return node
         if not self.failed and self.tok.kind not in _LINE_END:
             node = self.single_line_if(start, cond)
             self.end_of_line(node)
@@ -1583,12 +1591,6 @@ class Parser:
 
 def _block_declaration(p: Parser) -> A.Stmt | None:
     return p._declaration_statement()
-
-
-def _closer_as_statement(p: Parser) -> A.Stmt | None:  # pragma: no cover - closers end blocks first
-    p.error(M.PARSE_EXPECTED, p.tok, expected="a statement", found=p.tok.describe())
-    p.skip_line()
-    return None
 
 
 # Statements that consume their own lines (block statements and declarations).

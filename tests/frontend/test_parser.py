@@ -731,7 +731,7 @@ def test_deep_nesting_is_a_diagnostic_not_a_crash() -> None:
     assert any(d.code == "GPL1117" for d in sink)
     text = "Module M\nSub A()\n" + "If a Then\n" * 400 + "End If\n" * 400 + "End Sub\nEnd Module\n"
     _, sink = parse_text(text)
-    assert any(d.code == "GPL1117" for d in sink)
+    assert [d.code for d in sink] == ["GPL1117"]  # one diagnostic, no cascade of unclosed blocks
 
 
 def test_dump_is_readable() -> None:
@@ -764,3 +764,21 @@ def test_visitor_and_transformer() -> None:
     v2 = Names()
     v2.visit(unit)
     assert v2.seen == ["X", "A", "B", "F", "A"]
+
+
+def test_missing_then_is_one_diagnostic_in_both_forms() -> None:
+    text = "Module M\nSub A()\n    If x = 1 y = 2\n    If z > 0\n        w = 1\n    End If\n    v = 3\nEnd Sub\nEnd Module\n"
+    assert errors(text) == [(3, 14, "GPL1100"), (4, 13, "GPL1100")]
+
+
+def test_stray_block_keywords_name_their_opener() -> None:
+    _, sink = body("Else\nCase 1\nCatch e\nLoop\nNext\nEnd Select")
+    messages = [d.message for d in sink]
+    assert messages == [
+        "'Else' without a matching 'If'",
+        "'Case' without a matching 'Select'",
+        "'Catch' without a matching 'Try'",
+        "'Loop' without a matching 'Do'",
+        "'Next' without a matching 'For'",
+        "'End Select' without a matching 'Select'",
+    ]
