@@ -39,3 +39,21 @@ def test_case(case: Case, worker: Worker) -> None:
     ok = result.status == "ok" and result.output == case.expected_output() and not result.log
     if not ok:
         pytest.fail(explain(case, result), pytrace=False)
+
+
+def _first_source(case: Case) -> str:
+    if case.source.is_file():
+        return case.source.read_text(encoding="latin-1")
+    gpr = (case.source / "Project.gpr").read_text(encoding="latin-1")
+    first = next(line for line in gpr.splitlines() if line.lower().startswith("projectsource"))
+    return (case.source / first.split("=", 1)[1].strip().strip('"')).read_text(encoding="latin-1")
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c.id for c in CASES])
+def test_case_documents_its_expectation(case: Case) -> None:
+    """Every case opens with a comment saying where its expected output comes from: a manual
+    citation ([000 L..]), a spec section/ambiguity (§n, AMB-n) or a documented gplrt decision."""
+    head = _first_source(case).lstrip().splitlines()[0]
+    assert head.startswith("'"), f"{case.id}: first line must be the provenance comment"
+    comment = "\n".join(line for line in _first_source(case).splitlines() if line.lstrip().startswith("'"))
+    assert any(tag in comment for tag in ("[000 L", "§", "AMB-", "gplrt", "gpl-dictionary")), case.id
