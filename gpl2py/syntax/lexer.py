@@ -26,6 +26,7 @@ Decisions documented here (the spec leaves them open):
 * String literals over 128 characters get a warning (AMB-35), non-ASCII characters in them an error.
 * A letter directly after a number (``725L``, ``1.5F``) is reported: GPL has no type suffixes.
 * A run of consecutive invalid characters (for example a non-ASCII word) is one diagnostic.
+* A byte-order mark at the very start of the file is skipped silently (columns count after it).
 """
 
 from __future__ import annotations
@@ -132,7 +133,9 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
     has_tokens = False  # does the current logical line hold a token yet?
     deferred: list[Token] = []  # comments after ' _' continuations, emitted before NEWLINE
 
-    for m in _MASTER.finditer(text):
+    if text.startswith("\ufeff"):  # a UTF-8 byte-order mark from a Windows editor: not source text
+        line_start = 1
+    for m in _MASTER.finditer(text, line_start):
         g = m.lastindex
         if g == 1:  # word
             t = m.group(1)

@@ -237,3 +237,11 @@ def test_tokens_have_no_gaps_on_a_realistic_line() -> None:
     texts = [t.text for t in toks if t.kind not in (K.NEWLINE, K.EOF)]
     assert "".join(texts[:11]) == "If(ep.IPAddress<>rem_ep.IPAddress)Or"
     assert toks[-3].kind is K.THEN and toks[-3].line == 2
+
+
+def test_leading_byte_order_mark_is_ignored() -> None:
+    toks, sink = lex("\ufeffModule M\nEnd Module\n")
+    assert len(sink) == 0
+    assert toks[0].kind is K.MODULE and (toks[0].line, toks[0].col) == (1, 1)
+    _, sink = lex("x = 1\n\ufeffy = 2\n")  # anywhere else it is an invalid character
+    assert [d.code for d in sink] == ["GPL1001"]

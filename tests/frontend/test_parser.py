@@ -782,3 +782,15 @@ def test_stray_block_keywords_name_their_opener() -> None:
         "'Next' without a matching 'For'",
         "'End Select' without a matching 'Select'",
     ]
+
+
+def test_head_trap_in_a_declaration_is_a_syntax_error_at_the_literal() -> None:
+    out, sink = body('Dim s As String &HEAD\nx = s & HEAD')
+    assert [(d.span.line, d.span.col, d.code) for d in sink] == [(3, 25, "GPL1102")]
+    assert "&HEAD" in sink.errors[0].message
+    assert sx(out[1].value) == "(& s HEAD)"  # type: ignore[attr-defined]
+
+
+def test_diagnostic_header_is_file_line_col() -> None:
+    _, sink = parse_text("Module M\nSub A()\n\tx = = 1\nEnd Sub\nEnd Module\n")
+    assert [d.header() for d in sink] == ["t.gpl:3:6: error GPL1101: expected an expression, found '='"]
