@@ -17,7 +17,7 @@ one jerk per axis, so the smaller of the two is used (a ramp of 0 means no jerk 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -32,12 +32,20 @@ DEFAULT_SETTLE = 0.05
 
 @dataclass(frozen=True)
 class AxisLimits:
-    """Per-axis limits for one planned segment (arrays of the robot's axis count)."""
+    """Per-axis limits for one planned segment (arrays of the robot's axis count).
+
+    ``lists`` holds the same values as Python float lists (jerk: ``inf`` for no limit), the form
+    Ruckig's input takes, computed once per distinct Profile so a Move converts nothing."""
 
     velocity: Vec
     accel: Vec
     decel: Vec
     jerk: Vec
+    lists: tuple[list[float], list[float], list[float], list[float]] = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        conv = lambda a: [float(x) for x in a]  # noqa: E731
+        object.__setattr__(self, "lists", (conv(self.velocity), conv(self.accel), conv(self.decel), conv(self.jerk)))
 
 
 @dataclass(frozen=True)
@@ -54,9 +62,10 @@ class PathLimits:
     decel_ramp: float
 
 
-@dataclass(frozen=True)
+@dataclass(eq=False)
 class RobotLimits:
-    """The reference (100 %) values of one robot."""
+    """The reference (100 %) values of one robot (``joint_limits`` results are memoised per
+    Profile values: a program uses a handful of profiles for thousands of moves)."""
 
     joint_speed: Vec
     joint_accel: Vec
@@ -67,6 +76,7 @@ class RobotLimits:
     max_decel_pct: float
     rapid_decel_pct: float
     settle_time: float
+    _joint_cache: dict[tuple[float, ...], AxisLimits] = field(default_factory=dict, repr=False)
 
     @classmethod
     def from_pdb(cls, pdb: object, robot: int, n: int) -> RobotLimits:
@@ -106,6 +116,15 @@ class RobotLimits:
 
     def joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
         """Joint-interpolated move limits for ``prof`` at ``Controller.SystemSpeed``."""
+        key = (prof._speed, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
+        lim = self._joint_cache.get(key)
+        if lim is None:
+            if len(self._joint_cache) > 256:
+                self._joint_cache.clear()
+            lim = self._joint_cache[key] = self._joint_limits(prof, system_speed)
+        return lim
+
+    def _joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
         speed, accel, decel = self._pcts(prof, system_speed)
         a = self.joint_accel * accel
         d = self.joint_accel * decel
@@ -127,8 +146,13 @@ class RobotLimits:
         )
 
 
+#: Ramps shorter than this (s) are treated as 0 = no jerk limit: far below the trajectory
+#: generator's period, and a jerk of accel / 1e-300 would only make Ruckig fail.
+MIN_RAMP = 1e-6
+
+
 def jerk_of(a: Vec, d: Vec, accel_ramp: float, decel_ramp: float) -> Vec:
     """Jerk = accel / ramp time; the more restrictive of the accel and decel ramps (0 s = unlimited)."""
-    ja = a / accel_ramp if accel_ramp > 0.0 else np.full_like(a, math.inf)
-    jd = d / decel_ramp if decel_ramp > 0.0 else np.full_like(d, math.inf)
+    ja = a / accel_ramp if accel_ramp >= MIN_RAMP else np.full_like(a, math.inf)
+    jd = d / decel_ramp if decel_ramp >= MIN_RAMP else np.full_like(d, math.inf)
     return np.minimum(ja, jd)

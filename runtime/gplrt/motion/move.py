@@ -30,6 +30,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from gplrt.controller.services import POWER_ON_STATES
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import NOT_IMPLEMENTED, GplException
 from gplrt.lang.gpltypes import Boolean, Double, Integer
@@ -47,8 +48,6 @@ NO_CLEARANCE = 1.0e32
 
 
 def _power_on(s: Any) -> bool:
-    from gplrt.controller.services import POWER_ON_STATES
-
     return s.controller.power_state in POWER_ON_STATES
 
 
@@ -81,6 +80,8 @@ def _angles_of(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray
     """Joint values of an Angles Location; axes it does not give keep ``base``'s values."""
     vals = loc.axis_values()
     n = robot.axis_count
+    if len(vals) == n:
+        return np.array(vals)
     if len(vals) > n:
         raise GplException(INVALID_ARGUMENT, robot_num=robot.number,
                            detail=f"{len(vals)} angles for a {n}-axis robot")
@@ -121,7 +122,8 @@ class _MoveClass:
         robot = _ready(s)
         t = s.scheduler.clock.now()
         speed = s.controller.system_speed
-        dest = robot.queue.final_joints()
+        last = robot.queue.last
+        dest = last.q_end if last is not None else robot.queue.rest  # read only: never modified
         with robot.lock:
             if joints is not None:
                 robot.queue_joint(t, joints(robot, dest), prof, speed)

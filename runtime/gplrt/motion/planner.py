@@ -21,9 +21,9 @@ all that has to be allocated, which keeps ``Move.Loc`` planning cost close to a 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
-import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, RuckigError, Synchronization, Trajectory
 
 from gplrt.lang.errors import GplException
@@ -34,13 +34,23 @@ from gplrt.motion.limits import AxisLimits, Vec
 PLANNING_FAILED = -1043
 
 _ruckig: dict[int, tuple[Ruckig, InputParameter]] = {}
+#: What each cached InputParameter was last given, so unchanged inputs are not converted again.
+_given: dict[int, dict[str, object]] = {}
 
 
 def _solver(n: int) -> tuple[Ruckig, InputParameter]:
     pair = _ruckig.get(n)
     if pair is None:
         pair = _ruckig[n] = (Ruckig(n), InputParameter(n))
+        _given[n] = {}
     return pair
+
+
+def _set(n: int, inp: InputParameter, name: str, value: object) -> None:
+    given = _given[n]
+    if given.get(name) != value:
+        setattr(inp, name, value)
+        given[name] = value
 
 
 @dataclass(frozen=True)
@@ -62,12 +72,17 @@ _RETRY_FACTORS = (1.0 - 1e-9, 1.0 - 1e-6, 1.0 - 1e-4)
 
 def _calculate(inp: InputParameter, n: int, what: str) -> Plan:
     otg = _ruckig[n][0]
-    jerk, vel = list(inp.max_jerk), list(inp.max_velocity)
+    given = _given[n]
+    jerk: list[float] = []
+    vel: list[float] = []
     detail = ""
     for factor in (1.0, *_RETRY_FACTORS):
         if factor != 1.0:
-            inp.max_jerk = [j * factor for j in jerk]
-            inp.max_velocity = [v * factor for v in vel]
+            if not jerk:
+                jerk, vel = list(inp.max_jerk), list(inp.max_velocity)
+            inp.max_jerk = given["max_jerk"] = [j * factor for j in jerk]
+            inp.max_velocity = given["max_velocity"] = [v * factor for v in vel]
+            given["lim"] = None  # the next joint plan must set its own limits again
         traj = Trajectory(n)
         try:
             result = otg.calculate(inp, traj)
@@ -84,23 +99,40 @@ def _finite(values: Vec) -> list[float]:
     return [float(v) if math.isfinite(v) else math.inf for v in values]
 
 
-def plan_axes(q0: Vec, v0: Vec, a0: Vec, q1: Vec, lim: AxisLimits) -> Plan:
-    """Synchronised joint trajectory from state (q0, v0, a0) to q1 at rest."""
+def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[float] | None,
+              q1: Sequence[float], lim: AxisLimits) -> Plan:
+    """Synchronised joint trajectory from state (q0, v0, a0) to q1 at rest (None = 0).
+
+    Only what differs from the previous call is handed to Ruckig (the limits of a Profile
+    repeat move after move), so the cost stays close to a bare ``Ruckig.calculate``."""
     n = len(q0)
     _, inp = _solver(n)
-    inp.control_interface = ControlInterface.Position
-    inp.synchronization = Synchronization.Time
-    inp.current_position = [float(x) for x in q0]
-    inp.current_velocity = [float(x) for x in v0]
-    inp.current_acceleration = [float(x) for x in a0]
-    inp.target_position = [float(x) for x in q1]
-    inp.target_velocity = [0.0] * n
-    inp.target_acceleration = [0.0] * n
-    up = np.asarray(q1) >= np.asarray(q0)
-    inp.max_velocity = [float(x) for x in lim.velocity]
-    inp.max_acceleration = [float(x) for x in np.where(up, lim.accel, lim.decel)]
-    inp.min_acceleration = [float(-x) for x in np.where(up, lim.decel, lim.accel)]
-    inp.max_jerk = _finite(lim.jerk)
+    given = _given[n]
+    p0 = [float(x) for x in q0]
+    p1 = [float(x) for x in q1]
+    if given.get("mode") != "axes":
+        zero = [0.0] * n
+        for name, value in (("control_interface", ControlInterface.Position),
+                            ("synchronization", Synchronization.Time), ("target_velocity", zero),
+                            ("target_acceleration", zero), ("current_velocity", zero),
+                            ("current_acceleration", zero)):
+            _set(n, inp, name, value)
+        given["mode"], given["moving"], given["lim"] = "axes", False, None
+    if v0 is not None or given["moving"]:
+        zero = [0.0] * n
+        inp.current_velocity = zero if v0 is None else [float(x) for x in v0]
+        inp.current_acceleration = zero if a0 is None else [float(x) for x in a0]
+        given["moving"] = v0 is not None
+    inp.current_position = p0
+    inp.target_position = p1
+    up = [e >= s for s, e in zip(p0, p1)]
+    if given["lim"] is not lim or given["up"] != up:
+        vel, acc, dec, jerk = lim.lists
+        inp.max_velocity = vel
+        inp.max_acceleration = [a if u else d for a, d, u in zip(acc, dec, up)]
+        inp.min_acceleration = [-d if u else -a for a, d, u in zip(acc, dec, up)]
+        inp.max_jerk = jerk
+        given["lim"], given["up"] = lim, up
     return _calculate(inp, n, "joint move")
 
 
@@ -108,18 +140,13 @@ def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: f
                 jerk: float) -> Plan:
     """One-DOF trajectory of a path parameter from (s0, v0, a0) to s1 at rest (s1 ≥ s0)."""
     _, inp = _solver(1)
-    inp.control_interface = ControlInterface.Position
-    inp.synchronization = Synchronization.Time
-    inp.current_position = [s0]
-    inp.current_velocity = [v0]
-    inp.current_acceleration = [a0]
-    inp.target_position = [s1]
-    inp.target_velocity = [0.0]
-    inp.target_acceleration = [0.0]
-    inp.max_velocity = [vmax]
-    inp.max_acceleration = [amax]
-    inp.min_acceleration = [-dmax]
-    inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
+    for name, value in (("control_interface", ControlInterface.Position), ("synchronization", Synchronization.Time),
+                        ("current_position", [s0]), ("current_velocity", [v0]), ("current_acceleration", [a0]),
+                        ("target_position", [s1]), ("target_velocity", [0.0]), ("target_acceleration", [0.0]),
+                        ("max_velocity", [vmax]), ("max_acceleration", [amax]), ("min_acceleration", [-dmax]),
+                        ("max_jerk", [jerk if math.isfinite(jerk) else math.inf])):
+        _set(1, inp, name, value)
+    _given[1]["mode"] = "scalar"
     return _calculate(inp, 1, "path move")
 
 
@@ -127,18 +154,12 @@ def plan_stop(q0: Vec, v0: Vec, a0: Vec, decel: Vec, jerk: Vec) -> Plan:
     """Bring every axis to rest as fast as ``decel``/``jerk`` allow (``Robot.RapidDecel``)."""
     n = len(q0)
     _, inp = _solver(n)
-    inp.control_interface = ControlInterface.Velocity
-    inp.synchronization = Synchronization.No
-    inp.current_position = [float(x) for x in q0]
-    inp.current_velocity = [float(x) for x in v0]
-    inp.current_acceleration = [float(x) for x in a0]
-    inp.target_velocity = [0.0] * n
-    inp.target_acceleration = [0.0] * n
-    inp.max_velocity = [math.inf] * n
-    inp.max_acceleration = [float(x) for x in decel]
-    inp.min_acceleration = [float(-x) for x in decel]
-    inp.max_jerk = _finite(jerk)
-    try:
-        return _calculate(inp, n, "rapid deceleration")
-    finally:
-        inp.control_interface = ControlInterface.Position
+    for name, value in (("control_interface", ControlInterface.Velocity), ("synchronization", Synchronization.No),
+                        ("current_position", [float(x) for x in q0]), ("current_velocity", [float(x) for x in v0]),
+                        ("current_acceleration", [float(x) for x in a0]), ("target_velocity", [0.0] * n),
+                        ("target_acceleration", [0.0] * n), ("max_velocity", [math.inf] * n),
+                        ("max_acceleration", [float(x) for x in decel]),
+                        ("min_acceleration", [float(-x) for x in decel]), ("max_jerk", _finite(jerk))):
+        _set(n, inp, name, value)
+    _given[n]["mode"] = "stop"
+    return _calculate(inp, n, "rapid deceleration")

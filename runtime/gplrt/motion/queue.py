@@ -16,6 +16,7 @@ Segment kinds:
 from __future__ import annotations
 
 import bisect
+import operator
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -24,6 +25,17 @@ from gplrt.motion.limits import Vec
 from gplrt.motion.planner import Plan
 from gplrt.motion.profile import Profile
 from gplrt.motion.straight import PathJoints
+
+#: A Profile's values, taken when a motion is queued (cheaper than a Clone on every Move).
+profile_values = operator.attrgetter(*Profile.__slots__)
+
+
+def profile_from_values(values: tuple[object, ...]) -> Profile:
+    prof = Profile.__new__(Profile)
+    for name, value in zip(Profile.__slots__, values):
+        setattr(prof, name, value)
+    return prof
+
 
 _H = 1e-5  # path-parameter step for q'(u), q''(u)
 #: The virtual clock counts whole nanoseconds: a time within this of a segment's end *is* its end,
@@ -39,7 +51,7 @@ class Segment:
     duration: float
     q_start: Vec
     q_end: Vec
-    profile: Profile | None = None
+    profile: tuple[object, ...] | None = None  # Profile values when queued (profile_values)
     settle: float = 0.0
     blend: bool = False
     blend_tolerance: float = 0.0
@@ -177,7 +189,12 @@ class MotionQueue:
 
     def pending(self, t: float) -> int:
         """Number of segments not finished at ``t``."""
-        return sum(1 for s in self.history[-64:] if s.end > t)
+        count = 0
+        for seg in reversed(self.history):  # in time order: stop at the first finished one
+            if seg.end <= t:
+                break
+            count += 1
+        return count
 
     def cut_at(self, t: float, q: Vec) -> None:
         """Stop everything at ``t`` with the robot at ``q``: later segments are dropped."""

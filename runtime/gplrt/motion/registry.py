@@ -30,6 +30,10 @@ POWER_NOT_ENABLED = -1046
 
 
 def sim() -> Any:
+    """The active Simulation: the calling GPL thread's, else ``gplrt.sim.current()``."""
+    ctx = current_ctx()
+    if ctx is not None:
+        return ctx.sched.sim
     from gplrt.sim import current
 
     return current()

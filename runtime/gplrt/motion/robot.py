@@ -40,7 +40,7 @@ from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, G
 from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
-from gplrt.motion.queue import DwellSegment, JointSegment, MotionQueue, PathSegment, Segment
+from gplrt.motion.queue import DwellSegment, JointSegment, MotionQueue, PathSegment, Segment, profile_values
 from gplrt.motion.straight import Path, PathJoints
 
 QUEUE_DEPTH = 8
@@ -67,7 +67,7 @@ class RobotState:
     queue: MotionQueue
     homed: bool = False
     owner: Any = None  # key of the thread that has it attached (None = free)
-    last_profile: Profile | None = None
+    last_profile: tuple[object, ...] | None = None  # queue.profile_values of the last motion
     source: Vec | None = None
     pending_extra: list[float] = field(default_factory=list)
     async_error: int = 0
@@ -76,6 +76,7 @@ class RobotState:
     rapid_decel_until: float = -math.inf
     lock: threading.RLock = field(default_factory=threading.RLock)
     eom_waiters: Any = None  # a scheduler WaitQueue, set by the registry
+    _bounds: tuple[list[float], list[float]] | None = None
 
     @property
     def axis_count(self) -> int:
@@ -125,24 +126,32 @@ class RobotState:
             raise GplException(code, robot_num=self.number, detail="motion stopped")
 
     def check_joint_limits(self, q: Vec) -> None:
-        self.model.check_limits([float(v) for v in q])
+        """-1012 for an axis outside its soft limits (the model's check, on a fast path first)."""
+        bounds = self._bounds
+        if bounds is None:
+            slack = [1e-9 if j.linear else 1e-9 for j in self.model.joints]
+            bounds = self._bounds = ([j.lower - e for j, e in zip(self.model.joints, slack)],
+                                     [j.upper + e for j, e in zip(self.model.joints, slack)])
+        for v, lo, hi in zip(q, bounds[0], bounds[1]):
+            if not lo <= v <= hi:
+                self.model.check_limits([float(x) for x in q])  # raises with the model's detail
+                return
 
     # -- queueing ------------------------------------------------------------------------------
 
-    def _start(self, now: float, can_blend: bool) -> tuple[float, Vec, Vec, Vec]:
-        """Start time and state of the next segment (see the module docstring on blending)."""
+    def _start(self, now: float, can_blend: bool) -> tuple[float, Vec, Vec | None, Vec | None]:
+        """Start time and state of the next segment (velocity/acceleration None = at rest;
+        see the module docstring on blending)."""
         last = self.queue.last
-        n = self.axis_count
-        zero = np.zeros(n)
         if last is None or last.end <= now:
-            return now, self.queue.joints_at(now), zero, zero.copy()
+            return now, self.queue.joints_at(now), None, None
         if can_blend and last.blend and last.cut is None and not isinstance(last, DwellSegment):
             t_b = max(now, self._blend_time(last))
             if t_b < last.motion_end:
                 q, v, a = last.state(t_b)
                 last.cut = t_b
                 return t_b, q, v, a
-        return last.end, last.q_end.copy(), zero, zero.copy()
+        return last.end, last.q_end.copy(), None, None
 
     def _blend_time(self, seg: Segment) -> float:
         """First time the tool is within the blend tolerance of the segment's target."""
@@ -173,7 +182,7 @@ class RobotState:
         seg.blend = inrange < 0.0
         seg.blend_tolerance = abs(inrange)
         seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
-        seg.profile = prof.Clone()
+        seg.profile = profile_values(prof)  # the program may change its Profile after the Move
         return seg
 
     def queue_joint(self, now: float, target: Vec, prof: Profile, system_speed: float) -> Segment:
@@ -181,8 +190,9 @@ class RobotState:
         self.check_joint_limits(target)
         lim = self.limits.joint_limits(prof, system_speed)
         t0, q0, v0, a0 = self._start(now, can_blend=True)
-        plan = plan_axes(q0, v0, a0, target, lim)
-        seg = JointSegment(t0, plan.duration, q0.copy(), np.array(target, float), plan=plan)
+        moving = v0 is not None
+        plan = plan_axes(q0, v0 if moving else None, a0 if moving else None, target, lim)
+        seg = JointSegment(t0, plan.duration, q0, np.array(target, float), plan=plan)
         return self._append(seg, prof)
 
     def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
@@ -226,7 +236,7 @@ class RobotState:
     def _append(self, seg: Segment, prof: Profile) -> Segment:
         self._settle_and_blend(seg, prof)
         self.queue.append(seg)
-        self.source = seg.q_start.copy()
+        self.source = seg.q_start
         self.last_profile = seg.profile
         return seg
 

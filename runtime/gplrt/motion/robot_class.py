@@ -32,7 +32,7 @@ from gplrt.lang.errors import NOT_IMPLEMENTED, GplException
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry
 from gplrt.motion.profile import Profile
-from gplrt.motion.queue import DwellSegment
+from gplrt.motion.queue import DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
 
 ROBOT_ALREADY_ATTACHED = -1006
@@ -181,7 +181,7 @@ class _RobotClass:
 
     def LastProfile(self, Robot: Integer = 0) -> Profile | None:  # type: ignore[assignment]
         robot = _robot(Robot)
-        return robot.last_profile.Clone() if robot.last_profile is not None else None
+        return profile_from_values(robot.last_profile) if robot.last_profile is not None else None
 
     def TrajState(self, Robot: Integer = 0, Mode: Integer = 0) -> Integer:  # type: ignore[assignment]
         robot = _robot(Robot)

@@ -27,7 +27,7 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.lang.errors import GplException
-from gplrt.motion.limits import AxisLimits, PathLimits, Vec
+from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
 
 #: Relative margin on the sampled |q''| for its variation between samples.
 CURVATURE_MARGIN = 0.1
@@ -191,6 +191,6 @@ class PathJoints:
             dec = min(dec, ratio(room, d1[j]))
         if not math.isfinite(v):  # a path of zero length and zero turn: nothing moves
             v, acc, dec = 1.0, 1.0, 1.0
-        ja = acc / accel_ramp if accel_ramp > 0.0 else math.inf
-        jd = dec / decel_ramp if decel_ramp > 0.0 else math.inf
+        ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else math.inf
+        jd = dec / decel_ramp if decel_ramp >= MIN_RAMP else math.inf
         return v, acc, dec, min(ja, jd)
