@@ -130,6 +130,9 @@ class ProcLowerer(ExprLowerer):
         decl = p.decl
         assert decl is not None
         self.plan = plan_gotos(decl.body, self.sink)
+        for v in p.locals.values():
+            if v.storage == "static":
+                self.ctx.statics.append((self.static_name(v), default_code(v.type)))
         body = self.w
         body.level = 1
         start = body.mark()
@@ -313,7 +316,6 @@ class ProcLowerer(ExprLowerer):
                 continue
             if v.storage == "static":
                 name = self.static_name(v)
-                self.ctx.statics.append((name, default_code(v.type)))
                 self.ctx.statics.append((name + "_done", "False"))
                 self.globals.update({name, name + "_done"})
                 self.w.line(f"if not {name}_done:")
@@ -573,16 +575,14 @@ class ProcLowerer(ExprLowerer):
         self.w.indent()
         frame = Frame("Try")
         self.frames.append(frame)
-        self.w.line("try:")
-        self.w.indent()
-        self.block(s.body)
-        self.w.dedent()
-        self.catch(s)
         if s.catch is None:
-            self.w.line("finally:")
+            self.block(s.body)
+        else:
+            self.w.line("try:")
             self.w.indent()
-            self.w.line("pass")
+            self.block(s.body)
             self.w.dedent()
+            self.catch(s)
         self.w.line("break")
         self.frames.pop()
         self.w.dedent()
