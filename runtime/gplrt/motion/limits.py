@@ -42,10 +42,12 @@ class AxisLimits:
     decel: Vec
     jerk: Vec
     lists: tuple[list[float], list[float], list[float], list[float]] = field(init=False, repr=False)
+    symmetric: bool = field(init=False, repr=False)  # accel == decel on every axis
 
     def __post_init__(self) -> None:
         conv = lambda a: [float(x) for x in a]  # noqa: E731
         object.__setattr__(self, "lists", (conv(self.velocity), conv(self.accel), conv(self.decel), conv(self.jerk)))
+        object.__setattr__(self, "symmetric", bool(np.array_equal(self.accel, self.decel)))
 
 
 @dataclass(frozen=True)

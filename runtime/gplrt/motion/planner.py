@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 
+import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, RuckigError, Synchronization, Trajectory
 
 from gplrt.lang.errors import GplException
@@ -53,12 +53,14 @@ def _set(n: int, inp: InputParameter, name: str, value: object) -> None:
         given[name] = value
 
 
-@dataclass(frozen=True)
 class Plan:
     """A planned Ruckig trajectory; ``at(t)`` gives (position, velocity, acceleration) lists."""
 
-    traj: Trajectory
-    duration: float
+    __slots__ = ("traj", "duration")
+
+    def __init__(self, traj: Trajectory, duration: float) -> None:
+        self.traj = traj
+        self.duration = duration
 
     def at(self, t: float) -> tuple[list[float], list[float], list[float]]:
         return self.traj.at_time(min(max(t, 0.0), self.duration))  # type: ignore[no-any-return]
@@ -71,18 +73,26 @@ _RETRY_FACTORS = (1.0 - 1e-9, 1.0 - 1e-6, 1.0 - 1e-4)
 
 
 def _calculate(inp: InputParameter, n: int, what: str) -> Plan:
+    traj = Trajectory(n)
+    try:
+        result = _ruckig[n][0].calculate(inp, traj)
+    except RuckigError:
+        result = None
+    if result is Result.Working or result is Result.Finished:
+        return Plan(traj, traj.duration)
+    return _retry(inp, n, what)
+
+
+def _retry(inp: InputParameter, n: int, what: str) -> Plan:
+    """Shave the jerk and velocity limits off a profile boundary (see ``_RETRY_FACTORS``)."""
     otg = _ruckig[n][0]
     given = _given[n]
-    jerk: list[float] = []
-    vel: list[float] = []
+    jerk, vel = list(inp.max_jerk), list(inp.max_velocity)
     detail = ""
-    for factor in (1.0, *_RETRY_FACTORS):
-        if factor != 1.0:
-            if not jerk:
-                jerk, vel = list(inp.max_jerk), list(inp.max_velocity)
-            inp.max_jerk = given["max_jerk"] = [j * factor for j in jerk]
-            inp.max_velocity = given["max_velocity"] = [v * factor for v in vel]
-            given["lim"] = None  # the next joint plan must set its own limits again
+    for factor in _RETRY_FACTORS:
+        inp.max_jerk = given["max_jerk"] = [j * factor for j in jerk]
+        inp.max_velocity = given["max_velocity"] = [v * factor for v in vel]
+        given["lim"] = None  # the next joint plan must set its own limits again
         traj = Trajectory(n)
         try:
             result = otg.calculate(inp, traj)
@@ -108,8 +118,8 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     n = len(q0)
     _, inp = _solver(n)
     given = _given[n]
-    p0 = [float(x) for x in q0]
-    p1 = [float(x) for x in q1]
+    p0 = q0.tolist() if isinstance(q0, np.ndarray) else [float(x) for x in q0]
+    p1 = q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
     if given.get("mode") != "axes":
         zero = [0.0] * n
         for name, value in (("control_interface", ControlInterface.Position),
@@ -125,12 +135,17 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
         given["moving"] = v0 is not None
     inp.current_position = p0
     inp.target_position = p1
-    up = [e >= s for s, e in zip(p0, p1)]
+    # With Accel = Decel the limits do not depend on the direction of travel: skip comparing it.
+    up = None if lim.symmetric else [e >= s for s, e in zip(p0, p1)]
     if given["lim"] is not lim or given["up"] != up:
         vel, acc, dec, jerk = lim.lists
         inp.max_velocity = vel
-        inp.max_acceleration = [a if u else d for a, d, u in zip(acc, dec, up)]
-        inp.min_acceleration = [-d if u else -a for a, d, u in zip(acc, dec, up)]
+        if up is None:
+            inp.max_acceleration = acc
+            inp.min_acceleration = [-a for a in acc]
+        else:
+            inp.max_acceleration = [a if u else d for a, d, u in zip(acc, dec, up)]
+            inp.min_acceleration = [-d if u else -a for a, d, u in zip(acc, dec, up)]
         inp.max_jerk = jerk
         given["lim"], given["up"] = lim, up
     return _calculate(inp, n, "joint move")

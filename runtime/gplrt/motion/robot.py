@@ -132,7 +132,7 @@ class RobotState:
             slack = [1e-9 if j.linear else 1e-9 for j in self.model.joints]
             bounds = self._bounds = ([j.lower - e for j, e in zip(self.model.joints, slack)],
                                      [j.upper + e for j, e in zip(self.model.joints, slack)])
-        for v, lo, hi in zip(q, bounds[0], bounds[1]):
+        for v, lo, hi in zip(q.tolist() if isinstance(q, np.ndarray) else q, bounds[0], bounds[1]):
             if not lo <= v <= hi:
                 self.model.check_limits([float(x) for x in q])  # raises with the model's detail
                 return
@@ -192,7 +192,8 @@ class RobotState:
         t0, q0, v0, a0 = self._start(now, can_blend=True)
         moving = v0 is not None
         plan = plan_axes(q0, v0 if moving else None, a0 if moving else None, target, lim)
-        seg = JointSegment(t0, plan.duration, q0, np.array(target, float), plan=plan)
+        q1 = target if isinstance(target, np.ndarray) and target.dtype == np.float64 else np.array(target, float)
+        seg = JointSegment(t0, plan.duration, q0, q1, plan=plan)
         return self._append(seg, prof)
 
     def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
