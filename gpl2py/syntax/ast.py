@@ -27,7 +27,7 @@ comments in ``end_comments``.
 
 from __future__ import annotations
 
-from dataclasses import KW_ONLY, dataclass, field, fields
+from dataclasses import KW_ONLY, MISSING, dataclass, field, fields
 from typing import Any, ClassVar, Iterator
 
 from gpl2py.source import Span
@@ -634,8 +634,8 @@ def _dump(node: Node, depth: int, out: list[str], comments: bool, positions: boo
         elif isinstance(value, list) and f.name in node._children:
             if value:  # e.g. bounds [None]
                 scalars.append(f"{f.name}={value!r}")
-        elif value is None or value is False or value == [] or value == "":
-            continue
+        elif value is None or value == [] or (f.default is not MISSING and value == f.default):
+            continue  # unset optional parts and fields at their default stay out of the way
         else:
             scalars.append(f"{f.name}={value!r}")
     head = f"{pad}{type(node).__name__}"
