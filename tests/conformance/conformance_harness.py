@@ -11,8 +11,9 @@ Running a case (in the worker process, see ``conformance_worker.py``):
 1. transpile with the documented command line contract ``gpl2py PROJECT -o OUT`` (called in-process
    through ``gpl2py.cli.main`` so that no interpreter start-up is paid per case);
 2. import the generated package ``OUT/<package>`` and, inside a fresh virtual-clock
-   ``gplrt.sim.Simulation(capture=True)``, call its ``init()`` then ``main()`` (the contract of
-   ``docs/design/lowering.md``: ``__main__`` does exactly this);
+   ``gplrt.sim.Simulation(capture=True)``, call ``main(sim)``: the generated ``main`` runs ``init()``
+   and then ProjectStart on the main GPL thread of that session (``__main__`` calls ``main()``,
+   which makes its own session; a package whose ``main`` takes no session gets ``init()``, ``main()``);
 3. the case's output is everything the program wrote to the Console (the session's captured console,
    plus anything that reached ``sys.stdout``), and its log is the controller's log (unhandled thread
    errors, stalls).

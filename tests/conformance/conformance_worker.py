@@ -8,6 +8,7 @@ captured per case, so nothing a case prints can corrupt the protocol.  See ``con
 from __future__ import annotations
 
 import importlib
+import inspect
 import io
 import os
 import shutil
@@ -73,6 +74,21 @@ def _forget_modules(package: str) -> None:
         del sys.modules[mod]
 
 
+def _run_package(pkg: object, sim: object) -> None:
+    """Run the generated package on ``sim``: ``main(sim)`` when main takes the session (it then
+    calls ``init()`` itself on the main GPL thread), else ``init()`` then ``main()``."""
+    main = getattr(pkg, "main")
+    try:
+        takes_session = len(inspect.signature(main).parameters) >= 1
+    except (TypeError, ValueError):
+        takes_session = False
+    if takes_session:
+        main(sim)
+    else:
+        getattr(pkg, "init")()
+        main()
+
+
 def run_case(name: str, source: Path) -> Result:
     with tempfile.TemporaryDirectory(prefix="gplconf_") as tmp_name:
         scratch = Path(tmp_name)
@@ -90,22 +106,22 @@ def run_case(name: str, source: Path) -> Result:
         (scratch / "flash").mkdir()
         sim = Simulation(capture=True, flash_root=scratch / "flash", project=f"Conf_{name}")
         printed = io.StringIO()
+        errors = io.StringIO()
         sys.path.insert(0, str(out))
         status, detail = "ok", ""
         try:
-            with redirect_stdout(printed), sim:
+            with redirect_stdout(printed), redirect_stderr(errors), sim:
                 try:
                     pkg = importlib.import_module(package)
                 except BaseException:  # noqa: BLE001
                     return Result("import_error", detail=traceback.format_exc())
-                pkg.init()
-                pkg.main()
+                _run_package(pkg, sim)
         except BaseException:  # noqa: BLE001 - any escape is the case's failure, reported in full
             status, detail = "run_error", traceback.format_exc()
         finally:
             sys.path.remove(str(out))
             _forget_modules(package)
-        log = sim.console.log_text
+        log = sim.console.log_text + errors.getvalue()
         if status == "ok" and "Program stalled" in log:
             status = "stalled"
         return Result(status, output=sim.console.output + printed.getvalue(), log=log, detail=detail)
