@@ -266,3 +266,21 @@ def test_other_robots_move_joint_and_straight(model: str) -> None:
         for t in np.linspace(seg.t0, seg.end, 50):
             p = robot.forward(robot.joints_at(float(t)))[:3, 3]
             assert np.linalg.norm((p - p0) - np.dot(p - p0, d) * d) < 1e-6
+
+
+def test_real_clock_wait_sleeps_for_the_scaled_motion_time() -> None:
+    import time
+
+    s = Simulation(clock="real", speed=10.0, capture=True)
+    with s:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        Move.Loc(angles(300.0, 10.0, 90.0, 0.0, 100.0), profile(Speed=100.0))
+        seg = s.robots[1].queue.last
+        t = time.perf_counter()
+        Move.WaitForEOM()
+        wall = time.perf_counter() - t
+        assert s.now() >= seg.end
+        assert 0.8 * (seg.end - seg.t0) / 10.0 < wall < (seg.end - seg.t0) / 10.0 + 0.5
+        assert Robot.WhereAngles().axis_values() == (300.0, 10.0, 90.0, 0.0, 100.0)

@@ -238,3 +238,13 @@ def test_locations_reach_the_robot_through_the_kinematics_hook(sim: Simulation) 
 def test_unsupported_members_say_so(sim: Simulation) -> None:
     assert code_of(Move.StartJogMode) == -204
     assert code_of(Robot.JointToMotor, 1) == -204
+
+
+def test_soft_estop_stops_motion_with_its_code(sim: Simulation) -> None:
+    ready()
+    Move.Loc(angles(1100.0, 10.0, 90.0, 0.0, 100.0), Profile())
+    Thread.Sleep(300)
+    Controller.SoftEStop = True
+    assert code_of(Move.WaitForEOM) == -1045
+    assert not Controller.PowerEnabled
+    assert code_of(Move.Loc, SAFE, Profile()) == -1046

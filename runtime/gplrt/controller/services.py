@@ -39,6 +39,7 @@ from gplrt.lang.errors import NOT_IMPLEMENTED, VALUE_OUT_OF_RANGE, GplException,
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 
 POWER_NOT_ENABLED = -1046
+SOFT_ESTOP = -1045
 POWER_OFF_WAITING = 7
 POWER_ENABLING_AMPS = 8
 POWER_ENABLING_SERVOS = 10
@@ -119,7 +120,7 @@ class _ControllerClass:
         state.soft_estop = bool(value)
         if value:
             state.power_state = POWER_OFF_WAITING
-            _power_dropped(_sim())
+            _power_dropped(_sim(), SOFT_ESTOP)
 
     @property
     def SystemSpeed(self) -> Double:
@@ -208,11 +209,11 @@ class _ControllerClass:
         _pdb().set_pdb_num(float(rest[-1]), int(data_id), unit, unit2, index, key)
 
 
-def _power_dropped(sim: Any) -> None:
+def _power_dropped(sim: Any, code: int = POWER_NOT_ENABLED) -> None:
     """Motion stops when high power goes off (gplrt.motion.registry.power_dropped)."""
     from gplrt.motion.registry import power_dropped
 
-    power_dropped(sim)
+    power_dropped(sim, code)
 
 
 def _power_ready(sim: Any) -> None:

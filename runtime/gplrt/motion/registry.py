@@ -129,10 +129,11 @@ def _release_on_exit(thread: Any) -> None:
     refresh_power_state(s)
 
 
-def power_dropped(s: Any) -> None:
-    """High power went off: every robot stops where it is; moving ones report -1046."""
+def power_dropped(s: Any, code: int = POWER_NOT_ENABLED) -> None:
+    """High power went off: every robot stops where it is; moving ones report ``code`` (-1046,
+    or -1045 *Soft E-STOP* when a soft E-stop dropped it)."""
     t = float(s.scheduler.clock.now())
     for robot in s.robots.values():
-        robot.stop_now(t, POWER_NOT_ENABLED)
+        robot.stop_now(t, code)
         if robot.eom_waiters is not None:
             s.scheduler.notify_all(robot.eom_waiters)
