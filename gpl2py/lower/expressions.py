@@ -131,6 +131,8 @@ class ExprLowerer:
 
     def var_code(self, v: VarSym, receiver: A.Expr | None) -> Code:
         st = v.storage
+        if st == "temp":
+            return v.name, P_ATOM
         if st in ("local", "param"):
             n = self.local_name(v)
             if st == "param" and v.byref:

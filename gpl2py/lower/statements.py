@@ -82,6 +82,14 @@ class ProcLowerer(ExprLowerer):
         k = i.kind
         if k == "var":
             v: VarSym = i.sym  # type: ignore[assignment]
+            if v.storage == "temp":
+                self.w.line(f"{v.name} = {value}")
+                return
+            if v.storage == "local" and not v.read and not v.boxed:
+                # never read: keep the value's side effects only (no unused local for pyflakes)
+                if not _is_simple(value):
+                    self.w.line(value)
+                return
             if v.storage in ("local", "param"):
                 n = self.local_name(v)
                 if v.storage == "param" and v.byref:
@@ -165,6 +173,8 @@ class ProcLowerer(ExprLowerer):
             name = "__init__" if len(p.owner.ctors) <= 1 else f"_new_{p.overload_index}"  # type: ignore[union-attr]
         if p.kind == "Get":
             out.line("@property")
+        elif p.kind == "Set" and p.prop is not None and p.prop.getter is None:
+            name = f"_set_{name}"  # write-only property: property(fset=...) follows the def
         elif p.kind == "Set":
             out.line(f"@{name}.setter")
         elif method and p.shared:
@@ -194,7 +204,7 @@ class ProcLowerer(ExprLowerer):
                 box = box or self.rt(BYREF, "Box")
                 lines.append(f"{py_ident(v.name)} = {box}({py_ident(v.name)})")
         for v in p.locals.values():
-            if v.storage != "local":
+            if v.storage != "local" or not (v.read or v.boxed):
                 continue
             d = default_code(v.type)
             if v.boxed:
@@ -683,6 +693,11 @@ class ProcLowerer(ExprLowerer):
 # -- helpers ---------------------------------------------------------------------------------------
 
 
+def _is_simple(code: str) -> bool:
+    """A literal or plain name: nothing to evaluate for its side effects."""
+    return code.replace(".", "").replace("_", "").replace("-", "").replace('"', "").isalnum() or code in ('""', "None")
+
+
 def _ctext(c: A.Comment) -> str:
     from gpl2py.lower.emit import comment_text
 
@@ -698,8 +713,7 @@ def _var_info(v: VarSym):  # type: ignore[no-untyped-def]
 def _raw_info(name: str, typ: t.GplType):  # type: ignore[no-untyped-def]
     from gpl2py.semantics.check import Info
 
-    v = VarSym(name, None, typ, "local")
-    v.name = name
+    v = VarSym(name, None, typ, "temp")
     return Info(typ, "var", v)
 
 

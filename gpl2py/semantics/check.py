@@ -282,6 +282,7 @@ class Checker:
                 self._block(s.else_body, ctx)
         elif isinstance(s, A.For):
             vt = self._target(s.var, ctx, for_var=True)
+            self._expr(s.var, ctx)  # Next reads the variable
             if vt is not t.ERROR and not (isinstance(vt, t.PrimitiveType) and vt.is_numeric and vt is not t.BOOLEAN):
                 self.sink.report(M.TYPE_MISMATCH, s.var.span, src=str(vt), dst="a For loop variable")
             for e in (s.start, s.end, s.step):
@@ -399,6 +400,7 @@ class Checker:
         if s.op == "=":
             self._store_value(s.value, tt, ctx)
             return
+        self._expr(s.target, ctx)  # a compound assignment reads its target too
         vt = self._value(s.value, ctx)
         op = s.op[:-1]
         rt = self._binary_type(op, tt, vt, s)
@@ -581,6 +583,8 @@ class Checker:
             return Info(s.type, "bconst", s)
         # user member
         if isinstance(s, VarSym):
+            if not as_target:
+                s.read = True
             return Info(s.type, "var", s, receiver=receiver)
         if isinstance(s, ProcSym):
             if in_invoke:
@@ -802,6 +806,7 @@ class Checker:
             if v.storage in ("local", "param") and not v.byref:
                 v.boxed = True
             v.assigned = True
+            v.read = True
             return True
         if info.kind == "index":
             return True

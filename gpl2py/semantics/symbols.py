@@ -39,6 +39,7 @@ class VarSym:
     default: A.Expr | None = None
     boxed: bool = False
     assigned: bool = False
+    read: bool = False
 
 
 @dataclass(eq=False)
