@@ -385,11 +385,6 @@ PRIVATE_MEMBER = _error(
     "'{name}' is Private to {owner}",
     "Module and class members are Private by default (§6.4); declare it Public to use it here.",
 )
-DECL_IN_BLOCK = _error(
-    "GPL2011",
-    "'{name}' is declared inside a block; declare locals at the outermost level of the procedure",
-    "Locals are visible in the whole procedure and may only be declared at its outermost level (§6.2).",
-)
 NOT_INDEXABLE = _error(
     "GPL2012",
     "'{name}' is not an array, procedure or delegate and cannot take arguments",

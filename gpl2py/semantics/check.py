@@ -223,8 +223,8 @@ class Checker:
     def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx, top: bool) -> None:
         for s in block.statements:
             if isinstance(s, A.VarDecl):
-                if not top:
-                    self.sink.report(M.DECL_IN_BLOCK, s.span, name=s.declarators[0].name)
+                # a declaration inside a block is reported by the parser (GPL1106); it is still
+                # declared here so that its uses do not cascade into "not declared" errors
                 storage = "static" if s.keyword == "Static" else "local"
                 for d in s.declarators:
                     typ = self.r.resolve_type(d.type, ctx.module, ctx.cls)

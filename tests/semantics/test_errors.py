@@ -1,0 +1,178 @@
+"""Semantic diagnostics: positions, codes, one run reports every independent error."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.project import load_project
+from gpl2py.semantics.catalogue import load_catalogue
+from gpl2py.semantics.check import Model, analyze
+from gpl2py.syntax.parser import parse
+
+TEN_ERRORS = """Module Main
+    Public Sub Helper(ByVal a As Integer, ByVal b As Integer)
+    End Sub
+    Sub Report()
+    End Sub
+    Public Sub Main()
+        Dim i As Integer
+        Dim loc As Location
+        Dim ex As Exception
+        Const K As Integer = 3
+        i = undeclared_thing
+        i = loc
+        Helper(1)
+        Dim r As NoSuchType
+        K = 4
+        i = Report()
+        loc.Nope = 1
+        If i > 0 Then
+            Exit For
+        End If
+        GoTo nowhere
+        i = Other.secret
+    End Sub
+End Module
+Module Other
+    Private secret As Integer
+End Module
+"""
+
+EXPECTED = [
+    (11, 13, "GPL2001"),  # undeclared name
+    (12, 13, "GPL2005"),  # a Location assigned to an Integer
+    (13, 9, "GPL2004"),  # wrong argument count
+    (14, 18, "GPL2003"),  # unknown type
+    (15, 9, "GPL2027"),  # assigning a Const
+    (16, 13, "GPL2009"),  # a Sub used as a value
+    (17, 9, "GPL2007"),  # no such member
+    (19, 13, "GPL2016"),  # Exit For outside a For
+    (21, 9, "GPL2017"),  # unknown label
+    (22, 13, "GPL2010"),  # Private member of another module
+]
+
+
+def analyze_text(tmp_path: Path, text: str, start: str | None = None) -> tuple[Model, DiagnosticSink]:
+    f = tmp_path / "Main.gpl"
+    f.write_text(text)
+    sink = DiagnosticSink()
+    project = load_project(f, sink)
+    assert project is not None
+    units = [parse(s, sink) for s in project.sources]
+    assert not sink.has_errors(), [d.header() for d in sink]
+    return analyze(units, sink, load_catalogue(), "P", start), sink
+
+
+def test_ten_semantic_errors_ten_diagnostics_with_positions(tmp_path: Path) -> None:
+    _, sink = analyze_text(tmp_path, TEN_ERRORS)
+    got = [(d.span.line, d.span.col, d.code) for d in sink.sorted() if d.span is not None]
+    assert got == EXPECTED, [d.header() for d in sink.sorted()]
+
+
+def test_messages_name_the_culprit(tmp_path: Path) -> None:
+    _, sink = analyze_text(tmp_path, TEN_ERRORS)
+    text = "\n".join(d.message for d in sink.sorted())
+    assert "'undeclared_thing' is not declared" in text
+    assert "a Location value cannot be used as Integer" in text
+    assert "'Helper' takes 2 argument(s), 1 given" in text
+    assert "'secret' is Private to Other" in text
+
+
+def test_case_insensitive_names_forward_references_and_qualified_public(tmp_path: Path) -> None:
+    text = """Module A
+    Public shared_name As Integer
+    Public Sub Main()
+        LATER(3)
+        kk = 2
+        Dim kk As Integer
+        SHARED_NAME = b.Only_In_B + kk
+    End Sub
+    Sub Later(ByVal n As Integer)
+    End Sub
+End Module
+Module B
+    Public only_in_b As Integer
+End Module
+"""
+    _, sink = analyze_text(tmp_path, text)
+    assert [d.header() for d in sink] == []
+
+
+def test_ambiguous_public_name_needs_module(tmp_path: Path) -> None:
+    text = """Module A
+    Public Sub Main()
+        Dim i As Integer
+        i = aa
+        i = B.aa + bb
+    End Sub
+End Module
+Module B
+    Public aa As Integer
+    Public bb As Integer
+End Module
+Module C
+    Public aa As Integer
+End Module
+"""
+    _, sink = analyze_text(tmp_path, text)
+    assert [(d.code, d.span.line, d.span.col) for d in sink] == [("GPL2006", 4, 13)]
+    assert "B, C" in next(iter(sink)).message
+
+
+def test_overloads_of_new_and_call_versus_index(tmp_path: Path) -> None:
+    text = """Module A
+    Class P
+        Public Sub New()
+        End Sub
+        Public Sub New(ByVal x As Integer, ByVal s As String)
+        End Sub
+    End Class
+    Function F(ByVal i As Integer) As Integer
+        Return i
+    End Function
+    Public Sub Main()
+        Dim p As P
+        Dim arr(3) As Integer
+        p = New P
+        p = New P(1, "a")
+        p = New P(1)
+        arr(F(1)) = F(arr(2))
+        arr(1, 2) = 0
+    End Sub
+End Module
+"""
+    model, sink = analyze_text(tmp_path, text)
+    codes = [(d.code, d.span.line) for d in sink]
+    assert codes == [("GPL2013", 16), ("GPL2024", 18)]
+    kinds = sorted({i.kind for i in model.info.values()})
+    assert "index" in kinds and "call" in kinds and "new" in kinds
+
+
+def test_start_procedure_is_resolved(tmp_path: Path) -> None:
+    text = "Module A\n    Sub Main()\n    End Sub\nEnd Module\n"
+    model, sink = analyze_text(tmp_path, text, start="a.MAIN")
+    assert model.start is not None and model.start.name == "Main"
+    assert [d.code for d in sink] == ["GPL2025"]  # not Public: warned, started anyway (AMB-20)
+    _, sink = analyze_text(tmp_path, text, start="Nope")
+    assert [d.code for d in sink] == ["GPL2019"]
+
+
+def test_zero_argument_members_with_or_without_parentheses(tmp_path: Path) -> None:
+    text = """Module A
+    Function Five() As Integer
+        Return 5
+    End Function
+    Public Sub Main()
+        Dim ex As New Exception
+        Dim s As String
+        Dim i As Integer
+        s = ex.Message
+        s = ex.Message()
+        i = Five + Five()
+        Console.WriteLine(s)
+    End Sub
+End Module
+"""
+    _, sink = analyze_text(tmp_path, text)
+    assert [d.header() for d in sink] == []
