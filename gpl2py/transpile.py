@@ -9,6 +9,7 @@ is deterministic: identical input gives byte-identical files.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,11 +36,21 @@ class Output:
     project: Project | None = None
 
 
-def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False) -> Output | None:
+Progress = Callable[[str, int, int], None]
+
+
+def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
+              progress: Progress | None = None) -> Output | None:
+    """``progress(phase, done, total)``, when given, is called per file parsed and module written
+    (``gpl2py.progress.ProgressBar`` draws it)."""
     project = load_project(path, sink)
     if project is None:
         return None
-    units = [parse(src, sink) for src in project.sources]
+    units = []
+    for i, src in enumerate(project.sources):
+        units.append(parse(src, sink))
+        if progress is not None:
+            progress("parsing", i + 1, len(project.sources))
     if sink.has_errors() and not keep_going:
         # still run the semantic pass so every error is reported in one run
         analyze(units, sink, load_catalogue(), project.name, project.start)
@@ -48,13 +59,14 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     if sink.has_errors() and not keep_going:
         return None
     try:
-        return _lower(project, model, sink)
+        return _lower(project, model, sink, progress)
     except Exception as exc:  # a bug in gpl2py: a diagnostic, never a traceback
         sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
         return None
 
 
-def _lower(project: Project, model, sink: DiagnosticSink) -> Output:  # type: ignore[no-untyped-def]
+def _lower(project: Project, model, sink: DiagnosticSink,  # type: ignore[no-untyped-def]
+           progress: Progress | None = None) -> Output:
     names = ProjectNames.build(model)
     package = snake_case(project.name) if project.name else "gpl_project"
     out = Output(package, project=project)
@@ -64,8 +76,10 @@ def _lower(project: Project, model, sink: DiagnosticSink) -> Output:  # type: ig
     top = model.project.modules.get(TOP_MODULE.lower())
     if top is not None:
         extra.append(top)
-    for mod in extra + modules:
+    for i, mod in enumerate(extra + modules):
         text, gmap = lower_module(model, names, mod, sink)
+        if progress is not None:
+            progress("writing", i + 1, len(extra) + len(modules))
         fname = f"{mod.py_name}.py"
         out.files[f"{package}/{fname}"] = text
         smap[fname] = (mod.path, gmap)
