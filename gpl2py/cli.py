@@ -147,6 +147,13 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
     from gpl2py.transpile import transpile, write_package
 
     out = Outcome()
+    if not Path(args.path).exists() and not any(ch in args.path for ch in "./\\"):
+        # `gpl2py frobnicate`: a mistyped command is more likely than a project called that
+        names = ", ".join(c.name for c in COMMANDS)
+        out.sink.report(msg.USAGE_ERROR, None,
+                        detail=f"{args.path!r} is neither a command ({names}) nor a project path")
+        out.usage_error = True
+        return out
     output = transpile(args.path, out.sink, keep_going=args.keep_going)
     if output is not None and output.project is not None:
         _remember(out, output.project)
@@ -173,7 +180,7 @@ COMMANDS: list[Command] = [
         run=_run_dump_ast,
     ),
     Command(
-        name="transpile",
+        name="translate",
         help="translate a project into a Python package (the default command)",
         description="Load, check and translate a GPL project into OUT/<project_name>/, a Python "
         "package that runs on the gplrt simulated controller (python -m <project_name>). On "
@@ -260,7 +267,7 @@ def build_parser() -> argparse.ArgumentParser:
 def _route(argv: list[str]) -> list[str]:
     """Insert the default command's name when the first argument is not a command (see module doc)."""
     names = {c.name for c in COMMANDS}
-    default = next((c for c in COMMANDS if c.default), None)
+    default = next((c for c in reversed(COMMANDS) if c.default), None)
     first = next((a for a in argv if not a.startswith("-")), None)
     if default is not None and first is not None and first not in names:
         return [default.name, *argv]
