@@ -1,7 +1,7 @@
 """Transpile a GPL project with the ``gpl2py`` command and import the package it writes.
 
 Why through the command line: the samples are what a user ports, and a user runs
-``gpl2py transpile PROJECT -o OUT``.  Going through the CLI also checks its contract (exit status 0,
+``gpl2py PROJECT -o OUT``.  Going through the CLI also checks its contract (exit status 0,
 no error diagnostics) rather than an internal API that may change.
 
 Each import gets a unique package name, so two tests that transpile projects with the same
@@ -38,10 +38,10 @@ class Transpiled:
 
 
 def transpile(project: Path, out_root: Path) -> Transpiled:
-    """Run ``gpl2py transpile project -o out_root``; import and return the generated package."""
+    """Run ``gpl2py project -o out_root``; import and return the generated package."""
     out_root.mkdir(parents=True, exist_ok=True)
     proc = subprocess.run(
-        [sys.executable, "-m", "gpl2py", "transpile", str(project), "-o", str(out_root)],
+        [sys.executable, "-m", "gpl2py", str(project), "-o", str(out_root)],
         capture_output=True, text=True, timeout=120, cwd=REPO,
     )
     if proc.returncode != 0:
