@@ -47,6 +47,8 @@ exit status:
   0  no errors (warnings do not change the status)
   1  errors in the GPL input, or an internal gpl2py error (GPL9000)
   2  the command line is wrong (unknown command or option, missing argument)
+  gpl2py run adds 3 (a GPL thread ended with an unhandled error), 4 (the program
+  stalled) and 130 (Ctrl-C): see gpl2py run --help
 
 Every diagnostic has a stable code, e.g. "Main.gpl:12:5: error GPL1101: ...";
 docs/diagnostics.md explains each code.
@@ -67,6 +69,10 @@ class Outcome:
     product_key: str = "output"
     usage_error: bool = False
     checked: int = 0
+    summary: str | None = None  # replaces the "checked N files: ..." line (transpile, run)
+    summary_json: dict[str, object] | None = None  # replaces the JSON "summary" object
+    emitted: bool = False  # the command printed everything itself (run)
+    exit_status: int | None = None  # overrides the status derived from the diagnostics (run)
 
 
 @dataclass(frozen=True)
@@ -79,6 +85,7 @@ class Command:
     configure: Callable[[argparse.ArgumentParser], None]
     run: Callable[[argparse.Namespace], Outcome]
     default: bool = False  # receives the arguments when the first one is not a command name
+    epilog: str | None = None  # replaces the common exit-status text in --help
 
 
 # --- commands -----------------------------------------------------------------------------------
@@ -144,9 +151,14 @@ def _configure_transpile(parser: argparse.ArgumentParser) -> None:
 
 def _run_transpile(args: argparse.Namespace) -> Outcome:
     """Transpile a project into an importable Python package; nothing is written on errors."""
+    import time
+
+    from gpl2py.progress import ProgressBar, wants_progress
+    from gpl2py.run import count_lines, transpile_summary
     from gpl2py.transpile import transpile, write_package
 
     out = Outcome()
+    started = time.perf_counter()
     if not Path(args.path).exists() and not any(ch in args.path for ch in "./\\"):
         # `gpl2py frobnicate`: a mistyped command is more likely than a project called that
         names = ", ".join(c.name for c in COMMANDS)
@@ -154,12 +166,39 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
                         detail=f"{args.path!r} is neither a command ({names}) nor a project path")
         out.usage_error = True
         return out
-    output = transpile(args.path, out.sink, keep_going=args.keep_going)
+    bar = ProgressBar(sys.stderr, wants_progress(sys.stderr, args.quiet, args.json))
+    try:
+        output = transpile(args.path, out.sink, keep_going=args.keep_going, progress=bar)
+    finally:
+        bar.close()
     if output is not None and output.project is not None:
         _remember(out, output.project)
         out.checked = len(output.project.sources)
         write_package(output, args.output, out.sink)
+        lines = count_lines(output.project)
+        seconds = time.perf_counter() - started
+        out.summary = transpile_summary(out.checked, lines, out.sink, seconds, False)
+        out.summary_json = {**_counts(out.sink.sorted()), "files": out.checked, "lines": lines,
+                            "seconds": round(seconds, 3)}
     return out
+
+
+def _configure_run(parser: argparse.ArgumentParser) -> None:
+    from gpl2py.run import configure
+
+    configure(parser)
+
+
+def _run_run(args: argparse.Namespace) -> Outcome:
+    from gpl2py.run import run_command
+
+    return run_command(args)  # type: ignore[no-any-return]
+
+
+def _run_epilog() -> str:
+    from gpl2py.run import RUN_EPILOG
+
+    return RUN_EPILOG
 
 
 COMMANDS: list[Command] = [
@@ -188,6 +227,18 @@ COMMANDS: list[Command] = [
         configure=_configure_transpile,
         run=_run_transpile,
         default=True,
+    ),
+    Command(
+        name="run",
+        help="translate (cached) and run a project on the simulated controller",
+        description="Translate a GPL project (re-using the cached translation when nothing "
+        "changed), then run its ProjectStart procedure on a simulated controller: console output "
+        "goes to stdout, controller reports and gpl2py's own messages to stderr. Ctrl-C stops "
+        "every GPL thread and exits with status 130. Example: gpl2py run samples/pick_and_place "
+        "--setup samples/notebook/cell_io.py --plot cell.png",
+        configure=_configure_run,
+        run=_run_run,
+        epilog=_run_epilog(),
     ),
 ]
 
@@ -255,7 +306,7 @@ def build_parser() -> argparse.ArgumentParser:
             command.name,
             help=command.help,
             description=textwrap.fill(command.description, width=78),
-            epilog=_EPILOG,
+            epilog=command.epilog or _EPILOG,
             formatter_class=argparse.RawDescriptionHelpFormatter,
         )
         _output_options(child, top=False)
@@ -283,7 +334,7 @@ def _emit(out: Outcome, as_json: bool, quiet: bool, stdout: TextIO, stderr: Text
         doc: dict[str, object] = {"diagnostics": [d.to_json() for d in diags]}
         if out.product is not None:
             doc[out.product_key] = out.product
-        doc["summary"] = _counts(diags)
+        doc["summary"] = out.summary_json if out.summary_json is not None else _counts(diags)
         stdout.write(json.dumps(doc, indent=2) + "\n")
         return
     for d in diags:
@@ -293,7 +344,9 @@ def _emit(out: Outcome, as_json: bool, quiet: bool, stdout: TextIO, stderr: Text
         stderr.write(d.render(source) + "\n")
     if out.product is not None:
         stdout.write(out.product.rstrip("\n") + "\n")
-    if not quiet and not out.usage_error:
+    if not quiet and not out.usage_error and out.summary is not None:
+        stderr.write(out.summary + "\n")
+    elif not quiet and not out.usage_error:
         counts = _counts(diags)
         files = "file" if out.checked == 1 else "files"
         stderr.write(
@@ -348,7 +401,10 @@ def main(argv: list[str] | None = None) -> int:
             raise
         out = Outcome()
         out.sink.report(msg.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
-    _emit(out, args.json, args.quiet, stdout, stderr)
+    if not out.emitted:
+        _emit(out, args.json, args.quiet, stdout, stderr)
+    if out.exit_status is not None:
+        return out.exit_status
     if out.usage_error:
         return EXIT_USAGE
     return EXIT_ERRORS if out.sink.has_errors() else EXIT_OK

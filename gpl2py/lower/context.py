@@ -61,9 +61,13 @@ class ModuleContext:
         self.needs_this = False
         self.statics: list[tuple[str, str]] = []  # module globals holding Static locals
 
+    def alias(self, name: str) -> str:
+        """How the generated code spells runtime helper ``name`` (without importing it)."""
+        return "_" + name if name in self.names.taken else name
+
     def helper(self, module: str, name: str) -> str:
         """Import ``name`` from ``module`` and return how the generated code spells it."""
-        alias = "_" + name if name in self.names.taken else name
+        alias = self.alias(name)
         self.imports.setdefault(module, {})[name] = alias
         return alias
 

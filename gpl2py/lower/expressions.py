@@ -89,6 +89,9 @@ class ExprLowerer:
         self.proc = proc
         self.cls = cls
         self.globals: set[str] = set()
+        # Integer locals known to be >= 0 where they are used (counters of ascending For loops
+        # from a non-negative start that the body never writes)
+        self.nonneg: set[VarSym] = set()
 
     # -- helpers -----------------------------------------------------------------------------------
 
@@ -136,7 +139,7 @@ class ExprLowerer:
         if st in ("local", "param"):
             n = self.local_name(v)
             if st == "param" and v.byref:
-                return f"{n}.get()", P_ATOM
+                return f"{n}.value", P_ATOM
             if v.boxed:
                 return f"{n}.value", P_ATOM
             return n, P_ATOM
@@ -243,7 +246,7 @@ class ExprLowerer:
                 except OverflowError:
                     pass
         c = self.expr(e)
-        return self.coerce(c, src, dst, may_overflow=isinstance(e, (A.Binary, A.Unary)))
+        return self.coerce(c, src, dst, may_overflow=_may_overflow(e))
 
     def coerce(self, c: Code, src: t.GplType, dst: t.GplType, may_overflow: bool = True) -> Code:
         if dst is t.ERROR or src is t.ERROR or not isinstance(dst, t.PrimitiveType):
@@ -330,6 +333,15 @@ class ExprLowerer:
             if plain and _nonzero_literal(rc[0]):
                 return f"{paren(lc, P_MUL)} / {paren(rc, P_MUL + 1)}", P_MUL
             return self.call(self.rt(OPS, "div"), lc[0], rc[0])
+        ints = lt in _INTS and rt_ in _INTS
+        lit = _int_value(rc[0])
+        if op == "\\" and ints and lit is not None and lit > 0:
+            if lc[1] == P_ATOM and lc[0].isidentifier():
+                # truncation toward zero (§4.4) without a call: floor division on the magnitude
+                return f"{lc[0]} // {lit} if {lc[0]} >= 0 else -(-{lc[0]} // {lit})", P_IF
+            return f"int({paren(lc, P_MUL)} / {lit})", P_ATOM
+        if op == ">>" and ints and lit is not None and 0 <= lit <= 31 and lc[1] == P_ATOM:
+            return f"{lc[0]} >> {lit}", P_SHIFT  # an Integer variable: Python's shift is arithmetic
         if op in ("\\", "Mod", "^", "<<", ">>"):
             name = {"\\": "idiv", "Mod": "mod", "^": "power", "<<": "shl", ">>": ">>"}[op]
             if op == ">>":
@@ -424,11 +436,23 @@ class ExprLowerer:
         return f"{recv}.{py_ident(prop.name)}"
 
     def index_code(self, e: A.Invoke) -> str:
+        if len(e.args) == 1:
+            arg = e.args[0]
+            ai = self.model.info.get(arg)
+            tt = self.type_of(e.target)
+            safe = (isinstance(arg, A.IntegerLiteral) and arg.value >= 0) or (
+                ai is not None and ai.kind == "var" and ai.sym in self.nonneg)
+            if safe and isinstance(tt, t.ArrayType) and tt.rank == 1:
+                # The subscript cannot be negative, so the element list itself does the upper-bound
+                # check (IndexError, which a Catch receives as -767): no Python-level call.
+                return f"{self.sub(e.target, P_ATOM)}._data[{self.val(arg)}]"
         idx = ", ".join(self.val(x) for x in e.args)
         return f"{self.sub(e.target, P_ATOM)}[{idx}]"
 
     def builtin_function(self, i: Info, args: list[A.Expr]) -> Code:
         f: BuiltinFunction = i.sym  # type: ignore[assignment]
+        if f.name == "Chr" and len(args) == 1 and self.type_of(args[0]) in _INTS:
+            return f"chr({self.sub(args[0], P_BAND + 1)} & 255)", P_ATOM  # low 8 bits (AMB-23)
         if f.name == "CStr" and len(args) == 1 and self.type_of(args[0]) is t.SINGLE:
             return self.call(self.rt(CONV, "to_string_single"), self.val(args[0]))
         return self.call(self.ctx.builtin(f.python_name), *self.args_code(args, i.params or []))
@@ -440,11 +464,19 @@ class ExprLowerer:
         if i.kind == "vmember" and b.name == "String":
             if m.name == "Length" and i.receiver is not None:
                 return f"len({self.val(i.receiver)})", P_ATOM
+            if m.name == "IndexOf" and i.receiver is not None and len(acode) == 1 \
+                    and self.type_of(args[0]) is t.STRING:  # type: ignore[index]
+                return f"{self.sub(i.receiver, P_ATOM)}.find({acode[0]})", P_ATOM
             sm = self.ctx.builtin(b.python_name)
             if i.static:
                 return f"{sm}.{m.name}({', '.join(acode)})", P_ATOM
             assert i.receiver is not None
             return f"{sm}.{m.name}({', '.join([self.val(i.receiver), *acode])})", P_ATOM
+        if i.static and b.name == "Math" and m.name in _PLAIN_MATH and args is not None \
+                and all(self.type_of(a) in _PLAIN_NUM for a in args):
+            # numeric arguments: the math module gives the same values (a domain error such as
+            # Sqrt(-1) is a ValueError that as_gpl_exception maps to -707)
+            return f"{self.rt('math', _PLAIN_MATH[m.name])}({', '.join(acode)})", P_ATOM
         if i.static:
             head = f"{self.ctx.builtin(b.python_name)}.{m.name}"
         else:
@@ -476,6 +508,25 @@ class ExprLowerer:
     def addressof_code(self, i: Info) -> str:
         p: ProcSym = i.sym  # type: ignore[assignment]
         return self.proc_ref(p, i.receiver)
+
+
+_PLAIN_MATH = {"Sin": "sin", "Cos": "cos", "Tan": "tan", "Atan": "atan", "Atan2": "atan2", "Sqrt": "sqrt"}
+
+
+def _may_overflow(e: A.Expr) -> bool:
+    """Whether an integer-typed expression can leave the Integer range (bitwise results cannot)."""
+    if isinstance(e, A.Binary):
+        return e.op in ("+", "-", "*", "\\", "^")
+    if isinstance(e, A.Unary):
+        return e.op == "-"
+    return False
+
+
+def _int_value(code: str) -> int | None:
+    try:
+        return int(code)
+    except ValueError:
+        return None
 
 
 def _nonzero_literal(code: str) -> bool:

@@ -93,7 +93,7 @@ class ProcLowerer(ExprLowerer):
             if v.storage in ("local", "param"):
                 n = self.local_name(v)
                 if v.storage == "param" and v.byref:
-                    self.w.line(f"{n}.set({value})")
+                    self.w.line(f"{n}.value = {value}")
                 elif v.boxed:
                     self.w.line(f"{n}.value = {value}")
                 else:
@@ -354,14 +354,29 @@ class ProcLowerer(ExprLowerer):
     def s_Assign(self, s: A.Assign) -> None:
         tt = self.target_type(s.target)
         if s.op == "=":
-            self.store(s.target, self.conv(s.value, tt)[0])
+            self.store(s.target, self.checked(s.target, self.conv(s.value, tt)[0]))
             return
         target = s.target
         if isinstance(target, A.Invoke) and self.info(target).kind == "index":
             target = self.hoist_index(target)
         value = self.binop(s.op[:-1], (*self.expr(target), tt), (*self.expr(s.value), self.type_of(s.value)))
         res_type = _binary_result(s.op[:-1], tt, self.type_of(s.value))
-        self.store(target, self.coerce(value, res_type, tt)[0])
+        self.store(target, self.checked(target, self.coerce(value, res_type, tt)[0]))
+
+    def checked(self, target: A.Expr, value: str) -> str:
+        """For an Integer stored through a ByRef cell, check the range inline (no call on the
+        fast path: cell accesses are already the costly part of ByRef code)."""
+        chk = self.ctx.alias("chk_int32") + "("
+        i = self.info(target)
+        if not (value.startswith(chk) and value.endswith(")") and i.kind == "var"):
+            return value
+        v: VarSym = i.sym  # type: ignore[assignment]
+        if not ((v.storage == "param" and v.byref) or v.boxed):
+            return value
+        inner = value[len(chk):-1]
+        tmp = self.fresh("v")
+        self.w.line(f"{tmp} = {inner}")
+        return f"{tmp} if -2147483648 <= {tmp} <= 2147483647 else {chk}{tmp})"
 
     def hoist_index(self, e: A.Invoke) -> A.Invoke:
         """Evaluate an element's array and subscripts once for ``a(i) += x`` (§10.1)."""
@@ -455,10 +470,13 @@ class ProcLowerer(ExprLowerer):
             if step_lit == 1:
                 self.w.line(f"for {name} in range({start}, {_plus(end, 1)}):")
                 final = f"{name} = max({start}, {_plus(end, 1)})"
+                if _int_value_of(start) is not None and _int_value_of(start) >= 0:  # type: ignore[operator]
+                    self.nonneg.add(v)  # a subscript that cannot be negative (lower/expressions.py)
             else:
                 self.w.line(f"for {name} in range({start}, {_plus(end, -1)}, -1):")
                 final = f"{name} = min({start}, {_plus(end, -1)})"
             self.loop_body(s.body, Frame("For"))
+            self.nonneg.discard(v)
             self.w.line(final + "  # the first value past the end (§10.3)")
             return
         self.store(s.var, self.conv(s.start, vt)[0])
@@ -729,6 +747,13 @@ def _binary_result(op: str, lt: t.GplType, rt: t.GplType) -> t.GplType:
     if lt.is_integral and rt.is_integral:
         return t.INTEGER
     return t.DOUBLE
+
+
+def _int_value_of(code: str) -> int | None:
+    try:
+        return int(code)
+    except ValueError:
+        return None
 
 
 def _int_literal(e: A.Expr | None) -> int | None:

@@ -60,6 +60,10 @@ class AttrRef:
     def set(self, value: Any) -> None:
         setattr(self.obj, self.name, value)
 
+    # ``cell.value`` works on every cell kind: generated code reads and writes ByRef parameters
+    # with it, which on a Box (the common case, a caller's local) is a plain slot access.
+    value = property(get, set)
+
     def __repr__(self) -> str:
         return f"AttrRef({type(self.obj).__name__}, {self.name!r})"
 
@@ -85,6 +89,8 @@ class ItemRef:
 
     def set(self, value: Any) -> None:
         self.array[self.index] = value
+
+    value = property(get, set)
 
     def __repr__(self) -> str:
         return f"ItemRef({self.index!r})"

@@ -1,0 +1,417 @@
+"""``gpl2py run PROJECT``: translate through the cache, then run ProjectStart on a simulated controller.
+
+Two halves, usable separately:
+
+* :func:`build` — load the project, look its key up in the cache (``gpl2py.cache``), translate only
+  on a miss; returns a :class:`Built` (the cache entry, the project, counts, whether it was a hit).
+  :func:`import_built` imports the package under a private module name, so a project called
+  ``json`` or ``test`` cannot shadow anything and two projects with one name can live side by side
+  (the notebook API uses both).
+* :func:`run_command` — the command: prints diagnostics and a summary, runs the package's
+  ``main(sim)`` with console output streaming to stdout and controller reports to stderr, then
+  reports every unhandled GPL error as ``File.gpl:line: error <code> in thread <name>: <message>``.
+
+Exit status of ``run`` (also in ``gpl2py run --help`` and docs/cli.md):
+
+====  ==========================================================================================
+0     the program ended and no GPL thread ended with an unhandled error
+1     the project has errors (nothing ran), or gpl2py failed internally (GPL9000)
+2     the command line is wrong
+3     the program ran, and at least one GPL thread ended with an unhandled error
+4     virtual clock only: the program stalled — every remaining thread waits for something
+      that no thread, timer or I/O rule can ever provide (a controller would wait forever)
+130   interrupted with Ctrl-C (SIGINT): every GPL thread was stopped first
+====  ==========================================================================================
+
+Ctrl-C (decision): the GPL threads are aborted the way ``Thread.Abort`` does it (at their next
+scheduling point), the command waits up to ``STOP_GRACE`` real seconds for them to end, then exits
+with 130 — without a Python traceback.  A thread stuck in a blocking host call (a socket read) is a
+daemon thread and ends with the process.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import itertools
+import json
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
+from gpl2py import messages as msg
+from gpl2py.cache import Cache, Entry, cache_key
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.progress import ProgressBar
+from gpl2py.project import Project, load_project
+
+if TYPE_CHECKING:
+    from gpl2py.transpile import Progress
+
+EXIT_OK = 0
+EXIT_ERRORS = 1
+EXIT_USAGE = 2
+EXIT_GPL_ERROR = 3
+EXIT_STALLED = 4
+EXIT_INTERRUPTED = 130
+STOP_GRACE = 2.0  # real seconds the threads get to end after Ctrl-C
+
+RUN_EPILOG = """\
+exit status:
+  0    the program ended; no GPL thread ended with an unhandled error
+  1    errors in the GPL input (nothing ran), or an internal gpl2py error (GPL9000)
+  2    the command line is wrong
+  3    the program ran and a GPL thread ended with an unhandled error; each one is
+       reported as "File.gpl:LINE: error CODE in thread NAME: MESSAGE"
+  4    virtual clock: the program stalled (every thread waits for something that
+       can never happen; a real controller would wait forever)
+  130  interrupted with Ctrl-C; every GPL thread was stopped first
+
+The translation is cached (see --cache-dir): a second run of unchanged sources
+starts at once. docs/cli.md has the details.
+"""
+
+
+@dataclass
+class Built:
+    """A project translated (or found in the cache): import it with :func:`import_built`."""
+
+    entry: Entry
+    project: Project
+    cached: bool
+    files: int
+    lines: int
+    seconds: float
+
+    @property
+    def package_dir(self) -> Path:
+        return self.entry.package_dir
+
+
+def count_lines(project: Project) -> int:
+    return sum(len(src.text.splitlines()) for src in project.sources)
+
+
+def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | None = None,
+          keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None) -> Built | None:
+    """Translate ``path`` into the cache (or reuse the entry); diagnostics go to ``sink``.
+
+    Returns None when the project has errors (unless ``keep_going``) or the cache cannot be
+    written (reported as GPL3001-style output errors).  A cache hit replays the diagnostics of the
+    translation that made the entry, so warnings are never lost by caching.
+    """
+    started = time.perf_counter()
+    probe = DiagnosticSink()
+    project = load_project(path, probe)
+    if project is None or probe.has_errors():
+        sink.extend(probe)
+        return None
+    cache = Cache(cache_dir)
+    key = cache_key(project, {"keep_going": keep_going})
+    entry = None if rebuild else cache.lookup(key)
+    if entry is not None:
+        sink.extend(entry.diagnostics)
+        return Built(entry, project, True, entry.files, entry.lines, time.perf_counter() - started)
+    from gpl2py.transpile import transpile  # libcst and the lowering: only on a cache miss
+
+    local = DiagnosticSink()
+    output = transpile(path, local, keep_going=keep_going, progress=progress)
+    sink.extend(local)
+    if output is None:
+        return None
+    counts = (len(project.sources), count_lines(project))
+    try:
+        entry = cache.store(key, output.package, output.files, local.sorted(), counts)
+    except OSError as exc:
+        sink.report(msg.OUTPUT_ERROR, None, path=str(cache.root), detail=getattr(exc, "strerror", None) or str(exc))
+        return None
+    return Built(entry, project, False, counts[0], counts[1], time.perf_counter() - started)
+
+
+_serial = itertools.count()
+
+
+def import_built(built: Built) -> ModuleType:
+    """Import the generated package under a unique private name (see module docstring)."""
+    folder = built.package_dir
+    name = f"_gpl2py_{built.entry.package}_{built.entry.key[:8]}_{next(_serial)}"
+    spec = importlib.util.spec_from_file_location(name, folder / "__init__.py",
+                                                  submodule_search_locations=[str(folder)])
+    if spec is None or spec.loader is None:
+        raise ImportError(f"cannot import the generated package in {folder}")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        sys.modules.pop(name, None)
+        raise
+    return module
+
+
+# --- the command ------------------------------------------------------------------------------------
+
+
+def _robot_names() -> list[str]:
+    from gplrt.controller.pdb import model_names
+
+    return model_names()
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    """Arguments of ``gpl2py run``."""
+    robots = _robot_names()
+    parser.add_argument("path", metavar="PROJECT",
+                        help="a project folder (with or without Project.gpr), a Project.gpr file, "
+                        "or one .gpl file")
+    parser.add_argument("--robot", default="PF400SX", type=str.upper, choices=robots, metavar="MODEL",
+                        help="robot model of the simulated controller (default: PF400SX); one of: "
+                        + ", ".join(robots))
+    parser.add_argument("--clock", choices=("virtual", "real"), default="virtual",
+                        help="virtual (default): waits and motions take no wall time and every run "
+                        "is identical; real: controller time follows the wall clock (for servers "
+                        "that talk to real clients)")
+    parser.add_argument("--speed", type=_positive_float, default=1.0, metavar="FACTOR",
+                        help="real clock only: controller seconds per wall-clock second (default 1)")
+    parser.add_argument("--flash", metavar="DIR", default=None,
+                        help="folder that holds the controller's disks: DIR/flash is /flash, "
+                        "DIR/ROMDISK is /ROMDISK (default: a temporary folder, removed at exit)")
+    parser.add_argument("--setup", metavar="FILE.py", default=None,
+                        help="Python file whose setup(sim) is called before ProjectStart: wire "
+                        "inputs to outputs (sim.io.when_output(2).set_input(10001, after=0.2)), "
+                        "set inputs, load a parameter database")
+    parser.add_argument("--plot", metavar="FILE.png", default=None,
+                        help="after the run, save robot 1's joints against time and its tool path "
+                        "(seen from above) to this image")
+    parser.add_argument("--cache-dir", metavar="DIR", default=None,
+                        help="where translations are cached (default: $GPL2PY_CACHE_DIR, else "
+                        "$XDG_CACHE_HOME/gpl2py or ~/.cache/gpl2py)")
+    parser.add_argument("--rebuild", action="store_true",
+                        help="translate again even when the cache has this project")
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"must be greater than 0: {text!r}")
+    return value
+
+
+@dataclass
+class RunReport:
+    """What the program did: the exit status and what to tell the user about it."""
+
+    status: int
+    controller_time: float
+    wall_time: float
+    errors: list[dict[str, Any]] = field(default_factory=list)
+    stalled: list[str] = field(default_factory=list)
+    interrupted: bool = False
+    plot: str | None = None
+
+    def to_json(self) -> dict[str, Any]:
+        return {
+            "status": self.status,
+            "controller_time": round(self.controller_time, 6),
+            "errors": self.errors,
+            "stalled": self.stalled,
+            "interrupted": self.interrupted,
+            "plot": self.plot,
+        }
+
+
+def _unhandled_errors(sim: Any) -> list[dict[str, Any]]:
+    """Every GPL thread that ended with an unhandled error: code, message, GPL file:line, thread.
+
+    The Thread objects keep the exception (``_error``; no public accessor exists); the GPL location
+    is the innermost transpiled frame the exception passed through (``gplrt.lang.sourcemap``).
+    """
+    from gplrt.lang.errors import GplException
+    from gplrt.lang.sourcemap import locate
+
+    found = []
+    for t in list(sim.threads):
+        if not getattr(t, "_failed", False):
+            continue
+        exc = getattr(t, "_error", None)
+        where = None
+        if isinstance(exc, BaseException):
+            where = getattr(exc, "gpl_location", None) or locate(exc)
+        file, line = (where.rsplit(":", 1) + [""])[:2] if where else (None, "")
+        if isinstance(exc, GplException):
+            code, message = exc.ErrorCode, exc.Message()
+            if exc.detail:
+                message += f" - {exc.detail}"
+        else:
+            code, message = -201, f"Python error {type(exc).__name__}: {exc}"
+        found.append({"thread": t._name, "code": code, "message": message, "file": file,
+                      "line": int(line) if line.isdigit() else None})
+    return found
+
+
+def _stop_all(sim: Any) -> None:
+    """Abort every live GPL thread and give them ``STOP_GRACE`` seconds to end."""
+    sched = sim.scheduler
+    for ctx in list(sched.live):
+        if ctx.phase != "done":
+            sched.request_abort(ctx)
+    try:
+        sched.wait_until_quiet(None, STOP_GRACE)
+    except KeyboardInterrupt:  # a second Ctrl-C: stop waiting
+        pass
+
+
+def _load_setup(path: str) -> Any:
+    spec = importlib.util.spec_from_file_location(f"_gpl2py_setup_{next(_serial)}", path)
+    if spec is None or spec.loader is None:
+        raise FileNotFoundError(path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    setup = getattr(module, "setup", None)
+    if not callable(setup):
+        raise AttributeError(f"{path} defines no setup(sim) function")
+    return setup
+
+
+def save_plot(sim: Any, path: str | Path, robot: int = 1) -> bool:
+    """Save robot ``robot``'s joints against time and its tool path to ``path``; False if it never moved."""
+    if robot not in sim.robots:
+        return False
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from gplrt.motion.plot import plot_joints, plot_path_xy
+
+    tr = sim.trace(robot)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.5))
+    plot_joints(tr, ax=left)
+    plot_path_xy(tr, ax=right)
+    left.set_title(f"robot {robot}: joints")
+    right.set_title(f"robot {robot}: tool path (from above)")
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return True
+
+
+def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunReport:
+    """Run the package's ``main(sim)``; Ctrl-C stops every GPL thread (status 130)."""
+    started = time.perf_counter()
+    interrupted = False
+    try:
+        package.main(sim)
+    except KeyboardInterrupt:
+        interrupted = True
+        _stop_all(sim)
+    report = RunReport(EXIT_OK, sim.now(), time.perf_counter() - started, interrupted=interrupted)
+    report.errors = _unhandled_errors(sim)
+    if not interrupted:
+        report.stalled = [c.name for c in list(sim.scheduler.live) if c.phase != "done"]
+    if interrupted:
+        report.status = EXIT_INTERRUPTED
+    elif report.errors:
+        report.status = EXIT_GPL_ERROR
+    elif report.stalled:
+        report.status = EXIT_STALLED
+    if plot and not interrupted and save_plot(sim, plot):
+        report.plot = str(plot)
+    return report
+
+
+def run_command(args: argparse.Namespace) -> Any:
+    """The ``run`` command (``gpl2py.cli`` calls it); prints everything itself."""
+    from gpl2py import cli
+    from gpl2py.progress import wants_progress
+
+    stdout, stderr = sys.stdout, sys.stderr
+    out = cli.Outcome(emitted=True)
+    bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, args.json))
+    try:
+        built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar)
+    finally:
+        bar.close()
+    project = built.project if built is not None else None
+    if project is not None:
+        cli._remember(out, project)
+    if built is not None:
+        out.checked = built.files
+        out.summary = transpile_summary(built.files, built.lines, out.sink, built.seconds, built.cached)
+    if built is None:
+        out.emitted = False  # cli prints the diagnostics; status 1
+        return out
+    if built.project.start is None:
+        out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs "
+                        "a Project.gpr with ProjectStart=\"Module.Proc\"")
+        out.emitted, out.usage_error = False, True
+        return out
+    if not args.json:
+        cli._emit(out, False, args.quiet, stdout, stderr)
+
+    from gplrt.sim import ConsoleSink, Simulation
+
+    console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
+    sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
+                     project=project.name if project else "", robot=args.robot)
+    if args.setup:
+        try:
+            setup = _load_setup(args.setup)
+        except (OSError, AttributeError, SyntaxError, ImportError) as exc:
+            out.sink.report(msg.USAGE_ERROR, None, detail=f"--setup {args.setup}: {exc}")
+            out.emitted, out.usage_error = False, True
+            return out
+        setup(sim)
+    package = import_built(built)
+    report = execute(package, sim, plot=args.plot)
+    out.exit_status = report.status
+    if args.json:
+        doc = {
+            "diagnostics": [d.to_json() for d in out.sink.sorted()],
+            "summary": summary_json(built, out.sink),
+            "run": {**report.to_json(), "console": console.output, "log": console.log_text},
+        }
+        stdout.write(json.dumps(doc, indent=2) + "\n")
+        return out
+    for e in report.errors:
+        where = f"{e['file']}:{e['line']}: " if e["file"] else ""
+        stderr.write(f"{where}error {e['code']} in thread {e['thread']}: {e['message']}\n")
+    if report.interrupted:
+        stderr.write("gpl2py: interrupted; every GPL thread was stopped\n")
+    elif not args.quiet:
+        stderr.write(run_summary(report, args.clock) + "\n")
+    return out
+
+
+def transpile_summary(files: int, lines: int, sink: DiagnosticSink, seconds: float, cached: bool) -> str:
+    errors, warnings = len(sink.errors), len(sink.warnings)
+    how = "from the cache" if cached else f"in {seconds:.2f} s"
+    return (f"transpiled {_plural(files, 'file')} ({_plural(lines, 'line')}) {how}: "
+            f"{_plural(errors, 'error')}, {_plural(warnings, 'warning')}")
+
+
+def summary_json(built: Built, sink: DiagnosticSink) -> dict[str, object]:
+    return {"errors": len(sink.errors), "warnings": len(sink.warnings), "files": built.files,
+            "lines": built.lines, "seconds": round(built.seconds, 3), "cached": built.cached}
+
+
+def run_summary(report: RunReport, clock: str) -> str:
+    text = (f"program ended after {report.controller_time:.3f} s of controller time ({clock} clock, "
+            f"{report.wall_time:.2f} s wall): {_plural(len(report.errors), 'unhandled error')}")
+    if report.stalled:
+        text += f"; stalled, threads still waiting: {', '.join(report.stalled)}"
+    if report.plot:
+        text += f"; plot saved to {report.plot}"
+    return text
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
