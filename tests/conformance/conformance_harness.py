@@ -35,6 +35,7 @@ import sys
 import threading
 from dataclasses import dataclass
 from pathlib import Path
+from typing import IO
 
 HERE = Path(__file__).resolve().parent
 SUITES = ("manual", "differential")
@@ -142,8 +143,8 @@ class Worker:
         return proc
 
     @staticmethod
-    def _pump(stream: object, lines: queue.Queue[str | None]) -> None:
-        for line in stream:  # type: ignore[attr-defined]
+    def _pump(stream: IO[str], lines: queue.Queue[str | None]) -> None:
+        for line in stream:
             lines.put(line)
         lines.put(None)
 

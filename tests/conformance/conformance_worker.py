@@ -10,6 +10,7 @@ from __future__ import annotations
 import importlib
 import inspect
 import io
+import json
 import os
 import shutil
 import sys
@@ -134,8 +135,6 @@ def main() -> None:
     for line in sys.stdin:
         if not line.strip():
             continue
-        import json
-
         request = json.loads(line)
         try:
             result = run_case(request["name"], Path(request["source"]))
