@@ -9,7 +9,6 @@ points along the frame's rows), never copied from a run.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
