@@ -8,6 +8,7 @@ is deterministic: identical input gives byte-identical files.
 
 from __future__ import annotations
 
+import gc
 import os
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -42,7 +43,23 @@ Progress = Callable[[str, int, int], None]
 def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
               progress: Progress | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
-    (``gpl2py.progress.ProgressBar`` draws it)."""
+    (``gpl2py.progress.ProgressBar`` draws it).
+
+    The cyclic garbage collector is paused meanwhile: the pipeline allocates hundreds of thousands
+    of small tree and symbol objects that all live to the end, and the full collections their
+    allocation triggers cost more than the semantic pass itself (benchmarks/transpile_speed.py).
+    """
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        return _transpile(path, sink, keep_going, progress)
+    finally:
+        if enabled:
+            gc.enable()
+
+
+def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
+               progress: Progress | None) -> Output | None:
     project = load_project(path, sink)
     if project is None:
         return None
