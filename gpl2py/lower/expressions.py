@@ -146,12 +146,24 @@ class ExprLowerer:
         if st == "static":
             return self.static_name(v), P_ATOM
         if st == "module":
-            return self.ctx.member_owner_ref(v) + py_ident(v.name), P_ATOM
+            return self.module_var_ref(v), P_ATOM
         # field
         if v.shared:
             return self.ctx.member_owner_ref(v) + py_ident(v.name), P_ATOM
         recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
         return f"{recv}.{py_ident(v.name)}", P_ATOM
+
+    def module_var_ref(self, v: VarSym) -> str:
+        """A module variable; ``_this.name`` when a local of the procedure hides it (§6.4)."""
+        prefix = self.ctx.member_owner_ref(v)
+        if not prefix and self.proc is not None and v.name.lower() in self.proc.locals:
+            self.ctx.needs_this = True
+            return "_this." + py_ident(v.name)
+        return prefix + py_ident(v.name)
+
+    def shadowed(self, v: VarSym) -> bool:
+        return (self.proc is not None and v.storage == "module" and v.name.lower() in self.proc.locals
+                and not self.ctx.member_owner_ref(v))
 
     # -- expressions -------------------------------------------------------------------------------
 
@@ -194,6 +206,8 @@ class ExprLowerer:
             return self.new_code(e, i)
         if k == "addressof":
             return self.addressof_code(i), P_ATOM
+        if k == "typename":
+            return py_string(str(i.sym)), P_ATOM  # ToBitString(x, Short, ...): the type's name
         if k == "unary":
             assert isinstance(e, A.Unary)
             return self.unary(e)
@@ -242,7 +256,8 @@ class ExprLowerer:
             if dst is t.SINGLE:
                 try:
                     value = _F32.unpack(_F32.pack(float(e.value)))[0]
-                    return py_float(value), (P_UNARY if value < 0 else P_ATOM)
+                    if value not in (float("inf"), float("-inf")):  # too large: -710 at run time
+                        return py_float(value), (P_UNARY if value < 0 else P_ATOM)
                 except OverflowError:
                     pass
         c = self.expr(e)
@@ -477,6 +492,8 @@ class ExprLowerer:
             # numeric arguments: the math module gives the same values (a domain error such as
             # Sqrt(-1) is a ValueError that as_gpl_exception maps to -707)
             return f"{self.rt('math', _PLAIN_MATH[m.name])}({', '.join(acode)})", P_ATOM
+        if i.static and b.name == "Console" and args and len(acode) == 1 and self.type_of(args[0]) is t.SINGLE:
+            acode = [self.call(self.rt(CONV, "to_string_single"), acode[0])[0]]  # 7 digits (AMB-22)
         if i.static:
             head = f"{self.ctx.builtin(b.python_name)}.{m.name}"
         else:

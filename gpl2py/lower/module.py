@@ -107,6 +107,29 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             cls = mod.members.get(m.name.lower())
             if isinstance(cls, ClassSym):
                 _shared_inits(ctx, cls, init, init_low)
+    # _reset: every module variable and Shared field back to its default (§12.2 step 1), so an
+    # initializer that calls a function sees later variables at their defaults, in every session
+    resets: list[str] = []
+    for m in members:
+        if isinstance(m, A.VarDecl):
+            for d in m.declarators:
+                v = mod.members.get(d.name.lower())
+                if isinstance(v, VarSym) and v.decl is d:
+                    resets.append(f"{py_ident(v.name)} = {default_code(v.type)}")
+        elif isinstance(m, A.ClassDecl):
+            cls = mod.members.get(m.name.lower())
+            if isinstance(cls, ClassSym):
+                resets.extend(_shared_resets(ctx, cls))
+    defs.blank(2)
+    defs.line("def _reset() -> None:")
+    defs.indent()
+    defs.line('"""Module variables and Shared fields at their defaults (§12.2, step 1)."""')
+    names_reset = sorted({r.split(" = ")[0] for r in resets if "." not in r.split(" = ")[0]})
+    if names_reset:
+        defs.line("global " + ", ".join(names_reset))
+    for r in resets:
+        defs.line(r)
+    defs.dedent()
     defs.blank(2)
     defs.line("def _init() -> None:")
     defs.indent()
@@ -156,6 +179,16 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
         for line in reg_lines:
             out.line(line)
     return out.render()
+
+
+def _shared_resets(ctx: ModuleContext, cls: ClassSym) -> list[str]:
+    out: list[str] = []
+    for m in cls.members.values():
+        if isinstance(m, VarSym) and m.shared:
+            out.append(f"{ctx.class_ref(cls)}.{py_ident(m.name)} = {default_code(m.type)}")
+        elif isinstance(m, ClassSym):
+            out.extend(_shared_resets(ctx, m))
+    return out
 
 
 def _shared_inits(ctx: ModuleContext, cls: ClassSym, init: Writer, low: ProcLowerer) -> None:

@@ -52,6 +52,8 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "    _session = sim",
     ]
     for m in extra + modules:
+        lines.append(f"    {m.py_name}._reset()")
+    for m in extra + modules:
         lines.append(f"    {m.py_name}._init()")
     for m in modules:
         if m.init_proc is not None:

@@ -104,7 +104,8 @@ class ProcLowerer(ExprLowerer):
                 self.globals.add(name)
                 self.w.line(f"{name} = {value}")
                 return
-            if v.storage == "module" and not self.ctx.module_prefix(self.ctx.owner_module(v)):
+            if v.storage == "module" and not self.ctx.module_prefix(self.ctx.owner_module(v)) \
+                    and not self.shadowed(v):
                 self.globals.add(py_ident(v.name))
             self.w.line(f"{self.var_code(v, i.receiver)[0]} = {value}")
             return
@@ -359,6 +360,17 @@ class ProcLowerer(ExprLowerer):
         target = s.target
         if isinstance(target, A.Invoke) and self.info(target).kind == "index":
             target = self.hoist_index(target)
+        ti = self.info(target)
+        if ti.receiver is not None and not isinstance(ti.receiver, (A.Name, A.MeExpr)):
+            # the object expression is evaluated once (§10.1): GetObj().f += 1
+            tmp = self.fresh("t")
+            self.w.line(f"{tmp} = {self.val(ti.receiver)}")
+            recv = A.Name(ti.receiver.span, tmp)
+            self.model.info[recv] = _raw_info(tmp, self.type_of(ti.receiver))
+            target = A.MemberAccess(target.span, recv, getattr(target, "name", ""))
+            from dataclasses import replace
+
+            self.model.info[target] = replace(ti, receiver=recv)
         value = self.binop(s.op[:-1], (*self.expr(target), tt), (*self.expr(s.value), self.type_of(s.value)))
         res_type = _binary_result(s.op[:-1], tt, self.type_of(s.value))
         self.store(target, self.checked(target, self.coerce(value, res_type, tt)[0]))

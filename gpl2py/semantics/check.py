@@ -415,8 +415,13 @@ class Checker:
     # -- expressions: entry points ------------------------------------------------------------------------
 
     def _value(self, e: A.Expr, ctx: _Ctx) -> t.GplType:
-        info = self._expr(e, ctx)
-        if info.type is t.VOID:
+        return self._value_check(e, self._expr(e, ctx))
+
+    def _value_check(self, e: A.Expr, info: Info) -> t.GplType:
+        if info.kind == "typename":
+            self.sink.report(M.NOT_A_VALUE, e.span, name=_text(e), what="type")
+            info.type = t.ERROR
+        elif info.type is t.VOID:
             self.sink.report(M.SUB_AS_VALUE, e.span, name=_text(e))
             info.type = t.ERROR
         elif info.kind in ("module", "class", "bclass"):
@@ -605,6 +610,9 @@ class Checker:
         if found is None:
             if e.name.lower() == "string":
                 return Info(t.VOID, "bclass", self.cat.type_members.get("string"))
+            prim = t.lookup_primitive(e.name)
+            if prim is not None:  # a type keyword as an argument: ToBitString(x, Short, True)
+                return Info(t.VOID, "typename", prim)
             self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
             return Info(t.ERROR, "error")
         if isinstance(found, str):
@@ -793,7 +801,9 @@ class Checker:
                 elif not assignable(info.type, p.type) and p.type is not t.ERROR:
                     self.sink.report(M.TYPE_MISMATCH, a.span, src=str(info.type), dst=str(p.type))
             elif p.type is t.ERROR:
-                self._value(a, ctx)
+                info = self._expr(a, ctx)
+                if info.kind != "typename":
+                    self._value_check(a, info)
             else:
                 self._store_value(a, p.type, ctx)
 
