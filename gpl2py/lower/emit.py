@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gpl2py.lower.wrap import wrap
 from gpl2py.syntax import ast as A
 
 
@@ -92,8 +93,13 @@ class Writer:
         out: list[str] = []
         gmap: list[int] = []
         for ln in self.lines:
-            out.append(("    " * ln.indent + ln.text) if ln.text else "")
-            gmap.append(ln.gpl_line)
+            if not ln.text:
+                out.append("")
+                gmap.append(ln.gpl_line)
+                continue
+            for indent, text in wrap(ln.indent, ln.text):
+                out.append("    " * indent + text)
+                gmap.append(ln.gpl_line)
         # no trailing blank lines; exactly one newline at the end
         while out and out[-1] == "":
             out.pop()

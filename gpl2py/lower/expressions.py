@@ -319,6 +319,9 @@ class ExprLowerer:
     def unary(self, e: A.Unary) -> Code:
         ot = self.type_of(e.operand)
         if e.op == "Not":
+            if isinstance(e.operand, A.Binary) and e.operand.op == "Is":  # Not x Is Nothing
+                o = e.operand
+                return f"{self.sub(o.left, P_CMP + 1)} is not {self.sub(o.right, P_CMP + 1)}", P_CMP
             if ot is t.BOOLEAN:
                 return f"not {self.sub(e.operand, P_NOT)}", P_NOT
             if ot in _PLAIN_NUM:

@@ -1,0 +1,163 @@
+"""Breaking long generated lines the PEP 8 way (implicit continuation inside parentheses).
+
+A GPL statement written over several lines with `` _`` becomes one Python statement, which can be
+far longer than PEP 8's limit.  :func:`wrap` breaks such a line:
+
+* ``global a, b, ...`` -> several ``global`` statements;
+* an expression with top-level ``+``, ``and`` or ``or`` (string building, long conditions) ->
+  parenthesised, broken *before* the operators (PEP 8's recommended style);
+* a call whose arguments run past the limit -> the arguments packed on continuation lines.
+
+Lines that cannot be broken this way (one huge string literal) are left alone.  Block headers get
+a double continuation indent so that their continuation lines stand apart from the body.
+"""
+
+from __future__ import annotations
+
+import io
+import tokenize
+
+LIMIT = 99
+_OPS = {"+", "and", "or"}
+
+
+def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tuple[int, str]]:
+    """``(indent, text)`` lines for one logical line (unchanged when it fits); continuation lines
+    that are still too long are broken again (a long argument of a long call)."""
+    lines = _wrap(indent, text, limit)
+    if len(lines) == 1 or depth > 4:
+        return lines
+    out: list[tuple[int, str]] = []
+    for i, (ind, txt) in enumerate(lines):
+        if i > 0 and 4 * ind + len(txt) > limit:
+            out.extend(wrap(ind, txt, limit, depth + 1))
+        else:
+            out.append((ind, txt))
+    return out
+
+
+def _wrap(indent: int, text: str, limit: int) -> list[tuple[int, str]]:
+    if 4 * indent + len(text) <= limit:
+        return [(indent, text)]
+    if text.startswith("global "):
+        names = text[len("global "):].split(", ")
+        out: list[tuple[int, str]] = []
+        cur: list[str] = []
+        for n in names:
+            if cur and 4 * indent + len("global " + ", ".join([*cur, n])) > limit:
+                out.append((indent, "global " + ", ".join(cur)))
+                cur = []
+            cur.append(n)
+        out.append((indent, "global " + ", ".join(cur)))
+        return out
+    try:
+        toks = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
+                if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER)]
+    except (tokenize.TokenError, IndentationError, SyntaxError):
+        return [(indent, text)]
+    comment = ""
+    if toks and toks[-1].type == tokenize.COMMENT:
+        comment = "  " + toks[-1].string
+        toks = toks[:-1]
+    if not toks:
+        return [(indent, text)]
+    body = text[: toks[-1].end[1]]
+    header = body.endswith(":") and toks[0].string in ("if", "elif", "while", "for", "return", "def")
+    cont = indent + (2 if header and toks[0].string != "return" else 1)
+    # where the expression starts: after the first top-level "=", or after a leading keyword
+    start = 0
+    depth = 0
+    for i, tok in enumerate(toks):
+        if tok.string in "([{" and tok.type == tokenize.OP:
+            depth += 1
+        elif tok.string in ")]}" and tok.type == tokenize.OP:
+            depth -= 1
+        elif depth == 0 and tok.type == tokenize.OP and tok.string == "=":
+            start = i + 1
+            break
+    if start == 0 and toks[0].string in ("if", "elif", "while", "return", "raise"):
+        start = 1
+    end = len(toks) - (1 if header and toks[-1].string == ":" else 0)
+    expr = toks[start:end]
+    if not expr:
+        return [(indent, text)]
+    prefix = body[: expr[0].start[1]]
+    suffix = body[expr[-1].end[1]:]
+    # 1. top-level binary operators
+    cuts: list[int] = []
+    depth = 0
+    for i, tok in enumerate(expr):
+        if tok.type == tokenize.OP and tok.string in "([{":
+            depth += 1
+        elif tok.type == tokenize.OP and tok.string in ")]}":
+            depth -= 1
+        elif depth == 0 and i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME):
+            cuts.append(i)
+    if depth == 0 and cuts and not any(t.string in ("if", "else", "lambda") for t in expr):
+        pieces = _pieces(body, expr, cuts)
+        lines = [(indent, prefix + "(" + comment)]
+        lines.extend(_pack(cont, "", pieces, cont, limit, " "))
+        lines.append((indent, ")" + suffix))
+        return lines
+    # 2. a call closing at the end of the expression: pack its arguments
+    if expr[-1].string == ")":
+        depth = 0
+        open_at = -1
+        for i, tok in enumerate(expr):
+            if tok.type == tokenize.OP and tok.string in "([{":
+                if depth == 0:
+                    open_at = i
+                depth += 1
+            elif tok.type == tokenize.OP and tok.string in ")]}":
+                depth -= 1
+        if open_at >= 0 and expr[open_at].string == "(" and open_at + 1 < len(expr) - 1:
+            inner = expr[open_at + 1:-1]
+            commas = []
+            d = 0
+            for i, tok in enumerate(inner):
+                if tok.type == tokenize.OP and tok.string in "([{":
+                    d += 1
+                elif tok.type == tokenize.OP and tok.string in ")]}":
+                    d -= 1
+                elif d == 0 and tok.string == ",":
+                    commas.append(i)
+            args: list[str] = []
+            last = 0
+            for c in [*commas, len(inner)]:
+                seg = inner[last:c]
+                if seg:
+                    piece = body[seg[0].start[1]:seg[-1].end[1]]
+                    args.append(piece + ("," if c < len(inner) else ""))
+                last = c + 1
+            head = body[: expr[open_at].end[1]]
+            lines = [(indent, head + comment)]
+            lines.extend(_pack(cont, "", args, cont, limit, " "))
+            lines.append((indent, ")" + suffix))
+            return lines
+    return [(indent, text)]
+
+
+def _pieces(body: str, expr: list[tokenize.TokenInfo], cuts: list[int]) -> list[str]:
+    bounds = [0, *cuts, len(expr)]
+    out = []
+    for a, b in zip(bounds, bounds[1:]):
+        out.append(body[expr[a].start[1]:expr[b - 1].end[1]])
+    return out
+
+
+def _pack(indent: int, first_prefix: str, pieces: list[str], cont: int, limit: int,
+          sep: str) -> list[tuple[int, str]]:
+    """Greedy fill: as many pieces per line as fit, continuation lines at ``cont``."""
+    lines: list[tuple[int, str]] = []
+    cur_indent, cur = indent, first_prefix
+    fresh = True
+    for piece in pieces:
+        candidate = cur + ("" if fresh else sep) + piece
+        if not fresh and 4 * cur_indent + len(candidate) > limit - 1:
+            lines.append((cur_indent, cur))
+            cur_indent, cur = cont, piece
+        else:
+            cur = candidate
+        fresh = False
+    lines.append((cur_indent, cur))
+    return lines
