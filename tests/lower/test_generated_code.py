@@ -1,0 +1,179 @@
+"""The shape and quality of the generated Python (issue part 4, docs/design/lowering.md).
+
+These tests look at the text a user would read: plain Python where static types allow, runtime
+calls only where GPL differs, GPL names kept (Python keywords/builtins get a trailing underscore),
+comments carried, PEP 8 layout, no exec/eval, and a source map back to GPL lines.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import libcst
+import pytest
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.wrap import wrap
+from gpl2py.transpile import transpile
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def gen(tmp_path: Path, body: str, decls: str = "", name: str = "Main") -> str:
+    src = f"Module {name}\n{decls}\n    Public Sub Main()\n{body}\n    End Sub\nEnd Module\n"
+    f = tmp_path / f"{name}.gpl"
+    f.write_text(src)
+    sink = DiagnosticSink()
+    out = transpile(str(f), sink)
+    assert out is not None, [d.header() for d in sink.sorted()]
+    return next(v for k, v in out.files.items() if k.endswith(".py") and "__" not in k)
+
+
+def main_body(text: str) -> str:
+    return text.split("def Main() -> None:\n", 1)[1].split("\n\n\n", 1)[0]
+
+
+def test_typed_arithmetic_is_plain_python(tmp_path: Path) -> None:
+    text = gen(tmp_path, """        Dim a, b, c As Double
+        Dim i As Integer
+        c = a * b + a / 2.0 - b
+        i = i + 1
+        c = i
+        Console.WriteLine(c)""")
+    body = main_body(text)
+    assert "c = a * b + a / 2.0 - b" in body
+    assert "i = chk_int32(i + 1)" in body  # Integer store of arithmetic: range check (§4.2 rule 4)
+    assert "c = float(i)" in body
+
+
+def test_gpl_semantics_call_the_runtime(tmp_path: Path) -> None:
+    text = gen(tmp_path, """        Dim d As Double
+        Dim i, j As Integer
+        Dim s As String
+        Dim b As Boolean
+        i = d
+        d = i / j
+        d = i Mod j
+        d = 2.34 + s
+        s = s & d
+        i = b
+        b = i And j
+        b = b And b
+        Console.WriteLine(s & d & i & b)""")
+    body = main_body(text)
+    for line in ("i = to_int32(d)", "d = div(i, j)", "d = float(mod(i, j))", "d = add(2.34, s)",
+                 "s = s + to_string(d)", "i = bool_num(b)", "b = i & j != 0", "b = b & b"):
+        assert line in body, (line, body)
+
+
+def test_integer_for_loop_uses_range_and_keeps_the_final_value(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim i, n, s As Integer
+        For i = 1 To n
+            s = s + i
+        Next"""))
+    assert "for i in range(1, n + 1):" in body
+    assert "i = max(1, n + 1)" in body
+
+
+def test_for_loop_writing_its_variable_stays_a_while_loop(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim i As Integer
+        For i = 1 To 10 Step 2
+            i = i + 1
+        Next"""))
+    assert "range(" not in body and "while i <= 10:" in body
+
+
+def test_names_keep_spelling_and_avoid_python_keywords(tmp_path: Path) -> None:
+    text = gen(tmp_path, """        Dim str, len As Integer
+        Dim _hidden As Integer
+        Dim MixedCase As Integer
+        str = 1
+        len = str + 1
+        _hidden = len
+        mixedcase = _HIDDEN
+        Console.WriteLine(MIXEDCASE)""")
+    body = main_body(text)
+    assert "str_ = 1" in body and "len_ = chk_int32(str_ + 1)" in body
+    assert "_u_hidden = len_" in body and "MixedCase = _u_hidden" in body
+    assert "Console.WriteLine(MixedCase)" in body
+
+
+def test_comments_are_carried(tmp_path: Path) -> None:
+    text = gen(tmp_path, """        Dim i As Integer
+        ' explain the next line
+        i = 3   ' trailing note
+        If i > 2 Then   ' header note
+            i = 1
+        End If""")
+    assert "    # explain the next line\n    i = 3  # trailing note\n" in text
+    assert "if i > 2:  # header note" in text
+
+
+def test_goto_free_procedures_stay_structured(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim i As Integer
+        While i < 3
+            i += 1
+        End While"""))
+    assert "while i < 3:" in body and "_g" not in body
+
+
+def test_no_exec_or_eval_and_valid_python_for_all_frontend_sources() -> None:
+    for src in sorted((REPO / "tests/frontend/sources").glob("*.gpl")):
+        out = transpile(str(src), DiagnosticSink(), keep_going=True)
+        assert out is not None
+        for name, text in out.files.items():
+            if name.endswith(".py"):
+                libcst.parse_module(text)
+                compile(text, name, "exec")
+                assert not re.search(r"\b(exec|eval)\(", text), name
+
+
+def test_pep8_layout(tmp_path: Path) -> None:
+    pycodestyle = pytest.importorskip("pycodestyle")
+    out = transpile(str(REPO / "samples/tcp_command_server"), DiagnosticSink(), keep_going=True)
+    assert out is not None
+    paths = []
+    for name, text in out.files.items():
+        if name.endswith(".py"):
+            p = tmp_path / name.replace("/", "_")
+            p.write_text(text)
+            paths.append(str(p))
+    style = pycodestyle.StyleGuide(max_line_length=99, quiet=True)
+    assert style.check_files(paths).total_errors == 0
+
+
+def test_long_lines_are_broken_before_operators() -> None:
+    text = "x = " + " + ".join(f"CStr(value_{i})" for i in range(20))
+    lines = wrap(1, text)
+    assert len(lines) > 2 and all(4 * ind + len(t) <= 99 for ind, t in lines)
+    assert lines[0] == (1, "x = (") and lines[-1] == (1, ")")
+    assert all(t.startswith("+ ") for _, t in lines[2:-1])
+    rebuilt = " ".join(t for _, t in lines).replace("( ", "(").replace(" )", ")")
+    assert rebuilt.replace("(", "").replace(")", "") == text.replace("(", "").replace(")", "")
+    assert wrap(1, "global " + ", ".join(f"name_{i}" for i in range(30)))[0][1].startswith("global ")
+
+
+def test_source_map_points_at_gpl_lines(tmp_path: Path) -> None:
+    f = tmp_path / "Main.gpl"
+    f.write_text("Module Main\n    Public Sub Main()\n        Dim i As Integer\n        i = 1\n"
+                 "        i = 2\n        Console.WriteLine(i)\n    End Sub\nEnd Module\n")
+    out = transpile(str(f), DiagnosticSink())
+    assert out is not None
+    smap = json.loads(out.files["main/_sourcemap.json"])["modules"]["main_mod.py"]
+    assert smap["source"] == "Main.gpl"
+    py = out.files["main/main_mod.py"].splitlines()
+    runs = smap["runs"]
+
+    def gpl_line(n: int) -> int:
+        return max((r for r in runs if r[0] <= n), key=lambda r: r[0])[1]
+
+    assert gpl_line(py.index("    i = 1") + 1) == 4
+    assert gpl_line(py.index("    i = 2") + 1) == 5
+
+
+def test_procedures_are_registered_for_name_lookup(tmp_path: Path) -> None:
+    text = gen(tmp_path, "", decls="    Private Sub Helper()\n    End Sub\n", name="Station")
+    assert 'register_procedure("Station", "Helper", Helper, public=False)' in text
+    assert 'register_procedure("Station", "Main", Main, public=True)' in text
