@@ -284,3 +284,24 @@ def test_real_clock_wait_sleeps_for_the_scaled_motion_time() -> None:
         assert s.now() >= seg.end
         assert 0.8 * (seg.end - seg.t0) / 10.0 < wall < (seg.end - seg.t0) / 10.0 + 0.5
         assert Robot.WhereAngles().axis_values() == (300.0, 10.0, 90.0, 0.0, 100.0)
+
+
+def test_a_full_queue_makes_move_wait_for_room(sim: Simulation) -> None:
+    """More motions than the queue holds: Move waits on the clock; mixed straight/joint blends run."""
+    from gplrt.motion.robot import QUEUE_DEPTH
+
+    a, b = Location(), Location()
+    a.XYZ(400.0, 0.0, 300.0, 0.0, 90.0, 180.0)
+    b.XYZ(400.0, 150.0, 300.0, 0.0, 90.0, 180.0)
+    Move.Loc(a, Profile())
+    Move.WaitForEOM()
+    straight, joint = profile(Straight=True, InRange=-3.0), profile(InRange=-3.0)
+    t0 = sim.now()
+    for i in range(3 * QUEUE_DEPTH):
+        Move.Loc(b if i % 2 == 0 else a, straight if i % 2 == 0 else joint)
+        assert sim.robots[1].queue.pending(sim.now()) <= QUEUE_DEPTH
+    assert sim.now() > t0  # some Move calls had to wait
+    Move.WaitForEOM()
+    assert np.max(np.abs(Robot.Where().matrix() - a.matrix())) < 1e-9
+    cut = [seg.cut is not None for seg in sim.robots[1].queue.history[1:-1]]
+    assert cut[0::2] == [True] * len(cut[0::2])  # every straight move blended into the joint move after it

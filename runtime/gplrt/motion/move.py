@@ -64,9 +64,8 @@ def _ready(s: Any) -> RobotState:
     robot.check_can_move(registry.thread_key(), _power_on(s))
     sched = s.scheduler
     while robot.queue.pending(sched.clock.now()) >= QUEUE_DEPTH:
-        t = sched.clock.now()
-        ends = [seg.end for seg in robot.queue.history[-QUEUE_DEPTH - 1:] if seg.end > t]
-        sched.sleep_until(min(ends))
+        # the oldest unfinished segment is QUEUE_DEPTH from the end: wait until it has run
+        sched.sleep_until(robot.queue.history[-QUEUE_DEPTH].end)
         robot.check_can_move(registry.thread_key(), _power_on(s))
     return robot
 

@@ -191,7 +191,7 @@ class MotionQueue:
         """Number of segments not finished at ``t``."""
         count = 0
         for seg in reversed(self.history):  # in time order: stop at the first finished one
-            if seg.end <= t:
+            if seg.end <= t + CLOCK_RESOLUTION:  # the clock may stop up to 1 ns short of ``end``
                 break
             count += 1
         return count

@@ -40,7 +40,7 @@ from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, G
 from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
-from gplrt.motion.queue import DwellSegment, JointSegment, MotionQueue, PathSegment, Segment, profile_values
+from gplrt.motion.queue import CLOCK_RESOLUTION, DwellSegment, JointSegment, MotionQueue, PathSegment, Segment, profile_values
 from gplrt.motion.straight import Path, PathJoints
 
 QUEUE_DEPTH = 8
@@ -143,7 +143,7 @@ class RobotState:
         """Start time and state of the next segment (velocity/acceleration None = at rest;
         see the module docstring on blending)."""
         last = self.queue.last
-        if last is None or last.end <= now:
+        if last is None or last.end <= now + CLOCK_RESOLUTION:
             return now, self.queue.joints_at(now), None, None
         if can_blend and last.blend and last.cut is None and not isinstance(last, DwellSegment):
             t_b = max(now, self._blend_time(last))
