@@ -76,10 +76,13 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
     if sink.has_errors() and not keep_going:
         return None
     try:
-        return _lower(project, model, sink, progress)
+        output = _lower(project, model, sink, progress)
     except Exception as exc:  # a bug in gpl2py: a diagnostic, never a traceback
         sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
         return None
+    if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
+        return None
+    return output
 
 
 def _lower(project: Project, model, sink: DiagnosticSink,  # type: ignore[no-untyped-def]

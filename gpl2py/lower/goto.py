@@ -1,14 +1,21 @@
 """Where GoTo jumps go: the block structure of a procedure, and which blocks need a dispatch loop.
 
-Lowering keeps procedures structured; only a statement list that holds a label some GoTo targets
-becomes a dispatch loop (docs/design/lowering.md, "GoTo").  This module computes, per procedure:
+Lowering keeps procedures structured; only a statement list that a GoTo must enter somewhere other
+than at its start becomes a dispatch loop (docs/design/lowering.md, "GoTo").  This module computes,
+per procedure:
 
-* the parent of every block and the *role* of each block (``body``, ``try``, ``catch``,
-  ``finally``, ``loop``, ``branch``);
-* for every targeted label, its block and its segment number in that block;
-* for every GoTo whether it is legal (§10.7, §11.3): the label's block must enclose the GoTo without
-  crossing a Try/Catch/Finally boundary, or the GoTo sits in a Catch and the label in the Try body
-  of the same Try statement (the retry idiom).  Illegal jumps are reported (GPL3001/GPL3002).
+* the parent and *role* of every block (``body``, ``try``, ``catch``, ``finally``, ``loop``,
+  ``branch``) and the statement that owns it;
+* per block, the statements where a segment of its dispatch loop starts (targeted labels, and
+  statements a GoTo enters from outside -- see below);
+* per GoTo, a :class:`Jump`: the dispatch loop to restart, the segment to set in every block on
+  the way down to the label, and the *entry flags* of the statements it enters.
+
+A GoTo may target a label in the same or an enclosing block, and (§10.7 recommendation) a label
+inside an If, While, Do or Select body of such a block: the enclosing statements are entered
+through an entry flag that skips their condition.  It may jump from a Catch back into its own Try
+body (the retry idiom, §11.3).  Jumps into a For body (its limit and step were never evaluated) are
+GPL3001; jumps into or out of Try/Catch/Finally otherwise are GPL3002.
 """
 
 from __future__ import annotations
@@ -20,6 +27,8 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics.check import child_blocks
 from gpl2py.syntax import ast as A
 
+_ENTERABLE = (A.If, A.While, A.DoLoop, A.Select)
+
 
 @dataclass(eq=False)
 class BlockInfo:
@@ -27,14 +36,15 @@ class BlockInfo:
     parent: BlockInfo | None
     role: str  # body | try | catch | finally | loop | branch
     owner: A.Stmt | None  # the statement whose part this block is
-    labels: list[str] = field(default_factory=list)  # targeted labels, in segment order (lower-case)
+    targets: list[A.Stmt] = field(default_factory=list)  # segment starts, in source order
 
 
 @dataclass(eq=False)
 class Jump:
     goto: A.GoTo
-    target: BlockInfo
-    segment: int
+    restart: BlockInfo  # the dispatch loop the jump continues (its own block, or a Try body)
+    states: list[tuple[BlockInfo, A.Stmt]]  # segment to select in each block, outermost first
+    entries: list[A.Stmt]  # statements entered from outside (their entry flags are set)
     retry_try: A.Try | None = None  # set for a GoTo from a Catch into its Try
 
 
@@ -43,23 +53,29 @@ class GotoPlan:
     blocks: dict[A.Block, BlockInfo] = field(default_factory=dict)
     jumps: dict[A.GoTo, Jump] = field(default_factory=dict)
     retry_tries: set[A.Try] = field(default_factory=set)
+    # statement entered from outside -> the block of it that the jump enters
+    entered: dict[A.Stmt, A.Block] = field(default_factory=dict)
 
     def dispatch(self, block: A.Block) -> BlockInfo | None:
         info = self.blocks.get(block)
-        return info if info is not None and info.labels else None
+        return info if info is not None and info.targets else None
+
+    def segment(self, info: BlockInfo, stmt: A.Stmt) -> int:
+        """Segment number of ``stmt`` in ``info``'s dispatch loop (segment 0 precedes the first)."""
+        return info.targets.index(stmt) + 1
 
 
 def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
     plan = GotoPlan()
     gotos: list[tuple[A.GoTo, BlockInfo]] = []
-    label_block: dict[str, BlockInfo] = {}
+    label_at: dict[str, tuple[BlockInfo, A.Label]] = {}
 
     def walk(block: A.Block, parent: BlockInfo | None, role: str, owner: A.Stmt | None) -> None:
         info = BlockInfo(block, parent, role, owner)
         plan.blocks[block] = info
         for s in block.statements:
             if isinstance(s, A.Label):
-                label_block.setdefault(s.name.lower(), info)
+                label_at.setdefault(s.name.lower(), (info, s))
             elif isinstance(s, A.GoTo):
                 gotos.append((s, info))
             for child in child_blocks(s):
@@ -74,49 +90,74 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
     walk(body, None, "body", None)
     if not gotos:
         return plan
+    wanted: dict[BlockInfo, set[A.Stmt]] = {}
     for g, where in gotos:
-        target = label_block.get(g.label.lower())
-        if target is None:
+        found = label_at.get(g.label.lower())
+        if found is None:
             continue  # reported by the semantic pass
-        chain: list[BlockInfo] = []
-        b: BlockInfo | None = where
-        while b is not None:
-            chain.append(b)
-            b = b.parent
-        if target in chain:
-            crossed = chain[: chain.index(target)]
-            if any(c.role in ("try", "catch", "finally") for c in crossed):
+        target, label = found
+        up = _chain(where)
+        down = _chain(target)
+        common = next(b for b in up if b in down)
+        crossed = up[: up.index(common)]
+        retry: A.Try | None = None
+        if any(c.role in ("try", "catch", "finally") for c in crossed):
+            # only the retry idiom leaves a Try part: from a Catch into its own Try body
+            retry = _retry(crossed, target)
+            if retry is None:
                 sink.report(M.GOTO_ACROSS_TRY, g.span, name=g.label)
                 continue
-            plan.jumps[g] = Jump(g, target, 0)
-        else:
-            # retry: the GoTo is in a Catch (not crossing another Try part) and the label is at the
-            # top level of the same Try's body
-            retry: A.Try | None = None
-            for c in chain:
-                if c.role == "catch":
-                    t = c.owner
-                    if isinstance(t, A.Try) and target.block is t.body:
-                        retry = t
-                    break
-                if c.role in ("try", "finally"):
-                    break
-            if retry is None:
-                inside_try = target.role in ("try", "catch", "finally") or any(
-                    c.role in ("try", "catch", "finally") for c in chain)
-                sink.report(M.GOTO_ACROSS_TRY if inside_try else M.GOTO_INTO_BLOCK, g.span, name=g.label)
-                continue
-            plan.jumps[g] = Jump(g, target, 0, retry)
+            plan.jumps[g] = Jump(g, target, [(target, label)], [], retry)
             plan.retry_tries.add(retry)
-        key = g.label.lower()
-        if key not in target.labels:
-            target.labels.append(key)
-    # segment numbers follow source order of the labels within their block
-    for info in plan.blocks.values():
-        if info.labels:
-            order = [s.name.lower() for s in info.block.statements if isinstance(s, A.Label)]
-            info.labels = [name for name in order if name in info.labels]
-            info.labels = list(dict.fromkeys(info.labels))
-    for j in plan.jumps.values():
-        j.segment = j.target.labels.index(j.goto.label.lower()) + 1
+            wanted.setdefault(target, set()).add(label)
+            continue
+        # enter the blocks between the common block and the label's block
+        path = list(reversed(down[: down.index(common) + 1]))  # common ... target
+        states: list[tuple[BlockInfo, A.Stmt]] = []
+        entries: list[A.Stmt] = []
+        ok = True
+        for outer, inner in zip(path, path[1:]):
+            stmt = inner.owner
+            assert stmt is not None
+            if not isinstance(stmt, _ENTERABLE):
+                code = M.GOTO_ACROSS_TRY if isinstance(stmt, A.Try) else M.GOTO_INTO_BLOCK
+                sink.report(code, g.span, name=g.label)
+                ok = False
+                break
+            states.append((outer, stmt))
+            entries.append(stmt)
+            prev = plan.entered.get(stmt)
+            if prev is not None and prev is not inner.block:
+                sink.report(M.NOT_SUPPORTED, g.span, what="GoTo into two different branches of one statement")
+                ok = False
+                break
+            plan.entered[stmt] = inner.block
+        if not ok:
+            continue
+        states.append((target, label))
+        for info, stmt in states:
+            wanted.setdefault(info, set()).add(stmt)
+        plan.jumps[g] = Jump(g, common, states, entries)
+    for info, stmts in wanted.items():
+        info.targets = [s for s in info.block.statements if s in stmts]
     return plan
+
+
+def _chain(b: BlockInfo | None) -> list[BlockInfo]:
+    out: list[BlockInfo] = []
+    while b is not None:
+        out.append(b)
+        b = b.parent
+    return out
+
+
+def _retry(crossed: list[BlockInfo], target: BlockInfo) -> A.Try | None:
+    for c in crossed:
+        if c.role == "catch":
+            t = c.owner
+            if isinstance(t, A.Try) and target.block is t.body and target.parent is c.parent:
+                return t
+            return None
+        if c.role in ("try", "finally"):
+            return None
+    return None

@@ -63,6 +63,7 @@ class ProcLowerer(ExprLowerer):
         self.counter = 0
         self.plan: GotoPlan | None = None
         self.state_var: dict[A.Block, str] = {}
+        self.entry_flag: dict[A.Stmt, str] = {}
 
     def fresh(self, stem: str) -> str:
         self.counter += 1
@@ -139,6 +140,13 @@ class ProcLowerer(ExprLowerer):
         decl = p.decl
         assert decl is not None
         self.plan = plan_gotos(decl.body, self.sink)
+        for info in self.plan.blocks.values():
+            if info.targets:
+                self.state_var[info.block] = self.fresh("g")
+        for stmt in self.plan.entered:
+            flag = self.fresh("enter")
+            self.entry_flag[stmt] = flag
+            self.flags.append(flag)
         for v in p.locals.values():
             if v.storage == "static":
                 self.ctx.statics.append((self.static_name(v), default_code(v.type)))
@@ -227,19 +235,27 @@ class ProcLowerer(ExprLowerer):
             for s in block.statements:
                 self.stmt(s)
         else:
-            self.dispatch_block(block, dispatch.labels)
+            self.dispatch_block(block, dispatch.targets)
         self.w.comments(block.end_comments)
         self.w.ensure_body(start)
 
-    def dispatch_block(self, block: A.Block, labels: list[str]) -> None:
-        state = self.state_var.get(block)
-        if state is None:
-            state = self.fresh("g")
-            self.state_var[block] = state
+    def dispatch_block(self, block: A.Block, targets: list[A.Stmt]) -> None:
+        assert self.plan is not None
+        state = self.state_var[block]
+        info = self.plan.blocks[block]
+        owner = info.owner
+        if owner is not None and owner in self.entry_flag and self.plan.entered.get(owner) is block:
+            # entered by a GoTo from outside: keep the segment it chose, once
+            flag = self.entry_flag[owner]
+            self.w.line(f"if {flag}:")
+            self.w.line(f"    {flag} = False")
+            self.w.line("else:")
+            self.w.line(f"    {state} = 0")
+        elif not (isinstance(owner, A.Try) and owner in self.plan.retry_tries and block is owner.body):
             self.w.line(f"{state} = 0")
         segments: list[list[A.Stmt]] = [[]]
         for s in block.statements:
-            if isinstance(s, A.Label) and s.name.lower() in labels:
+            if any(s is x for x in targets):
                 segments.append([])
             segments[-1].append(s)
         self.w.line("while True:")
@@ -409,14 +425,24 @@ class ProcLowerer(ExprLowerer):
     def s_CallStmt(self, s: A.CallStmt) -> None:
         self.w.line(self.val(s.expr))
 
+    def entered_cond(self, s: A.Stmt, body: A.Block | None, c: Code) -> str:
+        """A branch condition of a statement a GoTo may enter: the entered branch is taken without
+        testing, the others are skipped while entering."""
+        flag = self.entry_flag.get(s)
+        if flag is None:
+            return c[0]
+        if self.plan is not None and self.plan.entered.get(s) is body:
+            return f"{flag} or {paren(c, P_OR + 1)}"
+        return f"not {flag} and {paren(c, P_AND + 1)}"
+
     def s_If(self, s: A.If) -> None:
-        self.w.line(f"if {self.cond(s.condition)[0]}:")
+        self.w.line(f"if {self.entered_cond(s, s.then_body, self.cond(s.condition))}:")
         self.branch(s.then_body)
         for ei in s.elseifs:
             self.w.gpl_line = ei.span.line
             self.w.comments(ei.leading_comments)
             start = self.w.mark()
-            self.w.line(f"elif {self.cond(ei.condition)[0]}:")
+            self.w.line(f"elif {self.entered_cond(s, ei.body, self.cond(ei.condition))}:")
             self.w.trailing(ei.trailing_comment, start)
             self.branch(ei.body)
         if s.else_body is not None:
@@ -445,7 +471,7 @@ class ProcLowerer(ExprLowerer):
         self.after(frame)
 
     def s_While(self, s: A.While) -> None:
-        self.w.line(f"while {self.cond(s.condition)[0]}:")
+        self.w.line(f"while {self.entered_cond(s, s.body, self.cond(s.condition))}:")
         self.loop_body(s.body, Frame("While"), [f"{self.rt(THREADS, 'checkpoint')}()"])
 
     def s_DoLoop(self, s: A.DoLoop) -> None:
@@ -456,8 +482,8 @@ class ProcLowerer(ExprLowerer):
             return
         c = self.cond(s.condition)
         if s.test_at_top:
-            test = f"not {paren(c, P_NOT)}" if s.until else c[0]
-            self.w.line(f"while {test}:")
+            test: Code = (f"not {paren(c, P_NOT)}", P_NOT) if s.until else c
+            self.w.line(f"while {self.entered_cond(s, s.body, test)}:")
             self.loop_body(s.body, Frame("Do"), [cp])
             return
         exit_test = c[0] if s.until else f"not {paren(c, P_NOT)}"
@@ -545,7 +571,11 @@ class ProcLowerer(ExprLowerer):
     def s_Select(self, s: A.Select) -> None:
         st = self.type_of(s.subject)
         sel = self.fresh("sel")
-        self.w.line(f"{sel} = {self.val(s.subject)}")
+        if s in self.entry_flag:  # entered by a GoTo: the match value is not evaluated
+            self.w.line(f"if not {self.entry_flag[s]}:")
+            self.w.line(f"    {sel} = {self.val(s.subject)}")
+        else:
+            self.w.line(f"{sel} = {self.val(s.subject)}")
         frame: Frame | None = None
         if _has_exit(s, "Select"):
             frame = Frame("Select")
@@ -564,7 +594,8 @@ class ProcLowerer(ExprLowerer):
                     self.w.line("else:")
             else:
                 tests = [paren(self.case_test(sel, st, item), P_OR + 1) for item in c.items]
-                self.w.line(f"{'if' if first else 'elif'} {' or '.join(tests)}:")
+                test = self.entered_cond(s, c.body, (" or ".join(tests), P_OR))
+                self.w.line(f"{'if' if first else 'elif'} {test}:")
             self.w.trailing(c.trailing_comment, mark)
             first = False
             self.w.indent()
@@ -597,9 +628,7 @@ class ProcLowerer(ExprLowerer):
         retry = s in self.plan.retry_tries
         needs_frame = retry or _has_exit(s, "Try")
         if retry:
-            state = self.fresh("g")
-            self.state_var[s.body] = state
-            self.w.line(f"{state} = 0")
+            self.w.line(f"{self.state_var[s.body]} = 0")
         if not needs_frame:
             self.w.line("try:")
             self.w.indent()
@@ -671,13 +700,13 @@ class ProcLowerer(ExprLowerer):
         if j is None:
             self.w.line(f"pass  # GoTo {s.label}: not lowered (reported)")
             return
-        block = j.target.block
-        state = self.state_var[block]
+        pre = [f"{self.state_var[b.block]} = {self.plan.segment(b, st)}" for b, st in j.states]
+        pre += [f"{self.entry_flag[st]} = True" for st in j.entries]
         if j.retry_try is not None:
             frame = next(f for f in reversed(self.frames) if f.kind == "Try")
         else:
-            frame = next(f for f in reversed(self.frames) if f.kind == "dispatch" and f.block is block)
-        self.jump(frame, "continue", [f"{state} = {j.segment}"])
+            frame = next(f for f in reversed(self.frames) if f.kind == "dispatch" and f.block is j.restart.block)
+        self.jump(frame, "continue", pre)
 
     def s_Exit(self, s: A.Exit) -> None:
         p = self.proc

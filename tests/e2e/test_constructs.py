@@ -472,6 +472,37 @@ skip:
     ),
 }
 
+CASES["goto_into_if_while_and_select_bodies"] = (
+    "",
+    """        Dim n As Integer
+        n = 6
+        GoTo mid
+        While n > 0
+            Console.WriteLine("top " & n)
+mid:
+            Console.WriteLine("mid " & n)
+            n = n - 4
+        End While
+        GoTo inside
+        If n > 100 Then
+            Console.WriteLine("not reached")
+        ElseIf n > 50 Then
+inside:
+            Console.WriteLine("inside " & n)
+        Else
+            Console.WriteLine("else")
+        End If
+        If n < 0 Then GoTo case2
+        Select Case n
+            Case 1
+                Console.WriteLine("one")
+            Case 2
+case2:
+                Console.WriteLine("two " & n)
+        End Select""",
+    "mid 6\ntop 2\nmid 2\ninside -2\ntwo -2\n",
+)
+
 CASES["loops_and_exits"] = (
     "",
     CASES["loops_and_exits"][1].replace(

@@ -176,3 +176,28 @@ End Module
 """
     _, sink = analyze_text(tmp_path, text)
     assert [d.header() for d in sink] == []
+
+
+def test_goto_into_for_body_or_out_of_try_is_reported(tmp_path: Path) -> None:
+    from gpl2py.transpile import transpile
+
+    f = tmp_path / "Main.gpl"
+    f.write_text("""Module Main
+    Public Sub Main()
+        Dim i As Integer
+        GoTo inside
+        For i = 1 To 3
+inside:
+            Console.WriteLine(i)
+        Next
+        Try
+            GoTo after
+        Catch
+        End Try
+after:
+    End Sub
+End Module
+""".replace("        Catch\n", "        Finally\n"))
+    sink = DiagnosticSink()
+    assert transpile(str(f), sink) is None
+    assert [(d.code, d.span.line) for d in sink.sorted()] == [("GPL3001", 4), ("GPL3002", 10)]
