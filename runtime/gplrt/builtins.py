@@ -16,13 +16,14 @@ Each table maps the GPL spelling to the Python name exported by this module:
 
 The language tables come from ``gplrt.lang.catalogue`` (one place per package); classes of the other
 packages are listed here by hand because each package exports exactly one Python class per GPL
-class.  Motion (``Move``, ``Robot``) joins when that package lands.
+class.  Importing ``gplrt.motion.robot_class`` also installs the robot kinematics behind
+``Location.Here`` and ``KineSol``.
 """
 
 from __future__ import annotations
 
 from gplrt.controller.services import Controller
-from gplrt.controller.signals import Signal
+from gplrt.controller.signals import Latch, Signal
 from gplrt.geometry import Location, RefFrame
 from gplrt.io import (
     File,
@@ -60,7 +61,9 @@ from gplrt.lang.strings import (
     ToBitString,
     UCase,
 )
+from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
+from gplrt.motion.robot_class import Robot
 from gplrt.threads import Thread
 
 CLASSES: dict[str, str] = {
@@ -69,6 +72,7 @@ CLASSES: dict[str, str] = {
     "RefFrame": "RefFrame",
     "Profile": "Profile",
     "Thread": "Thread",
+    "Latch": "Latch",
     "StreamReader": "StreamReader",
     "StreamWriter": "StreamWriter",
     "XmlDoc": "XmlDoc",
@@ -86,7 +90,7 @@ CLASSES: dict[str, str] = {
 }
 
 GLOBAL_CLASSES: dict[str, str] = {name: name for name in _lang.GLOBAL_CLASSES}
-GLOBAL_CLASSES.update({"Controller": "Controller", "Signal": "Signal"})
+GLOBAL_CLASSES.update({"Controller": "Controller", "Signal": "Signal", "Move": "Move", "Robot": "Robot"})
 
 FUNCTIONS: dict[str, str] = {name: name for name in _lang.FUNCTIONS}
 
