@@ -500,6 +500,13 @@ EXIT_TRY_IN_FINALLY = _error(
     "'Exit Try' is not allowed in a Finally block",
     "§11.4.",
 )
+GOTO_OUT_OF_TRY = _warning(
+    "GPL3006",
+    "GoTo {name} leaves a Try or Catch block: a controller rejects this; gpl2py leaves the block "
+    "(running its Finally) and continues at the label",
+    "The manual marks branches out of try/catch statements as illegal (§11.3); accepted so that "
+    "code written against a lenient compiler still runs.",
+)
 OUTPUT_ERROR = _error(
     "GPL3004",
     "cannot write {path}: {detail}",

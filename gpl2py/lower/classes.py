@@ -149,7 +149,8 @@ def register_lines(ctx: ModuleContext, cls: ClassSym) -> list[str]:
     ref = ctx.class_ref(cls)
     for m in cls.members.values():
         if isinstance(m, ProcSym) and m.shared:
-            out.append(f"{reg}({py_string(qual)}, {py_string(m.name)}, {ref}.{py_ident(m.name)}, "
+            entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
+            out.append(f"{reg}({py_string(qual)}, {py_string(m.name)}, {entry}({ref}.{py_ident(m.name)}), "
                        f"public={m.public and cls.public})")
         elif isinstance(m, ClassSym):
             out.extend(register_lines(ctx, m))

@@ -15,7 +15,9 @@ A GoTo may target a label in the same or an enclosing block, and (§10.7 recomme
 inside an If, While, Do or Select body of such a block: the enclosing statements are entered
 through an entry flag that skips their condition.  It may jump from a Catch back into its own Try
 body (the retry idiom, §11.3).  Jumps into a For body (its limit and step were never evaluated) are
-GPL3001; jumps into or out of Try/Catch/Finally otherwise are GPL3002.
+GPL3001; jumps into a Try/Catch/Finally or out of a Finally are GPL3002; a jump out of a Try or
+Catch block (illegal on a controller) is accepted with warning GPL3006 -- Python leaves the
+``try`` through its ``finally``.
 """
 
 from __future__ import annotations
@@ -102,15 +104,18 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
         crossed = up[: up.index(common)]
         retry: A.Try | None = None
         if any(c.role in ("try", "catch", "finally") for c in crossed):
-            # only the retry idiom leaves a Try part: from a Catch into its own Try body
+            # the retry idiom: from a Catch into its own Try body
             retry = _retry(crossed, target)
-            if retry is None:
+            if retry is not None:
+                plan.jumps[g] = Jump(g, target, [(target, label)], [], retry)
+                plan.retry_tries.add(retry)
+                wanted.setdefault(target, set()).add(label)
+                continue
+            if any(c.role == "finally" for c in crossed):
                 sink.report(M.GOTO_ACROSS_TRY, g.span, name=g.label)
                 continue
-            plan.jumps[g] = Jump(g, target, [(target, label)], [], retry)
-            plan.retry_tries.add(retry)
-            wanted.setdefault(target, set()).add(label)
-            continue
+            # out of a Try or Catch block: illegal on a controller, accepted with a warning
+            sink.report(M.GOTO_OUT_OF_TRY, g.span, name=g.label)
         # enter the blocks between the common block and the label's block
         path = list(reversed(down[: down.index(common) + 1]))  # common ... target
         states: list[tuple[BlockInfo, A.Stmt]] = []

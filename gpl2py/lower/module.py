@@ -142,7 +142,9 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     reg_lines: list[str] = []
     for p in procs:
         reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
-        reg_lines.append(f"{reg}({py_string(mod.name)}, {py_string(p.name)}, {py_ident(p.name)}, public={p.public})")
+        entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
+        reg_lines.append(
+            f"{reg}({py_string(mod.name)}, {py_string(p.name)}, {entry}({py_ident(p.name)}), public={p.public})")
     for c in classes:
         reg_lines.extend(register_lines(ctx, c))
     if ctx.statics:

@@ -26,6 +26,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "module's Init) once per simulation session, so a notebook can call any Public procedure after it.",
         '"""',
         "",
+        "from gplrt.lang.exceptions import gpl_entry",
         "from gplrt.lang.sourcemap import register_package",
         "from gplrt.sim import Simulation, current",
         "",
@@ -77,7 +78,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     lines += [
         "",
         f"    _start.__gpl_name__ = {py_string(thread)}  # type: ignore[attr-defined]",
-        f"    sim.run_main(_start, name={py_string(thread)})",
+        f"    sim.run_main(gpl_entry(_start), name={py_string(thread)})",
         "    return 1 if sim.controller.error_log else 0",
         "",
         "",

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from gplrun import module_src, run_gpl
+from gpltest import module_src, run_gpl
 
 
 def run_main(tmp_path: Path, body: str, decls: str = "") -> str:
@@ -501,6 +501,26 @@ case2:
                 Console.WriteLine("two " & n)
         End Select""",
     "mid 6\ntop 2\nmid 2\ninside -2\ntwo -2\n",
+)
+
+CASES["goto_out_of_catch_runs_finally"] = (
+    "",
+    """        Dim ex As Exception
+        Dim i As Integer
+        For i = 1 To 3
+            Try
+                If i = 2 Then Throw New Exception
+                Console.WriteLine("ok " & i)
+            Catch ex
+                Console.WriteLine("failed " & i)
+                GoTo done
+            Finally
+                Console.WriteLine("finally " & i)
+            End Try
+        Next
+done:
+        Console.WriteLine("done " & i)""",
+    "ok 1\nfinally 1\nfailed 2\nfinally 2\ndone 2\n",
 )
 
 CASES["loops_and_exits"] = (

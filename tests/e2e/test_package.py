@@ -15,7 +15,7 @@ from pyflakes.reporter import Reporter
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.transpile import transpile
-from gplrun import module_src, run_gpl, write_project
+from gpltest import module_src, run_gpl, write_project
 from gplrt.lang.sourcemap import format_gpl_traceback
 from gplrt.sim import Simulation
 
@@ -122,6 +122,29 @@ End Module
     assert result.output == "before\n"
     assert result.status == 1
     assert "-709" in result.log and "*Division by 0*" in result.log and "(at Main.gpl:3)" in result.log
+
+
+def test_unhandled_python_fault_reports_controller_code_and_gpl_line(tmp_path: Path) -> None:
+    src = """Module Main
+    Class K
+        Public v As Integer
+    End Class
+    Public Sub Worker()
+        Dim k As K
+        k.v = 1
+    End Sub
+    Public Sub Main()
+        Dim t As New Thread("Worker")
+        t.Start()
+        t.Join(-1)
+        Console.WriteLine("main goes on")
+    End Sub
+End Module
+"""
+    result = run_gpl(tmp_path, src)
+    assert result.output == "main goes on\n"
+    assert "-757" in result.log and "*Object not instantiated*" in result.log
+    assert "(at Main.gpl:7)" in result.log
 
 
 def test_traceback_names_gpl_file_and_line_of_each_frame(tmp_path: Path) -> None:

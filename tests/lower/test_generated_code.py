@@ -175,5 +175,5 @@ def test_source_map_points_at_gpl_lines(tmp_path: Path) -> None:
 
 def test_procedures_are_registered_for_name_lookup(tmp_path: Path) -> None:
     text = gen(tmp_path, "", decls="    Private Sub Helper()\n    End Sub\n", name="Station")
-    assert 'register_procedure("Station", "Helper", Helper, public=False)' in text
-    assert 'register_procedure("Station", "Main", Main, public=True)' in text
+    assert 'register_procedure("Station", "Helper", gpl_entry(Helper), public=False)' in text
+    assert 'register_procedure("Station", "Main", gpl_entry(Main), public=True)' in text

@@ -178,7 +178,7 @@ End Module
     assert [d.header() for d in sink] == []
 
 
-def test_goto_into_for_body_or_out_of_try_is_reported(tmp_path: Path) -> None:
+def test_goto_into_for_body_or_out_of_finally_is_reported(tmp_path: Path) -> None:
     from gpl2py.transpile import transpile
 
     f = tmp_path / "Main.gpl"
@@ -192,12 +192,14 @@ inside:
         Next
         Try
             GoTo after
-        Catch
+        Finally
+            GoTo after
         End Try
 after:
     End Sub
 End Module
-""".replace("        Catch\n", "        Finally\n"))
+""")
     sink = DiagnosticSink()
     assert transpile(str(f), sink) is None
-    assert [(d.code, d.span.line) for d in sink.sorted()] == [("GPL3001", 4), ("GPL3002", 10)]
+    got = [(d.code, d.severity.value, d.span.line) for d in sink.sorted()]
+    assert got == [("GPL3001", "error", 4), ("GPL3006", "warning", 10), ("GPL3002", "error", 12)]

@@ -34,6 +34,9 @@ Python exception is kept as ``__cause__`` of the GplException for debugging.
 
 from __future__ import annotations
 
+import functools
+from collections.abc import Callable
+from typing import Any
 
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
@@ -51,7 +54,7 @@ from gplrt.lang.errors import (
 )
 
 
-__all__ = ["as_gpl_exception", "gpl_code_for"]
+__all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry"]
 
 
 def gpl_code_for(exc: BaseException) -> int:
@@ -100,3 +103,29 @@ def as_gpl_exception(exc: BaseException) -> GplException:
     gex = GplException(gpl_code_for(exc), detail=f"{type(exc).__name__}: {exc}")
     gex.__cause__ = exc
     return gex
+
+
+def gpl_entry(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Wrap a GPL procedure that is started by name (a thread's start procedure, a delegate made
+    from a String, ProjectStart) so that a Python fault escaping plain generated code -- an
+    IndexError, an AttributeError on Nothing -- leaves it as the GplException a Catch would have
+    received, with the controller's code and the GPL file:line where it happened.  The thread
+    machinery then reports "-757 *Object not instantiated* (at Main.gpl:12)" instead of an
+    internal Python error.  Direct calls between generated procedures do not go through this.
+    """
+
+    @functools.wraps(func)
+    def entry(*args: Any) -> Any:
+        try:
+            return func(*args)
+        except GplException:
+            raise
+        except Exception as exc:
+            gex = as_gpl_exception(exc)
+            from gplrt.lang.sourcemap import locate
+
+            gex.gpl_location = locate(exc)
+            raise gex from exc
+
+    entry.__gpl_procedure__ = func  # type: ignore[attr-defined]
+    return entry
