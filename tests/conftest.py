@@ -7,9 +7,14 @@ test so that no test depends on which tests ran before it.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
+
+# Shared test helpers (tests/gpltest.py) import as a top-level module: test folders are not packages.
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from gplrt.io import flashroot
 from gplrt.lang.console import get_console_sink, set_console_sink

@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from conftest import PROJECTS
-from gplrun import Transpiled, copy_project, free_port, transpile
+from gpltest import Transpiled, copy_project, free_port, transpile
 from gplrt.sim import Simulation
 
 TIMEOUT = 10.0  # seconds, for every client socket operation

@@ -7,7 +7,7 @@ import re
 import pytest
 
 from conftest import PROJECTS
-from gplrun import Transpiled, transpile
+from gpltest import Transpiled, transpile
 from gplrt.sim import Simulation
 
 ITEMS = 40

@@ -15,7 +15,7 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from gplrun import SAMPLES, Transpiled, copy_project, free_port, transpile
+from gpltest import SAMPLES, Transpiled, copy_project, free_port, transpile
 from gplrt.sim import Simulation
 
 TIMEOUT = 15.0

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from gplrun import SAMPLES, Transpiled, transpile
+from gpltest import SAMPLES, Transpiled, transpile
 from gplrt.controller.signals import IoMap
 from gplrt.sim import Simulation
 

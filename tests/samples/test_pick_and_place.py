@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from gplrun import SAMPLES, Transpiled, transpile
+from gpltest import SAMPLES, Transpiled, transpile
 from gplrt.controller.signals import IoMap
 from gplrt.sim import Simulation
 

@@ -1,0 +1,144 @@
+"""Shared helpers for tests that transpile GPL and run the result on the simulated controller.
+
+Two ways in, for two kinds of test:
+
+* ``run_gpl(tmp_path, source)`` writes GPL text into a fresh project, transpiles it through the
+  library API and runs ``main(sim)`` on a virtual-clock simulation with captured console: what the
+  construct-level end-to-end tests need.
+* ``transpile(project, out_root)`` runs the ``gpl2py PROJECT -o OUT`` command, as a user porting a
+  cell does, and imports the package it writes under a unique name: what the sample and I/O tests
+  need (it also checks the command's contract: exit status 0, no error diagnostics).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import itertools
+import shutil
+import socket
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from types import ModuleType
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.transpile import transpile as transpile_project
+from gpl2py.transpile import write_package
+from gplrt.sim import Simulation
+
+REPO = Path(__file__).resolve().parents[1]
+SAMPLES = REPO / "samples"
+_counter = itertools.count()
+
+
+class TranspileFailed(AssertionError):
+    """gpl2py rejected the project: carries its diagnostics, which say which construct is missing."""
+
+@dataclass
+class RunResult:
+    output: str
+    log: str
+    status: int
+    files: dict[str, str]
+    package: ModuleType
+    sim: Simulation
+
+
+def write_project(root: Path, sources: dict[str, str], start: str = "Main", name: str | None = None) -> str:
+    name = name or f"E2e{next(_counter)}"
+    proj = root / name
+    proj.mkdir(parents=True)
+    lines = ["ProjectBegin", f'ProjectName="{name}"', f'ProjectStart="{start}"']
+    for fname, text in sources.items():
+        (proj / fname).write_text(text)
+        lines.append(f'ProjectSource="{fname}"')
+    lines.append("ProjectEnd")
+    (proj / "Project.gpr").write_text("\n".join(lines) + "\n")
+    return str(proj)
+
+
+def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main") -> tuple[str, dict[str, str], DiagnosticSink]:
+    if isinstance(sources, str):
+        sources = {"Main.gpl": sources}
+    proj = write_project(root, sources, start)
+    sink = DiagnosticSink()
+    out = transpile_project(proj, sink)
+    if out is None:
+        raise TranspileFailed("\n".join(f"{d.header()}" for d in sink.sorted()))
+    out_dir = root / "out"
+    write_package(out, out_dir, sink)
+    return out.package, out.files, sink
+
+
+def run_gpl(root: Path, sources: dict[str, str] | str, start: str = "Main") -> RunResult:
+    package, files, _ = transpile_to(root, sources, start)
+    out_dir = str(root / "out")
+    sys.path.insert(0, out_dir)
+    try:
+        pkg = importlib.import_module(package)
+        sim = Simulation(capture=True, project=package)
+        status = pkg.main(sim)
+    finally:
+        sys.path.remove(out_dir)
+    return RunResult(sim.console.output, sim.console.log_text, status, files, pkg, sim)
+
+
+def module_src(body: str, name: str = "Main") -> str:
+    """Wrap procedure text in ``Module <name>``."""
+    return f"Module {name}\n{body}\nEnd Module\n"
+
+
+@dataclass
+class Transpiled:
+    """A transpiled project: its generated package (imported) and where it was written."""
+
+    package: ModuleType
+    folder: Path
+    diagnostics: str
+
+
+def transpile(project: Path, out_root: Path) -> Transpiled:
+    """Run ``gpl2py project -o out_root``; import and return the generated package."""
+    out_root.mkdir(parents=True, exist_ok=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "gpl2py", str(project), "-o", str(out_root)],
+        capture_output=True, text=True, timeout=120, cwd=REPO,
+    )
+    if proc.returncode != 0:
+        raise TranspileFailed(f"gpl2py exit status {proc.returncode}:\n{proc.stderr}{proc.stdout}")
+    packages = [p.parent for p in out_root.glob("*/__init__.py")]
+    if len(packages) != 1:
+        raise TranspileFailed(f"expected one package in {out_root}, found {packages}")
+    folder = packages[0]
+    name = f"_gpl_{folder.name}_{next(_counter)}"
+    spec = importlib.util.spec_from_file_location(
+        name, folder / "__init__.py", submodule_search_locations=[str(folder)])
+    assert spec is not None and spec.loader is not None
+    package = importlib.util.module_from_spec(spec)
+    sys.modules[name] = package
+    spec.loader.exec_module(package)
+    return Transpiled(package, folder, proc.stderr)
+
+
+def copy_project(project: Path, dest: Path, replace: dict[str, str] | None = None) -> Path:
+    """Copy a project folder, replacing text in its sources (e.g. the server's port number).
+
+    Each replacement must match exactly once, so a test never silently runs the unmodified text.
+    """
+    shutil.copytree(project, dest)
+    for old, new in (replace or {}).items():
+        hits = [f for f in dest.iterdir() if f.is_file() and old in f.read_text(encoding="latin-1")]
+        if len(hits) != 1 or hits[0].read_text(encoding="latin-1").count(old) != 1:
+            raise AssertionError(f"{old!r} must occur exactly once in {project}, found in {hits}")
+        text = hits[0].read_text(encoding="latin-1")
+        hits[0].write_text(text.replace(old, new), encoding="latin-1")
+    return dest
+
+
+def free_port() -> int:
+    """A TCP port on loopback that nothing listens on right now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
