@@ -119,7 +119,7 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
                 if acc is not None:
                     w.blank()
                     w.extend(_method(ctx, cls, acc, sink, []), extra_indent=w.level)
-            if sym.getter is None and sym.setter is not None:
+            if sym.getter is None and sym.setter is not None and not sym.shared:
                 name = py_ident(sym.name)
                 w.line(f"{name} = property(fset=_set_{name})  # write-only property")
     w.comments(decl.end_comments)

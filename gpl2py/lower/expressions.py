@@ -449,7 +449,7 @@ class ExprLowerer:
 
     def prop_ref(self, prop: PropSym, receiver: A.Expr | None) -> str:
         if prop.shared:
-            return self.ctx.class_ref(prop.owner) + "." + py_ident(prop.name)
+            return f"{self.ctx.class_ref(prop.owner)}._get_{py_ident(prop.name)}()"
         recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
         return f"{recv}.{py_ident(prop.name)}"
 

@@ -119,7 +119,10 @@ class ProcLowerer(ExprLowerer):
             return
         if k == "prop":
             prop: PropSym = i.sym  # type: ignore[assignment]
-            self.w.line(f"{self.prop_ref(prop, i.receiver)} = {value}")
+            if prop.shared:
+                self.w.line(f"{self.ctx.class_ref(prop.owner)}._set_{py_ident(prop.name)}({value})")
+            else:
+                self.w.line(f"{self.prop_ref(prop, i.receiver)} = {value}")
             return
         if k == "bmember":
             m: Member = i.sym  # type: ignore[assignment]
@@ -154,7 +157,8 @@ class ProcLowerer(ExprLowerer):
         body.level = 1
         start = body.mark()
         self.block(decl.body)
-        if p.kind == "Function":
+        last = decl.body.statements[-1] if decl.body.statements else None
+        if p.kind == "Function" and not (isinstance(last, A.Return) and last.value is not None):
             body.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
         out = Writer()
         out.gpl_line = decl.span.line
@@ -180,7 +184,12 @@ class ProcLowerer(ExprLowerer):
         name = py_ident(p.name)
         if p.kind == "New":
             name = "__init__" if len(p.owner.ctors) <= 1 else f"_new_{p.overload_index}"  # type: ignore[union-attr]
-        if p.kind == "Get":
+        if p.kind in ("Get", "Set") and p.prop is not None and p.prop.shared:
+            # a Shared property: static accessors, reached as Cls._get_P() / Cls._set_P(v)
+            out.line("@staticmethod")
+            name = f"_{p.kind.lower()}_{name}"
+            params = params[1:] if params and params[0] == "self" else params
+        elif p.kind == "Get":
             out.line("@property")
         elif p.kind == "Set" and p.prop is not None and p.prop.getter is None:
             name = f"_set_{name}"  # write-only property: property(fset=...) follows the def

@@ -523,6 +523,28 @@ done:
     "ok 1\nfinally 1\nfailed 2\nfinally 2\ndone 2\n",
 )
 
+CASES["shared_property_and_shared_method"] = (
+    """    Class Config
+        Private Shared speed_in As Integer = 50
+        Public Shared Property Speed As Integer
+            Get
+                Return speed_in
+            End Get
+            Set(ByVal value As Integer)
+                If value > 100 Then value = 100
+                speed_in = value
+            End Set
+        End Property
+        Public Shared Function Twice() As Integer
+            Return Speed * 2
+        End Function
+    End Class""",
+    """        Console.WriteLine(Config.Speed)
+        Config.Speed = 250
+        Console.WriteLine(Config.Speed & " " & Config.Twice())""",
+    "50\n100 200\n",
+)
+
 CASES["loops_and_exits"] = (
     "",
     CASES["loops_and_exits"][1].replace(
