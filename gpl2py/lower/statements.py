@@ -638,6 +638,9 @@ class ProcLowerer(ExprLowerer):
         needs_frame = retry or _has_exit(s, "Try")
         if retry:
             self.w.line(f"{self.state_var[s.body]} = 0")
+        if s.catch is None and s.finally_ is None:  # the parser reported it: keep the body
+            self.block(s.body)
+            return
         if not needs_frame:
             self.w.line("try:")
             self.w.indent()

@@ -227,6 +227,8 @@ class Checker:
                 # declared here so that its uses do not cascade into "not declared" errors
                 storage = "static" if s.keyword == "Static" else "local"
                 for d in s.declarators:
+                    if not d.name:
+                        continue
                     typ = self.r.resolve_type(d.type, ctx.module, ctx.cls)
                     if d.bounds is not None and typ is not t.ERROR:
                         typ = t.ArrayType(typ, len(d.bounds))

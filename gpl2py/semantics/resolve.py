@@ -197,6 +197,8 @@ class Collector:
         top: ModuleSym | None = None
         for order, unit in enumerate(units):
             for member in unit.members:
+                if isinstance(member, (A.ModuleDecl, A.ClassDecl)) and not member.name:
+                    continue
                 if isinstance(member, A.ModuleDecl):
                     key = member.name.lower()
                     if key in project.modules:
@@ -233,10 +235,14 @@ class Collector:
         table = cls.members if cls is not None else mod.members
         scope = "class" if cls is not None else "module"
         for m in members:
+            if not getattr(m, "name", "x"):
+                continue  # a declaration the parser could not read (already reported)
             if isinstance(m, A.VarDecl):
                 public = _access(m.modifiers)
                 shared = cls is None or _shared(m.modifiers)
                 for d in m.declarators:
+                    if not d.name:
+                        continue
                     v = VarSym(d.name, d.span, t.ERROR, "field" if cls is not None else "module",
                                owner=cls or mod, public=public, shared=shared, const=m.is_const, decl=d)
                     if self._declare(table, d.name, v, d.span, scope):
