@@ -213,6 +213,8 @@ class RunReport:
     errors: list[dict[str, Any]] = field(default_factory=list)
     stalled: list[str] = field(default_factory=list)
     interrupted: bool = False
+    stopped: int = 0  # threads aborted after Ctrl-C
+    still_alive: list[str] = field(default_factory=list)  # of those, still running after STOP_GRACE
     plot: str | None = None
 
     def to_json(self) -> dict[str, Any]:
@@ -222,6 +224,7 @@ class RunReport:
             "errors": self.errors,
             "stalled": self.stalled,
             "interrupted": self.interrupted,
+            "stopped_threads": self.stopped,
             "plot": self.plot,
         }
 
@@ -255,16 +258,20 @@ def _unhandled_errors(sim: Any) -> list[dict[str, Any]]:
     return found
 
 
-def _stop_all(sim: Any) -> None:
-    """Abort every live GPL thread and give them ``STOP_GRACE`` seconds to end."""
+def _stop_all(sim: Any) -> tuple[int, list[str]]:
+    """Abort every live GPL thread and give them ``STOP_GRACE`` seconds to end.
+
+    Returns how many threads were running and the names of those still alive afterwards.
+    """
     sched = sim.scheduler
-    for ctx in list(sched.live):
-        if ctx.phase != "done":
-            sched.request_abort(ctx)
+    running = [ctx for ctx in list(sched.live) if ctx.phase != "done"]
+    for ctx in running:
+        sched.request_abort(ctx)
     try:
         sched.wait_until_quiet(None, STOP_GRACE)
     except KeyboardInterrupt:  # a second Ctrl-C: stop waiting
         pass
+    return len(running), [ctx.name for ctx in running if ctx.phase != "done"]
 
 
 def _load_setup(path: str) -> Any:
@@ -307,12 +314,14 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
     """Run the package's ``main(sim)``; Ctrl-C stops every GPL thread (status 130)."""
     started = time.perf_counter()
     interrupted = False
+    stopped: tuple[int, list[str]] = (0, [])
     try:
         package.main(sim)
     except KeyboardInterrupt:
         interrupted = True
-        _stop_all(sim)
+        stopped = _stop_all(sim)
     report = RunReport(EXIT_OK, sim.now(), time.perf_counter() - started, interrupted=interrupted)
+    report.stopped, report.still_alive = stopped
     report.errors = _unhandled_errors(sim)
     if not interrupted:
         report.stalled = [c.name for c in list(sim.scheduler.live) if c.phase != "done"]
@@ -372,6 +381,9 @@ def run_command(args: argparse.Namespace) -> Any:
     package = import_built(built)
     report = execute(package, sim, plot=args.plot)
     out.exit_status = report.status
+    for e in report.errors:
+        if e["file"]:
+            e["file"] = _shown_path(built.project, e["file"])
     if args.json:
         doc = {
             "diagnostics": [d.to_json() for d in out.sink.sorted()],
@@ -384,10 +396,21 @@ def run_command(args: argparse.Namespace) -> Any:
         where = f"{e['file']}:{e['line']}: " if e["file"] else ""
         stderr.write(f"{where}error {e['code']} in thread {e['thread']}: {e['message']}\n")
     if report.interrupted:
-        stderr.write("gpl2py: interrupted; every GPL thread was stopped\n")
+        text = f"gpl2py: interrupted; stopped {_plural(report.stopped, 'GPL thread')}"
+        if report.still_alive:
+            text += f" ({', '.join(report.still_alive)} did not stop within {STOP_GRACE:g} s)"
+        stderr.write(text + "\n")
     elif not args.quiet:
         stderr.write(run_summary(report, args.clock) + "\n")
     return out
+
+
+def _shown_path(project: Project, name: str) -> str:
+    """The source path as diagnostics show it (the source map keeps only the file name)."""
+    for src in project.sources:
+        if Path(src.path).name.lower() == name.lower():
+            return src.path
+    return name
 
 
 def transpile_summary(files: int, lines: int, sink: DiagnosticSink, seconds: float, cached: bool) -> str:
