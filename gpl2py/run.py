@@ -287,26 +287,12 @@ def _load_setup(path: str) -> Any:
 
 
 def save_plot(sim: Any, path: str | Path, robot: int = 1) -> bool:
-    """Save robot ``robot``'s joints against time and its tool path to ``path``; False if it never moved."""
+    """Save robot ``robot``'s joints and tool path to ``path``; False when the robot never existed."""
     if robot not in sim.robots:
         return False
-    import matplotlib
+    from gplrt.notebook import save_motion_plot
 
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    from gplrt.motion.plot import plot_joints, plot_path_xy
-
-    tr = sim.trace(robot)
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.5))
-    plot_joints(tr, ax=left)
-    plot_path_xy(tr, ax=right)
-    left.set_title(f"robot {robot}: joints")
-    right.set_title(f"robot {robot}: tool path (from above)")
-    fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
+    save_motion_plot(sim, path, robot)
     return True
 
 

@@ -1,0 +1,328 @@
+"""The notebook API: one object for "translate my GPL project, run bits of it, look at the robot".
+
+::
+
+    from gplrt.notebook import Cell
+
+    cell = Cell.load("samples/pick_and_place", robot="PF400SX", clock="virtual")
+    cell.io.when_output(2, True).set_input(10001, True, after=0.2)   # a scripted conveyor
+    cell.init()                                   # module variables and each module's Init
+    cell.call("Gripper.Open")                     # any Public procedure, with arguments
+    cell.set_input(10002, True)                   # drive an input
+    cell.output(1)                                # read an output -> bool
+    cell.run_main()                               # or run ProjectStart, as `gpl2py run` does
+    cell.where()                                  # robot 1 now: joints, X Y Z yaw pitch roll
+    cell.plot_joints(); cell.plot_path()          # matplotlib figures of the motion so far
+    cell.save_plot("cell.png")
+
+Design: :class:`Cell` is thin.  Everything it does is one call into ``gplrt.sim.Simulation``
+(``cell.sim``), the session's ``IoMap`` (``cell.io``), the motion trace and plot helpers, or the
+generated package (``cell.package``) — reach for those directly for anything not covered here.
+Loading goes through the same translation cache as ``gpl2py run`` (``gpl2py.run.build``), so
+re-running a notebook cell does not re-translate unchanged sources; the package is imported under
+a private name, so loading two projects (or one twice) never mixes their module state.
+
+Console output is kept (``cell.console``) and, with ``echo=True`` (default), also printed as it
+happens, so a notebook shows it under the cell that produced it.
+
+Procedures are looked up by their GPL names, case-insensitively, among *this* project's procedures
+(``"Module.Proc"``, or ``"Proc"`` when exactly one Public procedure has that name).  Only Public
+procedures can be called, as from another GPL module (§12): a Private one raises -729 with a hint.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from types import ModuleType
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from gplrt.lang.errors import UNDEFINED_SYMBOL, GplException
+from gplrt.sim import ConsoleSink, Simulation
+
+__all__ = ["Cell", "RobotPose", "ProjectError", "save_motion_plot"]
+
+PLOT_SAMPLES = 3000  # samples per plotted trace at most (see save_motion_plot)
+
+
+class ProjectError(Exception):
+    """The project could not be translated; ``str()`` lists the diagnostics (file:line:col ...)."""
+
+
+class _EchoConsole(ConsoleSink):
+    """Captures like ``ConsoleSink(capture=True)`` and also prints program output as it comes."""
+
+    def __init__(self, echo: bool) -> None:
+        super().__init__(capture=True)
+        self.echo = echo
+
+    def write(self, text: str) -> None:
+        super().write(text)
+        if self.echo:
+            sys.stdout.write(text)
+            sys.stdout.flush()
+
+
+@dataclass(frozen=True)
+class RobotPose:
+    """Where a robot is at controller time ``time``: joints (mm/deg) and the tool pose.
+
+    ``cartesian`` is GPL's (X, Y, Z, Yaw, Pitch, Roll) in mm and degrees, Base and Tool included
+    (what ``Robot.Where`` reports); None for a robot without kinematics.
+    """
+
+    time: float
+    joints: tuple[float, ...]
+    cartesian: tuple[float, float, float, float, float, float] | None
+    matrix: NDArray[np.float64] | None
+
+    @property
+    def xyz(self) -> tuple[float, float, float] | None:
+        return None if self.cartesian is None else self.cartesian[:3]
+
+
+class Cell:
+    """A transpiled GPL project on its own simulated controller (see module docstring)."""
+
+    def __init__(self, package: ModuleType, sim: Simulation, diagnostics: list[str] | None = None,
+                 source: Path | None = None) -> None:
+        self.package = package
+        self.sim = sim
+        self.diagnostics = diagnostics or []  # warnings of the translation, rendered
+        self.source = source
+
+    # -- making one ----------------------------------------------------------------------------------
+
+    @classmethod
+    def load(
+        cls,
+        project: str | Path,
+        *,
+        robot: str = "PF400SX",
+        clock: Literal["virtual", "real"] = "virtual",
+        speed: float = 1.0,
+        flash: str | Path | None = None,
+        io: Any = None,
+        echo: bool = True,
+        cache_dir: str | Path | None = None,
+        rebuild: bool = False,
+    ) -> Cell:
+        """Translate ``project`` (through the cache), import it and make its Simulation.
+
+        ``robot`` is any name of ``gplrt.controller.pdb.model_names()``; ``flash`` is the folder
+        that holds the controller's disks (``flash/`` in it is ``/flash``); ``io`` an ``IoMap``
+        prepared beforehand (or use ``cell.io`` afterwards).  Raises :class:`ProjectError` when the
+        project has errors.
+        """
+        from gplrt.controller.pdb import default_database
+
+        default_database(robot)  # an unknown model fails here, with -221 and the known names
+
+        from gpl2py.diagnostics import DiagnosticSink
+        from gpl2py.run import build, import_built
+
+        sink = DiagnosticSink()
+        built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild)
+        files = {f.path: f for f in built.project.files()} if built is not None else {}
+        rendered = [d.render(files.get(d.span.file) if d.span else None) for d in sink.sorted()]
+        if built is None:
+            raise ProjectError(f"{project} could not be translated:\n" + "\n".join(rendered))
+        package = import_built(built)
+        sim = Simulation(clock=clock, speed=speed, io=io, console=_EchoConsole(echo), flash_root=flash,
+                         project=built.project.name, robot=robot)
+        return cls(package, sim, rendered, Path(project))
+
+    # -- running GPL code ------------------------------------------------------------------------------
+
+    def init(self) -> None:
+        """Initialise the modules (variables in ProjectSource order, then each ``Init``), once."""
+        self.sim.call(self.package.init)
+
+    def call(self, procedure: str, *args: Any, timeout: float | None = None) -> Any:
+        """Call a Public procedure by GPL name on a GPL thread; returns what a Function returns.
+
+        Initialises the project first if that has not happened.  A GPL error the procedure does
+        not handle is raised here as ``GplException`` (with ``ErrorCode``); ``timeout`` is in real
+        seconds (``gplrt.sim.SimulationStalled`` when exceeded or when the program deadlocks).
+        """
+        func = self.procedure(procedure)
+        self.init()
+        return self.sim.call(func, *args, timeout=timeout)
+
+    def start(self, procedure: str, *args: Any, name: str = "") -> Any:
+        """Start a Public procedure as a background GPL thread (e.g. a server); returns the Thread."""
+        func = self.procedure(procedure)
+        self.init()
+        return self.sim.start(func, *args, name=name or procedure.rpartition(".")[2])
+
+    def run_main(self) -> int:
+        """Run ProjectStart as ``gpl2py run`` does; 0, or 1 if a thread ended with an unhandled error.
+
+        Returns when every GPL thread has ended (or, virtual clock, when the program stalled).
+        """
+        return int(self.package.main(self.sim))
+
+    def run_for(self, seconds: float) -> None:
+        """Let the GPL threads run for ``seconds`` of controller time (virtual: takes no wall time)."""
+        self.sim.run_for(seconds)
+
+    def procedure(self, name: str) -> Any:
+        """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``."""
+        from gplrt.lang.procedures import registered_procedures
+
+        prefix = self.package.__name__ + "."
+        mine = [e for e in registered_procedures() if getattr(e.func, "__module__", "").startswith(prefix)]
+        want = name.strip().lower()
+        if "." in want:
+            found = [e for e in mine if e.qualified_name.lower() == want]
+        else:
+            found = [e for e in mine if e.name.lower() == want]
+        public = [e for e in found if e.public]
+        if len(public) == 1:
+            return public[0].func
+        if len(public) > 1:
+            names = ", ".join(sorted(e.qualified_name for e in public))
+            raise GplException(-772, detail=f"{name!r} could be {names}: say which module")
+        hint = ""
+        if found:
+            hint = f" ({', '.join(e.qualified_name for e in found)} is Private)"
+        known = ", ".join(sorted(e.qualified_name for e in mine if e.public))
+        raise GplException(UNDEFINED_SYMBOL, detail=f"no Public procedure {name!r}{hint}; known: {known}")
+
+    # -- GPL variables -------------------------------------------------------------------------------
+
+    def module(self, name: str) -> ModuleType:
+        """The generated Python module of GPL module ``name`` (case-insensitive)."""
+        want = name.strip().lower()
+        prefix = self.package.__name__ + "."
+        for value in vars(self.package).values():
+            if isinstance(value, ModuleType) and value.__name__.startswith(prefix):
+                doc = (value.__doc__ or "").split(",", 1)[0]  # "Module Cell, transpiled by gpl2py ..."
+                if doc.lower() == f"module {want}":
+                    return value
+        raise GplException(-798, detail=f"no module {name!r} in this project")
+
+    def get(self, variable: str) -> Any:
+        """The value of a module variable, ``"Module.name"`` (case-insensitive)."""
+        module, _, name = variable.rpartition(".")
+        if not module:
+            raise ValueError(f"say which module: 'Module.{variable}'")
+        mod = self.module(module)
+        want = name.lower()
+        for attr, value in vars(mod).items():
+            if attr.lower() in (want, want + "_") and not isinstance(value, ModuleType) and not callable(value):
+                return value
+        raise GplException(UNDEFINED_SYMBOL, detail=f"no variable {variable!r}")
+
+    # -- I/O ------------------------------------------------------------------------------------------
+
+    @property
+    def io(self) -> Any:
+        """The session's ``gplrt.controller.signals.IoMap``: rules (``when_output``), trace, ..."""
+        return self.sim.io
+
+    def set_input(self, signal: int, value: bool = True) -> None:
+        """Drive digital input (10001-10064) or soft signal (20001-...) ``signal``."""
+        self.sim.io.set_input(signal, value)
+
+    def set_analog_input(self, channel: int, value: float) -> None:
+        self.sim.io.set_analog_input(channel, value)
+
+    def output(self, signal: int) -> bool:
+        """The state of digital signal ``signal`` (an output the program writes, or any other)."""
+        return bool(self.sim.io.value(signal))
+
+    def outputs_written(self) -> list[tuple[float, int, bool]]:
+        """(controller time, signal, value) of every digital change the program made, in order."""
+        return [(c.time, c.signal, c.value) for c in self.sim.io.output_trace()]
+
+    # -- what happened ---------------------------------------------------------------------------------
+
+    @property
+    def console(self) -> str:
+        """Everything the program wrote with ``Console.Write``/``WriteLine`` so far."""
+        return self.sim.console.output
+
+    @property
+    def log(self) -> str:
+        """Controller reports (unhandled thread errors, stalls) so far."""
+        return self.sim.console.log_text
+
+    @property
+    def time(self) -> float:
+        """Controller time in seconds."""
+        return self.sim.now()
+
+    def where(self, robot: int = 1) -> RobotPose:
+        """Where ``robot`` is now (``Robot.WhereAngles`` and ``Robot.Where`` in one)."""
+        from gplrt.geometry.transforms import matrix_to_xyzypr
+        from gplrt.motion.registry import robot_of
+
+        state = robot_of(self.sim, robot)
+        now = self.sim.now()
+        q = np.asarray(state.joints_at(now), dtype=float)
+        matrix = cart = None
+        if state.model.has_kinematics:
+            matrix = np.asarray(state.forward(q), dtype=float)
+            cart = tuple(float(v) for v in matrix_to_xyzypr(matrix))
+        return RobotPose(now, tuple(float(v) for v in q), cart, matrix)  # type: ignore[arg-type]
+
+    def trace(self, robot: int = 1, dt: float | None = None) -> Any:
+        """The sampled motion so far (``gplrt.motion.trace.Trace``: times, joints, xyz).
+
+        ``dt`` defaults to the servo period for short runs and to 1/``PLOT_SAMPLES`` of the run
+        for long ones, so a plot of an hour of cell time stays quick.
+        """
+        if dt is None:
+            dt = max(0.004, self.sim.now() / PLOT_SAMPLES)
+        return self.sim.trace(robot, dt)
+
+    def plot_joints(self, robot: int = 1, ax: Any = None) -> Any:
+        """Every joint against controller time; returns the matplotlib Figure."""
+        from gplrt.motion.plot import plot_joints
+
+        return plot_joints(self.trace(robot), ax)
+
+    def plot_path(self, robot: int = 1, ax: Any = None) -> Any:
+        """The tool-tip path seen from above (X-Y, mm); returns the matplotlib Figure."""
+        from gplrt.motion.plot import plot_path_xy
+
+        return plot_path_xy(self.trace(robot), ax)
+
+    def save_plot(self, path: str | Path, robot: int = 1) -> Path:
+        """Joints and path side by side in one image file (PNG, SVG, PDF by extension)."""
+        return save_motion_plot(self.sim, path, robot)
+
+    def __repr__(self) -> str:
+        return (f"<Cell {self.sim.project!r} robot={self.sim.robot_model} clock={self.sim.mode} "
+                f"t={self.sim.now():.3f}s>")
+
+
+def save_motion_plot(sim: Simulation, path: str | Path, robot: int = 1) -> Path:
+    """Robot ``robot``'s joints against time and its tool path from above, side by side, in one file.
+
+    Used by ``Cell.save_plot`` and ``gpl2py run --plot``.  Works without a display (the figure is
+    drawn off-screen and closed, so a long batch run does not accumulate figures).
+    """
+    from matplotlib.figure import Figure
+
+    from gplrt.motion.plot import plot_joints, plot_path_xy
+
+    # A plot needs no more than a few thousand samples; the trace's default (the 4 ms servo
+    # period) would sample an hour-long run 900 000 times.
+    tr = sim.trace(robot, max(0.004, sim.now() / PLOT_SAMPLES))
+    fig = Figure(figsize=(12, 4.5))
+    left, right = fig.subplots(1, 2)
+    plot_joints(tr, ax=left)
+    plot_path_xy(tr, ax=right)
+    left.set_title(f"robot {robot}: joints")
+    right.set_title(f"robot {robot}: tool path seen from above")
+    fig.tight_layout()
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=100)
+    return out
