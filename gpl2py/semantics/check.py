@@ -97,7 +97,6 @@ def assignable(src: t.GplType, dst: t.GplType) -> bool:
     return False
 
 
-_ARITH = {"+", "-", "*"}
 _COMPARE = {"=", "<>", "<", ">", "<=", ">="}
 
 
@@ -217,10 +216,10 @@ class Checker:
                 if prm.default is not None:
                     self._store_value(prm.default, v.type, ctx)
         # locals are visible in the whole procedure (§6.2): declare them all first
-        self._declare_locals(decl.body, p, ctx, top=True)
+        self._declare_locals(decl.body, p, ctx)
         self._block(decl.body, ctx)
 
-    def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx, top: bool) -> None:
+    def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx) -> None:
         for s in block.statements:
             if isinstance(s, A.VarDecl):
                 # a declaration inside a block is reported by the parser (GPL1106); it is still
@@ -246,7 +245,7 @@ class Checker:
                     self.sink.report(M.DUPLICATE_LABEL, s.span, name=s.name)
                 p.labels[key] = s
             for child in _child_blocks(s):
-                self._declare_locals(child, p, ctx, top=False)
+                self._declare_locals(child, p, ctx)
             if isinstance(s, A.Try) and s.catch is not None and s.catch.type is not None and s.catch.variable:
                 key = s.catch.variable.lower()
                 if key not in p.locals:
