@@ -1,0 +1,235 @@
+"""``gpl2py run``: cache reuse, options, exit statuses, error reports, JSON, Ctrl-C."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tooling_util import REPO, gpl2py, module, write_project
+
+TICKER = module("""\
+    Function Inner(ByVal d As Integer) As Integer
+        Return 10 \\ d
+    End Function
+    Public Sub Main()
+        Dim i As Integer
+        For i = 1 To 3
+            Console.WriteLine("tick " & CStr(i))
+            Thread.Sleep(500)
+        Next
+        Console.WriteLine(Inner(DIVISOR))
+    End Sub""").replace("Module Main\n", "Module Main\n    Public Const DIVISOR As Integer = 5\n")
+
+
+def _entries(cache: Path) -> list[Path]:
+    return sorted(p for p in cache.iterdir() if not p.name.startswith("."))
+
+
+def test_second_run_reuses_the_cache_and_a_changed_source_translates_again(tmp_path: Path,
+                                                                            private_cache: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER}, name="Ticker")
+    first = gpl2py("run", str(proj))
+    assert first.returncode == 0, first.stderr
+    assert "tick 3" in first.stdout and first.stdout.endswith("2\n")
+    [entry] = _entries(private_cache)
+    stamps = {p: p.stat().st_mtime_ns for p in entry.rglob("*")}
+    assert (entry / "ticker" / "__init__.py") in stamps
+
+    second = gpl2py("run", str(proj))
+    assert second.returncode == 0, second.stderr
+    assert second.stdout == first.stdout
+    assert "from the cache" in second.stderr and "from the cache" not in first.stderr
+    assert _entries(private_cache) == [entry]
+    assert {p: p.stat().st_mtime_ns for p in entry.rglob("*")} == stamps  # nothing rewritten
+
+    (proj / "Main.gpl").write_text(TICKER.replace("DIVISOR As Integer = 5", "DIVISOR As Integer = 2"))
+    third = gpl2py("run", str(proj))
+    assert third.returncode == 0, third.stderr
+    assert third.stdout.endswith("\n5\n") and "from the cache" not in third.stderr
+    assert len(_entries(private_cache)) == 2
+
+
+def test_cache_dir_option_and_rebuild(tmp_path: Path, private_cache: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER}, name="Ticker")
+    mine = tmp_path / "my-cache"
+    r = gpl2py("run", str(proj), "--cache-dir", str(mine), "-q")
+    assert r.returncode == 0, r.stderr
+    assert len(_entries(mine)) == 1 and not _entries(private_cache)
+    r = gpl2py("run", str(proj), "--cache-dir", str(mine), "--rebuild")
+    assert r.returncode == 0 and "from the cache" not in r.stderr and "transpiled 1 file" in r.stderr
+
+
+def test_console_streams_to_stdout_and_summary_goes_to_stderr(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER}, name="Ticker")
+    r = gpl2py("run", str(proj))
+    assert r.stdout == "tick 1\ntick 2\ntick 3\n2\n"
+    lines = r.stderr.splitlines()
+    assert lines[0] == f"transpiled 1 file ({len(TICKER.splitlines())} lines) " + lines[0].split(") ", 1)[1]
+    assert lines[0].endswith(": 0 errors, 0 warnings")
+    assert lines[-1].startswith("program ended after 1.500 s of controller time (virtual clock")
+    assert lines[-1].endswith(": 0 unhandled errors")
+    quiet = gpl2py("run", str(proj), "--quiet")
+    assert quiet.stdout == r.stdout and quiet.stderr == ""
+
+
+def test_unhandled_gpl_error_names_code_message_file_and_line(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER.replace("= 5", "= 0")}, name="Ticker")
+    r = gpl2py("run", str(proj))
+    assert r.returncode == 3
+    assert f"{proj / 'Main.gpl'}:4: error -709 in thread Main: *Division by 0*" in r.stderr
+    assert "Traceback" not in r.stderr
+    assert r.stderr.splitlines()[-1].endswith(": 1 unhandled error")
+
+
+def test_json_output_carries_diagnostics_console_and_errors(tmp_path: Path) -> None:
+    long_text = "x" * 130  # a literal longer than a controller accepts: warning GPL1003
+    src = TICKER.replace("= 5", "= 0").replace("Dim i As Integer", f'Dim i As Integer\n        Dim s As String = "{long_text}"')
+    proj = write_project(tmp_path, {"Main.gpl": src}, name="Ticker")
+    r = gpl2py("run", str(proj), "--json")
+    assert r.returncode == 3 and r.stderr == ""
+    doc = json.loads(r.stdout)
+    assert doc["summary"]["files"] == 1 and doc["summary"]["lines"] == len(src.splitlines())
+    assert doc["summary"]["errors"] == 0 and doc["summary"]["cached"] is False
+    assert doc["summary"]["warnings"] == 1
+    assert [(d["code"], d["line"]) for d in doc["diagnostics"]] == [("GPL1003", 8)]
+    run = doc["run"]
+    assert run["status"] == 3 and run["controller_time"] == 1.5
+    assert run["console"] == "tick 1\ntick 2\ntick 3\n"
+    [err] = run["errors"]
+    assert err["code"] == -709 and err["thread"] == "Main" and err["line"] == 4
+    assert err["file"] == str(proj / "Main.gpl") and err["message"].startswith("*Division by 0*")
+    again = json.loads(gpl2py("run", str(proj), "--json").stdout)
+    assert again["summary"]["cached"] is True and again["diagnostics"] == doc["diagnostics"]  # replayed
+
+
+def test_source_errors_run_nothing(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": module("    Public Sub Main()\n        x = 1\n    End Sub")})
+    r = gpl2py("run", str(proj))
+    assert r.returncode == 1
+    assert "Main.gpl:3:9: error GPL2001" in r.stderr and r.stdout == ""
+
+
+def test_stalled_program_exits_4_and_names_the_waiting_threads(tmp_path: Path) -> None:
+    src = module("""\
+    Public Sub Main()
+        Console.WriteLine("waiting for an event nobody sends")
+        Thread.WaitEvent(1, -1)
+    End Sub""")
+    proj = write_project(tmp_path, {"Main.gpl": src})
+    r = gpl2py("run", str(proj))
+    assert r.returncode == 4, r.stderr
+    assert "stalled, threads still waiting: Main" in r.stderr
+
+
+def test_usage_errors(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER})
+    assert gpl2py("run", str(proj), "--robot", "R2D2").returncode == 2
+    assert gpl2py("run", str(proj), "--clock", "sundial").returncode == 2
+    assert gpl2py("run", str(proj), "--speed", "0").returncode == 2
+    no_start = tmp_path / "nostart"
+    no_start.mkdir()
+    (no_start / "Main.gpl").write_text(TICKER)
+    r = gpl2py("run", str(no_start))
+    assert r.returncode == 2 and "ProjectStart" in r.stderr
+
+
+def test_help_explains_options_and_exit_statuses() -> None:
+    r = gpl2py("run", "--help")
+    assert r.returncode == 0
+    for text in ("--robot", "PF400SX", "ARM6", "--clock", "--speed", "--flash", "--setup", "--plot",
+                 "--cache-dir", "130", "stalled", "unhandled error"):
+        assert text in r.stdout, text
+    top = gpl2py("--help").stdout
+    assert "run" in top and "130" in top
+
+
+WHERE = module("""\
+    Public Sub Main()
+        Dim here As Location
+        here = Robot.Where
+        Console.WriteLine(Format(here.X, "0.000") & " " & Format(here.Y, "0.000") & " " & Format(here.Z, "0.000"))
+    End Sub""")
+
+
+@pytest.mark.parametrize("model", ["PF400SX", "ARM6"])
+def test_robot_option_chooses_the_model(tmp_path: Path, model: str) -> None:
+    from gplrt.motion.registry import robot_of
+    from gplrt.sim import Simulation
+
+    proj = write_project(tmp_path, {"Main.gpl": WHERE})
+    r = gpl2py("run", str(proj), "--robot", model.lower(), "-q")
+    assert r.returncode == 0, r.stderr
+    state = robot_of(Simulation(robot=model), 1)
+    x, y, z = state.forward(state.queue.rest)[:3, 3]
+    assert r.stdout == f"{x:.3f} {y:.3f} {z:.3f}\n"
+
+
+def test_real_clock_with_speed_and_flash_folder(tmp_path: Path) -> None:
+    src = module("""\
+    Public Sub Main()
+        Dim f As New StreamWriter("/flash/data/out.txt")
+        Thread.Sleep(2000)
+        f.WriteLine("slept")
+        f.Close()
+    End Sub""")
+    proj = write_project(tmp_path, {"Main.gpl": src})
+    flash = tmp_path / "disks"
+    (flash / "flash" / "data").mkdir(parents=True)
+    t0 = time.monotonic()
+    r = gpl2py("run", str(proj), "--clock", "real", "--speed", "10", "--flash", str(flash), "--json")
+    wall = time.monotonic() - t0
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert (flash / "flash" / "data" / "out.txt").read_text().strip() == "slept"
+    assert json.loads(r.stdout)["run"]["controller_time"] >= 2.0
+    assert wall < 60  # 2 s of controller time at 10x is 0.2 s of waiting, plus start-up
+
+
+def test_setup_file_and_plot(tmp_path: Path) -> None:
+    png = tmp_path / "cell.png"
+    r = gpl2py("run", str(REPO / "samples/pick_and_place"), "--setup",
+               str(REPO / "samples/notebook/cell_io.py"), "--plot", str(png))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines()[-1] == "cell done: 8 parts placed, 8 requested"
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
+    assert f"plot saved to {png}" in r.stderr
+
+
+LOOP = module("""\
+    Public Sub Worker()
+        While True
+            Thread.Sleep(20)
+        End While
+    End Sub
+    Public Sub Main()
+        Dim t As New Thread("Worker")
+        t.Start()
+        Console.WriteLine("started")
+        While True
+            Thread.Sleep(50)
+        End While
+    End Sub""")
+
+
+@pytest.mark.parametrize("clock", ["real", "virtual"])
+def test_ctrl_c_stops_every_thread_and_exits_130(tmp_path: Path, clock: str) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": LOOP})
+    proc = subprocess.Popen([sys.executable, "-m", "gpl2py", "run", str(proj), "--clock", clock],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=REPO)
+    try:
+        assert proc.stdout is not None
+        assert proc.stdout.readline() == "started\n"
+        time.sleep(0.3)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=30)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err
+    assert err.splitlines()[-1] == "gpl2py: interrupted; stopped 2 GPL threads"
