@@ -65,6 +65,9 @@ def test_cli_writes_package_and_python_m_runs_it(tmp_path: Path) -> None:
     assert run.returncode == 0, run.stderr
     # module variables initialised in ProjectSource order, then each module's Init, then ProjectStart
     assert run.stdout == "hello GA 42\n"
+    # the form: python -m out.<package> from the folder above the output folder
+    run = subprocess.run([PY, "-m", "out.my_cell"], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert run.returncode == 0 and run.stdout == "hello GA 42\n", run.stderr
 
 
 def test_output_is_deterministic(tmp_path: Path) -> None:
