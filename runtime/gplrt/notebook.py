@@ -92,6 +92,7 @@ class Cell:
                  source: Path | None = None) -> None:
         self.package = package
         self.sim = sim
+        self._procedures = _procedures_of(package)
         self.diagnostics = diagnostics or []  # warnings of the translation, rendered
         self.source = source
 
@@ -172,10 +173,7 @@ class Cell:
 
     def procedure(self, name: str) -> Any:
         """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``."""
-        from gplrt.lang.procedures import registered_procedures
-
-        prefix = self.package.__name__ + "."
-        mine = [e for e in registered_procedures() if getattr(e.func, "__module__", "").startswith(prefix)]
+        mine = self._procedures
         want = name.strip().lower()
         if "." in want:
             found = [e for e in mine if e.qualified_name.lower() == want]
@@ -300,6 +298,20 @@ class Cell:
     def __repr__(self) -> str:
         return (f"<Cell {self.sim.project!r} robot={self.sim.robot_model} clock={self.sim.mode} "
                 f"t={self.sim.now():.3f}s>")
+
+
+def _procedures_of(package: ModuleType) -> list[Any]:
+    """The registry entries of ``package``'s procedures, taken right after its import.
+
+    The runtime's procedure registry is process-wide and keyed by GPL module name, so a second
+    project with a module of the same name replaces the entries; a snapshot keeps each Cell's
+    own.  (Threads started *by name* inside GPL code still use the process-wide registry: the
+    project loaded last wins, which is why ``gpl2py run`` uses one process per project.)
+    """
+    from gplrt.lang.procedures import registered_procedures
+
+    prefix = package.__name__ + "."
+    return [e for e in registered_procedures() if getattr(e.func, "__module__", "").startswith(prefix)]
 
 
 def save_motion_plot(sim: Simulation, path: str | Path, robot: int = 1) -> Path:
