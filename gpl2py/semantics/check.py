@@ -444,6 +444,8 @@ class Checker:
 
     def _store_value(self, e: A.Expr, dst: t.GplType, ctx: _Ctx) -> None:
         vt = self._value(e, ctx)
+        if dst is t.STRING and isinstance(vt, t.PrimitiveType) and vt is not t.STRING:
+            self.sink.report(M.IMPLICIT_TO_STRING, e.span, src=str(vt))
         if vt is t.NOTHING and isinstance(dst, t.PrimitiveType):
             self.sink.report(M.TYPE_MISMATCH, e.span, src="Nothing", dst=str(dst))
         elif not assignable(vt, dst):

@@ -203,3 +203,17 @@ End Module
     assert transpile(str(f), sink) is None
     got = [(d.code, d.severity.value, d.span.line) for d in sink.sorted()]
     assert got == [("GPL3001", "error", 4), ("GPL3006", "warning", 10), ("GPL3002", "error", 12)]
+
+
+def test_implicit_number_to_string_is_a_warning(tmp_path: Path) -> None:
+    text = """Module A
+    Public Sub Main()
+        Dim s As String
+        s = 5
+        s = "n=" & 5
+        s = CStr(5)
+    End Sub
+End Module
+"""
+    _, sink = analyze_text(tmp_path, text)
+    assert [(d.code, d.severity.value, d.span.line) for d in sink] == [("GPL2031", "warning", 4)]
