@@ -120,10 +120,15 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             cls = mod.members.get(m.name.lower())
             if isinstance(cls, ClassSym):
                 resets.extend(_shared_resets(ctx, cls))
+    seen_statics: set[str] = set()
+    for name, value in ctx.statics:  # Static locals start afresh in a new session too
+        if name not in seen_statics:
+            seen_statics.add(name)
+            resets.append(f"{name} = {value}")
     defs.blank(2)
     defs.line("def _reset() -> None:")
     defs.indent()
-    defs.line('"""Module variables and Shared fields at their defaults (§12.2, step 1)."""')
+    defs.line('"""Module variables, Shared fields and Static locals at their defaults (§12.2, step 1)."""')
     names_reset = sorted({r.split(" = ")[0] for r in resets if "." not in r.split(" = ")[0]})
     if names_reset:
         defs.line("global " + ", ".join(names_reset))

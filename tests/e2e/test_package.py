@@ -224,3 +224,23 @@ def test_sample_tcp_command_server_compiles_and_passes_pyflakes() -> None:
             compile(text, name, "exec")
             problems = [p for p in _flakes(text, name) if "Move" not in p and "Robot" not in p]
             assert problems == []
+
+
+def test_a_new_session_starts_from_defaults(tmp_path: Path) -> None:
+    src = """Module Main
+    Public runs As Integer
+    Function Counted() As Integer
+        Static calls As Integer = 10
+        calls += 1
+        Return calls
+    End Function
+    Public Sub Main()
+        runs += 1
+        Console.WriteLine(runs & " " & Counted() & " " & Counted())
+    End Sub
+End Module
+"""
+    first = run_gpl(tmp_path, src)
+    second = Simulation(capture=True)
+    assert first.package.main(second) == 0
+    assert first.output == second.console.output == "1 11 12\n"
