@@ -16,10 +16,8 @@ from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import (
     BYREF,
-    CONV,
     P_AND,
     P_ATOM,
-    P_CMP,
     P_NOT,
     P_OR,
     Code,
@@ -879,4 +877,4 @@ def _has_exit(s: A.Stmt, kind: str) -> bool:
     return any(scan(b) for b in child_blocks(s))
 
 
-__all__ = ["ProcLowerer", "Frame", "CONV", "P_CMP"]
+__all__ = ["ProcLowerer", "Frame"]

@@ -356,4 +356,4 @@ def visible(member: object, from_module: ModuleSym | None, from_class: ClassSym 
     return True
 
 
-__all__ = ["Resolver", "Collector", "Found", "visible", "TOP_MODULE", "PropSym", "VarSym"]
+__all__ = ["Resolver", "Collector", "Found", "visible", "TOP_MODULE"]
