@@ -41,7 +41,7 @@ class ProjectNames:
         for mod in mods:
             base = "_top_classes" if mod.name == TOP_MODULE else snake_case(mod.name)
             name = base
-            while name in used or name in taken or name in ("init", "main"):
+            while name in used or name in taken or name in ("init", "main", "sys"):
                 name += "_mod"
             used.add(name)
             names.module_py[mod] = name
