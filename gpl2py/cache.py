@@ -23,7 +23,8 @@ exactly what the controller sees (it may be read-only, on a share, or copied to 
 An entry is a folder ``<root>/<key[:24]>/`` holding the generated package ``<package>/`` and
 ``entry.json`` (key, package name, diagnostics, counts).  It is built in a temporary folder and
 renamed into place, so a reader never sees half an entry and two concurrent runs cannot corrupt
-each other.  Entries are never modified; deleting the cache folder is always safe.
+each other.  Entries are never modified; deleting the cache folder is always safe.  After each
+store the oldest entries beyond ``MAX_ENTRIES`` are removed, so the folder cannot grow without end.
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ from gpl2py.source import Position, Span
 ENTRY_FILE = "entry.json"
 ENTRY_FORMAT = 1
 _KEY_CHARS = 24
+MAX_ENTRIES = 64
 
 
 def default_cache_root() -> Path:
@@ -193,4 +195,22 @@ class Cache:
         entry = self.lookup(key)
         if entry is None:
             raise OSError(f"cache entry {target} could not be read back")
+        self.prune(keep=MAX_ENTRIES, protect=target)
         return entry
+
+    def prune(self, keep: int = MAX_ENTRIES, protect: Path | None = None) -> list[Path]:
+        """Remove the least recently written entries beyond ``keep``; returns the removed folders."""
+        entries = []
+        for folder in self.root.iterdir():
+            stamp = folder / ENTRY_FILE
+            if folder.name.startswith(".") or folder == protect or not stamp.is_file():
+                continue
+            try:
+                entries.append((stamp.stat().st_mtime_ns, folder))
+            except OSError:
+                continue
+        entries.sort(reverse=True)
+        removed = [folder for _, folder in entries[max(keep - (protect is not None), 0):]]
+        for folder in removed:
+            shutil.rmtree(folder, ignore_errors=True)
+        return removed

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import signal
 import subprocess
 import sys
@@ -233,3 +234,15 @@ def test_ctrl_c_stops_every_thread_and_exits_130(tmp_path: Path, clock: str) -> 
     assert proc.returncode == 130, err
     assert "Traceback" not in err and "KeyboardInterrupt" not in err
     assert err.splitlines()[-1] == "gpl2py: interrupted; stopped 2 GPL threads"
+
+
+def test_cache_keeps_a_bounded_number_of_entries(tmp_path: Path) -> None:
+    from gpl2py.cache import Cache
+
+    cache = Cache(tmp_path / "c")
+    for i in range(5):
+        cache.store(str(i) * 64, "pkg", {"pkg/__init__.py": f"# {i}\n"}, [], (1, 1))
+        os.utime(cache.folder_for(str(i) * 64) / "entry.json", ns=(i * 10**9, i * 10**9))
+    removed = cache.prune(keep=2)
+    assert sorted(p.name for p in removed) == sorted(cache.folder_for(str(i) * 64).name for i in range(3))
+    assert cache.lookup("4" * 64) is not None and cache.lookup("0" * 64) is None
