@@ -292,7 +292,9 @@ def build_parser() -> argparse.ArgumentParser:
         description=textwrap.fill(
             "gpl2py translates GPL programs (Brooks / Precise Automation PreciseFlex robot "
             "controllers) into Python that runs on the gplrt simulated controller. "
-            "Start with: gpl2py check PROJECT_FOLDER",
+            "Start with: gpl2py run PROJECT_FOLDER (translate, then run on a simulated "
+            "PF400SX), or gpl2py check PROJECT_FOLDER (report problems only). "
+            "gpl2py COMMAND --help explains each command.",
             width=78,
         ),
         epilog=_EPILOG,
