@@ -399,8 +399,8 @@ class ProcLowerer(ExprLowerer):
         self.store(target, self.checked(target, self.coerce(value, res_type, tt)[0]))
 
     def checked(self, target: A.Expr, value: str) -> str:
-        """For an Integer stored through a ByRef cell, check the range inline (no call on the
-        fast path: cell accesses are already the costly part of ByRef code)."""
+        """For an Integer stored through a ByRef cell, check the range inline before the store (no
+        call on the fast path: cell accesses are already the costly part of ByRef code)."""
         chk = self.ctx.alias("chk_int32") + "("
         i = self.info(target)
         if not (value.startswith(chk) and value.endswith(")") and i.kind == "var"):
@@ -411,7 +411,9 @@ class ProcLowerer(ExprLowerer):
         inner = value[len(chk):-1]
         tmp = self.fresh("v")
         self.w.line(f"{tmp} = {inner}")
-        return f"{tmp} if -2147483648 <= {tmp} <= 2147483647 else {chk}{tmp})"
+        self.w.line(f"if {tmp} > 2147483647 or {tmp} < -2147483648:")
+        self.w.line(f"    {chk}{tmp})  # raises -710 Arithmetic overflow")
+        return tmp
 
     def hoist_index(self, e: A.Invoke) -> A.Invoke:
         """Evaluate an element's array and subscripts once for ``a(i) += x`` (§10.1)."""
