@@ -354,6 +354,8 @@ class ExprLowerer:
         ints = lt in _INTS and rt_ in _INTS
         lit = _int_value(rc[0])
         if op == "\\" and ints and lit is not None and lit > 0:
+            if lc[1] == P_ATOM and lc[0] in {self.local_name(v) for v in self.nonneg}:
+                return f"{lc[0]} // {lit}", P_MUL  # a counter that cannot be negative here
             if lc[1] == P_ATOM and lc[0].isidentifier():
                 # truncation toward zero (§4.4) without a call: floor division on the magnitude
                 return f"{lc[0]} // {lit} if {lc[0]} >= 0 else -(-{lc[0]} // {lit})", P_IF
