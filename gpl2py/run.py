@@ -363,7 +363,13 @@ def run_command(args: argparse.Namespace) -> Any:
             out.sink.report(msg.USAGE_ERROR, None, detail=f"--setup {args.setup}: {exc}")
             out.emitted, out.usage_error = False, True
             return out
-        setup(sim)
+        try:
+            setup(sim)
+        except Exception as exc:  # the user's setup code, not gpl2py: say where, keep it short
+            out.sink.report(msg.USAGE_ERROR, None,
+                            detail=f"--setup {args.setup}: setup(sim) raised {type(exc).__name__}: {exc}")
+            out.emitted, out.usage_error = False, True
+            return out
     package = import_built(built)
     report = execute(package, sim, plot=args.plot)
     out.exit_status = report.status

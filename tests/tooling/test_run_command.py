@@ -246,3 +246,16 @@ def test_cache_keeps_a_bounded_number_of_entries(tmp_path: Path) -> None:
     removed = cache.prune(keep=2)
     assert sorted(p.name for p in removed) == sorted(cache.folder_for(str(i) * 64).name for i in range(3))
     assert cache.lookup("4" * 64) is not None and cache.lookup("0" * 64) is None
+
+
+def test_setup_file_problems_are_command_line_errors(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER})
+    missing = gpl2py("run", str(proj), "--setup", str(tmp_path / "nope.py"))
+    no_func = tmp_path / "nofunc.py"
+    no_func.write_text("X = 1\n")
+    failing = tmp_path / "failing.py"
+    failing.write_text("def setup(sim):\n    sim.io.set_input(5, True)\n")  # 5 is an output
+    for r, text in ((missing, "nope.py"), (gpl2py("run", str(proj), "--setup", str(no_func)), "setup(sim)"),
+                    (gpl2py("run", str(proj), "--setup", str(failing)), "GplException")):
+        assert r.returncode == 2, r.stderr
+        assert text in r.stderr and "Traceback" not in r.stderr and r.stdout == ""
