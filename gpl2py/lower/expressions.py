@@ -225,6 +225,8 @@ class ExprLowerer:
 
     def literal(self, e: A.Expr) -> Code:
         if isinstance(e, A.IntegerLiteral):
+            if 0 <= e.value < 2**31 and e.text[:2].lower() == "&h":
+                return f"0x{e.value:X}", P_ATOM  # keep the program's hexadecimal spelling
             if -(2**31) <= e.value < 2**31:
                 return str(e.value), (P_UNARY if e.value < 0 else P_ATOM)
             return py_float(float(e.value)), P_ATOM
@@ -390,7 +392,8 @@ class ExprLowerer:
         if op in ("And", "Or", "Xor"):
             pyop, prec = {"And": ("&", P_BAND), "Or": ("|", P_BOR), "Xor": ("^", P_BXOR)}[op]
             if (lt is t.BOOLEAN and rt_ is t.BOOLEAN) or (lt in _INTS and rt_ in _INTS):
-                return f"{paren(lc, prec)} {pyop} {paren(rc, prec + 1)}", prec
+                # arithmetic operands keep visible parentheses: (a + b) & 255, not a + b & 255
+                return f"{paren(lc, P_UNARY)} {pyop} {paren(rc, P_UNARY)}", prec
             name = {"And": "and_", "Or": "or_", "Xor": "xor"}[op]
             return self.call(self.rt(OPS, name), lc[0], rc[0])
         return self.call(self.rt(OPS, "eq"), lc[0], rc[0])
@@ -545,8 +548,9 @@ def _may_overflow(e: A.Expr) -> bool:
 
 
 def _int_value(code: str) -> int | None:
+    """The value of an integer literal in generated code (``12``, ``-3``, ``0x7FFF``), else None."""
     try:
-        return int(code)
+        return int(code, 0)
     except ValueError:
         return None
 
@@ -555,4 +559,4 @@ def _nonzero_literal(code: str) -> bool:
     try:
         return float(code) != 0.0
     except ValueError:
-        return False
+        return bool(_int_value(code))
