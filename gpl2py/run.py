@@ -216,6 +216,7 @@ class RunReport:
     stopped: int = 0  # threads aborted after Ctrl-C
     still_alive: list[str] = field(default_factory=list)  # of those, still running after STOP_GRACE
     plot: str | None = None
+    plot_requested: bool = False
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -317,6 +318,7 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
         report.status = EXIT_GPL_ERROR
     elif report.stalled:
         report.status = EXIT_STALLED
+    report.plot_requested = bool(plot)
     if plot and not interrupted and save_plot(sim, plot):
         report.plot = str(plot)
     return report
@@ -359,17 +361,16 @@ def run_command(args: argparse.Namespace) -> Any:
     if args.setup:
         try:
             setup = _load_setup(args.setup)
+            problem = None
         except (OSError, AttributeError, SyntaxError, ImportError) as exc:
-            out.sink.report(msg.USAGE_ERROR, None, detail=f"--setup {args.setup}: {exc}")
-            out.emitted, out.usage_error = False, True
-            return out
-        try:
-            setup(sim)
-        except Exception as exc:  # the user's setup code, not gpl2py: say where, keep it short
-            out.sink.report(msg.USAGE_ERROR, None,
-                            detail=f"--setup {args.setup}: setup(sim) raised {type(exc).__name__}: {exc}")
-            out.emitted, out.usage_error = False, True
-            return out
+            problem = f"--setup {args.setup}: {exc}"
+        if problem is None:
+            try:
+                setup(sim)
+            except Exception as exc:  # the user's setup code, not gpl2py: say where, keep it short
+                problem = f"--setup {args.setup}: setup(sim) raised {type(exc).__name__}: {exc}"
+        if problem is not None:
+            return _usage_after_emit(out, problem, args.json, stderr)
     package = import_built(built)
     report = execute(package, sim, plot=args.plot)
     out.exit_status = report.status
@@ -405,6 +406,18 @@ def _shown_path(project: Project, name: str) -> str:
     return name
 
 
+def _usage_after_emit(out: Any, detail: str, as_json: bool, stderr: Any) -> Any:
+    """A command-line problem found after the translation's diagnostics were printed (text mode):
+    print only the new error; in JSON mode nothing was printed yet, so the CLI prints it all."""
+    diag = out.sink.report(msg.USAGE_ERROR, None, detail=detail)
+    if as_json:
+        out.emitted, out.usage_error = False, True
+    else:
+        stderr.write(diag.render() + "\n")
+        out.exit_status = EXIT_USAGE
+    return out
+
+
 def transpile_summary(files: int, lines: int, sink: DiagnosticSink, seconds: float, cached: bool) -> str:
     errors, warnings = len(sink.errors), len(sink.warnings)
     how = "from the cache" if cached else f"in {seconds:.2f} s"
@@ -424,6 +437,8 @@ def run_summary(report: RunReport, clock: str) -> str:
         text += f"; stalled, threads still waiting: {', '.join(report.stalled)}"
     if report.plot:
         text += f"; plot saved to {report.plot}"
+    elif report.plot_requested:
+        text += "; no plot: robot 1 was never used"
     return text
 
 

@@ -12,7 +12,23 @@ from pathlib import Path
 
 import pytest
 
+from gpl2py.cli import main as cli_main
 from tooling_util import REPO, gpl2py, module, write_project
+
+
+class _Result:
+    """What ``gpl2py`` run in this process printed, shaped like subprocess.CompletedProcess."""
+
+    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
+        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
+
+
+def in_process(capsys: pytest.CaptureFixture[str], *args: str) -> _Result:
+    """The command in this process (fast; for cases that need no separate interpreter)."""
+    capsys.readouterr()
+    status = cli_main(list(args))
+    out, err = capsys.readouterr()
+    return _Result(status, out, err)
 
 TICKER = module("""\
     Function Inner(ByVal d As Integer) As Integer
@@ -128,25 +144,26 @@ def test_stalled_program_exits_4_and_names_the_waiting_threads(tmp_path: Path) -
     assert "stalled, threads still waiting: Main" in r.stderr
 
 
-def test_usage_errors(tmp_path: Path) -> None:
+def test_usage_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     proj = write_project(tmp_path, {"Main.gpl": TICKER})
-    assert gpl2py("run", str(proj), "--robot", "R2D2").returncode == 2
-    assert gpl2py("run", str(proj), "--clock", "sundial").returncode == 2
-    assert gpl2py("run", str(proj), "--speed", "0").returncode == 2
+    r = in_process(capsys, "run", str(proj), "--robot", "R2D2")
+    assert r.returncode == 2 and "invalid choice: 'R2D2'" in r.stderr
+    assert in_process(capsys, "run", str(proj), "--clock", "sundial").returncode == 2
+    assert in_process(capsys, "run", str(proj), "--speed", "0").returncode == 2
     no_start = tmp_path / "nostart"
     no_start.mkdir()
     (no_start / "Main.gpl").write_text(TICKER)
-    r = gpl2py("run", str(no_start))
-    assert r.returncode == 2 and "ProjectStart" in r.stderr
+    r = in_process(capsys, "run", str(no_start))
+    assert r.returncode == 2 and "ProjectStart" in r.stderr and r.stdout == ""
 
 
-def test_help_explains_options_and_exit_statuses() -> None:
-    r = gpl2py("run", "--help")
+def test_help_explains_options_and_exit_statuses(capsys: pytest.CaptureFixture[str]) -> None:
+    r = in_process(capsys, "run", "--help")
     assert r.returncode == 0
     for text in ("--robot", "PF400SX", "ARM6", "--clock", "--speed", "--flash", "--setup", "--plot",
                  "--cache-dir", "130", "stalled", "unhandled error"):
         assert text in r.stdout, text
-    top = gpl2py("--help").stdout
+    top = in_process(capsys, "--help").stdout
     assert "run" in top and "130" in top
 
 
@@ -248,14 +265,34 @@ def test_cache_keeps_a_bounded_number_of_entries(tmp_path: Path) -> None:
     assert cache.lookup("4" * 64) is not None and cache.lookup("0" * 64) is None
 
 
-def test_setup_file_problems_are_command_line_errors(tmp_path: Path) -> None:
+def test_setup_file_problems_are_command_line_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     proj = write_project(tmp_path, {"Main.gpl": TICKER})
-    missing = gpl2py("run", str(proj), "--setup", str(tmp_path / "nope.py"))
     no_func = tmp_path / "nofunc.py"
     no_func.write_text("X = 1\n")
     failing = tmp_path / "failing.py"
     failing.write_text("def setup(sim):\n    sim.io.set_input(5, True)\n")  # 5 is an output
-    for r, text in ((missing, "nope.py"), (gpl2py("run", str(proj), "--setup", str(no_func)), "setup(sim)"),
-                    (gpl2py("run", str(proj), "--setup", str(failing)), "GplException")):
+    cases = [(in_process(capsys, "run", str(proj), "--setup", str(tmp_path / "nope.py")), "nope.py"),
+             (in_process(capsys, "run", str(proj), "--setup", str(no_func)), "setup(sim)"),
+             (in_process(capsys, "run", str(proj), "--setup", str(failing)), "GplException")]
+    for r, text in cases:
         assert r.returncode == 2, r.stderr
         assert text in r.stderr and "Traceback" not in r.stderr and r.stdout == ""
+
+
+def test_setup_error_after_warnings_prints_each_line_once(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = TICKER.replace("Dim i As Integer", f'Dim i As Integer\n        Dim s As String = "{"y" * 130}"')
+    proj = write_project(tmp_path, {"Main.gpl": src})
+    bad = tmp_path / "bad.py"
+    bad.write_text("X = 1\n")
+    r = in_process(capsys, "run", str(proj), "--setup", str(bad))
+    assert r.returncode == 2
+    assert r.stderr.count("GPL1003") == 1 and r.stderr.count("GPL9001") == 1
+    assert r.stderr.count("transpiled 1 file") == 1
+
+
+def test_plot_of_a_program_without_motion_says_so(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER})
+    png = tmp_path / "none.png"
+    r = in_process(capsys, "run", str(proj), "--plot", str(png))
+    assert r.returncode == 0 and not png.exists()
+    assert r.stderr.splitlines()[-1].endswith("; no plot: robot 1 was never used")
