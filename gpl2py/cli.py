@@ -192,7 +192,7 @@ def _configure_run(parser: argparse.ArgumentParser) -> None:
 def _run_run(args: argparse.Namespace) -> Outcome:
     from gpl2py.run import run_command
 
-    return run_command(args)  # type: ignore[no-any-return]
+    return run_command(args)
 
 
 def _run_epilog() -> str:

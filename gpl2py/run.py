@@ -40,7 +40,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TextIO
 
 from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
@@ -49,6 +49,7 @@ from gpl2py.progress import ProgressBar
 from gpl2py.project import Project, load_project
 
 if TYPE_CHECKING:
+    from gpl2py.cli import Outcome
     from gpl2py.transpile import Progress
 
 EXIT_OK = 0
@@ -324,7 +325,7 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
     return report
 
 
-def run_command(args: argparse.Namespace) -> Any:
+def run_command(args: argparse.Namespace) -> Outcome:
     """The ``run`` command (``gpl2py.cli`` calls it); prints everything itself."""
     from gpl2py import cli
     from gpl2py.progress import wants_progress
@@ -406,7 +407,7 @@ def _shown_path(project: Project, name: str) -> str:
     return name
 
 
-def _usage_after_emit(out: Any, detail: str, as_json: bool, stderr: Any) -> Any:
+def _usage_after_emit(out: Outcome, detail: str, as_json: bool, stderr: TextIO) -> Outcome:
     """A command-line problem found after the translation's diagnostics were printed (text mode):
     print only the new error; in JSON mode nothing was printed yet, so the CLI prints it all."""
     diag = out.sink.report(msg.USAGE_ERROR, None, detail=detail)
