@@ -10,8 +10,11 @@ cache folder, one entry per *key*:
                        the name shown in diagnostics and the file's contents )
 
 The fingerprint of gpl2py's code is there for people who work on gpl2py itself (an editable
-install does not change ``__version__`` when the lowering changes); hashing ~100 small files costs
-a few milliseconds.  The shown file names are in the key because the stored diagnostics quote them.
+install does not change ``__version__`` when the lowering changes).  It hashes each ``.py`` file's
+name, size and modification time rather than its bytes: an edit always changes the time, and a
+``stat`` of ~100 files costs about a millisecond where reading them costs ~100 ms, which would be
+most of a cached run's start-up.  The shown file names are in the key because the stored
+diagnostics quote them.
 
 Where (decision): a user cache folder, not the project folder, so that a GPL project folder stays
 exactly what the controller sees (it may be read-only, on a share, or copied to ``/flash``):
@@ -59,7 +62,7 @@ def default_cache_root() -> Path:
 
 
 def _tool_fingerprint() -> str:
-    """Hash of gpl2py's Python files and the runtime's catalogue modules (see module docstring)."""
+    """Hash of the names, sizes and times of gpl2py's and gplrt's Python files (see module docstring)."""
     import gpl2py
     import gplrt
 
@@ -67,11 +70,11 @@ def _tool_fingerprint() -> str:
     for pkg in (gpl2py, gplrt):
         root = Path(pkg.__file__).resolve().parent
         for path in sorted(root.rglob("*.py")):
-            h.update(str(path.relative_to(root)).encode())
             try:
-                h.update(path.read_bytes())
+                st = path.stat()
             except OSError:
                 continue
+            h.update(f"{path.relative_to(root)}\0{st.st_size}\0{st.st_mtime_ns}\0".encode())
     return h.hexdigest()
 
 

@@ -296,3 +296,22 @@ def test_plot_of_a_program_without_motion_says_so(tmp_path: Path, capsys: pytest
     r = in_process(capsys, "run", str(proj), "--plot", str(png))
     assert r.returncode == 0 and not png.exists()
     assert r.stderr.splitlines()[-1].endswith("; no plot: robot 1 was never used")
+
+
+def test_cache_key_covers_sources_names_options_and_the_tools(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from gpl2py import cache
+    from gpl2py.diagnostics import DiagnosticSink
+    from gpl2py.project import load_project
+
+    proj = write_project(tmp_path, {"Main.gpl": TICKER})
+    project = load_project(proj, DiagnosticSink())
+    assert project is not None
+    base = cache.cache_key(project, {"keep_going": False})
+    assert cache.cache_key(project, {"keep_going": False}) == base
+    assert cache.cache_key(project, {"keep_going": True}) != base
+    monkeypatch.setattr(cache, "_FINGERPRINT", "an edited gpl2py")
+    assert cache.cache_key(project, {"keep_going": False}) != base
+    monkeypatch.undo()
+    (proj / "Main.gpl").write_text(TICKER + "\n")
+    changed = load_project(proj, DiagnosticSink())
+    assert changed is not None and cache.cache_key(changed, {"keep_going": False}) != base
