@@ -219,9 +219,12 @@ class ProcLowerer(ExprLowerer):
             if v.boxed:
                 box = box or self.rt(BYREF, "Box")
                 lines.append(f"{py_ident(v.name)} = {box}({py_ident(v.name)})")
+        assigned_first = _assigned_before_use(p)
         for v in p.locals.values():
             if v.storage != "local" or not (v.read or v.boxed):
                 continue
+            if v in assigned_first:
+                continue  # the procedure's first statements store it before any read
             d = default_code(v.type)
             if v.boxed:
                 box = box or self.rt(BYREF, "Box")
@@ -762,6 +765,63 @@ class ProcLowerer(ExprLowerer):
 
 
 # -- helpers ---------------------------------------------------------------------------------------
+
+
+def _names_in(node: A.Node) -> set[str]:
+    out: set[str] = set()
+    stack: list[A.Node] = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, A.Name):
+            out.add(n.name.lower())
+        stack.extend(n.children())
+    return out
+
+
+def _assigned_before_use(p: ProcSym) -> set[VarSym]:
+    """Unboxed locals that the procedure's leading run of plain statements assigns with ``=``
+    before anything reads them: they need no default at entry (the default would be dead)."""
+    decl = p.decl
+    if decl is None:
+        return set()
+    read: set[str] = set()
+    out: set[VarSym] = set()
+    for s in decl.body.statements:
+        targets: list[tuple[str, A.Expr | None]] = []
+        if isinstance(s, A.Assign) and s.op == "=" and isinstance(s.target, A.Name):
+            targets.append((s.target.name.lower(), s.value))
+        elif isinstance(s, A.VarDecl) and s.keyword != "Static":
+            for d in s.declarators:
+                if d.initializer is not None and not d.bounds and not d.new:
+                    targets.append((d.name.lower(), d.initializer))
+                elif (d.bounds and all(b is not None for b in d.bounds)) or d.new:
+                    targets.append((d.name.lower(), None))  # allocates: Dim a(3), As New T
+                    for b in d.bounds or []:
+                        if b is not None:
+                            read |= _names_in(b)
+                    for a in d.new_args or []:
+                        read |= _names_in(a)
+        elif isinstance(s, A.For) and isinstance(s.var, A.Name):
+            # the loop stores its start value first; its bounds are read before that
+            for e in (s.start, s.end, s.step):
+                if e is not None:
+                    read |= _names_in(e)
+            v = p.locals.get(s.var.name.lower())
+            if v is not None and v.storage == "local" and not v.boxed and s.var.name.lower() not in read:
+                out.add(v)
+            break  # the body may read anything
+        else:
+            break
+        for name, value in targets:
+            if value is not None:
+                read |= _names_in(value)
+            v = p.locals.get(name)
+            if v is not None and v.storage == "local" and not v.boxed and name not in read:
+                out.add(v)
+        if isinstance(s, A.Assign):
+            for sub in s.target.children():
+                read |= _names_in(sub)
+    return out
 
 
 def _is_simple(code: str) -> bool:
