@@ -16,6 +16,7 @@ from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import (
     BYREF,
+    CONV,
     P_AND,
     P_ATOM,
     P_NOT,
@@ -381,7 +382,10 @@ class ProcLowerer(ExprLowerer):
     def s_Assign(self, s: A.Assign) -> None:
         tt = self.target_type(s.target)
         if s.op == "=":
-            self.store(s.target, self.checked(s.target, self.conv(s.value, tt)[0]))
+            value = self.conv(s.value, tt)[0]
+            if tt is t.DOUBLE and _may_overflow_double(s.value, self):
+                value = self.double_checked(value)
+            self.store(s.target, self.checked(s.target, value))
             return
         target = s.target
         if isinstance(target, A.Invoke) and self.info(target).kind == "index":
@@ -399,7 +403,19 @@ class ProcLowerer(ExprLowerer):
             self.model.info[target] = replace(ti, receiver=recv)
         value = self.binop(s.op[:-1], (*self.expr(target), tt), (*self.expr(s.value), self.type_of(s.value)))
         res_type = _binary_result(s.op[:-1], tt, self.type_of(s.value))
-        self.store(target, self.checked(target, self.coerce(value, res_type, tt)[0]))
+        code = self.coerce(value, res_type, tt)[0]
+        if tt is t.DOUBLE and s.op == "*=" and _bound(target, self) * _bound(s.value, self) > _SAFE:
+            code = self.double_checked(code)
+        self.store(target, self.checked(target, code))
+
+    def double_checked(self, value: str) -> str:
+        """A Double product that may leave the Double range: checked before the store (-710
+        instead of Infinity, §4.4) with an inline test, so the usual path makes no call."""
+        tmp = self.fresh("v")
+        self.w.line(f"{tmp} = {value}")
+        self.w.line(f"if {tmp} - {tmp} != 0.0:  # Infinity or NaN")
+        self.w.line(f"    {self.rt(CONV, 'chk_double')}({tmp})")
+        return tmp
 
     def checked(self, target: A.Expr, value: str) -> str:
         """For an Integer stored through a ByRef cell, check the range inline before the store (no
@@ -765,6 +781,57 @@ class ProcLowerer(ExprLowerer):
 
 
 # -- helpers ---------------------------------------------------------------------------------------
+
+
+_SAFE = 1e300  # a magnitude bound below this cannot overflow in one more + or -
+_INT_BOUND = 2.0**31
+
+
+def _bound(e: A.Expr, low: ExprLowerer) -> float:
+    """An upper bound of ``abs(e)`` from its static types (``inf`` when unknown): Integer values
+    are below 2**31, Sin/Cos below 1, a square root of any Double below 1.4e154."""
+    import math
+
+    if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
+        return abs(float(e.value))
+    typ = low.type_of(e)
+    if typ in (t.BYTE, t.SHORT, t.INTEGER, t.BOOLEAN):
+        return _INT_BOUND
+    if isinstance(e, A.Unary):
+        return _bound(e.operand, low)
+    if isinstance(e, A.Binary):
+        a, b = _bound(e.left, low), _bound(e.right, low)
+        if e.op in ("+", "-"):
+            return a + b
+        if e.op == "*":
+            return a * b if a and b else 0.0
+        if e.op == "/" and isinstance(e.right, (A.IntegerLiteral, A.RealLiteral)) and e.right.value:
+            return a / abs(float(e.right.value))
+        return math.inf
+    i = low.model.info.get(e)
+    if i is not None and i.kind == "bmember" and isinstance(i.sym, Member) and i.owner is not None \
+            and getattr(i.owner, "name", "") == "Math":
+        if i.sym.name in ("Sin", "Cos"):
+            return 1.0
+        if i.sym.name in ("Atan", "Atan2"):
+            return 4.0
+        if i.sym.name == "Sqrt":
+            return 1.4e154
+    return math.inf
+
+
+def _may_overflow_double(e: A.Expr, low: ExprLowerer) -> bool:
+    """Whether a Double value stored from ``e`` needs the overflow check: it contains a product
+    whose bound is unknown (sums and differences overflow only from operands that are already
+    beyond half the range -- values that a checked product or the runtime produced first)."""
+    stack: list[A.Node] = [e]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, A.Binary) and n.op == "*" and _bound(n, low) > _SAFE:
+            return True
+        if isinstance(n, (A.Binary, A.Unary)):
+            stack.extend(n.children())
+    return False
 
 
 def _names_in(node: A.Node) -> set[str]:

@@ -440,9 +440,16 @@ retry:
             i = 7 Mod 0
         Catch ex
             Console.WriteLine("mod " & ex.ErrorCode)
+        End Try
+        Dim d As Double
+        d = 1E+300
+        Try
+            d = d * d
+        Catch ex
+            Console.WriteLine("double " & ex.ErrorCode & " " & d)
         End Try""",
         "div -709 *Division by 0*\noverflow -710 2147483647\nshort -710\nindex -767\nindex -767\nnothing -757\n"
-        "format -717\nmod -709\n",
+        "format -717\nmod -709\ndouble -710 1E+300\n",
     ),
     "goto_out_of_three_nested_loops": (
         "",

@@ -62,6 +62,7 @@ __all__ = [
     "chk_int32",
     "chk_int16",
     "chk_uint8",
+    "chk_double",
     "to_single",
     "to_double",
     "to_number",
@@ -226,6 +227,16 @@ def chk_int16(x: int) -> int:
     if -32768 <= x <= 32767:
         return x
     raise GplException(ARITHMETIC_OVERFLOW, detail=f"{x} does not fit a Short")
+
+
+def chk_double(x: float) -> float:
+    """Range check of a Double result (``if`` in generated code calls it only for a non-finite
+    value): ±Infinity is -710 Arithmetic overflow, NaN is -708 Value infinite or NAN."""
+    if x != x:
+        raise GplException(-708, detail="the result is not a number")
+    if x == math.inf or x == -math.inf:
+        raise GplException(ARITHMETIC_OVERFLOW, detail="the result overflows a Double")
+    return x
 
 
 def chk_uint8(x: int) -> int:
