@@ -267,13 +267,31 @@ def _install_blocking_hook() -> None:
 _install_blocking_hook()
 
 
+def _route_console(text: str) -> None:
+    """The Console sink every session installs: the calling GPL thread's own session gets the text.
+
+    Console output belongs to a session, but ``gplrt.lang.console`` has one process-wide sink (the
+    language runtime knows nothing of sessions).  Routing per call keeps two sessions that run side
+    by side (a test's server in the background, a notebook's cell) from taking each other's output.
+    Outside any GPL thread the active session gets it, and with no session the text goes to stdout.
+    """
+    ctx = current_ctx()
+    sim = ctx.sched.sim if ctx is not None else _state.sim
+    if sim is None:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    else:
+        sim.console.write(text)
+
+
 def _install_console(sim: Simulation) -> None:
-    """Route GPL ``Console`` output (gplrt.lang.console) into the session's console sink."""
+    """Route GPL ``Console`` output (gplrt.lang.console) into the sessions' console sinks."""
     try:
-        from gplrt.lang.console import set_console_sink
+        from gplrt.lang.console import get_console_sink, set_console_sink
     except ImportError:  # the language runtime is not there: nothing to route
         return
-    set_console_sink(sim.console.write)
+    if get_console_sink() is not _route_console:
+        set_console_sink(_route_console)
 
 
 class _State:
