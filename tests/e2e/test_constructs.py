@@ -630,3 +630,27 @@ def test_threads_and_test_and_set_on_virtual_clock(tmp_path: Path) -> None:
     assert count < 100
     # 100 critical sections of 2 ms each, serialised by the lock, on the virtual clock
     assert locked.sim.now() >= 0.2
+
+
+def test_busy_wait_loop_lets_other_threads_run(tmp_path: Path) -> None:
+    """A While loop that polls a module variable without sleeping must not starve the thread that
+    sets it: loops get a scheduling checkpoint at their back-edge."""
+    src = """Module Main
+    Public flag As Boolean
+    Public Sub Setter()
+        Thread.Sleep(5)
+        flag = True
+    End Sub
+    Public Sub Main()
+        Dim t As New Thread("Setter")
+        Dim spins As Integer
+        t.Start()
+        While Not flag
+            spins += 1
+        End While
+        Console.WriteLine("flag seen " & (spins > 0))
+    End Sub
+End Module
+"""
+    result = run_gpl(tmp_path, src)
+    assert result.log == "" and result.output == "flag seen True\n"
