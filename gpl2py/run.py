@@ -116,7 +116,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
     if entry is not None:
         sink.extend(entry.diagnostics)
         return Built(entry, project, True, entry.files, entry.lines, time.perf_counter() - started)
-    from gpl2py.transpile import transpile  # libcst and the lowering: only on a cache miss
+    from gpl2py.transpile import transpile  # the whole pipeline: only on a cache miss
 
     local = DiagnosticSink()
     output = transpile(path, local, keep_going=keep_going, progress=progress)

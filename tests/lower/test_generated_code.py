@@ -12,6 +12,7 @@ import re
 from pathlib import Path
 
 import libcst
+import pycodestyle
 import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
@@ -142,7 +143,6 @@ def test_no_exec_or_eval_and_valid_python_for_all_frontend_sources() -> None:
 
 
 def test_pep8_layout(tmp_path: Path) -> None:
-    pycodestyle = pytest.importorskip("pycodestyle")
     out = transpile(str(REPO / "samples/tcp_command_server"), DiagnosticSink(), keep_going=True)
     assert out is not None
     paths = []
