@@ -17,7 +17,19 @@ from pathlib import Path
 from gplrt.lang.errors import GplException
 from gplrt.notebook import Cell
 
-HERE = Path(__file__).resolve().parent if "__file__" in globals() else Path("samples/notebook").resolve()
+
+def _here() -> Path:
+    """This folder, whether run as a script or cell by cell (where ``__file__`` is not set)."""
+    if "__file__" in globals():
+        return Path(__file__).resolve().parent
+    for base in (Path.cwd(), *Path.cwd().parents):
+        for folder in (base, base / "samples" / "notebook"):
+            if (folder / "cell_io.py").is_file():
+                return folder
+    raise FileNotFoundError("run this notebook from the gpl2py repository")
+
+
+HERE = _here()
 OUT = Path(os.environ.get("GPL2PY_NOTEBOOK_OUT", "build/notebook"))
 sys.path.insert(0, str(HERE))
 from cell_io import DIN_CLOSED, DOUT_CLOSE, wire  # noqa: E402 - the cell's wiring, next to this file
