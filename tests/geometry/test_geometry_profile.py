@@ -10,7 +10,10 @@ import pytest
 from gplrt.lang.errors import GplException
 from gplrt.motion.profile import Profile, set_profile_defaults
 
-PF400_PAC = Path("/work/shared/data/robots/pf400sx/robot01.pac")
+import gplrt
+
+# The PF400 parameter file shipped with the runtime (a byte-identical copy of the controller's).
+PF400_PAC = Path(gplrt.__file__).parent / "data" / "robots" / "pf400sx" / "robot01.pac"
 
 
 def _pdb_value(text: str, data_id: int) -> float:
@@ -21,11 +24,9 @@ def _pdb_value(text: str, data_id: int) -> float:
 
 def test_defaults_are_the_pf400_parameter_database_defaults() -> None:
     p = Profile()
-    if PF400_PAC.exists():
-        text = PF400_PAC.read_text()
-        want = [_pdb_value(text, i) for i in (2708, 2709, 2710, 2711, 2712, 2713)]
-    else:  # the values robot-models.md §2.4 records for the PF400 sets
-        want = [50, 0, 100, 100, 0.1, 0.1]
+    text = PF400_PAC.read_text()
+    want = [_pdb_value(text, i) for i in (2708, 2709, 2710, 2711, 2712, 2713)]
+    assert want == [50, 0, 100, 100, 0.1, 0.1]  # as robot-models.md §2.4 records for the PF400 sets
     assert [p.Speed, p.Speed2, p.Accel, p.Decel, p.AccelRamp, p.DecelRamp] == want
     assert p.Straight is False and p.InRange == 0.0 and p.Text == ""
 
