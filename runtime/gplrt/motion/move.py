@@ -76,14 +76,19 @@ def _need(obj: Any, what: str) -> None:
 
 
 def _angles_of(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray:
-    """Joint values of an Angles Location; axes it does not give keep ``base``'s values."""
+    """Joint values of an Angles Location for ``robot``.
+
+    An Angles Location holds "one axis position value for each degree-of-freedom of the robot"
+    (D0:1958-1960), but ``loc.Angles(...)`` always stores 12 values (omitted ones 0) and one
+    Location may serve robots of different axis counts.  Decision [P] (the manual is silent on
+    values beyond the robot's axes): they do not belong to any degree of freedom of this robot and
+    are ignored, so ``l.Angles(250, 0, 90, 0, 69)`` moves a 5-axis PF400.  A Location with fewer
+    values than the robot has axes leaves the remaining axes at ``base`` (the previous destination).
+    """
     vals = loc.axis_values()
     n = robot.axis_count
-    if len(vals) == n:
-        return np.array(vals)
-    if len(vals) > n:
-        raise GplException(INVALID_ARGUMENT, robot_num=robot.number,
-                           detail=f"{len(vals)} angles for a {n}-axis robot")
+    if len(vals) >= n:
+        return np.array(vals[:n], dtype=float)
     q = base.copy()
     q[: len(vals)] = vals
     return q
@@ -114,7 +119,12 @@ class _MoveClass:
     # -- the motion itself -----------------------------------------------------------------------
 
     def _go(self, loc: Location, prof: Profile, pose: Callable[[RobotState, np.ndarray], np.ndarray] | None = None,
-            joints: Callable[[RobotState, np.ndarray], np.ndarray] | None = None) -> None:
+            joints: Callable[[RobotState, np.ndarray], np.ndarray] | None = None,
+            angles: Callable[[RobotState, np.ndarray], np.ndarray] | None = None) -> None:
+        """Queue one motion: ``joints`` gives a joint-interpolated target; ``pose`` a Cartesian one
+        (straight or joint per the Profile); ``angles`` the joint target of a straight move to an
+        Angles Location, whose axes that do not set the tool pose (rail, grippers) must also
+        reach their values."""
         _need(loc, "Location")
         _need(prof, "Profile")
         s = registry.sim()
@@ -127,8 +137,14 @@ class _MoveClass:
             if joints is not None:
                 robot.queue_joint(t, joints(robot, dest), prof, speed)
                 return
-            assert pose is not None
             seed, extra_end = _with_extra(robot, dest)
+            if angles is not None and prof.Straight:
+                q1 = angles(robot, dest)
+                T1 = robot.forward(q1)
+                robot.queue_path(t, lambda T0: LinePath(T0, T1), int(loc.Config), prof, speed, q1,
+                                 extra_mask=robot.passive_mask)
+                return
+            assert pose is not None
             T1 = pose(robot, dest)
             if prof.Straight:
                 robot.queue_path(t, lambda T0: LinePath(T0, T1), int(loc.Config), prof, speed, extra_end)
@@ -140,6 +156,8 @@ class _MoveClass:
         loc = Location1
         if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
             self._go(loc, Profile1, joints=lambda r, dest: _angles_of(r, loc, dest))
+        elif loc is not None and loc.Type == 1:
+            self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
         else:
             self._go(loc, Profile1, pose=lambda r, dest: _cartesian(r, loc, dest))
 

@@ -53,6 +53,7 @@ ROBOT_NOT_HOMED = -1021
 CANT_CHANGE_CONFIG = -1042
 POWER_NOT_ENABLED = -1046
 EXTRA_ROLES = ("rail",)
+PASSIVE_ROLES = ("rail", "gripper", "gripper2")
 
 
 @dataclass(eq=False)
@@ -84,7 +85,14 @@ class RobotState:
 
     @property
     def extra_mask(self) -> np.ndarray:
+        """Axes ``Move.Extra`` sets (the rail)."""
         return np.array([j.role in EXTRA_ROLES for j in self.model.joints], dtype=bool)
+
+    @property
+    def passive_mask(self) -> np.ndarray:
+        """Axes the inverse kinematics keeps at their current values (rail, grippers): a straight
+        move to an Angles Location interpolates them to their target values instead."""
+        return np.array([j.role in PASSIVE_ROLES for j in self.model.joints], dtype=bool)
 
     # -- reading the state --------------------------------------------------------------------
 
@@ -197,11 +205,15 @@ class RobotState:
         return self._append(seg, prof)
 
     def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
-                   extra_end: Vec | None = None, kind: str = "straight") -> Segment:
-        """Plan and queue a Cartesian path motion; ``make_path(T_start)`` builds the Path."""
+                   extra_end: Vec | None = None, kind: str = "straight",
+                   extra_mask: np.ndarray | None = None) -> Segment:
+        """Plan and queue a Cartesian path motion; ``make_path(T_start)`` builds the Path.
+
+        The axes in ``extra_mask`` (default: the rail) move linearly along the path to their
+        values in ``extra_end``; the IK solves the others."""
         t0, q0, _, _ = self._start(now, can_blend=False)
         path: Path = make_path(self.forward(q0))
-        mask = self.extra_mask
+        mask = self.extra_mask if extra_mask is None else extra_mask
         q_extra = q0.copy() if extra_end is None else np.where(mask, extra_end, q0)
         start_config = self.model.config_of([float(v) for v in q0])
 
