@@ -51,8 +51,8 @@ def _power_on(s: Any) -> bool:
     return s.controller.power_state in POWER_ON_STATES
 
 
-def _attached(s: Any) -> RobotState:
-    robot = registry.attached_robot(s, registry.thread_key())
+def _attached(s: Any, key: Any = None) -> RobotState:
+    robot = registry.attached_robot(s, registry.thread_key() if key is None else key)
     if robot is None:
         raise GplException(NO_ROBOT_ATTACHED, detail="this thread has no robot attached (Robot.Attached)")
     return robot  # type: ignore[no-any-return]
@@ -60,13 +60,17 @@ def _attached(s: Any) -> RobotState:
 
 def _ready(s: Any) -> RobotState:
     """The attached robot, checked for motion, once the queue has room (waits on the clock)."""
-    robot = _attached(s)
-    robot.check_can_move(registry.thread_key(), _power_on(s))
+    key = registry.thread_key()
+    robot = _attached(s, key)
+    robot.check_can_move(key, _power_on(s))
+    queue = robot.queue
+    if len(queue.history) < QUEUE_DEPTH:
+        return robot  # room whatever has finished
     sched = s.scheduler
-    while robot.queue.pending(sched.clock.now()) >= QUEUE_DEPTH:
+    while queue.pending(sched.clock.now()) >= QUEUE_DEPTH:
         # the oldest unfinished segment is QUEUE_DEPTH from the end: wait until it has run
-        sched.sleep_until(robot.queue.history[-QUEUE_DEPTH].end)
-        robot.check_can_move(registry.thread_key(), _power_on(s))
+        sched.sleep_until(queue.history[-QUEUE_DEPTH].end)
+        robot.check_can_move(key, _power_on(s))
     return robot
 
 
@@ -155,7 +159,14 @@ class _MoveClass:
         """Move to the total position of ``Location1`` (Cartesian or Angles)."""
         loc = Location1
         if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
-            self._go(loc, Profile1, joints=lambda r, dest: _angles_of(r, loc, dest))
+            # the commonest move of all, kept short (benchmarks/motion_speed.py measures it)
+            s = registry.sim()
+            robot = _ready(s)
+            with robot.lock:
+                queue = robot.queue
+                dest = queue.history[-1].q_end if queue.history else queue.rest
+                robot.queue_joint(s.scheduler.clock.now(), _angles_of(robot, loc, dest), Profile1,
+                                  s.controller.system_speed)
         elif loc is not None and loc.Type == 1:
             self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
         else:

@@ -150,9 +150,12 @@ class RobotState:
     def _start(self, now: float, can_blend: bool) -> tuple[float, Vec, Vec | None, Vec | None]:
         """Start time and state of the next segment (velocity/acceleration None = at rest;
         see the module docstring on blending)."""
-        last = self.queue.last
-        if last is None or last.end <= now + CLOCK_RESOLUTION:
-            return now, self.queue.joints_at(now), None, None
+        queue = self.queue
+        last = queue.history[-1] if queue.history else None
+        if last is None:
+            return now, queue.rest.copy(), None, None
+        if last.end <= now + CLOCK_RESOLUTION:  # idle: at rest where the last segment left it
+            return now, last.q_end.copy(), None, None
         if can_blend and last.blend and last.cut is None and not isinstance(last, DwellSegment):
             t_b = max(now, self._blend_time(last))
             if t_b < last.motion_end:
@@ -186,7 +189,7 @@ class RobotState:
         return hi
 
     def _settle_and_blend(self, seg: Segment, prof: Profile) -> Segment:
-        inrange = float(prof.InRange)
+        inrange = prof._inrange  # a float, validated by the Profile.InRange setter
         seg.blend = inrange < 0.0
         seg.blend_tolerance = abs(inrange)
         seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0

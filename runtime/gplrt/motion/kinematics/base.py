@@ -88,8 +88,8 @@ class RobotModel:
         self.robot = robot
         self.module = module
         self.joints = joints
-        self.tool = np.eye(4) if tool is None else np.asarray(tool, dtype=float)
-        self.base = np.eye(4) if base is None else np.asarray(base, dtype=float)
+        self.tool = np.eye(4) if tool is None else tool
+        self.base = np.eye(4) if base is None else base
         self._linear = [j.linear for j in joints]
         self._lower_si = np.array([units.joint_to_si(j.lower, j.linear) for j in joints])
         self._upper_si = np.array([units.joint_to_si(j.upper, j.linear) for j in joints])
@@ -98,8 +98,31 @@ class RobotModel:
         self.flange_frame: int = -1
         # pin q index of each GPL axis (GPL axis order differs from tree order, e.g. the rail).
         self._q_index: list[int] = []
+        self._slack_bounds: list[tuple[float, float]] | None = None
         # One pin.Data per model: GPL threads sharing a robot must not interleave computations in it.
         self.lock = threading.RLock()
+
+    # -- Tool and Base ---------------------------------------------------------------------------
+    #
+    # ``inverse`` needs Base⁻¹ and Tool⁻¹ on every call (a straight line solves it dozens of times
+    # per move): they are computed once when Tool/Base are assigned.  The stored matrices are made
+    # read-only so that an in-place edit cannot leave a stale inverse behind (it raises instead).
+
+    @property
+    def tool(self) -> Matrix:
+        return self._tool
+
+    @tool.setter
+    def tool(self, value: Matrix) -> None:
+        self._tool, self._tool_inv, self._tool_is_identity = _frozen_with_inverse(value)
+
+    @property
+    def base(self) -> Matrix:
+        return self._base
+
+    @base.setter
+    def base(self, value: Matrix) -> None:
+        self._base, self._base_inv, self._base_is_identity = _frozen_with_inverse(value)
 
     # -- description ----------------------------------------------------------------------------
 
@@ -165,7 +188,8 @@ class RobotModel:
         if len(joints) != self.axis_count:
             raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
         q = units.joints_to_q(joints, self._linear)
-        if not np.all(np.isfinite(q)):
+        # A finite sum proves every value finite; the full check only when it is not.
+        if not math.isfinite(float(q.sum())) and not np.all(np.isfinite(q)):
             raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {list(joints)}")
         return q
 
@@ -175,7 +199,10 @@ class RobotModel:
 
     def forward(self, joints: Sequence[float]) -> Matrix:
         """``Base · Flange(joints) · Tool`` (mm): what ``Robot.Where`` reports."""
-        return self.base @ self.flange(joints) @ self.tool
+        T = self.flange(joints)
+        if not self._base_is_identity:
+            T = self._base @ T
+        return T if self._tool_is_identity else T @ self._tool
 
     def inverse(self, T: Matrix, config_bits: int = 0, current_joints: Sequence[float] | None = None) -> list[float]:
         """Joints (mm/deg) that put ``Base · Flange · Tool`` at ``T`` (4×4, mm); see module docstring."""
@@ -183,9 +210,12 @@ class RobotModel:
             raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
         current = self.ready_joints() if current_joints is None else list(current_joints)
         T = np.asarray(T, dtype=float)
-        if T.shape != (4, 4) or not np.all(np.isfinite(T)):
+        # A finite sum is a cheap proof that every element is finite (the full check only on failure).
+        if T.shape != (4, 4) or (not math.isfinite(float(T.sum())) and not np.all(np.isfinite(T))):
             raise GplException(INVALID_ARGUMENT, detail="target must be a finite 4x4 homogeneous transform")
-        target = np.linalg.solve(self.base, T) @ np.linalg.inv(self.tool)
+        target = T if self._base_is_identity else self._base_inv @ T
+        if not self._tool_is_identity:
+            target = target @ self._tool_inv
         q = self._solve(units.matrix_to_se3(target), int(config_bits), self._to_si(current))
         joints = units.q_to_joints(q, self._linear)
         self.check_limits(joints)
@@ -199,6 +229,13 @@ class RobotModel:
 
     def check_limits(self, joints: Sequence[float]) -> None:
         """-1012 *Joint out-of-range* (with ``Axis``) for the first axis outside its soft limits."""
+        bounds = self._slack_bounds
+        if bounds is None:
+            bounds = self._slack_bounds = [
+                (j.lower - LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi),
+                 j.upper + LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi)) for j in self.joints]
+        if len(joints) == len(bounds) and all(lo <= v <= hi for v, (lo, hi) in zip(joints, bounds)):
+            return
         for i, (value, info) in enumerate(zip(joints, self.joints, strict=True)):
             slack = LIMIT_SLACK * (units.MM_PER_M if info.linear else 180.0 / math.pi)
             if not info.lower - slack <= value <= info.upper + slack:
@@ -220,6 +257,17 @@ class RobotModel:
         if single and i == self.single_axis:
             return unwind(angle, 0.0, -math.pi + 1e-15, math.pi)
         return unwind(angle, float(current[i]), float(self._lower_si[i]), float(self._upper_si[i]))
+
+
+def _frozen_with_inverse(value: Matrix) -> tuple[Matrix, Matrix, bool]:
+    """A read-only copy of a 4×4 transform, its inverse, and whether it is the identity."""
+    m = np.array(value, dtype=float)
+    if m.shape != (4, 4):
+        raise GplException(INVALID_ARGUMENT, detail="Tool/Base must be a 4x4 homogeneous transform")
+    inv = np.linalg.inv(m)
+    m.flags.writeable = False
+    inv.flags.writeable = False
+    return m, inv, bool(np.array_equal(m, np.eye(4)))
 
 
 # -- reading the parameter database -------------------------------------------------------------

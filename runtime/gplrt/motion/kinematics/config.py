@@ -50,6 +50,9 @@ def unwind(angle: float, current: float, lower: float, upper: float) -> float:
     If no equivalent lies inside the limits, the one nearest the limits is returned so that the
     caller's limit check reports the axis (-1012)."""
     k_near = round((current - angle) / TWO_PI)
+    near = angle + k_near * TWO_PI
+    if abs(near - current) < math.pi and lower - LIMIT_SLACK <= near <= upper + LIMIT_SLACK:
+        return near  # strictly the turn nearest ``current`` (no tie), and within the limits
     best: float | None = None
     for k in (k_near - 1, k_near, k_near + 1):
         cand = angle + k * TWO_PI
