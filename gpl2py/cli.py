@@ -147,6 +147,18 @@ def _configure_transpile(parser: argparse.ArgumentParser) -> None:
                         help="folder that receives the package OUT/<project_name>/ (default: .)")
     parser.add_argument("--keep-going", action="store_true",
                         help="write the package even when there are errors (exit status stays 1)")
+    add_stub_options(parser)
+
+
+def add_stub_options(parser: argparse.ArgumentParser) -> None:
+    """--stubs and --strict (translate and run): see README "Porting your own project"."""
+    parser.add_argument("--stubs", metavar="DIR", default=None,
+                        help="folder of Python files implementing stubs for protected code or "
+                        "missing built-in members (Module.Proc -> DIR/module.py, function Proc); "
+                        "they are copied into the package")
+    parser.add_argument("--strict", action="store_true",
+                        help="report every stub (GPL3501, GPL3502) as an error: nothing is written, "
+                        "exit status 1")
 
 
 def _run_transpile(args: argparse.Namespace) -> Outcome:
@@ -168,7 +180,8 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
         return out
     bar = ProgressBar(sys.stderr, wants_progress(sys.stderr, args.quiet, args.json))
     try:
-        output = transpile(args.path, out.sink, keep_going=args.keep_going, progress=bar)
+        output = transpile(args.path, out.sink, keep_going=args.keep_going, progress=bar,
+                           stubs_dir=args.stubs, strict=args.strict)
     finally:
         bar.close()
     if output is not None and output.project is not None:

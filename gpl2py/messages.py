@@ -487,6 +487,14 @@ IMPLICIT_TO_STRING = _warning(
     "The manuals always convert numbers to text with CStr; the implicit conversion is accepted "
     "(spec AMB-11).",
 )
+START_ASSUMED_MAIN = _warning(
+    "GPL2032",
+    "the project names no start procedure (no Project.gpr or no ProjectStart): starting {name}, "
+    "its only Public Sub Main",
+    "A folder without Project.gpr, or a single file, runs its one Public parameterless Sub Main "
+    "(gpl2py's decision; a controller needs ProjectStart). With none or several, the package can "
+    "be imported but not run.",
+)
 
 # --- lowering and output (GPL3000-GPL3499) -----------------------------------------------------
 
@@ -526,6 +534,28 @@ NOT_SUPPORTED = _error(
 )
 
 # --- stubs for missing code (GPL3500-GPL3999) --------------------------------------------------
+
+STUB_PROTECTED = _warning(
+    "GPL3501",
+    "'{name}' is not declared in the readable sources; assuming the protected code defines it: "
+    "a stub is generated that raises error -204 if the program uses it",
+    "Reported once per name, only in projects with protected (.gpp) files (elsewhere an unknown "
+    "name stays error GPL2001). The rest of the project runs; supply a Python implementation with "
+    "--stubs DIR, or make this an error with --strict (same code, severity error).",
+)
+STUB_BUILTIN_MEMBER = _warning(
+    "GPL3502",
+    "{owner} has no member '{member}' in the simulated controller: a stub is generated that "
+    "raises error -204 if the program uses it",
+    "Reported once per member. The member may exist on a newer controller, or is not simulated. "
+    "Supply a Python implementation with --stubs DIR, or make this an error with --strict (same code, "
+    "severity error).",
+)
+STUBS_DIR_ERROR = _error(
+    "GPL3503",
+    "--stubs {path}: {detail}",
+    "The --stubs folder must exist and hold Python files that parse.",
+)
 
 # --- internal and usage (GPL9000-GPL9999) ------------------------------------------------------
 

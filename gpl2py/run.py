@@ -97,7 +97,8 @@ def count_lines(project: Project) -> int:
 
 
 def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | None = None,
-          keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None) -> Built | None:
+          keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None,
+          stubs_dir: str | Path | None = None, strict: bool = False) -> Built | None:
     """Translate ``path`` into the cache (or reuse the entry); diagnostics go to ``sink``.
 
     Returns None when the project has errors (unless ``keep_going``) or the cache cannot be
@@ -111,7 +112,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
         sink.extend(probe)
         return None
     cache = Cache(cache_dir)
-    key = cache_key(project, {"keep_going": keep_going})
+    key = cache_key(project, {"keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir)})
     entry = None if rebuild else cache.lookup(key)
     if entry is not None:
         sink.extend(entry.diagnostics)
@@ -119,7 +120,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
     from gpl2py.transpile import transpile  # the whole pipeline: only on a cache miss
 
     local = DiagnosticSink()
-    output = transpile(path, local, keep_going=keep_going, progress=progress)
+    output = transpile(path, local, keep_going=keep_going, progress=progress, stubs_dir=stubs_dir, strict=strict)
     sink.extend(local)
     if output is None:
         return None
@@ -130,6 +131,21 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
         sink.report(msg.OUTPUT_ERROR, None, path=str(cache.root), detail=getattr(exc, "strerror", None) or str(exc))
         return None
     return Built(entry, project, False, counts[0], counts[1], time.perf_counter() - started)
+
+
+def _stubs_fingerprint(stubs_dir: str | Path | None) -> list[list[str]] | None:
+    """The --stubs files (name and text) for the cache key: editing a user stub re-translates."""
+    if stubs_dir is None:
+        return None
+    root = Path(stubs_dir)
+    files = sorted(root.glob("*.py")) if root.is_dir() else []
+    out = [[str(root.resolve())]]
+    for f in files:
+        try:
+            out.append([f.name, f.read_text(encoding="utf-8", errors="replace")])
+        except OSError:
+            out.append([f.name, ""])
+    return out
 
 
 _serial = itertools.count()
@@ -192,6 +208,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "$XDG_CACHE_HOME/gpl2py or ~/.cache/gpl2py)")
     parser.add_argument("--rebuild", action="store_true",
                         help="translate again even when the cache has this project")
+    from gpl2py.cli import add_stub_options
+
+    add_stub_options(parser)
 
 
 def _positive_float(text: str) -> float:
@@ -334,7 +353,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
     out = cli.Outcome(emitted=True)
     bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, args.json))
     try:
-        built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar)
+        built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
+                      stubs_dir=args.stubs, strict=args.strict)
     finally:
         bar.close()
     project = built.project if built is not None else None
@@ -346,9 +366,10 @@ def run_command(args: argparse.Namespace) -> Outcome:
     if built is None:
         out.emitted = False  # cli prints the diagnostics; status 1
         return out
-    if built.project.start is None:
+    package = import_built(built)
+    if package.PROJECT.get("start") is None:
         out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs "
-                        "a Project.gpr with ProjectStart=\"Module.Proc\"")
+                        "a Project.gpr with ProjectStart=\"Module.Proc\", or a single Public Sub Main")
         out.emitted, out.usage_error = False, True
         return out
     if not args.json:
@@ -372,7 +393,9 @@ def run_command(args: argparse.Namespace) -> Outcome:
                 problem = f"--setup {args.setup}: setup(sim) raised {type(exc).__name__}: {exc}"
         if problem is not None:
             return _usage_after_emit(out, problem, args.json, stderr)
-    package = import_built(built)
+    note = stubs_note(package)
+    if note and not args.json and not args.quiet:
+        stderr.write(note + "\n")
     report = execute(package, sim, plot=args.plot)
     out.exit_status = report.status
     for e in report.errors:
@@ -397,6 +420,17 @@ def run_command(args: argparse.Namespace) -> Outcome:
     elif not args.quiet:
         stderr.write(run_summary(report, args.clock) + "\n")
     return out
+
+
+def stubs_note(package: ModuleType) -> str | None:
+    """One line naming the package's stubs (PROJECT["stubs"]), or None when it has none."""
+    stubs = getattr(package, "PROJECT", {}).get("stubs") or []
+    if not stubs:
+        return None
+    names = [f"{s['name']} (--stubs)" if s.get("provided") else str(s["name"]) for s in stubs]
+    missing = sum(1 for s in stubs if not s.get("provided"))
+    return (f"note: {_plural(len(stubs), 'stub')} for protected or unsimulated code "
+            f"({missing} raise error -204 if used): {', '.join(names)}")
 
 
 def _shown_path(project: Project, name: str) -> str:

@@ -21,6 +21,8 @@ from gpl2py.lower.module import lower_module
 from gpl2py.lower.names import snake_case
 from gpl2py.lower.package import package_init, package_main
 from gpl2py.lower.sourcemap import sourcemap_json
+from gpl2py.lower.stubs import stub_files
+from gpl2py.lower.user_stubs import UserStubs, load_user_stubs
 from gpl2py.project import Project, load_project
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import analyze
@@ -41,9 +43,11 @@ Progress = Callable[[str, int, int], None]
 
 
 def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
-              progress: Progress | None = None) -> Output | None:
+              progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
+              strict: bool = False) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
-    (``gpl2py.progress.ProgressBar`` draws it).
+    (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
+    (``gpl2py.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.semantics.stubs``).
 
     The cyclic garbage collector is paused meanwhile: the pipeline allocates hundreds of thousands
     of small tree and symbol objects that all live to the end, and the full collections their
@@ -52,17 +56,20 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _transpile(path, sink, keep_going, progress)
+        return _transpile(path, sink, keep_going, progress, stubs_dir, strict)
     finally:
         if enabled:
             gc.enable()
 
 
 def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
-               progress: Progress | None) -> Output | None:
+               progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
+               strict: bool = False) -> Output | None:
     project = load_project(path, sink)
     if project is None:
         return None
+    user = load_user_stubs(stubs_dir, sink) if stubs_dir is not None else None
+    protected = bool(project.protected)
     units = []
     for i, src in enumerate(project.sources):
         units.append(parse(src, sink))
@@ -70,13 +77,14 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
             progress("parsing", i + 1, len(project.sources))
     if sink.has_errors() and not keep_going:
         # still run the semantic pass so every error is reported in one run
-        analyze(units, sink, load_catalogue(), project.name, project.start)
+        analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected, strict=strict)
         return None
-    model = analyze(units, sink, load_catalogue(), project.name, project.start)
+    model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
+                    strict=strict)
     if sink.has_errors() and not keep_going:
         return None
     try:
-        output = _lower(project, model, sink, progress)
+        output = _lower(project, model, sink, progress, user)
     except Exception as exc:  # a bug in gpl2py: a diagnostic, never a traceback
         sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
         return None
@@ -86,7 +94,11 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
 
 
 def _lower(project: Project, model, sink: DiagnosticSink,  # type: ignore[no-untyped-def]
-           progress: Progress | None = None) -> Output:
+           progress: Progress | None = None, user: UserStubs | None = None) -> Output:
+    start = model.start
+    if project.start is None and start is not None and start.module is not None:
+        # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
+        sink.report(M.START_ASSUMED_MAIN, start.span, name=f"{start.module.name}.{start.name}")
     names = ProjectNames.build(model)
     package = snake_case(project.name) if project.name else "gpl_project"
     out = Output(package, project=project)
@@ -103,7 +115,12 @@ def _lower(project: Project, model, sink: DiagnosticSink,  # type: ignore[no-unt
         fname = f"{mod.py_name}.py"
         out.files[f"{package}/{fname}"] = text
         smap[fname] = (mod.path, gmap)
-    out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra)
+    stub_texts, records = stub_files(model.stubs, names.stub_module_py, package, user) \
+        if model.stubs is not None and model.stubs.stubs else ({}, [])
+    out.files.update(stub_texts)
+    stub_modules = sorted({Path(rel).stem for rel in stub_texts if not Path(rel).stem.startswith("_user_")})
+    out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra,
+                                                       records, stub_modules)
     out.files[f"{package}/__main__.py"] = package_main()
     out.files[f"{package}/_sourcemap.json"] = sourcemap_json(smap)
     return out

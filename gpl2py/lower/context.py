@@ -11,8 +11,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from gpl2py.lower.names import py_ident, snake_case
+from gpl2py.lower.stub_names import stub_attr, stub_module_name
 from gpl2py.semantics.check import Model
 from gpl2py.semantics.resolve import TOP_MODULE
+from gpl2py.semantics.stubs import Stub
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, PropSym, VarSym
 
 
@@ -20,6 +22,8 @@ from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, 
 class ProjectNames:
     module_py: dict[ModuleSym, str] = field(default_factory=dict)
     taken: set[str] = field(default_factory=set)
+    # stub modules (Module.Name of a module only protected code declares): lower name -> file
+    stub_module_py: dict[str, str] = field(default_factory=dict)
 
     @classmethod
     def build(cls, model: Model) -> ProjectNames:
@@ -46,6 +50,13 @@ class ProjectNames:
             used.add(name)
             names.module_py[mod] = name
             mod.py_name = name
+        stubs = model.stubs
+        for key, spelled in sorted(stubs.modules.items()) if stubs is not None else ():
+            name = snake_case(spelled)
+            while name in used or name in taken or name in ("init", "main", "sys"):
+                name += "_mod"
+            used.add(name)
+            names.stub_module_py[key] = name
         return names
 
 
@@ -81,6 +92,12 @@ class ModuleContext:
         name = self.names.module_py[mod]
         self.siblings.add(name)
         return name + "."
+
+    def stub_ref(self, stub: Stub) -> str:
+        """How this module names a stub: ``vendor_lib.Proc`` or ``_stubs.Foo`` (imported)."""
+        name = stub_module_name(stub, self.names.stub_module_py)
+        self.siblings.add(name)
+        return f"{name}.{stub_attr(stub)}"
 
     def owner_module(self, sym: object) -> ModuleSym | None:
         owner = getattr(sym, "owner", None)

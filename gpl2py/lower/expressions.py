@@ -15,6 +15,7 @@ from gpl2py.lower.names import py_float, py_ident, py_string
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Member
 from gpl2py.semantics.check import Info, Model, ParamInfo
+from gpl2py.semantics.stubs import Stub
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
 from gpl2py.syntax import ast as A
 
@@ -208,6 +209,8 @@ class ExprLowerer:
             return self.addressof_code(i), P_ATOM
         if k == "typename":
             return py_string(str(i.sym)), P_ATOM  # ToBitString(x, Short, ...): the type's name
+        if k in ("extcall", "extname", "extnew", "extattr", "extinvoke"):
+            return self.ext_code(e, i), P_ATOM
         if k == "unary":
             assert isinstance(e, A.Unary)
             return self.unary(e)
@@ -529,6 +532,27 @@ class ExprLowerer:
         if isinstance(target, BuiltinClass):
             return self.call(self.ctx.builtin(target.python_name), *self.args_code(args, i.params or []))
         return "None", P_ATOM
+
+    def ext_code(self, e: A.Expr, i: Info) -> str:
+        """Uses of stubs (``gpl2py.semantics.stubs``) and of values of unknown type: plain Python,
+        since nothing is known to convert; the stub raises -204 unless the user supplied it."""
+        args = [self.val(a) for a in e.args] if isinstance(e, (A.Invoke, A.New)) and e.args else []
+        if i.kind == "extattr":
+            return f"{self.sub(i.receiver, P_ATOM)}.{i.sym}"  # type: ignore[arg-type]
+        if i.kind == "extinvoke":
+            if isinstance(e, A.Invoke):
+                return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})"
+            assert isinstance(e, A.MemberAccess)
+            return f"{self.sub(e.target, P_ATOM)}.{e.name}()"
+        stub: Stub | None = i.sym  # type: ignore[assignment]
+        if stub is None:
+            return "None"
+        ref = self.ctx.stub_ref(stub)
+        if stub.builtin is not None and not stub.shared and i.receiver is not None:
+            args.insert(0, self.val(i.receiver))  # an instance member receives its object first
+        if i.kind == "extname" and stub.builtin is None and stub.kind != "procedure":
+            return ref  # a variable of the protected code
+        return f"{ref}({', '.join(args)})"
 
     def addressof_code(self, i: Info) -> str:
         p: ProcSym = i.sym  # type: ignore[assignment]

@@ -14,10 +14,18 @@ from gpl2py.semantics.symbols import ModuleSym
 
 
 def package_init(model: Model, project_name: str, start_text: str | None, modules: list[ModuleSym],
-                 extra: list[ModuleSym]) -> str:
+                 extra: list[ModuleSym], stubs: list[dict[str, object]] | None = None,
+                 stub_modules: list[str] | None = None) -> str:
+    """``stubs``: the PROJECT["stubs"] records (name, kind, provided by the user); ``stub_modules``:
+    the generated stub modules, reset with the others for a new session."""
     all_mods = modules + extra
-    names = ", ".join(sorted(m.py_name for m in all_mods))
+    start_name = "None"
+    if model.start is not None and model.start.module is not None:
+        start_name = py_string(f"{model.start.module.name}.{model.start.name}")
+    stub_modules = sorted(stub_modules or [])
+    names = ", ".join(sorted([m.py_name for m in all_mods] + stub_modules))
     start = model.start
+    has_start = start is not None and start.module is not None
     lines = [
         f'"""GPL project {project_name}, transpiled by gpl2py.',
         "",
@@ -26,19 +34,21 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "module's Init) once per simulation session, so a notebook can call any Public procedure after it.",
         '"""',
         "",
-        "from gplrt.lang.exceptions import gpl_entry",
+        *(["from gplrt.lang.exceptions import gpl_entry"] if has_start else []),
         "from gplrt.lang.sourcemap import register_package",
-        "from gplrt.sim import Simulation, current",
+        "from gplrt.sim import Simulation, current" if has_start else "from gplrt.sim import current",
         "",
     ]
-    if all_mods:
-        lines.append(f"from . import {names}")
-        lines.append("")
+    if all_mods or stub_modules:
+        text = f"from . import {names}"
+        lines.extend([text, ""] if len(text) <= 99 else ["from . import (", *(
+            f"    {n}," for n in names.split(", ")), ")", ""])
     lines += [
         "PROJECT = {",
         f"    \"name\": {py_string(project_name)},",
-        f"    \"start\": {py_string(start_text) if start_text else 'None'},",
+        f"    \"start\": {py_string(start_text) if start_text else start_name},",
         f"    \"modules\": [{', '.join(py_string(m.name) for m in modules)}],",
+        *_stub_lines(stubs or []),
         "}",
         "",
         "_session = None",
@@ -52,6 +62,8 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "        return",
         "    _session = sim",
     ]
+    for name in stub_modules:
+        lines.append(f"    {name}._reset()")
     for m in extra + modules:
         lines.append(f"    {m.py_name}._reset()")
     for m in extra + modules:
@@ -64,27 +76,48 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "",
         "def main(sim: Simulation | None = None) -> int:",
         '    """Run ProjectStart on the main GPL thread; 1 if any thread ended with an unhandled error."""',
-        "    if sim is None:",
-        f"        sim = Simulation(project={py_string(project_name)})",
-        "",
-        "    def _start() -> None:",
-        "        init()",
     ]
-    if start is not None and start.module is not None:
-        lines.append(f"        {start.module.py_name}.{py_ident(start.name)}()")
+    if not has_start:
+        # no start procedure: say so before any thread starts (``python -m`` prints it, status 1)
+        lines[lines.index("def main(sim: Simulation | None = None) -> int:")] = "def main(sim: object = None) -> int:"
+        lines.append(f"    raise SystemExit({py_string(_NO_START.format(project=project_name))})")
     else:
-        lines.append("        raise SystemExit(\"this project has no ProjectStart procedure\")")
-    thread = start.name if start is not None else "Main"
+        assert start is not None and start.module is not None
+        thread = start.name
+        lines += [
+            "    if sim is None:",
+            f"        sim = Simulation(project={py_string(project_name)})",
+            "",
+            "    def _start() -> None:",
+            "        init()",
+            f"        {start.module.py_name}.{py_ident(start.name)}()",
+            "",
+            f"    _start.__gpl_name__ = {py_string(thread)}  # type: ignore[attr-defined]",
+            f"    sim.run_main(gpl_entry(_start), name={py_string(thread)})",
+            "    return 1 if sim.controller.error_log else 0",
+        ]
     lines += [
-        "",
-        f"    _start.__gpl_name__ = {py_string(thread)}  # type: ignore[attr-defined]",
-        f"    sim.run_main(gpl_entry(_start), name={py_string(thread)})",
-        "    return 1 if sim.controller.error_log else 0",
         "",
         "",
         "register_package(__file__)",
     ]
     return "\n".join(lines) + "\n"
+
+
+_NO_START = ("GPL project {project} has no start procedure: Project.gpr names no ProjectStart and the "
+             "project has no single Public Sub Main; call its procedures from Python instead")
+
+
+def _stub_lines(stubs: list[dict[str, object]]) -> list[str]:
+    """PROJECT["stubs"]: one record per stub; ``gpl2py run`` prints them in a note."""
+    if not stubs:
+        return ['    "stubs": [],']
+    out = ['    "stubs": [']
+    for r in stubs:
+        out.append(f'        {{"name": {py_string(str(r["name"]))}, "kind": {py_string(str(r["kind"]))}, '
+                   f'"provided": {bool(r["provided"])}}},')
+    out.append("    ],")
+    return out
 
 
 def package_main() -> str:

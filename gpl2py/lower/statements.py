@@ -33,6 +33,7 @@ from gpl2py.lower.names import py_ident
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import Member
 from gpl2py.semantics.check import child_blocks
+from gpl2py.semantics.stubs import Stub
 from gpl2py.semantics.symbols import ClassSym, ProcSym, PropSym, VarSym
 from gpl2py.syntax import ast as A
 
@@ -132,6 +133,19 @@ class ProcLowerer(ExprLowerer):
             else:
                 args = self.args_code(target.args if isinstance(target, A.Invoke) else [], i.params or [])
                 self.w.line(f"{head}.set_{m.name}({', '.join([*args, value])})")
+            return
+        if k == "extattr":
+            self.w.line(f"{self.sub(i.receiver, P_ATOM)}.{i.sym} = {value}")  # type: ignore[arg-type]
+            return
+        if k == "extname":
+            stub: Stub = i.sym  # type: ignore[assignment]
+            ref = self.ctx.stub_ref(stub)
+            if stub.builtin is None:
+                self.w.line(f"{ref} = {value}")  # a variable of the protected code
+                return
+            head, _, attr = ref.rpartition(".")
+            args = [self.val(i.receiver)] if not stub.shared and i.receiver is not None else []
+            self.w.line(f"{head}.set_{attr}({', '.join([*args, value])})")
             return
         self.w.line(f"pass  # cannot assign {type(target).__name__}")
 

@@ -17,6 +17,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Catalogue, Member
 from gpl2py.semantics.resolve import TOP_MODULE, Collector, Found, Resolver, visible
+from gpl2py.semantics.stubs import Stub, StubTable
 from gpl2py.semantics.symbols import (
     ClassSym,
     DelegateSym,
@@ -67,6 +68,7 @@ class Model:
     start: ProcSym | None = None
     byref_temps: set[A.Expr] = field(default_factory=set)
     decl_new: dict[A.VarDeclarator, A.New] = field(default_factory=dict)
+    stubs: StubTable | None = None  # names defined in protected code / missing built-in members
 
     def type_of(self, e: A.Expr) -> t.GplType:
         i = self.info.get(e)
@@ -83,7 +85,7 @@ def _pinfo_builtin(params: tuple) -> list[ParamInfo]:  # type: ignore[type-arg]
 
 def assignable(src: t.GplType, dst: t.GplType) -> bool:
     """Can a ``src`` value be stored in a ``dst`` variable (§4.2)?"""
-    if src is t.ERROR or dst is t.ERROR:
+    if t.permissive(src) or t.permissive(dst):
         return True
     if isinstance(dst, t.PrimitiveType):
         return isinstance(src, t.PrimitiveType)
@@ -101,7 +103,7 @@ _COMPARE = {"=", "<>", "<", ">", "<=", ">="}
 
 
 def _scalar(typ: t.GplType) -> bool:
-    return isinstance(typ, t.PrimitiveType) or typ is t.ERROR
+    return isinstance(typ, t.PrimitiveType) or t.permissive(typ)
 
 
 class _Ctx:
@@ -121,10 +123,12 @@ class _Ctx:
 
 
 class Checker:
-    def __init__(self, project: ProjectSyms, catalogue: Catalogue, sink: DiagnosticSink) -> None:
+    def __init__(self, project: ProjectSyms, catalogue: Catalogue, sink: DiagnosticSink,
+                 stubs: StubTable | None = None) -> None:
         self.sink = sink
-        self.r = Resolver(project, catalogue, sink)
-        self.model = Model(project, self.r)
+        self.stubs = stubs if stubs is not None else StubTable(sink)
+        self.r = Resolver(project, catalogue, sink, self.stubs)
+        self.model = Model(project, self.r, stubs=self.stubs)
         self.cat = catalogue
 
     # -- driver ----------------------------------------------------------------------------------
@@ -138,7 +142,17 @@ class Checker:
             self._module(mod)
         if start:
             self._start(start)
+        else:
+            self._assume_main()
         return self.model
+
+    def _assume_main(self) -> None:
+        """No ProjectStart: the single Public parameterless ``Sub Main`` starts the project (a
+        folder without Project.gpr, or one file); none or several leave it without a start."""
+        found = [m.members.get("main") for m in self.model.project.module_list]
+        subs = [p for p in found if isinstance(p, ProcSym) and p.kind == "Sub" and p.public and not p.params]
+        if len(subs) == 1:
+            self.model.start = subs[0]  # the translation warns (GPL2032) when it writes the package
 
     def _start(self, start: str) -> None:
         parts = start.split(".")
@@ -410,7 +424,8 @@ class Checker:
 
     def _call_stmt(self, e: A.Expr, ctx: _Ctx) -> None:
         info = self._expr(e, ctx, as_statement=True)
-        if info.kind not in ("call", "bfunc", "bmember", "vmember", "delegate_call", "error"):
+        if info.kind not in ("call", "bfunc", "bmember", "vmember", "delegate_call", "error", "extcall",
+                             "extinvoke"):
             self.sink.report(M.NOT_SUPPORTED, e.span, what=f"'{_text(e)}' as a statement (it is not a call)")
 
     # -- expressions: entry points ------------------------------------------------------------------------
@@ -425,9 +440,9 @@ class Checker:
         elif info.type is t.VOID:
             self.sink.report(M.SUB_AS_VALUE, e.span, name=_text(e))
             info.type = t.ERROR
-        elif info.kind in ("module", "class", "bclass"):
+        elif info.kind in ("module", "class", "bclass", "extmodule"):
             self.sink.report(M.NOT_A_VALUE, e.span, name=_text(e),
-                             what="module" if info.kind == "module" else "class")
+                             what="module" if info.kind in ("module", "extmodule") else "class")
             info.type = t.ERROR
         return info.type
 
@@ -461,7 +476,7 @@ class Checker:
                 self.sink.report(M.CONST_ASSIGN, e.span, name=v.name)
             v.assigned = True
             return info.type
-        if k in ("result", "index", "error"):
+        if k in ("result", "index", "error", "extname", "extattr"):
             return info.type
         if k == "prop":
             prop: PropSym = info.sym  # type: ignore[assignment]
@@ -513,7 +528,7 @@ class Checker:
                 typ: t.GplType = t.BOOLEAN
             elif ot in (t.BOOLEAN, t.BYTE, t.SHORT):
                 typ = t.INTEGER
-            elif ot is t.STRING:
+            elif ot is t.STRING or (ot is t.ANY and e.op == "+"):
                 typ = t.DOUBLE
             else:
                 typ = ot
@@ -542,6 +557,18 @@ class Checker:
     def _binary_type(self, op: str, lt: t.GplType, rt: t.GplType, node: A.Node) -> t.GplType:
         if lt is t.ERROR or rt is t.ERROR:
             return t.ERROR
+        if (lt is t.ANY or rt is t.ANY) and _scalar(lt) and _scalar(rt):
+            # one operand of unknown type (a stub's value): the result type is known only for
+            # operators whose result type does not depend on the operands; the runtime converts
+            if op in _COMPARE or op in ("AndAlso", "OrElse"):
+                return t.BOOLEAN
+            if op == "&":
+                return t.STRING
+            if op in ("<<", ">>", "\\"):
+                return t.INTEGER
+            if op in ("/", "^"):
+                return t.DOUBLE
+            return t.ANY
         if not (_scalar(lt) and _scalar(rt)):
             if op in ("=", "<>") and (lt.is_reference or rt.is_reference):
                 pass
@@ -616,6 +643,8 @@ class Checker:
             prim = t.lookup_primitive(e.name)
             if prim is not None:  # a type keyword as an argument: ToBitString(x, Short, True)
                 return Info(t.VOID, "typename", prim)
+            if self.stubs.protected:
+                return self._stub_use(self.stubs.protected_name(e.name, e.span), as_statement, as_target)
             self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
             return Info(t.ERROR, "error")
         if isinstance(found, str):
@@ -630,10 +659,23 @@ class Checker:
 
     def _member(self, e: A.MemberAccess, ctx: _Ctx, as_statement: bool, as_target: bool,
                 in_invoke: bool = False) -> Info:
+        if isinstance(e.target, A.Name) and self.stubs.protected \
+                and self.r.lookup(e.target.name, ctx.proc, ctx.cls, ctx.module) is None \
+                and t.lookup_primitive(e.target.name) is None and e.target.name.lower() != "string":
+            # Module.Name of a module no readable source declares: a stub module
+            self._record(e.target, Info(t.VOID, "extmodule", e.target.name))
+            stub = self.stubs.protected_name(e.name, e.span, module=e.target.name)
+            if in_invoke:
+                return Info(t.ANY, "extref", stub)
+            return self._stub_use(stub, as_statement, as_target)
         tinfo = self._expr(e.target, ctx)
         k = tinfo.kind
         if tinfo.type is t.ERROR and k == "error":
             return Info(t.ERROR, "error")
+        if tinfo.type is t.ANY and k not in ("module", "class", "bclass"):
+            # a member of a value of unknown type (from a stub): plain Python attribute access
+            kind = "extinvoke" if as_statement else "extattr"
+            return Info(t.ANY, kind, e.name, receiver=e.target)
         if k == "module":
             mod: ModuleSym = tinfo.sym  # type: ignore[assignment]
             m = mod.members.get(e.name.lower())
@@ -663,6 +705,9 @@ class Checker:
         if k == "bclass":
             b: BuiltinClass = tinfo.sym  # type: ignore[assignment]
             bm = b.member(e.name) if b is not None else None
+            if bm is None and b is not None and b.name != "String":
+                stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=True)
+                return self._builtin_stub_use(stub, None, as_statement, as_target, in_invoke)
             if bm is None or (not bm.shared and not b.is_global):
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=b.name if b else "?", member=e.name)
                 return Info(t.ERROR, "error")
@@ -689,6 +734,9 @@ class Checker:
             self.sink.report(M.NOT_AN_OBJECT, e.span, type=str(typ), member=e.name)
             return Info(t.ERROR, "error")
         bm = b.member(e.name)
+        if bm is None and isinstance(typ, t.ClassType):
+            stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=False)
+            return self._builtin_stub_use(stub, e.target, as_statement, as_target, in_invoke)
         if bm is None:
             self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=str(typ), member=e.name)
             return Info(t.ERROR, "error")
@@ -706,6 +754,27 @@ class Checker:
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
         return info
 
+    def _stub_use(self, stub: Stub, as_statement: bool, as_target: bool) -> Info:
+        """A protected name used without parentheses: a call as a statement, else a value/target."""
+        if as_statement:
+            stub.called = True
+            return Info(t.ANY, "extcall", stub)
+        if as_target:
+            stub.assigned = True
+        return Info(t.ANY, "extname", stub)
+
+    def _builtin_stub_use(self, stub: Stub, receiver: A.Expr | None, as_statement: bool, as_target: bool,
+                          in_invoke: bool) -> Info:
+        """An unknown built-in member: always called (with the object first for an instance
+        member); as an assignment target it is set through the stub's ``set_`` companion."""
+        if in_invoke:
+            return Info(t.ANY, "extref", stub, receiver=receiver)
+        if as_target:
+            stub.assigned = True
+            return Info(t.ANY, "extname", stub, receiver=receiver)
+        stub.called = True
+        return Info(t.ANY, "extcall", stub, receiver=receiver)
+
     def _proc_call_info(self, p: ProcSym, args: list[A.Expr], span: object, ctx: _Ctx,
                         receiver: A.Expr | None) -> Info:
         if not (p.min_args <= len(args) <= len(p.params)):
@@ -719,6 +788,8 @@ class Checker:
         """The target of an Invoke, without turning a zero-argument procedure into a call."""
         if isinstance(e, A.Name):
             found = self.r.lookup(e.name, ctx.proc, ctx.cls, ctx.module)
+            if found is None and self.stubs.protected and t.lookup_primitive(e.name) is None:
+                return self._record(e, Info(t.ANY, "extref", self.stubs.protected_name(e.name, e.span)))
             if found is None:
                 self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
                 return self._record(e, Info(t.ERROR, "error"))
@@ -745,6 +816,17 @@ class Checker:
             for a in e.args:
                 self._expr(a, ctx)
             return Info(t.ERROR, "error")
+        if k == "extref":
+            stub: Stub = ci.sym  # type: ignore[assignment]
+            stub.called = True
+            for a in e.args:
+                self._value(a, ctx)
+            return Info(t.ANY, "extcall", stub, receiver=ci.receiver)
+        if ci.type is t.ANY and k in ("extattr", "extname", "extinvoke", "extcall", "var", "index", "prop"):
+            # calling or indexing a value of unknown type: plain Python
+            for a in e.args:
+                self._value(a, ctx)
+            return Info(t.ANY, "extinvoke")
         if k == "procref":
             p: ProcSym = ci.sym  # type: ignore[assignment]
             info = self._proc_call_info(p, e.args, e.span, ctx, ci.receiver)
@@ -803,7 +885,7 @@ class Checker:
                     self.sink.report(M.SUB_AS_VALUE, a.span, name=_text(a))
                 elif not assignable(info.type, p.type) and p.type is not t.ERROR:
                     self.sink.report(M.TYPE_MISMATCH, a.span, src=str(info.type), dst=str(p.type))
-            elif p.type is t.ERROR:
+            elif t.permissive(p.type):  # Any-annotated runtime parameter: any value (or a type name)
                 info = self._expr(a, ctx)
                 if info.kind != "typename":
                     self._value_check(a, info)
@@ -830,6 +912,10 @@ class Checker:
     def _new(self, e: A.New, ctx: _Ctx) -> Info:
         typ = self.r.resolve_type(e.type, ctx.module, ctx.cls)
         args = e.args or []
+        if typ is t.ANY:  # a class from protected code
+            for a in args:
+                self._value(a, ctx)
+            return Info(t.ANY, "extnew", self.stubs.stubs.get(e.type.name.lower()))
         if typ is t.ERROR:
             for a in args:
                 self._expr(a, ctx)
@@ -937,9 +1023,14 @@ def _text(e: A.Expr) -> str:
 
 
 def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogue,
-            project_name: str = "", start: str | None = None) -> Model:
-    """Semantic analysis of a parsed project (units in ProjectSource order)."""
-    checker = Checker(ProjectSyms(project_name), catalogue, sink)
+            project_name: str = "", start: str | None = None, *, protected: bool = False,
+            strict: bool = False) -> Model:
+    """Semantic analysis of a parsed project (units in ProjectSource order).
+
+    ``protected``: the project has protected (.gpp) files, so unknown names become stubs
+    (``gpl2py.semantics.stubs``); ``strict`` reports every stub as an error."""
+    checker = Checker(ProjectSyms(project_name), catalogue, sink,
+                      StubTable(sink, protected=protected, strict=strict))
     return checker.run(units, start)
 
 

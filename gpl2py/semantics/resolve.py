@@ -21,6 +21,7 @@ from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, Catalogue
+from gpl2py.semantics.stubs import StubTable
 from gpl2py.semantics.symbols import (
     ClassSym,
     DelegateSym,
@@ -49,10 +50,12 @@ class Found:
 class Resolver:
     """Type and name lookups over a project's symbol tables and the built-in catalogue."""
 
-    def __init__(self, project: ProjectSyms, catalogue: Catalogue, sink: DiagnosticSink) -> None:
+    def __init__(self, project: ProjectSyms, catalogue: Catalogue, sink: DiagnosticSink,
+                 stubs: StubTable | None = None) -> None:
         self.project = project
         self.cat = catalogue
         self.sink = sink
+        self.stubs = stubs if stubs is not None else StubTable(sink)
         self.class_by_key: dict[str, ClassSym] = {}
         self.delegate_by_key: dict[str, DelegateSym] = {}
 
@@ -74,6 +77,12 @@ class Resolver:
             b = self.cat.lookup_class(parts[0])
             if b is not None and not b.is_global:
                 return b.type
+        if self.stubs.protected and len(parts) <= 2 and not (
+                len(parts) == 2 and parts[0].lower() in self.project.modules):
+            # a class of the protected code: values of it have the permissive type ANY
+            module = parts[0] if len(parts) == 2 else None
+            self.stubs.protected_name(parts[-1], ref.span, module=module).created = True
+            return t.ANY
         if report:
             self.sink.report(M.UNKNOWN_TYPE, ref.span, name=ref.name)
         return t.ERROR

@@ -126,6 +126,16 @@ NOTHING = _SpecialType("Nothing")
 VOID = _SpecialType("(no value)")
 # Stands in after an error so one mistake does not cascade into many diagnostics.
 ERROR = _SpecialType("(error)")
+# Any value, converted by whoever receives it: a runtime parameter annotated ``Any`` (CInt's value,
+# Format, Console.Write) and whatever a stub for protected code stands for (its type is unknown).
+# Unlike ERROR it is not the trace of a mistake: it accepts every use without a diagnostic, and the
+# lowering converts it at run time wherever a typed value is needed (``to_int32(x)``).
+ANY = _SpecialType("(any)")
+
+
+def permissive(typ: GplType) -> bool:
+    """Whether ``typ`` accepts every use silently (ERROR after a reported mistake, or ANY)."""
+    return typ is ERROR or typ is ANY
 
 
 def numeric_rank(t: GplType) -> int:

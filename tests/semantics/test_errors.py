@@ -46,7 +46,7 @@ EXPECTED = [
     (14, 18, "GPL2003"),  # unknown type
     (15, 9, "GPL2027"),  # assigning a Const
     (16, 13, "GPL2009"),  # a Sub used as a value
-    (17, 9, "GPL2007"),  # no such member
+    (17, 9, "GPL3502"),  # no such built-in member: a warning and a stub (tests/stubs/)
     (19, 13, "GPL2016"),  # Exit For outside a For
     (21, 9, "GPL2017"),  # unknown label
     (22, 13, "GPL2010"),  # Private member of another module
@@ -202,7 +202,9 @@ End Module
     sink = DiagnosticSink()
     assert transpile(str(f), sink) is None
     got = [(d.code, d.severity.value, d.span.line) for d in sink.sorted()]
-    assert got == [("GPL3001", "error", 4), ("GPL3006", "warning", 10), ("GPL3002", "error", 12)]
+    # GPL2032: a single file runs its only Public Sub Main (no ProjectStart)
+    assert got == [("GPL2032", "warning", 2), ("GPL3001", "error", 4), ("GPL3006", "warning", 10),
+                   ("GPL3002", "error", 12)]
 
 
 def test_implicit_number_to_string_is_a_warning(tmp_path: Path) -> None:

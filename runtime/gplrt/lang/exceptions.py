@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import Any
+from typing import Any, NoReturn
 
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
@@ -46,6 +46,7 @@ from gplrt.lang.errors import (
     INVALID_NUMBER_FORMAT,
     NO_DELEGATE_DEFINED,
     NO_MEMORY,
+    NOT_IMPLEMENTED,
     OBJECT_NOT_INSTANTIATED,
     THREAD_STACK_TOO_SMALL,
     VALUE_INFINITE_OR_NAN,
@@ -54,7 +55,7 @@ from gplrt.lang.errors import (
 )
 
 
-__all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry"]
+__all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available"]
 
 
 def gpl_code_for(exc: BaseException) -> int:
@@ -129,3 +130,16 @@ def gpl_entry(func: Callable[..., Any]) -> Callable[..., Any]:
 
     entry.__gpl_procedure__ = func  # type: ignore[attr-defined]
     return entry
+
+
+def not_available(name: str, builtin: bool = False) -> NoReturn:
+    """What a stub does when the program uses it (gpl2py, README "Porting your own project").
+
+    A name defined only in a protected (.gpp) source, or a built-in member the simulated controller
+    lacks, raises -204 *Not implemented*: the code exists on a controller but cannot run here.
+    (-729 *Undefined symbol* would claim the name does not exist, which is not true.)  The detail
+    names what is missing, so an unhandled error reads "*Not implemented* - protected source not
+    available: VendorLib.Grip".
+    """
+    what = "not available in the simulated controller" if builtin else "protected source not available"
+    raise GplException(NOT_IMPLEMENTED, detail=f"{what}: {name}")
