@@ -8,12 +8,14 @@ Printed figures (all measured in this one run, on this machine):
 2. The virtual-time factor of a 200-move pick-and-place program run through the Python API on a
    GPL thread: simulated controller seconds per wall-clock second — target ≥ 1,000×.
 
+The machine may be shared and noisy, so every figure is the best of several runs (noise only
+ever adds time; the minimum is the figure closest to the code's own cost).
+
 Run:  .venv/bin/python benchmarks/motion_speed.py
 """
 
 from __future__ import annotations
 
-import statistics
 import sys
 import time
 
@@ -28,6 +30,8 @@ from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 
 N_PLAN = 400
+#: Runs per figure; the best is reported (see the module docstring).
+BEST_OF = 5
 
 
 def bare_ruckig(n_calls: int) -> float:
@@ -131,13 +135,17 @@ def virtual_time_factor(moves: int = 200) -> tuple[float, float, float]:
 def main() -> int:
     Simulation(capture=True)  # warm-up: imports, model build
     plan_cost(False, 20)
-    bare = statistics.median(bare_ruckig(N_PLAN) for _ in range(3))
-    joint = statistics.median(plan_cost(False, N_PLAN) for _ in range(3))
-    line = statistics.median(plan_cost(True, N_PLAN // 4) for _ in range(3))
+    # interleaved, so that a burst of load on the machine hits both sides of the ratio alike
+    bares, joints, lines = [], [], []
+    for _ in range(BEST_OF):
+        bares.append(bare_ruckig(N_PLAN))
+        joints.append(plan_cost(False, N_PLAN))
+        lines.append(plan_cost(True, N_PLAN // 4))
+    bare, joint, line = min(bares), min(joints), min(lines)
     print(f"bare Ruckig.calculate (5 axes)     {bare * 1e6:8.1f} us")
     print(f"Move.Loc joint (PF400SX, 5 axes)   {joint * 1e6:8.1f} us   ratio {joint / bare:5.2f}x   (target <= 3x)")
     print(f"Move.Loc straight (IK along path)  {line * 1e6:8.1f} us   ratio {line / bare:5.2f}x")
-    sim_s, wall, factor = virtual_time_factor(200)
+    sim_s, wall, factor = max((virtual_time_factor(200) for _ in range(BEST_OF)), key=lambda r: r[2])
     print(f"200-move pick-and-place: {sim_s:.2f} simulated s in {wall:.3f} wall s = {factor:,.0f}x   (target >= 1,000x)")
     return 0
 

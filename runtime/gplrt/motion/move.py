@@ -62,7 +62,7 @@ def _ready(s: Any) -> RobotState:
     """The attached robot, checked for motion, once the queue has room (waits on the clock)."""
     key = registry.thread_key()
     robot = _attached(s, key)
-    robot.check_can_move(key, _power_on(s))
+    robot.check_can_move(key, s.controller.power_state in POWER_ON_STATES)
     queue = robot.queue
     if len(queue.history) < QUEUE_DEPTH:
         return robot  # room whatever has finished

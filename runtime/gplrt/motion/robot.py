@@ -29,6 +29,7 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
 from __future__ import annotations
 
 import math
+import operator
 import threading
 from dataclasses import dataclass, field
 from typing import Any
@@ -79,9 +80,12 @@ class RobotState:
     eom_waiters: Any = None  # a scheduler WaitQueue, set by the registry
     _bounds: tuple[list[float], list[float]] | None = None
 
+    def __post_init__(self) -> None:
+        self._axis_count = self.model.axis_count  # fixed for the model's lifetime; read per Move
+
     @property
     def axis_count(self) -> int:
-        return self.model.axis_count
+        return self._axis_count
 
     @property
     def extra_mask(self) -> np.ndarray:
@@ -121,7 +125,8 @@ class RobotState:
         if self.owner is None or self.owner is not key:
             raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
                                detail=f"robot {self.number} is not attached to this thread")
-        self.raise_async_error()
+        if self.async_error:
+            self.raise_async_error()
         if not power_on:
             raise GplException(POWER_NOT_ENABLED, robot_num=self.number, detail="high power is off")
         if not self.homed:
@@ -140,10 +145,11 @@ class RobotState:
             slack = [1e-9 if j.linear else 1e-9 for j in self.model.joints]
             bounds = self._bounds = ([j.lower - e for j, e in zip(self.model.joints, slack)],
                                      [j.upper + e for j, e in zip(self.model.joints, slack)])
-        for v, lo, hi in zip(q.tolist() if isinstance(q, np.ndarray) else q, bounds[0], bounds[1]):
-            if not lo <= v <= hi:
-                self.model.check_limits([float(x) for x in q])  # raises with the model's detail
-                return
+        lows, highs = bounds
+        values = q.tolist() if type(q) is np.ndarray else q
+        if len(values) == len(lows) and all(map(operator.le, lows, values)) and all(map(operator.le, values, highs)):
+            return
+        self.model.check_limits([float(x) for x in q])  # raises with the model's detail
 
     # -- queueing ------------------------------------------------------------------------------
 
@@ -188,13 +194,6 @@ class RobotState:
                 break
         return hi
 
-    def _settle_and_blend(self, seg: Segment, prof: Profile) -> Segment:
-        inrange = prof._inrange  # a float, validated by the Profile.InRange setter
-        seg.blend = inrange < 0.0
-        seg.blend_tolerance = abs(inrange)
-        seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
-        seg.profile = profile_values(prof)  # the program may change its Profile after the Move
-        return seg
 
     def queue_joint(self, now: float, target: Vec, prof: Profile, system_speed: float) -> Segment:
         """Plan and queue a joint-interpolated motion to ``target`` (joints, GPL units)."""
@@ -203,9 +202,8 @@ class RobotState:
         t0, q0, v0, a0 = self._start(now, can_blend=True)
         moving = v0 is not None
         plan = plan_axes(q0, v0 if moving else None, a0 if moving else None, target, lim)
-        q1 = target if isinstance(target, np.ndarray) and target.dtype == np.float64 else np.array(target, float)
-        seg = JointSegment(t0, plan.duration, q0, q1, plan=plan)
-        return self._append(seg, prof)
+        q1 = target if type(target) is np.ndarray and target.dtype == np.float64 else np.array(target, float)
+        return self._append(JointSegment(t0, plan.duration, q0, q1, plan=plan), prof)
 
     def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
                    extra_end: Vec | None = None, kind: str = "straight",
@@ -250,7 +248,12 @@ class RobotState:
         return seg
 
     def _append(self, seg: Segment, prof: Profile) -> Segment:
-        self._settle_and_blend(seg, prof)
+        """Queue ``seg`` with the Profile's end-of-motion rule (blend, settle or stop)."""
+        inrange = prof._inrange  # a float, validated by the Profile.InRange setter
+        seg.blend = inrange < 0.0
+        seg.blend_tolerance = abs(inrange)
+        seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
+        seg.profile = profile_values(prof)  # the program may change its Profile after the Move
         self.queue.append(seg)
         self.source = seg.q_start
         self.last_profile = seg.profile

@@ -113,15 +113,18 @@ class Pf400Model(RobotModel):
     # -- inverse --------------------------------------------------------------------------------
 
     def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
-        R, p = target.rotation, target.translation.copy()
-        if math.hypot(R[0, 0], R[1, 0]) > ORIENTATION_TOLERANCE or R[2, 0] < 0.0:
+        # Python floats, not numpy scalars: this runs dozens of times per straight-line move.
+        (r00, _, r02), (r10, _, r12), (r20, _, _) = target.rotation.tolist()
+        if math.hypot(r00, r10) > ORIENTATION_TOLERANCE or r20 < 0.0:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail="a PF400 flange must be horizontal (pitch 90, roll 180)")
-        psi = math.atan2(R[1, 2], R[0, 2])
+        psi = math.atan2(r12, r02)
         i = self._i
         q = current.copy()
+        p = target.translation
         if "rail" in i:
-            p -= current[i["rail"]] * self.rail_direction
+            p = p - current[i["rail"]] * self.rail_direction
+        p = p.tolist()
         l1, l2 = self.l1, self.l2
         rho2 = p[0] * p[0] + p[1] * p[1]
         rho = math.sqrt(rho2)
