@@ -98,18 +98,31 @@ def _configure_check(parser: argparse.ArgumentParser) -> None:
         help="a project folder (with or without Project.gpr), a Project.gpr file, "
         "or a single .gpl/.gpo file",
     )
+    parser.add_argument("--strict", action="store_true",
+                        help="report names that would need stubs (GPL3501, GPL3502) as errors")
 
 
 def _run_check(args: argparse.Namespace) -> Outcome:
-    """Load the project and parse every source, collecting all diagnostics in one run."""
+    """Load the project, parse every source and run the semantic pass (names, types, calls: what a
+    porting engineer wants to know), collecting all diagnostics in one run.  Nothing is written.
+
+    Names that only protected (.gpp) files define are reported as stub warnings, as the
+    translation would (GPL3501); ``--strict`` makes them errors."""
+    from gpl2py.semantics.catalogue import load_catalogue
+    from gpl2py.semantics.check import analyze
+
     out = Outcome()
     project = load_project(args.path, out.sink)
     if project is None:
         return out
     _remember(out, project)
+    incomplete = out.sink.has_errors()  # a source could not be loaded: it may declare the start
+    units = []
     for source in project.sources:
-        _parse(source, out.sink)
+        units.append(_parse(source, out.sink))
         out.checked += 1
+    analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
+            None if incomplete else project.start, protected=bool(project.protected), strict=args.strict)
     return out
 
 
@@ -179,11 +192,16 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
         out.usage_error = True
         return out
     bar = ProgressBar(sys.stderr, wants_progress(sys.stderr, args.quiet, args.json))
+    loaded: list[Project] = []
     try:
         output = transpile(args.path, out.sink, keep_going=args.keep_going, progress=bar,
-                           stubs_dir=args.stubs, strict=args.strict)
+                           stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append)
     finally:
         bar.close()
+    if output is None and loaded:
+        # errors: nothing written, but the summary counts the files that were checked
+        _remember(out, loaded[0])
+        out.checked = len(loaded[0].sources)
     if output is not None and output.project is not None:
         _remember(out, output.project)
         out.checked = len(output.project.sources)
@@ -218,8 +236,9 @@ COMMANDS: list[Command] = [
     Command(
         name="check",
         help="load a project and report every diagnostic, without translating",
-        description="Load a GPL project (or one file), parse every source file and print all "
-        "diagnostics, sorted by file and line, each with the offending source line.",
+        description="Load a GPL project (or one file), parse and analyse every source file (names, "
+        "types, calls) and print all diagnostics, sorted by file and line, each with the "
+        "offending source line. Nothing is written.",
         configure=_configure_check,
         run=_run_check,
     ),

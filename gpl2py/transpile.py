@@ -44,10 +44,12 @@ Progress = Callable[[str, int, int], None]
 
 def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
-              strict: bool = False) -> Output | None:
+              strict: bool = False, loaded: Callable[[Project], None] | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.semantics.stubs``).
+    ``loaded(project)`` is called once the project is loaded, so a caller can count its files even
+    when the translation fails.
 
     The cyclic garbage collector is paused meanwhile: the pipeline allocates hundreds of thousands
     of small tree and symbol objects that all live to the end, and the full collections their
@@ -56,7 +58,7 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _transpile(path, sink, keep_going, progress, stubs_dir, strict)
+        return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded)
     finally:
         if enabled:
             gc.enable()
@@ -64,10 +66,12 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
 
 def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
-               strict: bool = False) -> Output | None:
+               strict: bool = False, loaded: Callable[[Project], None] | None = None) -> Output | None:
     project = load_project(path, sink)
     if project is None:
         return None
+    if loaded is not None:
+        loaded(project)
     user = load_user_stubs(stubs_dir, sink) if stubs_dir is not None else None
     protected = bool(project.protected)
     units = []

@@ -102,7 +102,9 @@ def test_syntax_errors_in_two_files_are_all_reported(tmp_path: Path, capsys: pyt
     found = headers(err)
     files = {Path(m["path"]).name for m in found if m["sev"] == "error"}
     assert files == {"A.gpl", "B.gpl"}
-    assert all(m["code"].startswith("GPL1") for m in found)
+    # the syntax errors of both files, and (check runs the semantic pass) the undeclared x in each
+    assert [(Path(m["path"]).name, int(m["line"]), m["code"]) for m in found] == [
+        ("A.gpl", 3, "GPL2001"), ("A.gpl", 3, "GPL1101"), ("B.gpl", 3, "GPL1105"), ("B.gpl", 3, "GPL2001")]
     # Each header is followed by the source line it points into and a caret under the column.
     lines = err.splitlines()
     for i, line in enumerate(lines):
@@ -347,3 +349,38 @@ def test_a_default_command_would_receive_a_bare_project_path(
     assert code == 0 and seen == {"project": "cell", "out": "out", "json": True}
     code, _, err = run(capsys, "check", str(tmp_path / "missing"))
     assert code == 1 and "GPL1400" in err  # named commands are unaffected
+
+
+# --- check runs the semantic pass; summaries count the files ------------------------------------
+
+SEMANTIC_ERROR = b"Module Main\n    Public Sub Main()\n        Dim n As Integer\n        n = Undeclared + 1\n    End Sub\nEnd Module\n"
+
+
+def test_check_reports_semantic_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "Main.gpl").write_bytes(SEMANTIC_ERROR)
+    code, out, err = run(capsys, "check", str(tmp_path / "Main.gpl"))
+    assert code == 1 and out == ""
+    assert [(int(m["line"]), int(m["col"]), m["code"]) for m in headers(err)] == [(4, 13, "GPL2001")]
+    assert err.splitlines()[-1] == "checked 1 file: 1 error, 0 warnings"
+
+
+def test_check_reports_stub_warnings_and_strict_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "Main.gpl").write_bytes(SEMANTIC_ERROR)
+    (tmp_path / "Vendor.gpp").write_bytes(b"'#Protected|\x00\x01")
+    code, _, err = run(capsys, "check", str(tmp_path))
+    assert code == 0
+    assert [m["code"] for m in headers(err)] == ["GPL3501"]
+    assert err.splitlines()[-1] == "checked 1 file: 0 errors, 2 warnings"
+    code, _, err = run(capsys, "check", str(tmp_path), "--strict")
+    assert code == 1 and err.splitlines()[-1] == "checked 1 file: 1 error, 1 warning"
+
+
+def test_translate_counts_files_when_a_semantic_error_stops_it(tmp_path: Path,
+                                                              capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "Main.gpl").write_bytes(SEMANTIC_ERROR)
+    (tmp_path / "Other.gpl").write_bytes(b"Module Other\nEnd Module\n")
+    code, _, err = run(capsys, str(tmp_path), "-o", str(tmp_path / "out"))
+    assert code == 1
+    assert err.splitlines()[-1] == "checked 2 files: 1 error, 0 warnings"
+    assert "    n = Undeclared + 1" in err  # the excerpt: the files are known to the printer
+    assert not (tmp_path / "out").exists()
