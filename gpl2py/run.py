@@ -253,17 +253,17 @@ class RunReport:
 def _unhandled_errors(sim: Any) -> list[dict[str, Any]]:
     """Every GPL thread that ended with an unhandled error: code, message, GPL file:line, thread.
 
-    The Thread objects keep the exception (``_error``; no public accessor exists); the GPL location
-    is the innermost transpiled frame the exception passed through (``gplrt.lang.sourcemap``).
+    The Thread objects keep the exception (``Thread.unhandled_error``); the GPL location is the
+    innermost transpiled frame the exception passed through (``gplrt.lang.sourcemap``).
     """
     from gplrt.lang.errors import GplException
     from gplrt.lang.sourcemap import locate
 
     found = []
     for t in list(sim.threads):
-        if not getattr(t, "_failed", False):
+        exc = t.unhandled_error
+        if exc is None:
             continue
-        exc = getattr(t, "_error", None)
         where = None
         if isinstance(exc, BaseException):
             where = getattr(exc, "gpl_location", None) or locate(exc)
@@ -274,7 +274,7 @@ def _unhandled_errors(sim: Any) -> list[dict[str, Any]]:
                 message += f" - {exc.detail}"
         else:
             code, message = -201, f"Python error {type(exc).__name__}: {exc}"
-        found.append({"thread": t._name, "code": code, "message": message, "file": file,
+        found.append({"thread": t.Name, "code": code, "message": message, "file": file,
                       "line": int(line) if line.isdigit() else None})
     return found
 
@@ -284,15 +284,8 @@ def _stop_all(sim: Any) -> tuple[int, list[str]]:
 
     Returns how many threads were running and the names of those still alive afterwards.
     """
-    sched = sim.scheduler
-    running = [ctx for ctx in list(sched.live) if ctx.phase != "done"]
-    for ctx in running:
-        sched.request_abort(ctx)
-    try:
-        sched.wait_until_quiet(None, STOP_GRACE)
-    except KeyboardInterrupt:  # a second Ctrl-C: stop waiting
-        pass
-    return len(running), [ctx.name for ctx in running if ctx.phase != "done"]
+    report = sim.stop(STOP_GRACE)  # a second Ctrl-C ends the wait early
+    return len(report.aborted), report.still_alive
 
 
 def _load_setup(path: str) -> Any:

@@ -77,6 +77,14 @@ class ConsoleSink:
         return self._log.getvalue() if isinstance(self._log, _io.StringIO) else ""
 
 
+@dataclass(frozen=True)
+class StopReport:
+    """What :meth:`Simulation.stop` did: the threads it aborted, and those still running after it."""
+
+    aborted: list[str]
+    still_alive: list[str]
+
+
 @dataclass
 class LogEntry:
     """One line of the system-message log or of the error log."""
@@ -224,6 +232,25 @@ class Simulation:
         t = Thread(proc, 0, name, _sim=self, _args=args)
         t.Start()
         return t
+
+    def stop(self, grace: float = 2.0) -> StopReport:
+        """Abort every live GPL thread and wait up to ``grace`` real seconds for them to end.
+
+        Abort is cooperative (Python threads cannot be killed): a thread ends at its next
+        scheduling point or checkpoint, running its ``Finally`` blocks; one blocked in Python code
+        that never reaches one (a long computation outside the runtime) is reported in
+        ``still_alive``.  An interrupt (Ctrl-C) while waiting ends the wait early, so a user who
+        presses it twice is never stuck here.
+        """
+        sched = self.scheduler
+        running = [ctx for ctx in list(sched.live) if ctx.phase != "done"]
+        for ctx in running:
+            sched.request_abort(ctx)
+        try:
+            sched.wait_until_quiet(None, grace)
+        except KeyboardInterrupt:
+            pass
+        return StopReport([c.name for c in running], [c.name for c in running if c.phase != "done"])
 
     def run_for(self, seconds: float) -> None:
         """Let the session's GPL threads run for ``seconds`` of controller time, then return."""

@@ -285,6 +285,13 @@ class Thread:
 
     # -- Python side ----------------------------------------------------------------------------------
 
+    @property
+    def unhandled_error(self) -> BaseException | None:
+        """The exception that ended this thread unhandled (reported in the controller's error log),
+        or None — while it runs, after a normal end or an Abort.  Usually a GplException; another
+        Python exception means a bug in generated or hand-written code (reported as -201)."""
+        return self._error if self._failed else None
+
     def _body(self) -> None:
         ctx = self._ctx
         assert ctx is not None and self._target is not None
