@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from gplrt.controller.services import Controller
@@ -169,3 +170,53 @@ def test_latch_overrun_raises_526_once(vsim: Simulation) -> None:
     assert Latch.Result(2) is not None
     Latch.Flush(2)
     assert Latch.Count(2) == 0
+
+
+def test_cartesian_latch_location_is_the_tool_pose_when_the_latch_fired(vsim: Simulation) -> None:
+    from gplrt.controller.signals import Latch
+    from gplrt.geometry.location import Location
+    from gplrt.motion.move import Move
+    from gplrt.motion.profile import Profile
+    from gplrt.motion.robot_class import Robot
+
+    vsim.io.configure_latch(10003, robot=1)
+    got: dict[str, object] = {}
+
+    def main() -> None:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        t0 = vsim.now()
+        vsim.io.schedule_input(10003, True, at=t0 + 0.4)  # while the arm is moving
+        Move.Loc(Location.from_angles([300.0, 40.0, 100.0, 30.0, 90.0]), Profile())
+        Move.WaitForEOM()
+        robot = vsim.robots[1]
+        got["expected"] = robot.forward(robot.joints_at(t0 + 0.4))
+        got["config"] = robot.model.config_of(list(robot.joints_at(t0 + 0.4)))
+        lt = Latch.Result(1)
+        got["cart"], got["angles"] = lt.Location(0), lt.Location()
+        got["joints"] = list(robot.joints_at(t0 + 0.4))
+        try:
+            lt.Location(2)
+        except GplException as exc:
+            got["bad"] = exc.ErrorCode
+
+    vsim.run_main(main)
+    assert vsim.console.log_text == ""
+    cart = got["cart"]
+    assert isinstance(cart, Location) and cart.Type == 0
+    assert np.allclose(cart.matrix(), got["expected"], atol=1e-9, rtol=0.0)
+    assert cart.Config == got["config"]
+    assert list(got["angles"].axis_values()) == pytest.approx(got["joints"], abs=1e-9)  # type: ignore[union-attr]
+    assert got["bad"] == -707
+
+
+def test_cartesian_latch_location_without_kinematics_raises_1036(vsim: Simulation) -> None:
+    from gplrt.controller.signals import Latch
+
+    vsim.io.configure_latch(10004, robot=3)  # no robot 3: the latch has no axes
+    vsim.io.set_input(10004, True)
+    lt = Latch.Result(3)
+    with pytest.raises(GplException) as info:
+        lt.Location(0)
+    assert info.value.ErrorCode == -1036

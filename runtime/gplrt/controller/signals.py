@@ -208,15 +208,18 @@ class IoMap:
             if change.value != edge:
                 continue
             angles: tuple[float, ...] = ()
+            pose: Any = None
             provider = self._sim.robots.get(robot) if self._sim is not None else None
             if provider is not None and hasattr(provider, "latch_angles"):
                 angles = tuple(float(a) for a in provider.latch_angles())
+                pose = provider.latch_pose(angles) if hasattr(provider, "latch_pose") else None
             queue = self.latch_queues.setdefault(robot, deque())
             if len(queue) >= LATCH_QUEUE_SIZE:
                 self.latch_overrun.add(robot)
                 continue
             tod = self._sim.controller.time_of_day_origin if self._sim is not None else 0.0
-            queue.append(Latch(_robot=robot, _signal=change.signal, _time=change.time, _tod=tod, _angles=angles))
+            queue.append(Latch(_robot=robot, _signal=change.signal, _time=change.time, _tod=tod, _angles=angles,
+                               _pose=pose))
             target = self.latch_events.get(robot)
             if target is not None:
                 target[0].SendEvent(target[1])
@@ -275,18 +278,26 @@ class Latch:
 
     Results are queued per robot, oldest first, up to 128; further latches are lost and the next
     ``Latch.Result`` raises -526 *Latch data overrun* (once).  ``Timestamp(select)`` uses the
-    ``Controller.Timer(select)`` time base.  ``Location`` returns an Angles Location (the
-    Cartesian form would need the robot's kinematics: -204 for now).
+    ``Controller.Timer(select)`` time base.
+
+    ``Location(type)``: type 1 (Angles, the default) the latched axis values; type 0 (Cartesian) the
+    tool pose at the latch, with its configuration bits.  Decision [P] (the manuals say only "as a
+    Cartesian value or a set of angles", D0:2841): the pose is computed when the latch fires, with
+    the Tool and Base in force then, as a controller's servo latch captures the position; a robot
+    without kinematics (or a latch without a robot) raises -1036 for the Cartesian form.  Other
+    types raise -707.
     """
 
     def __init__(
-        self, *, _robot: int = 0, _signal: int = 0, _time: float = 0.0, _tod: float = 0.0, _angles: tuple[float, ...] = ()
+        self, *, _robot: int = 0, _signal: int = 0, _time: float = 0.0, _tod: float = 0.0, _angles: tuple[float, ...] = (),
+        _pose: tuple[Any, int] | None = None,
     ) -> None:
         self._robot = _robot
         self._signal = _signal
         self._time = _time
         self._tod = _tod
         self._angles = _angles
+        self._pose = _pose  # (4×4 tool pose in mm, Config bits) at the latch, when the robot has kinematics
 
     # -- shared members ------------------------------------------------------------------------------
 
@@ -348,12 +359,20 @@ class Latch:
         return 0  # type: ignore[return-value]
 
     def Location(self, type: Integer = 1) -> Any:  # noqa: A002 - GPL's argument name
-        if int(type) != 1:
-            raise GplException(-204, detail="Cartesian latch Location needs the robot kinematics")
+        """The latched position: type 1 Angles, type 0 Cartesian (see the class docstring)."""
         from gplrt.geometry.location import Location
 
-        loc = Location()
-        loc.Angles(*self._angles[:12])
+        kind = int(type)
+        if kind == 1:
+            return Location.from_angles(self._angles[:12])
+        if kind != 0:
+            raise GplException(-707, detail=f"latch Location type {kind} (0 Cartesian, 1 Angles)")
+        if self._pose is None:
+            raise GplException(-1036, robot_num=self._robot,
+                               detail=f"robot {self._robot} has no kinematics for a Cartesian latch position")
+        matrix, config = self._pose
+        loc = Location.from_matrix(matrix)
+        loc.Config = config
         return loc
 
     @property
@@ -369,7 +388,15 @@ class Latch:
 
 
 class _SignalClass:
-    """GPL's global ``Signal`` class: ``Signal.DIO(n)``, ``Signal.DIO(n) = v``, ``Signal.AIO(n)``."""
+    """GPL's global ``Signal`` class: ``Signal.DIO(n)``, ``Signal.DIO(n) = v``, ``Signal.AIO(n)``.
+
+    ``Signal.DIO(channel, count)`` is documented by name only (gpl-dictionary §9.1 [N]: "count
+    presumably reads several consecutive signals as a bit field [unconfirmed]").  Decision: not
+    provided.  Its result would be an Integer where the one-signal form is a Boolean, and a member
+    has one static type in the catalogue the transpiler reads, so a guessed bit field would be
+    converted as a Boolean (-1/0) in generated code.  A call with a count is therefore reported by
+    the transpiler (GPL2004, wrong number of arguments) instead of running with a guessed meaning.
+    """
 
     @staticmethod
     def _io() -> IoMap:

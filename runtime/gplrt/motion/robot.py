@@ -112,6 +112,12 @@ class RobotState:
 
         return [float(v) for v in self.joints_at(now())]
 
+    def latch_pose(self, angles: tuple[float, ...]) -> tuple[np.ndarray, int] | None:
+        """Tool pose (4×4 mm) and Config bits of latched joints; None without kinematics."""
+        if not self.model.has_kinematics or len(angles) != self.axis_count:
+            return None
+        return self.model.forward(angles), self.model.config_of(angles)
+
     def forward(self, joints: Vec) -> np.ndarray:
         return self.model.forward([float(v) for v in joints])
 
