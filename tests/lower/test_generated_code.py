@@ -85,7 +85,9 @@ def test_integer_for_loop_uses_range_and_keeps_the_final_value(tmp_path: Path) -
         For i = 1 To n
             s = s + i
         Next"""))
-    assert "for i in range(1, n + 1):" in body
+    # chunks of 1024 with a scheduling point between them (lowering.md, "Statements")
+    assert "for _k1 in range(1, n + 1, 1024):  # checkpoint() every 1024" in body
+    assert "for i in range(_k1, min(_k1 + 1024, n + 1)):" in body
     assert "i = max(1, n + 1)" in body
 
 
