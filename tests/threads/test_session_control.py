@@ -82,3 +82,16 @@ def test_stop_with_nothing_running_reports_nothing(vsim: Simulation) -> None:
     vsim.run_main(lambda: Thread.Sleep(10))
     report = vsim.stop()
     assert report.aborted == [] and report.still_alive == []
+
+
+def test_thread_schedule_is_accepted_and_changes_nothing_observable(vsim: Simulation) -> None:
+    """No real-time priorities on a PC (gpl-classes §22.5): accepted, timing unchanged."""
+    times: list[float] = []
+
+    def main() -> None:
+        Thread.Schedule(1, 0.01, 0.002, 0.0)
+        Thread.Sleep(250)
+        times.append(vsim.now())
+
+    vsim.run_main(main)
+    assert times == [0.25] and vsim.console.log_text == ""
