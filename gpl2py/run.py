@@ -423,7 +423,7 @@ def stubs_note(package: ModuleType) -> str | None:
     names = [f"{s['name']} (--stubs)" if s.get("provided") else str(s["name"]) for s in stubs]
     missing = sum(1 for s in stubs if not s.get("provided"))
     return (f"note: {_plural(len(stubs), 'stub')} for protected or unsimulated code "
-            f"({missing} raise error -204 if used): {', '.join(names)}")
+            f"({missing} {'raises' if missing == 1 else 'raise'} error -204 if used): {', '.join(names)}")
 
 
 def _shown_path(project: Project, name: str) -> str:

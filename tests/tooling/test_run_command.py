@@ -152,7 +152,8 @@ def test_usage_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
     assert in_process(capsys, "run", str(proj), "--speed", "0").returncode == 2
     no_start = tmp_path / "nostart"
     no_start.mkdir()
-    (no_start / "Main.gpl").write_text(TICKER)
+    # no Project.gpr and no Public Sub Main (with one, it would start: tests/e2e/test_start_main.py)
+    (no_start / "Main.gpl").write_text(TICKER.replace("Sub Main()", "Sub Other()"))
     r = in_process(capsys, "run", str(no_start))
     assert r.returncode == 2 and "ProjectStart" in r.stderr and r.stdout == ""
 
