@@ -138,6 +138,10 @@ class _TypeMapper:
         """Returns (type, byref)."""
         if annotation is None or annotation is type(None) or annotation is inspect.Parameter.empty:
             return t.VOID, False
+        if annotation is Any or annotation is object:
+            # "any value, the runtime converts" (CInt's value, Format, Console.Write): not the
+            # error type, which would silence diagnostics about the argument
+            return t.ANY, False
         origin = typing.get_origin(annotation)
         if origin is not None:
             args = [a for a in typing.get_args(annotation) if a is not type(None)]
@@ -146,8 +150,8 @@ class _TypeMapper:
                 return inner, True
             if origin in (typing.Union, getattr(__import__("types"), "UnionType", None)) and len(args) == 1:
                 return self.convert(args[0])
-            if getattr(origin, "__name__", "") == "GplArray" and args:
-                inner, _ = self.convert(args[0])
+            if (origin is list or getattr(origin, "__name__", "") == "GplArray") and args:
+                inner, _ = self.convert(args[0])  # a GPL array of T (list[T] in plain Python code)
                 return t.ArrayType(inner), False
             return t.ERROR, False
         supertype = getattr(annotation, "__supertype__", None)
