@@ -151,7 +151,7 @@ def register_lines(ctx: ModuleContext, cls: ClassSym) -> list[str]:
         if isinstance(m, ProcSym) and m.shared:
             entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
             out.append(f"{reg}({py_string(qual)}, {py_string(m.name)}, {entry}({ref}.{py_ident(m.name)}), "
-                       f"public={m.public and cls.public})")
+                       f"public={m.public and cls.public}, package=__package__)")
         elif isinstance(m, ClassSym):
             out.extend(register_lines(ctx, m))
     return out

@@ -149,7 +149,8 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
         reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
         entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
         reg_lines.append(
-            f"{reg}({py_string(mod.name)}, {py_string(p.name)}, {entry}({py_ident(p.name)}), public={p.public})")
+            f"{reg}({py_string(mod.name)}, {py_string(p.name)}, {entry}({py_ident(p.name)}), public={p.public}, "
+            "package=__package__)")  # this package's own registry (gplrt.lang.procedures)
     for c in classes:
         reg_lines.extend(register_lines(ctx, c))
     if ctx.statics:

@@ -35,6 +35,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         '"""',
         "",
         *(["from gplrt.lang.exceptions import gpl_entry"] if has_start else []),
+        "from gplrt.lang.procedures import use_procedures",
         "from gplrt.lang.sourcemap import register_package",
         "from gplrt.sim import Simulation, current" if has_start else "from gplrt.sim import current",
         "",
@@ -61,6 +62,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "    if _session is sim:",
         "        return",
         "    _session = sim",
+        "    use_procedures(sim, __name__)  # Thread(\"Proc\") and delegates resolve in this project",
     ]
     for name in stub_modules:
         lines.append(f"    {name}._reset()")

@@ -301,17 +301,15 @@ class Cell:
 
 
 def _procedures_of(package: ModuleType) -> list[Any]:
-    """The registry entries of ``package``'s procedures, taken right after its import.
+    """The registry entries of ``package``'s procedures.
 
-    The runtime's procedure registry is process-wide and keyed by GPL module name, so a second
-    project with a module of the same name replaces the entries; a snapshot keeps each Cell's
-    own.  (Threads started *by name* inside GPL code still use the process-wide registry: the
-    project loaded last wins, which is why ``gpl2py run`` uses one process per project.)
+    Each generated package registers into its own registry (``gplrt.lang.procedures``), and its
+    ``init()`` binds that registry to the Cell's simulation, so two Cells of projects with the same
+    module names never see each other's procedures, not even for threads started by name.
     """
     from gplrt.lang.procedures import registered_procedures
 
-    prefix = package.__name__ + "."
-    return [e for e in registered_procedures() if getattr(e.func, "__module__", "").startswith(prefix)]
+    return registered_procedures(package.__name__)
 
 
 def save_motion_plot(sim: Simulation, path: str | Path, robot: int = 1) -> Path:

@@ -188,5 +188,6 @@ def test_source_map_points_at_gpl_lines(tmp_path: Path) -> None:
 
 def test_procedures_are_registered_for_name_lookup(tmp_path: Path) -> None:
     text = gen(tmp_path, "", decls="    Private Sub Helper()\n    End Sub\n", name="Station")
-    assert 'register_procedure("Station", "Helper", gpl_entry(Helper), public=False)' in text
-    assert 'register_procedure("Station", "Main", gpl_entry(Main), public=True)' in text
+    # into this package's own registry (gplrt.lang.procedures: one registry per project)
+    assert 'register_procedure("Station", "Helper", gpl_entry(Helper), public=False, package=__package__)' in text
+    assert 'register_procedure("Station", "Main", gpl_entry(Main), public=True, package=__package__)' in text

@@ -21,11 +21,23 @@ and the runtime resolves names with ``find_procedure``.  The rules (§6.4, [000 
 
 Registration replaces an earlier entry for the same qualified name, so re-importing a module (a
 new simulation session) is harmless; ``clear_procedures`` empties the registry for tests.
+
+**One registry per generated package.**  Two projects loaded in one process (two notebook Cells)
+may both have a ``Main.Worker``; with one process-wide table, a thread started by name would find
+the project loaded last.  So generated code registers into its package's own
+:class:`ProcedureRegistry` (``register_procedure(..., package=__package__)``), the package's
+``init()`` binds that registry to the simulation it initialises (``use_procedures(sim, package)``),
+and ``find_procedure`` looks names up in the registry of the running simulation
+(``gplrt.sim.current()``, the simulation of the calling GPL thread), falling back to the default,
+process-wide registry that hand-written Python registers into (no ``package``).  Direct calls
+between procedures never touch a registry, so this costs nothing per call; a lookup by name costs
+one dictionary access more.
 """
 
 from __future__ import annotations
 
 import threading
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -40,6 +52,9 @@ from gplrt.lang.errors import (
 
 __all__ = [
     "ProcedureEntry",
+    "ProcedureRegistry",
+    "registry_for",
+    "use_procedures",
     "register_procedure",
     "find_procedure",
     "find_procedure_entry",
@@ -63,81 +78,149 @@ class ProcedureEntry:
     public: bool
 
 
-_lock = threading.Lock()
-_by_name: dict[str, list[ProcedureEntry]] = {}
-_qualifiers: set[str] = set()
+class ProcedureRegistry:
+    """The procedures of one project (or the default registry of hand-written Python)."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._by_name: dict[str, list[ProcedureEntry]] = {}
+        self._qualifiers: set[str] = set()
+
+    def register(self, module_name: str, proc_name: str, func: Callable[..., Any], public: bool) -> None:
+        path = tuple(part.lower() for part in module_name.split("."))
+        entry = ProcedureEntry(path, proc_name, f"{module_name}.{proc_name}", func, public)
+        key = proc_name.lower()
+        with self._lock:
+            entries = [e for e in self._by_name.get(key, ()) if e.path != path]
+            entries.append(entry)
+            self._by_name[key] = entries
+            self._qualifiers.update(path)
+
+    def clear(self) -> None:
+        with self._lock:
+            self._by_name.clear()
+            self._qualifiers.clear()
+
+    def entries(self) -> list[ProcedureEntry]:
+        """All entries, sorted by qualified name."""
+        with self._lock:
+            return sorted((e for es in self._by_name.values() for e in es), key=lambda e: e.qualified_name.lower())
+
+    def find(self, name: str, module: str | None = None) -> ProcedureEntry:
+        """The entry for ``name`` as seen from ``module`` (rules in the module docstring)."""
+        parts = [p.strip().lower() for p in name.strip().split(".")]
+        if not parts or not all(parts):
+            raise GplException(UNDEFINED_SYMBOL, detail=f"invalid procedure name {name!r}")
+        proc, qual = parts[-1], tuple(parts[:-1])
+        caller = tuple(p.lower() for p in module.split(".")) if module else None
+        candidates = self._by_name.get(proc, [])
+
+        if not qual:
+            if caller is not None:
+                for e in candidates:
+                    if e.path == caller:
+                        return e
+            public = [e for e in candidates if e.public and len(e.path) == 1]
+            if len(public) == 1:
+                return public[0]
+            if len(public) > 1:
+                where = ", ".join(sorted(e.qualified_name for e in public))
+                raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
+            private = [e.qualified_name for e in candidates]
+            hint = f" (Private: {', '.join(sorted(private))})" if private else ""
+            raise GplException(UNDEFINED_SYMBOL, detail=f"no Public procedure {name!r}{hint}")
+
+        matches = [e for e in candidates if e.path[-len(qual):] == qual]
+        if not matches:
+            if not all(q in self._qualifiers for q in qual):
+                raise GplException(NO_MODULE_DEFINED, detail=f"no module or class {'.'.join(qual)!r} for {name!r}")
+            raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure {name!r}")
+        allowed = [e for e in matches if e.public or (caller is not None and e.path[: len(caller)] == caller)]
+        if len(allowed) == 1:
+            return allowed[0]
+        if not allowed:
+            raise GplException(UNDEFINED_SYMBOL, detail=f"{matches[0].qualified_name} is Private")
+        where = ", ".join(sorted(e.qualified_name for e in allowed))
+        raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
+
+    def __len__(self) -> int:
+        return sum(len(es) for es in self._by_name.values())
+
+
+_default = ProcedureRegistry()
+_packages: dict[str, ProcedureRegistry] = {}
+_packages_lock = threading.Lock()
+# simulation -> the registry of the project it runs (weak: a finished simulation is forgotten)
+_by_sim: weakref.WeakKeyDictionary[Any, ProcedureRegistry] = weakref.WeakKeyDictionary()
+
+
+def registry_for(package: str | None) -> ProcedureRegistry:
+    """The registry of generated package ``package`` (created on first use); the default,
+    process-wide registry for ``None``."""
+    if not package:
+        return _default
+    reg = _packages.get(package)
+    if reg is None:
+        with _packages_lock:
+            reg = _packages.setdefault(package, ProcedureRegistry())
+    return reg
+
+
+def use_procedures(sim: Any, package: str) -> None:
+    """Make ``package``'s registry the one that names resolve in for ``sim`` (its ``init()``)."""
+    _by_sim[sim] = registry_for(package)
+
+
+def _active() -> ProcedureRegistry:
+    if not _by_sim:  # no generated package initialised yet: hand-written Python only
+        return _default
+    from gplrt.sim import current
+
+    return _by_sim.get(current(), _default)
 
 
 def register_procedure(
-    module_name: str, proc_name: str, func: Callable[..., Any], *, public: bool = True
+    module_name: str, proc_name: str, func: Callable[..., Any], *, public: bool = True,
+    package: str | None = None,
 ) -> Callable[..., Any]:
     """Register ``func`` as ``module_name.proc_name``; returns ``func`` (usable as a decorator
     helper).  ``public`` is the GPL access level (module members are Private by default in GPL,
-    but the lowering always passes it explicitly)."""
-    path = tuple(part.lower() for part in module_name.split("."))
-    entry = ProcedureEntry(path, proc_name, f"{module_name}.{proc_name}", func, public)
-    key = proc_name.lower()
-    with _lock:
-        entries = [e for e in _by_name.get(key, ()) if e.path != path]
-        entries.append(entry)
-        _by_name[key] = entries
-        _qualifiers.update(path)
+    but the lowering always passes it explicitly).  ``package``: the generated package whose
+    registry receives it (generated code passes ``__package__``); None: the default registry."""
+    registry_for(package).register(module_name, proc_name, func, public)
     return func
 
 
 def clear_procedures() -> None:
-    """Forget every registration (tests, or a fresh session in one process)."""
-    with _lock:
-        _by_name.clear()
-        _qualifiers.clear()
+    """Forget every registration of the default registry (tests, or a fresh session)."""
+    _default.clear()
 
 
-def registered_procedures() -> list[ProcedureEntry]:
-    """All entries, sorted by qualified name (diagnostics and tooling)."""
-    with _lock:
-        return sorted((e for es in _by_name.values() for e in es), key=lambda e: e.qualified_name.lower())
+def registered_procedures(package: str | None = None) -> list[ProcedureEntry]:
+    """All entries of ``package``'s registry (default: the process-wide one), sorted by qualified
+    name (diagnostics and tooling)."""
+    return registry_for(package).entries()
 
 
 def find_procedure_entry(name: str, module: str | None = None) -> ProcedureEntry:
     """Like ``find_procedure`` but returns the registry entry (name, access, qualifier)."""
-    parts = [p.strip().lower() for p in name.strip().split(".")]
-    if not parts or not all(parts):
-        raise GplException(UNDEFINED_SYMBOL, detail=f"invalid procedure name {name!r}")
-    proc, qual = parts[-1], tuple(parts[:-1])
-    caller = tuple(p.lower() for p in module.split(".")) if module else None
-    candidates = _by_name.get(proc, [])
-
-    if not qual:
-        if caller is not None:
-            for e in candidates:
-                if e.path == caller:
-                    return e
-        public = [e for e in candidates if e.public and len(e.path) == 1]
-        if len(public) == 1:
-            return public[0]
-        if len(public) > 1:
-            where = ", ".join(sorted(e.qualified_name for e in public))
-            raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
-        private = [e.qualified_name for e in candidates]
-        hint = f" (Private: {', '.join(sorted(private))})" if private else ""
-        raise GplException(UNDEFINED_SYMBOL, detail=f"no Public procedure {name!r}{hint}")
-
-    matches = [e for e in candidates if e.path[-len(qual):] == qual]
-    if not matches:
-        if not all(q in _qualifiers for q in qual):
-            raise GplException(NO_MODULE_DEFINED, detail=f"no module or class {'.'.join(qual)!r} for {name!r}")
-        raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure {name!r}")
-    allowed = [e for e in matches if e.public or (caller is not None and e.path[: len(caller)] == caller)]
-    if len(allowed) == 1:
-        return allowed[0]
-    if not allowed:
-        raise GplException(UNDEFINED_SYMBOL, detail=f"{matches[0].qualified_name} is Private")
-    where = ", ".join(sorted(e.qualified_name for e in allowed))
-    raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
+    active = _active()
+    if active is _default:
+        return _default.find(name, module)
+    try:
+        return active.find(name, module)
+    except GplException as exc:
+        if exc.ErrorCode in (UNDEFINED_SYMBOL, NO_MODULE_DEFINED) and len(_default):
+            try:  # hand-written Python registered next to the project
+                return _default.find(name, module)
+            except GplException:
+                pass
+        raise
 
 
 def find_procedure(name: str, module: str | None = None) -> Callable[..., Any]:
     """The procedure called ``name`` (``"Proc"`` or ``"Module.Proc"``), looked up as seen from
-    procedures of ``module`` (``None``: from outside any module).  Raises GplException -729,
-    -772 or -798 as described in the module docstring."""
+    procedures of ``module`` (``None``: from outside any module), in the registry of the running
+    simulation's project.  Raises GplException -729, -772 or -798 as described in the module
+    docstring."""
     return find_procedure_entry(name, module).func
