@@ -10,6 +10,8 @@ Segment kinds:
 * :class:`JointSegment` — a synchronised Ruckig trajectory of all axes;
 * :class:`PathSegment` — a 1-D Ruckig trajectory of the path parameter of a line/arc, mapped to
   joints by IK (velocities and accelerations by the chain rule with finite-difference ``q'``, ``q''``);
+* :class:`BlendedPathSegment` — a straight line that starts while the previous motion runs out
+  (corner rounding, InRange < 0), the two superimposed in Cartesian space until that motion ends;
 * :class:`DwellSegment` — ``Move.Delay``: the robot holds still.
 """
 
@@ -17,6 +19,7 @@ from __future__ import annotations
 
 import bisect
 import operator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -124,6 +127,56 @@ class PathSegment(Segment):
         d1 = (q_hi - q_lo) / (hi - lo)
         d2 = (q_hi - 2.0 * q_mid + q_lo) / ((hi - lo) / 2.0) ** 2 if hi - lo > 1.5 * _H else np.zeros_like(d1)
         return pj.joints(u), d1 * ud, d2 * ud * ud + d1 * udd
+
+
+#: Time step (s) of the central differences that give joint velocity/acceleration in a blend.
+_BLEND_DT = 1e-4
+
+
+@dataclass(eq=False)
+class BlendedPathSegment(PathSegment):
+    """A straight line entered while the previous (blending) motion is still running out.
+
+    The line is planned from rest at the previous motion's target (the *via* pose) and starts at
+    the blend time; until the previous motion's own end (``prev_end``) the two are superimposed
+    in Cartesian space: position ``p_prev(t) + (p_line(t) − p_via)``, orientation
+    ``R_prev(t) · R_viaᵀ · R_line(t)``, and the joints are the IK of that pose (seeded by the
+    previous motion's joints, so the arm keeps its branch).  At the blend time the line adds
+    nothing (it starts at rest), at ``prev_end`` the previous motion adds nothing (it ends on
+    the via at rest): position, velocity and acceleration are continuous, the robot does not stop,
+    and the tool never leaves the corner by more than the previous motion's remaining distance to
+    the via — ``|InRange|`` when the blend starts as the tool comes within ``|InRange|`` of it.
+    """
+
+    prev: Segment | None = None
+    prev_end: float = 0.0
+    via: np.ndarray | None = None  # 4×4 (mm): the previous target, where the line starts
+    forward: Callable[[Vec], np.ndarray] | None = None
+
+    def joints(self, t: float) -> Vec:
+        if t >= self.prev_end:
+            return super().joints(t)
+        assert self.prev is not None and self.via is not None and self.forward is not None
+        pj = self.path_joints
+        assert pj is not None
+        q_prev = self.prev.joints(t)
+        T_prev = self.forward(q_prev)
+        u = self.parameter(t)[0]
+        T_line = pj.path.pose(u)
+        T = np.eye(4)
+        T[:3, :3] = T_prev[:3, :3] @ self.via[:3, :3].T @ T_line[:3, :3]
+        T[:3, 3] = T_prev[:3, 3] + T_line[:3, 3] - self.via[:3, 3]
+        seed = np.array(q_prev, dtype=float)
+        m = pj.extra_mask
+        seed[m] += (pj.extra_end[m] - pj.extra_start[m]) * u  # axes the line moves linearly (rail)
+        return pj.ik(T, seed)
+
+    def state(self, t: float) -> tuple[Vec, Vec, Vec]:
+        if t - _BLEND_DT >= self.prev_end:
+            return super().state(t)
+        h = _BLEND_DT
+        q_lo, q_mid, q_hi = self.joints(t - h), self.joints(t), self.joints(t + h)
+        return q_mid, (q_hi - q_lo) / (2.0 * h), (q_hi - 2.0 * q_mid + q_lo) / (h * h)
 
 
 @dataclass(eq=False)

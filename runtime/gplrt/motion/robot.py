@@ -16,9 +16,12 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
   tool tip is within ``|InRange|`` mm of its target (robots without kinematics: the joint-space
   distance), but never before *now*, and the new motion is planned by Ruckig from the full state
   (position, velocity, acceleration) at that moment — the robot never stops at the via point and
-  passes within ``|InRange|`` mm of it.  A straight-line motion cannot turn a corner without
-  leaving its line, so a straight motion queued after a blending one starts from rest at the via
-  point (no blend).
+  passes within ``|InRange|`` mm of it.  A straight line queued after a blending motion (joint or
+  straight) is planned from rest at the via point and starts when the tool comes within
+  ``|InRange|`` of it (but no earlier than its own duration before the previous motion's end, and
+  never before *now*); the two are superimposed in Cartesian space until the previous motion ends
+  (``queue.BlendedPathSegment``): the corner is rounded within ``|InRange|``, the robot does not
+  stop, and after the overlap the tool is exactly on the line.  Arcs and circles start from rest.
 * **Settling (InRange > 0)**: the robot stops on target and the segment is held for the
   in-range settling time (DataID 2601, 0.05 s on a PF400); InRange = 0 ends at the last set-point.
 * **Power loss / RapidDecel**: power off stops the robot where it is at once (the brakes) and the
@@ -41,12 +44,24 @@ from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, G
 from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
-from gplrt.motion.queue import CLOCK_RESOLUTION, DwellSegment, JointSegment, MotionQueue, PathSegment, Segment, profile_values
+from gplrt.motion.queue import (
+    CLOCK_RESOLUTION,
+    BlendedPathSegment,
+    DwellSegment,
+    JointSegment,
+    MotionQueue,
+    PathSegment,
+    Segment,
+    profile_values,
+)
 from gplrt.motion.straight import Path, PathJoints
 
 QUEUE_DEPTH = 8
 #: Homing duration (s) [P]: PF400 axes have absolute encoders and do not move; the gripper homes.
 HOMING_TIME = 1.0
+#: The blend starts when the tool is within |InRange| of the via point and no more than this
+#: (mm) inside it: a micrometre is far below anything a trace or a test of the corner can see.
+BLEND_DISTANCE_TOLERANCE = 1e-3
 
 NO_ROBOT_ATTACHED = -1009
 JOINT_OUT_OF_RANGE = -1012
@@ -177,29 +192,53 @@ class RobotState:
         return last.end, last.q_end.copy(), None, None
 
     def _blend_time(self, seg: Segment) -> float:
-        """First time the tool is within the blend tolerance of the segment's target."""
+        """First time the tool is within the blend tolerance of the segment's target.
+
+        Near the end of a motion the remaining distance falls roughly as the square of the time
+        left (constant deceleration), so ``√distance − √tolerance`` is close to linear in time:
+        its root is found by regula falsi with the Illinois modification in a handful of forward
+        kinematics (bisection needs ~20).  The result is always a time at which the tool is
+        within the tolerance, and at most ``BLEND_DISTANCE_TOLERANCE`` inside it."""
         tol = seg.blend_tolerance
         lo, hi = seg.t0, seg.t0 + seg.duration
+        if tol <= 0.0:
+            return hi
         if self.model.has_kinematics:
             goal = self.forward(seg.q_end)[:3, 3]
 
-            def far(t: float) -> bool:
-                return float(np.linalg.norm(self.forward(seg.joints(t))[:3, 3] - goal)) > tol
+            def distance(t: float) -> float:
+                d = self.forward(seg.joints(t))[:3, 3] - goal
+                return math.sqrt(float(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]))
         else:
-            def far(t: float) -> bool:
-                return float(np.linalg.norm(seg.joints(t) - seg.q_end)) > tol
-        if not far(lo):
+            def distance(t: float) -> float:
+                return float(np.linalg.norm(seg.joints(t) - seg.q_end))
+        root_tol = math.sqrt(tol)
+        d_lo = distance(lo)
+        if d_lo <= tol:
             return lo
-        for _ in range(40):
-            mid = 0.5 * (lo + hi)
-            if far(mid):
-                lo = mid
+        g_lo, g_hi = math.sqrt(d_lo) - root_tol, -root_tol  # on target at the end
+        side = 0
+        for _ in range(60):
+            t = hi - g_hi * (hi - lo) / (g_hi - g_lo)
+            if not lo < t < hi:
+                t = 0.5 * (lo + hi)
+            d = distance(t)
+            g = math.sqrt(d) - root_tol
+            if d > tol:
+                lo, g_lo = t, g
+                if side == -1:
+                    g_hi *= 0.5  # Illinois: a stale end must not hold the estimate back
+                side = -1
             else:
-                hi = mid
-            if hi - lo < 1e-6:
+                hi, g_hi = t, g
+                if side == 1:
+                    g_lo *= 0.5
+                side = 1
+                if d > tol - BLEND_DISTANCE_TOLERANCE:
+                    break
+            if hi - lo < 1e-7:
                 break
         return hi
-
 
     def queue_joint(self, now: float, target: Vec, prof: Profile, system_speed: float) -> Segment:
         """Plan and queue a joint-interpolated motion to ``target`` (joints, GPL units)."""
@@ -218,7 +257,11 @@ class RobotState:
 
         The axes in ``extra_mask`` (default: the rail) move linearly along the path to their
         values in ``extra_end``; the IK solves the others."""
-        t0, q0, _, _ = self._start(now, can_blend=False)
+        blend_from = self._blend_source(now) if kind == "straight" else None
+        if blend_from is not None:
+            t0, q0 = blend_from.end, blend_from.q_end.copy()  # the line starts at the via point
+        else:
+            t0, q0, _, _ = self._start(now, can_blend=False)
         path: Path = make_path(self.forward(q0))
         mask = self.extra_mask if extra_mask is None else extra_mask
         q_extra = q0.copy() if extra_end is None else np.where(mask, extra_end, q0)
@@ -233,8 +276,26 @@ class RobotState:
         cart_lim = self.limits.path_limits(prof, system_speed)
         v, acc, dec, jerk = pj.derived_limits(joint_lim, cart_lim, float(prof.AccelRamp), float(prof.DecelRamp))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
+        if blend_from is not None:
+            # The line must not end before the motion it blends out of: start no earlier than
+            # its duration before that motion's end (a shorter overlap), never before now.
+            prev_end = blend_from.motion_end
+            t_b = max(now, self._blend_time(blend_from), prev_end - plan.duration)
+            if t_b < prev_end:
+                blend_from.cut = t_b
+                seg: Segment = BlendedPathSegment(
+                    t_b, plan.duration, blend_from.joints(t_b), pj.q[-1].copy(), plan=plan, path_joints=pj,
+                    kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=self.forward)
+                return self._append(seg, prof)
         seg = PathSegment(t0, plan.duration, q0.copy(), pj.q[-1].copy(), plan=plan, path_joints=pj, kind=kind)
         return self._append(seg, prof)
+
+    def _blend_source(self, now: float) -> Segment | None:
+        """The queued motion a new straight line may blend out of (see the module docstring)."""
+        last = self.queue.last
+        if last is None or last.end <= now + CLOCK_RESOLUTION or isinstance(last, DwellSegment):
+            return None
+        return last if last.blend and last.cut is None else None
 
     def _check_config_kept(self, config: int, start_config: int) -> None:
         """-1042 when ``config`` asks for a branch other than the one the arm is in: a straight

@@ -119,6 +119,16 @@ class ArcPath(Path):
         return T
 
 
+def _gradient(f: np.ndarray, h: float) -> np.ndarray:
+    """``np.gradient(f, h, axis=0)`` (central inside, one-sided at the ends), without its overhead
+    on these small arrays."""
+    out = np.empty_like(f)
+    out[1:-1] = (f[2:] - f[:-2]) / (2.0 * h)
+    out[0] = (f[1] - f[0]) / h
+    out[-1] = (f[-1] - f[-2]) / h
+    return out
+
+
 @dataclass
 class PathJoints:
     """The IK of a path at sample points, and joints anywhere on it (seeded by the nearest sample)."""
@@ -163,9 +173,9 @@ class PathJoints:
     def derived_limits(self, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
                        decel_ramp: float) -> tuple[float, float, float, float]:
         """(u̇_max, ü_max accel, ü_max decel, jerk) for the 1-D plan (see the module docstring)."""
-        h = self.u[1] - self.u[0]
-        dq = np.gradient(self.q, h, axis=0)
-        ddq = np.gradient(dq, h, axis=0)
+        h = float(self.u[1] - self.u[0])
+        dq = _gradient(self.q, h)
+        ddq = _gradient(dq, h)
         d2 = np.max(np.abs(ddq), axis=0)
         # |q'| between samples is bounded by the sampled maximum plus the change over half an
         # interval (first order); a joint that moves linearly along the path gets no margin.

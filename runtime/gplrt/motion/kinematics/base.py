@@ -188,8 +188,9 @@ class RobotModel:
         if len(joints) != self.axis_count:
             raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
         q = units.joints_to_q(joints, self._linear)
-        # A finite sum proves every value finite; the full check only when it is not.
-        if not math.isfinite(float(q.sum())) and not np.all(np.isfinite(q)):
+        # A finite sum proves every value finite (cheap on the caller's list); the full check
+        # only when it is not.
+        if not math.isfinite(sum(joints)) and not np.all(np.isfinite(q)):
             raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {list(joints)}")
         return q
 

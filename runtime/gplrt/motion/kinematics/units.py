@@ -26,7 +26,8 @@ def joints_to_q(joints: Sequence[float], linear: Sequence[bool]) -> NDArray[np.f
 
 def q_to_joints(q: Sequence[float], linear: Sequence[bool]) -> list[float]:
     """SI joint vector (m, rad) → GPL joint values (mm, degrees), as Python floats."""
-    return [float(v) * MM_PER_M if lin else math.degrees(float(v)) for v, lin in zip(q, linear, strict=True)]
+    values = q.tolist() if isinstance(q, np.ndarray) else [float(v) for v in q]  # Python floats: faster below
+    return [v * MM_PER_M if lin else math.degrees(v) for v, lin in zip(values, linear, strict=True)]
 
 
 def joint_to_si(value: float, linear: bool) -> float:
@@ -42,9 +43,8 @@ def matrix_to_se3(T: Matrix) -> pin.SE3:
 
 def se3_to_matrix(M: pin.SE3) -> Matrix:
     """``pin.SE3`` in metres → 4×4 homogeneous transform with translation in mm."""
-    T = np.eye(4)
-    T[:3, :3] = M.rotation
-    T[:3, 3] = M.translation * MM_PER_M
+    T: Matrix = M.homogeneous  # a fresh array (Pinocchio returns the 4×4 by value)
+    T[:3, 3] *= MM_PER_M
     return T
 
 

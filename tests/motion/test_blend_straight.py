@@ -1,0 +1,137 @@
+"""Blending into straight lines (InRange < 0): corners rounded within |InRange|, the robot never stops."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+from gplrt.controller.services import Controller
+from gplrt.geometry.location import Location
+from gplrt.motion.move import Move
+from gplrt.motion.profile import Profile
+from gplrt.motion.queue import BlendedPathSegment
+from gplrt.motion.robot_class import Robot
+from gplrt.sim import Simulation
+
+
+@pytest.fixture
+def sim() -> Iterator[Simulation]:
+    s = Simulation(capture=True)
+    with s:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        yield s
+
+
+def xyz(x: float, y: float, z: float, yaw: float = 0.0) -> Location:
+    loc = Location()
+    loc.XYZ(x, y, z, yaw, 90.0, 180.0)
+    loc.Config = 2  # GPL_Lefty: these points are reachable in that branch
+    return loc
+
+
+def profile(**kw: float | bool) -> Profile:
+    p = Profile()
+    for k, v in kw.items():
+        setattr(p, k, v)
+    return p
+
+
+def tool(sim: Simulation, t: float) -> np.ndarray:
+    robot = sim.robots[1]
+    return robot.forward(robot.joints_at(t))
+
+
+def distance_to_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    d = b - a
+    s = float(np.clip(np.dot(p - a, d) / np.dot(d, d), 0.0, 1.0))
+    return float(np.linalg.norm(p - (a + s * d)))
+
+
+def run_corner(sim: Simulation, inrange: float) -> tuple[float, float, np.ndarray]:
+    """Tool path of P0 -> P1 -> P2 in straight lines, blended at P1 with ``inrange``."""
+    Move.Loc(xyz(350.0, -150.0, 250.0), profile())
+    Move.WaitForEOM()
+    t0 = sim.now()
+    Move.Loc(xyz(450.0, 0.0, 250.0, 20.0), profile(Straight=True, InRange=inrange))
+    Move.Loc(xyz(350.0, 150.0, 300.0, 40.0), profile(Straight=True))
+    Move.WaitForEOM()
+    t1 = sim.now()
+    path = np.array([tool(sim, float(t))[:3, 3] for t in np.linspace(t0, t1, 1500)])
+    return t0, t1, path
+
+
+def test_straight_to_straight_rounds_the_corner_within_inrange_without_stopping(sim: Simulation) -> None:
+    p0, p1, p2 = np.array([350.0, -150.0, 250.0]), np.array([450.0, 0.0, 250.0]), np.array([350.0, 150.0, 300.0])
+    t0, t1, path = run_corner(sim, -10.0)
+    assert isinstance(sim.robots[1].queue.last, BlendedPathSegment)
+    # every point is within 10 mm of the corner polyline, and the corner itself is cut
+    off = [min(distance_to_segment(p, p0, p1), distance_to_segment(p, p1, p2)) for p in path]
+    assert max(off) <= 10.0 + 1e-6
+    near = float(np.min(np.linalg.norm(path - p1, axis=1)))
+    assert 0.5 < near <= 10.0 + 1e-6
+    # the tool keeps moving between the two ends
+    robot = sim.robots[1]
+    # (the jerk-limited start and stop are slow: look inside them)
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.1, t1 - 0.1, 600)]
+    assert min(speeds) > 1.0
+    # it ends exactly on P2, orientation included
+    end = xyz(350.0, 150.0, 300.0, 40.0).matrix()
+    assert np.max(np.abs(tool(sim, t1) - end)) < 1e-9
+    # and the blended corner is faster than stopping at P1
+    stop_t0, stop_t1, _ = run_corner(sim, 0.0)
+    assert (stop_t1 - stop_t0) > (t1 - t0) + 0.05
+
+
+def test_blend_is_continuous_in_velocity_where_the_line_starts(sim: Simulation) -> None:
+    run_corner(sim, -10.0)
+    seg = sim.robots[1].queue.last
+    assert isinstance(seg, BlendedPathSegment) and seg.prev_end > seg.t0
+    robot = sim.robots[1]
+    _, v_before, _ = robot.state_at(seg.t0 - 1e-6)
+    _, v_after, _ = robot.state_at(seg.t0 + 1e-6)
+    assert np.max(np.abs(v_after - v_before)) < 1e-2 * max(1.0, float(np.max(np.abs(v_before))))
+    _, v_end_before, _ = robot.state_at(seg.prev_end - 1e-6)
+    _, v_end_after, _ = robot.state_at(seg.prev_end + 1e-6)
+    assert np.max(np.abs(v_end_after - v_end_before)) < 1e-2 * max(1.0, float(np.max(np.abs(v_end_before))))
+
+
+def test_joint_move_blends_into_a_straight_line(sim: Simulation) -> None:
+    """The pick-and-place idiom: joint to the approach point, blended into the straight descent."""
+    robot = sim.robots[1]
+    Move.Loc(xyz(300.0, -250.0, 300.0), profile())
+    Move.WaitForEOM()
+    above, grip = xyz(450.0, 100.0, 330.0, 30.0), xyz(450.0, 100.0, 250.0, 30.0)
+    t0 = sim.now()
+    Move.Loc(above, profile(InRange=-5.0))
+    Move.Loc(grip, profile(Straight=True, Speed=50.0))
+    seg = robot.queue.last
+    Move.WaitForEOM()
+    t1 = sim.now()
+    assert isinstance(seg, BlendedPathSegment)
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.02, t1 - 0.02, 600)]
+    assert min(speeds) > 1.0
+    path = np.array([tool(sim, float(t))[:3, 3] for t in np.linspace(t0, t1, 2000)])
+    assert float(np.min(np.linalg.norm(path - above.matrix()[:3, 3], axis=1))) <= 5.0 + 1e-6
+    # once the joint move has run out, the tool is exactly on the line down to the grip point
+    a, b = above.matrix()[:3, 3], grip.matrix()[:3, 3]
+    for t in np.linspace(seg.prev_end, t1, 200):
+        assert distance_to_segment(tool(sim, float(t))[:3, 3], a, b) < 1e-6
+    assert np.max(np.abs(tool(sim, t1) - grip.matrix())) < 1e-9
+
+
+def test_a_short_line_after_a_long_blend_still_ends_on_target(sim: Simulation) -> None:
+    robot = sim.robots[1]
+    Move.Loc(xyz(300.0, -250.0, 300.0), profile())
+    Move.WaitForEOM()
+    t0 = sim.now()
+    Move.Loc(xyz(450.0, 100.0, 300.0), profile(InRange=-50.0))
+    Move.Loc(xyz(452.0, 100.0, 300.0), profile(Straight=True))  # 2 mm: shorter than the run-out
+    Move.WaitForEOM()
+    t1 = sim.now()
+    assert np.max(np.abs(tool(sim, t1) - xyz(452.0, 100.0, 300.0).matrix())) < 1e-9
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.02, t1 - 0.02, 400)]
+    assert min(speeds) > 1e-3
