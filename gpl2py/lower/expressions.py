@@ -246,21 +246,28 @@ class ExprLowerer:
     def conv(self, e: A.Expr, dst: t.GplType) -> Code:
         """``e`` converted to ``dst`` as a store would (§4.2 rule 3)."""
         src = self.type_of(e)
-        if isinstance(e, A.IntegerLiteral) and dst in _INT_RANGE:
+        # constants are folded: a literal, or a negated one (-3100), converted at translation time
+        lit: A.Expr = e
+        sign = 1
+        if isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, (A.IntegerLiteral, A.RealLiteral)) \
+                and not (isinstance(e.operand, A.IntegerLiteral) and e.operand.text[:2].lower() in ("&h", "&o")):
+            lit, sign = e.operand, -1
+        if isinstance(lit, A.IntegerLiteral) and dst in _INT_RANGE:
             lo, hi = _INT_RANGE[dst]
-            if lo <= e.value <= hi:
-                return str(e.value), (P_UNARY if e.value < 0 else P_ATOM)
-        if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
-            if dst in _INT_RANGE and isinstance(e, A.RealLiteral) and abs(e.value) < 2**62:
-                r = _round_half_away(e.value)
+            if lo <= sign * lit.value <= hi:
+                return str(sign * lit.value), (P_UNARY if sign * lit.value < 0 else P_ATOM)
+        if isinstance(lit, (A.IntegerLiteral, A.RealLiteral)):
+            number = sign * lit.value
+            if dst in _INT_RANGE and isinstance(lit, A.RealLiteral) and abs(number) < 2**62:
+                r = _round_half_away(number)
                 lo, hi = _INT_RANGE[dst]
                 if lo <= r <= hi:
                     return str(r), (P_UNARY if r < 0 else P_ATOM)
             if dst is t.DOUBLE:
-                return py_float(float(e.value)), (P_UNARY if e.value < 0 else P_ATOM)
+                return py_float(float(number)), (P_UNARY if number < 0 else P_ATOM)
             if dst is t.SINGLE:
                 try:
-                    value = _F32.unpack(_F32.pack(float(e.value)))[0]
+                    value = _F32.unpack(_F32.pack(float(number)))[0]
                     if value not in (float("inf"), float("-inf")):  # too large: -710 at run time
                         return py_float(value), (P_UNARY if value < 0 else P_ATOM)
                 except OverflowError:

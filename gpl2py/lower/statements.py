@@ -170,8 +170,8 @@ class ProcLowerer(ExprLowerer):
         body.level = 1
         start = body.mark()
         self.block(decl.body)
-        last = decl.body.statements[-1] if decl.body.statements else None
-        if p.kind == "Function" and not (isinstance(last, A.Return) and last.value is not None):
+        if p.kind == "Function" and (p.labels or _falls_through(decl.body)):
+            # the value of a Function that ends without Return (§9.1); no unreachable line
             body.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
         out = Writer()
         out.gpl_line = decl.span.line
@@ -418,9 +418,35 @@ class ProcLowerer(ExprLowerer):
         value = self.binop(s.op[:-1], (*self.expr(target), tt), (*self.expr(s.value), self.type_of(s.value)))
         res_type = _binary_result(s.op[:-1], tt, self.type_of(s.value))
         code = self.coerce(value, res_type, tt)[0]
-        if tt is t.DOUBLE and s.op == "*=" and _bound(target, self) * _bound(s.value, self) > _SAFE:
+        if tt is t.DOUBLE and s.op == "*=" and _bound(target, self) * _bound(s.value, self) > _SAFE \
+                and not _shrinks(s.value):
             code = self.double_checked(code)
+        if code == value[0] and self.augmented(target, code):
+            return
         self.store(target, self.checked(target, code))
+
+    def augmented(self, target: A.Expr, code: str) -> bool:
+        """Emit ``x += v`` / ``x -= v`` / ``x *= v`` when the GPL was a compound assignment and the
+        plain Python operation (``code``, the operator's own text: no conversion or range check
+        around it) is exactly what GPL does: Doubles, Strings."""
+        i = self.info(target)
+        if i.kind != "var":
+            return False
+        v: VarSym = i.sym  # type: ignore[assignment]
+        if v.storage not in ("local", "param", "module") or v.boxed or v.byref or not v.read:
+            return False
+        if v.storage == "module" and (self.ctx.module_prefix(self.ctx.owner_module(v)) or self.shadowed(v)):
+            return False
+        name = self.var_code(v, i.receiver)[0]
+        for op in ("+", "-", "*"):
+            head = f"{name} {op} "
+            if code.startswith(head):
+                # binop parenthesises its right operand as needed, so ``x op rest`` is ``x op (rest)``
+                if v.storage == "module":
+                    self.globals.add(py_ident(v.name))
+                self.w.line(f"{name} {op}= {_unparen(code[len(head):])}")
+                return True
+        return False
 
     def double_checked(self, value: str) -> str:
         """A Double product that may leave the Double range: checked before the store (-710
@@ -858,6 +884,14 @@ def _bound(e: A.Expr, low: ExprLowerer) -> float:
     return math.inf
 
 
+def _shrinks(e: A.Expr) -> bool:
+    """A literal factor of magnitude at most 1 (``x * 0.9``): the product is no larger than the
+    other factor, which is a finite Double already, so it cannot overflow."""
+    if isinstance(e, A.Unary) and e.op == "-":
+        e = e.operand
+    return isinstance(e, (A.IntegerLiteral, A.RealLiteral)) and abs(float(e.value)) <= 1.0
+
+
 def _may_overflow_double(e: A.Expr, low: ExprLowerer) -> bool:
     """Whether a Double value stored from ``e`` needs the overflow check: it contains a product
     whose bound is unknown (sums and differences overflow only from operands that are already
@@ -865,7 +899,8 @@ def _may_overflow_double(e: A.Expr, low: ExprLowerer) -> bool:
     stack: list[A.Node] = [e]
     while stack:
         n = stack.pop()
-        if isinstance(n, A.Binary) and n.op == "*" and _bound(n, low) > _SAFE:
+        if isinstance(n, A.Binary) and n.op == "*" and _bound(n, low) > _SAFE \
+                and not (_shrinks(n.left) or _shrinks(n.right)):
             return True
         if isinstance(n, (A.Binary, A.Unary)):
             stack.extend(n.children())
@@ -883,8 +918,53 @@ def _names_in(node: A.Node) -> set[str]:
     return out
 
 
+def _unparen(code: str) -> str:
+    """``(a - b)`` -> ``a - b`` when the parentheses enclose the whole text (``x -= a - b``)."""
+    if not (code.startswith("(") and code.endswith(")")):
+        return code
+    depth = 0
+    for i, ch in enumerate(code):
+        depth += ch == "("
+        depth -= ch == ")"
+        if depth == 0 and i < len(code) - 1:
+            return code  # (a) + (b): the first parenthesis closes early
+    return code[1:-1]
+
+
+def _falls_through(block: A.Block) -> bool:
+    """Whether control can reach the end of ``block`` (conservative: True when unsure).
+
+    A Function whose body ends in Return/Throw, or in an If/Select whose every branch does, needs
+    no ``return <default>`` after it: that line would be unreachable.
+    """
+    if not block.statements:
+        return True
+    last = block.statements[-1]
+    if isinstance(last, (A.Return, A.Throw)):
+        return False
+    if isinstance(last, A.Exit) and last.kind in ("Function", "Sub", "Property"):
+        return False
+    if isinstance(last, A.If) and last.else_body is not None:
+        bodies = [last.then_body, *(ei.body for ei in last.elseifs), last.else_body]
+        return any(_falls_through(b) for b in bodies)
+    if isinstance(last, A.Select) and any(c.is_else for c in last.cases) and not _has_exit(last, "Select"):
+        return any(_falls_through(c.body) for c in last.cases)
+    return True
+
+
+def _jumps(node: A.Node) -> bool:
+    """Whether ``node`` is or contains a GoTo or a label (control that is not straight-line)."""
+    stack: list[A.Node] = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, (A.GoTo, A.Label)):
+            return True
+        stack.extend(n.children())
+    return False
+
+
 def _assigned_before_use(p: ProcSym) -> set[VarSym]:
-    """Unboxed locals that the procedure's leading run of plain statements assigns with ``=``
+    """Unboxed locals that the procedure's leading straight-line statements assign with ``=``
     before anything reads them: they need no default at entry (the default would be dead)."""
     decl = p.decl
     if decl is None:
@@ -915,8 +995,13 @@ def _assigned_before_use(p: ProcSym) -> set[VarSym]:
             if v is not None and v.storage == "local" and not v.boxed and s.var.name.lower() not in read:
                 out.add(v)
             break  # the body may read anything
+        elif _jumps(s):
+            break  # a GoTo could skip a later assignment
         else:
-            break
+            # any other statement (a call, an If ...): locals are not visible to callees, so only
+            # the names it mentions can be read before their first assignment
+            read |= _names_in(s)
+            continue
         for name, value in targets:
             if value is not None:
                 read |= _names_in(value)
