@@ -47,7 +47,9 @@ class RunResult:
 
 
 def write_project(root: Path, sources: dict[str, str], start: str = "Main", name: str | None = None) -> str:
-    name = name or f"E2e{next(_counter)}"
+    # unique per process even when this helper is imported twice (as gpltest and tests.gpltest,
+    # each with its own counter): a repeated name would import the other test's cached package
+    name = name or f"E2e{next(_counter)}x{id(_counter) % 100000}"
     proj = root / name
     proj.mkdir(parents=True)
     lines = ["ProjectBegin", f'ProjectName="{name}"', f'ProjectStart="{start}"']
