@@ -14,7 +14,7 @@ from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
-from tests.gpltest import module_src, run_gpl
+from gpltest import module_src, run_gpl
 
 
 @pytest.fixture
