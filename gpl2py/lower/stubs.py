@@ -40,12 +40,11 @@ def stub_files(table: StubTable, stub_module_py: dict[str, str], package: str,
 def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStubs | None,
                  used_files: dict[str, UserFile]) -> tuple[str, list[dict[str, object]]]:
     if module == STUBS_MODULE:
-        doc = ("Stubs for names the program uses but gpl2py could not translate: names defined in "
-               "protected (.gpp) files,\nand members of built-in classes that the simulated "
-               "controller lacks.")
+        doc = ("Stubs for names the program uses but gpl2py could not translate: names defined in\n"
+               "protected (.gpp) files, and members of built-in classes that the simulated controller lacks.")
     else:
         gpl = stubs[0].module or module
-        doc = f"Stubs for Module {gpl}: its source is protected (.gpp), so gpl2py could not translate it."
+        doc = f"Stubs for Module {gpl}: its source is protected (.gpp), gpl2py could not translate it."
     head = [
         f'"""{doc}',
         "",
@@ -59,6 +58,11 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
     variables: list[tuple[str, str]] = []
     records: list[dict[str, object]] = []
     needs_helper = False
+    supplied: set[str] = set()
+
+    def user_has(stub: Stub) -> bool:
+        return user is not None and user.find(stub) is not None
+
     for stub in stubs:
         attr = stub_attr(stub)
         found = user.find(stub) if user is not None else None
@@ -66,8 +70,9 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
         if found is not None:
             uf, spelled = found
             used_files[uf.package_module] = uf
+            supplied.add(uf.path.name)
             alias = spelled if spelled == attr else f"{spelled} as {attr}"
-            imports.append(f"from .{uf.package_module} import {alias}  # --stubs {uf.path.name}")
+            imports.append(f"from .{uf.package_module} import {alias}")
         else:
             needs_helper = True
             defs.extend(_stand_in(stub, attr))
@@ -76,7 +81,8 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
             if setter is not None:
                 uf, spelled = setter
                 used_files[uf.package_module] = uf
-                imports.append(f"from .{uf.package_module} import {spelled} as set_{attr}  # --stubs {uf.path.name}")
+                supplied.add(uf.path.name)
+                imports.append(f"from .{uf.package_module} import {spelled} as set_{attr}")
             else:
                 needs_helper = True
                 defs.extend(["", "", f"def set_{attr}(*args: object) -> None:",
@@ -90,7 +96,11 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
     if imports:
         if needs_helper:
             lines.append("")
+        lines.append("# supplied with --stubs: " + ", ".join(sorted(supplied)))
         lines.extend(sorted(imports))
+    exported = sorted({stub_attr(st) for st in stubs if st.kind != "variable" or user_has(st)}
+                      | {f"set_{stub_attr(st)}" for st in stubs if st.builtin is not None and st.assigned})
+    lines += ["", "__all__ = [" + ", ".join(py_string(n) for n in exported) + "]"]
     lines.extend(defs)
     if variables:
         entries = ", ".join(f"{py_string(a)}: {py_string(n)}" for a, n in variables)

@@ -278,3 +278,26 @@ def test_run_prints_a_note_listing_stubs(tmp_path: Path, capsys: pytest.CaptureF
     strict = cli_main(["run", str(_project(tmp_path / "again")), "--cache-dir", str(tmp_path / "cache"),
                        "--strict"])
     assert strict == 1
+
+
+def test_stub_modules_are_clean_python(tmp_path: Path) -> None:
+    import pycodestyle
+    from pyflakes.api import check as pyflakes_check
+    from pyflakes.reporter import Reporter
+    import io
+
+    stubs = tmp_path / "s"
+    stubs.mkdir()
+    (stubs / "vendorlib.py").write_text("def Grip(w):\n    return w\n")
+    for options in ((), ("--stubs", str(stubs))):
+        out = tmp_path / f"out{len(options)}"
+        status, err = _translate(_project(tmp_path / f"p{len(options)}"), out, *options)
+        assert status == 0, err
+        folder = out / "vendor_cell"
+        generated = [f for f in sorted(folder.glob("*.py")) if not f.name.startswith("_user_")]
+        assert {"_stubs.py", "vendor_lib.py"} <= {f.name for f in generated}
+        style = pycodestyle.StyleGuide(max_line_length=99, quiet=True)
+        assert style.check_files([str(f) for f in generated]).total_errors == 0
+        for f in generated:
+            warnings = io.StringIO()
+            assert pyflakes_check(f.read_text(), str(f), Reporter(warnings, warnings)) == 0, warnings.getvalue()
