@@ -38,6 +38,7 @@ from gplrt.motion import registry
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot import QUEUE_DEPTH, RobotState
 from gplrt.motion.straight import ArcPath, LinePath
+from gplrt.threads.scheduler import current_ctx
 
 NOTHING_VALUE = -782
 INVALID_ARGUMENT = -202
@@ -58,9 +59,11 @@ def _attached(s: Any, key: Any = None) -> RobotState:
     return robot  # type: ignore[no-any-return]
 
 
-def _ready(s: Any) -> RobotState:
-    """The attached robot, checked for motion, once the queue has room (waits on the clock)."""
-    key = registry.thread_key()
+def _ready(s: Any, key: Any = None) -> RobotState:
+    """The attached robot, checked for motion, once the queue has room (waits on the clock).
+    ``key``: the calling thread's ``registry.thread_key()`` when the caller has it already."""
+    if key is None:
+        key = registry.thread_key()
     robot = _attached(s, key)
     robot.check_can_move(key, s.controller.power_state in POWER_ON_STATES)
     queue = robot.queue
@@ -160,8 +163,9 @@ class _MoveClass:
         loc = Location1
         if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
             # the commonest move of all, kept short (benchmarks/motion_speed.py measures it)
-            s = registry.sim()
-            robot = _ready(s)
+            ctx = current_ctx()
+            s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
+            robot = _ready(s, key)
             with robot.lock:
                 queue = robot.queue
                 dest = queue.history[-1].q_end if queue.history else queue.rest

@@ -32,7 +32,6 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
 from __future__ import annotations
 
 import math
-import operator
 import threading
 from dataclasses import dataclass, field
 from typing import Any
@@ -168,8 +167,12 @@ class RobotState:
                                      [j.upper + e for j, e in zip(self.model.joints, slack)])
         lows, highs = bounds
         values = q.tolist() if type(q) is np.ndarray else q
-        if len(values) == len(lows) and all(map(operator.le, lows, values)) and all(map(operator.le, values, highs)):
-            return
+        if len(values) == len(lows):
+            for i, v in enumerate(values):
+                if not lows[i] <= v <= highs[i]:
+                    break
+            else:
+                return
         self.model.check_limits([float(x) for x in q])  # raises with the model's detail
 
     # -- queueing ------------------------------------------------------------------------------
