@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from gplrt.controller.pdb import default_database
@@ -29,9 +29,12 @@ def check_within(plan: Plan, lim: AxisLimits, q0: np.ndarray, q1: np.ndarray) ->
     assert np.all(np.abs(v) <= lim.velocity * (1 + 1e-9) + 1e-9)
     assert np.all(np.abs(a) <= np.maximum(lim.accel, lim.decel) * (1 + 1e-9) + 1e-9)
     lo, hi = np.minimum(q0, q1), np.maximum(q0, q1)
-    assert np.all(p >= lo - 1e-9) and np.all(p <= hi + 1e-9)  # no overshoot from rest to rest
+    # Ruckig integrates in double precision: its position error grows with the travel (1.4e-9 over
+    # the wrist's 1920 degrees, see the examples below), so the bound has a relative part too.
+    tol = 1e-9 + 1e-12 * float(np.max(np.abs(q1 - q0)))
+    assert np.all(p >= lo - tol) and np.all(p <= hi + tol)  # no overshoot from rest to rest
     end = np.array(plan.at(plan.duration)[0])
-    assert np.max(np.abs(end - q1)) < 1e-9  # Ruckig's own end; the motion queue then holds q1 exactly
+    assert np.max(np.abs(end - q1)) < tol  # Ruckig's own end; the motion queue then holds q1 exactly
 
 
 joint_vec = st.lists(st.floats(0.0, 1.0), min_size=5, max_size=5).map(lambda f: LOWER + np.array(f) * (UPPER - LOWER))
@@ -40,6 +43,10 @@ joint_vec = st.lists(st.floats(0.0, 1.0), min_size=5, max_size=5).map(lambda f: 
 @settings(max_examples=40, deadline=None)
 @given(joint_vec, joint_vec, st.floats(5.0, 150.0), st.floats(10.0, 300.0), st.floats(10.0, 300.0),
        st.floats(0.0, 0.3))
+# full wrist travel at low speed (found by hypothesis): the end is 1.3e-9 / 1.4e-9 off
+@example(LOWER + np.array([0.0, 0.0, 0.0, 0.0, 0.1490403289436482]) * (UPPER - LOWER),
+         np.array([1.5, -93.0, 12.0, 960.0, 69.0]), 5.0, 150.0, 231.875, 0.0)
+@example(np.array([1.5, -93.0, 12.0, -960.0, 101.5]), np.array([1.5, -93.0, 12.0, 960.0, 69.0]), 5.0, 115.0, 150.0, 0.0)
 def test_joint_plans_respect_limits_and_end_on_target(q0: np.ndarray, q1: np.ndarray, speed: float, accel: float,
                                                       decel: float, ramp: float) -> None:
     prof = Profile()
