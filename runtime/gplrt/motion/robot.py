@@ -136,7 +136,8 @@ class RobotState:
         return self.model.forward([float(v) for v in joints])
 
     def inverse(self, T: np.ndarray, config: int, current: Vec) -> Vec:
-        return np.array(self.model.inverse(T, int(config), [float(v) for v in current]))
+        seed = current.tolist() if type(current) is np.ndarray else [float(v) for v in current]
+        return np.array(self.model.inverse(T, int(config), seed))
 
     # -- checks --------------------------------------------------------------------------------
 

@@ -149,8 +149,11 @@ class PathJoints:
         us = np.linspace(0.0, 1.0, n + 1)
         self = cls(path, ik, us, np.empty((n + 1, len(q0))), np.asarray(q0, float).copy(),
                    np.asarray(q_extra_end, float), extra_mask)
-        seed = self.extra_start.copy()
-        for k, u in enumerate(us):
+        # The path starts where the robot is: q0 itself is the first sample (no IK, and no
+        # rounding step between the previous motion's end and this one's start).
+        seed = self.q[0] = self.extra_start
+        for k in range(1, len(us)):
+            u = float(us[k])
             seed = self._seed(seed, u)
             seed = self.q[k] = ik(path.pose(u), seed)
         return self
