@@ -6,7 +6,8 @@ axes; poses are 4×4 homogeneous transforms with translation in mm):
 * ``axis_count``, ``joint_names``, ``joints`` (``JointInfo``: name, kind, role, soft limits),
   ``lower_limits`` / ``upper_limits``, ``module`` (DataID 116 value), ``robot`` (robot number);
 * ``tool`` / ``base``: 4×4 (mm), initialised from DataIDs 16051 / 16052 ("Tool/Base set at
-  restart"); the motion layer may assign new matrices (``Robot.Tool = ...``);
+  restart"); the motion layer may assign new matrices (``Robot.Tool = ...``); the stored arrays
+  are read-only (their inverses are cached for ``inverse``), so assign, never edit in place;
 * ``forward(joints) -> 4×4``: ``Base · Flange(q) · Tool`` (``Robot.Where``, gpl-classes §22.1.10);
 * ``flange(joints) -> 4×4``: the flange pose without Base and Tool;
 * ``inverse(T, config_bits=0, current_joints=None) -> list[float]``: solves
