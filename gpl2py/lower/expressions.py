@@ -32,6 +32,7 @@ BYREF = "gplrt.lang.byref"
 _PLAIN_NUM = (t.BYTE, t.SHORT, t.INTEGER, t.SINGLE, t.DOUBLE)
 _INTS = (t.BYTE, t.SHORT, t.INTEGER)
 _INT_RANGE = {t.INTEGER: (-(2**31), 2**31 - 1), t.SHORT: (-32768, 32767), t.BYTE: (0, 255)}
+_INT_OR_BOOL = (t.BYTE, t.SHORT, t.INTEGER, t.BOOLEAN)
 _TO_INT = {t.INTEGER: "to_int32", t.SHORT: "to_int16", t.BYTE: "to_uint8"}
 _CHK_INT = {t.INTEGER: "chk_int32", t.SHORT: "chk_int16", t.BYTE: "chk_uint8"}
 _RUNTIME_CMP = {"=": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le", ">=": "ge"}
@@ -273,7 +274,68 @@ class ExprLowerer:
                 except OverflowError:
                     pass
         c = self.expr(e)
-        return self.coerce(c, src, dst, may_overflow=_may_overflow(e))
+        return self.coerce(c, src, dst, may_overflow=self.may_overflow(e, dst))
+
+    def may_overflow(self, e: A.Expr, dst: t.GplType) -> bool:
+        """Whether storing integer-typed ``e`` into ``dst`` needs a range check at run time.
+
+        An interval analysis over the static types proves most checks unnecessary: in
+        ``acc = ((acc * 75 + i) And &H7FFF) + (i \\ 3) - (i >> 2)`` the And is 0..32767 and the
+        rest is bounded by Integer's range divided by 3 and 4, so the sum always fits.
+        """
+        bounds = self.int_interval(e)
+        if bounds is None or dst not in _INT_RANGE:
+            return _may_overflow(e)
+        lo, hi = _INT_RANGE[dst]
+        return not (lo <= bounds[0] and bounds[1] <= hi)
+
+    def int_interval(self, e: A.Expr) -> tuple[int, int] | None:
+        """Exact bounds of an integer-valued expression from its operands' static types, or None."""
+        if isinstance(e, A.IntegerLiteral):
+            return (e.value, e.value)
+        typ = self.type_of(e)
+        if isinstance(e, A.Unary) and e.op == "-":
+            inner = self.int_interval(e.operand)
+            return None if inner is None else (-inner[1], -inner[0])
+        if isinstance(e, A.Binary) and typ in _INT_OR_BOOL:
+            return self._binary_interval(e)
+        if typ is t.BOOLEAN:
+            return (-1, 0)
+        if typ in _INT_RANGE:
+            return _INT_RANGE[typ]
+        return None
+
+    def _binary_interval(self, e: A.Binary) -> tuple[int, int] | None:
+        a = self.int_interval(e.left)
+        b = self.int_interval(e.right)
+        if a is None or b is None:
+            return None
+        op = e.op.lower()
+        if op == "+":
+            return (a[0] + b[0], a[1] + b[1])
+        if op == "-":
+            return (a[0] - b[1], a[1] - b[0])
+        if op == "*":
+            products = [x * y for x in a for y in b]
+            return (min(products), max(products))
+        if op in ("\\", "mod"):  # |a \ b| <= |a| / min|b|; |a Mod b| < |b| and <= |a|
+            m = max(abs(a[0]), abs(a[1]))
+            if op == "mod":
+                m = min(m, max(abs(b[0]), abs(b[1])))
+            elif b[0] > 0 or b[1] < 0:  # a divisor that cannot be 0 (0 raises -709 anyway)
+                m //= min(abs(b[0]), abs(b[1]))
+            return (-m, m)
+        if op == ">>":
+            if b[0] == b[1] and 0 <= b[0] < 32:
+                return (a[0] >> b[0], a[1] >> b[0])
+            return (min(a[0], 0), max(a[1], 0))
+        if op in ("and", "or", "xor", "<<"):
+            if op == "and" and (a[0] >= 0 or b[0] >= 0):  # a non-negative mask bounds the result
+                return (0, min(x[1] for x in (a, b) if x[0] >= 0))
+            if op in ("or", "xor") and a[0] >= 0 and b[0] >= 0:
+                return (0, (1 << max(a[1], b[1]).bit_length()) - 1)
+            return _INT_RANGE[t.INTEGER]  # bitwise results are 32-bit (§4.4)
+        return None
 
     def coerce(self, c: Code, src: t.GplType, dst: t.GplType, may_overflow: bool = True) -> Code:
         if dst is t.ERROR or src is t.ERROR or not isinstance(dst, t.PrimitiveType):

@@ -5,8 +5,9 @@ on ``Thread.TestAndSet(sem_var, 1)`` while other threads change the caller's ``m
 [000 L4770-4795].  So the callee receives a cell over the caller's storage and reads ``p.get()``
 and writes ``p.set(v)`` (the ``gpltypes.Ref`` protocol):
 
-* ``Box(value)`` -- a local variable (the lowering writes the box back into the local after the
-  call, docs/design/lowering.md), or a temporary for a non-variable argument (AMB-33);
+* ``Box(value)`` -- a local variable that the procedure passes ByRef somewhere (the lowering keeps
+  such a local in its Box for the whole procedure, docs/design/lowering.md), or a temporary for a
+  non-variable argument (AMB-33);
 * ``AttrRef(obj, "name")`` -- a module variable (``obj`` is the module object) or an object field;
   ``ModuleVarRef`` and ``FieldRef`` are the same class under the names the lowering reads best;
 * ``ItemRef(array, index)`` -- an array element; ``index`` is an int or a tuple of ints.  The
@@ -15,7 +16,8 @@ and writes ``p.set(v)`` (the ``gpltypes.Ref`` protocol):
 
 Cells do not convert values: the callee's parameter type is the caller's variable type (GPL
 requires the types to match), and conversion on store is the lowering's job.  Each cell is a
-``__slots__`` object with two tiny methods.
+``__slots__`` object with two tiny methods and a ``value`` attribute (a plain slot on ``Box``, a
+property on the others), which generated code uses.
 """
 
 from __future__ import annotations
