@@ -284,11 +284,13 @@ def _install_blocking_hook() -> None:
 
     A GPL thread waiting on a socket must not hold the virtual scheduler's token, and must not count
     as waiting on virtual time; ``external_wait`` does both and is harmless outside GPL threads.
+    While a socket is open, virtual time keeps to real time (``hold_real_time``).
     """
     from gplrt.io import _blocking
-    from gplrt.threads.scheduler import external_wait
+    from gplrt.threads.scheduler import external_wait, hold_real_time
 
     _blocking.set_blocking_hook(lambda timeout: external_wait())
+    _blocking.set_open_hook(hold_real_time)
 
 
 _install_blocking_hook()

@@ -1,7 +1,8 @@
 """samples/cell_server: the transpiled cell served to Python socket clients over loopback.
 
-The server runs on the real clock sped up 10x (a 1 s move takes 0.1 s of wall time), so the
-clients' timeouts are real and motions still take controller time.  Poses are checked against
+The server runs in virtual time, like every sample: while its sockets are open the virtual clock
+keeps to real time (gplrt.threads.scheduler, hold_real_time), so the clients' timeouts are real and
+motions still take controller time.  Poses are checked against
 the commanded targets, read off the simulated robot itself to 1e-6 mm.
 """
 
@@ -61,7 +62,7 @@ def cell(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Simulation,
     src = copy_project(SAMPLES / "cell_server", tmp_path_factory.mktemp("src") / "cell_server",
                        {"SERVER_PORT As Integer = 10200": f"SERVER_PORT As Integer = {port}"})
     sample: Transpiled = transpile(src, tmp_path_factory.mktemp("cell_server"))
-    sim = Simulation(clock="real", speed=10.0, capture=True)
+    sim = Simulation(capture=True)  # virtual clock: open sockets keep it to real time
     runner = threading.Thread(target=sample.package.main, args=(sim,), daemon=True)
     runner.start()
     for _ in range(400):

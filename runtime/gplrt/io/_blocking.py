@@ -46,3 +46,36 @@ def blocking_call(fn: Callable[[], T], timeout: float | None) -> T:
     """Run ``fn()``, a call that may block for up to ``timeout`` seconds, inside the hook."""
     with _hook(timeout):
         return fn()
+
+
+# -- open connections ------------------------------------------------------------------------------
+#
+# Besides blocking waits, the scheduler must know while the program holds a connection to the outside
+# world open (a listening or connected socket): then virtual time must not run ahead of real time, even
+# if no thread is blocked in a call (a server polling ``Pending()`` between sleeps).  ``opened()`` is
+# called when such a connection opens and returns the function to call when it closes.
+
+Release = Callable[[], None]
+OpenHook = Callable[[], Release]
+
+
+def _no_release() -> None:
+    pass
+
+
+def _no_open_hook() -> Release:
+    return _no_release
+
+
+_open_hook: OpenHook = _no_open_hook
+
+
+def set_open_hook(hook: OpenHook | None) -> None:
+    """Install the scheduler's open-connection hook (``None`` restores the no-op default)."""
+    global _open_hook
+    _open_hook = hook if hook is not None else _no_open_hook
+
+
+def opened() -> Release:
+    """A connection to the outside world opened; call the result (once) when it closes."""
+    return _open_hook()

@@ -36,6 +36,7 @@ import threading
 from dataclasses import dataclass
 from typing import Any
 
+from gplrt.io import _blocking
 from gplrt.io._blocking import blocking_call
 from gplrt.io._codec import as_text, from_bytes, to_bytes
 from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
@@ -173,6 +174,7 @@ class Socket:
         self._recv_ms = 0
         self._send_ms = 0
         self._lock = threading.RLock()
+        self._release = _blocking.opened()  # paces virtual time while the socket is open
         self._sock.settimeout(None)
 
     # -- state ---------------------------------------------------------------------------------
@@ -259,6 +261,7 @@ class Socket:
                 self._closed = True
                 self._connected = False
                 self._sock.close()
+                self._release()
 
     def Connect(self, remote_endpoint: IPEndPoint) -> None:
         """Connect to a TCP server (for UDP: fix the default peer of Send/Receive)."""
@@ -427,6 +430,7 @@ class TcpListener:
             sock.close()
             raise _os_error(exc, f"listen on {address[0]}:{address[1]}") from None
         self._sock = sock
+        self._release = _blocking.opened()  # paces virtual time while listening
 
     def _listening(self) -> _socket.socket:
         if self._sock is None:
@@ -456,6 +460,7 @@ class TcpListener:
         if self._sock is not None:
             self._sock.close()
             self._sock = None
+            self._release()
 
     def Close(self) -> None:
         self.Stop()

@@ -23,6 +23,10 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   no faster than real time: a real-time timer fires the earliest virtual deadline when it falls
   due, and when the external wait ends, time catches up with the real time spent idle.  So a
   server's timeout still means something to a real client, and no deadline is skipped.
+* The same real-time pace holds while the program has a connection to the outside world open (a
+  listening or connected socket: :func:`hold_real_time`), even when no thread is blocked in it: a
+  server that polls ``listener.Pending()`` between ``Thread.Sleep(20)`` calls must not race virtual
+  time (and the CPU) ahead of the clients it waits for.
 * Code running on Python threads the scheduler does not know (a notebook, pytest) never holds the
   token, so it cannot deadlock the scheduler: ``checkpoint`` is a no-op there, and a blocking call
   (``Thread.Sleep``, ``WaitEvent``, ``clock.sleep``) *adopts* the thread for the duration of that
@@ -150,6 +154,33 @@ def external_wait() -> Iterator[None]:
         yield
     finally:
         ctx.sched._leave_external(ctx)
+
+
+def hold_real_time() -> Callable[[], None]:
+    """Pace virtual time to real time until the returned function is called (once).
+
+    The I/O layer calls this when a GPL thread opens a connection to the outside world and calls
+    the result when it closes it (see the module docstring).  A no-op outside GPL threads and in
+    real mode.
+    """
+    ctx = _tls.ctx
+    if ctx is None:
+        return _no_release
+    sched = ctx.sched
+    sched._hold_real_time(+1)
+    released = False
+
+    def release() -> None:
+        nonlocal released
+        if not released:
+            released = True
+            sched._hold_real_time(-1)
+
+    return release
+
+
+def _no_release() -> None:
+    pass
 
 
 class Scheduler:
@@ -345,6 +376,9 @@ class Scheduler:
     def _leave_external(self, ctx: ThreadCtx) -> None:
         pass
 
+    def _hold_real_time(self, delta: int) -> None:
+        pass
+
 
 class VirtualScheduler(Scheduler):
     """Token scheduler on a :class:`VirtualClock` (deterministic; see module docstring)."""
@@ -365,6 +399,7 @@ class VirtualScheduler(Scheduler):
         # (deadline ns, sequence, waiting thread, its wait id, or a callback): a min-heap
         self._timers: list[tuple[int, int, ThreadCtx | None, int, Callable[[], None] | None]] = []
         self._external = 0
+        self._connections = 0  # open connections to the outside world (hold_real_time)
         self._idle_real: float | None = None  # monotonic() when the token went idle
         self._idle_virtual = 0  # ns
         self._pacer_gen = 0
@@ -423,7 +458,7 @@ class VirtualScheduler(Scheduler):
             while not self._ready:
                 nd = self._next_deadline()
                 # With no GPL thread alive, or nobody outside driving the run, time stands still.
-                if nd is None or self._external > 0 or not self.live or self.drivers == 0:
+                if nd is None or self._paced() or not self.live or self.drivers == 0:
                     self._go_idle(nd)
                     return
                 self.clock.advance_to_ns(nd)
@@ -438,11 +473,11 @@ class VirtualScheduler(Scheduler):
     def _go_idle(self, next_deadline: int | None) -> None:
         self._running = None
         # Only external waits make idle time count: otherwise a stalled program stays frozen.
-        if self._external > 0 and self._idle_real is None:
+        if self._paced() and self._idle_real is None:
             self._idle_real = time.monotonic()
             self._idle_virtual = self.clock.ns
         self._pacer_gen += 1
-        if next_deadline is not None and self._external > 0 and self.drivers > 0:
+        if next_deadline is not None and self._paced() and self.drivers > 0:
             gen = self._pacer_gen
             delay = max(0.0, (next_deadline - self.clock.ns) / 1e9)
             timer = threading.Timer(delay, self._pacer_fire, args=(gen, next_deadline))
@@ -549,6 +584,16 @@ class VirtualScheduler(Scheduler):
             heapq.heappush(self._timers, (to_ns(t), next(self._seq), None, 0, callback))
             if self._running is None and not self._in_dispatch:
                 self._dispatch()  # idle: jump to it now, or re-arm the real-time pacer
+
+    def _paced(self) -> bool:
+        """Virtual time may not run ahead of real time: the outside world is involved."""
+        return self._external > 0 or self._connections > 0
+
+    def _hold_real_time(self, delta: int) -> None:
+        with self._lock:
+            self._connections += delta
+            if delta < 0 and self._running is None and not self._in_dispatch:
+                self._dispatch()  # free to jump again: re-plan the idle time
 
     def _enter_external(self, ctx: ThreadCtx) -> None:
         with self._lock:

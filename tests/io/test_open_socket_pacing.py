@@ -1,0 +1,56 @@
+"""While a GPL program holds a socket open, virtual time keeps to real time.
+
+A server that polls ``listener.Pending()`` between ``Thread.Sleep`` calls blocks in no call, so
+without this rule the virtual clock would jump from sleep to sleep and the server's own timeout
+would expire long before a real client (here: 0.3 s of wall time later) could connect.
+"""
+
+from __future__ import annotations
+
+import socket
+import threading
+import time
+
+from gplrt.controller.services import Controller
+from gplrt.io.sockets import IPEndPoint, TcpListener
+from gplrt.sim import Simulation
+from gplrt.threads import Thread
+
+
+def test_a_polling_server_waits_in_real_time_for_its_client() -> None:
+    sim = Simulation(capture=True)  # virtual clock
+    result: list[str] = []
+    ports: list[int] = []
+    listening = threading.Event()
+
+    def server() -> None:
+        listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+        listener.Start()
+        ports.append(listener.LocalEndPoint().Port)
+        listening.set()
+        t0 = Controller.Timer()
+        while not listener.Pending():
+            if Controller.Timer() - t0 > 2.0:  # two controller seconds
+                result.append("timeout")
+                break
+            Thread.Sleep(20)
+        else:
+            result.append("client arrived")
+            listener.AcceptSocket().Close()
+        listener.Stop()
+        # With the listener closed, time jumps again: an hour passes at once.
+        t1 = Controller.Timer()
+        Thread.Sleep(3_600_000)
+        result.append(f"slept {Controller.Timer() - t1:.0f} s")
+
+    def client() -> None:
+        listening.wait(5)
+        time.sleep(0.3)
+        with socket.create_connection(("127.0.0.1", ports[0]), timeout=5):
+            pass
+
+    helper = threading.Thread(target=client, daemon=True)
+    helper.start()
+    assert sim.run_main(server, timeout=30) == []
+    helper.join(5)
+    assert result == ["client arrived", "slept 3600 s"]
