@@ -19,6 +19,9 @@ import tokenize
 
 LIMIT = 99
 _OPS = {"+", "and", "or"}
+# plain and augmented assignment: the expression to break starts after any of them (wrapping the
+# whole ``x += a + b`` statement in parentheses would not be Python)
+_ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^=", "<<=", ">>="}
 
 
 def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tuple[int, str]]:
@@ -72,7 +75,7 @@ def _wrap(indent: int, text: str, limit: int) -> list[tuple[int, str]]:
             depth += 1
         elif tok.string in ")]}" and tok.type == tokenize.OP:
             depth -= 1
-        elif depth == 0 and tok.type == tokenize.OP and tok.string == "=":
+        elif depth == 0 and tok.type == tokenize.OP and tok.string in _ASSIGN:
             start = i + 1
             break
     if start == 0 and toks[0].string in ("if", "elif", "while", "return", "raise"):
