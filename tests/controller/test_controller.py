@@ -132,10 +132,12 @@ def test_error_log_entries_and_clear(vsim: Simulation) -> None:
     assert Controller.ErrorLog(1) == ""
 
 
-def test_pdb_without_database_and_with_one(vsim: Simulation) -> None:
-    with pytest.raises(GplException) as info:
-        Controller.PDbNum(601)
-    assert info.value.ErrorCode == -204
+def test_pdb_before_any_motion_and_with_a_custom_database(vsim: Simulation) -> None:
+    # a fresh session reads its robot model's shipped database before any motion (TCS does this
+    # at start-up): PF400SX has 5 axes (DataID 2000), model 400 (2007), J3 max 348 (16077)
+    assert Controller.PDbNum(2000) == 5.0
+    assert Controller.PDbNum(2007, 1) == 400.0
+    assert Controller.PDbNum(16077, 1, 1, 3) == 348.0
     from gplrt.controller.pdb import ParameterDatabase
 
     db = ParameterDatabase()

@@ -24,9 +24,9 @@ silent:
 * ``ShowDialog(buttons, prompt, ByRef button)`` — answered by ``ControllerState.dialog_answers``
   (scripted, 1-based button positions, consumed in order) or ``ControllerState.dialog_handler``;
   with neither, it raises -204 *Not implemented* naming the prompt, rather than hanging.
-* ``PDb``/``PDbNum`` — served by ``Simulation.pdb`` when set (a
+* ``PDb``/``PDbNum`` — served by ``Simulation.pdb`` (a
   ``gplrt.controller.pdb.ParameterDatabase``: ``pdb_text``/``set_pdb_text``/``pdb_num``/
-  ``set_pdb_num``); with no database loaded they raise -204.
+  ``set_pdb_num``); a session without one loads its robot model's shipped database on first use.
 * ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not emulated: -204 with a detail.
 """
 
@@ -230,11 +230,16 @@ def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tu
 
 
 def _pdb() -> Any:
-    """The session's parameter database (``gplrt.controller.pdb.ParameterDatabase``), if loaded."""
-    pdb = _sim().pdb
-    if pdb is None:
-        raise GplException(NOT_IMPLEMENTED, detail="no parameter database loaded in this simulation")
-    return pdb
+    """The session's parameter database (``gplrt.controller.pdb.ParameterDatabase``).
+
+    A real controller always has its database, and vendor code (TCS) reads it at start-up, before
+    any motion: a session without one gets its robot model's shipped database here, exactly as the
+    first motion would load it (``gplrt.motion.registry.pdb_of``), so reads never depend on whether
+    a robot has moved yet.
+    """
+    from gplrt.motion.registry import pdb_of
+
+    return pdb_of(_sim())
 
 
 Controller = _ControllerClass()
