@@ -247,6 +247,25 @@ def test_scripted_session(cell: Cell) -> None:
     check("moveup -30", "0 OK")
     check("where", "0 350.000 -100.000 190.000 90.000 90.000 180.000")
     check("moveup 10 9", "-786 *Index out of range*")
+    # --- teaching, saving the table to /flash and loading it back ---------------------------
+    check("here 9 teach1", "0 9 teach1 C 350.000 -100.000 190.000 90.000 90.000 180.000")
+    joints = " ".join(f"{v:.3f}" for v in cell.joints())
+    check("herej 10", f"0 10 loc10 J {joints}")
+    check("here 0", "-786 *Index out of range*")
+    check("savelocs", "0 8")
+    table = cell.flash / "flash" / "projects" / "Tcs_Like" / "Locations.txt"
+    saved = table.read_text().splitlines()
+    assert saved[0] == "; Tcs_Like 2.1.3 location table"
+    assert "9, teach1, C, 350.000, -100.000, 190.000, 90.000, 90.000, 180.000" in saved
+    assert f"10, loc10, J, {joints.replace(' ', ', ')}" in saved
+    assert len(saved) == 2 + 8 and not table.with_name("Locations.txt.tmp").exists()
+    check("locname 2 renamed", "0 OK")
+    check("locxyz 3 1 2 3 4 5 6", "0 3 nest2 C 1.000 2.000 3.000 4.000 5.000 6.000")
+    check("reloadlocs", "0 8")
+    check("loc 2", "0 2 nest1 C 350.000 100.000 150.000 0.000 90.000 180.000")
+    check("loc 3", "0 3 nest2 C 350.000 -100.000 160.000 90.000 90.000 180.000")
+    check("loc teach1", "0 9 teach1 C 350.000 -100.000 190.000 90.000 90.000 180.000")
+    assert a.ask("help").startswith("0 nop version hp attach home mode where wherej movej")
     # --- the interlock across clients -------------------------------------------------------
     check("lock", "0 OK")
     b = Client(cell.port)
@@ -295,7 +314,7 @@ def test_scripted_session(cell: Cell) -> None:
     # executed: the self test's 3, this session's non-empty lines, client b's 3, the dropped
     # movej, the extras' nops; parsed: those and the empty line; error replies built by
     # ErrorReply: the self test's one, this session's, client b's two
-    executed = 3 + len(cmds) + 3 + 1 + 3
+    executed = 3 + len(cmds) + 1 + 3 + 1 + 3   # (+1: help)
     errors = 1 + expect_error_count(replies) + 2
     assert a.ask("count") == f"0 {executed + 1} {executed + 2} {errors}"
     a.sock.sendall(b"quit\r\n")
