@@ -133,3 +133,17 @@ def test_base_exceptions_are_not_swallowed() -> None:
 def test_gpl_code_for() -> None:
     assert gpl_code_for(ZeroDivisionError()) == -709
     assert gpl_code_for(GplException(-1009)) == -1009
+
+
+def test_error_code_table_has_one_name_per_controller_code() -> None:
+    """errors.py is the one table of code names: no code named twice, none the controller lacks."""
+    from gplrt.lang import errors
+    from gplrt.lang.error_codes import ERROR_MESSAGES
+
+    named: dict[int, list[str]] = {}
+    for name, value in vars(errors).items():
+        if name.isupper() and type(value) is int:
+            named.setdefault(value, []).append(name)
+    assert {code: names for code, names in named.items() if len(names) > 1} == {}
+    assert sorted(code for code in named if code not in ERROR_MESSAGES) == []
+    assert named[-1036] == ["KINEMATICS_NOT_INSTALLED"]
