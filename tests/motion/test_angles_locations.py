@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-from gplrt.controller.services import Controller
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import GplException
 from gplrt.motion.move import Move
@@ -15,16 +13,6 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 from gpltest import module_src, run_gpl
-
-
-@pytest.fixture
-def sim() -> Iterator[Simulation]:
-    s = Simulation(capture=True)
-    with s:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.Home()
-        yield s
 
 
 def test_angles_method_location_moves_a_five_axis_robot(sim: Simulation) -> None:

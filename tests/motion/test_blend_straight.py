@@ -2,28 +2,13 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import numpy as np
-import pytest
 
-from gplrt.controller.services import Controller
 from gplrt.geometry.location import Location
 from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import BlendedPathSegment
-from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
-
-
-@pytest.fixture
-def sim() -> Iterator[Simulation]:
-    s = Simulation(capture=True)
-    with s:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.Home()
-        yield s
 
 
 def xyz(x: float, y: float, z: float, yaw: float = 0.0) -> Location:

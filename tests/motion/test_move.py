@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 
 import numpy as np
 import pytest
@@ -15,16 +14,6 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.queue import PathSegment
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
-
-
-@pytest.fixture
-def sim() -> Iterator[Simulation]:
-    s = Simulation(capture=True)
-    with s:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.Home()
-        yield s
 
 
 def angles(*v: float) -> Location:
