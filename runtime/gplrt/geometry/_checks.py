@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import math
 
-from gplrt.lang.errors import NOTHING_VALUE, VALUE_OUT_OF_RANGE, GplException
-
-VALUE_INFINITE_OR_NAN = -708
+from gplrt.lang.errors import NOTHING_VALUE, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE, GplException
 
 
 def to_integer(value: float, what: str) -> int:

@@ -15,12 +15,10 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import KINEMATICS_NOT_INSTALLED, GplException
 
 if TYPE_CHECKING:
     from gplrt.geometry.location import Location
-
-KINEMATICS_NOT_INSTALLED = -1036
 
 
 @runtime_checkable

@@ -46,7 +46,13 @@ from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import finite, in_range, not_nothing, to_integer
 from gplrt.geometry.kinematics_provider import get_kinematics_provider
 from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
-from gplrt.lang.errors import NOT_ANGLES, NOT_CARTESIAN, VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import (
+    FRAME_UNDEFINED_DATA,
+    NOT_ANGLES,
+    NOT_CARTESIAN,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer, String
 
 # The RefFrame class, bound here by refframe.py when it loads (it imports this module, so this
@@ -60,7 +66,6 @@ MAX_AXES = 12
 NO_CLEARANCE = 1.0e32
 #: Frame chains deeper than this are taken to be loops (-770).
 MAX_FRAME_DEPTH = 64
-FRAME_UNDEFINED_DATA = -770
 
 
 class Location:

@@ -31,15 +31,14 @@ from dataclasses import dataclass
 from gplrt.geometry import location as _location_module
 from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import finite, in_range, not_nothing, to_integer
-from gplrt.geometry.location import CARTESIAN, FRAME_UNDEFINED_DATA, MAX_FRAME_DEPTH, Location
+from gplrt.geometry.location import CARTESIAN, MAX_FRAME_DEPTH, Location
 from gplrt.geometry.transforms import IDENTITY, Pose
-from gplrt.lang.errors import FRAME_WRONG_TYPE, NOT_CARTESIAN, GplException
+from gplrt.lang.errors import FRAME_UNDEFINED_DATA, FRAME_WRONG_TYPE, NOT_CARTESIAN, UNDEFINED_ROBOT, GplException
 from gplrt.lang.gpltypes import Double, Integer, String
 
 BASIC = 0
 PALLET = 1
 CONVEYOR = 2
-UNDEFINED_ROBOT = -1001
 
 #: PalletOrder -> the dimensions (0 row, 1 column, 2 layer) from fastest to slowest (GD palletorder.htm).
 PALLET_ORDERS: dict[int, tuple[int, int, int]] = {

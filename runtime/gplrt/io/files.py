@@ -45,20 +45,23 @@ from gplrt.io.flashroot import (
     set_flash_root,
 )
 from gplrt.io.serial import SerialPort, open_port
-from gplrt.lang.errors import INVALID_ARGUMENT, GplException
+from gplrt.lang.errors import (
+    CANT_CREATE_DIRECTORY,
+    CANT_OPEN_FOR_WRITE,
+    FILE_EXISTS,
+    FILE_NOT_FOUND,
+    FILE_NOT_OPEN,
+    INVALID_ARGUMENT,
+    INVALID_FILE_TYPE,
+    READ_ERROR,
+    UNEXPECTED_EOF,
+    WRITE_ERROR,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Integer, String
 
 __all__ = ["File", "StreamReader", "StreamWriter", "FlashRoot", "set_flash_root", "get_flash_root"]
 
-UNEXPECTED_EOF = -505
-FILE_NOT_FOUND = -508
-CANT_OPEN_FOR_WRITE = -509
-FILE_EXISTS = -510
-CANT_CREATE_DIRECTORY = -511
-WRITE_ERROR = -512
-READ_ERROR = -513
-FILE_NOT_OPEN = -520
-INVALID_FILE_TYPE = -521
 
 BUFFER_SIZE = 4096
 CR, LF = 13, 10

@@ -33,12 +33,14 @@ from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    INVALID_FILE_NAME,
+    PATH_TOO_LONG,
+    PROTECTION_ERROR,
+    UNDEFINED_DEVICE,
+    GplException,
+)
 
-UNDEFINED_DEVICE = -301
-INVALID_FILE_NAME = -516
-PATH_TOO_LONG = -517
-PROTECTION_ERROR = -208
 
 MAX_NAME = 43
 MAX_PATH = 255

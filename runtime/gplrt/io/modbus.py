@@ -37,14 +37,17 @@ from gplrt.io._arrays import make_array, to_list
 from gplrt.io._blocking import blocking_call
 from gplrt.io._codec import from_bytes
 from gplrt.io.sockets import IPEndPoint, _config
-from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import (
+    CONNECTION_CLOSED,
+    CONNECTION_REFUSED,
+    INVALID_PROTOCOL,
+    MODBUS_EXCEPTION,
+    MODBUS_TIMEOUT,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 
-MODBUS_EXCEPTION = -1730
-MODBUS_TIMEOUT = -1731
-CONNECTION_REFUSED = -1702
-CONNECTION_CLOSED = -1708
-INVALID_PROTOCOL = -1709
 STANDARD_PORT = 502
 
 

@@ -18,12 +18,14 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    DEVICE_FULL,
+    INVALID_FILE_FORMAT,
+    INVALID_FILE_NAME,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 
-DEVICE_FULL = -323
-INVALID_FILE_NAME = -516
-INVALID_FILE_FORMAT = -519
-VALUE_OUT_OF_RANGE = -707
 
 MAGIC = b"GPLNV"
 MIN_SIZE, MAX_SIZE, DEFAULT_SIZE = 4, 7872, 1024

@@ -24,10 +24,7 @@ import tty
 from typing import Protocol
 
 from gplrt.io._blocking import blocking_call
-from gplrt.lang.errors import GplException
-
-NO_DEVICE_MAPPED = -309
-DEVICE_IO_ERROR = -500
+from gplrt.lang.errors import DEVICE_IO_ERROR, NO_DEVICE_MAPPED, GplException
 
 
 class SerialPort(Protocol):

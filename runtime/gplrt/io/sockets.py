@@ -39,18 +39,20 @@ from typing import Any
 from gplrt.io import _blocking
 from gplrt.io._blocking import blocking_call
 from gplrt.io._codec import as_text, from_bytes, to_bytes
-from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import (
+    ALREADY_CONNECTED,
+    CONNECTION_CLOSED,
+    CONNECTION_REFUSED,
+    INVALID_ADDRESS,
+    NETWORK_TIMEOUT,
+    NO_CONNECTION,
+    NO_DATA,
+    PORT_IN_USE,
+    SOCKET_NOT_OPEN,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
-
-PORT_IN_USE = -304
-NO_DATA = -523
-CONNECTION_REFUSED = -1702
-NO_CONNECTION = -1703
-INVALID_ADDRESS = -1704
-NETWORK_TIMEOUT = -1705
-ALREADY_CONNECTED = -1706
-SOCKET_NOT_OPEN = -1707
-CONNECTION_CLOSED = -1708
 
 
 @dataclass

@@ -23,14 +23,16 @@ import threading
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    VISION_CANNOT_CONNECT,
+    VISION_INVALID_INDEX,
+    VISION_PROPERTY_NOT_FOUND,
+    VISION_UNKNOWN_PROCESS,
+    VISION_UNKNOWN_TOOL,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer, String
 
-CANNOT_CONNECT = -4000
-UNKNOWN_PROCESS = -4012
-UNKNOWN_TOOL = -4013
-INVALID_INDEX = -4014
-PROPERTY_NOT_FOUND = -4017
 
 STATUS_NONE, STATUS_RUNNING, STATUS_ERROR, STATUS_OK = 0, 1, 2, 3
 
@@ -73,12 +75,12 @@ class ScriptedVisionServer:
     def process(self, name: str, instance: int) -> dict[str, list[VisionToolResult]]:
         self.runs.append(name)
         if name not in self.processes:
-            raise GplException(UNKNOWN_PROCESS, detail=f"vision process {name!r}")
+            raise GplException(VISION_UNKNOWN_PROCESS, detail=f"vision process {name!r}")
         return {tool: list(sets) for tool, sets in self.processes[name].items()}
 
     def get_property(self, tool: str, prop: str) -> str:
         if (tool, prop) not in self.properties:
-            raise GplException(PROPERTY_NOT_FOUND, detail=f"{tool}.{prop}")
+            raise GplException(VISION_PROPERTY_NOT_FOUND, detail=f"{tool}.{prop}")
         return self.properties[(tool, prop)]
 
     def set_property(self, tool: str, prop: str, value: str) -> None:
@@ -101,7 +103,7 @@ def _connect() -> VisionServer:
         server = _server
     if server is None:
         raise GplException(
-            CANNOT_CONNECT,
+            VISION_CANNOT_CONNECT,
             detail="no vision server configured in the simulator (gplrt.io.vision.set_vision_server)",
         )
     return server
@@ -121,7 +123,7 @@ class VisResult:
     def Info(self, n: Integer) -> Double:
         """The n-th numeric information item (0-based)."""
         if not 0 <= int(n) < len(self._data.info):
-            raise GplException(INVALID_INDEX, detail=f"Info({n}) of {len(self._data.info)} items")
+            raise GplException(VISION_INVALID_INDEX, detail=f"Info({n}) of {len(self._data.info)} items")
         return Double(float(self._data.info[int(n)]))
 
     @property
@@ -210,7 +212,7 @@ class Vision:
     def _tool(self, tool_name: str) -> list[VisionToolResult]:
         _connect()
         if self._results is None or tool_name not in self._results:
-            raise GplException(UNKNOWN_TOOL, detail=f"no results for vision tool {tool_name!r}")
+            raise GplException(VISION_UNKNOWN_TOOL, detail=f"no results for vision tool {tool_name!r}")
         return self._results[tool_name]
 
     def ResultCount(self, vision_tool_name: String) -> Integer:
@@ -222,7 +224,7 @@ class Vision:
         dictionary's three-argument form and not used."""
         sets = self._tool(str(vision_tool_name))
         if not 1 <= int(index) <= len(sets):
-            raise GplException(INVALID_INDEX, detail=f"Result({vision_tool_name!r}, {index}) of {len(sets)}")
+            raise GplException(VISION_INVALID_INDEX, detail=f"Result({vision_tool_name!r}, {index}) of {len(sets)}")
         return VisResult(_data=sets[int(index) - 1], _process_id=self._process_id)
 
     def ToolProperty(self, tool: String, prop: String) -> String:

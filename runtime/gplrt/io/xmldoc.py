@@ -38,15 +38,18 @@ from xml.dom import Node
 from xml.parsers.expat import ExpatError
 
 from gplrt.io.flashroot import DeviceKind, resolve
-from gplrt.lang.errors import NO_XML_NODE, XML_ERROR, GplException
+from gplrt.lang.errors import (
+    CANT_OPEN_FOR_WRITE,
+    DOCUMENTS_DO_NOT_MATCH,
+    FILE_NOT_FOUND,
+    INVALID_NODE_TYPE,
+    NO_XML_NODE,
+    UNDEFINED_XML_NAME,
+    XML_ERROR,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 
-NO_XML_DOCUMENT = -800
-UNDEFINED_XML_NAME = -802
-INVALID_NODE_TYPE = -803
-DOCUMENTS_DO_NOT_MATCH = -804
-FILE_NOT_FOUND = -508
-CANT_OPEN_FOR_WRITE = -509
 
 _TYPE_NAMES = {
     Node.ELEMENT_NODE: "element",
