@@ -189,23 +189,12 @@ def _flakes(text: str, name: str) -> list[str]:
             if line and "is assigned to but never used" not in line]
 
 
-def _generated(proj: str) -> dict[str, str]:
-    sink = DiagnosticSink()
-    out = transpile(proj, sink)
-    assert out is not None, [d.header() for d in sink.sorted()]
-    return {k: v for k, v in out.files.items() if k.endswith(".py")}
-
-
 @pytest.mark.parametrize("source", sorted(p.name for p in (REPO / "tests/frontend/sources").glob("*.gpl")))
 def test_frontend_sources_compile_and_pass_pyflakes(source: str) -> None:
     path = REPO / "tests/frontend/sources" / source
     sink = DiagnosticSink()
     out = transpile(str(path), sink)
-    if out is None:
-        # Motion (Move/Robot) is not in the runtime catalogue yet: only those names may fail
-        assert all("'move'" in d.message.lower() or "'robot'" in d.message.lower() for d in sink.errors), \
-            [d.header() for d in sink.errors]
-        pytest.skip("uses Move/Robot, which the runtime does not provide yet")
+    assert out is not None and not sink.errors, [d.header() for d in sink.sorted()]
     for name, text in out.files.items():
         if name.endswith(".py"):
             compile(text, name, "exec")
@@ -215,15 +204,12 @@ def test_frontend_sources_compile_and_pass_pyflakes(source: str) -> None:
 
 def test_sample_tcp_command_server_compiles_and_passes_pyflakes() -> None:
     sink = DiagnosticSink()
-    out = transpile(str(REPO / "samples/tcp_command_server"), sink, keep_going=True)
-    assert out is not None
-    assert all("'move'" in d.message.lower() or "'robot'" in d.message.lower() for d in sink.errors), \
-        [d.header() for d in sink.errors]
+    out = transpile(str(REPO / "samples/tcp_command_server"), sink)
+    assert out is not None and not sink.errors, [d.header() for d in sink.sorted()]
     for name, text in out.files.items():
         if name.endswith(".py"):
             compile(text, name, "exec")
-            problems = [p for p in _flakes(text, name) if "Move" not in p and "Robot" not in p]
-            assert problems == []
+            assert _flakes(text, name) == []
 
 
 def test_a_new_session_starts_from_defaults(tmp_path: Path) -> None:

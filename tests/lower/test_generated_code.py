@@ -13,7 +13,6 @@ from pathlib import Path
 
 import libcst
 import pycodestyle
-import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.wrap import wrap
