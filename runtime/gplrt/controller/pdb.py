@@ -37,15 +37,18 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from gplrt.lang.errors import READ_ONLY, GplException
+from gplrt.lang.errors import (
+    CANT_OPEN_PARAMETER_DB,
+    INVALID_ARGUMENT,
+    INVALID_DATA_FILE_FORMAT,
+    INVALID_DATA_INDEX,
+    INVALID_PARAMETER_ARRAY_INDEX,
+    PROTECTION_ERROR,
+    READ_ONLY,
+    UNKNOWN_DATA_ID,
+    GplException,
+)
 
-UNKNOWN_DATA_ID = -1501
-INVALID_DATA_INDEX = -1509
-INVALID_ARRAY_INDEX = -1514
-INVALID_FILE_FORMAT = -1515
-CANNOT_OPEN_FILE = -1520
-PROTECTION_ERROR = -208
-INVALID_ARGUMENT = -202
 
 #: DataIDs the controller reports but never lets a program change: manufacturer, model, hardware
 #: and software version fields (100–108, read-only per gpl-dictionary §13.4), controller serial
@@ -106,7 +109,7 @@ _TOKEN = re.compile(
 
 
 def _pac_error(where: str, message: str) -> GplException:
-    return GplException(INVALID_FILE_FORMAT, detail=f"{where}: {message}")
+    return GplException(INVALID_DATA_FILE_FORMAT, detail=f"{where}: {message}")
 
 
 def _ends_with_comma(line: str, where: str) -> bool:
@@ -275,14 +278,14 @@ class ParameterDatabase:
         if path.is_dir():
             files = sorted(path.glob("*.pac"), key=_file_order)
             if not files:
-                raise GplException(CANNOT_OPEN_FILE, detail=f"{path}: no .pac files")
+                raise GplException(CANT_OPEN_PARAMETER_DB, detail=f"{path}: no .pac files")
             for f in files:
                 self.load_into(f)
             return
         try:
             text = path.read_text(encoding="ascii")
         except (OSError, UnicodeDecodeError) as exc:
-            raise GplException(CANNOT_OPEN_FILE, detail=f"{path}: {exc}") from None
+            raise GplException(CANT_OPEN_PARAMETER_DB, detail=f"{path}: {exc}") from None
         self.load_text(text, str(path))
 
     def load_text(self, text: str, filename: str = "<pac>") -> None:
@@ -428,7 +431,7 @@ class ParameterDatabase:
     @staticmethod
     def _check_index(entry: PdbEntry, index: int) -> int:
         if not 1 <= index <= len(entry.values):
-            raise GplException(INVALID_ARRAY_INDEX,
+            raise GplException(INVALID_PARAMETER_ARRAY_INDEX,
                                detail=f"DataID {entry.data_id} index {index} (1..{len(entry.values)})")
         return index - 1
 

@@ -35,11 +35,16 @@ from __future__ import annotations
 from typing import Any
 
 from gplrt.controller import clock as _clock
-from gplrt.lang.errors import NOT_IMPLEMENTED, VALUE_OUT_OF_RANGE, GplException, error_text
+from gplrt.lang.errors import (
+    NOT_IMPLEMENTED,
+    POWER_NOT_ENABLED,
+    SOFT_ESTOP,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+    error_text,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 
-POWER_NOT_ENABLED = -1046
-SOFT_ESTOP = -1045
 POWER_OFF_WAITING = 7
 POWER_ENABLING_AMPS = 8
 POWER_ENABLING_SERVOS = 10

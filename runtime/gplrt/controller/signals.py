@@ -38,13 +38,15 @@ from collections import deque
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    INVALID_SIGNAL_NUMBER,
+    LATCH_DATA_OVERRUN,
+    OUTPUT_SIGNAL_REQUIRED,
+    UNDEFINED_SIGNAL_NUMBER,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 
-INVALID_SIGNAL_NUMBER = -1517
-UNDEFINED_SIGNAL_NUMBER = -1518
-OUTPUT_SIGNAL_REQUIRED = -1519
-LATCH_DATA_OVERRUN = -526
 LATCH_QUEUE_SIZE = 128
 
 

@@ -32,7 +32,14 @@ import numpy as np
 
 from gplrt.controller.services import POWER_ON_STATES
 from gplrt.geometry.location import Location
-from gplrt.lang.errors import NOT_IMPLEMENTED, GplException
+from gplrt.lang.errors import (
+    INVALID_AXIS,
+    INVALID_CARTESIAN,
+    NOTHING_VALUE,
+    NOT_IMPLEMENTED,
+    NO_ROBOT_ATTACHED,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry
 from gplrt.motion.profile import Profile
@@ -40,11 +47,6 @@ from gplrt.motion.robot import QUEUE_DEPTH, RobotState
 from gplrt.motion.straight import ArcPath, LinePath
 from gplrt.threads.scheduler import current_ctx
 
-NOTHING_VALUE = -782
-INVALID_ARGUMENT = -202
-INVALID_AXIS = -1002
-INVALID_CARTESIAN = -1033
-NO_ROBOT_ATTACHED = -1009
 NO_CLEARANCE = 1.0e32
 
 

@@ -26,12 +26,13 @@ from collections.abc import Sequence
 import numpy as np
 from ruckig import ControlInterface, InputParameter, Result, Ruckig, RuckigError, Synchronization, Trajectory
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import ASYNCHRONOUS_SOFT_ERROR, GplException
 from gplrt.motion.limits import AxisLimits, Vec
 
 #: GPL *Invalid Cartesian value*-family errors do not fit a planner failure; -1043 *Asynchronous
-#: soft error* is what the controller reports when its trajectory generator cannot proceed.
-PLANNING_FAILED = -1043
+#: soft error* (ASYNCHRONOUS_SOFT_ERROR) is what the controller reports when its trajectory generator
+#: cannot proceed.
+PLANNING_FAILED = ASYNCHRONOUS_SOFT_ERROR
 
 _ruckig: dict[int, tuple[Ruckig, InputParameter]] = {}
 #: What each cached InputParameter was last given, so unchanged inputs are not converted again.

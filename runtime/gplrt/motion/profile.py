@@ -22,11 +22,9 @@ from __future__ import annotations
 
 import math
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import VALUE_INFINITE_OR_NAN, VALUE_TOO_SMALL, GplException
 from gplrt.lang.gpltypes import Boolean, Double, String
 
-VALUE_TOO_SMALL = -705
-VALUE_INFINITE_OR_NAN = -708
 
 DEFAULT_SPEED = 50.0
 DEFAULT_SPEED2 = 0.0

@@ -18,15 +18,12 @@ from __future__ import annotations
 import threading
 from typing import Any
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import INVALID_ROBOT_NUMBER, POWER_NOT_ENABLED, GplException
 from gplrt.threads.scheduler import WaitQueue, current_ctx
 
-UNDEFINED_ROBOT = -1001
-INVALID_ROBOT_NUMBER = -1000
 POWER_READY = 20
 POWER_ATTACHED = 21
 POWER_HOMING = 28
-POWER_NOT_ENABLED = -1046
 
 
 def sim() -> Any:

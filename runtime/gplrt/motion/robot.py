@@ -38,7 +38,13 @@ from typing import Any
 
 import numpy as np
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    CANT_CHANGE_CONFIG,
+    NO_ROBOT_ATTACHED,
+    POWER_NOT_ENABLED,
+    ROBOT_NOT_HOMED,
+    GplException,
+)
 from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY, RobotModel
 from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
@@ -62,11 +68,6 @@ HOMING_TIME = 1.0
 #: (mm) inside it: a micrometre is far below anything a trace or a test of the corner can see.
 BLEND_DISTANCE_TOLERANCE = 1e-3
 
-NO_ROBOT_ATTACHED = -1009
-JOINT_OUT_OF_RANGE = -1012
-ROBOT_NOT_HOMED = -1021
-CANT_CHANGE_CONFIG = -1042
-POWER_NOT_ENABLED = -1046
 EXTRA_ROLES = ("rail",)
 PASSIVE_ROLES = ("rail", "gripper", "gripper2")
 

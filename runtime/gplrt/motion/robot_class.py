@@ -28,17 +28,19 @@ import numpy as np
 
 from gplrt.geometry.kinematics_provider import set_kinematics_provider
 from gplrt.geometry.location import Location
-from gplrt.lang.errors import NOT_IMPLEMENTED, GplException
+from gplrt.lang.errors import (
+    NOT_CARTESIAN,
+    NOT_IMPLEMENTED,
+    NO_ROBOT_ATTACHED,
+    POWER_NOT_ENABLED,
+    ROBOT_ALREADY_ATTACHED,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
-
-ROBOT_ALREADY_ATTACHED = -1006
-NO_ROBOT_ATTACHED = -1009
-POWER_NOT_ENABLED = -1046
-NOT_CARTESIAN = -762
 
 
 def _robot(n: int = 0) -> RobotState:

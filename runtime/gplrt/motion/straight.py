@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import INVALID_CARTESIAN, GplException
 from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
 
 #: Relative margin on the sampled |q''| for its variation between samples.
@@ -35,7 +35,6 @@ CURVATURE_MARGIN = 0.1
 MM_PER_SAMPLE = 25.0
 DEG_PER_SAMPLE = 15.0
 MIN_SAMPLES, MAX_SAMPLES = 4, 48
-INVALID_CARTESIAN = -1033
 
 
 class Path:

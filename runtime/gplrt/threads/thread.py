@@ -40,15 +40,18 @@ import threading
 from enum import IntEnum
 from typing import Any, Callable
 
-from gplrt.lang.errors import VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import (
+    INTERNAL_ERROR,
+    INVALID_WHEN_THREAD_ACTIVE,
+    THREAD_ALREADY_EXISTS,
+    TOO_MANY,
+    UNDEFINED_SYMBOL,
+    VALUE_OUT_OF_RANGE,
+    GplException,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 from gplrt.threads.scheduler import ThreadAbort, ThreadCtx, WaitQueue, current_ctx
 
-THREAD_ALREADY_EXISTS = -749
-INVALID_WHEN_THREAD_ACTIVE = -750
-TOO_MANY = -207
-UNDEFINED_SYMBOL = -729
-INTERNAL_ERROR = -201
 MAX_EVENT_MASK = 0xFFFF
 MAX_WAIT_MS = 2147 * 1000
 ABORT_GRACE = 1.0  # controller seconds Abort waits for the target to unwind

@@ -38,18 +38,17 @@ import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
 from gplrt.geometry.transforms import xyzypr_to_matrix
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import (
+    INVALID_ARGUMENT,
+    INVALID_AXIS_COUNT,
+    JOINT_OUT_OF_RANGE,
+    KINEMATICS_NOT_INSTALLED,
+    GplException,
+)
 from gplrt.motion.kinematics import units
 from gplrt.motion.kinematics.config import LIMIT_SLACK, unwind
 from gplrt.motion.kinematics.units import Matrix
 
-INVALID_ARGUMENT = -202
-JOINT_OUT_OF_RANGE = -1012
-INVALID_CARTESIAN = -1033
-KINEMATICS_NOT_INSTALLED = -1036
-POSITION_TOO_CLOSE = -1039
-POSITION_TOO_FAR = -1040
-INVALID_AXIS_COUNT = -1516
 #: FLT_MAX as written in .pac files: "no limit".
 _FLT_MAX = 3.4e38
 

@@ -23,9 +23,8 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import INVALID_CARTESIAN, GplException
 from gplrt.motion.kinematics.base import (
-    INVALID_CARTESIAN,
     JointInfo,
     JointKind,
     RobotModel,

@@ -20,13 +20,12 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from gplrt.controller.pdb import ParameterDatabase
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import UNDEFINED_ROBOT, GplException
 from gplrt.motion.kinematics.articulated import MODULE_ARTICULATED6, Articulated6Model
 from gplrt.motion.kinematics.base import JointInfo, JointKind, RobotModel, read_limits, read_transform
 from gplrt.motion.kinematics.gantry import MODULE_XYZTHETA, GantryModel
 from gplrt.motion.kinematics.pf400 import MODULE_PF400, Pf400Model
 
-UNDEFINED_ROBOT = -1001
 
 MODULES: dict[int, Callable[[ParameterDatabase, int], RobotModel]] = {
     MODULE_XYZTHETA: GantryModel,

@@ -33,12 +33,14 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
-from gplrt.lang.errors import GplException
-from gplrt.motion.kinematics import units
-from gplrt.motion.kinematics.base import (
+from gplrt.lang.errors import (
     INVALID_CARTESIAN,
     POSITION_TOO_CLOSE,
     POSITION_TOO_FAR,
+    GplException,
+)
+from gplrt.motion.kinematics import units
+from gplrt.motion.kinematics.base import (
     JointInfo,
     JointKind,
     RobotModel,
