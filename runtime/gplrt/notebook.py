@@ -41,7 +41,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from gplrt.lang.errors import UNDEFINED_SYMBOL, GplException
+from gplrt.lang.errors import AMBIGUOUS_PUBLIC_REFERENCE, NO_MODULE_DEFINED, UNDEFINED_SYMBOL, GplException
 from gplrt.sim import ConsoleSink, Simulation
 
 __all__ = ["Cell", "RobotPose", "ProjectError", "save_motion_plot"]
@@ -184,7 +184,7 @@ class Cell:
             return public[0].func
         if len(public) > 1:
             names = ", ".join(sorted(e.qualified_name for e in public))
-            raise GplException(-772, detail=f"{name!r} could be {names}: say which module")
+            raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {names}: say which module")
         hint = ""
         if found:
             hint = f" ({', '.join(e.qualified_name for e in found)} is Private)"
@@ -202,7 +202,7 @@ class Cell:
                 doc = (value.__doc__ or "").split(",", 1)[0]  # "Module Cell, transpiled by gpl2py ..."
                 if doc.lower() == f"module {want}":
                     return value
-        raise GplException(-798, detail=f"no module {name!r} in this project")
+        raise GplException(NO_MODULE_DEFINED, detail=f"no module {name!r} in this project")
 
     def get(self, variable: str) -> Any:
         """The value of a module variable, ``"Module.name"`` (case-insensitive)."""

@@ -48,6 +48,7 @@ from gplrt.geometry.kinematics_provider import get_kinematics_provider
 from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
 from gplrt.lang.errors import (
     FRAME_UNDEFINED_DATA,
+    NOTHING_VALUE,
     NOT_ANGLES,
     NOT_CARTESIAN,
     VALUE_OUT_OF_RANGE,
@@ -457,7 +458,7 @@ class Location:
         if self._type != CARTESIAN:
             raise GplException(NOT_CARTESIAN, detail="Mul of an Angles Location")
         if Location2 is None:
-            raise GplException(-782, detail="Mul argument is Nothing")
+            raise GplException(NOTHING_VALUE, detail="Mul argument is Nothing")
         if Location2._type != CARTESIAN:
             raise GplException(NOT_CARTESIAN, detail="Mul argument is an Angles Location")
         b = Location2._pose if Location2._ref is None else Location2._total_pose(0)
@@ -559,5 +560,5 @@ class Location:
         self._need_cartesian("ConveyorLimit")
         ref = self._ref
         if ref is None:
-            raise GplException(-782, detail="ConveyorLimit of a Location with no RefFrame")
+            raise GplException(NOTHING_VALUE, detail="ConveyorLimit of a Location with no RefFrame")
         return ref._conveyor_limit(self, in_range(to_integer(Mode, "Mode"), 0, 1, "ConveyorLimit mode"))

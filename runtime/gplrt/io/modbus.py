@@ -43,6 +43,7 @@ from gplrt.lang.errors import (
     INVALID_PROTOCOL,
     MODBUS_EXCEPTION,
     MODBUS_TIMEOUT,
+    OBJECT_NOT_INSTANTIATED,
     VALUE_OUT_OF_RANGE,
     GplException,
 )
@@ -56,7 +57,7 @@ class Modbus:
 
     def __init__(self, ep: IPEndPoint) -> None:
         if ep is None:
-            raise GplException(-757, detail="Modbus needs an IPEndPoint")
+            raise GplException(OBJECT_NOT_INSTANTIATED, detail="Modbus needs an IPEndPoint")
         host, port = ep._remote()
         self._address = (host, port or STANDARD_PORT)
         self._timeout_ms = 0

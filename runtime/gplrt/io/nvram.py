@@ -20,6 +20,7 @@ from pathlib import Path
 
 from gplrt.lang.errors import (
     DEVICE_FULL,
+    INVALID_ARGUMENT,
     INVALID_FILE_FORMAT,
     INVALID_FILE_NAME,
     VALUE_OUT_OF_RANGE,
@@ -58,7 +59,7 @@ def split_switches(path: str) -> tuple[str, NvramSwitches]:
             size = int(rest[i + 1])
             i += 1
         else:
-            raise GplException(-202, detail=f"{path!r}: unknown NVRAM switch {rest[i]!r}")
+            raise GplException(INVALID_ARGUMENT, detail=f"{path!r}: unknown NVRAM switch {rest[i]!r}")
         i += 1
     if size is not None and not MIN_SIZE <= size <= MAX_SIZE:
         raise GplException(VALUE_OUT_OF_RANGE, detail=f"NVRAM -size {size}: must be {MIN_SIZE}..{MAX_SIZE}")

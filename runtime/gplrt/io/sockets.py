@@ -47,6 +47,7 @@ from gplrt.lang.errors import (
     NETWORK_TIMEOUT,
     NO_CONNECTION,
     NO_DATA,
+    OBJECT_NOT_INSTANTIATED,
     PORT_IN_USE,
     SOCKET_NOT_OPEN,
     VALUE_OUT_OF_RANGE,
@@ -271,7 +272,7 @@ class Socket:
         if self._connected and self._kind == _socket.SOCK_STREAM:
             raise GplException(ALREADY_CONNECTED, detail=repr(remote_endpoint))
         if remote_endpoint is None:
-            raise GplException(-757, detail="Connect needs an IPEndPoint")
+            raise GplException(OBJECT_NOT_INSTANTIATED, detail="Connect needs an IPEndPoint")
         address = remote_endpoint._remote()
         timeout = _config.connect_timeout
 
@@ -349,7 +350,7 @@ class Socket:
         """Send one datagram to ``remote_endpoint``; ``max_length`` > 0 truncates (0 = all, EX-20)."""
         sock = self._open()
         if remote_endpoint is None:
-            raise GplException(-757, detail="SendTo needs an IPEndPoint")
+            raise GplException(OBJECT_NOT_INSTANTIATED, detail="SendTo needs an IPEndPoint")
         data = to_bytes(as_text(output_buffer))
         if max_length > 0:
             data = data[: int(max_length)]
@@ -412,7 +413,7 @@ class TcpListener:
 
     def __init__(self, local_endpoint: IPEndPoint) -> None:
         if local_endpoint is None:
-            raise GplException(-757, detail="TcpListener needs an IPEndPoint")
+            raise GplException(OBJECT_NOT_INSTANTIATED, detail="TcpListener needs an IPEndPoint")
         self._endpoint = local_endpoint.Clone()
         self._sock: _socket.socket | None = None
 

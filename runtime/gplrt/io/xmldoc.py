@@ -42,7 +42,10 @@ from gplrt.lang.errors import (
     CANT_OPEN_FOR_WRITE,
     DOCUMENTS_DO_NOT_MATCH,
     FILE_NOT_FOUND,
+    INVALID_ARGUMENT,
+    INVALID_FILE_TYPE,
     INVALID_NODE_TYPE,
+    NOTHING_VALUE,
     NO_XML_NODE,
     UNDEFINED_XML_NAME,
     XML_ERROR,
@@ -105,7 +108,7 @@ class XmlDoc:
         """Parse a file; test ``ErrorCode`` afterwards (malformed XML does not throw)."""
         cp = resolve(input_file)
         if cp.host is None or cp.kind is DeviceKind.SERIAL:
-            raise GplException(-521, detail=f"{input_file!r} is a device")
+            raise GplException(INVALID_FILE_TYPE, detail=f"{input_file!r} is a device")
         if not cp.host.is_file():
             raise GplException(FILE_NOT_FOUND, detail=input_file)
         return XmlDoc._parse(cp.host.read_bytes())
@@ -289,7 +292,7 @@ class XmlNode:
 
     def _other(self, other: XmlNode | None, what: str) -> Node:
         if other is None:
-            raise GplException(-782, detail=f"{what} is Nothing")
+            raise GplException(NOTHING_VALUE, detail=f"{what} is Nothing")
         node = other._live()
         if other._owner is not self._owner:
             raise GplException(DOCUMENTS_DO_NOT_MATCH, detail=f"{what} belongs to another XmlDoc")
@@ -316,7 +319,7 @@ class XmlNode:
             if parent.nodeType not in (Node.ELEMENT_NODE, Node.DOCUMENT_NODE):
                 raise GplException(INVALID_NODE_TYPE, detail="only elements have children")
             if node is parent or _is_ancestor(node, parent):
-                raise GplException(-202, detail="a node cannot become its own descendant")
+                raise GplException(INVALID_ARGUMENT, detail="a node cannot become its own descendant")
             if ref is None:
                 parent.appendChild(node)
             else:

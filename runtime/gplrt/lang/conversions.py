@@ -44,8 +44,10 @@ from typing import Any, Final
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
     INVALID_ARGUMENT,
+    INVALID_DATA_TYPE,
     INVALID_NUMBER_FORMAT,
     NOTHING_VALUE,
+    VALUE_INFINITE_OR_NAN,
     GplException,
 )
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
@@ -233,7 +235,7 @@ def chk_double(x: float) -> float:
     """Range check of a Double result (``if`` in generated code calls it only for a non-finite
     value): ±Infinity is -710 Arithmetic overflow, NaN is -708 Value infinite or NAN."""
     if x != x:
-        raise GplException(-708, detail="the result is not a number")
+        raise GplException(VALUE_INFINITE_OR_NAN, detail="the result is not a number")
     if x == math.inf or x == -math.inf:
         raise GplException(ARITHMETIC_OVERFLOW, detail="the result overflows a Double")
     return x
@@ -381,7 +383,7 @@ def converter_for(gpl_type: object) -> Callable[[Any], Any]:
         conv = _BY_NAME.get(gpl_type.lower())
         if conv is not None:
             return conv
-        raise GplException(-738, detail=f"unknown data type {gpl_type!r}")
+        raise GplException(INVALID_DATA_TYPE, detail=f"unknown data type {gpl_type!r}")
     return _identity
 
 
