@@ -82,6 +82,10 @@ def _wrap(indent: int, text: str, limit: int) -> list[tuple[int, str]]:
         start = 1
     end = len(toks) - (1 if header and toks[-1].string == ":" else 0)
     expr = toks[start:end]
+    if expr and expr[-1].type == tokenize.OP and expr[-1].string == ",":
+        # an argument line of a call being packed ("a + b + c,"): the comma separates it from the
+        # next argument and stays outside the break (inside, it would make a tuple, or worse)
+        expr = expr[:-1]
     if not expr:
         return [(indent, text)]
     prefix = body[: expr[0].start[1]]
