@@ -164,6 +164,14 @@ def test_fix_and_int() -> None:
     assert Int(2.7) == 2.0 and Int(-2.7) == -3.0 and Int(-3) == -3.0
 
 
+@pytest.mark.parametrize("rounding", [Fix, Int, Math.Floor, Math.Ceiling])
+@pytest.mark.parametrize("value", [math.nan, math.inf, -math.inf])
+def test_rounding_a_value_that_is_not_finite_is_708(rounding, value: float) -> None:
+    with pytest.raises(GplException) as caught:
+        rounding(value)
+    assert caught.value.ErrorCode == -708
+
+
 def test_rnd_seed_rules() -> None:
     rnd_seed(1)
     values = [Rnd() for _ in range(100)]

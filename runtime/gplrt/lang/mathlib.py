@@ -12,6 +12,9 @@ gpl-dictionary.md §10.3).
 * Domain errors (``Sqrt(-1)``, ``Log(0)``, ``Acos(2)``) are **-707 Value out-of-range** (the
   dictionary's inferred code; the spec recommends an exception over NaN, consistent with 1/0);
   a result beyond the Double range (``Exp(1000)``, ``Cosh(1000)``) is **-710**.
+* The rounding functions (``Floor``, ``Ceiling``, ``Fix``, ``Int``) of an infinite or NaN value
+  are **-708 Value infinite or NaN**: the value has no integer part, and the controller's text
+  names exactly that fault.
 * The manuals list no ``Math.Round`` (nor Truncate/IEEERemainder), so there is none: a program
   using it would not run on a controller either.  ``Fix`` (toward zero) and ``Int`` (floor) are
   the documented rounding functions.
@@ -28,7 +31,7 @@ import threading
 from typing import Any
 
 from gplrt.lang.conversions import to_number
-from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_OUT_OF_RANGE, GplException
+from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE, GplException
 from gplrt.lang.gpltypes import Double
 
 __all__ = ["Math", "Fix", "Int", "Rnd", "rnd_seed"]
@@ -42,6 +45,14 @@ def _f(x: Any) -> float:
 
 def _domain(name: str, x: float) -> GplException:
     return GplException(VALUE_OUT_OF_RANGE, detail=f"Math.{name}({x}) is undefined")
+
+
+def _whole(name: str, rounding: Any, value: Any) -> float:
+    """``rounding`` (math.floor, ceil or trunc) of ``value`` as a Double; -708 if not finite."""
+    x = _f(value)
+    if not math.isfinite(x):
+        raise GplException(VALUE_INFINITE_OR_NAN, detail=f"{name}({x}) has no integer part")
+    return float(rounding(x))
 
 
 def _overflow(name: str, x: float) -> GplException:
@@ -92,7 +103,7 @@ class _Math:
 
     @staticmethod
     def Ceiling(value: Double) -> Double:
-        return float(math.ceil(_f(value)))  # type: ignore[return-value]
+        return _whole("Math.Ceiling", math.ceil, value)  # type: ignore[return-value]
 
     @staticmethod
     def Cos(angle: Double) -> Double:
@@ -116,7 +127,7 @@ class _Math:
 
     @staticmethod
     def Floor(value: Double) -> Double:
-        return float(math.floor(_f(value)))  # type: ignore[return-value]
+        return _whole("Math.Floor", math.floor, value)  # type: ignore[return-value]
 
     @staticmethod
     def Log(value: Double) -> Double:
@@ -190,12 +201,12 @@ Math = _Math()
 
 def Fix(number: Double) -> Double:
     """Integer part, truncating toward zero (``Fix(-2.7)`` = -2)."""
-    return float(math.trunc(_f(number)))  # type: ignore[return-value]
+    return _whole("Fix", math.trunc, number)  # type: ignore[return-value]
 
 
 def Int(number: Double) -> Double:
     """Integer part, truncating toward minus infinity (``Int(-2.7)`` = -3)."""
-    return float(math.floor(_f(number)))  # type: ignore[return-value]
+    return _whole("Int", math.floor, number)  # type: ignore[return-value]
 
 
 _rng = random.Random(0x47504C)
