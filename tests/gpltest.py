@@ -15,6 +15,7 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import itertools
+import os
 import shutil
 import socket
 import subprocess
@@ -92,6 +93,14 @@ def module_src(body: str, name: str = "Main") -> str:
     return f"Module {name}\n{body}\nEnd Module\n"
 
 
+def gpl2py(*args: str, cwd: Path | None = None, timeout: float = 180, env: dict[str, str] | None = None
+           ) -> subprocess.CompletedProcess[str]:
+    """``python -m gpl2py ARGS`` in a subprocess, as a user types it (stdout and stderr are pipes,
+    not a TTY); ``env`` adds to this process's environment."""
+    return subprocess.run([sys.executable, "-m", "gpl2py", *args], capture_output=True, text=True,
+                          cwd=cwd or REPO, timeout=timeout, env={**os.environ, **(env or {})})
+
+
 @dataclass
 class Transpiled:
     """A transpiled project: its generated package (imported) and where it was written."""
@@ -104,10 +113,7 @@ class Transpiled:
 def transpile(project: Path, out_root: Path) -> Transpiled:
     """Run ``gpl2py project -o out_root``; import and return the generated package."""
     out_root.mkdir(parents=True, exist_ok=True)
-    proc = subprocess.run(
-        [sys.executable, "-m", "gpl2py", str(project), "-o", str(out_root)],
-        capture_output=True, text=True, timeout=120, cwd=REPO,
-    )
+    proc = gpl2py(str(project), "-o", str(out_root), timeout=120)
     if proc.returncode != 0:
         raise TranspileFailed(f"gpl2py exit status {proc.returncode}:\n{proc.stderr}{proc.stdout}")
     packages = [p.parent for p in out_root.glob("*/__init__.py")]
@@ -144,3 +150,41 @@ def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return int(s.getsockname()[1])
+
+
+class LineClient:
+    """A line-based TCP test client for the sample servers: sends request lines, reads CR-LF reply lines.
+
+    Every socket operation has ``timeout`` seconds and the read loop is bounded, so a broken server
+    fails the test instead of hanging it.  ``newline`` ends each request: the servers accept both
+    CR-LF and bare LF, and the tests keep using the one their protocol describes.
+    """
+
+    def __init__(self, port: int, timeout: float = 15.0, newline: str = "\r\n") -> None:
+        self.sock = socket.create_connection(("127.0.0.1", port), timeout=timeout)
+        self.newline = newline
+        self.pending = b""
+
+    def send(self, text: str) -> None:
+        """Send ``text`` as it is (no line ending added)."""
+        self.sock.sendall(text.encode("latin-1"))
+
+    def line(self) -> str:
+        """The next CR-LF terminated reply line, without its ending."""
+        for _ in range(10_000):
+            if b"\r\n" in self.pending:
+                head, self.pending = self.pending.split(b"\r\n", 1)
+                return head.decode("latin-1")
+            chunk = self.sock.recv(4096)
+            if not chunk:
+                raise ConnectionError(f"closed by the server; unread {self.pending!r}")
+            self.pending += chunk
+        raise AssertionError(f"no complete line; unread {self.pending[-200:]!r}")
+
+    def ask(self, text: str) -> str:
+        """Send one request line and return the one reply line."""
+        self.send(text + self.newline)
+        return self.line()
+
+    def close(self) -> None:
+        self.sock.close()

@@ -1,4 +1,5 @@
-"""Every tooling test gets a private translation cache (see tooling_util)."""
+"""Every tooling test gets a private translation cache (``GPL2PY_CACHE_DIR`` in a temporary
+folder), so no test sees entries another test made and the user's cache is never touched."""
 
 from __future__ import annotations
 

@@ -10,9 +10,9 @@ import pytest
 
 from gplrt.lang.errors import GplException
 from gplrt.notebook import Cell, ProjectError
-from tooling_util import module, write_project
+from gpltest import module_src, write_project
 
-STATION = module("""\
+STATION = module_src("""\
     Public count As Integer
     Public last As String
     Public Const DOUT_BUSY As Integer = 3
@@ -152,7 +152,7 @@ def test_echo_prints_console_output_as_it_comes(tmp_path: Path, capsys: pytest.C
 
 
 def test_project_errors_raise_with_diagnostics(tmp_path: Path) -> None:
-    proj = write_project(tmp_path, {"Main.gpl": module("    Public Sub Main()\n        x = 1\n    End Sub")})
+    proj = write_project(tmp_path, {"Main.gpl": module_src("    Public Sub Main()\n        x = 1\n    End Sub")})
     with pytest.raises(ProjectError) as info:
         Cell.load(proj)
     assert "Main.gpl:3:9: error GPL2001" in str(info.value)

@@ -15,7 +15,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from tooling_util import REPO
+from gpltest import REPO
 
 SCRIPT = REPO / "samples/notebook/pick_and_place.py"
 

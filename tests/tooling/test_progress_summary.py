@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 from gpl2py.progress import MIN_FILES, ProgressBar, wants_progress
-from tooling_util import REPO, gpl2py, module, write_project
+from gpltest import REPO, gpl2py, module_src, write_project
 
 
 def _many_files(root: Path, count: int = MIN_FILES + 2) -> tuple[Path, int]:
@@ -21,8 +21,8 @@ def _many_files(root: Path, count: int = MIN_FILES + 2) -> tuple[Path, int]:
         body = f"    Public Function F{i}(ByVal n As Integer) As Integer\n        Return n + {i}\n    End Function"
         if i == 0:
             body += "\n    Public Sub Main()\n        Console.WriteLine(F1(1))\n    End Sub"
-        sources[f"M{i:02}.gpl"] = module(body, f"M{i:02}")
-    proj = write_project(root, sources, start="M00.Main", name="Many")
+        sources[f"M{i:02}.gpl"] = module_src(body, f"M{i:02}")
+    proj = Path(write_project(root, sources, start="M00.Main", name="Many"))
     return proj, sum(len(t.splitlines()) for t in sources.values())
 
 

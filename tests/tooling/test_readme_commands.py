@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 
 from gpl2py.cli import build_parser
-from tooling_util import REPO
+from gpltest import REPO
 
 README = (REPO / "README.md").read_text()
 

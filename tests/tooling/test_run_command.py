@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from gpl2py.cli import main as cli_main
-from tooling_util import REPO, gpl2py, module, write_project
+from gpltest import REPO, gpl2py, module_src, write_project
 
 
 class _Result:
@@ -30,7 +30,7 @@ def in_process(capsys: pytest.CaptureFixture[str], *args: str) -> _Result:
     out, err = capsys.readouterr()
     return _Result(status, out, err)
 
-TICKER = module("""\
+TICKER = module_src("""\
     Function Inner(ByVal d As Integer) As Integer
         Return 10 \\ d
     End Function
@@ -50,7 +50,7 @@ def _entries(cache: Path) -> list[Path]:
 
 def test_second_run_reuses_the_cache_and_a_changed_source_translates_again(tmp_path: Path,
                                                                             private_cache: Path) -> None:
-    proj = write_project(tmp_path, {"Main.gpl": TICKER}, name="Ticker")
+    proj = Path(write_project(tmp_path, {"Main.gpl": TICKER}, name="Ticker"))
     first = gpl2py("run", str(proj))
     assert first.returncode == 0, first.stderr
     assert "tick 3" in first.stdout and first.stdout.endswith("2\n")
@@ -96,7 +96,7 @@ def test_console_streams_to_stdout_and_summary_goes_to_stderr(tmp_path: Path) ->
 
 
 def test_unhandled_gpl_error_names_code_message_file_and_line(tmp_path: Path) -> None:
-    proj = write_project(tmp_path, {"Main.gpl": TICKER.replace("= 5", "= 0")}, name="Ticker")
+    proj = Path(write_project(tmp_path, {"Main.gpl": TICKER.replace("= 5", "= 0")}, name="Ticker"))
     r = gpl2py("run", str(proj))
     assert r.returncode == 3
     assert f"{proj / 'Main.gpl'}:4: error -709 in thread Main: *Division by 0*" in r.stderr
@@ -107,7 +107,7 @@ def test_unhandled_gpl_error_names_code_message_file_and_line(tmp_path: Path) ->
 def test_json_output_carries_diagnostics_console_and_errors(tmp_path: Path) -> None:
     long_text = "x" * 130  # a literal longer than a controller accepts: warning GPL1003
     src = TICKER.replace("= 5", "= 0").replace("Dim i As Integer", f'Dim i As Integer\n        Dim s As String = "{long_text}"')
-    proj = write_project(tmp_path, {"Main.gpl": src}, name="Ticker")
+    proj = Path(write_project(tmp_path, {"Main.gpl": src}, name="Ticker"))
     r = gpl2py("run", str(proj), "--json")
     assert r.returncode == 3 and r.stderr == ""
     doc = json.loads(r.stdout)
@@ -126,14 +126,14 @@ def test_json_output_carries_diagnostics_console_and_errors(tmp_path: Path) -> N
 
 
 def test_source_errors_run_nothing(tmp_path: Path) -> None:
-    proj = write_project(tmp_path, {"Main.gpl": module("    Public Sub Main()\n        x = 1\n    End Sub")})
+    proj = write_project(tmp_path, {"Main.gpl": module_src("    Public Sub Main()\n        x = 1\n    End Sub")})
     r = gpl2py("run", str(proj))
     assert r.returncode == 1
     assert "Main.gpl:3:9: error GPL2001" in r.stderr and r.stdout == ""
 
 
 def test_stalled_program_exits_4_and_names_the_waiting_threads(tmp_path: Path) -> None:
-    src = module("""\
+    src = module_src("""\
     Public Sub Main()
         Console.WriteLine("waiting for an event nobody sends")
         Thread.WaitEvent(1, -1)
@@ -168,7 +168,7 @@ def test_help_explains_options_and_exit_statuses(capsys: pytest.CaptureFixture[s
     assert "run" in top and "130" in top
 
 
-WHERE = module("""\
+WHERE = module_src("""\
     Public Sub Main()
         Dim here As Location
         here = Robot.Where
@@ -190,7 +190,7 @@ def test_robot_option_chooses_the_model(tmp_path: Path, model: str) -> None:
 
 
 def test_real_clock_with_speed_and_flash_folder(tmp_path: Path) -> None:
-    src = module("""\
+    src = module_src("""\
     Public Sub Main()
         Dim f As New StreamWriter("/flash/data/out.txt")
         Thread.Sleep(2000)
@@ -219,7 +219,7 @@ def test_setup_file_and_plot(tmp_path: Path) -> None:
     assert f"plot saved to {png}" in r.stderr
 
 
-LOOP = module("""\
+LOOP = module_src("""\
     Public Sub Worker()
         While True
             Thread.Sleep(20)
@@ -304,7 +304,7 @@ def test_cache_key_covers_sources_names_options_and_the_tools(tmp_path: Path, mo
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.project import load_project
 
-    proj = write_project(tmp_path, {"Main.gpl": TICKER})
+    proj = Path(write_project(tmp_path, {"Main.gpl": TICKER}))
     project = load_project(proj, DiagnosticSink())
     assert project is not None
     base = cache.cache_key(project, {"keep_going": False})
