@@ -6,7 +6,9 @@ far longer than PEP 8's limit.  :func:`wrap` breaks such a line:
 * ``global a, b, ...`` -> several ``global`` statements;
 * an expression with top-level ``+``, ``and`` or ``or`` (string building, long conditions) ->
   parenthesised, broken *before* the operators (PEP 8's recommended style);
-* a call whose arguments run past the limit -> the arguments packed on continuation lines.
+* a call whose arguments run past the limit -> the arguments packed on continuation lines (a
+  sole argument that is still too long breaks before its operators without parentheses of its
+  own: the call's brackets already carry the continuation).
 
 Lines that cannot be broken this way (one huge string literal) are left alone.  Block headers get
 a double continuation indent so that their continuation lines stand apart from the body.
@@ -27,19 +29,24 @@ _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^
 def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tuple[int, str]]:
     """``(indent, text)`` lines for one logical line (unchanged when it fits); continuation lines
     that are still too long are broken again (a long argument of a long call)."""
-    lines = _wrap(indent, text, limit)
+    return _wrap_nested(indent, text, limit, depth, inside=False)
+
+
+def _wrap_nested(indent: int, text: str, limit: int, depth: int, inside: bool) -> list[tuple[int, str]]:
+    """:func:`wrap`; ``inside``: the line is already within the brackets of an enclosing break."""
+    lines = _wrap(indent, text, limit, inside)
     if len(lines) == 1 or depth > 4:
         return lines
     out: list[tuple[int, str]] = []
     for i, (ind, txt) in enumerate(lines):
         if i > 0 and 4 * ind + len(txt) > limit:
-            out.extend(wrap(ind, txt, limit, depth + 1))
+            out.extend(_wrap_nested(ind, txt, limit, depth + 1, inside=i < len(lines) - 1))
         else:
             out.append((ind, txt))
     return out
 
 
-def _wrap(indent: int, text: str, limit: int) -> list[tuple[int, str]]:
+def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tuple[int, str]]:
     if 4 * indent + len(text) <= limit:
         return [(indent, text)]
     if text.startswith("global "):
@@ -102,6 +109,9 @@ def _wrap(indent: int, text: str, limit: int) -> list[tuple[int, str]]:
             cuts.append(i)
     if depth == 0 and cuts and not any(t.string in ("if", "else", "lambda") for t in expr):
         pieces = _pieces(body, expr, cuts)
+        if inside and not prefix and not suffix and not comment:
+            # the sole argument of a call already broken open: its brackets carry the continuation
+            return _pack(indent, "", pieces, indent, limit, " ")
         lines = [(indent, prefix + "(" + comment)]
         lines.extend(_pack(cont, "", pieces, cont, limit, " "))
         lines.append((indent, ")" + suffix))

@@ -35,3 +35,11 @@ def test_call_with_long_string_argument_runs(tmp_path: Path) -> None:
         Show(first_name_of_thing & " and " & second_name_of_thing & " and " & third_name_of_thing & " and more", 5)
     End Sub''')
     assert run_gpl(tmp_path, src).output == "a and b and c and more5\n"
+
+
+def test_sole_long_argument_breaks_without_extra_parentheses() -> None:
+    text = "Console.WriteLine(" + " + ".join(f"alpha_{i}" for i in range(14)) + ")"
+    lines = wrap(1, text)
+    assert lines[0] == (1, "Console.WriteLine(") and lines[-1] == (1, ")")
+    assert [t[:2] for _, t in lines[1:-1]] == ["al", "+ "]
+    assert ast.dump(ast.parse("\n".join("    " * (i - 1) + t for i, t in lines))) == ast.dump(ast.parse(text))
