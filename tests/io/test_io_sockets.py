@@ -262,6 +262,17 @@ def test_udp_receive_timeout(cell: type) -> None:
     uc.Close()
 
 
+@pytest.mark.parametrize("max_length", [0, -1])
+def test_receive_from_needs_a_positive_max_length(cell: type, max_length: int) -> None:
+    uc = UdpClient(IPEndPoint("", 0))
+    try:
+        with pytest.raises(GplException) as exc:
+            uc.Client().ReceiveFrom(cell(), max_length, cell())
+        assert exc.value.ErrorCode == -707
+    finally:
+        uc.Close()
+
+
 def test_blocking_waits_go_through_the_hook(cell: type) -> None:
     seen: list[float | None] = []
 

@@ -295,8 +295,6 @@ class Socket:
         0 means the peer closed the connection (EX-18).  Waits up to ``ReceiveTimeout`` ms.
         """
         sock = self._connected_tcp() if self._kind == _socket.SOCK_STREAM else self._open()
-        if max_length <= 0:
-            raise GplException(VALUE_OUT_OF_RANGE, detail=f"max_length {max_length}")
         data, _ = self._receive(sock, int(max_length), from_=False)
         if not data and self._kind == _socket.SOCK_STREAM:
             self._peer_closed = True
@@ -318,6 +316,8 @@ class Socket:
         return Integer(len(data))
 
     def _receive(self, sock: _socket.socket, size: int, *, from_: bool) -> tuple[bytes, Any]:
+        if size <= 0:  # Receive and ReceiveFrom alike: Python's recv would raise ValueError
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"max_length {size}")
         timeout = _seconds(self._recv_ms) if self._blocking else 0.0
 
         def wait_and_receive() -> tuple[bytes, Any]:
