@@ -16,40 +16,10 @@ from pathlib import Path
 import pytest
 
 from conftest import PROJECTS
-from gpltest import Transpiled, copy_project, free_port, transpile
+from gpltest import LineClient, Transpiled, copy_project, free_port, transpile
 from gplrt.sim import Simulation
 
 TIMEOUT = 10.0  # seconds, for every client socket operation
-
-
-class LineClient:
-    """A test client: sends request lines, reads CR-LF reply lines, every wait bounded."""
-
-    def __init__(self, port: int) -> None:
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=TIMEOUT)
-        self.sock.settimeout(TIMEOUT)
-        self.pending = b""
-
-    def send(self, text: str) -> None:
-        self.sock.sendall(text.encode("latin-1"))
-
-    def line(self) -> str:
-        for _ in range(10_000):
-            if b"\r\n" in self.pending:
-                head, self.pending = self.pending.split(b"\r\n", 1)
-                return head.decode("latin-1")
-            chunk = self.sock.recv(4096)
-            if not chunk:
-                raise ConnectionError(f"server closed the connection; unread {self.pending!r}")
-            self.pending += chunk
-        raise AssertionError("no complete line")
-
-    def ask(self, text: str) -> str:
-        self.send(text + "\n")
-        return self.line()
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 @pytest.fixture(scope="module")
@@ -73,7 +43,7 @@ def seqserver(tmp_path_factory: pytest.TempPathFactory, server_port: int) -> Ite
     yield sample, sim
     if runner.is_alive():  # stop it (tests normally do, with "shutdown")
         try:
-            c = LineClient(server_port)
+            c = LineClient(server_port, timeout=TIMEOUT, newline="\n")
             c.ask("0 shutdown")
             c.close()
         except OSError:
@@ -83,7 +53,7 @@ def seqserver(tmp_path_factory: pytest.TempPathFactory, server_port: int) -> Ite
 
 def test_a_thousand_commands_get_one_reply_each_in_order(seqserver: tuple[Transpiled, Simulation],
                                                          server_port: int) -> None:
-    clients = [LineClient(server_port) for _ in range(4)]
+    clients = [LineClient(server_port, timeout=TIMEOUT, newline="\n") for _ in range(4)]
     try:
         sent: list[tuple[int, int, str]] = []
         for seq in range(1, 1001):
@@ -137,12 +107,12 @@ def test_keeps_serving_after_a_hundred_abrupt_disconnects(seqserver: tuple[Trans
         # beyond it makes the kernel drop SYNs that are retried only a second later.
         threading.Event().wait(0.005)
         if n % 10 == 9:  # meanwhile, a well-behaved client is still served
-            probe = LineClient(server_port)
+            probe = LineClient(server_port, timeout=TIMEOUT, newline="\n")
             try:
                 assert probe.ask(f"{n} echo probe") == f"{n} probe"
             finally:
                 probe.close()
-    c = LineClient(server_port)
+    c = LineClient(server_port, timeout=TIMEOUT, newline="\n")
     try:
         assert c.ask("5001 echo still here") == "5001 still here"
         # every dropped connection ended its thread (more than 32 would have hit the thread limit)
@@ -160,7 +130,7 @@ def test_keeps_serving_after_a_hundred_abrupt_disconnects(seqserver: tuple[Trans
 
 def test_shutdown_stops_the_server(seqserver: tuple[Transpiled, Simulation], server_port: int) -> None:
     sample, sim = seqserver
-    c = LineClient(server_port)
+    c = LineClient(server_port, timeout=TIMEOUT, newline="\n")
     assert c.ask("9999 shutdown") == "9999 bye"
     c.close()
     for _ in range(200):

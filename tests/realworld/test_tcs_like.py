@@ -10,7 +10,6 @@ is the pose the simulated robot ends in (read off the robot itself, not from the
 
 from __future__ import annotations
 
-import socket
 import threading
 import time
 from pathlib import Path
@@ -18,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gpltest import Transpiled, copy_project, free_port, transpile
+from gpltest import LineClient, Transpiled, copy_project, free_port, transpile
 from gplrt.sim import Simulation
 
 HERE = Path(__file__).resolve().parent
@@ -36,30 +35,6 @@ LOCATIONS = CRLF.join([
     "5, broken, X, 1, 2, 3, 4, 5",          # unknown type: loading stops here with an error
     "6, never, J, 1, 2, 3, 4, 5",
 ]) + CRLF
-
-
-class Client:
-    """One TCP client: sends a line, reads one CR-LF reply line; every wait is bounded."""
-
-    def __init__(self, port: int) -> None:
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=TIMEOUT)
-        self.pending = b""
-
-    def line(self) -> str:
-        while b"\r\n" not in self.pending:
-            chunk = self.sock.recv(4096)
-            if not chunk:
-                raise ConnectionError(f"closed by the server; unread {self.pending!r}")
-            self.pending += chunk
-        head, self.pending = self.pending.split(b"\r\n", 1)
-        return head.decode("latin-1")
-
-    def ask(self, text: str) -> str:
-        self.sock.sendall((text + "\r\n").encode("latin-1"))
-        return self.line()
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 class Cell:
@@ -113,7 +88,7 @@ def cell(tmp_path_factory: pytest.TempPathFactory):
     yield c
     if c.runner.is_alive():
         try:
-            k = Client(c.port)
+            k = LineClient(c.port)
             k.ask("shutdown")
             k.close()
         except OSError:
@@ -141,7 +116,7 @@ def test_scripted_session(cell: Cell) -> None:
                        "/flash/projects/Tcs_Like/Locations.txt:8: *Project generated error*: 1"]
     assert out[3:6] == ["4 locations loaded, 1 errors", "2 stations", "self test passed"]
 
-    a = Client(cell.port)
+    a = LineClient(cell.port)
     sent: list[tuple[str, str]] = []
 
     def check(cmd: str, want: str) -> None:
@@ -268,7 +243,7 @@ def test_scripted_session(cell: Cell) -> None:
     assert a.ask("help").startswith("0 nop version hp attach home mode where wherej movej")
     # --- the interlock across clients -------------------------------------------------------
     check("lock", "0 OK")
-    b = Client(cell.port)
+    b = LineClient(cell.port)
     try:
         assert b.ask("status") == "0 &H105"
         assert b.ask("place 1") == "-786 *Interlock busy*"   # waited 1 s for the lock
@@ -280,7 +255,7 @@ def test_scripted_session(cell: Cell) -> None:
     check("sysspeed 100", "0 100")
 
     # --- a disconnect in the middle of a command: the command still completes -----------------
-    c = Client(cell.port)
+    c = LineClient(cell.port)
     c.sock.sendall(b"movej 1 320 25 170 15 90\r\n")
     c.close()
     target = np.array([320, 25, 170, 15, 90])
@@ -289,18 +264,18 @@ def test_scripted_session(cell: Cell) -> None:
         time.sleep(0.02)
     check("wherej", "0 320.000 25.000 170.000 15.000 90.000")
     # ... and half a line, then a disconnect: nothing runs
-    d = Client(cell.port)
+    d = LineClient(cell.port)
     d.sock.sendall(b"movej 1 300 0 180 0 1")
     d.close()
     time.sleep(0.3)
     check("wherej", "0 320.000 25.000 170.000 15.000 90.000")
 
     # --- too many clients -----------------------------------------------------------------------
-    extra = [Client(cell.port) for _ in range(3)]   # with `a`, MAX_CLIENTS = 4 are connected
+    extra = [LineClient(cell.port) for _ in range(3)]   # with `a`, MAX_CLIENTS = 4 are connected
     try:
         for k in extra:
             assert k.ask("nop") == "0 OK"
-        late = Client(cell.port)
+        late = LineClient(cell.port)
         assert late.line() == "-1 *Too many clients*"
         assert late.sock.recv(16) == b""
         late.close()
@@ -323,7 +298,7 @@ def test_scripted_session(cell: Cell) -> None:
     a.close()
     assert len(sent) >= 50
 
-    z = Client(cell.port)
+    z = LineClient(cell.port)
     assert z.ask("shutdown") == "0 OK"
     z.close()
     cell.runner.join(TIMEOUT)

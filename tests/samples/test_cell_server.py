@@ -9,44 +9,16 @@ the commanded targets, read off the simulated robot itself to 1e-6 mm.
 from __future__ import annotations
 
 import math
-import socket
 import threading
 from collections.abc import Iterator
 
 import numpy as np
 import pytest
 
-from gpltest import SAMPLES, Transpiled, copy_project, free_port, transpile
+from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, transpile
 from gplrt.sim import Simulation
 
 TIMEOUT = 15.0
-
-
-class LineClient:
-    """Sends request lines and reads CR-LF reply lines; every wait is bounded."""
-
-    def __init__(self, port: int) -> None:
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=TIMEOUT)
-        self.sock.settimeout(TIMEOUT)
-        self.pending = b""
-
-    def line(self) -> str:
-        for _ in range(1000):
-            if b"\r\n" in self.pending:
-                head, self.pending = self.pending.split(b"\r\n", 1)
-                return head.decode("latin-1")
-            chunk = self.sock.recv(4096)
-            if not chunk:
-                raise ConnectionError(f"closed by the server; unread {self.pending!r}")
-            self.pending += chunk
-        raise AssertionError("no complete line")
-
-    def ask(self, text: str) -> str:
-        self.sock.sendall((text + "\r\n").encode("latin-1"))
-        return self.line()
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 def hand_rotation(yaw: float) -> np.ndarray:

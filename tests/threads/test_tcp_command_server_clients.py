@@ -7,35 +7,13 @@ The server has no shutdown command: the test ends it with ``Simulation.stop()``.
 
 from __future__ import annotations
 
-import socket
 import threading
 from pathlib import Path
 
-from gpltest import SAMPLES, copy_project, free_port, transpile
+from gpltest import SAMPLES, LineClient, copy_project, free_port, transpile
 from gplrt.sim import Simulation
 
 TIMEOUT = 15.0
-
-
-class LineClient:
-    """Sends request lines and reads CR-LF reply lines; every wait is bounded."""
-
-    def __init__(self, port: int) -> None:
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=TIMEOUT)
-        self.pending = b""
-
-    def ask(self, text: str) -> str:
-        self.sock.sendall((text + "\n").encode("latin-1"))
-        while b"\r\n" not in self.pending:
-            chunk = self.sock.recv(4096)
-            if not chunk:
-                raise ConnectionError(f"closed by the server; unread {self.pending!r}")
-            self.pending += chunk
-        head, self.pending = self.pending.split(b"\r\n", 1)
-        return head.decode("latin-1")
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 def test_two_concurrent_clients_are_both_served(tmp_path: Path) -> None:
@@ -52,7 +30,7 @@ def test_two_concurrent_clients_are_both_served(tmp_path: Path) -> None:
                 break
             runner.join(0.025)
         assert "listening" in sim.console.output, sim.console.output + sim.console.log_text
-        first, second = LineClient(port), LineClient(port)
+        first, second = LineClient(port, newline="\n"), LineClient(port, newline="\n")
         try:
             # both connections open at once, requests interleaved
             assert first.ask("version") == "0 TCS sample 1.2"
@@ -66,7 +44,7 @@ def test_two_concurrent_clients_are_both_served(tmp_path: Path) -> None:
         finally:
             first.close()
             second.close()
-        third = LineClient(port)  # a later client after one has left
+        third = LineClient(port, newline="\n")  # a later client after one has left
         try:
             assert third.ask("echo three") == "0 three"
         finally:
