@@ -25,7 +25,7 @@ from gpl2py.lower.stubs import stub_files
 from gpl2py.lower.user_stubs import UserStubs, load_user_stubs
 from gpl2py.project import Project, load_project
 from gpl2py.semantics.catalogue import load_catalogue
-from gpl2py.semantics.check import analyze
+from gpl2py.semantics.check import Model, analyze
 from gpl2py.semantics.resolve import TOP_MODULE
 from gpl2py.syntax.parser import parse
 
@@ -79,10 +79,7 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
         units.append(parse(src, sink))
         if progress is not None:
             progress("parsing", i + 1, len(project.sources))
-    if sink.has_errors() and not keep_going:
-        # still run the semantic pass so every error is reported in one run
-        analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected, strict=strict)
-        return None
+    # the semantic pass runs even after syntax errors, so every error is reported in one run
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
                     strict=strict)
     if sink.has_errors() and not keep_going:
@@ -97,7 +94,7 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
     return output
 
 
-def _lower(project: Project, model, sink: DiagnosticSink,  # type: ignore[no-untyped-def]
+def _lower(project: Project, model: Model, sink: DiagnosticSink,
            progress: Progress | None = None, user: UserStubs | None = None) -> Output:
     start = model.start
     if project.start is None and start is not None and start.module is not None:
