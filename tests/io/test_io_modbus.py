@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import pytest
 
+from gpltest import free_port
 from gplrt.lang.byref import Box
 from pymodbus.client import ModbusTcpClient
 from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock, ModbusServerContext
@@ -22,12 +23,6 @@ from gplrt.io.sockets import IPEndPoint
 from gplrt.lang.errors import GplException
 
 SIZE = 100  # data points per table; reads beyond it get an exception response
-
-
-def free_port() -> int:
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 @dataclass

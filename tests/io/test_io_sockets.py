@@ -11,18 +11,13 @@ from collections.abc import Iterator
 
 import pytest
 
+from gpltest import free_port
 from gplrt.io import _blocking
 from gplrt.io.sockets import IPEndPoint, Socket, TcpClient, TcpListener, UdpClient
 from gplrt.lang.errors import GplException
 
 
 WAIT = 5.0  # seconds: upper bound for any thread join in these tests
-
-
-def free_port(kind: int = socket.SOCK_STREAM) -> int:
-    with socket.socket(socket.AF_INET, kind) as probe:
-        probe.bind(("127.0.0.1", 0))
-        return int(probe.getsockname()[1])
 
 
 def run(target: object) -> threading.Thread:
