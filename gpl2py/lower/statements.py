@@ -749,15 +749,19 @@ class ProcLowerer(ExprLowerer):
             self.w.dedent()
             self.finally_(s)
 
+    def clause_header(self, clause: A.CatchClause | A.FinallyClause, header: str) -> None:
+        """The header line of a Try clause, mapped to the clause's GPL line with its comments."""
+        self.w.gpl_line = clause.span.line
+        self.w.comments(clause.leading_comments)
+        mark = self.w.mark()
+        self.w.line(header)
+        self.w.trailing(clause.trailing_comment, mark)
+
     def catch(self, s: A.Try) -> None:
         c = s.catch
         if c is None:
             return
-        self.w.gpl_line = c.span.line
-        self.w.comments(c.leading_comments)
-        mark = self.w.mark()
-        self.w.line("except BaseException as _e:")
-        self.w.trailing(c.trailing_comment, mark)
+        self.clause_header(c, "except BaseException as _e:")
         self.w.indent()
         exc = f"{self.rt(EXC, 'as_gpl_exception')}(_e)"
         ref = self.model.catch_var.get(c)
@@ -772,11 +776,7 @@ class ProcLowerer(ExprLowerer):
         f = s.finally_
         if f is None:
             return
-        self.w.gpl_line = f.span.line
-        self.w.comments(f.leading_comments)
-        mark = self.w.mark()
-        self.w.line("finally:")
-        self.w.trailing(f.trailing_comment, mark)
+        self.clause_header(f, "finally:")
         self.w.indent()
         self.block(f.body)
         self.w.dedent()
