@@ -237,6 +237,7 @@ class RunReport:
     still_alive: list[str] = field(default_factory=list)  # of those, still running after STOP_GRACE
     plot: str | None = None
     plot_requested: bool = False
+    plot_error: str | None = None  # why the requested plot could not be written
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -332,9 +333,41 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
     elif report.stalled:
         report.status = EXIT_STALLED
     report.plot_requested = bool(plot)
-    if plot and not interrupted and save_plot(sim, plot):
-        report.plot = str(plot)
+    if plot and not interrupted:
+        try:
+            if save_plot(sim, plot):
+                report.plot = str(plot)
+        except OSError as exc:
+            report.plot_error = exc.strerror or str(exc)
     return report
+
+
+def _plot_problem(path: str) -> str | None:
+    """Why ``--plot path`` cannot be saved, checked before the program runs (a typo in the image
+    type must not cost a whole run); None when matplotlib can write that type."""
+    kind = Path(path).suffix.lstrip(".").lower()
+    if not kind:
+        return None  # matplotlib saves it as PNG, adding ".png"
+    from matplotlib.figure import Figure
+
+    kinds = Figure().canvas.get_supported_filetypes()
+    if kind in kinds:
+        return None
+    return f"--plot {path}: cannot save a .{kind} image; the image types are: {', '.join(sorted(kinds))}"
+
+
+def _flash_problem(path: str) -> str | None:
+    """Why ``--flash path`` cannot hold the controller's disks, or None (the folder then exists).
+
+    Checked here because the simulation only creates its disk folders when the program starts,
+    where a failure would look like an error of gpl2py itself."""
+    if Path(path).exists() and not Path(path).is_dir():
+        return f"--flash {path}: not a folder (it holds the controller's disks: flash, ROMDISK, ...)"
+    try:
+        Path(path).mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        return f"--flash {path}: cannot hold the controller's disks: {exc.strerror or exc}"
+    return None
 
 
 def run_command(args: argparse.Namespace) -> Outcome:
@@ -368,6 +401,11 @@ def run_command(args: argparse.Namespace) -> Outcome:
     if not args.json:
         cli._emit(out, False, args.quiet, stdout, stderr)
 
+    problem = _plot_problem(args.plot) if args.plot else None
+    problem = problem or (_flash_problem(args.flash) if args.flash else None)
+    if problem is not None:
+        return _usage_after_emit(out, problem, args.json, stderr)
+
     from gplrt.sim import ConsoleSink, Simulation
 
     console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
@@ -391,6 +429,10 @@ def run_command(args: argparse.Namespace) -> Outcome:
         stderr.write(note + "\n")
     report = execute(package, sim, plot=args.plot)
     out.exit_status = report.status
+    if report.plot_error is not None:  # the program's own status stands; the lost plot is said
+        diag = out.sink.report(msg.OUTPUT_ERROR, None, path=str(args.plot), detail=report.plot_error)
+        if not args.json:
+            stderr.write(diag.render() + "\n")
     for e in report.errors:
         if e["file"]:
             e["file"] = _shown_path(built.project, e["file"])

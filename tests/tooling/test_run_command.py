@@ -158,6 +158,34 @@ def test_usage_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
     assert r.returncode == 2 and "ProjectStart" in r.stderr and r.stdout == ""
 
 
+def test_bad_flash_or_plot_is_a_usage_error_before_the_program_runs(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": TICKER})
+    a_file = tmp_path / "disks.txt"
+    a_file.write_text("not a folder")
+    r = in_process(capsys, "run", str(proj), "--flash", str(a_file), "-q")
+    assert r.returncode == 2 and r.stdout == "", r.stderr  # nothing ran: no "tick 1"
+    assert f"error GPL9001: --flash {a_file}: not a folder" in r.stderr and "GPL9000" not in r.stderr
+    r = in_process(capsys, "run", str(proj), "--plot", str(tmp_path / "cell.pnj"), "-q")
+    assert r.returncode == 2 and r.stdout == "", r.stderr
+    assert "error GPL9001: --plot" in r.stderr and "cannot save a .pnj image" in r.stderr
+    assert "png" in r.stderr and "GPL9000" not in r.stderr
+
+
+def test_plot_that_cannot_be_written_is_reported_and_the_run_keeps_its_status(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": WHERE})  # Robot.Where: robot 1 exists, so a plot is due
+    blocker = tmp_path / "plots"
+    blocker.write_text("a file where the plot's folder should be")
+    r = in_process(capsys, "run", str(proj), "--plot", str(blocker / "cell.png"), "-q")
+    assert r.returncode == 0, r.stderr
+    assert f"error GPL3004: cannot write {blocker / 'cell.png'}" in r.stderr and "GPL9000" not in r.stderr
+    r = in_process(capsys, "run", str(proj), "--plot", str(blocker / "cell.png"), "--json")
+    doc = json.loads(r.stdout)
+    assert doc["run"]["plot"] is None
+    assert [d["code"] for d in doc["diagnostics"] if d["severity"] == "error"] == ["GPL3004"]
+
+
 def test_help_explains_options_and_exit_statuses(capsys: pytest.CaptureFixture[str]) -> None:
     r = in_process(capsys, "run", "--help")
     assert r.returncode == 0
