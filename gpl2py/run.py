@@ -290,9 +290,12 @@ def _stop_all(sim: Any) -> tuple[int, list[str]]:
 
 
 def _load_setup(path: str) -> Any:
+    """The ``setup`` function of the --setup file; OSError/SyntaxError/... say what is wrong with it."""
+    if not Path(path).is_file():
+        raise FileNotFoundError("a folder, not a Python file" if Path(path).is_dir() else "no such file")
     spec = importlib.util.spec_from_file_location(f"_gpl2py_setup_{next(_serial)}", path)
     if spec is None or spec.loader is None:
-        raise FileNotFoundError(path)
+        raise ImportError("not a Python file (it must end in .py)")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     setup = getattr(module, "setup", None)

@@ -300,7 +300,8 @@ def test_setup_file_problems_are_command_line_errors(tmp_path: Path, capsys: pyt
     no_func.write_text("X = 1\n")
     failing = tmp_path / "failing.py"
     failing.write_text("def setup(sim):\n    sim.io.set_input(5, True)\n")  # 5 is an output
-    cases = [(in_process(capsys, "run", str(proj), "--setup", str(tmp_path / "nope.py")), "nope.py"),
+    cases = [(in_process(capsys, "run", str(proj), "--setup", str(tmp_path / "nope.py")), "nope.py: no such file"),
+             (in_process(capsys, "run", str(proj), "--setup", str(tmp_path)), "a folder, not a Python file"),
              (in_process(capsys, "run", str(proj), "--setup", str(no_func)), "setup(sim)"),
              (in_process(capsys, "run", str(proj), "--setup", str(failing)), "GplException")]
     for r, text in cases:
