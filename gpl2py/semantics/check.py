@@ -10,12 +10,20 @@ reports every independent mistake.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Catalogue, Member
+from gpl2py.semantics.catalogue import (
+    BuiltinClass,
+    BuiltinConstant,
+    BuiltinFunction,
+    Catalogue,
+    Member,
+    Param,
+)
 from gpl2py.semantics.resolve import TOP_MODULE, Collector, Found, Resolver, visible
 from gpl2py.semantics.stubs import Stub, StubTable
 from gpl2py.semantics.symbols import (
@@ -75,11 +83,8 @@ class Model:
         return i.type if i is not None else t.ERROR
 
 
-def _pinfo_user(params: list[VarSym]) -> list[ParamInfo]:
-    return [ParamInfo(p.name, p.type, p.byref, p.optional) for p in params]
-
-
-def _pinfo_builtin(params: tuple) -> list[ParamInfo]:  # type: ignore[type-arg]
+def _pinfo(params: Iterable[VarSym | Param]) -> list[ParamInfo]:
+    """The passing facts of a user procedure's parameters or a built-in member's."""
     return [ParamInfo(p.name, p.type, p.byref, p.optional) for p in params]
 
 
@@ -612,7 +617,7 @@ class Checker:
             if sum(1 for p in s.params if not p.optional) > 0:
                 self.sink.report(M.WRONG_ARG_COUNT, span, name=s.name,  # type: ignore[arg-type]
                                  expected=len(s.params), given=0)
-            return Info(s.result, "bfunc", s, params=_pinfo_builtin(s.params))
+            return Info(s.result, "bfunc", s, params=_pinfo(s.params))
         if k == "builtin_constant":
             assert isinstance(s, BuiltinConstant)
             return Info(s.type, "bconst", s)
@@ -748,7 +753,7 @@ class Checker:
         kind = "vmember" if value_type and b.name in ("String", "Array") else "bmember"
         if bm.kind == "property":
             return Info(bm.result, kind, bm, owner=b, receiver=receiver, static=static)
-        info = Info(bm.result, kind, bm, owner=b, params=_pinfo_builtin(bm.params), receiver=receiver,
+        info = Info(bm.result, kind, bm, owner=b, params=_pinfo(bm.params), receiver=receiver,
                     static=static)
         if not in_invoke and bm.min_args > 0:
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
@@ -780,7 +785,7 @@ class Checker:
         if not (p.min_args <= len(args) <= len(p.params)):
             self.sink.report(M.WRONG_ARG_COUNT, span, name=p.name,  # type: ignore[arg-type]
                              expected=_count_text(p.min_args, len(p.params)), given=len(args))
-        return Info(p.result, "call", p, params=_pinfo_user(p.params), receiver=receiver)
+        return Info(p.result, "call", p, params=_pinfo(p.params), receiver=receiver)
 
     # -- calls, indexing, New, AddressOf -----------------------------------------------------------------
 
@@ -834,7 +839,7 @@ class Checker:
             return info
         if k == "bfuncref":
             f: BuiltinFunction = ci.sym  # type: ignore[assignment]
-            params = _pinfo_builtin(f.params)
+            params = _pinfo(f.params)
             self._check_count(f.name, params, e.args, e.span)
             self._args(e.args, params, ctx)
             return Info(f.result, "bfunc", f, params=params)
@@ -853,7 +858,7 @@ class Checker:
             return Info(typ.element, "index")
         d = self.r.delegate_of(typ)
         if d is not None:
-            params = _pinfo_user(d.params)
+            params = _pinfo(d.params)
             self._check_count(d.name, params, e.args, e.span)
             self._args(e.args, params, ctx)
             return Info(d.result, "delegate_call", d, params=params)
@@ -939,7 +944,7 @@ class Checker:
                     info = self.model.info[a]
                     if not self._mark_byref(a, info, ParamInfo(prm.name, prm.type, True)):
                         self.model.byref_temps.add(a)
-            return Info(typ, "new", cls, owner=ctor, params=_pinfo_user(ctor.params))
+            return Info(typ, "new", cls, owner=ctor, params=_pinfo(ctor.params))
         d = self.r.delegate_of(typ)
         if d is not None:
             if len(args) != 1:
@@ -955,7 +960,7 @@ class Checker:
         b = self.r.builtin_of(typ)
         if b is None:
             return Info(t.ERROR, "error")
-        params = _pinfo_builtin(b.constructor or ())
+        params = _pinfo(b.constructor or ())
         if b.constructor is not None and params:
             self._check_count(b.name, params, args, e.span)
         self._args(args, params, ctx)
