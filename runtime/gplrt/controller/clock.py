@@ -67,11 +67,8 @@ class VirtualClock:
     def real_seconds(self, dt: float) -> float:
         return 0.0
 
-    def advance_to(self, t: float) -> None:
-        """Move time forward to ``t`` (never backwards: a stale deadline leaves time unchanged)."""
-        self.advance_to_ns(to_ns(t))
-
     def advance_to_ns(self, ns: int) -> None:
+        """Move time forward to ``ns`` (never backwards: a stale deadline leaves time unchanged)."""
         if ns > self.ns:
             self.ns = ns
 

@@ -46,7 +46,7 @@ from gplrt.lang.errors import (
     GplException,
 )
 from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY, RobotModel
-from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
+from gplrt.motion.limits import RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import (
@@ -355,6 +355,3 @@ class RobotState:
         seg = JointSegment(t, plan.duration, q.copy(), q_end, plan=plan, kind="rapid_decel")
         self.queue.append(seg)
         self.rapid_decel_until = t + plan.duration
-
-    def axis_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
-        return self.limits.joint_limits(prof, system_speed)
