@@ -88,7 +88,7 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
         w.line("self._init_fields()")
         for k, c in enumerate(cls.ctors):
             w.line(f"{'if' if k == 0 else 'elif'} len(args) == {len(c.params)}:")
-            w.line(f"    self._new_{c.overload_index}(*args)")
+            w.line(f"    self._new_{c.overload_index}({'*args' if c.params else ''})")
         w.dedent()
         w.blank()
         w.line("def _init_fields(self) -> None:")

@@ -86,3 +86,28 @@ skip:
 End Module
 """)
     assert result.output == "0\n", result.log
+
+
+def test_overloaded_constructors_pass_arguments_only_to_those_that_take_them(tmp_path: Path) -> None:
+    src = """Module Main
+    Public Class Box
+        Public size As Integer
+        Public Sub New()
+            size = 1
+        End Sub
+        Public Sub New(ByVal n As Integer)
+            size = n
+        End Sub
+    End Class
+    Public Sub Main()
+        Dim a As New Box
+        Dim b As New Box(7)
+        Console.WriteLine(CStr(a.size) & " " & CStr(b.size))
+    End Sub
+End Module
+"""
+    result = run_gpl(tmp_path, src)
+    text = next(v for k, v in result.files.items() if k.endswith("main_mod.py") or k.endswith("/main.py"))
+    assert "        if len(args) == 0:\n            self._new_0()\n" in text
+    assert "        elif len(args) == 1:\n            self._new_1(*args)\n" in text
+    assert result.output == "1 7\n"
