@@ -47,12 +47,9 @@ from gplrt.lang.errors import (
 )
 from gplrt.motion.kinematics import units
 from gplrt.motion.kinematics.base import (
-    JointInfo,
-    JointKind,
     RobotModel,
     axis_roles,
-    check_axis_count,
-    read_limits,
+    read_joints,
     read_transform,
 )
 from gplrt.motion.kinematics.config import (
@@ -70,6 +67,7 @@ from gplrt.motion.kinematics.config import (
 MODULE_ARTICULATED6 = 22
 _NAMES = ("Base", "Shoulder", "Elbow", "Wrist1", "Wrist2", "Wrist3")
 _ROLES = ("j1", "j2", "j3", "j4", "j5", "j6")
+_JOINT_NAMES = {**dict(zip(_ROLES, _NAMES, strict=True)), "gripper": "Gripper"}
 _SINGULAR = 1e-12
 
 
@@ -103,12 +101,7 @@ class Articulated6Model(RobotModel):
 
     def __init__(self, pdb: ParameterDatabase, robot: int = 1) -> None:
         roles = axis_roles(int(pdb.get_num(2003, robot)), _ROLES, ((0x40, "gripper"),))
-        name = pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
-        check_axis_count(pdb, robot, roles, name)
-        lower, upper = read_limits(pdb, robot, len(roles))
-        names = [*_NAMES, "Gripper"]
-        joints = [JointInfo(names[i], JointKind.LINEAR if r == "gripper" else JointKind.ROTARY, r, lo, hi)
-                  for i, (r, lo, hi) in enumerate(zip(roles, lower, upper, strict=True))]
+        name, joints = read_joints(pdb, robot, roles, _JOINT_NAMES, ("gripper",))
         super().__init__(name, robot, MODULE_ARTICULATED6, joints,
                          read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))
         self.roles = roles

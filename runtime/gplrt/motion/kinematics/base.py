@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import threading
-from collections.abc import Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from enum import Enum
 
@@ -272,6 +272,24 @@ def _frozen_with_inverse(value: Matrix) -> tuple[Matrix, Matrix, bool]:
 
 
 # -- reading the parameter database -------------------------------------------------------------
+
+
+def robot_name(pdb: ParameterDatabase, robot: int) -> str:
+    """The robot's model name (DataID 2002), ``Robot <n>`` when the database has none."""
+    return pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
+
+
+def read_joints(pdb: ParameterDatabase, robot: int, roles: Sequence[str], names: Mapping[str, str],
+                linear: Collection[str]) -> tuple[str, list[JointInfo]]:
+    """The robot's name and one ``JointInfo`` per role (its name from ``names``, linear when the role
+    is in ``linear``, soft limits from the database), after the axis-count check: the part of
+    building a model that every kinematic module shares."""
+    name = robot_name(pdb, robot)
+    check_axis_count(pdb, robot, roles, name)
+    lower, upper = read_limits(pdb, robot, len(roles))
+    joints = [JointInfo(names[r], JointKind.LINEAR if r in linear else JointKind.ROTARY, r, lo, hi)
+              for r, lo, hi in zip(roles, lower, upper, strict=True)]
+    return name, joints
 
 
 def read_limits(pdb: ParameterDatabase, robot: int, n: int) -> tuple[list[float], list[float]]:

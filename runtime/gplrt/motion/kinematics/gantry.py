@@ -25,12 +25,9 @@ import pinocchio as pin
 from gplrt.controller.pdb import ParameterDatabase
 from gplrt.lang.errors import INVALID_CARTESIAN, GplException
 from gplrt.motion.kinematics.base import (
-    JointInfo,
-    JointKind,
     RobotModel,
     axis_roles,
-    check_axis_count,
-    read_limits,
+    read_joints,
     read_transform,
 )
 from gplrt.motion.kinematics.config import GPL_SINGLE
@@ -38,6 +35,7 @@ from gplrt.motion.kinematics.config import GPL_SINGLE
 MODULE_XYZTHETA = 2
 _AXES = ((0x01, "x"), (0x02, "y"), (0x04, "z"), (0x08, "theta"), (0x10, "gripper"))
 _NAMES = {"x": "X", "y": "Y", "z": "Z", "theta": "Theta", "gripper": "Gripper"}
+_LINEAR_ROLES = {"x", "y", "z", "gripper"}
 _TOLERANCE = math.sin(math.radians(1e-6))
 #: Allowed coordinate error (m) for a coordinate whose axis is missing.
 _POSITION_TOLERANCE = 1e-9
@@ -48,11 +46,7 @@ class GantryModel(RobotModel):
 
     def __init__(self, pdb: ParameterDatabase, robot: int = 1) -> None:
         roles = axis_roles(int(pdb.get_num(2003, robot)), (), _AXES)
-        name = pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
-        check_axis_count(pdb, robot, roles, name)
-        lower, upper = read_limits(pdb, robot, len(roles))
-        joints = [JointInfo(_NAMES[r], JointKind.ROTARY if r == "theta" else JointKind.LINEAR, r, lo, hi)
-                  for r, lo, hi in zip(roles, lower, upper, strict=True)]
+        name, joints = read_joints(pdb, robot, roles, _NAMES, _LINEAR_ROLES)
         super().__init__(name, robot, MODULE_XYZTHETA, joints,
                          read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))
         self.roles = roles

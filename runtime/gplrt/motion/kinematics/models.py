@@ -22,7 +22,7 @@ from collections.abc import Callable
 from gplrt.controller.pdb import ParameterDatabase
 from gplrt.lang.errors import UNDEFINED_ROBOT, GplException
 from gplrt.motion.kinematics.articulated import MODULE_ARTICULATED6, Articulated6Model
-from gplrt.motion.kinematics.base import JointInfo, JointKind, RobotModel, read_limits, read_transform
+from gplrt.motion.kinematics.base import JointInfo, JointKind, RobotModel, read_limits, read_transform, robot_name
 from gplrt.motion.kinematics.gantry import MODULE_XYZTHETA, GantryModel
 from gplrt.motion.kinematics.pf400 import MODULE_PF400, Pf400Model
 
@@ -51,5 +51,4 @@ def build_model(pdb: ParameterDatabase, robot: int = 1) -> RobotModel:
     lower, upper = read_limits(pdb, robot, n)
     joints = [JointInfo(f"J{i + 1}", JointKind.LINEAR, f"j{i + 1}", lo, hi)
               for i, (lo, hi) in enumerate(zip(lower, upper, strict=True))]
-    name = pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
-    return RobotModel(name, robot, module, joints, read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))
+    return RobotModel(robot_name(pdb, robot), robot, module, joints, read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))

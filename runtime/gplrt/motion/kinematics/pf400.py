@@ -41,12 +41,9 @@ from gplrt.lang.errors import (
 )
 from gplrt.motion.kinematics import units
 from gplrt.motion.kinematics.base import (
-    JointInfo,
-    JointKind,
     RobotModel,
     axis_roles,
-    check_axis_count,
-    read_limits,
+    read_joints,
     read_transform,
 )
 from gplrt.motion.kinematics.config import GPL_LEFTY, GPL_RIGHTY, GPL_SINGLE, TWO_PI, preference, wrap_pi
@@ -70,11 +67,7 @@ class Pf400Model(RobotModel):
     def __init__(self, pdb: ParameterDatabase, robot: int = 1) -> None:
         mask = int(pdb.get_num(2003, robot))
         roles = axis_roles(mask, ("z", "shoulder", "elbow"), _OPTIONAL_AXES)
-        name = pdb.get_str(2002, robot) if pdb.has(2002, robot) else f"Robot {robot}"
-        check_axis_count(pdb, robot, roles, name)
-        lower, upper = read_limits(pdb, robot, len(roles))
-        joints = [JointInfo(_NAMES[r], JointKind.LINEAR if r in _LINEAR_ROLES else JointKind.ROTARY, r, lo, hi)
-                  for r, lo, hi in zip(roles, lower, upper, strict=True)]
+        name, joints = read_joints(pdb, robot, roles, _NAMES, _LINEAR_ROLES)
         super().__init__(name, robot, MODULE_PF400, joints,
                          read_transform(pdb, 16051, robot), read_transform(pdb, 16052, robot))
         self.roles = roles
