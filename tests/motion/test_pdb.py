@@ -15,7 +15,13 @@ from gplrt.controller.pdb import (
 )
 from gplrt.lang.errors import GplException
 
-SHARED = Path("/work/shared/data/robots")
+# The project's shared corpus of real controller files: beside the checkout (as CI lays it out) or
+# at the workplace's mount point.
+SHARED = next(
+    (p for p in (Path(__file__).resolve().parents[3] / "shared" / "data" / "robots",
+                 Path("/work/shared/data/robots")) if p.is_dir()),
+    Path("/work/shared/data/robots"),
+)
 SETS = ["pf400sx", "pf400sx-2020", "pf400sxl-rail", "gcu-default-4axis"]
 
 
