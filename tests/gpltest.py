@@ -23,6 +23,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
+from typing import Callable
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.transpile import transpile as transpile_project
@@ -188,3 +189,17 @@ class LineClient:
 
     def close(self) -> None:
         self.sock.close()
+
+
+def code_of(fn: Callable[..., object], *args: object, **kwargs: object) -> int:
+    """The controller error code of the GplException that ``fn(*args, **kwargs)`` raises.
+
+    Fails the test if the call returns normally or raises anything but a GplException.
+    """
+    import pytest
+
+    from gplrt.lang.errors import GplException
+
+    with pytest.raises(GplException) as info:
+        fn(*args, **kwargs)
+    return info.value.ErrorCode

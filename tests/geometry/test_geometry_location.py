@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gplrt.geometry import Location, RefFrame, set_kinematics_provider
-from gplrt.lang.errors import GplException
+from gpltest import code_of as _code
 
 
 def _xyz(loc: Location) -> tuple[float, ...]:
@@ -26,12 +26,6 @@ def _angles(*v: float) -> Location:
     loc = Location()
     loc.Angles(*v)
     return loc
-
-
-def _code(fn, *args) -> int:  # type: ignore[no-untyped-def]
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
 
 
 # -- manual and Dictionary examples ------------------------------------------------------------

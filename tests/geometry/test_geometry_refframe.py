@@ -9,17 +9,11 @@ import pytest
 
 from gplrt.geometry import Conveyor, Location, RefFrame, register_conveyor, xyzypr_to_matrix
 from gplrt.geometry.refframe import PALLET_ORDERS
-from gplrt.lang.errors import GplException
+from gpltest import code_of as _code
 
 
 def _xyz(loc: Location) -> tuple[float, ...]:
     return (loc.X, loc.Y, loc.Z, loc.Yaw, loc.Pitch, loc.Roll)
-
-
-def _code(fn, *args) -> int:  # type: ignore[no-untyped-def]
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
 
 
 # -- basic frames ------------------------------------------------------------------------------------

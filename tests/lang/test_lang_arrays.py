@@ -5,18 +5,12 @@ from __future__ import annotations
 import pytest
 
 from gplrt.lang.arrays import GplArray, redim
-from gplrt.lang.errors import GplException
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
+from gpltest import code_of
 
 
 class Widget:
     pass
-
-
-def code_of(fn, *args) -> int:
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
 
 
 def get(a, k):

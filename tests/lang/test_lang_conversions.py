@@ -27,14 +27,8 @@ from gplrt.lang.conversions import (
     to_string,
     to_string_single,
 )
-from gplrt.lang.errors import GplException
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
-
-
-def code_of(fn, *args) -> int:
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
+from gpltest import code_of
 
 
 @pytest.mark.parametrize(

@@ -9,12 +9,7 @@ import pytest
 from gplrt.lang.errors import GplException
 from gplrt.lang.format import Format
 from gplrt.lang.mathlib import Fix, Int, Math, Rnd, rnd_seed
-
-
-def code_of(fn, *args) -> int:
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
+from gpltest import code_of
 
 
 @pytest.mark.parametrize(

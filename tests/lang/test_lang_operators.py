@@ -9,7 +9,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gplrt.lang.conversions import CStr, to_int32
-from gplrt.lang.errors import GplException
 from gplrt.lang.operators import (
     add,
     and_,
@@ -33,12 +32,7 @@ from gplrt.lang.operators import (
     sub,
     xor,
 )
-
-
-def code_of(fn, *args) -> int:
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
+from gpltest import code_of
 
 
 def test_plus_with_one_string_adds_numerically() -> None:

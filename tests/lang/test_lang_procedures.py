@@ -7,8 +7,8 @@ from collections.abc import Iterator
 import pytest
 
 from gplrt.lang.delegates import Delegate, delegate_type, invoke
-from gplrt.lang.errors import GplException
 from gplrt.lang.procedures import clear_procedures, find_procedure, find_procedure_entry, register_procedure
+from gpltest import code_of
 
 
 def main_start() -> str:
@@ -51,12 +51,6 @@ def registry() -> Iterator[None]:
     register_procedure("Main", "f0", f0, public=True)
     yield
     clear_procedures()
-
-
-def code_of(fn, *args, **kw) -> int:
-    with pytest.raises(GplException) as info:
-        fn(*args, **kw)
-    return info.value.ErrorCode
 
 
 def test_bare_unique_public_name() -> None:

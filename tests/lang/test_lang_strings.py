@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import pytest
 
-from gplrt.lang.errors import GplException
 from gplrt.lang.gpltypes import Byte, Double, Integer, Short, Single
 from gplrt.lang.strings import (
     Asc,
@@ -28,12 +27,7 @@ from gplrt.lang.strings import (
     UCase,
     Val,
 )
-
-
-def code_of(fn, *args) -> int:
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
+from gpltest import code_of
 
 
 # -- members ------------------------------------------------------------------------------------

@@ -16,6 +16,7 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 from gplrt.threads.thread import Thread
+from gpltest import code_of
 
 
 @pytest.fixture
@@ -33,12 +34,6 @@ def ready() -> None:
 
 def angles(*v: float) -> Location:
     return Location.from_angles(v)
-
-
-def code_of(fn, *args) -> int:  # type: ignore[no-untyped-def]
-    with pytest.raises(GplException) as info:
-        fn(*args)
-    return info.value.ErrorCode
 
 
 SAFE = angles(300.0, 10.0, 90.0, 0.0, 100.0)
