@@ -134,16 +134,18 @@ def sleep_until(t: float) -> None:
     _scheduler().sleep_until(t)
 
 
-def wait(queue: WaitQueue, deadline: float | None = None) -> bool:
+def wait(queue: WaitQueue, deadline: float | None = None, until: Callable[[], object] | None = None) -> bool:
     """Block on ``queue`` until :func:`notify_all` or the controller-time ``deadline``.
 
-    Returns True when notified, False on timeout.  Use it in a predicate loop::
+    Returns True when notified, False on timeout.  Use it in a predicate loop, passing the
+    predicate as ``until`` too, so that a notification between the test and the wait is not lost
+    under the real clock::
 
         while not ready():
-            if not clock.wait(q, deadline):
+            if not clock.wait(q, deadline, until=ready):
                 break
     """
-    return _scheduler().wait(queue, deadline)
+    return _scheduler().wait(queue, deadline, until)
 
 
 def notify_all(queue: WaitQueue) -> None:

@@ -264,7 +264,7 @@ class _MoveClass:
             end = robot.queue.end_time
             if sched.clock.reached(end):
                 break
-            sched.wait(robot.eom_waiters, end)
+            sched.wait(robot.eom_waiters, end, until=lambda: sched.clock.reached(robot.queue.end_time))
         robot.raise_async_error()
 
     def StopSpecialModes(self) -> None:

@@ -36,7 +36,9 @@ Same program, same inputs ⇒ same interleaving ⇒ byte-identical output.
 
 REAL mode (:class:`RealScheduler`): threads run preemptively, waits sleep for real time divided by
 the clock's speed, ``TestAndSet`` is atomic under a lock, and ``checkpoint`` only services
-Suspend/Abort requests.
+Suspend/Abort requests.  Since Python may switch threads between any two bytecodes, every wait
+re-tests its condition (``until``) under the scheduler lock as it registers, so a notification sent
+in between is never lost.
 
 Suspend and Abort are cooperative (Python threads cannot be killed): the target notices at its
 next checkpoint or scheduling point; a blocked target is woken to notice.  Abort raises
@@ -289,11 +291,24 @@ class Scheduler:
             while not self.clock.reached(t):
                 self.wait(None, t)
 
-    def wait(self, queue: WaitQueue | None, deadline: float | None) -> bool:
-        """Block until ``queue`` is notified (True) or controller time reaches ``deadline`` (False)."""
+    def wait(
+        self,
+        queue: WaitQueue | None,
+        deadline: float | None,
+        until: Callable[[], object] | None = None,
+    ) -> bool:
+        """Block until ``queue`` is notified (True) or controller time reaches ``deadline`` (False).
+
+        ``until`` is the condition the caller waits for.  It is tested under the scheduler lock
+        just before the thread registers on ``queue``; if it already holds, ``wait`` returns True
+        at once.  Under the real clock another thread may make the condition true between the
+        caller's own test and the registration, and its ``notify_all`` would then find nobody to
+        wake: without ``until`` such a wakeup is lost (a ``Join`` of a thread that ends at that
+        moment would wait forever).
+        """
         with self.adopted() as ctx:
             self._service_requests(ctx)
-            notified = self._block(ctx, queue, deadline)
+            notified = self._block(ctx, queue, deadline, until)
             self._service_requests(ctx)
             return notified
 
@@ -340,7 +355,7 @@ class Scheduler:
             if not ctx.suspend_requested:
                 return
             ctx.waiting_on = "suspended"
-            self._block(ctx, ctx.resume_q, None)
+            self._block(ctx, ctx.resume_q, None, lambda: ctx.abort_requested or not ctx.suspend_requested)
 
     def _interrupt(self, ctx: ThreadCtx) -> None:
         """Wake ``ctx`` from whatever it waits on so that it notices a request."""
@@ -358,7 +373,14 @@ class Scheduler:
     def _kick(self) -> None:
         """Called (lock held) after making threads ready: start one if nobody is running."""
 
-    def _block(self, ctx: ThreadCtx, queue: WaitQueue | None, deadline: float | None) -> bool:
+    def _block(
+        self,
+        ctx: ThreadCtx,
+        queue: WaitQueue | None,
+        deadline: float | None,
+        until: Callable[[], object] | None = None,
+    ) -> bool:
+        """Park ``ctx`` on ``queue`` until notified (True) or ``deadline`` (False); see :meth:`wait`."""
         raise NotImplementedError
 
     def _wake(self, ctx: ThreadCtx, timed_out: bool) -> None:
@@ -507,8 +529,16 @@ class VirtualScheduler(Scheduler):
     def _wait_first_turn(self, ctx: ThreadCtx) -> None:
         self._await_token(ctx)
 
-    def _block(self, ctx: ThreadCtx, queue: WaitQueue | None, deadline: float | None) -> bool:
+    def _block(
+        self,
+        ctx: ThreadCtx,
+        queue: WaitQueue | None,
+        deadline: float | None,
+        until: Callable[[], object] | None = None,
+    ) -> bool:
         with self._lock:
+            if until is not None and until():
+                return True
             ctx.wait_id += 1
             ctx.phase = Phase.BLOCKED
             ctx.timed_out = False
@@ -633,8 +663,18 @@ class RealScheduler(Scheduler):
     def _wait_first_turn(self, ctx: ThreadCtx) -> None:
         pass
 
-    def _block(self, ctx: ThreadCtx, queue: WaitQueue | None, deadline: float | None) -> bool:
+    def _block(
+        self,
+        ctx: ThreadCtx,
+        queue: WaitQueue | None,
+        deadline: float | None,
+        until: Callable[[], object] | None = None,
+    ) -> bool:
         with self._changed:
+            # An Abort requested after the caller's last look is noticed here, not after the wait:
+            # _interrupt only wakes threads that are already BLOCKED.
+            if ctx.abort_requested or (until is not None and until()):
+                return True
             ctx.wait_id += 1
             ctx.phase = Phase.BLOCKED
             ctx.notified = False

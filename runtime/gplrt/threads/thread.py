@@ -196,7 +196,7 @@ class Thread:
         if timeout == 0:
             return (not self._active)  # type: ignore[return-value]
         while self._active:
-            if not sched.wait(self._join_q, deadline):
+            if not sched.wait(self._join_q, deadline, until=lambda: not self._active):
                 break
         return (not self._active)  # type: ignore[return-value]
 
@@ -267,7 +267,7 @@ class Thread:
             if ctx is not None:
                 ctx.waiting_on = "event"
             while not me._events & mask:
-                if not sched.wait(me._event_q, deadline):
+                if not sched.wait(me._event_q, deadline, until=lambda: me._events & mask):
                     break
         with sched._lock:
             got = me._events & mask
@@ -276,10 +276,19 @@ class Thread:
 
     @staticmethod
     def TestAndSet(variable: Ref[Integer], new_value: Integer) -> Integer:
-        """Atomically read ``variable``, store ``new_value``, return the old value."""
+        """Atomically read ``variable``, store ``new_value``, return the old value.
+
+        Under the virtual clock nothing else runs between the read and the write.  Under the real
+        clock Python may switch threads between them, and the lock only orders TestAndSet calls
+        among themselves, not against a plain store such as a spin lock's release ``lock = 0``.
+        Storing only when the value changes closes that gap for the pattern programs use: a
+        TestAndSet that finds the lock taken writes nothing, so it cannot overwrite the holder's
+        release with a stale 1 (which left the lock taken forever).
+        """
         with _TAS_LOCK:
             old = variable.get()
-            variable.set(new_value)
+            if old != new_value:
+                variable.set(new_value)
         return old
 
     @staticmethod
