@@ -266,14 +266,22 @@ LOOP = module_src("""\
 @pytest.mark.parametrize("clock", ["real", "virtual"])
 def test_ctrl_c_stops_every_thread_and_exits_130(tmp_path: Path, clock: str) -> None:
     proj = write_project(tmp_path, {"Main.gpl": LOOP})
-    proc = subprocess.Popen([sys.executable, "-m", "gpl2py", "run", str(proj), "--clock", clock],
+    # -X faulthandler: if the run ever hangs after Ctrl-C, SIGABRT makes it print every thread's
+    # stack, and the failure shows where it was stuck.
+    proc = subprocess.Popen([sys.executable, "-X", "faulthandler", "-m", "gpl2py", "run", str(proj),
+                             "--clock", clock],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=REPO)
     try:
         assert proc.stdout is not None
         assert proc.stdout.readline() == "started\n"
         time.sleep(0.3)
         proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=30)
+        try:
+            out, err = proc.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.send_signal(signal.SIGABRT)
+            out, err = proc.communicate(timeout=30)
+            pytest.fail(f"still running 30 s after Ctrl-C; its threads were at:\n{err}")
     finally:
         if proc.poll() is None:
             proc.kill()
