@@ -4,6 +4,11 @@
 lowers each module; it returns the generated files (relative path -> text) or ``None`` when there
 were errors (unless ``keep_going``).  ``write_package`` writes them below an output folder.  Output
 is deterministic: identical input gives byte-identical files.
+
+A library caller (a notebook, the test harness) gets the promise the command line gives: an
+unexpected exception in any phase -- loading, parsing, semantics or lowering -- is a GPL9000
+internal-error diagnostic and ``None``, never a traceback.  ``GPL2PY_TRACEBACK=1`` re-raises it,
+as it does for the CLI, so a gpl2py developer can still see where it came from.
 """
 
 from __future__ import annotations
@@ -59,6 +64,11 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     gc.disable()
     try:
         return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded)
+    except Exception as exc:  # a bug in gpl2py, in any phase: a diagnostic, never a traceback
+        if os.environ.get("GPL2PY_TRACEBACK"):
+            raise
+        sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+        return None
     finally:
         if enabled:
             gc.enable()
@@ -84,11 +94,7 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
                     strict=strict)
     if sink.has_errors() and not keep_going:
         return None
-    try:
-        output = _lower(project, model, sink, progress, user)
-    except Exception as exc:  # a bug in gpl2py: a diagnostic, never a traceback
-        sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
-        return None
+    output = _lower(project, model, sink, progress, user)
     if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
         return None
     return output

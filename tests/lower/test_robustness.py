@@ -11,6 +11,9 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
+import pytest
+
+import gpl2py.transpile as transpile_module
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.transpile import transpile
 
@@ -52,3 +55,37 @@ def test_mutated_programs_give_diagnostics_not_crashes(tmp_path: Path) -> None:
             for name, code in out.files.items():
                 if name.endswith(".py"):
                     compile(code, name, "exec")
+
+
+def _project(tmp_path: Path) -> Path:
+    path = tmp_path / "Ok.gpl"
+    path.write_text("Module Ok\n    Public Sub Main()\n        Console.WriteLine(1)\n    End Sub\nEnd Module\n",
+                    encoding="latin-1")
+    return path
+
+
+@pytest.mark.parametrize("phase", ["load_project", "parse", "analyze", "lower_module"])
+def test_library_transpile_turns_a_bug_in_any_phase_into_gpl9000(
+        phase: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """``transpile()`` is the library API (notebooks, the test harness): like the CLI it must never
+    leak a traceback, whichever phase fails -- the semantic pass was once outside the guard."""
+    def boom(*args: object, **kwargs: object) -> None:
+        raise KeyError("simulated bug")
+
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    monkeypatch.setattr(transpile_module, phase, boom)
+    sink = DiagnosticSink()
+    assert transpile(str(_project(tmp_path)), sink) is None
+    assert [d.code for d in sink.errors] == ["GPL9000"]
+    assert "KeyError: 'simulated bug'" in sink.errors[0].message
+
+
+def test_library_transpile_reraises_with_gpl2py_traceback(tmp_path: Path,
+                                                          monkeypatch: pytest.MonkeyPatch) -> None:
+    def boom(*args: object, **kwargs: object) -> None:
+        raise KeyError("simulated bug")
+
+    monkeypatch.setenv("GPL2PY_TRACEBACK", "1")
+    monkeypatch.setattr(transpile_module, "analyze", boom)
+    with pytest.raises(KeyError):
+        transpile(str(_project(tmp_path)), DiagnosticSink())
