@@ -312,3 +312,96 @@ def test_vendor_style_crlf_tabs_and_keyword_case() -> None:
     assert 1e32 in reals and 412.5 in reals
     wait = [m for m in nodes(main_proc, ast.MemberAccess) if m.name.lower() == "waitforeom"]
     assert len(wait) == 1 and isinstance(wait[0].target, ast.Name) and wait[0].target.name == "move"
+
+
+# --- the TCP-command-server-like module -------------------------------------------------------
+
+
+def _comments(unit: ast.Node) -> list[ast.Comment]:
+    """Every comment and '#' line the parser kept, wherever it was attached."""
+    out: list[ast.Comment] = []
+    for n in walk(unit):
+        out.extend(getattr(n, "leading_comments", []))
+        out.extend(getattr(n, "end_comments", []))
+        for attr in ("trailing_comment", "end_comment", "header_comment"):
+            c = getattr(n, attr, None)
+            if c is not None:
+                out.append(c)
+    return out
+
+
+def test_tcs_server_keeps_every_region_line() -> None:
+    unit = unit_of("tcs_server.gpl")
+    directives = [c.text.split('"')[0].strip().lower() for c in _comments(unit) if c.directive]
+    assert directives.count("#region") == 6 and directives.count("#end region") == 6
+
+
+def test_tcs_server_retries_by_goto_from_catch_into_its_try() -> None:
+    listen = proc(unit_of("tcs_server.gpl"), "Listen")
+    [t] = nodes(listen, ast.Try)
+    first = t.body.statements[0]
+    assert isinstance(first, ast.Label) and first.name == "retry"
+    assert t.catch is not None and t.catch.variable == "exc"
+    assert [g.label for g in nodes(t.catch, ast.GoTo)] == ["retry"]
+    # and a forward GoTo inside the Try's own loop
+    loop = [s for s in t.body.statements if isinstance(s, ast.While)][0]
+    assert [g.label for g in nodes(loop, ast.GoTo)] == ["closed"]
+    assert [s.name for s in loop.body.statements if isinstance(s, ast.Label)] == ["closed"]
+
+
+def test_tcs_server_select_with_and_without_case() -> None:
+    unit = unit_of("tcs_server.gpl")
+    text = (SOURCES / "tcs_server.gpl").read_text().splitlines()
+    heads = {p.name: [text[s.span.line - 1].split()[1] for s in nodes(p, ast.Select)]
+             for p in nodes(unit, ast.ProcDecl) if nodes(p, ast.Select)}
+    assert heads == {"Cmd_Hp": ["args.GetUpperBound(0)"], "Cmd_Mode": ["Case"]}
+    [bare] = nodes(proc(unit, "Cmd_Hp"), ast.Select)
+    subject = bare.subject
+    assert isinstance(subject, ast.Invoke) and isinstance(subject.target, ast.MemberAccess)
+    assert subject.target.name == "GetUpperBound"
+    assert [c.is_else for c in bare.cases] == [False, False, True]
+    [with_case] = nodes(proc(unit, "Cmd_Mode"), ast.Select)
+    assert [[i.value.value for i in c.items] for c in with_case.cases[:2]] == [["verbose", "v"], ["quiet", "q"]]
+
+
+def test_tcs_server_optional_parameters_with_defaults() -> None:
+    unit = unit_of("tcs_server.gpl")
+    register = proc(unit, "Register")
+    assert [(p.name, p.optional) for p in register.params] == [("name", False), ("proc", True)]
+    assert isinstance(register.params[1].default, ast.StringLiteral) and register.params[1].default.value == ""
+    make = proc(unit, "MakeReply")  # its parameter list is continued over two lines
+    assert [p.optional for p in make.params] == [False, True, True]
+    assert isinstance(make.params[2].default, ast.BooleanLiteral) and make.params[2].default.value is False
+    assert make.params[2].span.line == make.span.line + 1
+    calls = [i for i in nodes(unit, ast.Invoke) if isinstance(i.target, ast.Name) and i.target.name == "Register"]
+    assert sorted(len(c.args) for c in calls) == [1, 1, 2, 2]
+
+
+def test_tcs_server_delegates_and_threads_from_strings() -> None:
+    unit = unit_of("tcs_server.gpl")
+    [delegate] = nodes(unit, ast.DelegateDecl)
+    assert delegate.kind == "Function" and [p.array_rank for p in delegate.params] == [1, 0]
+    register = proc(unit, "Register")
+    [made] = [n for n in nodes(register, ast.New) if n.type.name == "CmdHandler"]
+    [arg] = made.args or []
+    assert isinstance(arg, ast.Name) and arg.name == "proc"  # a procedure name held in a String
+    [default_name] = [a.value for a in nodes(register, ast.Assign)
+                      if isinstance(a.target, ast.Name) and a.target.name == "proc"]
+    assert isinstance(default_name, ast.Binary) and default_name.op == "&"
+    assert isinstance(default_name.left, ast.StringLiteral) and default_name.left.value == "TcsServer.Cmd_"
+    [thread] = [n for n in nodes(proc(unit, "Main"), ast.New) if n.type.name == "Thread"]
+    assert isinstance(thread.args[0], ast.StringLiteral) and thread.args[0].value == "TcsServer.Listen"
+    # g_handlers(ii)(args, reply): index the table, then invoke the delegate
+    [invoke] = [i for i in nodes(proc(unit, "Execute"), ast.Invoke) if isinstance(i.target, ast.Invoke)]
+    table = invoke.target.target
+    assert isinstance(table, ast.Name) and table.name == "g_handlers"
+    assert [type(a).__name__ for a in invoke.args] == ["Name", "Name"]
+
+
+def test_tcs_server_twenty_line_continued_help_text() -> None:
+    help_proc = proc(unit_of("tcs_server.gpl"), "Cmd_Help")
+    [assign] = [a for a in nodes(help_proc, ast.Assign) if isinstance(a.target, ast.Name)]
+    assert assign.span.end_line - assign.span.line + 1 == 20
+    pieces = [s.value for s in walk(assign.value) if isinstance(s, ast.StringLiteral)]
+    assert pieces[0] == "TcsServer commands:" and pieces[-1] == "; commands: " and len(pieces) == 18
+    assert nodes(assign.value, ast.Invoke)[-1].span.line == assign.span.end_line  # CStr(g_count)
