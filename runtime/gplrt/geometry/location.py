@@ -43,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gplrt.geometry import transforms as tf
-from gplrt.geometry._checks import finite, in_range, not_nothing, to_integer
+from gplrt.geometry._checks import boolean, finite, in_range, text, to_integer, wrong_object
 from gplrt.geometry.kinematics_provider import get_kinematics_provider
 from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
 from gplrt.lang.errors import (
@@ -111,7 +111,7 @@ class Location:
         """An Angles Location holding ``values`` (axis 1 first)."""
         loc = object.__new__(cls)
         loc._type = ANGLES
-        loc._angles = tuple(float(v) for v in values)
+        loc._angles = tuple(finite(v, "axis value") for v in values)
         if len(loc._angles) > MAX_AXES:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"{len(loc._angles)} axes, at most {MAX_AXES}")
         return loc
@@ -224,7 +224,7 @@ class Location:
 
     @ZWorld.setter
     def ZWorld(self, value: Boolean) -> None:
-        self._zworld = bool(value)
+        self._zworld = boolean(value)
 
     @property
     def Text(self) -> String:
@@ -233,7 +233,7 @@ class Location:
 
     @Text.setter
     def Text(self, value: String) -> None:
-        self._text = str(value)
+        self._text = text(value)
 
     @property
     def RefFrame(self) -> RefFrame | None:
@@ -243,6 +243,8 @@ class Location:
     @RefFrame.setter
     def RefFrame(self, value: RefFrame | None) -> None:
         if value is not None:
+            if not isinstance(value, RefFrame):
+                raise wrong_object(value, "Location.RefFrame", "RefFrame")
             self._need_cartesian("RefFrame")
         self._ref = value
 
@@ -414,7 +416,8 @@ class Location:
 
     @Pos.setter
     def Pos(self, value: Location) -> None:
-        not_nothing(value, "Pos value")
+        if not isinstance(value, Location):
+            raise wrong_object(value, "Pos value", "Location")
         if self._type == CARTESIAN:
             if value._type != CARTESIAN:
                 raise GplException(NOT_CARTESIAN, detail="Pos of a Cartesian Location set from an Angles one")
@@ -442,7 +445,8 @@ class Location:
     @PosWrtRef.setter
     def PosWrtRef(self, value: Location) -> None:
         self._need_cartesian("PosWrtRef")
-        not_nothing(value, "PosWrtRef value")
+        if not isinstance(value, Location):
+            raise wrong_object(value, "PosWrtRef value", "Location")
         if value._type != CARTESIAN:
             raise GplException(NOT_CARTESIAN, detail="PosWrtRef set from an Angles Location")
         self._pose = value._total_pose(0)
@@ -457,8 +461,8 @@ class Location:
         """
         if self._type != CARTESIAN:
             raise GplException(NOT_CARTESIAN, detail="Mul of an Angles Location")
-        if Location2 is None:
-            raise GplException(NOTHING_VALUE, detail="Mul argument is Nothing")
+        if not isinstance(Location2, Location):
+            raise wrong_object(Location2, "Mul argument", "Location")
         if Location2._type != CARTESIAN:
             raise GplException(NOT_CARTESIAN, detail="Mul argument is an Angles Location")
         b = Location2._pose if Location2._ref is None else Location2._total_pose(0)
@@ -489,8 +493,9 @@ class Location:
     @staticmethod
     def Distance(Location1: Location, Location2: Location) -> Double:
         """Shared: distance in mm between the XYZ of the total positions of two Cartesian Locations."""
-        not_nothing(Location1, "Distance argument 1")
-        not_nothing(Location2, "Distance argument 2")
+        for i, arg in enumerate((Location1, Location2), start=1):
+            if not isinstance(arg, Location):
+                raise wrong_object(arg, f"Distance argument {i}", "Location")
         a = Location1.total_pose()
         b = Location2.total_pose()
         return math.sqrt((a[9] - b[9]) ** 2 + (a[10] - b[10]) ** 2 + (a[11] - b[11]) ** 2)  # type: ignore[return-value]
@@ -507,8 +512,9 @@ class Location:
 
     def Here3(self, Location0: Location, LocationX: Location, LocationXY: Location) -> None:
         """Set the total position from three points: origin, a point on +X, a point in the X-Y plane."""
-        for i, p in enumerate((Location0, LocationX, LocationXY)):
-            not_nothing(p, f"Here3 argument {i + 1}")
+        for i, p in enumerate((Location0, LocationX, LocationXY), start=1):
+            if not isinstance(p, Location):
+                raise wrong_object(p, f"Here3 argument {i}", "Location")
         self._need_cartesian("Here3")
         o, px, pxy = (p.total_pose()[9:] for p in (Location0, LocationX, LocationXY))
         xv = [px[i] - o[i] for i in range(3)]
@@ -546,6 +552,8 @@ class Location:
         provider = get_kinematics_provider()
         if self._type == ANGLES:
             return provider.forward(self)
+        if Current is not None and not isinstance(Current, Location):
+            raise wrong_object(Current, "KineSol reference", "Location")
         if Current is not None and Current._type != ANGLES:
             raise GplException(NOT_ANGLES, detail="KineSol reference must be an Angles Location")
         return provider.inverse(self, self._config, Current)

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from gplrt.geometry import location as _location_module
 from gplrt.geometry import transforms as tf
-from gplrt.geometry._checks import finite, in_range, not_nothing, to_integer
+from gplrt.geometry._checks import finite, in_range, not_nothing, text, to_integer, wrong_object
 from gplrt.geometry.location import CARTESIAN, MAX_FRAME_DEPTH, Location
 from gplrt.geometry.transforms import IDENTITY, Pose
 from gplrt.lang.errors import FRAME_UNDEFINED_DATA, FRAME_WRONG_TYPE, NOT_CARTESIAN, UNDEFINED_ROBOT, GplException
@@ -122,6 +122,8 @@ class RefFrame:
 
     @Loc.setter
     def Loc(self, value: Location | None) -> None:
+        if value is not None and not isinstance(value, Location):
+            raise wrong_object(value, "RefFrame.Loc", "Location")
         if value is not None and value._type != CARTESIAN:
             raise GplException(NOT_CARTESIAN, detail="RefFrame.Loc must be a Cartesian Location")
         self._loc = value
@@ -133,7 +135,7 @@ class RefFrame:
 
     @Text.setter
     def Text(self, value: String) -> None:
-        self._text = str(value)
+        self._text = text(value)
 
     def Pos(self) -> Location:
         """The frame's total (absolute) position as a new Cartesian Location."""
@@ -266,7 +268,7 @@ class RefFrame:
     def set_encoder(self, counts: float) -> None:
         """Python side: set the encoder count of this frame's conveyor (the simulation's hook)."""
         self._need_conveyor("set_encoder")
-        self._conveyor().encoder = float(counts)
+        self._conveyor().encoder = finite(counts, "encoder")
 
     def _conveyor(self) -> Conveyor:
         return get_conveyor(self._conveyor_robot)
