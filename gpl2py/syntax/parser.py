@@ -22,6 +22,9 @@ Grammar decisions beyond the spec's EBNF (spec §3), each an extension that real
 * ``Optional`` parameters with defaults are accepted; ``ParamArray`` is reported.
 * ``Throw`` without an operand parses (``value=None``); semantics decides.
 * ``Exit Property`` is accepted (AMB-34).
+* ``Property Name() As T`` (an empty parameter list, the usual VB spelling) is accepted like
+  ``Property Name As T``: the manual omits the parentheses, but they are optional on every other
+  parameterless declaration (spec §3.3) and say nothing different here.  A non-empty list is reported.
 * A ``Class`` at the top level of a file is accepted (AMB-1).
 * ``ReDim Preserve`` and ``IsNot`` are parsed and reported as not supported in GPL (spec §15); VB
   statements (``GoSub``, ``With``, ``On Error``, ``Enum`` …) get a "not supported in GPL" diagnostic
@@ -855,8 +858,12 @@ class Parser:
         name_tok = self.ident("a property name")
         name = name_tok.text if name_tok else ""
         if self.tok.kind is K.LPAREN:
-            self.error(M.PARSE_UNSUPPORTED, self.tok, what="a property with parameters", hint="")
-            self.params()
+            if self.peek().kind is K.RPAREN:  # 'Property Name() As T': an empty list, as on Subs
+                self.next()
+                self.next()
+            else:
+                self.error(M.PARSE_UNSUPPORTED, self.tok, what="a property with parameters", hint="")
+                self.params()
         type_: A.TypeRef | None = None
         if self.tok.kind is K.AS:
             self.next()

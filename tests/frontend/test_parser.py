@@ -488,6 +488,35 @@ End Module
     assert bare.getter is None and bare.setter is not None and bare.setter.param is None
 
 
+def test_property_with_empty_parentheses_is_a_plain_property() -> None:
+    unit, sink = parse_text(
+        """
+Module M
+Public Class Cell
+    Private name_in As String
+    Public Property Name() As String
+        Get()
+            Return name_in
+        End Get
+        Set(ByVal value As String)
+            name_in = value
+        End Set
+    End Property
+    Public Property Item(ByVal i As Integer) As String
+        Get
+            Return name_in
+        End Get
+    End Property
+End Class
+End Module
+"""
+    )
+    assert [(d.span.line, d.span.col, d.code) for d in sink] == [(13, 25, "GPL1103")]  # only Item(i)
+    name = unit.members[0].members[0].members[1]  # type: ignore[attr-defined]
+    assert isinstance(name, A.PropertyDecl) and name.name == "Name" and name.type.name == "String"  # type: ignore[union-attr]
+    assert name.getter is not None and name.setter is not None and name.setter.param.name == "value"  # type: ignore[union-attr]
+
+
 def test_declaration_errors() -> None:
     # E07 (no type), several names with New, array initialiser, rank 5
     out, sink = body(
