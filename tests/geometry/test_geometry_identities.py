@@ -116,10 +116,10 @@ def test_inverse_of_product_is_product_of_inverses(data) -> None:  # type: ignor
 
 
 def test_pos_through_a_three_frame_chain_is_the_product(data) -> None:  # type: ignore[no-untyped-def]
-    """loc -> f1 -> f2 -> f3: Pos = T(f3.Loc)·T(f2.Loc)·T(f1.Loc)·PosWrtRef(loc)."""
+    """loc -> f1 -> f2 -> f3: Pos = T(f3.Loc)·T(f2.Loc)·T(f1.Loc)·PosWrtRef(loc), on N chains."""
     va, vb, _, _ = data
     rng = np.random.default_rng(7)
-    n = 2_000
+    n = N
     v3, v2, v1, v0 = va[:n], vb[:n], _random_xyzypr(rng, n), _random_xyzypr(rng, n)
     got = []
     for r3, r2, r1, r0 in zip(v3.tolist(), v2.tolist(), v1.tolist(), v0.tolist()):
@@ -170,3 +170,54 @@ def test_distance_matches_numpy(data) -> None:  # type: ignore[no-untyped-def]
     got = np.array([Location.Distance(a, b) for a, b in zip(la, lb)])
     want = np.linalg.norm(va[:, :3] - vb[:, :3], axis=1)
     assert np.max(np.abs(got - want)) <= TOL
+
+
+# -- the singular pitches 0 and 180, on their own -------------------------------------------------------
+
+
+def _singular_xyzypr(rng: np.random.Generator, n: int) -> NDArray[np.float64]:
+    v = _random_xyzypr(rng, n)
+    v[:, 4] = rng.choice([0.0, 180.0], size=n)
+    return v
+
+
+def _matrix_of_readback(loc: Location) -> NDArray[np.float64]:
+    """The transform the six values read from ``loc`` describe (rebuilt by the oracle)."""
+    return _oracle_matrices(np.array([[loc.X, loc.Y, loc.Z, loc.Yaw, loc.Pitch, loc.Roll]]))[0]
+
+
+def test_singular_products_and_inverses_follow_the_documented_rule() -> None:
+    """At pitch 0/180 yaw and roll are not separable: the computed result reads yaw 0, pitch exactly
+    0 or 180, and the six values it reads describe the oracle's transform to 1e-9."""
+    rng = np.random.default_rng(180)
+    n = 2_000
+    va, vb = _singular_xyzypr(rng, n), _singular_xyzypr(rng, n)
+    la, lb = _locations(va), _locations(vb)
+    ma, mb = _oracle_matrices(va), _oracle_matrices(vb)
+    cases = [(a.Mul(b), ma[i] @ mb[i]) for i, (a, b) in enumerate(zip(la, lb))]
+    cases += [(a.Inverse(), np.linalg.inv(ma[i])) for i, a in enumerate(la)]
+    for loc, want in cases:
+        assert loc.Yaw == 0.0 and loc.Pitch in (0.0, 180.0)
+        assert np.max(np.abs(_matrix_of_readback(loc) - want)) <= TOL
+    # A·A⁻¹ = I reads exactly zero orientation at a singular pose too
+    for a in la[:200]:
+        p = a.Mul(a.Inverse())
+        assert (p.Yaw, p.Pitch) == (0.0, 0.0) and abs(p.Roll) <= TOL
+        assert max(abs(p.X), abs(p.Y), abs(p.Z)) <= TOL
+
+
+def test_written_singular_angles_read_back_but_compose_as_the_matrix() -> None:
+    """Written values read back as written (issue: X..Roll round-trip), while every computation uses
+    the transform they define — so Pos through a frame at a singular pose matches the oracle."""
+    rng = np.random.default_rng(0)
+    v = _singular_xyzypr(rng, 500)
+    frames = _random_xyzypr(rng, 500)
+    for row, fr in zip(v.tolist(), frames.tolist()):
+        loc = Location()
+        loc.XYZ(*row)
+        assert [loc.X, loc.Y, loc.Z, loc.Yaw, loc.Pitch, loc.Roll] == [c + 0.0 for c in row]
+        f = RefFrame()
+        f.Loc.XYZ(*fr)
+        loc.RefFrame = f
+        want = _oracle_matrices(np.array([fr]))[0] @ _oracle_matrices(np.array([row]))[0]
+        assert np.max(np.abs(loc.matrix() - want)) <= TOL
