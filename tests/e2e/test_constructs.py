@@ -46,7 +46,7 @@ CASES: dict[str, tuple[str, str, str]] = {
         Console.WriteLine(Not 5)
         Console.WriteLine(Not 0)
         Console.WriteLine(True < False)""",
-        "-1\n0\n6\nFalse\n7\nFalse\nTrue\nTrue\n",
+        "-1\n0\n6\n0\n7\n0\n-1\n-1\n",
     ),
     "arithmetic_operators": (
         "",
@@ -76,7 +76,7 @@ CASES: dict[str, tuple[str, str, str]] = {
         Console.WriteLine(s)
         Console.WriteLine("A" < "a")
         Console.WriteLine("abc" = "ABC")""",
-        "3.35\n3.35\nabcd\n51.5True\nTrue\nFalse\n",
+        "3.35\n3.35\nabcd\n51.5-1\n-1\n0\n",
     ),
     "string_members_and_functions": (
         "",
@@ -319,7 +319,7 @@ CASES: dict[str, tuple[str, str, str]] = {
         c2 = c
         c2.count = 1
         Console.WriteLine(c.count & " " & (c2 Is c) & " " & (c2 Is Nothing) & " " & (Not c2 Is Nothing))""",
-        "anon:12\nfirst:12 two:10 made 2 15 1.5\n1 True False True\n",
+        "anon:12\nfirst:12 two:10 made 2 15 1.5\n1 -1 0 -1\n",
     ),
     "delegates": (
         """    Delegate Function BinOp(ByVal a As Integer, ByVal b As Integer) As Integer
@@ -653,4 +653,4 @@ def test_busy_wait_loop_lets_other_threads_run(tmp_path: Path) -> None:
 End Module
 """
     result = run_gpl(tmp_path, src)
-    assert result.log == "" and result.output == "flag seen True\n"
+    assert result.log == "" and result.output == "flag seen -1\n"

@@ -27,7 +27,7 @@ def test_write_and_writeline_use_cstr_rules() -> None:
         Console.WriteLine()
         for ii in range(1, 3):
             Console.WriteLine("The square of " + str(ii) + " is " + str(ii * ii))
-    assert out.text == "a50.1\nTrue\n0.333333333333333\n\nThe square of 1 is 1\nThe square of 2 is 4\n"
+    assert out.text == "a50.1\n-1\n0.333333333333333\n\nThe square of 1 is 1\nThe square of 2 is 4\n"
     assert out.lines[0] == "a50.1"
 
 

@@ -154,7 +154,8 @@ def test_concat_uses_cstr_rules() -> None:
     assert concat("a", 5) == "a5"
     assert concat("x=", 0.1) == "x=0.1"
     assert concat(1 / 3, "") == "0.333333333333333"
-    assert concat("flag ", True) == "flag True"
+    assert concat("flag ", True) == "flag -1"
+    assert concat(False, "") == "0"  # Boolean is an integer type: its text is its value
     assert concat("Joe's balance: ", 10.2) == "Joe's balance: 10.2"
     assert concat(1, 2) == "12"
 

@@ -22,8 +22,15 @@ converted (spec gpl-language.md §4.2).  The rules implemented here:
   to ``d.dddE+XX`` form when the decimal exponent is below -5 or at least 15 (the .NET "G15" rule
   the spec's recommendation describes: ``CStr(10.2)`` = "10.2", ``CStr(1/3)`` = "0.333333333333333",
   ``CStr(1E+32)`` = "1E+32").  Singles use 7 significant digits (``to_string_single``).  ``-0.0``
-  prints "0".  Booleans print "True"/"False" (VB's text; the seeds print Booleans with
-  ``Console.WriteLine`` [000 L3531] without saying how).
+  prints "0".  **Booleans print their integer value, "-1" for True and "0" for False.**  The
+  manual does not show a Boolean's text, but it does say everything needed to derive it: Boolean
+  is one of "all integer types (Boolean, Byte, Short, Integer)" [000 L157], ``CStr`` "converts
+  any numeric type to String" [000 L169], True is -1 [000 L944], and ``Console.Write`` takes
+  "one number or one String" (spec §14.7), so ``Console.WriteLine(flag)`` [000 L3531] is the
+  number overload.  The spec's recommendation for AMB-22 (integral values without a decimal
+  point) then gives "-1"/"0".  VB.NET's "True"/"False" was the earlier choice; it contradicts the
+  manual's type table, and real GPL code spells the words out itself when it wants them
+  (``If p.Straight Then s &= "True" Else s &= "False"``).
 
 Run-time representation (gpltypes): Boolean ``bool``, integer types ``int``, Single/Double
 ``float``, String ``str``.  ``bool`` is tested with ``type(x) is bool`` before ``int`` because
@@ -323,7 +330,7 @@ def to_string(x: Any) -> str:
     if t is int:
         return str(x)
     if t is bool:
-        return "True" if x else "False"
+        return "-1" if x else "0"  # an integer type: True is -1 (module docstring)
     if x is None:
         raise GplException(NOTHING_VALUE, detail="Nothing cannot be converted to a String")
     if isinstance(x, float):
