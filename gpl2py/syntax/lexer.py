@@ -27,6 +27,9 @@ Decisions documented here (the spec leaves them open):
 * A letter directly after a number (``725L``, ``1.5F``) is reported: GPL has no type suffixes.
 * A run of consecutive invalid characters (for example a non-ASCII word) is one diagnostic.
 * A byte-order mark at the very start of the file is skipped silently (columns count after it).
+* Ctrl-Z (U+001A) characters at the very end of the file are skipped silently: old DOS editors end
+  text files with this end-of-file marker, and the project loader already accepts it as text.  A
+  Ctrl-Z anywhere else is an invalid character like any other control character.
 """
 
 from __future__ import annotations
@@ -135,7 +138,10 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
 
     if text.startswith("\ufeff"):  # a UTF-8 byte-order mark from a Windows editor: not source text
         line_start = 1
-    for m in _MASTER.finditer(text, line_start):
+    stop = len(text)
+    while stop > line_start and text[stop - 1] == "\x1a":  # DOS end-of-file marker(s): not source
+        stop -= 1
+    for m in _MASTER.finditer(text, line_start, stop):
         g = m.lastindex
         if g == 1:  # word
             t = m.group(1)
@@ -275,8 +281,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
             append(Token(_K.ERROR, t, None, span))
             has_tokens = True
 
-    end = len(text)
-    col = end - line_start + 1
+    col = stop - line_start + 1
     if has_tokens or deferred:
         toks.extend(deferred)
         append(Token(NEWLINE, "", None, _span(path, line, col, col)))

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from gpl2py.diagnostics import DiagnosticSink, Severity
+from gpl2py.project import load_project
 from gpl2py.source import SourceFile
 from gpl2py.syntax.lexer import tokenize
+from gpl2py.syntax.parser import parse
 from gpl2py.syntax.tokens import Token, TokenKind as K
 
 
@@ -245,3 +249,24 @@ def test_leading_byte_order_mark_is_ignored() -> None:
     assert toks[0].kind is K.MODULE and (toks[0].line, toks[0].col) == (1, 1)
     _, sink = lex("x = 1\n\ufeffy = 2\n")  # anywhere else it is an invalid character
     assert [d.code for d in sink] == ["GPL1001"]
+
+
+def test_trailing_dos_end_of_file_marker_is_ignored() -> None:
+    toks, sink = lex("Module M\r\nEnd Module\r\n\x1a")
+    assert len(sink) == 0
+    assert [t.kind for t in toks] == [K.MODULE, K.IDENT, K.NEWLINE, K.END, K.MODULE, K.NEWLINE, K.EOF]
+    assert (toks[-1].line, toks[-1].col) == (3, 1)
+    toks, sink = lex("x = 1\x1a\x1a")  # right after the last token, without a line break
+    assert len(sink) == 0 and [t.kind for t in toks][-2:] == [K.NEWLINE, K.EOF]
+    assert toks[-2].col == 6
+    _, sink = lex("x = 1\n\x1ay = 2\n")  # anywhere else it is an invalid character
+    assert [(d.code, d.span.line, d.span.col) for d in sink] == [("GPL1001", 2, 1)]
+
+
+def test_a_file_ending_in_ctrl_z_checks_clean_through_the_project_loader(tmp_path: Path) -> None:
+    (tmp_path / "Old.gpl").write_bytes(b"Module Old\r\n    Public Sub Main()\r\n    End Sub\r\nEnd Module\r\n\x1a")
+    sink = DiagnosticSink()
+    project = load_project(tmp_path, sink)
+    assert project is not None
+    unit = parse(project.sources[0], sink)
+    assert list(sink) == [] and [m.name for m in unit.members] == ["Old"]  # type: ignore[attr-defined]
