@@ -23,12 +23,15 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.transpile import transpile as transpile_project
 from gpl2py.transpile import write_package
 from gplrt.sim import Simulation
+
+if TYPE_CHECKING:
+    from gpl2py.semantics.check import Model
 
 REPO = Path(__file__).resolve().parents[1]
 SAMPLES = REPO / "samples"
@@ -203,3 +206,39 @@ def code_of(fn: Callable[..., object], *args: object, **kwargs: object) -> int:
     with pytest.raises(GplException) as info:
         fn(*args, **kwargs)
     return info.value.ErrorCode
+
+
+def generated_main_module(tmp_path: Path, body: str, decls: str = "", name: str = "Main") -> str:
+    """The Python module gpl2py writes for ``Module <name>`` holding ``decls`` and a ``Sub Main``
+    whose statements are ``body``: what the tests of generated-code shape read.  Fails the test
+    with the diagnostics if the program is rejected."""
+    src = f"Module {name}\n{decls}\n    Public Sub Main()\n{body}\n    End Sub\nEnd Module\n"
+    f = tmp_path / f"{name}.gpl"
+    f.write_text(src)
+    sink = DiagnosticSink()
+    out = transpile_project(str(f), sink)
+    assert out is not None, [d.header() for d in sink.sorted()]
+    return next(v for k, v in out.files.items() if k.endswith(".py") and "__" not in k)
+
+
+def main_body(text: str) -> str:
+    """The body of ``def Main()`` in a generated module (up to the next top-level definition)."""
+    return text.split("def Main() -> None:\n", 1)[1].split("\n\n\n", 1)[0]
+
+
+def analyze_text(tmp_path: Path, text: str, start: str | None = None) -> tuple[Model, DiagnosticSink]:
+    """Parse ``text`` as the one file of a project and run the semantic pass on it: the model and
+    every diagnostic, for tests of name resolution and typing.  Syntax errors fail the test."""
+    from gpl2py.project import load_project
+    from gpl2py.semantics.catalogue import load_catalogue
+    from gpl2py.semantics.check import analyze
+    from gpl2py.syntax.parser import parse
+
+    f = tmp_path / "Main.gpl"
+    f.write_text(text)
+    sink = DiagnosticSink()
+    project = load_project(f, sink)
+    assert project is not None
+    units = [parse(s, sink) for s in project.sources]
+    assert not sink.has_errors(), [d.header() for d in sink]
+    return analyze(units, sink, load_catalogue(), "P", start), sink

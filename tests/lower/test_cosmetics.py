@@ -6,7 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from gpltest import run_gpl
-from test_generated_code import gen, main_body
+from gpltest import generated_main_module as gen
+from gpltest import main_body
 
 SCALE = """Module Main
     Public total As Double

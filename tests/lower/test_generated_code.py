@@ -17,22 +17,10 @@ import pycodestyle
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.wrap import wrap
 from gpl2py.transpile import transpile
+from gpltest import generated_main_module as gen
+from gpltest import main_body
 
 REPO = Path(__file__).resolve().parents[2]
-
-
-def gen(tmp_path: Path, body: str, decls: str = "", name: str = "Main") -> str:
-    src = f"Module {name}\n{decls}\n    Public Sub Main()\n{body}\n    End Sub\nEnd Module\n"
-    f = tmp_path / f"{name}.gpl"
-    f.write_text(src)
-    sink = DiagnosticSink()
-    out = transpile(str(f), sink)
-    assert out is not None, [d.header() for d in sink.sorted()]
-    return next(v for k, v in out.files.items() if k.endswith(".py") and "__" not in k)
-
-
-def main_body(text: str) -> str:
-    return text.split("def Main() -> None:\n", 1)[1].split("\n\n\n", 1)[0]
 
 
 def test_typed_arithmetic_is_plain_python(tmp_path: Path) -> None:

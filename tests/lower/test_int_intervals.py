@@ -10,7 +10,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from gpltest import module_src, run_gpl
-from test_generated_code import gen, main_body
+from gpltest import generated_main_module as gen
+from gpltest import main_body
 
 
 def test_bounded_expressions_need_no_check(tmp_path: Path) -> None:

@@ -11,7 +11,7 @@ from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import build_catalogue, load_catalogue
 from gplrt.lang.arrays import GplArray
 from gplrt.lang.gpltypes import Integer, String
-from test_errors import analyze_text
+from gpltest import analyze_text
 
 
 class Gadget:

@@ -5,10 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.project import load_project
-from gpl2py.semantics.catalogue import load_catalogue
-from gpl2py.semantics.check import Model, analyze
-from gpl2py.syntax.parser import parse
+from gpltest import analyze_text
 
 TEN_ERRORS = """Module Main
     Public Sub Helper(ByVal a As Integer, ByVal b As Integer)
@@ -51,17 +48,6 @@ EXPECTED = [
     (21, 9, "GPL2017"),  # unknown label
     (22, 13, "GPL2010"),  # Private member of another module
 ]
-
-
-def analyze_text(tmp_path: Path, text: str, start: str | None = None) -> tuple[Model, DiagnosticSink]:
-    f = tmp_path / "Main.gpl"
-    f.write_text(text)
-    sink = DiagnosticSink()
-    project = load_project(f, sink)
-    assert project is not None
-    units = [parse(s, sink) for s in project.sources]
-    assert not sink.has_errors(), [d.header() for d in sink]
-    return analyze(units, sink, load_catalogue(), "P", start), sink
 
 
 def test_ten_semantic_errors_ten_diagnostics_with_positions(tmp_path: Path) -> None:
