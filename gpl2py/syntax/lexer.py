@@ -19,7 +19,9 @@ Decisions documented here (the spec leaves them open):
 * **Comment after a continuation** (`` _ ' note``): VB forbids it and the spec recommends an error, but
   real exported GPL code contains it.  We accept it with warning GPL1005 and keep the comment: it is
   emitted just before the ``NEWLINE`` of the logical line, i.e. it becomes part of the statement's
-  trailing comment.
+  trailing comment.  The warning is given once per logical line, at its first such comment: vendor
+  code annotates long continued expressions line by line, and a hundred identical warnings for one
+  statement would bury everything else.
 * A `` _`` must be preceded by a blank (spec §1.3); ``x_`` is an identifier and ``)_`` is an error.
 * ``&H``/``&O`` literals are lexed greedily (spec §1.9), so ``String &HEAD`` is ``String`` followed by
   the hex literal ``&HEAD``.  Values are 32-bit two's complement (``&HFFFFFFFF`` = -1, AMB-36).
@@ -243,7 +245,8 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
             if cc is not None:
                 ccol = m.start("CC") - line_start + 1
                 cspan = _span(path, line, ccol, ccol + len(cc))
-                sink.report(M.LEX_COMMENT_AFTER_CONTINUATION, cspan)
+                if not deferred:  # one warning per statement, however many lines it comments
+                    sink.report(M.LEX_COMMENT_AFTER_CONTINUATION, cspan)
                 deferred.append(Token(_K.COMMENT, cc, cc[1:], cspan))
             line += 1
             line_start = m.end()

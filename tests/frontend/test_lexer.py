@@ -194,6 +194,17 @@ def test_comment_after_continuation_is_a_warning_and_kept() -> None:
     assert [t.kind for t in toks][-4:] == [K.COMMENT, K.COMMENT, K.NEWLINE, K.EOF]
 
 
+def test_comments_after_many_continuations_warn_once_per_statement() -> None:
+    lines = ['s = "a" _ \' first part'] + [f'    & "x{i}" _ \' part {i}' for i in range(200)] + ['    & "end"']
+    lines += ["t = 1 + _ ' again", "    2", "u = _", "    3 ' not after a continuation"]
+    toks, sink = lex("\n".join(lines) + "\n")
+    assert [(d.code, d.span.line) for d in sink] == [("GPL1005", 1), ("GPL1005", 203)]
+    comments = [t.value for t in toks if t.kind is K.COMMENT]
+    assert comments[:2] == [" first part", " part 0"] and comments[200] == " part 199"
+    assert comments[201:] == [" again", " not after a continuation"]  # every comment is kept
+    assert [t.kind for t in toks].count(K.NEWLINE) == 3
+
+
 def test_labels_lex_as_name_or_number_then_colon() -> None:
     toks, _ = lex("retry:\n    _exit: x = 1\n100: GoTo 100\n")
     assert [(t.kind, t.text) for t in toks[:2]] == [(K.IDENT, "retry"), (K.COLON, ":")]
