@@ -18,8 +18,16 @@ Decisions where the manuals are silent (documented per the team rules):
   ``loc.Pitch = 90`` builds Rz(30)·Ry(90), as a program writing the angles one by one intends.
   Poses produced by arithmetic (Mul, Inverse, Pos through frames, ...) are decomposed with the
   rule in ``transforms`` (pitch in [0, 180]; at pitch 0/180 yaw = 0 and the rotation is in roll).
-* ``Angle(i)``: axes are numbered 1..12 (``MAX_AXES``); other numbers -> -707.  Axes never set
-  read 0.
+  This departs on purpose from gpl-classes.md §22.1 item 2, which proposes decomposing on every
+  read (so ``XYZ(0,0,0,30,0,60)`` would read yaw 0, roll 90): the issue asks that written values
+  read back, the manual (D0:1996-2013) only says the pose is *stored* as a matrix and is silent on
+  read-back, and the cached triple always describes exactly the stored matrix, so no computation
+  can tell the difference.  Only the singular pitches 0/180 (and a written pitch outside [0, 180])
+  read differently from a decomposition; tests/geometry pins both behaviours.
+* ``Angle(i)``: axes are numbered 1..12 (``MAX_AXES``); other numbers -> -707 *Value
+  out-of-range*, like ``Latch.Angle``.  Not -1002 *Invalid axis number*: that code reports an axis
+  a *robot* lacks (``Move.OneAxis``), while a Location belongs to no robot and always has room for
+  12 values.  Axes never set read 0.
 * ``Mul`` copies every property but the pose from the left operand (like ``Inverse``, whose page
   says "all other properties copied"); the Mul page only fixes PosWrtRef and RefFrame.
 * ``Pos`` (get) returns a new Location holding the total pose, RefFrame Nothing, other properties
