@@ -1,10 +1,9 @@
 """The ``gpl2py`` command: argument parsing, running one subcommand, printing diagnostics, exit codes.
 
 Structure: every subcommand is a :class:`Command` (its name, help, how it adds its arguments, and the
-function that runs it) in ``COMMANDS``.  Adding ``gpl2py run PROJECT`` later means appending one
-``Command``.  The bare form ``gpl2py PROJECT -o OUT`` is anticipated by :func:`_route`: when the
-first argument is not a known command, it is handed to the command marked ``default=True`` (none is
-marked yet, so today such input is a usage error naming the known commands).
+function that runs it) in ``COMMANDS``.  The bare form ``gpl2py PROJECT -o OUT`` is handled by
+:func:`_route`: when the first argument is not a known command, it is handed to the command marked
+``default=True`` (``translate``).
 
 Output contract:
 
@@ -98,8 +97,7 @@ def _configure_check(parser: argparse.ArgumentParser) -> None:
         help="a project folder (with or without Project.gpr), a Project.gpr file, "
         "or a single .gpl/.gpo file",
     )
-    parser.add_argument("--strict", action="store_true",
-                        help="report names that would need stubs (GPL3501, GPL3502) as errors")
+    add_stub_options(parser)
 
 
 def _run_check(args: argparse.Namespace) -> Outcome:
@@ -107,7 +105,10 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     porting engineer wants to know), collecting all diagnostics in one run.  Nothing is written.
 
     Names that only protected (.gpp) files define are reported as stub warnings, as the
-    translation would (GPL3501); ``--strict`` makes them errors."""
+    translation would (GPL3501); ``--strict`` makes them errors.  ``--stubs DIR`` is read as
+    ``translate`` and ``run`` read it, so a folder or file they would refuse (GPL3503) is
+    reported here too: the three commands take the same stub options."""
+    from gpl2py.lower.user_stubs import load_user_stubs
     from gpl2py.semantics.catalogue import load_catalogue
     from gpl2py.semantics.check import analyze
 
@@ -116,6 +117,8 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     if project is None:
         return out
     _remember(out, project)
+    if args.stubs is not None:
+        load_user_stubs(args.stubs, out.sink)
     incomplete = out.sink.has_errors()  # a source could not be loaded: it may declare the start
     units = []
     for source in project.sources:
@@ -164,14 +167,14 @@ def _configure_transpile(parser: argparse.ArgumentParser) -> None:
 
 
 def add_stub_options(parser: argparse.ArgumentParser) -> None:
-    """--stubs and --strict (translate and run): see README "Porting your own project"."""
+    """--stubs and --strict (check, translate and run): see README "Porting your own project"."""
     parser.add_argument("--stubs", metavar="DIR", default=None,
                         help="folder of Python files implementing stubs for protected code or "
                         "missing built-in members (Module.Proc -> DIR/module.py, function Proc); "
                         "they are copied into the package")
     parser.add_argument("--strict", action="store_true",
-                        help="report every stub (GPL3501, GPL3502) as an error: nothing is written, "
-                        "exit status 1")
+                        help="report every stub (GPL3501, GPL3502) as an error: nothing is written "
+                        "or run, exit status 1")
 
 
 def _run_transpile(args: argparse.Namespace) -> Outcome:

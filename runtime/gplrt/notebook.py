@@ -111,13 +111,16 @@ class Cell:
         echo: bool = True,
         cache_dir: str | Path | None = None,
         rebuild: bool = False,
+        stubs: str | Path | None = None,
     ) -> Cell:
         """Translate ``project`` (through the cache), import it and make its Simulation.
 
         ``robot`` is any name of ``gplrt.controller.pdb.model_names()``; ``flash`` is the folder
         that holds the controller's disks (``flash/`` in it is ``/flash``); ``io`` an ``IoMap``
-        prepared beforehand (or use ``cell.io`` afterwards).  Raises :class:`ProjectError` when the
-        project has errors.
+        prepared beforehand (or use ``cell.io`` afterwards); ``stubs`` the folder of Python
+        implementations for protected code, as ``gpl2py run --stubs DIR`` takes it (the same
+        project is ported in a notebook and on the command line with the same stubs).  Raises
+        :class:`ProjectError` when the project has errors.
         """
         from gplrt.controller.pdb import default_database
 
@@ -127,7 +130,7 @@ class Cell:
         from gpl2py.run import build, import_built
 
         sink = DiagnosticSink()
-        built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild)
+        built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild, stubs_dir=stubs)
         files = {f.path: f for f in built.project.files()} if built is not None else {}
         rendered = [d.render(files.get(d.span.file) if d.span else None) for d in sink.sorted()]
         if built is None:

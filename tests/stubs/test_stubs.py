@@ -301,3 +301,55 @@ def test_stub_modules_are_clean_python(tmp_path: Path) -> None:
         for f in generated:
             warnings = io.StringIO()
             assert pyflakes_check(f.read_text(), str(f), Reporter(warnings, warnings)) == 0, warnings.getvalue()
+
+
+def _check(*args: str) -> tuple[int, str]:
+    import contextlib
+    import io
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        status = cli_main(["check", *args])
+    return status, err.getvalue()
+
+
+def test_check_takes_the_same_stub_options_as_translate_and_run(tmp_path: Path) -> None:
+    proj = _project(tmp_path)
+    good = tmp_path / "good"
+    good.mkdir()
+    (good / "vendorlib.py").write_text("def Grip(w):\n    return w\n")
+    status, err = _check(str(proj), "--stubs", str(good))
+    assert status == 0, err
+    assert err.splitlines()[-1] == "checked 1 file: 0 errors, 6 warnings"
+    status, err = _check(str(proj), "--stubs", str(tmp_path / "nowhere"))
+    assert status == 1 and "error GPL3503: --stubs" in err and "no such folder" in err
+    broken = tmp_path / "broken"
+    broken.mkdir()
+    (broken / "vendorlib.py").write_text("def Grip(w)\n    return w\n")  # a missing colon
+    status, err = _check(str(proj), "--stubs", str(broken))
+    assert status == 1 and "error GPL3503" in err and "vendorlib.py" in err
+    status, err = _check(str(proj), "--stubs", str(good), "--strict")
+    assert status == 1 and "error GPL3501: 'VendorLib.Grip'" in err
+
+
+def test_notebook_cell_loads_a_protected_project_with_user_stubs(tmp_path: Path) -> None:
+    from gplrt.lang.errors import GplException
+    from gplrt.notebook import Cell
+
+    stubs = tmp_path / "s"
+    stubs.mkdir()
+    (stubs / "vendorlib.py").write_text("def Grip(width):\n    return width * 10\n")
+    proj = _project(tmp_path / "p")
+    cell = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache", stubs=stubs)
+    provided = {s["name"]: s["provided"] for s in cell.package.PROJECT["stubs"]}
+    assert provided["VendorLib.Grip"] and not provided["VendorLib.Release"]
+    cell.init()
+    cell.module("Main").Mode = 1
+    cell.call("Main.Start")
+    assert cell.console == "start\ngrip 31\nspeed 42\ndone\n"
+    cell.module("Main").Mode = 3
+    with pytest.raises(GplException) as info:
+        cell.call("Main.Start")
+    assert info.value.ErrorCode == -204 and "VendorLib.Release" in str(info.value)
+    plain = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache")  # no --stubs: its own entry
+    assert not any(s["provided"] for s in plain.package.PROJECT["stubs"])
