@@ -279,3 +279,60 @@ def test_conveyor_errors(belt: Conveyor) -> None:
     part = Location()
     part.RefFrame = rf
     assert _code(part.ConveyorLimit, 2) == -707
+
+
+def test_a_running_belt_moves_with_its_clock() -> None:
+    """counts_per_second: the encoder runs with the clock; set_encoder rebases, the belt goes on."""
+    t = [10.0]
+    c = Conveyor(mm_per_count=0.5, counts_per_second=200.0, clock=lambda: t[0])
+    register_conveyor(5, c)
+    try:
+        rf = RefFrame()
+        rf.Type = 2
+        rf.ConveyorRobot = 5
+        part = Location()
+        part.RefFrame = rf
+        rf.set_encoder(0)  # belt at its zero position at t = 10 s
+        assert part.Pos.X == 0.0
+        t[0] = 12.5  # 2.5 s x 200 counts/s x 0.5 mm = 250 mm
+        assert part.Pos.X == 250.0
+        c.advance(100)  # a hand-made jump of 50 mm on top
+        assert part.Pos.X == 300.0
+        rf.ConveyorOffset = 600  # the zero position is 600 counts = 300 mm downstream
+        assert part.Pos.X == 0.0
+    finally:
+        register_conveyor(5, None)
+
+
+def test_a_running_belt_follows_the_simulation_virtual_clock() -> None:
+    """Without an explicit clock the belt runs on the controller's (virtual) time."""
+    from gplrt.sim import Simulation
+
+    c = Conveyor(mm_per_count=0.01, counts_per_second=10_000.0)  # 100 mm/s
+    register_conveyor(6, c)
+    try:
+        with Simulation() as sim:
+            rf = RefFrame()
+            rf.Type = 2
+            rf.ConveyorRobot = 6
+            rf.set_encoder(0)
+            start = sim.now()
+            sim.run_for(1.5)
+            assert sim.now() - start == pytest.approx(1.5)
+            assert rf.Pos().X == pytest.approx(150.0, abs=1e-9)
+    finally:
+        register_conveyor(6, None)
+
+
+def test_a_conveyor_frame_relative_to_another_frame_is_791(belt: Conveyor) -> None:
+    """D0:2521-2524: conveyor frames cannot be defined relative to another frame (-791)."""
+    rf = _conveyor_frame()
+    part = Location()
+    part.RefFrame = rf
+    rf.Loc.RefFrame = RefFrame()
+    assert _code(rf.Pos) == -791
+    assert _code(lambda: part.Pos) == -791
+    assert _code(part.ConveyorLimit) == -791
+    rf.Loc.RefFrame = None
+    p = rf.Pos()  # encoder 0, offset 1000: 10 mm upstream along the belt's X = world -Y
+    assert (p.X, p.Y, p.Z) == pytest.approx((500.0, -210.0, 10.0), abs=1e-12)

@@ -11,9 +11,14 @@ Spec: gpl-classes.md §8, §22.1 items 7 and 9; gpl-dictionary.md §2 (Brooks pa
   ``PalletNextPos`` steps in ``PalletOrder`` (the first-named index varies fastest) and wraps to
   (1,1,1) after the last cell (D0:2459-2461).
 * Conveyor: the belt is modelled Python-side by a ``Conveyor`` registered per conveyor robot
-  number (the simulation advances its encoder).  Pos = nominal · Trans(belt travel, 0, 0) with
-  belt travel = (encoder - ConveyorOffset) · mm_per_count: X points along the belt (D0:2505-2509).
-  ``Loc`` is not used (D0:2521-2524).
+  number.  Pos = nominal · Trans(belt travel, 0, 0) with belt travel = (encoder count -
+  ConveyorOffset) · mm_per_count: X points along the belt (D0:2505-2509).  The count moves when
+  Python sets or advances it, and, for a belt given ``counts_per_second``, with the controller's
+  clock (virtual time in a simulation), so a GPL tracking loop sees the belt run.
+  ``Loc`` is not used: "conveyor reference frames cannot be defined with respect to any other
+  reference frame" (D0:2521-2524), so a conveyor frame whose ``Loc.RefFrame`` is set is the
+  controller's -791 *Conveyor must be base RefFrame* when its position is needed (checked on use:
+  a Location cannot know that it is a conveyor frame's Loc when its RefFrame is assigned).
 
 Decisions where the manuals are silent: a new pallet has MaxIndex 1 (a single cell) and Pitch 0 in
 every dimension; lowering a MaxIndex below the current index resets that index to 1; a dimension
@@ -26,7 +31,8 @@ with no registered Conveyor is -1001 *Undefined robot*.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 from gplrt.geometry import location as _location_module
 from gplrt.geometry import transforms as tf
@@ -56,8 +62,11 @@ class Conveyor:
     """A conveyor belt as the simulation sees it ("encoder only" robot, D0:2817-2818).
 
     ``nominal`` is the belt's nominal transformation in world coordinates (X along travel);
-    ``encoder`` the current encoder count, which the simulation advances; ``upstream_limit`` and
-    ``downstream_limit`` bound, in mm along the nominal X axis, where the robot may track the belt.
+    ``upstream_limit`` and ``downstream_limit`` bound, in mm along the nominal X axis, where the
+    robot may track the belt.  The encoder count is ``encoder + counts_per_second · clock()``:
+    a stopped belt (``counts_per_second`` 0, the default) reads ``encoder`` and never consults a
+    clock; a running one moves with ``clock`` (default: the controller's clock, virtual time in a
+    simulation).  ``set_count``/``advance`` move it by hand (a setup file, a test, a latch).
     """
 
     nominal: Pose = IDENTITY
@@ -65,6 +74,25 @@ class Conveyor:
     encoder: float = 0.0
     upstream_limit: float = -math.inf
     downstream_limit: float = math.inf
+    counts_per_second: float = 0.0
+    clock: Callable[[], float] | None = field(default=None, repr=False)
+
+    def _now(self) -> float:
+        if self.clock is not None:
+            return self.clock()
+        from gplrt.controller.clock import now  # the controller imports geometry: import on use
+
+        return now()
+
+    def count(self) -> float:
+        """The encoder count now."""
+        rate = self.counts_per_second
+        return self.encoder if rate == 0.0 else self.encoder + rate * self._now()
+
+    def set_count(self, counts: float) -> None:
+        """Make the encoder read ``counts`` now (a running belt goes on from there)."""
+        rate = self.counts_per_second
+        self.encoder = counts if rate == 0.0 else counts - rate * self._now()
 
     def advance(self, counts: float) -> None:
         """Move the belt by ``counts`` encoder counts."""
@@ -268,14 +296,14 @@ class RefFrame:
     def set_encoder(self, counts: float) -> None:
         """Python side: set the encoder count of this frame's conveyor (the simulation's hook)."""
         self._need_conveyor("set_encoder")
-        self._conveyor().encoder = finite(counts, "encoder")
+        self._conveyor().set_count(finite(counts, "encoder"))
 
     def _conveyor(self) -> Conveyor:
         return get_conveyor(self._conveyor_robot)
 
     def _belt_travel(self) -> float:
         c = self._conveyor()
-        return (c.encoder - self._conveyor_offset) * c.mm_per_count
+        return (c.count() - self._conveyor_offset) * c.mm_per_count
 
     def _conveyor_limit(self, loc: Location, mode: int) -> float:
         """Location.ConveyorLimit: find the conveyor at the base of ``loc``'s frame chain."""
@@ -307,6 +335,9 @@ class RefFrame:
             raise GplException(FRAME_UNDEFINED_DATA, detail="reference frames form a loop")
         t = self._type
         if t == CONVEYOR:
+            loc = self._loc
+            if loc is not None and loc._ref is not None:
+                raise GplException(-791, detail="a conveyor frame's Loc has a RefFrame: conveyors are base frames")
             c = self._conveyor()
             return tf.pose_translate(c.nominal, self._belt_travel(), 0.0, 0.0)
         p = self._origin()._total_pose(depth + 1)
