@@ -142,13 +142,16 @@ def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink,
 
 
 def register_lines(ctx: ModuleContext, cls: ClassSym) -> list[str]:
-    """Registry entries for the Shared procedures of ``cls`` and its nested classes (§9.4)."""
-    reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
+    """Registry entries for the Shared procedures of ``cls`` and its nested classes (§9.4).
+
+    The registry helper is imported only when an entry uses it: a class with no Shared procedure
+    registers nothing, and an unused import would fail pyflakes."""
     out: list[str] = []
     qual = ".".join(([cls.module.name] if cls.module and cls.module.name != "_Top" else []) + cls.path)
     ref = ctx.class_ref(cls)
     for m in cls.members.values():
         if isinstance(m, ProcSym) and m.shared:
+            reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
             entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
             out.append(f"{reg}({py_string(qual)}, {py_string(m.name)}, {entry}({ref}.{py_ident(m.name)}), "
                        f"public={m.public and cls.public}, package=__package__)")
