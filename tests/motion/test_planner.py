@@ -16,6 +16,8 @@ from gplrt.motion.profile import Profile
 LIMITS = RobotLimits.from_pdb(default_database("PF400SX"), 1, 5)
 LOWER = np.array([1.5, -93.0, 12.0, -960.0, 69.0])
 UPPER = np.array([1161.5, 93.0, 348.0, 960.0, 134.0])
+#: Ruckig's own position precision (profile.hpp ``p_precision``): the bound on its end-point error.
+RUCKIG_P_PRECISION = 1e-8
 
 
 def sample(plan: Plan, n: int = 400) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -30,8 +32,11 @@ def check_within(plan: Plan, lim: AxisLimits, q0: np.ndarray, q1: np.ndarray) ->
     assert np.all(np.abs(a) <= np.maximum(lim.accel, lim.decel) * (1 + 1e-9) + 1e-9)
     lo, hi = np.minimum(q0, q1), np.maximum(q0, q1)
     # Ruckig integrates in double precision: its position error grows with the travel (1.4e-9 over
-    # the wrist's 1920 degrees, see the examples below), so the bound has a relative part too.
-    tol = 1e-9 + 1e-12 * float(np.max(np.abs(q1 - q0)))
+    # the wrist's 1920 degrees, see the examples below), so the bound has a relative part too.  Its
+    # profiles are only checked to its position precision (``p_precision`` = 1e-8 in Ruckig's
+    # profile.hpp): a 6.5 nm gripper move synchronised to a 25 s wrist move ends 2.8e-9 to 6.5e-9
+    # off (third example).  The motion queue holds q1 exactly at the end (test_move checks Where).
+    tol = RUCKIG_P_PRECISION + 1e-12 * float(np.max(np.abs(q1 - q0)))
     assert np.all(p >= lo - tol) and np.all(p <= hi + tol)  # no overshoot from rest to rest
     end = np.array(plan.at(plan.duration)[0])
     assert np.max(np.abs(end - q1)) < tol  # Ruckig's own end; the motion queue then holds q1 exactly
@@ -47,6 +52,9 @@ joint_vec = st.lists(st.floats(0.0, 1.0), min_size=5, max_size=5).map(lambda f: 
 @example(LOWER + np.array([0.0, 0.0, 0.0, 0.0, 0.1490403289436482]) * (UPPER - LOWER),
          np.array([1.5, -93.0, 12.0, 960.0, 69.0]), 5.0, 150.0, 231.875, 0.0)
 @example(np.array([1.5, -93.0, 12.0, -960.0, 101.5]), np.array([1.5, -93.0, 12.0, 960.0, 69.0]), 5.0, 115.0, 150.0, 0.0)
+@example(np.array([1.5, -93.0, 12.0, -960.0, 69.0]),
+         LOWER + np.array([0.0, 0.0, 0.0, 0.8456194731082987, 1e-10]) * (UPPER - LOWER), 8.871559871988431, 36.0,
+         18.874127743708986, 0.0234375)
 def test_joint_plans_respect_limits_and_end_on_target(q0: np.ndarray, q1: np.ndarray, speed: float, accel: float,
                                                       decel: float, ramp: float) -> None:
     prof = Profile()

@@ -163,16 +163,22 @@ class _MoveClass:
     def Loc(self, Location1: Location, Profile1: Profile) -> None:
         """Move to the total position of ``Location1`` (Cartesian or Angles)."""
         loc = Location1
-        if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
+        # (the runtime's own fields, not the GPL properties: this is the hot path)
+        if loc is not None and loc._type == 1 and Profile1 is not None and not Profile1._straight:
             # the commonest move of all, kept short (benchmarks/motion_speed.py measures it)
             ctx = current_ctx()
             s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
             robot = _ready(s, key)
+            vals = loc._angles  # Python floats (Location.from_angles / Angles store them so)
+            n = robot._axis_count
             with robot.lock:
-                queue = robot.queue
-                dest = queue.history[-1].q_end if queue.history else queue.rest
-                robot.queue_joint(s.scheduler.clock.now(), _angles_of(robot, loc, dest), Profile1,
-                                  s.controller.system_speed)
+                if len(vals) >= n:
+                    values = list(vals[:n])  # what _angles_of gives, without a numpy round trip
+                else:
+                    queue = robot.queue
+                    dest = queue.history[-1].q_end if queue.history else queue.rest
+                    values = _angles_of(robot, loc, dest).tolist()
+                robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)
         elif loc is not None and loc.Type == 1:
             self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
         else:
@@ -198,7 +204,8 @@ class _MoveClass:
     def Rel(self, Location1: Location, Profile1: Profile) -> None:
         """Move relative to the destination of the previous motion (see the module docstring)."""
         loc = Location1
-        if loc is not None and loc.Type == 1 and Profile1 is not None and not Profile1.Straight:
+        # (the runtime's own fields, not the GPL properties: this is the hot path)
+        if loc is not None and loc._type == 1 and Profile1 is not None and not Profile1._straight:
             self._go(loc, Profile1, joints=lambda r, dest: dest + _angles_of(r, loc, np.zeros_like(dest)))
         elif loc is not None and loc.Type == 1:
             self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest + _angles_of(r, loc, np.zeros_like(dest))))

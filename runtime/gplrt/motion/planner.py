@@ -39,6 +39,9 @@ _ruckig: dict[int, tuple[Ruckig, InputParameter]] = {}
 _given: dict[int, dict[str, object]] = {}
 
 
+_AXES = "axes"
+
+
 def _solver(n: int) -> tuple[Ruckig, InputParameter]:
     pair = _ruckig.get(n)
     if pair is None:
@@ -73,13 +76,16 @@ class Plan:
 _RETRY_FACTORS = (1.0 - 1e-9, 1.0 - 1e-6, 1.0 - 1e-4)
 
 
-def _calculate(inp: InputParameter, n: int, what: str) -> Plan:
+_WORKING, _FINISHED = Result.Working, Result.Finished
+
+
+def _calculate(inp: InputParameter, n: int, what: str, otg: Ruckig | None = None) -> Plan:
     traj = Trajectory(n)
     try:
-        result = _ruckig[n][0].calculate(inp, traj)
+        result = (otg or _ruckig[n][0]).calculate(inp, traj)
     except RuckigError:
         result = None
-    if result is Result.Working or result is Result.Finished:
+    if result is _WORKING or result is _FINISHED:
         return Plan(traj, traj.duration)
     return _retry(inp, n, what)
 
@@ -112,23 +118,24 @@ def _finite(values: Vec) -> list[float]:
 
 def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[float] | None,
               q1: Sequence[float], lim: AxisLimits) -> Plan:
-    """Synchronised joint trajectory from state (q0, v0, a0) to q1 at rest (None = 0).
+    """Synchronised joint trajectory from state (q0, v0, a0) to q1 at rest (None = 0); a ``list``
+    ``q1`` must hold Python floats (it is handed to Ruckig as it is).
 
     Only what differs from the previous call is handed to Ruckig (the limits of a Profile
     repeat move after move), so the cost stays close to a bare ``Ruckig.calculate``."""
     n = len(q0)
-    _, inp = _solver(n)
+    otg, inp = _ruckig.get(n) or _solver(n)
     given = _given[n]
-    p0 = q0.tolist() if isinstance(q0, np.ndarray) else [float(x) for x in q0]
-    p1 = q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
-    if given.get("mode") != "axes":
+    p0 = q0.tolist() if type(q0) is np.ndarray else [float(x) for x in q0]
+    p1 = q1 if type(q1) is list else q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
+    if given.get("mode") is not _AXES:
         zero = [0.0] * n
         for name, value in (("control_interface", ControlInterface.Position),
                             ("synchronization", Synchronization.Time), ("target_velocity", zero),
                             ("target_acceleration", zero), ("current_velocity", zero),
                             ("current_acceleration", zero)):
             _set(n, inp, name, value)
-        given["mode"], given["moving"], given["lim"] = "axes", False, None
+        given["mode"], given["moving"], given["lim"] = _AXES, False, None
     if v0 is not None or given["moving"]:
         zero = [0.0] * n
         inp.current_velocity = zero if v0 is None else [float(x) for x in v0]
@@ -137,7 +144,12 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     inp.current_position = p0
     inp.target_position = p1
     # With Accel = Decel the limits do not depend on the direction of travel: skip comparing it.
-    up = None if lim.symmetric else [e >= s for s, e in zip(p0, p1)]
+    if lim.symmetric:
+        if given["lim"] is lim and given["up"] is None:
+            return _calculate(inp, n, "joint move", otg)  # the same limits as the last joint move
+        up = None
+    else:
+        up = [e >= s for s, e in zip(p0, p1)]
     if given["lim"] is not lim or given["up"] != up:
         vel, acc, dec, jerk = lim.lists
         inp.max_velocity = vel
@@ -149,7 +161,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
             inp.min_acceleration = [-d if u else -a for a, d, u in zip(acc, dec, up)]
         inp.max_jerk = jerk
         given["lim"], given["up"] = lim, up
-    return _calculate(inp, n, "joint move")
+    return _calculate(inp, n, "joint move", otg)
 
 
 def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: float, dmax: float,

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -245,15 +246,19 @@ class RobotState:
                 break
         return hi
 
-    def queue_joint(self, now: float, target: Vec, prof: Profile, system_speed: float) -> Segment:
+    def queue_joint(self, now: float, target: Vec | Sequence[float], prof: Profile, system_speed: float) -> Segment:
         """Plan and queue a joint-interpolated motion to ``target`` (joints, GPL units)."""
-        self.check_joint_limits(target)
+        values = target.tolist() if type(target) is np.ndarray else [float(v) for v in target]
+        return self.queue_joint_values(now, values, prof, system_speed)
+
+    def queue_joint_values(self, now: float, values: list[float], prof: Profile, system_speed: float) -> Segment:
+        """``queue_joint`` for a list of Python floats, the form Ruckig takes: ``Move.Loc`` to an
+        Angles Location (the commonest motion of all) converts nothing on its way here."""
+        self.check_joint_limits(values)
         lim = self.limits.joint_limits(prof, system_speed)
         t0, q0, v0, a0 = self._start(now, can_blend=True)
-        moving = v0 is not None
-        plan = plan_axes(q0, v0 if moving else None, a0 if moving else None, target, lim)
-        q1 = target if type(target) is np.ndarray and target.dtype == np.float64 else np.array(target, float)
-        return self._append(JointSegment(t0, plan.duration, q0, q1, plan=plan), prof)
+        plan = plan_axes(q0, v0, a0, values, lim)
+        return self._append(JointSegment(t0, plan.duration, q0, np.array(values), plan=plan), prof)
 
     def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
                    extra_end: Vec | None = None, kind: str = "straight",
@@ -322,13 +327,14 @@ class RobotState:
     def _append(self, seg: Segment, prof: Profile) -> Segment:
         """Queue ``seg`` with the Profile's end-of-motion rule (blend, settle or stop)."""
         inrange = prof._inrange  # a float, validated by the Profile.InRange setter
-        seg.blend = inrange < 0.0
-        seg.blend_tolerance = abs(inrange)
-        seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
-        seg.profile = profile_values(prof)  # the program may change its Profile after the Move
+        if inrange:  # InRange = 0 keeps the segment's defaults: no blend, no settling
+            seg.blend = inrange < 0.0
+            seg.blend_tolerance = abs(inrange)
+            seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
+        # the program may change its Profile after the Move
+        seg.profile = self.last_profile = profile_values(prof)
         self.queue.append(seg)
         self.source = seg.q_start
-        self.last_profile = seg.profile
         return seg
 
     # -- stopping ------------------------------------------------------------------------------
