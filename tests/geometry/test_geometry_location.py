@@ -194,13 +194,25 @@ def test_inverse_uses_the_total_and_drops_the_frame() -> None:
 
 
 def test_normalize_repairs_a_drifted_rotation() -> None:
-    loc = _loc(1, 2, 3, 10, 20, 30)
-    p = loc.pose_wrt_ref
-    loc._pose = tuple(v * 1.001 for v in p[:9]) + p[9:]  # simulate drift
+    p = _loc(1, 2, 3, 10, 20, 30).pose_wrt_ref
+    loc = Location.from_pose(tuple(v * 1.001 for v in p[:9]) + p[9:])  # type: ignore[arg-type]  # drifted
     loc.Normalize()
     assert _xyz(loc) == pytest.approx((1, 2, 3, 10, 20, 30), abs=0.2)
     r = loc.pose_wrt_ref
     assert sum(r[i] * r[i] for i in (0, 3, 6)) == pytest.approx(1.0, abs=1e-15)
+
+
+def test_normalize_keeps_written_angles() -> None:
+    """Normalize of a pose whose angles were written changes nothing, singular ones included."""
+    for v in ((1, 2, 3, 45, 180, 30), (0, 0, 0, 30, 0, 60), (5, 6, 7, -100, 33, 170)):
+        loc = _loc(*v)
+        before = loc.pose_wrt_ref
+        loc.Normalize()
+        assert _xyz(loc) == v
+        assert loc.pose_wrt_ref == before
+    loc = _loc(1, 2, 3, 10, 20, 30).Mul(Location())  # computed: decomposed, then repaired
+    loc.Normalize()
+    assert _xyz(loc) == pytest.approx((1, 2, 3, 10, 20, 30), abs=1e-12)
 
 
 def test_here3_builds_a_frame_from_three_points() -> None:

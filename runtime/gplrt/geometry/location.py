@@ -509,10 +509,20 @@ class Location:
         return math.sqrt((a[9] - b[9]) ** 2 + (a[10] - b[10]) ** 2 + (a[11] - b[11]) ** 2)  # type: ignore[return-value]
 
     def Normalize(self) -> None:
-        """Remove numerical drift from the rotation of PosWrtRef (re-orthonormalise it)."""
+        """Remove numerical drift from the rotation of PosWrtRef (re-orthonormalise it).
+
+        A pose whose angles were written (and not computed since) is rebuilt from those angles:
+        that is already the drift-free rotation, and the angles keep reading back as written —
+        decomposing instead would turn ``XYZ(0,0,0,45,180,30)`` into (0, 180, -15) after a
+        Normalize that changed nothing.
+        """
         self._need_cartesian("Normalize")
-        self._pose = tf.pose_orthonormalize(self._pose)
-        self._ypr = None
+        ypr = self._ypr
+        p = self._pose
+        if ypr is not None:
+            self._pose = tf.pose_from_xyzypr(p[9], p[10], p[11], *ypr)
+        else:
+            self._pose = tf.pose_orthonormalize(p)
 
     def Clone(self) -> Location:
         """An independent copy (the RefFrame pointer is copied, not the frame)."""
