@@ -55,6 +55,19 @@ def test_frame_chain_three_deep_pos_and_poswrtref() -> None:
     assert loc.matrix() == pytest.approx(m, abs=1e-12)
 
 
+def test_basic_frame_pos_reads_the_angles_written_into_its_loc() -> None:
+    """frame.Pos / frame.PosWrtRef agree with frame.Loc.Pos / .PosWrtRef (D0:2422-2427), singular too."""
+    f = RefFrame()
+    f.Loc.XYZ(10, 20, 30, 30, 0, 60)
+    assert _xyz(f.Pos()) == _xyz(f.Loc.Pos) == (10, 20, 30, 30, 0, 60)
+    assert _xyz(f.PosWrtRef()) == _xyz(f.Loc.PosWrtRef) == (10, 20, 30, 30, 0, 60)
+    parent = RefFrame()
+    parent.Loc.XYZ(1, 0, 0)
+    f.Loc.RefFrame = parent  # now computed: the rule of transforms (rotation in roll)
+    assert _xyz(f.Pos()) == _xyz(f.Loc.Pos) == (11, 20, 30, 0, 0, 90)
+    assert _xyz(f.PosWrtRef()) == (10, 20, 30, 30, 0, 60)
+
+
 def test_frame_loc_must_be_cartesian_and_not_nothing() -> None:
     f = RefFrame()
     a = Location()

@@ -166,18 +166,30 @@ class RefFrame:
         self._text = text(value)
 
     def Pos(self) -> Location:
-        """The frame's total (absolute) position as a new Cartesian Location."""
-        return Location.from_pose(self._total_pose(0))
+        """The frame's total (absolute) position as a new Cartesian Location.
+
+        A basic frame with no parent is exactly its Loc, so angles written into the Loc read back
+        from ``frame.Pos`` too (the manual prefers ``frame.Pos`` to ``frame.Loc.Pos``, D0:2422-2427,
+        so the two must agree); every other frame position is computed and decomposed.
+        """
+        res = Location.from_pose(self._total_pose(0))
+        if self._type == BASIC and self._loc is not None and self._loc._ref is None:
+            res._ypr = self._loc._ypr
+        return res
 
     def PosWrtRef(self) -> Location:
-        """The frame's position ignoring further frames (conveyor: the nominal transformation)."""
+        """The frame's position ignoring further frames (conveyor: the nominal transformation).
+
+        A basic frame's PosWrtRef is its Loc's, written angles included (see ``Pos``).
+        """
         if self._type == CONVEYOR:
             return Location.from_pose(self._conveyor().nominal)
         loc = self._origin()
-        p = loc._pose
         if self._type == PALLET:
-            p = self._cell(p)
-        return Location.from_pose(p)
+            return Location.from_pose(self._cell(loc._pose))
+        res = Location.from_pose(loc._pose)
+        res._ypr = loc._ypr
+        return res
 
     def copy(self) -> RefFrame:
         """Python side (GPL documents no RefFrame.Clone): a copy sharing the same Loc object."""
