@@ -349,3 +349,12 @@ def test_a_conveyor_frame_relative_to_another_frame_is_791(belt: Conveyor) -> No
     rf.Loc.RefFrame = None
     p = rf.Pos()  # encoder 0, offset 1000: 10 mm upstream along the belt's X = world -Y
     assert (p.X, p.Y, p.Z) == pytest.approx((500.0, -210.0, 10.0), abs=1e-12)
+
+
+def test_conveyor_limit_through_a_looping_chain_is_770() -> None:
+    f1, f2 = RefFrame(), RefFrame()
+    f1.Loc.RefFrame = f2
+    f2.Loc.RefFrame = f1
+    loc = Location()
+    loc.RefFrame = f1
+    assert _code(loc.ConveyorLimit) == -770

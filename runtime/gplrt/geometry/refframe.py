@@ -319,13 +319,14 @@ class RefFrame:
 
     def _conveyor_limit(self, loc: Location, mode: int) -> float:
         """Location.ConveyorLimit: find the conveyor at the base of ``loc``'s frame chain."""
+        total = loc._total_pose(0)  # first: a looping chain is -770, a misplaced conveyor -791
         frame: RefFrame | None = self
         for _ in range(MAX_FRAME_DEPTH):
             if frame is None:
                 break
             if frame._type == CONVEYOR:
                 c = frame._conveyor()
-                along = tf.pose_mul(tf.pose_inv(c.nominal), loc._total_pose(0))[9]
+                along = tf.pose_mul(tf.pose_inv(c.nominal), total)[9]
                 return c.downstream_limit - along if mode == 0 else along - c.upstream_limit
             nxt = frame._loc
             frame = nxt._ref if nxt is not None else None
