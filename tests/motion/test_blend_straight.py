@@ -120,3 +120,55 @@ def test_a_short_line_after_a_long_blend_still_ends_on_target(sim: Simulation) -
     assert np.max(np.abs(tool(sim, t1) - xyz(452.0, 100.0, 300.0).matrix())) < 1e-9
     speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.02, t1 - 0.02, 400)]
     assert min(speeds) > 1e-3
+
+
+def _on_circle(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[float, float]:
+    """(distance from the circle through a, b, c in its plane, distance from its plane)."""
+    ab, ac = b - a, c - a
+    n = np.cross(ab, ac)
+    centre = a + (np.dot(ac, ac) * np.cross(n, ab) + np.dot(ab, ab) * np.cross(ac, n)) / (2.0 * np.dot(n, n))
+    r = float(np.linalg.norm(a - centre))
+    nn = n / np.linalg.norm(n)
+    off_plane = float(np.dot(p - centre, nn))
+    in_plane = p - centre - off_plane * nn
+    return abs(float(np.linalg.norm(in_plane)) - r), abs(off_plane)
+
+
+def test_joint_move_blends_into_an_arc_and_a_line_into_a_circle(sim: Simulation) -> None:
+    """InRange < 0 blends into *the next queued motion*, arcs and circles included: the robot does
+    not stop at the via point, passes within |InRange| of it, and after the overlap the tool is on
+    the circle through the three points and ends exactly on target."""
+    robot = sim.robots[1]
+    Move.Loc(xyz(300.0, -250.0, 300.0), profile())
+    Move.WaitForEOM()
+    via, mid, end = xyz(400.0, 0.0, 300.0), xyz(430.0, 30.0, 300.0), xyz(400.0, 60.0, 300.0)
+    t0 = sim.now()
+    Move.Loc(via, profile(InRange=-5.0))
+    Move.Arc(mid, end, profile(Straight=True, Speed=50.0))
+    seg = robot.queue.last
+    Move.WaitForEOM()
+    t1 = sim.now()
+    assert isinstance(seg, BlendedPathSegment) and seg.kind == "arc"
+    # (the jerk-limited start and stop are slow: look inside them)
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
+    assert min(speeds) > 1.0
+    path = np.array([tool(sim, float(t))[:3, 3] for t in np.linspace(t0, t1, 2000)])
+    assert float(np.min(np.linalg.norm(path - via.matrix()[:3, 3], axis=1))) <= 5.0 + 1e-6
+    a, b, c = (loc.matrix()[:3, 3] for loc in (via, mid, end))
+    for t in np.linspace(seg.prev_end, t1, 200):
+        radial, normal = _on_circle(tool(sim, float(t))[:3, 3], a, b, c)
+        assert radial < 1e-6 and normal < 1e-6
+    assert np.max(np.abs(tool(sim, t1) - end.matrix())) < 1e-9
+
+    # a straight line blended into a full circle: no stop, back on the start point at the end
+    start = xyz(350.0, 0.0, 280.0)
+    t0 = sim.now()
+    Move.Loc(start, profile(Straight=True, InRange=-3.0))
+    Move.Circle(xyz(380.0, 30.0, 280.0), xyz(350.0, 60.0, 280.0), profile(Straight=True))
+    seg = robot.queue.last
+    Move.WaitForEOM()
+    t1 = sim.now()
+    assert isinstance(seg, BlendedPathSegment) and seg.kind == "circle"
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
+    assert min(speeds) > 1.0
+    assert np.max(np.abs(tool(sim, t1)[:3, 3] - start.matrix()[:3, 3])) < 1e-9

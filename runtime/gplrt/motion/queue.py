@@ -10,8 +10,8 @@ Segment kinds:
 * :class:`JointSegment` — a synchronised Ruckig trajectory of all axes;
 * :class:`PathSegment` — a 1-D Ruckig trajectory of the path parameter of a line/arc, mapped to
   joints by IK (velocities and accelerations by the chain rule with finite-difference ``q'``, ``q''``);
-* :class:`BlendedPathSegment` — a straight line that starts while the previous motion runs out
-  (corner rounding, InRange < 0), the two superimposed in Cartesian space until that motion ends;
+* :class:`BlendedPathSegment` — a line, arc or circle that starts while the previous motion runs
+  out (corner rounding, InRange < 0), the two superimposed in Cartesian space until that motion ends;
 * :class:`DwellSegment` — ``Move.Delay``: the robot holds still.
 """
 
@@ -135,7 +135,8 @@ _BLEND_DT = 1e-4
 
 @dataclass(eq=False)
 class BlendedPathSegment(PathSegment):
-    """A straight line entered while the previous (blending) motion is still running out.
+    """A Cartesian path (line, arc, circle) entered while the previous (blending) motion is
+    still running out; below, "the line" stands for any of them.
 
     The line is planned from rest at the previous motion's target (the *via* pose) and starts at
     the blend time; until the previous motion's own end (``prev_end``) the two are superimposed

@@ -16,12 +16,12 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
   tool tip is within ``|InRange|`` mm of its target (robots without kinematics: the joint-space
   distance), but never before *now*, and the new motion is planned by Ruckig from the full state
   (position, velocity, acceleration) at that moment — the robot never stops at the via point and
-  passes within ``|InRange|`` mm of it.  A straight line queued after a blending motion (joint or
-  straight) is planned from rest at the via point and starts when the tool comes within
-  ``|InRange|`` of it (but no earlier than its own duration before the previous motion's end, and
-  never before *now*); the two are superimposed in Cartesian space until the previous motion ends
-  (``queue.BlendedPathSegment``): the corner is rounded within ``|InRange|``, the robot does not
-  stop, and after the overlap the tool is exactly on the line.  Arcs and circles start from rest.
+  passes within ``|InRange|`` mm of it.  A Cartesian path (straight line, arc or circle) queued
+  after a blending motion (joint or path) is planned from rest at the via point and starts when the
+  tool comes within ``|InRange|`` of it (but no earlier than its own duration before the previous
+  motion's end, and never before *now*); the two are superimposed in Cartesian space until the
+  previous motion ends (``queue.BlendedPathSegment``): the corner is rounded within ``|InRange|``,
+  the robot does not stop, and after the overlap the tool is exactly on the line or circle.
 * **Settling (InRange > 0)**: the robot stops on target and the segment is held for the
   in-range settling time (DataID 2601, 0.05 s on a PF400); InRange = 0 ends at the last set-point.
 * **Power loss / RapidDecel**: power off stops the robot where it is at once (the brakes) and the
@@ -267,7 +267,7 @@ class RobotState:
 
         The axes in ``extra_mask`` (default: the rail) move linearly along the path to their
         values in ``extra_end``; the IK solves the others."""
-        blend_from = self._blend_source(now) if kind == "straight" else None
+        blend_from = self._blend_source(now)
         if blend_from is not None:
             t0, q0 = blend_from.end, blend_from.q_end.copy()  # the line starts at the via point
         else:
