@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
+import pytest
+
+from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
 from gpltest import analyze_text
 
@@ -205,3 +209,75 @@ End Module
 """
     _, sink = analyze_text(tmp_path, text)
     assert [(d.code, d.severity.value, d.span.line) for d in sink] == [("GPL2031", "warning", 4)]
+
+
+# A two-file project with eleven different semantic errors (eleven codes), every one an error (no
+# warnings among them), through the command a porting engineer types: ten diagnostics with file:line:col, exit
+# status 1 and no output written.
+TEN_ERRORS_CELL = """Module Cell
+    Public count As Integer
+    Private hidden As Double
+    Public Sub Place(ByVal slot As Integer, ByVal speed As Double)
+    End Sub
+    Public Function Total() As Integer
+        Return count
+    End Function
+    Public Sub Main()
+        Dim loc As Location
+        Dim n As Integer
+        Dim s As String
+        Const LIMIT As Integer = 4
+        n = loc
+        Place(1)
+        n = Station.secret
+        LIMIT = 5
+        n = missing_var + 1
+        Dim r As Gripperz
+        GoTo nowhere
+        Me.count = 1
+        n = Station.Ping()
+    End Sub
+End Module
+"""
+TEN_ERRORS_STATION = """Module Station
+    Private secret As Integer
+    Public Sub Ping()
+    End Sub
+    Public Sub Run()
+        Dim a(3) As Integer
+        a(1, 2) = 0
+        Exit Do
+    End Sub
+End Module
+"""
+EXPECTED_CELL = [
+    ("Cell.gpl", 14, 13, "GPL2005"),  # a Location assigned to an Integer
+    ("Cell.gpl", 15, 9, "GPL2004"),  # wrong argument count
+    ("Cell.gpl", 16, 13, "GPL2010"),  # Private member of another module
+    ("Cell.gpl", 17, 9, "GPL2027"),  # assigning a Const
+    ("Cell.gpl", 18, 13, "GPL2001"),  # undeclared name
+    ("Cell.gpl", 19, 18, "GPL2003"),  # unknown type
+    ("Cell.gpl", 20, 9, "GPL2017"),  # unknown label
+    ("Cell.gpl", 21, 9, "GPL2021"),  # Me outside a class
+    ("Cell.gpl", 22, 13, "GPL2009"),  # a Sub used as a value
+    ("Station.gpl", 7, 9, "GPL2024"),  # wrong number of subscripts
+    ("Station.gpl", 8, 9, "GPL2016"),  # Exit Do outside a Do
+]
+
+
+def test_eleven_errors_in_a_project_through_the_command(tmp_path: Path,
+                                                     capsys: pytest.CaptureFixture[str]) -> None:
+    proj = tmp_path / "cell"
+    proj.mkdir()
+    (proj / "Cell.gpl").write_text(TEN_ERRORS_CELL)
+    (proj / "Station.gpl").write_text(TEN_ERRORS_STATION)
+    (proj / "Project.gpr").write_text('ProjectBegin\nProjectName="Cell"\nProjectStart="Main"\n'
+                                      'ProjectSource="Cell.gpl"\nProjectSource="Station.gpl"\nProjectEnd\n')
+    out = tmp_path / "out"
+    status = cli_main(["--json", str(proj), "-o", str(out)])
+    report = json.loads(capsys.readouterr().out)
+    got = [(Path(d["file"]).name, d["line"], d["column"], d["code"]) for d in report["diagnostics"]]
+    assert status == 1
+    assert got == EXPECTED_CELL, report["diagnostics"]
+    assert all(d["severity"] == "error" for d in report["diagnostics"])
+    assert not out.exists()
