@@ -212,8 +212,8 @@ End Module
 
 
 # A two-file project with eleven different semantic errors (eleven codes), every one an error (no
-# warnings among them), through the command a porting engineer types: ten diagnostics with file:line:col, exit
-# status 1 and no output written.
+# warnings among them), through the command a porting engineer types: eleven diagnostics with
+# file:line:col, exit status 1 and no output written.
 TEN_ERRORS_CELL = """Module Cell
     Public count As Integer
     Private hidden As Double
