@@ -450,14 +450,23 @@ class Parser:
                 pending = comments
         return A.Block(self.span_from(start) if stmts else start.span, stmts, end_comments=comments)
 
+    def too_deep(self, what: str) -> bool:
+        """Report and skip the rest of the file if one more nested construct would pass the limit.
+
+        Every nested construct (blocks, and classes inside classes) is on :attr:`open`; recursion
+        this deep would exhaust the Python stack, so nothing after this point is parsed.
+        """
+        if len(self.open) <= _MAX_BLOCK_DEPTH:
+            return False
+        self.sink.report(M.PARSE_TOO_DEEP, self.tok.span, what=what, limit=_MAX_BLOCK_DEPTH)
+        self.aborted = True
+        while self.tok.kind is not K.EOF:
+            self.next()
+        return True
+
     def body(self, kind: str) -> A.Block:
         """The block of a construct of ``kind`` (pushed on the open stack while it is parsed)."""
-        if len(self.open) > _MAX_BLOCK_DEPTH:
-            self.sink.report(M.PARSE_TOO_DEEP, self.tok.span, what="blocks", limit=_MAX_BLOCK_DEPTH)
-            # Skip everything: recursion this deep would exhaust the Python stack.
-            self.aborted = True
-            while self.tok.kind is not K.EOF:
-                self.next()
+        if self.too_deep("blocks"):
             return A.Block(self.tok.span, [])
         self.open.append(kind)
         self.nest += 1
@@ -514,6 +523,8 @@ class Parser:
     def members(self, container: str, start: Token, node: A.Stmt) -> list[A.Stmt]:
         """Members of a Module or Class up to its ``End``; sets ``node.end_comments``."""
         out: list[A.Stmt] = []
+        if self.too_deep("classes"):
+            return out
         self.open.append(container)
         try:
             while True:

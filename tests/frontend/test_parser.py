@@ -761,6 +761,17 @@ def test_deep_nesting_is_a_diagnostic_not_a_crash() -> None:
     text = "Module M\nSub A()\n" + "If a Then\n" * 400 + "End If\n" * 400 + "End Sub\nEnd Module\n"
     _, sink = parse_text(text)
     assert [d.code for d in sink] == ["GPL1117"]  # one diagnostic, no cascade of unclosed blocks
+    text = "Module M\n" + "Class C\n" * 3000 + "End Class\n" * 3000 + "End Module\n"
+    unit, sink = parse_text(text)  # was a RecursionError
+    assert [(d.code, d.span.line) for d in sink] == [("GPL1117", 103)]
+    assert "classes nested too deeply" in sink.errors[0].message
+    depth, node = 0, unit.members[0]
+    while node.members:  # type: ignore[attr-defined]
+        node, depth = node.members[0], depth + 1  # type: ignore[attr-defined]
+    assert depth == 101  # every class up to the limit is kept (the last one empty)
+    text = "Module M\n" + "Class C\n" * 60 + "Sub S()\n" + "If a Then\n" * 60 + "End If\n" * 60
+    _, sink = parse_text(text + "End Sub\n" + "End Class\n" * 60 + "End Module\n")
+    assert [d.code for d in sink] == ["GPL1117"]  # classes and blocks count together
 
 
 def test_dump_is_readable() -> None:
