@@ -230,3 +230,35 @@ End Module
     second = Simulation(capture=True)
     assert first.package.main(second) == 0
     assert first.output == second.console.output == "1 11 12\n"
+
+
+def test_uncaught_error_in_a_script_prints_the_gpl_line_of_every_frame(tmp_path: Path) -> None:
+    """A script (or ``python -c``) that imports the package and calls a Public procedure which
+    fails two calls down: the uncaught exception's traceback names each frame's GPL file and line
+    (gplrt.lang.sourcemap.install_excepthook), not only generated Python lines."""
+    src = """Module Calc
+    Function Inner(ByVal d As Integer) As Integer
+        Return 10 \\ d
+    End Function
+    Public Function Outer(ByVal d As Integer) As Integer
+        Return Inner(d) + 1
+    End Function
+    Public Sub Main()
+    End Sub
+End Module
+"""
+    proj = write_project(tmp_path, {"Calc.gpl": src}, start="Calc.Main", name="Tb")
+    out = tmp_path / "out"
+    assert cli_main([proj, "-o", str(out), "--quiet"]) == 0
+    script = ("import tb\nfrom gplrt.sim import Simulation\n"
+              "sim = Simulation(capture=True)\nsim.call(tb.init)\nsim.call(tb.calc.Outer, 0)\n")
+    r = subprocess.run([PY, "-c", script], capture_output=True, text=True, cwd=out, timeout=120)
+    assert r.returncode == 1
+    frames = [line for line in r.stderr.splitlines() if "[GPL " in line]
+    assert [f.split("[GPL ")[1] for f in frames] == ["Calc.gpl:6]", "Calc.gpl:3]"], r.stderr
+    assert "in Outer" in frames[0] and "in Inner" in frames[1]
+    last = r.stderr.rstrip().splitlines()[-1]
+    assert "GPL error -709: *Division by 0*" in last and last.endswith("(at Calc.gpl:3)"), r.stderr
+    ok = subprocess.run([PY, "-c", "import tb\nraise ValueError('plain')\n"], capture_output=True, text=True,
+                        cwd=out, timeout=120)
+    assert "ValueError: plain" in ok.stderr and "[GPL " not in ok.stderr  # other errors unchanged

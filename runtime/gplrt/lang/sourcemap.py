@@ -7,7 +7,13 @@ reported are frames translated:
 
 * ``locate(exc)`` -- "Startup.gpl:42" for the innermost transpiled frame of ``exc``'s traceback
   (``GplException.__str__`` uses it, so an unhandled error names the GPL line);
-* ``gpl_frames(tb)`` / ``format_gpl_traceback(exc)`` -- every frame, each with its GPL location.
+* ``gpl_frames(tb)`` / ``format_gpl_traceback(exc)`` -- every frame, each with its GPL location;
+* ``install_excepthook()`` -- called by ``register_package``: an exception that nobody catches and
+  whose traceback passes through transpiled code prints as ``format_gpl_traceback`` does, so a
+  script that imports a generated package and calls a Public procedure sees the GPL file and line
+  of every frame, not only the generated Python lines.  Other exceptions print as before (the hook
+  chains to the one it replaced).  IPython/Jupyter does not use ``sys.excepthook``; there,
+  ``format_gpl_traceback(exc)`` on a caught exception gives the same text.
 """
 
 from __future__ import annotations
@@ -15,11 +21,16 @@ from __future__ import annotations
 import bisect
 import json
 import os
+import sys
 import threading
 import traceback
+from collections.abc import Callable
 from types import TracebackType
 
-__all__ = ["register_package", "register_module_map", "locate", "gpl_frames", "format_gpl_traceback", "gpl_line_of"]
+__all__ = ["register_package", "register_module_map", "locate", "gpl_frames", "format_gpl_traceback", "gpl_line_of",
+           "install_excepthook"]
+
+ExceptHook = Callable[[type[BaseException], BaseException, TracebackType | None], object]
 
 _lock = threading.Lock()
 # absolute path of a generated .py -> (GPL file, python line starts, GPL lines)
@@ -45,6 +56,7 @@ def register_package(init_file: str) -> None:
         return
     for module, entry in data.get("modules", {}).items():
         register_module_map(os.path.join(folder, module), entry["source"], entry["runs"])
+    install_excepthook()
 
 
 def gpl_line_of(py_file: str, py_line: int) -> tuple[str, int] | None:
@@ -87,3 +99,32 @@ def format_gpl_traceback(exc: BaseException) -> str:
         lines.append(f'  File "{py_file}", line {py_line}, in {func}{where}')
     lines.extend(traceback.format_exception_only(type(exc), exc))
     return "\n".join(line.rstrip("\n") for line in lines) + "\n"
+
+
+def _maps_any(tb: TracebackType | None) -> bool:
+    return any(gpl is not None for _, _, _, gpl in gpl_frames(tb))
+
+
+def install_excepthook() -> None:
+    """Make uncaught exceptions through transpiled code print their GPL frames (module docstring).
+
+    Idempotent: the hook is installed once and remembers the hook it replaced."""
+    current = sys.excepthook
+    if getattr(current, "__gpl_sourcemap__", False):
+        return
+    previous: ExceptHook = current
+
+    def hook(etype: type[BaseException], value: BaseException, tb: TracebackType | None) -> None:
+        if value is None or not _maps_any(tb):
+            previous(etype, value, tb)
+            return
+        parts: list[str] = []
+        cause = value.__cause__
+        if cause is not None and cause.__traceback__ is not None:
+            parts.append(format_gpl_traceback(cause))
+            parts.append("\nThe above exception was the direct cause of the following exception:\n\n")
+        parts.append(format_gpl_traceback(value))
+        sys.stderr.write("".join(parts))
+
+    hook.__gpl_sourcemap__ = True  # type: ignore[attr-defined]
+    sys.excepthook = hook
