@@ -610,13 +610,27 @@ def dump(node: Node, *, comments: bool = True, positions: bool = True) -> str:
 
     One line per node: ``ClassName field=value ... @line:col``; child nodes are indented below,
     list fields get a ``field:`` heading.  Comments are shown as ``' text`` lines when ``comments``.
+
+    The walk uses an explicit stack, not recursion: a long operator chain (``a & b & … `` continued
+    over hundreds of lines) is a left-leaning tree as deep as it is long, and must not exhaust the
+    Python stack.
     """
     out: list[str] = []
-    _dump(node, 0, out, comments, positions)
+    stack: list[str | tuple[Node, int]] = [(node, 0)]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, str):
+            out.append(item)
+        else:
+            stack.extend(reversed(_dump_node(item[0], item[1], out, comments, positions)))
     return "\n".join(out) + "\n"
 
 
-def _dump(node: Node, depth: int, out: list[str], comments: bool, positions: bool) -> None:
+def _dump_node(
+    node: Node, depth: int, out: list[str], comments: bool, positions: bool
+) -> list[str | tuple[Node, int]]:
+    """Append ``node``'s own lines to ``out``; return what follows them, in order (child nodes to
+    render at a depth, and literal lines such as field headings and closing comments)."""
     pad = "  " * depth
     if comments:
         for c in getattr(node, "leading_comments", ()):
@@ -649,26 +663,25 @@ def _dump(node: Node, depth: int, out: list[str], comments: bool, positions: boo
             if c is not None:
                 head += f"  {_comment(c)}"
     out.append(head)
+    follow: list[str | tuple[Node, int]] = []
     for name, value in nested:
         if isinstance(value, Node):
             if len(nested) > 1 or not isinstance(node, (Block,)):
-                out.append(f"{pad}  {name}:")
-                _dump(value, depth + 2, out, comments, positions)
+                follow.append(f"{pad}  {name}:")
+                follow.append((value, depth + 2))
             else:
-                _dump(value, depth + 1, out, comments, positions)
+                follow.append((value, depth + 1))
         else:
-            out.append(f"{pad}  {name}:")
+            follow.append(f"{pad}  {name}:")
             for item in value:
-                if item is None:
-                    out.append(f"{pad}    None")
-                else:
-                    _dump(item, depth + 2, out, comments, positions)
+                follow.append(f"{pad}    None" if item is None else (item, depth + 2))
     if comments:
         for c in getattr(node, "end_comments", ()):
-            out.append(f"{pad}  {_comment(c)}")
+            follow.append(f"{pad}  {_comment(c)}")
         c = getattr(node, "end_comment", None)
         if c is not None:
-            out.append(f"{pad}  (end) {_comment(c)}")
+            follow.append(f"{pad}  (end) {_comment(c)}")
+    return follow
 
 
 def _comment(c: Comment) -> str:

@@ -782,6 +782,18 @@ def test_dump_is_readable() -> None:
     assert "Binary op='+' @3:9" in text
 
 
+def test_dump_of_a_long_continued_concatenation_does_not_recurse() -> None:
+    # 1,500 '&' operands over ' _' lines: a left-leaning Binary tree 1,500 deep (was RecursionError)
+    lines = ['s = "a" _'] + [f'    & "x{i}" _' for i in range(1500)] + ['    & "end"']
+    unit, sink = parse_text("Module M\nSub A()\nDim s As String\n" + "\n".join(lines) + "\nEnd Sub\nEnd Module\n")
+    assert list(sink) == []
+    text = A.dump(unit, comments=False)
+    binaries = [line for line in text.splitlines() if line.lstrip().startswith("Binary op='&'")]
+    assert len(binaries) == 1501
+    assert binaries[-1].lstrip() == "Binary op='&' @4:5"  # the innermost, '"a" & "x0"', starts at "a"
+    assert "StringLiteral value='end' @1505:7" in text
+
+
 def test_visitor_and_transformer() -> None:
     unit, _ = parse_text("Module M\nSub A()\n    x = a + b\n    f(a)\nEnd Sub\nEnd Module\n")
 
