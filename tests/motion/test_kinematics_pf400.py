@@ -219,3 +219,46 @@ def test_tool_and_base_enter_forward_and_inverse() -> None:
     T = model.forward(q)
     assert np.abs(T - model.base @ model.flange(q) @ model.tool).max() < 1e-12
     assert model.inverse(T, GPL_LEFTY, q) == pytest.approx(q, abs=1e-9)
+
+
+# -- whole paths in one pass ----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["PF400SX", "PF400SXL", "PF400S-SHORT", "PF3400SX"])
+def test_inverse_path_equals_pose_by_pose_solutions(name: str) -> None:
+    """``inverse_path`` (one numpy pass over a straight line's or an arc's samples) gives the joints
+    the pose-by-pose ``inverse`` gives, seeded sample after sample — rail moving along, Tool set,
+    multi-turn wrist — and declines (None) exactly where pose by pose would raise or pick another turn."""
+    from gplrt.motion.straight import ArcPath, LinePath, PathJoints
+
+    model = _model(name)
+    rng = np.random.default_rng(RNG_SEED + 7)
+    lo, hi = np.array(model.lower_limits), np.array(model.upper_limits)
+    lo, hi = np.maximum(lo, -700.0), np.minimum(hi, 700.0)
+    mask = np.array([j.role == "rail" for j in model.joints])
+    compared = declined = 0
+    for _ in range(150):
+        q0, q1 = rng.uniform(lo, hi), rng.uniform(lo, hi)
+        q_end = q1  # the rail (if any) goes to q1's along the path; IK solves the arm
+        T0, T1 = model.forward(q0), model.forward(q_end)
+        mid = 0.5 * (T0[:3, 3] + T1[:3, 3]) + rng.uniform(-40.0, 40.0, 3)
+        for path in (LinePath(T0, T1), ArcPath(T0, mid, T1)):
+            def ik(T: np.ndarray, seed: np.ndarray) -> np.ndarray:
+                return np.array(model.inverse(T, 0, seed.tolist()))
+            try:
+                one_by_one = PathJoints.sample(path, ik, q0, q_end, mask)
+            except GplException:
+                one_by_one = None
+            if one_by_one is None:
+                with pytest.raises(GplException):
+                    PathJoints.sample(path, ik, q0, q_end, mask, model.inverse_path)
+                continue
+            batch = model.inverse_path(path.poses(one_by_one.u[1:]), np.array([
+                np.where(mask, q0 + (q_end - q0) * u, q0) for u in one_by_one.u[1:]]))
+            if batch is None:
+                declined += 1
+                continue
+            compared += 1
+            assert np.abs(batch - one_by_one.q[1:]).max() < 1e-9
+            assert np.abs(path.poses(one_by_one.u) - np.array([path.pose(float(u)) for u in one_by_one.u])).max() < 1e-9
+    assert compared > 100 and declined < compared / 10

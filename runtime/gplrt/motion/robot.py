@@ -281,7 +281,7 @@ class RobotState:
             return self.inverse(T, 0, seed)
 
         self._check_config_kept(config, start_config)
-        pj = PathJoints.sample(path, ik, q0, q_extra, mask)
+        pj = PathJoints.sample(path, ik, q0, q_extra, mask, self.model.inverse_path)
         joint_lim = self.limits.joint_limits(prof, system_speed)
         cart_lim = self.limits.path_limits(prof, system_speed)
         v, acc, dec, jerk = pj.derived_limits(joint_lim, cart_lim, float(prof.AccelRamp), float(prof.DecelRamp))

@@ -46,6 +46,23 @@ class Path:
     def pose(self, u: float) -> np.ndarray:
         raise NotImplementedError
 
+    def poses(self, us: np.ndarray) -> np.ndarray:
+        """``pose(u)`` for every u of ``us``, stacked (N×4×4): one numpy pass where a path can."""
+        return np.array([self.pose(float(u)) for u in us])
+
+
+def _rodrigues(w: np.ndarray, us: np.ndarray) -> np.ndarray:
+    """``exp3(w · u)`` for every u (N×3×3), the closed form of Pinocchio's ``exp3``."""
+    theta = float(np.linalg.norm(w))
+    out = np.broadcast_to(np.eye(3), (len(us), 3, 3)).copy()
+    if theta == 0.0:
+        return out
+    k = w / theta
+    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    a = theta * us
+    out += np.sin(a)[:, None, None] * K + (1.0 - np.cos(a))[:, None, None] * (K @ K)
+    return out
+
 
 class _Slerp:
     def __init__(self, R0: np.ndarray, R1: np.ndarray) -> None:
@@ -57,6 +74,14 @@ class _Slerp:
         if u >= 1.0 or self.turn == 0.0:
             return self.R0 @ pin.exp3(self.w) if u >= 1.0 else self.R0.copy()
         return self.R0 @ pin.exp3(self.w * u)
+
+    def at_many(self, us: np.ndarray) -> np.ndarray:
+        """``at(u)`` for every u (N×3×3); the end (u ≥ 1) exactly as ``at`` gives it."""
+        out = self.R0 @ _rodrigues(self.w, np.minimum(us, 1.0)) if self.turn else np.broadcast_to(self.R0, (len(us), 3, 3)).copy()
+        end = us >= 1.0
+        if end.any():
+            out[end] = self.at(1.0)
+        return out
 
 
 class LinePath(Path):
@@ -75,6 +100,15 @@ class LinePath(Path):
         T = np.eye(4)
         T[:3, :3] = self.slerp.at(u)
         T[:3, 3] = self.p0 + (self.p1 - self.p0) * u
+        return T
+
+    def poses(self, us: np.ndarray) -> np.ndarray:
+        T = np.broadcast_to(np.eye(4), (len(us), 4, 4)).copy()
+        T[:, :3, :3] = self.slerp.at_many(us)
+        T[:, :3, 3] = self.p0 + (self.p1 - self.p0) * us[:, None]
+        end = us >= 1.0
+        if end.any():
+            T[end] = self.T1
         return T
 
 
@@ -117,6 +151,17 @@ class ArcPath(Path):
         T[:3, 3] = self.centre + self.radius * (math.cos(phi) * self.e1 + math.sin(phi) * self.e2)
         return T
 
+    def poses(self, us: np.ndarray) -> np.ndarray:
+        phi = self.sweep * np.minimum(us, 1.0)
+        T = np.broadcast_to(np.eye(4), (len(us), 4, 4)).copy()
+        T[:, :3, :3] = self.slerp.at_many(us)
+        T[:, :3, 3] = self.centre + self.radius * (np.cos(phi)[:, None] * self.e1 + np.sin(phi)[:, None] * self.e2)
+        if not self.full:
+            end = us >= 1.0
+            if end.any():
+                T[end] = self.T2
+        return T
+
 
 def _gradient(f: np.ndarray, h: float) -> np.ndarray:
     """``np.gradient(f, h, axis=0)`` (central inside, one-sided at the ends), without its overhead
@@ -126,6 +171,11 @@ def _gradient(f: np.ndarray, h: float) -> np.ndarray:
     out[0] = (f[1] - f[0]) / h
     out[-1] = (f[-1] - f[-2]) / h
     return out
+
+
+#: (poses N×4×4 mm, seeds N×n: the start joints with the linearly moving axes set) -> joints N×n,
+#: or None to solve pose by pose (``RobotModel.inverse_path``).
+PathIK = Callable[[np.ndarray, np.ndarray], "np.ndarray | None"]
 
 
 @dataclass
@@ -142,15 +192,28 @@ class PathJoints:
 
     @classmethod
     def sample(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
-               extra_mask: np.ndarray) -> PathJoints:
+               extra_mask: np.ndarray, ik_path: PathIK | None = None) -> PathJoints:
+        """Solve the path at its sample points, each seeded by the previous solution.
+
+        ``ik_path`` (the model's ``inverse_path``) solves them all in one pass; it returns None
+        when some sample needs the pose-by-pose rules (a limit, an unreachable pose, a branch
+        boundary), and then ``ik`` solves them one by one — which raises the proper code."""
         n = int(min(MAX_SAMPLES, max(MIN_SAMPLES, math.ceil(path.length / MM_PER_SAMPLE)
                                      + math.ceil(path.turn / DEG_PER_SAMPLE))))
-        us = np.linspace(0.0, 1.0, n + 1)
+        us = np.arange(n + 1) / n  # k / n: 0 and 1 exactly at the ends
         self = cls(path, ik, us, np.empty((n + 1, len(q0))), np.asarray(q0, float).copy(),
                    np.asarray(q_extra_end, float), extra_mask)
         # The path starts where the robot is: q0 itself is the first sample (no IK, and no
         # rounding step between the previous motion's end and this one's start).
         seed = self.q[0] = self.extra_start
+        if ik_path is not None:
+            m = self.extra_mask
+            seeds = np.broadcast_to(self.extra_start, (n, len(q0))).copy()
+            seeds[:, m] = self.extra_start[m] + (self.extra_end[m] - self.extra_start[m]) * us[1:, None]
+            solved = ik_path(path.poses(us[1:]), seeds)
+            if solved is not None:
+                self.q[1:] = solved
+                return self
         for k in range(1, len(us)):
             u = float(us[k])
             seed = self._seed(seed, u)

@@ -222,6 +222,26 @@ class RobotModel:
         self.check_limits(joints)
         return joints
 
+    def inverse_path(self, Ts: np.ndarray, seeds: np.ndarray) -> np.ndarray | None:
+        """Joints (N×n, mm/deg) for poses sampled along a continuous path (N×4×4, mm), all in one
+        pass: pose k is solved with Config 0 as ``inverse(Ts[k], 0, current)`` would, where
+        ``current`` is solution k − 1 (``seeds[0]`` for the first) with the axes the IK does not
+        solve (rail, grippers) taken from ``seeds[k]``.
+
+        None means "solve pose by pose": the default for models without a batch solver, and what
+        a batch solver returns when any sample leaves the plain case (a soft limit, an unreachable
+        pose, an ambiguous turn or branch), so that ``inverse`` raises the proper code."""
+        return None
+
+    def _limits_hold(self, q_si: np.ndarray) -> bool:
+        """Every row of ``q_si`` (N×n, SI) inside the soft limits (with ``LIMIT_SLACK``)."""
+        return bool((q_si >= self._lower_si - LIMIT_SLACK).all() and (q_si <= self._upper_si + LIMIT_SLACK).all())
+
+    def _targets(self, Ts: np.ndarray) -> np.ndarray:
+        """``Base⁻¹ · T · Tool⁻¹`` of every pose (N×4×4, mm): the flange targets."""
+        out = Ts if self._base_is_identity else self._base_inv @ Ts
+        return out if self._tool_is_identity else out @ self._tool_inv
+
     def config_of(self, joints: Sequence[float]) -> int:
         """Configuration bits of a joint vector (mm/deg)."""
         if self.pin_model is None:

@@ -149,5 +149,82 @@ class Pf400Model(RobotModel):
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="yaw not reachable without a wrist axis")
         return q
 
+    def inverse_path(self, Ts: np.ndarray, seeds: np.ndarray) -> np.ndarray | None:
+        """``_solve`` of every pose in numpy (see ``RobotModel.inverse_path``).
+
+        Consecutive samples of a path are far less than half a turn apart, so "the turn nearest
+        the previous solution" is the continuous one: each angle is unwrapped along the path from
+        the start joints and then written as ``raw + k·2π``, the very expression ``unwind`` uses.
+        The elbow keeps the start's branch (it cannot change without folding through J3 = 180°,
+        below the reach the checks allow).  Anything else returns None."""
+        if Ts.ndim != 3 or not np.isfinite(Ts).all():
+            return None
+        i = self._i
+        target = self._targets(Ts)
+        r = target[:, :3, :3]
+        if (np.hypot(r[:, 0, 0], r[:, 1, 0]) > ORIENTATION_TOLERANCE).any() or (r[:, 2, 0] < 0.0).any():
+            return None
+        psi = np.arctan2(r[:, 1, 2], r[:, 0, 2])
+        q = units_to_si(seeds, self._linear)
+        p = target[:, :3, 3] / units.MM_PER_M
+        if "rail" in i:
+            p = p - q[:, i["rail"], None] * self.rail_direction
+        l1, l2 = self.l1, self.l2
+        rho = np.hypot(p[:, 0], p[:, 1])
+        big, small = l1 + l2, abs(l1 - l2)
+        if rho.max() > big + _REACH_SLACK or rho.min() < small - _REACH_SLACK:
+            return None
+        start = q[0]
+        elbow_now = float(start[i["elbow"]]) % TWO_PI
+        if abs(elbow_now - math.pi) < 1e-9 or elbow_now < 1e-9 or TWO_PI - elbow_now < 1e-9:
+            return None  # on a branch boundary: pose by pose decides
+        elbow = 2.0 * np.arctan2(np.sqrt(np.maximum(0.0, (big - rho) * (big + rho))),
+                                 np.sqrt(np.maximum(0.0, (rho - small) * (rho + small))))
+        j3 = elbow if elbow_now < math.pi else TWO_PI - elbow
+        j2 = np.arctan2(p[:, 1], p[:, 0]) - np.arctan2(l2 * np.sin(j3), l1 + l2 * np.cos(j3))
+        j2 = np.remainder(j2 + math.pi, TWO_PI) - math.pi  # wrap_pi up to the ±π tie, which unwinding absorbs
+        q[:, i["z"]] = p[:, 2]
+        arm = _unwrap_from(np.stack((j2, j3), axis=1), start[[i["shoulder"], i["elbow"]]])
+        if arm is None:
+            return None
+        sh, el = arm[:, 0], arm[:, 1]
+        q[:, i["shoulder"]], q[:, i["elbow"]] = sh, el
+        if "wrist" in i:
+            wr = _unwrap_from((psi - sh - el)[:, None], start[[i["wrist"]]])
+            if wr is None:
+                return None
+            q[:, i["wrist"]] = wr[:, 0]
+        elif (np.abs(np.remainder(psi - sh - el + math.pi, TWO_PI) - math.pi) > ORIENTATION_TOLERANCE).any():
+            return None
+        if not self._limits_hold(q):
+            return None
+        return si_to_units(q, self._linear)
+
     def _config(self, q: np.ndarray) -> int:
         return GPL_RIGHTY if q[self._i["elbow"]] % TWO_PI < math.pi else GPL_LEFTY
+
+
+def _unwrap_from(raw: np.ndarray, start: np.ndarray) -> np.ndarray | None:
+    """Column by column (N×m), ``raw + k·2π`` with each k giving the turn nearest the previous
+    value (``start`` before the first row): None when two neighbours are half a turn apart or
+    more, where "nearest" is not clear."""
+    steps = np.empty_like(raw)
+    steps[0] = raw[0] - start
+    steps[1:] = raw[1:] - raw[:-1]
+    wrapped = np.remainder(steps + math.pi, TWO_PI) - math.pi
+    if np.abs(wrapped).max() >= math.pi - 1e-6:
+        return None
+    cont = start + np.cumsum(wrapped, axis=0)
+    return raw + np.round((cont - raw) / TWO_PI) * TWO_PI
+
+
+def units_to_si(q: np.ndarray, linear: list[bool]) -> np.ndarray:
+    """N×n joints in GPL units (mm, deg) → SI (m, rad), column by column as ``units.joints_to_q``."""
+    lin = np.array(linear)
+    return np.where(lin, q / units.MM_PER_M, np.radians(q))
+
+
+def si_to_units(q: np.ndarray, linear: list[bool]) -> np.ndarray:
+    """N×n SI joints → GPL units (the inverse of ``units_to_si``)."""
+    lin = np.array(linear)
+    return np.where(lin, q * units.MM_PER_M, np.degrees(q))
