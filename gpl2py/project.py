@@ -21,6 +21,8 @@ Decisions where the manuals are silent (gpl-language.md §12.3 recommends the fo
 * keys are case-insensitive, blank lines and ``'`` comment lines are ignored anywhere, ``KEY = "v"``
   with spaces and an unquoted value are tolerated;
 * ``ProjectName``/``ProjectStart`` given twice: the first wins, with a warning;
+* a byte-order mark at the start and Ctrl-Z end-of-file markers at the end (old DOS editors) are
+  not part of the text, in Project.gpr as in the sources (the lexer skips them there);
 * a missing ``ProjectStart`` is a warning (the project can still be checked), ``start`` is ``None``;
 * file names are resolved case-insensitively (the controller's flash file system is); if several
   files differ only in case, an exact match wins, otherwise the first in sorted order, with a warning;
@@ -227,7 +229,8 @@ def _parse_gpr(gpr: SourceFile, sink: DiagnosticSink) -> list[_GprEntry]:
     entries: list[_GprEntry] = []
     state = "before"  # -> "inside" at ProjectBegin -> "after" at ProjectEnd
     last_line = 1
-    for number, raw in enumerate(gpr.text.splitlines(), start=1):
+    text = gpr.text.rstrip("\x1a")  # a DOS end-of-file marker (Ctrl-Z) is not text after ProjectEnd
+    for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.strip()
         last_line = number
         if not line or line.startswith("'"):

@@ -111,6 +111,18 @@ def test_gpr_keys_case_insensitive_crlf_spaces_and_comments(tmp_path: Path) -> N
     assert names(project) == ["Main.gpl", "Util.gpl"]
 
 
+def test_gpr_from_an_old_dos_editor_with_bom_and_ctrl_z_is_clean(tmp_path: Path) -> None:
+    folder = tmp_path / "P"
+    write_module(folder, "Main.gpl")
+    folder.joinpath("Project.gpr").write_bytes(
+        b"\xef\xbb\xbf' Project file, can be edited with Notepad\r\nProjectBegin\r\n"
+        b'ProjectName="Cell"\r\nProjectStart="Main"\r\nProjectSource="Main.gpl"\r\nProjectEnd\r\n\x1a'
+    )
+    project, sink = load(folder)
+    assert project is not None and list(sink) == []
+    assert (project.name, project.start, names(project)) == ("Cell", "Main", ["Main.gpl"])
+
+
 def test_unknown_key_is_kept_with_a_warning_at_its_line(tmp_path: Path) -> None:
     folder = tmp_path / "P"
     write_module(folder, "Main.gpl")
