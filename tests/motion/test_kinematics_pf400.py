@@ -262,3 +262,29 @@ def test_inverse_path_equals_pose_by_pose_solutions(name: str) -> None:
             assert np.abs(batch - one_by_one.q[1:]).max() < 1e-9
             assert np.abs(path.poses(one_by_one.u) - np.array([path.pose(float(u)) for u in one_by_one.u])).max() < 1e-9
     assert compared > 100 and declined < compared / 10
+
+
+def test_from_the_folded_posture_config_zero_takes_the_reachable_nearest_branch() -> None:
+    """J3 = 180° exactly (folded, the PF400's parking posture) is in both elbow branches: Config 0
+    must not refuse a target that one branch reaches (it used to take Lefty and raise -1012), and
+    of two reachable solutions it takes the one nearest the current joints."""
+    model = _model("PF400SX")
+    folded = [250.0, 0.0, 180.0, 0.0, 80.0]
+    T = xyzypr_to_matrix(300, 100, 250, 0, 90, 180)  # Lefty would need J2 beyond its limit
+    sol = model.inverse(T, 0, folded)
+    assert sol == pytest.approx(model.inverse(T, GPL_RIGHTY, folded), abs=1e-12)
+    assert np.abs(model.forward(sol) - T).max() < 1e-9
+    T = xyzypr_to_matrix(300, -100, 250, 0, 90, 180)  # and the mirror image: Lefty only
+    assert model.inverse(T, 0, folded) == pytest.approx(model.inverse(T, GPL_LEFTY, folded), abs=1e-12)
+    # both reachable: the nearer one wins (here J2 is -63° or +63°; from J2 = -60° Righty is nearer)
+    T = xyzypr_to_matrix(400, 0, 250, 0, 90, 180)
+    near_righty = model.inverse(T, 0, [250.0, -60.0, 180.0, 0.0, 80.0])
+    assert near_righty == pytest.approx(model.inverse(T, GPL_RIGHTY, folded), abs=1e-9)
+    near_lefty = model.inverse(T, 0, [250.0, 60.0, 180.0, 0.0, 80.0])
+    assert near_lefty == pytest.approx(model.inverse(T, GPL_LEFTY, folded), abs=1e-9)
+    # an exact tie keeps the branch Where reports for J3 = 180 (Lefty)
+    assert model.config_of(model.inverse(T, 0, folded)) == GPL_LEFTY == model.config_of(folded)
+    # away from the boundary Config 0 keeps the current branch even when the other is nearer
+    with pytest.raises(GplException) as exc:
+        model.inverse(xyzypr_to_matrix(300, 100, 250, 0, 90, 180), 0, [250.0, 0.0, 181.0, 0.0, 80.0])
+    assert exc.value.ErrorCode == -1012

@@ -17,7 +17,8 @@ enter the pose").
 Inverse (closed form, §4.4): orientation must have flange x = world up (else -1033; tolerance
 1e-6°, the spec's [P]); reach outside [|l1 − l2|, l1 + l2] → -1039 / -1040; elbow branch by
 Config: **Righty** (&H01) → J3 in (0°, 180°], **Lefty** (&H02) → [180°, 360°), neither or both →
-the current branch; J2 wrapped to (−180°, 180°]; J4 = ψ − J2 − J3 unwound toward the current J4
+the current branch (from exactly J3 = 0° or 180°, in both branches at once: the in-limits solution
+nearest the current joints, ``_nearest_branch``); J2 wrapped to (−180°, 180°]; J4 = ψ − J2 − J3 unwound toward the current J4
 within ±960° (``GPL_Single``: J4 in (−180°, 180°]); rail and gripper keep their current values;
 then every axis is checked against the soft limits (-1012).  Above/Below/Flip/NoFlip have no
 meaning on this arm and are ignored (§5.2 [P]).  ``config_of`` reports Righty when
@@ -57,6 +58,8 @@ _LINEAR_ROLES = {"z", "gripper", "rail", "gripper2"}
 FLANGE_ROTATION = np.array([[0.0, 0.0, 1.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]])
 #: Allowed tilt of the flange x axis from vertical: 1e-6 degree.
 ORIENTATION_TOLERANCE = math.sin(math.radians(1e-6))
+#: An elbow within this (rad) of 0° or 180° is on the branch boundary (``_nearest_branch``).
+BRANCH_EDGE = 1e-9
 #: Slack on the reach checks (m) so that poses computed at full stretch are not refused.
 _REACH_SLACK = 1e-12
 
@@ -115,7 +118,6 @@ class Pf400Model(RobotModel):
                                detail="a PF400 flange must be horizontal (pitch 90, roll 180)")
         psi = math.atan2(r12, r02)
         i = self._i
-        q = current.copy()
         p = target.translation
         if "rail" in i:
             p = p - current[i["rail"]] * self.rail_direction
@@ -127,15 +129,26 @@ class Pf400Model(RobotModel):
             raise GplException(POSITION_TOO_FAR, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
         if rho < abs(l1 - l2) - _REACH_SLACK:
             raise GplException(POSITION_TOO_CLOSE, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
-        righty = preference(bits, GPL_RIGHTY, GPL_LEFTY)
-        if righty is None:
-            righty = current[i["elbow"]] % TWO_PI < math.pi
         # Half-angle form of the law of cosines: tan(J3/2) = √((L−ρ)(L+ρ) / ((ρ−D)(ρ+D))), L = l1 + l2,
         # D = |l1 − l2|.  It keeps full precision near the stretched and folded poses, where
         # acos / √(1 − c²) lose half the digits.
         big, small = l1 + l2, abs(l1 - l2)
         elbow = 2.0 * math.atan2(math.sqrt(max(0.0, (big - rho) * (big + rho))),
                                  math.sqrt(max(0.0, (rho - small) * (rho + small))))
+        righty = preference(bits, GPL_RIGHTY, GPL_LEFTY)
+        if righty is None:
+            e = current[i["elbow"]] % TWO_PI
+            if min(e, abs(e - math.pi), TWO_PI - e) <= BRANCH_EDGE:
+                return self._nearest_branch(p, psi, elbow, bits, current, first=e < math.pi)
+            righty = e < math.pi
+        return self._branch(p, psi, elbow, righty, bits, current)
+
+    def _branch(self, p: list[float], psi: float, elbow: float, righty: bool, bits: int,
+                current: np.ndarray) -> np.ndarray:
+        """The solution on one elbow branch (flange position ``p`` in m, rail removed)."""
+        i = self._i
+        l1, l2 = self.l1, self.l2
+        q = current.copy()
         j3 = elbow if righty else TWO_PI - elbow
         s3, c3 = math.sin(j3), math.cos(j3)
         j2 = wrap_pi(math.atan2(p[1], p[0]) - math.atan2(l2 * s3, l1 + l2 * c3))
@@ -148,6 +161,28 @@ class Pf400Model(RobotModel):
         elif abs(wrap_pi(psi - q[i["shoulder"]] - q[i["elbow"]])) > ORIENTATION_TOLERANCE:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="yaw not reachable without a wrist axis")
         return q
+
+    def _nearest_branch(self, p: list[float], psi: float, elbow: float, bits: int, current: np.ndarray,
+                        first: bool) -> np.ndarray:
+        """Config 0 with the elbow exactly on a branch boundary (J3 = 0° or 180°: stretched or
+        folded, the PF400's usual parking posture): the arm is in both branches at once, so "keep
+        the current branch" decides nothing.  Decision [P] (gpl-classes §22.1 item 11: no
+        preference → the solution nearest the current joints): the solution within the soft
+        limits nearest the current shoulder/elbow/wrist (sum of squared radians); on a tie the
+        branch ``config_of`` reports now (``first``: Righty at 0°, Lefty at 180°)."""
+        found: list[np.ndarray] = []
+        error: GplException | None = None
+        for righty in (first, not first):
+            try:
+                found.append(self._branch(p, psi, elbow, righty, bits, current))
+            except GplException as exc:
+                error = error or exc
+        if not found:
+            assert error is not None
+            raise error
+        pool = [q for q in found if self._limits_hold(q[None, :])] or found
+        arm = [self._i[r] for r in ("shoulder", "elbow", "wrist") if r in self._i]
+        return min(pool, key=lambda q: float(np.sum((q[arm] - current[arm]) ** 2)))  # first of equals
 
     def inverse_path(self, Ts: np.ndarray, seeds: np.ndarray) -> np.ndarray | None:
         """``_solve`` of every pose in numpy (see ``RobotModel.inverse_path``).
