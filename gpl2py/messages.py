@@ -221,13 +221,6 @@ PARSE_BAD_MODIFIER = _error(
     "GPL1125",
     "'{modifier}' is not allowed {where}",
 )
-PARSE_CALL_WITHOUT_PARENTHESES = _warning(
-    "GPL1126",
-    "procedure '{name}' is called without parentheses; GPL requires an argument list: '{name}()'",
-    "The manual says argument lists are always parenthesised, '()' when empty (§9.1.1); gpl2py "
-    "accepts a bare procedure name as a call statement (spec AMB-9).  Members such as "
-    "'Move.WaitForEOM' or 'obj.Method' are not affected: the manual calls them without '()'.",
-)
 
 # --- project loading (GPL1400-GPL1499) ---------------------------------------------------------
 
