@@ -26,7 +26,11 @@ Exit status of ``run`` (also in ``gpl2py run --help`` and docs/cli.md):
 Ctrl-C (decision): the GPL threads are aborted the way ``Thread.Abort`` does it (at their next
 scheduling point), the command waits up to ``STOP_GRACE`` real seconds for them to end, then exits
 with 130 — without a Python traceback.  A thread stuck in a blocking host call (a socket read) is a
-daemon thread and ends with the process.
+daemon thread and ends with the process.  The program is driven from a helper thread while the main
+thread only waits for it (:func:`_drive`): Python raises KeyboardInterrupt in the main thread at
+whatever bytecode it is running, and were that the scheduler's own code (a dispatch half done under
+its lock), the threads could be left in a state no abort reaches.  A run started with SIGINT
+ignored (``nohup``, a background job of a shell script) keeps ignoring it, as POSIX programs do.
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ import importlib.util
 import itertools
 import json
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -314,13 +319,38 @@ def save_plot(sim: Any, path: str | Path, robot: int = 1) -> bool:
     return True
 
 
+def _drive(package: ModuleType, sim: Any) -> threading.Thread:
+    """Run ``package.main(sim)`` on a helper thread; the calling (main) thread only waits for it.
+
+    A KeyboardInterrupt can then only arrive in this function's ``join`` (see module docstring),
+    never inside the scheduler.  An exception of ``main`` itself is re-raised here, so a fault of
+    gpl2py still reaches the command's GPL9000 report.  Returns the helper, still running when
+    interrupted (it ends once :func:`_stop_all` has stopped the GPL threads it waits for).
+    """
+    failure: list[BaseException] = []
+
+    def target() -> None:
+        try:
+            package.main(sim)
+        except BaseException as exc:  # noqa: BLE001 - handed to the main thread below
+            failure.append(exc)
+
+    helper = threading.Thread(target=target, name="gpl2py run", daemon=True)
+    helper.start()
+    while helper.is_alive():
+        helper.join(0.1)
+    if failure:
+        raise failure[0]
+    return helper
+
+
 def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunReport:
     """Run the package's ``main(sim)``; Ctrl-C stops every GPL thread (status 130)."""
     started = time.perf_counter()
     interrupted = False
     stopped: tuple[int, list[str]] = (0, [])
     try:
-        package.main(sim)
+        _drive(package, sim)
     except KeyboardInterrupt:
         interrupted = True
         stopped = _stop_all(sim)

@@ -263,12 +263,21 @@ LOOP = module_src("""\
     End Sub""")
 
 
+# A terminal delivers Ctrl-C to a foreground program whose SIGINT is at its default.  A test run
+# started as a background job of a shell script (several suites at once: `pytest ... &`) inherits
+# SIGINT *ignored*, as POSIX has it for background jobs, and so would gpl2py, which then rightly
+# keeps ignoring it: reset it, as the terminal's foreground would have it, then run gpl2py exactly
+# as `python -m gpl2py` does.
+FOREGROUND = ("import runpy, signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
+              "runpy.run_module('gpl2py', run_name='__main__', alter_sys=True)")
+
+
 @pytest.mark.parametrize("clock", ["real", "virtual"])
 def test_ctrl_c_stops_every_thread_and_exits_130(tmp_path: Path, clock: str) -> None:
     proj = write_project(tmp_path, {"Main.gpl": LOOP})
     # -X faulthandler: if the run ever hangs after Ctrl-C, SIGABRT makes it print every thread's
     # stack, and the failure shows where it was stuck.
-    proc = subprocess.Popen([sys.executable, "-X", "faulthandler", "-m", "gpl2py", "run", str(proj),
+    proc = subprocess.Popen([sys.executable, "-X", "faulthandler", "-c", FOREGROUND, "run", str(proj),
                              "--clock", clock],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=REPO)
     try:
@@ -288,6 +297,51 @@ def test_ctrl_c_stops_every_thread_and_exits_130(tmp_path: Path, clock: str) -> 
     assert proc.returncode == 130, err
     assert "Traceback" not in err and "KeyboardInterrupt" not in err
     assert err.splitlines()[-1] == "gpl2py: interrupted; stopped 2 GPL threads"
+
+
+@pytest.mark.parametrize("clock", ["real", "virtual"])
+def test_ctrl_c_at_any_moment_of_the_run_stops_it(tmp_path: Path, clock: str) -> None:
+    """Ctrl-C lands wherever the main thread is; each time every GPL thread stops within the grace."""
+    # as in a terminal's foreground (see FOREGROUND): interrupt_main does nothing to an ignored SIGINT
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        _press_ctrl_c_during_runs(tmp_path, clock)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _press_ctrl_c_during_runs(tmp_path: Path, clock: str) -> None:
+    import _thread
+    import random
+    import threading
+
+    from gpl2py.diagnostics import DiagnosticSink
+    from gpl2py.run import build, execute, import_built
+    from gplrt.sim import Simulation
+
+    built = build(write_project(tmp_path, {"Main.gpl": LOOP}), DiagnosticSink(), cache_dir=tmp_path / "c")
+    assert built is not None
+    package = import_built(built)
+    rng = random.Random(7)
+    for _ in range(4):
+        sim = Simulation(clock=clock, capture=True)
+        delay = rng.uniform(0.0, 0.2)
+
+        def press_ctrl_c() -> None:
+            for _ in range(1000):  # once both threads run (Main prints "started" after Worker starts)
+                if "started" in sim.console.output:
+                    break
+                time.sleep(0.01)
+            time.sleep(delay)
+            _thread.interrupt_main()
+
+        presser = threading.Thread(target=press_ctrl_c, daemon=True)
+        presser.start()
+        report = execute(package, sim)
+        presser.join(5)
+        assert report.interrupted and report.status == 130, (clock, delay)
+        assert (report.stopped, report.still_alive) == (2, []), (clock, delay)
+        assert all(c.phase == "done" for c in sim.scheduler.live), (clock, delay)
 
 
 def test_cache_keeps_a_bounded_number_of_entries(tmp_path: Path) -> None:
