@@ -113,6 +113,7 @@ _CLOSERS: dict[TokenKind, str] = {
     K.SHARED: "MOD",
 }
 _DECL_CONTAINERS = frozenset({"Sub", "Function", "Property", "Get", "Set", "Class", "Module"})
+_PROC_KINDS = frozenset({"Sub", "Function"})
 _DECL_WORDS = frozenset({K.SUB, K.FUNCTION, K.PROPERTY, K.CLASS, K.DELEGATE, K.MODULE})
 _MODIFIER_KINDS = frozenset({K.PUBLIC, K.PRIVATE, K.SHARED})
 
@@ -391,6 +392,8 @@ class Parser:
     def is_open(self, kind: str) -> bool:
         if kind == "<decl>":
             return any(k in _DECL_CONTAINERS for k in self.open)
+        if kind in _PROC_KINDS:  # 'End Sub' typed for 'End Function' (or back) still ends the procedure
+            return any(k in _PROC_KINDS for k in self.open)
         return kind in self.open
 
     def stray_closer(self, kind: str) -> None:
@@ -486,9 +489,21 @@ class Parser:
             self.nest, self.in_proc = saved
 
     def close_end(self, kind: str, start: Token, node: A.Stmt) -> bool:
-        """Consume ``End <kind>`` (attaching its comment to ``node.end_comment``) or report."""
+        """Consume ``End <kind>`` (attaching its comment to ``node.end_comment``) or report.
+
+        A procedure closed by the other procedure keyword (``Function … End Sub``) is one error at
+        the ``End`` line, and the procedure ends there: reporting the ``End Sub`` as stray and the
+        Function as unclosed would give two errors for one typo, far from where it is.
+        """
         tok = self.tok
-        if tok.kind is K.END and _END_KINDS.get(self.peek().kind) == kind:
+        found = _END_KINDS.get(self.peek().kind) if tok.kind is K.END else None
+        if found != kind and kind in _PROC_KINDS and found in _PROC_KINDS:
+            self.sink.report(
+                M.PARSE_EXPECTED, tok.span.to(self.peek().span), expected=f"'End {kind}'",
+                found=f"'End {self.peek().text}'",
+            )
+            found = kind
+        if found == kind:
             self.next()
             self.next()
             comment = self.end_of_line(None)

@@ -706,6 +706,32 @@ def test_missing_end_sub_before_next_sub() -> None:
     assert [p.name for p in unit.members[0].members] == ["A", "B"]
 
 
+def test_end_sub_closing_a_function_is_one_error_at_that_line() -> None:
+    text = """Module M
+    Public Function C() As Integer
+        Return 1
+    End Sub
+    Public Sub D()
+        Select Case x
+            Case 1
+                y = 2
+    End Function
+    Public Sub E()
+    End Sub
+End Module
+"""
+    unit, sink = parse_text(text)
+    assert [(d.span.line, d.span.col, d.code, d.message) for d in sink] == [
+        (4, 5, "GPL1100", "expected 'End Function', found 'End Sub'"),
+        (6, 9, "GPL1105", "'Select' block is not closed: expected 'End Select' before 'End Function'"),
+        (9, 5, "GPL1100", "expected 'End Sub', found 'End Function'"),
+    ]
+    c, d, e = unit.members[0].members  # type: ignore[attr-defined]
+    assert (c.name, c.kind, len(c.body.statements)) == ("C", "Function", 1)
+    assert (d.name, d.kind, d.span.end_line) == ("D", "Sub", 9) and isinstance(d.body.statements[0], A.Select)
+    assert e.name == "E"
+
+
 def test_missing_end_module_and_eof_inside_blocks() -> None:
     assert errors("Module M\n    Sub A()\n        While x\n") == [(3, 9, "GPL1105"), (2, 5, "GPL1105"), (1, 1, "GPL1105")]
 
