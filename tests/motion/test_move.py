@@ -294,3 +294,20 @@ def test_a_full_queue_makes_move_wait_for_room(sim: Simulation) -> None:
     assert np.max(np.abs(Robot.Where().matrix() - a.matrix())) < 1e-9
     cut = [seg.cut is not None for seg in sim.robots[1].queue.history[1:-1]]
     assert cut[0::2] == [True] * len(cut[0::2])  # every straight move blended into the joint move after it
+
+
+def test_zero_length_straight_moves_finish_at_once_without_numeric_warnings(sim: Simulation) -> None:
+    """Move.Rel by nothing in a straight line (a common "settle here" idiom) plans a motion of zero
+    length: no NaN may enter the planner (it used to compute inf · 0 for the joints that do not move)."""
+    import warnings
+
+    Move.Loc(angles(300.0, 10.0, 90.0, -100.0, 100.0), Profile())
+    Move.WaitForEOM()
+    before = Robot.Where().matrix()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        Move.Rel(Location.XYZValue(0.0, 0.0, 0.0, 0.0, 0.0, 0.0), profile(Straight=True))
+        seg = sim.robots[1].queue.last
+        Move.WaitForEOM()
+    assert math.isfinite(seg.duration) and seg.duration < 1e-3
+    assert np.max(np.abs(Robot.Where().matrix() - before)) < 1e-9

@@ -69,6 +69,9 @@ HOMING_TIME = 1.0
 #: (mm) inside it: a micrometre is far below anything a trace or a test of the corner can see.
 BLEND_DISTANCE_TOLERANCE = 1e-3
 
+#: A Cartesian path shorter than this (mm, and degrees of turn) does not move the tool.
+ZERO_PATH = 1e-9
+
 EXTRA_ROLES = ("rail",)
 PASSIVE_ROLES = ("rail", "gripper", "gripper2")
 
@@ -281,6 +284,11 @@ class RobotState:
             return self.inverse(T, 0, seed)
 
         self._check_config_kept(config, start_config)
+        if path.length < ZERO_PATH and path.turn < ZERO_PATH and np.array_equal(q_extra, q0):
+            # Nothing moves (``Move.Rel`` by nothing, a line to where the tool is): the motion is
+            # done at once, exactly where it started; a blending motion before it runs to its end.
+            seg = DwellSegment(t0, 0.0, q0.copy(), q0.copy(), kind=kind)
+            return self._append(seg, prof)
         pj = PathJoints.sample(path, ik, q0, q_extra, mask, self.model.inverse_path)
         joint_lim = self.limits.joint_limits(prof, system_speed)
         cart_lim = self.limits.path_limits(prof, system_speed)

@@ -261,9 +261,10 @@ class PathJoints:
             if d2[j] > 1e-12 and d2[j] * v * v > 0.5 * aj[j]:
                 v = math.sqrt(0.5 * aj[j] / d2[j])
         for j in range(len(d1)):
-            room = aj[j] - d2[j] * v * v
-            acc = min(acc, ratio(room, d1[j]))
-            dec = min(dec, ratio(room, d1[j]))
+            if d1[j] > 1e-12:  # (a joint the path does not move leaves u-double-dot free; v may be inf)
+                room = aj[j] - d2[j] * v * v
+                acc = min(acc, room / d1[j])
+                dec = min(dec, room / d1[j])
         if not math.isfinite(v):  # a path of zero length and zero turn: nothing moves
             v, acc, dec = 1.0, 1.0, 1.0
         ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else math.inf
