@@ -295,6 +295,12 @@ def test_extensions_file_uses_vb_forms() -> None:
     items = [type(i).__name__ for c in nodes(unit, ast.CaseClause) for i in c.items]
     assert items == ["CaseIs", "CaseRange", "CaseRange", "CaseValue", "CaseValue", "CaseIs"]
     assert len(nodes(unit, ast.ForEach)) == 1
+    [t] = nodes(proc(unit, "SafeRatio"), ast.Try)
+    assert t.catch is not None and t.catch.variable == "ex" and t.catch.type is not None
+    assert t.catch.type.name == "Exception" and t.finally_ is None
+    [gauge] = [c for c in nodes(unit, ast.ClassDecl) if c.name == "Gauge"]
+    [level] = [p for p in gauge.members if isinstance(p, ast.PropertyDecl)]
+    assert level.setter is not None and [e.kind for e in nodes(level.setter, ast.Exit)] == ["Property"]
 
 
 def test_vendor_style_crlf_tabs_and_keyword_case() -> None:
