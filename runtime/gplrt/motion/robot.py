@@ -259,9 +259,20 @@ class RobotState:
         Angles Location (the commonest motion of all) converts nothing on its way here."""
         self.check_joint_limits(values)
         lim = self.limits.joint_limits(prof, system_speed)
-        t0, q0, v0, a0 = self._start(now, can_blend=True)
+        # ``_start``'s two commonest cases inlined, without its copy: the new segment's q_start may
+        # be the very array of the previous q_end (or ``rest``): segments' joint arrays are only
+        # ever replaced, never changed in place.
+        queue = self.queue
+        history = queue.history
+        if not history:
+            t0, q0, v0, a0 = now, queue.rest, None, None
+        elif history[-1].end <= now + CLOCK_RESOLUTION:
+            t0, q0, v0, a0 = now, history[-1].q_end, None, None
+        else:
+            t0, q0, v0, a0 = self._start(now, can_blend=True)
         plan = plan_axes(q0, v0, a0, values, lim)
-        return self._append(JointSegment(t0, plan.duration, q0, np.array(values), plan=plan), prof)
+        return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
+                                         "joint", plan), prof)
 
     def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
                    extra_end: Vec | None = None, kind: str = "straight",
@@ -341,7 +352,9 @@ class RobotState:
             seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
         # the program may change its Profile after the Move
         seg.profile = self.last_profile = profile_values(prof)
-        self.queue.append(seg)
+        queue = self.queue
+        queue.history.append(seg)  # MotionQueue.append, inlined on this hot path
+        queue._starts.append(seg.t0)
         self.source = seg.q_start
         return seg
 
