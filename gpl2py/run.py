@@ -372,6 +372,7 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
                 report.plot = str(plot)
         except OSError as exc:
             report.plot_error = exc.strerror or str(exc)
+    sim.close(0.0)  # everything is known: release the robots (Simulation.close says why)
     return report
 
 

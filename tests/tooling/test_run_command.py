@@ -407,3 +407,35 @@ def test_cache_key_covers_sources_names_options_and_the_tools(tmp_path: Path, mo
     (proj / "Main.gpl").write_text(TICKER + "\n")
     changed = load_project(proj, DiagnosticSink())
     assert changed is not None and cache.cache_key(changed, {"keep_going": False}) != base
+
+
+def test_a_server_run_ends_cleanly_with_nothing_but_its_own_output(tmp_path: Path) -> None:
+    """samples/cell_server under `gpl2py run`, driven by a client until it shuts down: exit 0, and
+    stderr holds the summaries only (no interpreter-exit noise such as nanobind's "leaked" lines,
+    which a scheduler timer still pending at exit used to cause: gplrt.sim.Simulation.close)."""
+    from gpltest import SAMPLES, LineClient, copy_project, free_port
+
+    port = free_port()
+    proj = copy_project(SAMPLES / "cell_server", tmp_path / "cell_server",
+                        {"SERVER_PORT As Integer = 10200": f"SERVER_PORT As Integer = {port}"})
+    proc = subprocess.Popen([sys.executable, "-m", "gpl2py", "run", str(proj)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, cwd=REPO)
+    try:
+        assert proc.stdout is not None
+        assert proc.stdout.readline() == f"cell server listening on port {port}\n"
+        client = LineClient(port)
+        try:
+            assert client.ask("move 400 50 200") == "OK moved to 400.000 50.000 200.000"
+            assert client.ask("shutdown") == "OK shutting down"
+        finally:
+            client.close()
+        out, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 0, err
+    assert out == "cell server stopped after 1 connections\n"
+    lines = err.splitlines()
+    assert len(lines) == 2, err
+    assert lines[0].startswith("transpiled 5 files (") and lines[0].endswith(": 0 errors, 0 warnings")
+    assert lines[1].startswith("program ended after ") and lines[1].endswith(": 0 unhandled errors")
