@@ -237,6 +237,26 @@ def test_real_clock_with_speed_and_flash_folder(tmp_path: Path) -> None:
     assert wall < 60  # 2 s of controller time at 10x is 0.2 s of waiting, plus start-up
 
 
+def test_speed_scales_real_time(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """--speed 100: 20 s of controller time pass in a fifth of a wall second, not in 20 s."""
+    src = module_src("""\
+    Public Sub Main()
+        Dim t0 As Double
+        t0 = Controller.Timer(1)
+        Thread.Sleep(20000)
+        Console.WriteLine(Format(Controller.Timer(1) - t0, "0.0"))
+    End Sub""")
+    proj = write_project(tmp_path, {"Main.gpl": src})
+    assert in_process(capsys, "run", str(proj), "-q").returncode == 0  # translated: only the run is timed
+    t0 = time.monotonic()
+    r = in_process(capsys, "run", str(proj), "--clock", "real", "--speed", "100", "--json")
+    wall = time.monotonic() - t0
+    assert r.returncode == 0, r.stdout
+    run = json.loads(r.stdout)["run"]
+    assert run["console"] == "20.0\n" and run["controller_time"] >= 20.0
+    assert wall < 8.0  # at speed 1 this run takes 20 s
+
+
 def test_setup_file_and_plot(tmp_path: Path) -> None:
     png = tmp_path / "cell.png"
     r = gpl2py("run", str(REPO / "samples/pick_and_place"), "--setup",
