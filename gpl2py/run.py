@@ -45,7 +45,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import ModuleType
-from typing import TYPE_CHECKING, Any, TextIO
+from typing import TYPE_CHECKING, Any, Callable, TextIO
 
 from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
@@ -103,16 +103,21 @@ def count_lines(project: Project) -> int:
 
 def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | None = None,
           keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None,
-          stubs_dir: str | Path | None = None, strict: bool = False) -> Built | None:
+          stubs_dir: str | Path | None = None, strict: bool = False,
+          loaded: Callable[[Project], None] | None = None) -> Built | None:
     """Translate ``path`` into the cache (or reuse the entry); diagnostics go to ``sink``.
 
     Returns None when the project has errors (unless ``keep_going``) or the cache cannot be
     written (reported as GPL3001-style output errors).  A cache hit replays the diagnostics of the
-    translation that made the entry, so warnings are never lost by caching.
+    translation that made the entry, so warnings are never lost by caching.  ``loaded(project)``
+    is called once the project is loaded, so a caller can count its files even when the
+    translation then fails (the summary says "checked 3 files: 1 error", not "checked 0 files").
     """
     started = time.perf_counter()
     probe = DiagnosticSink()
     project = load_project(path, probe)
+    if project is not None and loaded is not None:
+        loaded(project)
     if project is None or probe.has_errors():
         sink.extend(probe)
         return None
@@ -412,14 +417,16 @@ def run_command(args: argparse.Namespace) -> Outcome:
     stdout, stderr = sys.stdout, sys.stderr
     out = cli.Outcome(emitted=True)
     bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, args.json))
+    loaded: list[Project] = []
     try:
         built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
-                      stubs_dir=args.stubs, strict=args.strict)
+                      stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append)
     finally:
         bar.close()
-    project = built.project if built is not None else None
+    project = built.project if built is not None else (loaded[0] if loaded else None)
     if project is not None:
-        cli._remember(out, project)
+        cli._remember(out, project)  # diagnostics show their source lines, also on errors
+        out.checked = len(project.sources)
     if built is not None:
         out.checked = built.files
         out.summary = transpile_summary(built.files, built.lines, out.sink, built.seconds, built.cached)

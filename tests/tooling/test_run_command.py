@@ -130,6 +130,9 @@ def test_source_errors_run_nothing(tmp_path: Path) -> None:
     r = gpl2py("run", str(proj))
     assert r.returncode == 1
     assert "Main.gpl:3:9: error GPL2001" in r.stderr and r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert lines[1:3] == ["            x = 1", "            ^"]  # the offending line, as `check` shows it
+    assert lines[-1] == "checked 1 file: 1 error, 0 warnings"  # the files were read, not 0
 
 
 def test_stalled_program_exits_4_and_names_the_waiting_threads(tmp_path: Path) -> None:
