@@ -171,7 +171,7 @@ def add_stub_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--stubs", metavar="DIR", default=None,
                         help="folder of Python files implementing stubs for protected code or "
                         "missing built-in members (Module.Proc -> DIR/module.py, function Proc); "
-                        "they are copied into the package")
+                        "translate and run copy them into the package")
     parser.add_argument("--strict", action="store_true",
                         help="report every stub (GPL3501, GPL3502) as an error: nothing is written "
                         "or run, exit status 1")
