@@ -16,11 +16,21 @@ The default hook does nothing.
 
 Timeouts themselves stay real: sockets talk to real peers, so their deadlines are wall-clock
 deadlines, enforced by the operation ``fn`` (socket timeouts), not by this helper.
+
+Inside ``fn`` the wait itself goes through :func:`wait_ready`, which polls in slices of
+:data:`POLL_SLICE` seconds.  Why not one long ``select``/``accept``: Python cannot interrupt a
+thread blocked in one, and closing the socket from another thread does not wake it on Linux.  A
+controller's ``Thread.Abort`` ends a thread wherever it waits, and a server that stops its
+listener or closes a connection wakes the thread blocked on it; between slices :func:`wait_ready`
+honours a pending Abort (``gplrt.threads.scheduler.abort_point``) and the caller's ``check``
+(e.g. "the socket was closed meanwhile": -1707).  Data still arrives without delay: a slice ends
+as soon as the descriptor is ready.
 """
 
 from __future__ import annotations
 
 import contextlib
+import time
 from collections.abc import Callable
 from typing import ContextManager, TypeVar
 
@@ -46,6 +56,32 @@ def blocking_call(fn: Callable[[], T], timeout: float | None) -> T:
     """Run ``fn()``, a call that may block for up to ``timeout`` seconds, inside the hook."""
     with _hook(timeout):
         return fn()
+
+
+POLL_SLICE = 0.05  # seconds between looks at Abort requests and closed sockets while waiting
+
+
+def wait_ready(ready: Callable[[float], bool], timeout: float | None,
+               check: Callable[[], None] | None = None) -> bool:
+    """Wait until ``ready(step)`` returns True (True) or ``timeout`` real seconds pass (False).
+
+    ``ready(step)`` may itself block for up to ``step`` seconds (a ``select`` or a condition
+    wait); ``timeout`` None waits forever and 0 looks once.  Before every slice a pending
+    ``Thread.Abort`` of the calling GPL thread unwinds it, and ``check()`` may raise (a socket
+    closed by another thread).
+    """
+    from gplrt.threads.scheduler import abort_point
+
+    deadline = None if timeout is None else time.monotonic() + max(0.0, timeout)
+    while True:
+        abort_point()
+        if check is not None:
+            check()
+        step = POLL_SLICE if deadline is None else max(0.0, min(POLL_SLICE, deadline - time.monotonic()))
+        if ready(step):
+            return True
+        if deadline is not None and time.monotonic() >= deadline:
+            return False
 
 
 # -- open connections ------------------------------------------------------------------------------

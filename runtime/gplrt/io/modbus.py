@@ -23,24 +23,27 @@ Semantics:
 * Array parameters are annotated ``list[T]`` (a one-dimensional GPL array of T); values are built
   by ``gplrt.io._arrays.make_array``.
 * The Modbus/TCP unit identifier is 1 by default (Python-side ``unit_id`` attribute).
+* A thread waiting for a reply (``Timeout`` 0 waits forever) ends on ``Thread.Abort``, and
+  ``Close`` from another thread does not wait for the reply: it drops the connection and the
+  waiting call raises -1707 *Socket not open*.
 """
 
 from __future__ import annotations
 
-import select
 import socket as _socket
 import struct
 import threading
 from typing import Any
 
 from gplrt.io._arrays import make_array, to_list
-from gplrt.io._blocking import blocking_call
+from gplrt.io._blocking import blocking_call, wait_ready
 from gplrt.io._codec import from_bytes
-from gplrt.io.sockets import IPEndPoint, _config
+from gplrt.io.sockets import IPEndPoint, _config, _ready
 from gplrt.lang.errors import (
     CONNECTION_CLOSED,
     CONNECTION_REFUSED,
     INVALID_PROTOCOL,
+    SOCKET_NOT_OPEN,
     MODBUS_EXCEPTION,
     MODBUS_TIMEOUT,
     OBJECT_NOT_INSTANTIATED,
@@ -78,8 +81,8 @@ class Modbus:
         self._timeout_ms = max(0, int(value))
 
     def Close(self) -> None:
-        with self._lock:
-            self._disconnect()
+        """Drop the connection now, even while another thread waits for a reply (no lock)."""
+        self._disconnect()
 
     def ReadCoils(self, start: Integer, number: Integer, value_array: Ref[list[Boolean]]) -> None:
         """FC1: ``number`` coils from ``start`` into a Boolean array (element 0 = ``start``)."""
@@ -179,9 +182,9 @@ class Modbus:
         return self._timeout_ms / 1000.0 if self._timeout_ms > 0 else None
 
     def _disconnect(self) -> None:
-        if self._sock is not None:
-            self._sock.close()
-            self._sock = None
+        sock, self._sock = self._sock, None
+        if sock is not None:
+            sock.close()
 
     def _connect(self) -> _socket.socket:
         if self._sock is not None:
@@ -224,6 +227,9 @@ class Modbus:
             except OSError as exc:
                 self._disconnect()
                 raise GplException(CONNECTION_CLOSED, detail=f"Modbus slave: {exc.strerror}") from None
+            except BaseException:  # Thread.Abort while waiting: the reply may still come
+                self._disconnect()
+                raise
         if body[0] == function | 0x80:
             code = body[1] if len(body) > 1 else 0
             raise GplException(MODBUS_EXCEPTION, code, detail=f"FC{function}: exception code {code}")
@@ -234,12 +240,16 @@ class Modbus:
     def _receive(self, sock: _socket.socket, size: int) -> bytes:
         timeout = self._timeout()
 
+        def check() -> None:
+            if self._sock is not sock:
+                raise GplException(SOCKET_NOT_OPEN, detail="the Modbus connection was closed while waiting")
+
         def wait() -> bytes:
             data = bytearray()
             while len(data) < size:
-                ready, _, _ = select.select([sock], [], [], timeout)
-                if not ready:
+                if not wait_ready(lambda step: _ready(sock, step), timeout, check):
                     raise GplException(MODBUS_TIMEOUT, detail=f"no reply within {self._timeout_ms} ms")
+                check()
                 chunk = sock.recv(size - len(data))
                 if not chunk:
                     raise GplException(CONNECTION_CLOSED, detail="the Modbus slave closed the connection")

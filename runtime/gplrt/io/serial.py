@@ -11,8 +11,9 @@ Opening an unmapped port raises -309 *No physical device mapped*, naming the por
 
 Semantics (D0:3872-3924): a port can be open for input and output at the same time; ``AutoFlush``
 defaults to True; ``Peek`` never blocks (< 0 = no data yet, as EX-25 polls); ``Read`` blocks until
-a byte arrives (through :func:`gplrt.io._blocking.blocking_call`); a serial link cannot detect that
-the other end went away.
+a byte arrives (through :func:`gplrt.io._blocking.blocking_call`, waiting in slices so that
+``Thread.Abort`` ends a reader blocked on a silent line); a serial link cannot detect that the
+other end went away.
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ import threading
 import tty
 from typing import Protocol
 
-from gplrt.io._blocking import blocking_call
+from gplrt.io._blocking import blocking_call, wait_ready
 from gplrt.lang.errors import DEVICE_IO_ERROR, NO_DEVICE_MAPPED, GplException
 
 
@@ -64,13 +65,16 @@ class LoopbackPort:
             return len(self._buffer)
 
     def read(self, timeout: float | None = None) -> int:
-        def wait() -> int:
-            with self._ready:
-                if not self._ready.wait_for(lambda: bool(self._buffer), timeout):
-                    return -1
-                return self._buffer.pop(0)
+        got: list[int] = []
 
-        return blocking_call(wait, timeout)
+        def take(step: float) -> bool:
+            with self._ready:
+                if not self._ready.wait_for(lambda: bool(self._buffer), step):
+                    return False
+                got.append(self._buffer.pop(0))
+                return True
+
+        return got[0] if blocking_call(lambda: wait_ready(take, timeout), timeout) else -1
 
 
 class PtyPort:
@@ -107,13 +111,18 @@ class PtyPort:
             return len(self._pending)
 
     def read(self, timeout: float | None = None) -> int:
-        def wait() -> int:
+        got: list[int] = []
+
+        def take(step: float) -> bool:
             with self._lock:
                 if not self._pending:
-                    self._fill(timeout)
-                return self._pending.pop(0) if self._pending else -1
+                    self._fill(step)
+                if not self._pending:
+                    return False
+                got.append(self._pending.pop(0))
+                return True
 
-        return blocking_call(wait, timeout)
+        return got[0] if blocking_call(lambda: wait_ready(take, timeout), timeout) else -1
 
     def close(self) -> None:
         """Release both ends of the pseudo-terminal (the simulator calls this at shutdown)."""

@@ -8,7 +8,11 @@ Simulation switch: a server endpoint with a blank IP address (``New IPEndPoint("
 address" on a controller) binds to :attr:`NetworkConfig.bind_address`, ``127.0.0.1`` by default, so
 a simulated cell is not reachable from the network unless :func:`configure_network` says so.
 
-Every wait (connect, accept, receive, send) goes through :func:`gplrt.io._blocking.blocking_call`.
+Every wait (connect, accept, receive, send) goes through :func:`gplrt.io._blocking.blocking_call`;
+accept, receive and send wait in short slices (:func:`gplrt.io._blocking.wait_ready`), so a thread
+blocked in them ends on ``Thread.Abort``, and a ``Close``/``Stop`` from another thread wakes it
+with -1707 *Socket not open* (Python cannot wake a blocked ``accept``/``select`` by closing the
+descriptor).
 
 Error codes (gpl-dictionary.md §14; the mapping is ours, the manual gives none):
 
@@ -33,11 +37,12 @@ import select
 import socket as _socket
 import termios
 import threading
+import time
 from dataclasses import dataclass
 from typing import Any
 
 from gplrt.io import _blocking
-from gplrt.io._blocking import blocking_call
+from gplrt.io._blocking import blocking_call, wait_ready
 from gplrt.io._codec import as_text, from_bytes, to_bytes
 from gplrt.lang.errors import (
     ALREADY_CONNECTED,
@@ -187,6 +192,11 @@ class Socket:
             raise GplException(SOCKET_NOT_OPEN, detail="the socket is closed")
         return self._sock
 
+    def _check_open(self) -> None:
+        """Between wait slices: the socket was closed by another thread meanwhile."""
+        if self._closed:
+            raise GplException(SOCKET_NOT_OPEN, detail="the socket was closed while waiting")
+
     def _connected_tcp(self) -> _socket.socket:
         sock = self._open()
         if self._kind == _socket.SOCK_STREAM and not self._connected:
@@ -320,15 +330,22 @@ class Socket:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"max_length {size}")
         timeout = _seconds(self._recv_ms) if self._blocking else 0.0
 
+        deadline = None if timeout is None else time.monotonic() + timeout
+
         def wait_and_receive() -> tuple[bytes, Any]:
-            ready, _, _ = select.select([sock], [], [], timeout)
-            if not ready:
-                if not self._blocking:
-                    raise GplException(NO_DATA, detail="non-blocking socket has no data")
-                raise GplException(NETWORK_TIMEOUT, detail=f"no data within {self._recv_ms} ms")
-            if from_:
-                return sock.recvfrom(size)
-            return sock.recv(size), None
+            while True:
+                left = None if deadline is None else max(0.0, deadline - time.monotonic())
+                if not wait_ready(lambda step: _ready(sock, step), left, self._check_open):
+                    if not self._blocking:
+                        raise GplException(NO_DATA, detail="non-blocking socket has no data")
+                    raise GplException(NETWORK_TIMEOUT, detail=f"no data within {self._recv_ms} ms")
+                self._check_open()
+                try:  # another reader may have taken the data since select said it was there
+                    if from_:
+                        return sock.recvfrom(size, _socket.MSG_DONTWAIT)
+                    return sock.recv(size, _socket.MSG_DONTWAIT), None
+                except BlockingIOError:
+                    continue
 
         try:
             return blocking_call(wait_and_receive, timeout)
@@ -343,7 +360,7 @@ class Socket:
         data = to_bytes(as_text(output_buffer))
         if max_length >= 0:
             data = data[: int(max_length)]
-        self._send(lambda: sock.sendall(data), "send")
+        self._send(sock, data, None, "send")
         return Integer(len(data))
 
     def SendTo(self, output_buffer: String, max_length: Integer, remote_endpoint: IPEndPoint) -> Integer:
@@ -355,19 +372,30 @@ class Socket:
         if max_length > 0:
             data = data[: int(max_length)]
         address = remote_endpoint._remote()
-        self._send(lambda: sock.sendto(data, address), f"send to {address[0]}:{address[1]}")
+        self._send(sock, data, address, f"send to {address[0]}:{address[1]}")
         return Integer(len(data))
 
-    def _send(self, fn: Any, what: str) -> None:
+    def _send(self, sock: _socket.socket, data: bytes, address: Any, what: str) -> None:
+        """Send all of ``data`` (one datagram to ``address`` for UDP) within ``SendTimeout``."""
         timeout = _seconds(self._send_ms)
+        deadline = None if timeout is None else time.monotonic() + timeout
 
         def send() -> None:
-            self._sock.settimeout(timeout)
-            try:
-                fn()
-            finally:
-                if not self._closed:
-                    self._sock.settimeout(None)
+            view = memoryview(data)
+            while True:
+                left = None if deadline is None else max(0.0, deadline - time.monotonic())
+                if not wait_ready(lambda step: _ready(sock, step, write=True), left, self._check_open):
+                    raise GplException(NETWORK_TIMEOUT, detail=f"{what}: buffer full for {self._send_ms} ms")
+                self._check_open()
+                try:
+                    if address is not None:
+                        sock.sendto(view, _socket.MSG_DONTWAIT, address)
+                        return
+                    view = view[sock.send(view, _socket.MSG_DONTWAIT):]
+                except BlockingIOError:
+                    continue
+                if not view:
+                    return
 
         try:
             blocking_call(send, timeout)
@@ -377,6 +405,21 @@ class Socket:
     def __repr__(self) -> str:
         state = "closed" if self._closed else ("connected" if self._connected else "open")
         return f"<Socket {state}>"
+
+
+def _ready(sock: _socket.socket, step: float, write: bool = False) -> bool:
+    """Whether ``sock`` can be read (written) now, waiting up to ``step`` seconds.
+
+    A socket closed by another thread counts as ready: the caller's check then reports -1707.
+    """
+    try:
+        fd = sock.fileno()
+        if fd < 0:
+            return True
+        readable, writable, _ = select.select([] if write else [fd], [fd] if write else [], [], step)
+    except (OSError, ValueError):
+        return True
+    return bool(readable or writable)
 
 
 def _peer(sock: _socket.socket) -> Any:
@@ -429,6 +472,7 @@ class TcpListener:
         try:
             sock.bind(address)
             sock.listen(self.BACKLOG)
+            sock.setblocking(False)  # AcceptSocket waits in select slices, never inside accept()
         except OSError as exc:
             sock.close()
             raise _os_error(exc, f"listen on {address[0]}:{address[1]}") from None
@@ -448,10 +492,26 @@ class TcpListener:
     def AcceptSocket(self) -> Socket:
         """Wait for a connection and return a new Socket for it."""
         sock = self._listening()
+
+        def check() -> None:
+            if self._sock is not sock:
+                raise GplException(SOCKET_NOT_OPEN, detail="the TcpListener was stopped while waiting")
+
+        def accept() -> _socket.socket:
+            while True:
+                wait_ready(lambda step: _ready(sock, step), None, check)
+                check()
+                try:  # another thread may have accepted the connection since select saw it
+                    conn, _ = sock.accept()
+                    return conn
+                except BlockingIOError:
+                    continue
+
         try:
-            conn, _ = blocking_call(sock.accept, None)
+            conn = blocking_call(accept, None)
         except OSError as exc:
             raise _os_error(exc, "accept") from None
+        conn.setblocking(True)
         return Socket(_sock=conn, _kind=_socket.SOCK_STREAM)
 
     def LocalEndPoint(self) -> IPEndPoint:

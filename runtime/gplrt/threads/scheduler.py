@@ -139,6 +139,18 @@ def checkpoint() -> None:
         ctx.sched._checkpoint_slow(ctx)
 
 
+def abort_point() -> None:
+    """Raise :class:`ThreadAbort` if an Abort is pending for the calling GPL thread.
+
+    For waits the scheduler cannot wake (a ``select`` on a socket, a serial read): they poll in
+    short slices and call this between slices, so ``Thread.Abort`` and ``Simulation.stop`` end
+    a thread blocked on the outside world too.  A no-op on threads unknown to the scheduler.
+    """
+    ctx = _tls.ctx
+    if ctx is not None and ctx.abort_requested:
+        raise ThreadAbort()
+
+
 @contextmanager
 def external_wait() -> Iterator[None]:
     """Mark the calling GPL thread as blocked on the outside world for the ``with`` body.

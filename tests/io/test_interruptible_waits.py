@@ -1,0 +1,200 @@
+"""A GPL thread blocked on the outside world can still be stopped.
+
+On a controller ``Thread.Abort`` ends a thread wherever it is, and a server that stops its
+listener or closes a connection wakes the thread blocked on it.  Python cannot kill a thread or
+wake a blocked ``accept``/``select`` by closing the socket, so these waits poll in short slices;
+without that, each of these tests hangs until its bound and fails.
+"""
+
+from __future__ import annotations
+
+import socket
+import threading
+import time
+
+import pytest
+
+from gplrt.io.modbus import Modbus
+from gplrt.io.serial import LoopbackPort
+from gplrt.io.sockets import IPEndPoint, Socket, TcpClient, TcpListener, UdpClient
+from gplrt.lang.byref import Box
+from gplrt.lang.errors import SOCKET_NOT_OPEN, GplException
+from gplrt.sim import Simulation
+from gplrt.threads import Thread
+
+BOUND = 5.0  # real seconds any of these runs may take at most
+
+
+def _abort_while_blocked(clock: str, blocked: object) -> tuple[list[str], Simulation, float]:
+    """Start ``blocked`` in a GPL thread, abort it 200 ms later; return the events and the time."""
+    sim = Simulation(clock=clock, capture=True)
+    events: list[str] = []
+    state: dict[str, int] = {}
+
+    def worker() -> None:
+        try:
+            blocked()  # type: ignore[operator]
+            events.append("returned")
+        except GplException as exc:
+            events.append(f"caught {exc.ErrorCode}")
+        finally:
+            events.append("finally")
+
+    def main() -> None:
+        t = Thread(worker, 0, "worker")
+        t.Start()
+        Thread.Sleep(200)
+        t.Abort()
+        state["after"] = t.ThreadState
+        events.append(f"joined {t.Join(0)}")
+
+    start = time.monotonic()
+    alive = sim.run_main(main, timeout=BOUND)
+    elapsed = time.monotonic() - start
+    assert alive == []
+    events.append(f"state {state['after']}")
+    return events, sim, elapsed
+
+
+@pytest.mark.parametrize("clock", ["virtual", "real"])
+def test_abort_a_thread_blocked_in_accept_socket(clock: str) -> None:
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    try:
+        events, sim, elapsed = _abort_while_blocked(clock, listener.AcceptSocket)
+    finally:
+        listener.Stop()
+    assert events == ["finally", "joined True", "state 0"]  # Catch does not see an Abort
+    assert sim.controller.error_log == []
+    assert elapsed < 2.0
+
+
+@pytest.mark.parametrize("clock", ["virtual", "real"])
+def test_abort_a_thread_blocked_in_receive(clock: str) -> None:
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    client = TcpClient(IPEndPoint("127.0.0.1", listener.LocalEndPoint().Port))
+    server_side = listener.AcceptSocket()
+    try:
+        events, _, elapsed = _abort_while_blocked(clock, lambda: server_side.Receive(Box(""), 100))
+    finally:
+        client.Close()
+        server_side.Close()
+        listener.Stop()
+    assert events == ["finally", "joined True", "state 0"]
+    assert elapsed < 2.0
+
+
+def test_abort_a_thread_blocked_on_a_silent_modbus_slave() -> None:
+    silent = socket.socket()
+    silent.bind(("127.0.0.1", 0))
+    silent.listen(1)  # accepts the connection (in the backlog) but never answers
+    mb = Modbus(IPEndPoint("127.0.0.1", silent.getsockname()[1]))  # Timeout 0: wait forever
+    try:
+        events, _, elapsed = _abort_while_blocked("virtual", lambda: mb.ReadHoldingRegisters(0, 1, Box(None)))
+    finally:
+        mb.Close()
+        silent.close()
+    assert events == ["finally", "joined True", "state 0"]
+    assert elapsed < 2.0
+
+
+def test_abort_a_thread_blocked_reading_a_serial_port() -> None:
+    port = LoopbackPort()
+    events, _, elapsed = _abort_while_blocked("virtual", port.read)
+    assert events == ["finally", "joined True", "state 0"]
+    assert elapsed < 2.0
+
+
+def _wait_in_thread(fn: object) -> tuple[threading.Thread, list[object]]:
+    result: list[object] = []
+
+    def run() -> None:
+        try:
+            result.append(fn())  # type: ignore[operator]
+        except GplException as exc:
+            result.append(exc.ErrorCode)
+
+    t = threading.Thread(target=run, daemon=True)
+    t.start()
+    time.sleep(0.2)
+    return t, result
+
+
+def test_stopping_the_listener_ends_a_pending_accept_socket_with_1707() -> None:
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    t, result = _wait_in_thread(listener.AcceptSocket)
+    assert result == []  # really blocked
+    listener.Stop()
+    t.join(BOUND)
+    assert result == [SOCKET_NOT_OPEN]
+
+
+def test_closing_a_socket_ends_a_pending_receive_with_1707() -> None:
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    client = TcpClient(IPEndPoint("127.0.0.1", listener.LocalEndPoint().Port))
+    server_side = listener.AcceptSocket()
+    listener.Stop()
+    try:
+        t, result = _wait_in_thread(lambda: server_side.Receive(Box(""), 100))
+        assert result == []
+        server_side.Close()
+        t.join(BOUND)
+        assert result == [SOCKET_NOT_OPEN]
+    finally:
+        client.Close()
+
+
+def test_closing_a_udp_socket_ends_a_pending_receive_from_with_1707() -> None:
+    udp = UdpClient(IPEndPoint("127.0.0.1", 0))
+    sock: Socket = udp.Client()
+    t, result = _wait_in_thread(lambda: sock.ReceiveFrom(Box(""), 100, Box(None)))
+    assert result == []
+    udp.Close()
+    t.join(BOUND)
+    assert result == [SOCKET_NOT_OPEN]
+
+
+def test_a_second_acceptor_does_not_hang_when_the_first_takes_the_connection() -> None:
+    """Two threads accept on one listener; one client: one gets it, the other keeps waiting and
+    can still be woken by Stop (a select-then-blocking-accept would hang in accept)."""
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    t1, r1 = _wait_in_thread(listener.AcceptSocket)
+    t2, r2 = _wait_in_thread(listener.AcceptSocket)
+    client = socket.create_connection(("127.0.0.1", listener.LocalEndPoint().Port), timeout=BOUND)
+    deadline = time.monotonic() + BOUND
+    while not (r1 or r2) and time.monotonic() < deadline:
+        time.sleep(0.01)
+    listener.Stop()
+    t1.join(BOUND)
+    t2.join(BOUND)
+    client.close()
+    results = r1 + r2
+    assert len(results) == 2 and SOCKET_NOT_OPEN in results
+    accepted = [r for r in results if isinstance(r, Socket)]
+    assert len(accepted) == 1
+    accepted[0].Close()
+
+
+def test_send_to_a_peer_that_never_reads_is_abortable() -> None:
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    peer = socket.create_connection(("127.0.0.1", listener.LocalEndPoint().Port), timeout=BOUND)
+    server_side = listener.AcceptSocket()
+    listener.Stop()
+    big = "x" * (64 * 1024)
+
+    def flood() -> None:
+        while True:  # fills both socket buffers, then blocks in Send
+            server_side.Send(big)
+
+    try:
+        events, _, elapsed = _abort_while_blocked("virtual", flood)
+    finally:
+        server_side.Close()
+        peer.close()
+    assert events == ["finally", "joined True", "state 0"]
+    assert elapsed < 2.0
