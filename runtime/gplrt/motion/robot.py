@@ -300,10 +300,9 @@ class RobotState:
             # done at once, exactly where it started; a blending motion before it runs to its end.
             seg = DwellSegment(t0, 0.0, q0.copy(), q0.copy(), kind=kind)
             return self._append(seg, prof)
-        pj = PathJoints.sample(path, ik, q0, q_extra, mask, self.model.inverse_path)
-        joint_lim = self.limits.joint_limits(prof, system_speed)
-        cart_lim = self.limits.path_limits(prof, system_speed)
-        v, acc, dec, jerk = pj.derived_limits(joint_lim, cart_lim, float(prof.AccelRamp), float(prof.DecelRamp))
+        pj, (v, acc, dec, jerk) = PathJoints.sample_for_plan(
+            path, ik, q0, q_extra, mask, self.model.inverse_path, self.limits.joint_limits(prof, system_speed),
+            self.limits.path_limits(prof, system_speed), float(prof.AccelRamp), float(prof.DecelRamp))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than

@@ -7,8 +7,9 @@ profile of ``u`` whose limits come from:
 
 * the Cartesian speed/acceleration (DataIDs 2701/2703: mm/s for the tip, deg/s for rotation)
   divided by the path's length and turning angle;
-* the joints: the path is sampled (its IK solved at ``N`` points), ``q'(u)`` and ``q''(u)`` are
-  estimated by finite differences, and ``u̇``, ``ü`` are bounded so that
+* the joints: the path is sampled (its IK solved at ``N`` points, the grid doubled until the
+  peak ``|q''|`` settles, see ``PathJoints.sample``), ``q'(u)`` and ``q''(u)`` are estimated by
+  finite differences, and ``u̇``, ``ü`` are bounded so that
   ``|q'_j| u̇ ≤ v_j`` and ``|q'_j| ü + |q''_j| u̇² ≤ a_j`` at every sample — the binding joint
   sets the limit.  Margins (half an interval of ``q''`` on ``|q'|``, ``CURVATURE_MARGIN`` on
   ``|q''|``) cover the variation between samples.
@@ -35,6 +36,14 @@ CURVATURE_MARGIN = 0.1
 MM_PER_SAMPLE = 25.0
 DEG_PER_SAMPLE = 15.0
 MIN_SAMPLES, MAX_SAMPLES = 4, 48
+#: The refinement of ``PathJoints.sample`` stops at this many intervals.
+MAX_REFINED_SAMPLES = 1536
+
+
+def _base_intervals(path: Path) -> int:
+    """Sampling intervals of the base grid: one per ``MM_PER_SAMPLE`` mm and ``DEG_PER_SAMPLE``°."""
+    return int(min(MAX_SAMPLES, max(MIN_SAMPLES, math.ceil(path.length / MM_PER_SAMPLE)
+                                    + math.ceil(path.turn / DEG_PER_SAMPLE))))
 
 
 class Path:
@@ -193,13 +202,55 @@ class PathJoints:
     @classmethod
     def sample(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
                extra_mask: np.ndarray, ik_path: PathIK | None = None) -> PathJoints:
-        """Solve the path at its sample points, each seeded by the previous solution.
+        """Solve the path on the base grid: one interval per ``MM_PER_SAMPLE`` / ``DEG_PER_SAMPLE``."""
+        return cls._solve_grid(path, ik, q0, q_extra_end, extra_mask, ik_path, _base_intervals(path))
+
+    @classmethod
+    def sample_for_plan(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
+                        extra_mask: np.ndarray, ik_path: PathIK | None, joint: AxisLimits, cart: PathLimits,
+                        accel_ramp: float, decel_ramp: float) -> tuple[PathJoints, tuple[float, float, float, float]]:
+        """The samples and their ``derived_limits``, on a grid fine enough to see the joint curvature.
+
+        A first grid of half the base density gets its midpoints added, again and again, until
+        the derived path limits (u̇, ü) tighten by less than ``CURVATURE_MARGIN`` from one grid to
+        the next (at most ``MAX_REFINED_SAMPLES`` intervals): the final grid is never coarser
+        than the base one.  A line that passes close to a singular posture (a SCARA's line past
+        its column: the shoulder swings round in a few millimetres) has a sharp curvature peak
+        between the points of a fixed grid; without the refinement the planned acceleration
+        exceeded the joint limits there."""
+        coarse = cls._solve_grid(path, ik, q0, q_extra_end, extra_mask, ik_path,
+                                 max(2, (_base_intervals(path) + 1) // 2))
+        before = coarse.derived_limits(joint, cart, accel_ramp, decel_ramp)
+        while 2 * (len(coarse.u) - 1) <= MAX_REFINED_SAMPLES:
+            fine = coarse._refined(ik_path)
+            after = fine.derived_limits(joint, cart, accel_ramp, decel_ramp)
+            if all(a >= b * (1.0 - CURVATURE_MARGIN) for a, b in zip(after[:3], before[:3])):
+                return fine, after
+            coarse, before = fine, after
+        return coarse, before
+
+    def _refined(self, ik_path: PathIK | None) -> PathJoints:
+        """This grid with its midpoints added, each seeded by the sample before it."""
+        n = len(self.u) - 1
+        mids = (2.0 * np.arange(n) + 1.0) / (2 * n)
+        m = self.extra_mask
+        seeds = self.q[:-1].copy()
+        seeds[:, m] = self.extra_start[m] + (self.extra_end[m] - self.extra_start[m]) * mids[:, None]
+        solved = ik_path(self.path.poses(mids), seeds) if ik_path is not None else None
+        if solved is None:
+            solved = np.array([self.ik(self.path.pose(float(u)), seed) for u, seed in zip(mids, seeds)])
+        q = np.empty((2 * n + 1, self.q.shape[1]))
+        q[0::2], q[1::2] = self.q, solved
+        return PathJoints(self.path, self.ik, np.arange(2 * n + 1) / (2 * n), q, self.extra_start, self.extra_end, m)
+
+    @classmethod
+    def _solve_grid(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
+                    extra_mask: np.ndarray, ik_path: PathIK | None, n: int) -> PathJoints:
+        """The IK at u = k / n, each sample seeded by the previous solution.
 
         ``ik_path`` (the model's ``inverse_path``) solves them all in one pass; it returns None
         when some sample needs the pose-by-pose rules (a limit, an unreachable pose, a branch
         boundary), and then ``ik`` solves them one by one — which raises the proper code."""
-        n = int(min(MAX_SAMPLES, max(MIN_SAMPLES, math.ceil(path.length / MM_PER_SAMPLE)
-                                     + math.ceil(path.turn / DEG_PER_SAMPLE))))
         us = np.arange(n + 1) / n  # k / n: 0 and 1 exactly at the ends
         self = cls(path, ik, us, np.empty((n + 1, len(q0))), np.asarray(q0, float).copy(),
                    np.asarray(q_extra_end, float), extra_mask)
