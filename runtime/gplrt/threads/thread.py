@@ -2,10 +2,19 @@
 
 Decisions where the manuals are silent (documented here, tested in tests/threads):
 
-* ``New Thread(start_procedure [, argument [, thread_name]])`` — the procedure is a String naming a
-  Public procedure (``"Proc"`` or ``"Module.Proc"``, case-insensitive, resolved through
-  ``gplrt.lang.procedures.find_procedure`` when the object is created) or, for hand-written Python,
-  a callable.  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.
+* ``New Thread(start_procedure [, argument [, thread_name]])`` — the procedure is a String
+  (``"Proc"`` or ``"Module.Proc"``, case-insensitive) or, for hand-written Python, a callable.  The
+  String is resolved when the object is created, by ``gplrt.lang.procedures.find_procedure`` *as
+  seen from the module that executes the New*: a bare name finds that module's own procedure,
+  Public or Private, before the one Public procedure of that name elsewhere; ``"Module.Proc"``
+  names exactly that module's procedure, which must be Public unless it is the caller's module
+  (-729 otherwise; an unknown module is -798).  Why not Public only, as for String delegates
+  (spec §9.4, whose recommendation the thread spec points to): the manual gives no rule for
+  threads, module members are Private by default (D0:1679), and real programs start threads on a
+  plain ``Sub Worker()`` of their own module; refusing them would break GPL code that runs on a
+  controller, while allowing them cannot change a program that names a Public procedure.  The
+  calling module is the ``_module`` argument when given, else the GPL module whose generated
+  code executes the ``New`` (found from the caller's Python module in the procedure registry).  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.
   The thread name defaults to the procedure name (without module); starting a thread whose name
   is already used by an active thread raises -749 *Thread already exists*, so several threads on
   one procedure need explicit names.
@@ -36,8 +45,10 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
 
 from __future__ import annotations
 
+import sys
 import threading
 from enum import IntEnum
+from types import FrameType
 from typing import Any, Callable
 
 from gplrt.lang.errors import (
@@ -69,17 +80,44 @@ class ThreadStateValue(IntEnum):
     STOPPING = 4
 
 
-def _resolve(procedure: str) -> Callable[..., Any]:
-    """Find the procedure named ``"Proc"`` or ``"Module.Proc"`` in the generated-code registry."""
-    try:
-        from gplrt.lang.procedures import find_procedure
-    except ImportError as exc:
-        raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure registry to find {procedure!r}") from exc
-    module, _, name = procedure.rpartition(".")
-    proc = find_procedure(name, module or None)
+def _resolve(procedure: str, module: str | None) -> Callable[..., Any]:
+    """Find ``"Proc"`` or ``"Module.Proc"`` in the generated-code registry, as seen from ``module``."""
+    from gplrt.lang.procedures import find_procedure
+
+    proc = find_procedure(procedure, module)
     if proc is None:
         raise GplException(UNDEFINED_SYMBOL, detail=f"procedure {procedure!r}")
     return proc
+
+
+_module_of_code: dict[tuple[str, str], str] = {}  # (package, Python module) -> GPL module
+
+
+def _calling_module(frame: FrameType | None) -> str | None:
+    """The GPL module whose generated code runs in ``frame`` (None for other Python code).
+
+    Generated code registers each procedure with its package's registry; the entry whose function
+    was defined in the frame's Python module tells the GPL module (the shortest qualifier: a
+    Shared class procedure is registered as ``Module.Class``).
+    """
+    if frame is None:
+        return None
+    from gplrt.lang.procedures import registered_procedures
+
+    name = frame.f_globals.get("__name__")
+    package = frame.f_globals.get("__package__")
+    if not name or not package:
+        return None
+    key = (package, name)
+    known = _module_of_code.get(key)
+    if known is not None:
+        return known
+    paths = [e.path for e in registered_procedures(package) if getattr(e.func, "__module__", None) == name]
+    if not paths:
+        return None
+    module = ".".join(min(paths, key=len))
+    _module_of_code[key] = module
+    return module
 
 
 class _Foreign(threading.local):
@@ -101,6 +139,7 @@ class Thread:
         _sim: Any = None,
         _args: tuple[Any, ...] = (),
         _propagate: bool = False,
+        _module: str | None = None,
     ) -> None:
         from gplrt.sim import current
 
@@ -113,7 +152,8 @@ class Thread:
             self._start_name = str(getattr(StartProcedure, "__gpl_name__", StartProcedure.__qualname__))
         else:
             self._start_name = str(StartProcedure)
-            self._target = _resolve(self._start_name)
+            module = _module if _module is not None else _calling_module(sys._getframe(1))
+            self._target = _resolve(self._start_name, module)
         self._argument: Any = Argument
         self._name = str(Name) if Name else self._start_name.rpartition(".")[2]
         self._args = _args
