@@ -172,3 +172,32 @@ def test_joint_move_blends_into_an_arc_and_a_line_into_a_circle(sim: Simulation)
     speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
     assert min(speeds) > 1.0
     assert np.max(np.abs(tool(sim, t1)[:3, 3] - start.matrix()[:3, 3])) < 1e-9
+
+
+def test_blend_overlap_keeps_joint_accelerations_within_limits(sim: Simulation) -> None:
+    """Two joint moves blended into a straight line whose corner reverses the shoulder: while the
+    joint move still brakes, the line already accelerates, and the two add up (the shoulder used
+    to reach 125 % of its acceleration limit in the overlap).  The blend starts late enough for
+    the sum to fit, and the robot still does not stop."""
+    robot = sim.robots[1]
+    Move.Loc(Location.from_angles([400.0, 0.0, 90.0, 0.0, 100.0]), profile())
+    Move.WaitForEOM()
+    t0 = sim.now()
+    for (x, y, z, yaw), straight, inrange in (((418.7, 105.1, 348.0, 14.7), False, -44.3),
+                                              ((254.1, 221.6, 383.0, 6.4), False, -40.7),
+                                              ((338.8, -222.8, 495.9, -48.5), True, -33.4)):
+        loc = xyz(x, y, z, yaw)
+        loc.Config = 0
+        Move.Loc(loc, profile(Speed=100.0, Straight=straight, InRange=inrange))
+    line = robot.queue.last
+    Move.WaitForEOM()
+    t1 = sim.now()
+    assert isinstance(line, BlendedPathSegment) and line.prev_end > line.t0  # still blended
+    lim = robot.limits.joint_limits(profile(Speed=100.0), 100.0)
+    amax, vmax = np.maximum(lim.accel, lim.decel), lim.velocity
+    for t in np.linspace(t0, t1, 2500):
+        _, v, a = robot.state_at(float(t))
+        assert np.all(np.abs(v) <= vmax * (1 + 1e-3)), (t, v)
+        assert np.all(np.abs(a) <= amax * (1 + 1e-3)), (t, a / amax)
+    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
+    assert min(speeds) > 1.0

@@ -82,10 +82,21 @@ class Segment:
     def joints(self, t: float) -> Vec:
         return self.state(t)[0]
 
+    def rates(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Joint velocities and accelerations (N×n) at the absolute times ``ts`` — exact here;
+        path segments give the cheaper chain-rule estimate (``PathJoints.rates``)."""
+        states = [self.state(float(t)) for t in ts]
+        return np.array([st[1] for st in states]), np.array([st[2] for st in states])
+
 
 @dataclass(eq=False)
 class JointSegment(Segment):
     plan: Plan | None = None
+
+    def rates(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        assert self.plan is not None
+        pva = [self.plan.at(float(t) - self.t0) for t in ts]
+        return np.array([x[1] for x in pva]), np.array([x[2] for x in pva])
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         assert self.plan is not None
@@ -107,6 +118,11 @@ class PathSegment(Segment):
         assert self.plan is not None
         p, v, a = self.plan.at(t - self.t0)
         return p[0], v[0], a[0]
+
+    def rates(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        assert self.path_joints is not None
+        u, ud, udd = np.array([self.parameter(float(t)) for t in ts]).T
+        return self.path_joints.rates(u, ud, udd)
 
     def joints(self, t: float) -> Vec:
         assert self.path_joints is not None

@@ -21,7 +21,9 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
   tool comes within ``|InRange|`` of it (but no earlier than its own duration before the previous
   motion's end, and never before *now*); the two are superimposed in Cartesian space until the
   previous motion ends (``queue.BlendedPathSegment``): the corner is rounded within ``|InRange|``,
-  the robot does not stop, and after the overlap the tool is exactly on the line or circle.
+  the robot does not stop, and after the overlap the tool is exactly on the line or circle.  The
+  start is delayed further where the two motions' joint rates would add up beyond the joint
+  limits in the overlap (``_blend_within_limits``).
 * **Settling (InRange > 0)**: the robot stops on target and the segment is held for the
   in-range settling time (DataID 2601, 0.05 s on a PF400); InRange = 0 ends at the last set-point.
 * **Power loss / RapidDecel**: power off stops the robot where it is at once (the brakes) and the
@@ -48,7 +50,7 @@ from gplrt.lang.errors import (
 )
 from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY, RobotModel
 from gplrt.motion.limits import RobotLimits, Vec, jerk_of
-from gplrt.motion.planner import plan_axes, plan_scalar, plan_stop
+from gplrt.motion.planner import Plan, plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import (
     CLOCK_RESOLUTION,
@@ -58,6 +60,7 @@ from gplrt.motion.queue import (
     MotionQueue,
     PathSegment,
     Segment,
+    profile_from_values,
     profile_values,
 )
 from gplrt.motion.straight import Path, PathJoints
@@ -69,6 +72,11 @@ HOMING_TIME = 1.0
 #: (mm) inside it: a micrometre is far below anything a trace or a test of the corner can see.
 BLEND_DISTANCE_TOLERANCE = 1e-3
 
+#: Blend start search (``_blend_within_limits``): candidates tried, samples of the overlap
+#: checked per candidate, and the share of the joint limits the summed rates may use.
+BLEND_START_STEPS = 8
+BLEND_CHECK_SAMPLES = 24
+BLEND_LIMIT_SAFETY = 0.97
 #: A Cartesian path shorter than this (mm, and degrees of turn) does not move the tool.
 ZERO_PATH = 1e-9
 
@@ -309,6 +317,7 @@ class RobotState:
             # its duration before that motion's end (a shorter overlap), never before now.
             prev_end = blend_from.motion_end
             t_b = max(now, self._blend_time(blend_from), prev_end - plan.duration)
+            t_b = self._blend_within_limits(blend_from, t_b, prev_end, plan, pj, prof, system_speed)
             if t_b < prev_end:
                 blend_from.cut = t_b
                 seg: Segment = BlendedPathSegment(
@@ -317,6 +326,36 @@ class RobotState:
                 return self._append(seg, prof)
         seg = PathSegment(t0, plan.duration, q0.copy(), pj.q[-1].copy(), plan=plan, path_joints=pj, kind=kind)
         return self._append(seg, prof)
+
+    def _blend_within_limits(self, prev: Segment, t_b: float, prev_end: float, plan: Plan, pj: PathJoints,
+                             prof: Profile, system_speed: float) -> float:
+        """The earliest blend start from ``t_b`` on at which the overlap keeps every joint within
+        its speed and acceleration limits (``prev_end``: no overlap at all).
+
+        In the overlap the two motions add up: a joint the previous motion is still braking and
+        the new path already accelerates (a corner that reverses it) can see up to twice its
+        limit.  The bound checked is the sum of the two motions' own joint rates (their
+        estimates, ``Segment.rates``), against the larger of the two Profiles' limits with
+        ``BLEND_LIMIT_SAFETY`` for what the sum leaves out (the IK of the superposition is not
+        the sum of the IKs).  A later start overlaps less of the braking (and the path has
+        accelerated less): the candidates close in on ``prev_end`` geometrically."""
+        lim = self.limits.joint_limits(prof, system_speed)
+        v_lim, a_lim = lim.velocity, np.maximum(lim.accel, lim.decel)
+        if prev.profile is not None:
+            other = self.limits.joint_limits(profile_from_values(prev.profile), system_speed)
+            v_lim = np.maximum(v_lim, other.velocity)
+            a_lim = np.maximum(a_lim, np.maximum(other.accel, other.decel))
+        v_lim, a_lim = v_lim * BLEND_LIMIT_SAFETY, a_lim * BLEND_LIMIT_SAFETY
+        span = prev_end - t_b
+        for k in range(BLEND_START_STEPS):
+            start = prev_end - span * 0.5 ** k
+            ts = np.linspace(start, prev_end, BLEND_CHECK_SAMPLES)
+            v_prev, a_prev = prev.rates(ts)
+            pva = [plan.at(float(t) - start) for t in ts]
+            v_line, a_line = pj.rates(*(np.array([x[i][0] for x in pva]) for i in range(3)))
+            if np.all(np.abs(v_prev) + np.abs(v_line) <= v_lim) and np.all(np.abs(a_prev) + np.abs(a_line) <= a_lim):
+                return start
+        return prev_end
 
     def _blend_source(self, now: float) -> Segment | None:
         """The queued motion a new straight line may blend out of (see the module docstring)."""

@@ -286,6 +286,17 @@ class PathJoints:
         k = int(round(u * (len(self.u) - 1)))
         return self.ik(self.path.pose(u), self._seed(self.q[k], u))
 
+    def rates(self, u: np.ndarray, ud: np.ndarray, udd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Joint velocities and accelerations (N×n) at path states (u, u̇, ü), by the chain rule
+        ``q̇ = q' u̇``, ``q̈ = q' ü + q'' u̇²`` with ``q'``, ``q''`` of the nearest sample: the
+        cheap estimate the blend planner bounds the overlap of two motions with."""
+        h = float(self.u[1] - self.u[0])
+        dq = _gradient(self.q, h)
+        ddq = _gradient(dq, h)
+        k = np.clip(np.rint(np.asarray(u) / h).astype(int), 0, len(self.u) - 1)
+        ud, udd = np.asarray(ud)[:, None], np.asarray(udd)[:, None]
+        return dq[k] * ud, dq[k] * udd + ddq[k] * ud * ud
+
     def derived_limits(self, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
                        decel_ramp: float) -> tuple[float, float, float, float]:
         """(u̇_max, ü_max accel, ü_max decel, jerk) for the 1-D plan (see the module docstring)."""
