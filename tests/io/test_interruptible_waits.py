@@ -198,3 +198,41 @@ def test_send_to_a_peer_that_never_reads_is_abortable() -> None:
         peer.close()
     assert events == ["finally", "joined True", "state 0"]
     assert elapsed < 2.0
+
+
+def _unanswered_endpoint() -> tuple[socket.socket, socket.socket, int]:
+    """A listener whose accept queue is full: the kernel drops further SYNs, a connect hangs."""
+    full = socket.socket()
+    full.bind(("127.0.0.1", 0))
+    full.listen(0)
+    port = full.getsockname()[1]
+    first = socket.create_connection(("127.0.0.1", port), timeout=BOUND)  # fills the queue
+    return full, first, port
+
+
+def test_abort_a_thread_blocked_in_connect() -> None:
+    full, first, port = _unanswered_endpoint()
+    client = TcpClient()
+    try:
+        events, _, elapsed = _abort_while_blocked(
+            "virtual", lambda: client.Client().Connect(IPEndPoint("127.0.0.1", port)))
+    finally:
+        client.Close()
+        first.close()
+        full.close()
+    assert events == ["finally", "joined True", "state 0"]
+    assert elapsed < 2.0
+
+
+def test_closing_a_socket_ends_a_pending_connect_with_1707() -> None:
+    full, first, port = _unanswered_endpoint()
+    client = TcpClient()
+    try:
+        t, result = _wait_in_thread(lambda: client.Client().Connect(IPEndPoint("127.0.0.1", port)))
+        assert result == []
+        client.Close()
+        t.join(BOUND)
+        assert result == [SOCKET_NOT_OPEN]
+    finally:
+        first.close()
+        full.close()

@@ -33,6 +33,7 @@ from __future__ import annotations
 import array
 import errno
 import fcntl
+import os
 import select
 import socket as _socket
 import termios
@@ -287,11 +288,21 @@ class Socket:
         timeout = _config.connect_timeout
 
         def connect() -> None:
-            sock.settimeout(timeout)
+            # Non-blocking connect, then wait in slices for the outcome, so Thread.Abort and Close
+            # reach a thread whose peer never answers the SYN (up to connect_timeout otherwise).
+            sock.setblocking(False)
             try:
-                sock.connect(address)
+                err = sock.connect_ex(address)
+                if err in (errno.EINPROGRESS, errno.EALREADY, errno.EWOULDBLOCK):
+                    if not wait_ready(lambda step: _ready(sock, step, write=True), timeout, self._check_open):
+                        raise TimeoutError(errno.ETIMEDOUT, "connect timed out")
+                    self._check_open()
+                    err = sock.getsockopt(_socket.SOL_SOCKET, _socket.SO_ERROR)
+                if err:
+                    raise OSError(err, os.strerror(err))
             finally:
-                sock.settimeout(None)
+                if not self._closed:
+                    sock.setblocking(True)
 
         try:
             blocking_call(connect, timeout)
