@@ -20,6 +20,7 @@ from typing import Any, Iterator
 import pytest
 
 from gplrt.lang.byref import Box
+from gplrt.lang.errors import GplException
 from gplrt.sim import Simulation
 from gplrt.threads import Thread, checkpoint
 from gplrt.threads.scheduler import Phase, RealScheduler
@@ -186,3 +187,44 @@ def test_spin_lock_and_join_under_frequent_preemption(frequent_switches: None) -
 
         assert run_guarded(sim, main) == []
         assert m.counter == 8 * 2000 and lock.value == 0
+
+
+class _SlowLimit:
+    """A thread limit whose comparison pauses: it holds one Start between its duplicate-name check
+    and marking its thread active, where a second Start of the same name used to slip through."""
+
+    def __init__(self, limit: int, pause: float) -> None:
+        self.limit, self.pause = limit, pause
+
+    def __le__(self, active: int) -> bool:  # ``len(active) >= limit`` asks ``limit <= len(active)``
+        time.sleep(self.pause)
+        return self.limit <= active
+
+
+def test_two_simultaneous_starts_of_one_thread_name_start_one_thread() -> None:
+    sim = Simulation(clock="real", capture=True)
+    sim.max_threads = _SlowLimit(32, 0.2)  # type: ignore[assignment]
+    gate = threading.Event()
+    outcomes: list[str] = []
+    barrier = threading.Barrier(2)
+
+    def worker() -> None:
+        gate.wait(GUARD)
+
+    def start_one() -> None:
+        t = Thread(worker, 0, "station", _sim=sim)
+        barrier.wait(GUARD)
+        try:
+            t.Start()
+            outcomes.append("started")
+        except GplException as exc:
+            outcomes.append(str(exc.ErrorCode))
+
+    starters = [threading.Thread(target=start_one) for _ in range(2)]
+    for s in starters:
+        s.start()
+    for s in starters:
+        s.join(GUARD)
+    gate.set()
+    assert sim.scheduler.wait_until_quiet(None, GUARD)
+    assert sorted(outcomes) == ["-749", "started"]

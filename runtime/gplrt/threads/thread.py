@@ -210,19 +210,24 @@ class Thread:
         if self._target is None:
             raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail="the calling thread cannot be started")
         sim = self._sim
-        active = [t for t in sim.threads if t._active]
-        if any(t._name.lower() == self._name.lower() for t in active):
-            raise GplException(THREAD_ALREADY_EXISTS, detail=f"thread {self._name}")
-        if len(active) >= sim.max_threads:
-            raise GplException(TOO_MANY, detail=f"more than {sim.max_threads} threads")
-        self._events = 0
-        self._failed = False
-        self._error = None
-        self._result = None
-        self._active = True
-        if self not in sim.threads:
-            sim.threads.append(self)
-        self._ctx = sim.scheduler.new_ctx(self._name, owner=self)
+        # Checks and claim under the scheduler lock: under the real clock two threads starting
+        # the same name (or the same Thread object) at once must not both pass the checks.
+        with sim.scheduler._lock:
+            if self._active:
+                raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail=f"thread {self._name}")
+            active = [t for t in sim.threads if t._active]
+            if any(t._name.lower() == self._name.lower() for t in active):
+                raise GplException(THREAD_ALREADY_EXISTS, detail=f"thread {self._name}")
+            if len(active) >= sim.max_threads:
+                raise GplException(TOO_MANY, detail=f"more than {sim.max_threads} threads")
+            self._events = 0
+            self._failed = False
+            self._error = None
+            self._result = None
+            self._active = True
+            if self not in sim.threads:
+                sim.threads.append(self)
+            self._ctx = sim.scheduler.new_ctx(self._name, owner=self)
         sim.scheduler.spawn(self._ctx, self._body)
 
     def Join(self, timeout: Integer = -1) -> Boolean:  # type: ignore[assignment]
