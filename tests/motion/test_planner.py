@@ -129,3 +129,35 @@ def test_scalar_plan_reaches_one_within_limits() -> None:
     _, p, v, a = sample(plan)
     assert p[-1, 0] == 1.0 or abs(p[-1, 0] - 1.0) < 1e-12
     assert v.max() <= 2.0 + 1e-12 and a.max() <= 8.0 + 1e-12 and a.min() >= -4.0 - 1e-12
+
+
+def test_threads_planning_at_once_do_not_share_ruckig_inputs() -> None:
+    """Under the real clock GPL threads run preemptively: two robots (or a motion and another
+    thread's RapidDecel) may plan at the same moment.  Each plan must be the plan of its own
+    inputs — no thread may see the start, target or limits another thread just wrote."""
+    import sys
+    import threading
+
+    lim = LIMITS.joint_limits(Profile(), 100.0)
+    errors: list[str] = []
+
+    def worker(seed: int) -> None:
+        rng = np.random.default_rng(seed)
+        for _ in range(1500):
+            q0, q1 = LOWER + rng.uniform(0, 1, 5) * (UPPER - LOWER), LOWER + rng.uniform(0, 1, 5) * (UPPER - LOWER)
+            plan = plan_axes(q0, None, None, q1, lim)
+            start, end = np.array(plan.at(0.0)[0]), np.array(plan.at(plan.duration)[0])
+            if np.max(np.abs(start - q0)) > 1e-6 or np.max(np.abs(end - q1)) > 1e-6:
+                errors.append(f"planned {start} -> {end} for {q0} -> {q1}")
+
+    old = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # switch threads as often as Python can
+    try:
+        threads = [threading.Thread(target=worker, args=(seed,)) for seed in (1, 2, 3)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        sys.setswitchinterval(old)
+    assert errors == []

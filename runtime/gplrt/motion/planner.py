@@ -13,7 +13,7 @@ accelerates with ``max_acceleration`` and brakes with ``min_acceleration``, so A
 speeding up and Decel while slowing down (for an axis moving in − the two swap).  Units are GPL
 units (mm, deg, s); see limits.py.
 
-Ruckig instances are cached per degree-of-freedom count: a fresh ``Trajectory`` per segment is
+Ruckig instances are cached per degree-of-freedom count and per thread: a fresh ``Trajectory`` per segment is
 all that has to be allocated, which keeps ``Move.Loc`` planning cost close to a bare
 ``Ruckig.calculate`` (benchmarks/motion_speed.py measures the ratio).
 """
@@ -21,6 +21,7 @@ all that has to be allocated, which keeps ``Move.Loc`` planning cost close to a 
 from __future__ import annotations
 
 import math
+import threading
 from collections.abc import Sequence
 
 import numpy as np
@@ -34,24 +35,33 @@ from gplrt.motion.limits import AxisLimits, Vec
 #: cannot proceed.
 PLANNING_FAILED = ASYNCHRONOUS_SOFT_ERROR
 
-_ruckig: dict[int, tuple[Ruckig, InputParameter]] = {}
-#: What each cached InputParameter was last given, so unchanged inputs are not converted again.
-_given: dict[int, dict[str, object]] = {}
+class _Cache(threading.local):
+    """Per Python thread (so per GPL thread): under the real clock threads plan preemptively, and
+    one shared InputParameter would hand a plan another thread's start, target or limits."""
+
+    def __init__(self) -> None:
+        self.ruckig: dict[int, tuple[Ruckig, InputParameter]] = {}
+        #: What each cached InputParameter was last given, so unchanged inputs are not converted again.
+        self.given: dict[int, dict[str, object]] = {}
+
+
+_cache = _Cache()
 
 
 _AXES = "axes"
 
 
-def _solver(n: int) -> tuple[Ruckig, InputParameter]:
-    pair = _ruckig.get(n)
+def _solver(n: int) -> tuple[Ruckig, InputParameter, dict[str, object]]:
+    """This thread's Ruckig, InputParameter and record of what the input was last given."""
+    cache = _cache
+    pair = cache.ruckig.get(n)
     if pair is None:
-        pair = _ruckig[n] = (Ruckig(n), InputParameter(n))
-        _given[n] = {}
-    return pair
+        pair = cache.ruckig[n] = (Ruckig(n), InputParameter(n))
+        cache.given[n] = {}
+    return pair[0], pair[1], cache.given[n]
 
 
-def _set(n: int, inp: InputParameter, name: str, value: object) -> None:
-    given = _given[n]
+def _set(given: dict[str, object], inp: InputParameter, name: str, value: object) -> None:
     if given.get(name) != value:
         setattr(inp, name, value)
         given[name] = value
@@ -79,21 +89,19 @@ _RETRY_FACTORS = (1.0 - 1e-9, 1.0 - 1e-6, 1.0 - 1e-4)
 _WORKING, _FINISHED = Result.Working, Result.Finished
 
 
-def _calculate(inp: InputParameter, n: int, what: str, otg: Ruckig | None = None) -> Plan:
+def _calculate(otg: Ruckig, inp: InputParameter, given: dict[str, object], n: int, what: str) -> Plan:
     traj = Trajectory(n)
     try:
-        result = (otg or _ruckig[n][0]).calculate(inp, traj)
+        result = otg.calculate(inp, traj)
     except RuckigError:
         result = None
     if result is _WORKING or result is _FINISHED:
         return Plan(traj, traj.duration)
-    return _retry(inp, n, what)
+    return _retry(otg, inp, given, n, what)
 
 
-def _retry(inp: InputParameter, n: int, what: str) -> Plan:
+def _retry(otg: Ruckig, inp: InputParameter, given: dict[str, object], n: int, what: str) -> Plan:
     """Shave the jerk and velocity limits off a profile boundary (see ``_RETRY_FACTORS``)."""
-    otg = _ruckig[n][0]
-    given = _given[n]
     jerk, vel = list(inp.max_jerk), list(inp.max_velocity)
     detail = ""
     for factor in _RETRY_FACTORS:
@@ -124,8 +132,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     Only what differs from the previous call is handed to Ruckig (the limits of a Profile
     repeat move after move), so the cost stays close to a bare ``Ruckig.calculate``."""
     n = len(q0)
-    otg, inp = _ruckig.get(n) or _solver(n)
-    given = _given[n]
+    otg, inp, given = _solver(n)
     p0 = q0.tolist() if type(q0) is np.ndarray else [float(x) for x in q0]
     p1 = q1 if type(q1) is list else q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
     if given.get("mode") is not _AXES:
@@ -134,7 +141,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
                             ("synchronization", Synchronization.Time), ("target_velocity", zero),
                             ("target_acceleration", zero), ("current_velocity", zero),
                             ("current_acceleration", zero)):
-            _set(n, inp, name, value)
+            _set(given, inp, name, value)
         given["mode"], given["moving"], given["lim"] = _AXES, False, None
     if v0 is not None or given["moving"]:
         zero = [0.0] * n
@@ -146,7 +153,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     # With Accel = Decel the limits do not depend on the direction of travel: skip comparing it.
     if lim.symmetric:
         if given["lim"] is lim and given["up"] is None:
-            return _calculate(inp, n, "joint move", otg)  # the same limits as the last joint move
+            return _calculate(otg, inp, given, n, "joint move")  # the same limits as the last joint move
         up = None
     else:
         up = [e >= s for s, e in zip(p0, p1)]
@@ -161,33 +168,33 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
             inp.min_acceleration = [-d if u else -a for a, d, u in zip(acc, dec, up)]
         inp.max_jerk = jerk
         given["lim"], given["up"] = lim, up
-    return _calculate(inp, n, "joint move", otg)
+    return _calculate(otg, inp, given, n, "joint move")
 
 
 def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: float, dmax: float,
                 jerk: float) -> Plan:
     """One-DOF trajectory of a path parameter from (s0, v0, a0) to s1 at rest (s1 ≥ s0)."""
-    _, inp = _solver(1)
+    otg, inp, given = _solver(1)
     for name, value in (("control_interface", ControlInterface.Position), ("synchronization", Synchronization.Time),
                         ("current_position", [s0]), ("current_velocity", [v0]), ("current_acceleration", [a0]),
                         ("target_position", [s1]), ("target_velocity", [0.0]), ("target_acceleration", [0.0]),
                         ("max_velocity", [vmax]), ("max_acceleration", [amax]), ("min_acceleration", [-dmax]),
                         ("max_jerk", [jerk if math.isfinite(jerk) else math.inf])):
-        _set(1, inp, name, value)
-    _given[1]["mode"] = "scalar"
-    return _calculate(inp, 1, "path move")
+        _set(given, inp, name, value)
+    given["mode"] = "scalar"
+    return _calculate(otg, inp, given, 1, "path move")
 
 
 def plan_stop(q0: Vec, v0: Vec, a0: Vec, decel: Vec, jerk: Vec) -> Plan:
     """Bring every axis to rest as fast as ``decel``/``jerk`` allow (``Robot.RapidDecel``)."""
     n = len(q0)
-    _, inp = _solver(n)
+    otg, inp, given = _solver(n)
     for name, value in (("control_interface", ControlInterface.Velocity), ("synchronization", Synchronization.No),
                         ("current_position", [float(x) for x in q0]), ("current_velocity", [float(x) for x in v0]),
                         ("current_acceleration", [float(x) for x in a0]), ("target_velocity", [0.0] * n),
                         ("target_acceleration", [0.0] * n), ("max_velocity", [math.inf] * n),
                         ("max_acceleration", [float(x) for x in decel]),
                         ("min_acceleration", [float(-x) for x in decel]), ("max_jerk", _finite(jerk))):
-        _set(n, inp, name, value)
-    _given[n]["mode"] = "stop"
-    return _calculate(inp, n, "rapid deceleration")
+        _set(given, inp, name, value)
+    given["mode"] = "stop"
+    return _calculate(otg, inp, given, n, "rapid deceleration")
