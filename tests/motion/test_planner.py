@@ -161,3 +161,19 @@ def test_threads_planning_at_once_do_not_share_ruckig_inputs() -> None:
     finally:
         sys.setswitchinterval(old)
     assert errors == []
+
+
+def test_each_thread_plans_with_its_own_ruckig_input() -> None:
+    """The deterministic side of the test above: the InputParameter a plan writes its start,
+    target and limits into belongs to the planning thread alone."""
+    import threading
+
+    from gplrt.motion import planner
+
+    seen = []
+    other = threading.Thread(target=lambda: seen.append(planner._solver(5)[1]))
+    other.start()
+    other.join()
+    seen.append(planner._solver(5)[1])
+    assert seen[0] is not seen[1]
+    assert planner._solver(5)[1] is seen[1]  # and it is kept for the thread's next plan

@@ -40,9 +40,9 @@ class _Cache(threading.local):
     one shared InputParameter would hand a plan another thread's start, target or limits."""
 
     def __init__(self) -> None:
-        self.ruckig: dict[int, tuple[Ruckig, InputParameter]] = {}
-        #: What each cached InputParameter was last given, so unchanged inputs are not converted again.
-        self.given: dict[int, dict[str, object]] = {}
+        #: n -> (Ruckig, InputParameter, what the input was last given: unchanged inputs are not
+        #: converted again)
+        self.solvers: dict[int, tuple[Ruckig, InputParameter, dict[str, object]]] = {}
 
 
 _cache = _Cache()
@@ -53,12 +53,10 @@ _AXES = "axes"
 
 def _solver(n: int) -> tuple[Ruckig, InputParameter, dict[str, object]]:
     """This thread's Ruckig, InputParameter and record of what the input was last given."""
-    cache = _cache
-    pair = cache.ruckig.get(n)
-    if pair is None:
-        pair = cache.ruckig[n] = (Ruckig(n), InputParameter(n))
-        cache.given[n] = {}
-    return pair[0], pair[1], cache.given[n]
+    solver = _cache.solvers.get(n)
+    if solver is None:
+        solver = _cache.solvers[n] = (Ruckig(n), InputParameter(n), {})
+    return solver
 
 
 def _set(given: dict[str, object], inp: InputParameter, name: str, value: object) -> None:
@@ -132,7 +130,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     Only what differs from the previous call is handed to Ruckig (the limits of a Profile
     repeat move after move), so the cost stays close to a bare ``Ruckig.calculate``."""
     n = len(q0)
-    otg, inp, given = _solver(n)
+    otg, inp, given = _cache.solvers.get(n) or _solver(n)
     p0 = q0.tolist() if type(q0) is np.ndarray else [float(x) for x in q0]
     p1 = q1 if type(q1) is list else q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
     if given.get("mode") is not _AXES:
