@@ -94,3 +94,26 @@ End Module
 """
     result = run_gpl(tmp_path, src)
     assert result.output.splitlines() == ["polling", "done"]
+
+
+def test_a_start_procedure_with_parameters_is_an_argument_mismatch_at_new(tmp_path: Path) -> None:
+    src = """Module Main
+    Public Sub Main()
+        Dim t As Thread
+        Dim ex As Exception
+        Try
+            t = New Thread("Worker")
+            t.Start()
+            t.Join()
+        Catch ex
+            Console.WriteLine("New Thread " & CStr(ex.ErrorCode))
+        End Try
+    End Sub
+    Public Sub Worker(ByVal n As Integer)
+        Console.WriteLine("ran with " & CStr(n))
+    End Sub
+End Module
+"""
+    result = run_gpl(tmp_path, src)
+    assert result.output.splitlines() == ["New Thread -741"]
+    assert result.sim.controller.error_log == []

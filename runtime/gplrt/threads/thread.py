@@ -14,7 +14,9 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
   plain ``Sub Worker()`` of their own module; refusing them would break GPL code that runs on a
   controller, while allowing them cannot change a program that names a Public procedure.  The
   calling module is the ``_module`` argument when given, else the GPL module whose generated
-  code executes the ``New`` (found from the caller's Python module in the procedure registry).  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.
+  code executes the ``New`` (found from the caller's Python module in the procedure registry).
+  A start procedure with parameters cannot be started (the thread passes none): ``New`` raises
+  -741 *Argument mismatch* rather than the thread failing later with a Python TypeError.  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.
   The thread name defaults to the procedure name (without module); starting a thread whose name
   is already used by an active thread raises -749 *Thread already exists*, so several threads on
   one procedure need explicit names.
@@ -45,6 +47,7 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
 
 from __future__ import annotations
 
+import inspect
 import sys
 import threading
 from enum import IntEnum
@@ -52,6 +55,7 @@ from types import FrameType
 from typing import Any, Callable
 
 from gplrt.lang.errors import (
+    ARGUMENT_MISMATCH,
     INTERNAL_ERROR,
     INVALID_WHEN_THREAD_ACTIVE,
     THREAD_ALREADY_EXISTS,
@@ -80,14 +84,30 @@ class ThreadStateValue(IntEnum):
     STOPPING = 4
 
 
-def _resolve(procedure: str, module: str | None) -> Callable[..., Any]:
+def _resolve(procedure: str, module: str | None, given: int = 0) -> Callable[..., Any]:
     """Find ``"Proc"`` or ``"Module.Proc"`` in the generated-code registry, as seen from ``module``."""
     from gplrt.lang.procedures import find_procedure
 
     proc = find_procedure(procedure, module)
     if proc is None:
         raise GplException(UNDEFINED_SYMBOL, detail=f"procedure {procedure!r}")
+    required = _required_parameters(proc)
+    if len(required) > given:  # ``given``: arguments hand-written Python passes (Simulation.start)
+        raise GplException(
+            ARGUMENT_MISMATCH,
+            detail=f"a thread's start procedure takes no arguments; {procedure} needs {', '.join(required)}",
+        )
     return proc
+
+
+def _required_parameters(proc: Callable[..., Any]) -> list[str]:
+    """Names of the parameters ``proc`` cannot be called without (through ``gpl_entry`` too)."""
+    try:
+        params = inspect.signature(proc).parameters.values()
+    except (TypeError, ValueError):
+        return []
+    return [p.name for p in params
+            if p.default is p.empty and p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
 
 
 _module_of_code: dict[tuple[str, str], str] = {}  # (package, Python module) -> GPL module
@@ -153,7 +173,7 @@ class Thread:
         else:
             self._start_name = str(StartProcedure)
             module = _module if _module is not None else _calling_module(sys._getframe(1))
-            self._target = _resolve(self._start_name, module)
+            self._target = _resolve(self._start_name, module, len(_args))
         self._argument: Any = Argument
         self._name = str(Name) if Name else self._start_name.rpartition(".")[2]
         self._args = _args
