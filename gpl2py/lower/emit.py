@@ -2,7 +2,9 @@
 
 PEP 8 layout comes by construction: a line is an indentation level plus text, indentation is four
 spaces, comments get ``# `` and two spaces before an inline comment, and the module writer puts two
-blank lines around top-level definitions.  Each line remembers the GPL line it came from, which
+blank lines around top-level definitions.  GPL comments are often longer than PEP 8's line: a long
+comment line is re-flowed at word boundaries into several ``#`` lines, and a trailing comment that
+would push its statement past the limit moves onto its own line(s) just above the statement.  Each line remembers the GPL line it came from, which
 becomes the source map (``lower/sourcemap.py``).
 
 Why text and not libcst nodes: generating through libcst's node tree and its code generator costs
@@ -16,15 +18,23 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from gpl2py.lower.wrap import wrap
+from gpl2py.lower.wrap import LIMIT, wrap
 from gpl2py.syntax import ast as A
 
 
 @dataclass(slots=True)
 class Line:
+    """One logical line; ``comment`` is its trailing comment (``# ...``), kept apart from the code
+    so that rendering can move it above the statement when the two do not fit on one line."""
+
     indent: int
     text: str
     gpl_line: int = 0
+    comment: str = ""
+
+    def attach(self, comment: str) -> None:
+        """Add a trailing comment (a second one joins the first)."""
+        self.comment = f"{self.comment}  {comment}" if self.comment else comment
 
 
 def comment_text(c: A.Comment) -> str:
@@ -62,7 +72,7 @@ class Writer:
             return
         for ln in self.lines[start:]:
             if not ln.text.startswith("#"):
-                ln.text += "  " + comment_text(c)
+                ln.attach(comment_text(c))
                 return
         self.line(comment_text(c), c.span.line)
 
@@ -82,7 +92,7 @@ class Writer:
 
     def extend(self, other: Writer, extra_indent: int = 0) -> None:
         for ln in other.lines:
-            self.lines.append(Line(ln.indent + extra_indent, ln.text, ln.gpl_line))
+            self.lines.append(Line(ln.indent + extra_indent, ln.text, ln.gpl_line, ln.comment))
 
     def blank(self, count: int = 1) -> None:
         for _ in range(count):
@@ -97,7 +107,20 @@ class Writer:
                 out.append("")
                 gmap.append(ln.gpl_line)
                 continue
-            for indent, text in wrap(ln.indent, ln.text):
+            pad = "    " * ln.indent
+            comment = ln.comment
+            if comment and 4 * ln.indent + len(ln.text) + 2 + len(comment) > LIMIT:
+                for text in wrap_comment(ln.indent, comment):  # too long together: comment above
+                    out.append(pad + text)
+                    gmap.append(ln.gpl_line)
+                comment = ""
+            if ln.text.startswith("#"):
+                pieces = [(ln.indent, text) for text in wrap_comment(ln.indent, ln.text)]
+            else:
+                pieces = wrap(ln.indent, ln.text)
+            for i, (indent, text) in enumerate(pieces):
+                if i == 0 and comment:
+                    text = f"{text}  {comment}"
                 out.append("    " * indent + text)
                 gmap.append(ln.gpl_line)
         # no trailing blank lines; exactly one newline at the end
@@ -105,3 +128,27 @@ class Writer:
             out.pop()
             gmap.pop()
         return "\n".join(out) + "\n", gmap
+
+
+def wrap_comment(indent: int, text: str, limit: int = LIMIT) -> list[str]:
+    """A ``#`` comment re-flowed at word boundaries to fit ``limit`` at ``indent``; every piece
+    keeps the original's prefix (``#`` and the spaces after it).  A single word longer than the
+    line (a URL) stays whole."""
+    if 4 * indent + len(text) <= limit:
+        return [text]
+    body = text.lstrip("#")
+    prefix = text[: len(text) - len(body)]
+    stripped = body.lstrip(" ")
+    prefix += body[: len(body) - len(stripped)] or " "
+    room = limit - 4 * indent - len(prefix)
+    out: list[str] = []
+    cur = ""
+    for word in stripped.split(" "):
+        if cur and len(cur) + 1 + len(word) > room:
+            out.append(prefix + cur)
+            cur = word
+        else:
+            cur = f"{cur} {word}" if cur else word
+    if cur or not out:
+        out.append(prefix + cur)
+    return out

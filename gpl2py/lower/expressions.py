@@ -452,6 +452,10 @@ class ExprLowerer:
             return f"{parts[0]} + {parts[1]}", P_ADD
         if op in _PY_CMP:
             both_str = lt is t.STRING and rt_ is t.STRING
+            if lt is t.BOOLEAN and rt_ is t.BOOLEAN and op in ("=", "<>"):
+                simple = _against_boolean_literal(op, lc, rc)
+                if simple is not None:
+                    return simple
             if plain or both_str or (lt is t.BOOLEAN and rt_ is t.BOOLEAN and op in ("=", "<>")):
                 return f"{paren(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
             if (lt is t.BOOLEAN or lt in _PLAIN_NUM) and (rt_ is t.BOOLEAN or rt_ in _PLAIN_NUM):
@@ -653,3 +657,15 @@ def _nonzero_literal(code: str) -> bool:
         return float(code) != 0.0
     except ValueError:
         return bool(_int_value(code))
+
+
+def _against_boolean_literal(op: str, lc: Code, rc: Code) -> Code | None:
+    """``flag = True`` as ``flag``, ``flag = False`` / ``flag <> True`` as ``not flag`` (PEP 8:
+    never compare to True with ``==``).  Exact for two Booleans; the literal side has no effects
+    to lose.  ``None`` when neither side is a literal."""
+    for lit, other in ((rc, lc), (lc, rc)):
+        if lit[1] == P_ATOM and lit[0] in ("True", "False"):
+            if (lit[0] == "True") == (op == "="):
+                return other
+            return f"not {paren(other, P_NOT)}", P_NOT
+    return None

@@ -154,7 +154,8 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     for c in classes:
         reg_lines.extend(register_lines(ctx, c))
     if ctx.statics:
-        body.line("")
+        if body.lines:  # apart from what precedes; at the top, the blank lines before body suffice
+            body.line("")
         body.line("# Static locals (§6.2): one per procedure, kept between calls")
         seen: set[str] = set()
         for name, value in ctx.statics:

@@ -48,7 +48,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "PROJECT = {",
         f"    \"name\": {py_string(project_name)},",
         f"    \"start\": {py_string(start_text) if start_text else start_name},",
-        f"    \"modules\": [{', '.join(py_string(m.name) for m in modules)}],",
+        *_modules_lines([py_string(m.name) for m in modules]),
         *_stub_lines(stubs or []),
         "}",
         "",
@@ -108,6 +108,15 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
 
 _NO_START = ("GPL project {project} has no start procedure: Project.gpr names no ProjectStart and the "
              "project has no single Public Sub Main; call its procedures from Python instead")
+
+
+def _modules_lines(names: list[str]) -> list[str]:
+    """PROJECT["modules"] in ProjectSource order: one line when it fits PEP 8's 99 columns, else
+    one name per line."""
+    one = f'    "modules": [{", ".join(names)}],'
+    if len(one) <= 99:
+        return [one]
+    return ['    "modules": [', *(f"        {n}," for n in names), "    ],"]
 
 
 def _stub_lines(stubs: list[dict[str, object]]) -> list[str]:

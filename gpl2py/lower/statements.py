@@ -521,7 +521,7 @@ class ProcLowerer(ExprLowerer):
 
     def branch(self, body: A.Block) -> None:
         if body.header_comment is not None:
-            self.w.lines[-1].text += "  " + _ctext(body.header_comment)
+            self.w.lines[-1].attach(_ctext(body.header_comment))
         self.w.indent()
         self.block(body)
         self.w.dedent()

@@ -10,6 +10,9 @@ far longer than PEP 8's limit.  :func:`wrap` breaks such a line:
   sole argument that is still too long breaks before its operators without parentheses of its
   own: the call's brackets already carry the continuation).
 
+* anything else with brackets (``f(<args>) != x``) -> the longest bracket group opened, its
+  contents on a continuation line.
+
 Lines that cannot be broken this way (one huge string literal) are left alone.  Block headers get
 a double continuation indent so that their continuation lines stand apart from the body.
 """
@@ -20,7 +23,7 @@ import io
 import tokenize
 
 LIMIT = 99
-_OPS = {"+", "and", "or"}
+_OPS = {"+", "and", "or", "&", "|"}
 # plain and augmented assignment: the expression to break starts after any of them (wrapping the
 # whole ``x += a + b`` statement in parentheses would not be Python)
 _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^=", "<<=", ">>="}
@@ -151,7 +154,38 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
             lines.extend(_pack(cont, "", args, cont, limit, " "))
             lines.append((indent, ")" + suffix))
             return lines
+    # 3. otherwise open the longest top-level bracket group: its contents go on a continuation
+    #    line (broken again if still too long), the closing bracket and the rest of the line after
+    #    ("f(<args>) != x" in a long condition)
+    group = _longest_group(toks)
+    if group is not None:
+        open_tok, close_tok = toks[group[0]], toks[group[1]]
+        inner = body[open_tok.end[1]:close_tok.start[1]].strip()
+        return [(indent, body[: open_tok.end[1]] + comment), (cont, inner), (indent, body[close_tok.start[1]:])]
     return [(indent, text)]
+
+
+def _longest_group(toks: list[tokenize.TokenInfo]) -> tuple[int, int] | None:
+    """Indices of the opening and closing token of the longest depth-0 bracket pair with
+    something inside, or None."""
+    best: tuple[int, int] | None = None
+    best_len = 0
+    depth = 0
+    open_at = -1
+    for i, tok in enumerate(toks):
+        if tok.type != tokenize.OP:
+            continue
+        if tok.string in "([{":
+            if depth == 0:
+                open_at = i
+            depth += 1
+        elif tok.string in ")]}":
+            depth -= 1
+            if depth == 0 and i > open_at + 1:
+                span = tok.start[1] - toks[open_at].end[1]
+                if span > best_len:
+                    best, best_len = (open_at, i), span
+    return best
 
 
 def _pieces(body: str, expr: list[tokenize.TokenInfo], cuts: list[int]) -> list[str]:

@@ -1,9 +1,10 @@
-"""Every generated module compiles and passes pyflakes (issue "Core language", Must show).
+"""Every generated module compiles, passes pyflakes and is PEP 8 (issue "Core language").
 
 The conformance cases cover every construct, so their output is the widest sample of what the
 lowering emits; the samples add realistic multi-module projects.  Each is transpiled through the
-library API and every ``.py`` file of the package is compiled and checked with pyflakes: no
-undefined names, no unused imports, no redefinitions.  The only pyflakes message let through is
+library API and every ``.py`` file of the package is compiled, parsed by libcst, checked with
+pyflakes (no undefined names, no unused imports, no redefinitions), checked with pycodestyle
+(the project's line length, 99) and searched for ``exec``/``eval``.  The only pyflakes message let through is
 "local variable ... is assigned to but never used": a GPL local the program writes and never
 reads is the program's own business, and dropping it would change the port.
 """
@@ -11,9 +12,12 @@ reads is the program's own business, and dropping it would change the port.
 from __future__ import annotations
 
 import io
+import re
 import shutil
 from pathlib import Path
 
+import libcst
+import pycodestyle
 import pytest
 from pyflakes.api import check as pyflakes_check
 from pyflakes.reporter import Reporter
@@ -38,6 +42,22 @@ def flakes(text: str, name: str) -> list[str]:
             if line and "is assigned to but never used" not in line]
 
 
+def style_errors(text: str) -> list[str]:
+    """pycodestyle's findings for ``text`` (max line length 99), as ``line:col: code`` strings."""
+    found: list[str] = []
+
+    class Report(pycodestyle.BaseReport):
+        def error(self, line_number: int, offset: int, text: str, check: object) -> str | None:
+            found.append(f"{line_number}:{offset + 1}: {text}")
+            return None
+
+    style = pycodestyle.StyleGuide(max_line_length=99, quiet=True, reporter=Report)
+    checker = pycodestyle.Checker(lines=text.splitlines(keepends=True), options=style.options,
+                                  report=style.options.report)
+    checker.check_all()
+    return found
+
+
 def check_package(source: Path, tmp_path: Path) -> int:
     """Transpile ``source`` (a folder or one .gpl file) and check every module; returns how many."""
     if source.is_file():  # give the single file the Project.gpr the conformance worker gives it
@@ -54,7 +74,10 @@ def check_package(source: Path, tmp_path: Path) -> int:
     modules = {name: text for name, text in out.files.items() if name.endswith(".py")}
     for name, text in modules.items():
         compile(text, name, "exec")
+        libcst.parse_module(text)
         assert flakes(text, name) == [], f"{name}:\n{text}"
+        assert style_errors(text) == [], f"{name}:\n{text}"
+        assert not re.search(r"\b(exec|eval)\(", text), name
     return len(modules)
 
 
@@ -72,6 +95,8 @@ def test_there_are_projects_to_check() -> None:
     assert len(PROJECTS) >= 8, PROJECTS
 
 
-def test_the_filter_still_sees_real_problems() -> None:
-    """The check is not vacuous: an unused import and an undefined name are both reported."""
+def test_the_checks_still_see_real_problems() -> None:
+    """The checks are not vacuous: an unused import and an undefined name are both reported, and
+    so are a long line and a missing blank line."""
     assert len(flakes("import os\n\n\ndef f() -> None:\n    g()\n", "m.py")) == 2
+    assert len(style_errors("x = 1\ndef f() -> None:\n    return " + "1 + " * 30 + "1\n")) == 2

@@ -178,3 +178,43 @@ def test_procedures_are_registered_for_name_lookup(tmp_path: Path) -> None:
     # into this package's own registry (gplrt.lang.procedures: one registry per project)
     assert 'register_procedure("Station", "Helper", gpl_entry(Helper), public=False, package=__package__)' in text
     assert 'register_procedure("Station", "Main", gpl_entry(Main), public=True, package=__package__)' in text
+
+
+def test_long_gpl_comments_are_reflowed_and_moved_above_long_statements(tmp_path: Path) -> None:
+    words = " ".join(f"word{i}" for i in range(40))
+    text = gen(tmp_path, f"""        Dim total As Integer
+        ' {words}
+        total = total + 1   ' {words}""")
+    body = main_body(text)
+    assert all(len(line) <= 99 for line in text.splitlines()), text
+    comment_lines = [ln.strip() for ln in body.splitlines() if ln.strip().startswith("#")]
+    assert len(comment_lines) == 6  # each 40-word comment on three lines, none lost
+    assert " ".join(c[2:] for c in comment_lines[:3]) == words
+    assert " ".join(c[2:] for c in comment_lines[3:]) == words
+    lines = body.splitlines()
+    stmt = next(i for i, ln in enumerate(lines) if "total = chk_int32(total + 1)" in ln)
+    assert lines[stmt - 1].strip().startswith("# word")  # the trailing comment sits just above
+    (tmp_path / "s").mkdir()
+    short = gen(tmp_path / "s", """        Dim total As Integer
+        total = total + 1   ' one more""")
+    assert "total = chk_int32(total + 1)  # one more" in short  # a short one stays trailing
+
+
+def test_comparison_with_a_boolean_literal_is_the_condition_itself(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim ok As Boolean
+        If ok = True Then Console.WriteLine(1)
+        If ok = False Then Console.WriteLine(2)
+        If True <> ok Then Console.WriteLine(3)
+        If ok <> False Then Console.WriteLine(4)"""))
+    assert "if ok:" in body and "if not ok:" in body and "== True" not in body and "!= False" not in body
+    assert body.count("if ok:") == 2 and body.count("if not ok:") == 2
+
+
+def test_a_long_condition_breaks_inside_a_call_that_is_compared(tmp_path: Path) -> None:
+    text = gen(tmp_path, """        Dim text As String
+        Dim ii As Integer
+        If ii <> 0 And text.Substring(ii - 1, 1).ToLower() <> "e" And text.Substring(ii, 1).ToUpper() <> "QQQ" Then
+            Console.WriteLine(1)
+        End If""")
+    assert all(len(line) <= 99 for line in text.splitlines()), text
+    compile(text, "m.py", "exec")
