@@ -14,6 +14,7 @@ the two in step.  Templates use ``str.format`` fields.
 
 from __future__ import annotations
 
+import re
 import sys
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -22,6 +23,12 @@ if TYPE_CHECKING:
     from gpl2py.diagnostics import Severity
 
 _REGISTRY: dict[str, Message] = {}
+
+
+# "a {field}" in a template becomes "an {field}" when the value starts with A, E, I or O (not U:
+# "a user", "a Unit"); the inserted values themselves (names, code) are never touched
+_A_FIELD = re.compile(r"\b([Aa]) \{(\w+)\}")
+_VOWELS = frozenset("AEIOaeio")
 
 
 @dataclass(frozen=True, slots=True)
@@ -38,7 +45,17 @@ class Message:
         return Severity(self.severity_name)
 
     def format(self, **args: object) -> str:
-        return self.template.format(**args) if args else self.template
+        """The template filled in.  Templates say "a {src} value"; when the inserted word starts
+        with a vowel the article becomes "an" ("an Integer value", "an Exception"), so callers
+        pass bare type names."""
+        if not args:
+            return self.template
+
+        def article(m: re.Match[str]) -> str:
+            value = str(args.get(m.group(2), ""))
+            return f"{m.group(1)}n {{{m.group(2)}}}" if value[:1] in _VOWELS else m.group(0)
+
+        return _A_FIELD.sub(article, self.template).format(**args)
 
 
 def _error(code: str, template: str, doc: str = "") -> Message:
