@@ -209,6 +209,7 @@ End Module
 """
     _, sink = analyze_text(tmp_path, text)
     assert [(d.code, d.severity.value, d.span.line) for d in sink] == [("GPL2031", "warning", 4)]
+    assert list(sink)[0].message.startswith("an Integer value is stored into a String")  # not "a Integer"
 
 
 # A two-file project with eleven different semantic errors (eleven codes), every one an error (no
