@@ -243,3 +243,20 @@ def test_soft_estop_stops_motion_with_its_code(sim: Simulation) -> None:
     assert code_of(Move.WaitForEOM) == -1045
     assert not Controller.PowerEnabled
     assert code_of(Move.Loc, SAFE, Profile()) == -1046
+
+
+def test_trajstate_is_idle_as_soon_as_waitforeom_returns(sim: Simulation) -> None:
+    """The virtual clock counts whole nanoseconds and may stop up to half of one short of a
+    motion's exact end: WaitForEOM returns there, and TrajState must already say idle (it said
+    "moving" or "settling" after about half of all motions), with Where on the target."""
+    ready()
+    rng = np.random.default_rng(3)
+    for _ in range(60):
+        q = rng.uniform([100, -80, 30, -200, 80], [900, 80, 330, 200, 120])
+        prof = Profile()
+        prof.InRange = float(rng.choice([0.0, 1.0]))  # stop, or stop and settle
+        Move.Loc(angles(*q), prof)
+        Move.WaitForEOM()
+        assert Robot.TrajState() == 0
+        assert Robot.WhereAngles().axis_values() == tuple(q)
+        assert not any(Robot.SpeedAngles().axis_values())

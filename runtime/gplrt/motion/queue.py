@@ -239,7 +239,10 @@ class MotionQueue:
             return None
         seg = self.history[i]
         # A segment cut for a blend hands over to its successor, which starts at the cut time.
-        return seg if t < seg.end else None
+        # One that ends by itself is over within CLOCK_RESOLUTION of its end: the clock may stop
+        # that short of it (WaitForEOM returns there), and the robot is then at rest on q_end.
+        end = seg.end
+        return seg if t < end - CLOCK_RESOLUTION or (t < end and seg.cut is not None) else None
 
     def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
         seg = self.segment_at(t)
