@@ -687,6 +687,10 @@ class ProcLowerer(ExprLowerer):
             self.w.indent()
             self.block(c.body)
             self.w.dedent()
+            if c.is_else:
+                # nothing after Case Else is reachable; the parser has already reported a Case
+                # that follows it, and --keep-going output must still be Python
+                break
         self.w.comments(s.end_comments)
         if frame is not None:
             self.w.line("break")

@@ -89,3 +89,30 @@ def test_library_transpile_reraises_with_gpl2py_traceback(tmp_path: Path,
     monkeypatch.setattr(transpile_module, "analyze", boom)
     with pytest.raises(KeyError):
         transpile(str(_project(tmp_path)), DiagnosticSink())
+
+
+def test_keep_going_output_with_a_case_after_case_else_compiles(tmp_path: Path) -> None:
+    """Found by mutation: the parser reports a Case after Case Else and keeps it; the lowering
+    must not emit an ``elif`` after ``else``."""
+    path = tmp_path / "Sel.gpl"
+    path.write_text("""Module Sel
+    Public Sub Main()
+        Dim s As String = "x"
+        Select Case s
+            Case "a"
+                Console.WriteLine(1)
+            Case Else
+                Console.WriteLine(2)
+            Case "b"
+                Console.WriteLine(3)
+        End Select
+    End Sub
+End Module
+""")
+    sink = DiagnosticSink()
+    out = transpile(str(path), sink, keep_going=True)
+    assert "GPL1100" in [d.code for d in sink.errors]
+    assert out is not None
+    for name, code in out.files.items():
+        if name.endswith(".py"):
+            compile(code, name, "exec")
