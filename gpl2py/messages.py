@@ -512,6 +512,12 @@ START_ASSUMED_MAIN = _warning(
     "(gpl2py's decision; a controller needs ProjectStart). With none or several, the package can "
     "be imported but not run.",
 )
+REQUIRED_AFTER_OPTIONAL = _error(
+    "GPL2033",
+    "parameter '{name}' follows an Optional parameter and must be Optional too",
+    "Optional parameters (an extension, as in VB) come last: arguments are matched by position, "
+    "so a required one after an Optional one could never be left out.",
+)
 
 # --- lowering and output (GPL3000-GPL3499) -----------------------------------------------------
 
