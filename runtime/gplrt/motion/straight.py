@@ -7,9 +7,9 @@ profile of ``u`` whose limits come from:
 
 * the Cartesian speed/acceleration (DataIDs 2701/2703: mm/s for the tip, deg/s for rotation)
   divided by the path's length and turning angle;
-* the joints: the path is sampled (its IK solved at ``N`` points, the grid doubled until the
-  peak ``|q''|`` settles, see ``PathJoints.sample``), ``q'(u)`` and ``q''(u)`` are estimated by
-  finite differences, and ``u̇``, ``ü`` are bounded so that
+* the joints: the path is sampled (its IK solved at ``N`` points, midpoints added until the
+  derived limits settle, see ``PathJoints.sample_for_plan``), ``q'(u)`` and ``q''(u)`` are
+  estimated by finite differences, and ``u̇``, ``ü`` are bounded so that
   ``|q'_j| u̇ ≤ v_j`` and ``|q'_j| ü + |q''_j| u̇² ≤ a_j`` at every sample — the binding joint
   sets the limit.  Margins (half an interval of ``q''`` on ``|q'|``, ``CURVATURE_MARGIN`` on
   ``|q''|``) cover the variation between samples.
@@ -36,7 +36,7 @@ CURVATURE_MARGIN = 0.1
 MM_PER_SAMPLE = 25.0
 DEG_PER_SAMPLE = 15.0
 MIN_SAMPLES, MAX_SAMPLES = 4, 48
-#: The refinement of ``PathJoints.sample`` stops at this many intervals.
+#: The refinement of ``PathJoints.sample_for_plan`` stops at this many intervals.
 MAX_REFINED_SAMPLES = 1536
 
 
