@@ -231,9 +231,9 @@ class Checker:
         self.model.proc_of_decl[decl] = p
         ctx = _Ctx(mod, cls, p)
         if isinstance(decl, A.ProcDecl):
-            for prm, v in zip(decl.params, p.params):
-                if prm.default is not None:
-                    self._store_value(prm.default, v.type, ctx)
+            for v in p.params:  # (a duplicate parameter was reported and left out of p.params)
+                if v.default is not None:
+                    self._store_value(v.default, v.type, ctx)
         # locals are visible in the whole procedure (§6.2): declare them all first
         self._declare_locals(decl.body, p, ctx)
         self._block(decl.body, ctx)

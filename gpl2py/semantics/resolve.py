@@ -317,13 +317,22 @@ class Collector:
         kind = "New" if (cls is not None and decl.name.lower() == "new") else decl.kind
         p = ProcSym(decl.name, decl.span, kind, [], t.VOID, cls or mod,
                     _access(decl.modifiers), cls is None or _shared(decl.modifiers), decl)
+        optional_seen = False
         for prm in decl.params:
             v = self._param(prm, mod, cls)
             v.owner = p
-            p.params.append(v)
             if prm.name.lower() in p.locals:
+                # reported; the first parameter of that name stays the one (a second would be a
+                # duplicate argument in Python, and --keep-going output must still compile)
                 self.sink.report(M.DUPLICATE_DECLARATION, prm.span, name=prm.name, scope="procedure",
                                  line=decl.span.line)
+                continue
+            if optional_seen and not v.optional:
+                # reported; treated as Optional with the type's default from here on
+                self.sink.report(M.REQUIRED_AFTER_OPTIONAL, prm.span, name=prm.name)
+                v.optional = True
+            optional_seen = optional_seen or v.optional
+            p.params.append(v)
             p.locals[prm.name.lower()] = v
         if decl.kind == "Function":
             if decl.return_type is not None:

@@ -9,6 +9,7 @@ import pytest
 
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.transpile import transpile
 from gpltest import analyze_text
 
 TEN_ERRORS = """Module Main
@@ -169,8 +170,6 @@ End Module
 
 
 def test_goto_into_for_body_or_out_of_finally_is_reported(tmp_path: Path) -> None:
-    from gpl2py.transpile import transpile
-
     f = tmp_path / "Main.gpl"
     f.write_text("""Module Main
     Public Sub Main()
@@ -282,3 +281,27 @@ def test_eleven_errors_in_a_project_through_the_command(tmp_path: Path,
     assert got == EXPECTED_CELL, report["diagnostics"]
     assert all(d["severity"] == "error" for d in report["diagnostics"])
     assert not out.exists()
+
+
+def test_required_parameter_after_optional_and_duplicate_parameter(tmp_path: Path) -> None:
+    """Both are errors with positions; with --keep-going the package still compiles (a required
+    Python parameter after a default one, or a duplicate one, would be a SyntaxError)."""
+    text = """Module A
+    Sub F(Optional ByVal a As Integer = 1, ByVal b As Integer)
+    End Sub
+    Sub G(ByVal y As Integer, ByVal Y As Double)
+    End Sub
+    Public Sub Main()
+        F()
+    End Sub
+End Module
+"""
+    _, sink = analyze_text(tmp_path, text)
+    got = [(d.code, d.span.line, d.span.col) for d in sink.sorted() if d.span is not None]
+    assert got == [("GPL2033", 2, 44), ("GPL2002", 4, 31)]
+    assert "parameter 'b' follows an Optional parameter" in sink.errors[0].message
+    out = transpile(str(tmp_path / "Main.gpl"), DiagnosticSink(), keep_going=True)
+    assert out is not None
+    for name, code in out.files.items():
+        if name.endswith(".py"):
+            compile(code, name, "exec")
