@@ -201,3 +201,20 @@ def test_blend_overlap_keeps_joint_accelerations_within_limits(sim: Simulation) 
         assert np.all(np.abs(a) <= amax * (1 + 1e-3)), (t, a / amax)
     speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
     assert min(speeds) > 1.0
+
+
+def test_wide_blend_between_lines_keeps_the_tool_within_its_cartesian_speed(sim: Simulation) -> None:
+    """InRange = -50 starts the second line while the first still cruises: the two tool speeds
+    add up in the overlap (the tool reached 252 mm/s of 250).  The overlap starts late enough
+    for their sum to stay within 2701[1] × Speed %, and the robot still does not stop."""
+    robot = sim.robots[1]
+    t0, t1, _ = run_corner(sim, -50.0)
+    seg = robot.queue.last
+    assert isinstance(seg, BlendedPathSegment) and seg.prev_end > seg.t0
+    ts = np.linspace(t0, t1, 6000)
+    path = np.array([tool(sim, float(t))[:3, 3] for t in ts])
+    speed = np.linalg.norm(np.diff(path, axis=0), axis=1) / np.diff(ts)
+    limit = robot.limits.path_limits(profile(Straight=True), 100.0).linear_velocity
+    assert limit == 250.0  # 2701[1] = 500 mm/s at the default Speed of 50 %
+    assert float(np.max(speed)) <= limit * (1 + 1e-6)
+    assert float(np.min(speed[300:-300])) > 1.0

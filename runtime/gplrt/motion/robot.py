@@ -338,23 +338,42 @@ class RobotState:
         estimates, ``Segment.rates``), against the larger of the two Profiles' limits with
         ``BLEND_LIMIT_SAFETY`` for what the sum leaves out (the IK of the superposition is not
         the sum of the IKs).  A later start overlaps less of the braking (and the path has
-        accelerated less): the candidates close in on ``prev_end`` geometrically."""
+        accelerated less): the candidates close in on ``prev_end`` geometrically.
+
+        Out of a path (line, arc) the tool's speed is bounded the same way: the two paths' tool
+        speeds (mm/s and deg/s, exact: length · u̇) may add up to the larger Cartesian limit."""
         lim = self.limits.joint_limits(prof, system_speed)
         v_lim, a_lim = lim.velocity, np.maximum(lim.accel, lim.decel)
+        cart = self.limits.path_limits(prof, system_speed)
+        lin_lim, rot_lim = cart.linear_velocity, cart.rotation_velocity
         if prev.profile is not None:
-            other = self.limits.joint_limits(profile_from_values(prev.profile), system_speed)
+            prev_prof = profile_from_values(prev.profile)
+            other = self.limits.joint_limits(prev_prof, system_speed)
             v_lim = np.maximum(v_lim, other.velocity)
             a_lim = np.maximum(a_lim, np.maximum(other.accel, other.decel))
+            other_cart = self.limits.path_limits(prev_prof, system_speed)
+            lin_lim = max(lin_lim, other_cart.linear_velocity)
+            rot_lim = max(rot_lim, other_cart.rotation_velocity)
         v_lim, a_lim = v_lim * BLEND_LIMIT_SAFETY, a_lim * BLEND_LIMIT_SAFETY
+        prev_path = prev.path_joints.path if isinstance(prev, PathSegment) and prev.path_joints else None
         span = prev_end - t_b
         for k in range(BLEND_START_STEPS):
             start = prev_end - span * 0.5 ** k
             ts = np.linspace(start, prev_end, BLEND_CHECK_SAMPLES)
             v_prev, a_prev = prev.rates(ts)
             pva = [plan.at(float(t) - start) for t in ts]
-            v_line, a_line = pj.rates(*(np.array([x[i][0] for x in pva]) for i in range(3)))
-            if np.all(np.abs(v_prev) + np.abs(v_line) <= v_lim) and np.all(np.abs(a_prev) + np.abs(a_line) <= a_lim):
-                return start
+            u_line, ud_line, udd_line = (np.array([x[i][0] for x in pva]) for i in range(3))
+            v_line, a_line = pj.rates(u_line, ud_line, udd_line)
+            if not (np.all(np.abs(v_prev) + np.abs(v_line) <= v_lim) and np.all(np.abs(a_prev) + np.abs(a_line) <= a_lim)):
+                continue
+            if prev_path is not None:
+                assert isinstance(prev, PathSegment)
+                ud_prev = np.abs([prev.parameter(float(t))[1] for t in ts])
+                ud_line = np.abs(ud_line)
+                if (np.any(prev_path.length * ud_prev + pj.path.length * ud_line > lin_lim * (1.0 + 1e-9))
+                        or np.any(prev_path.turn * ud_prev + pj.path.turn * ud_line > rot_lim * (1.0 + 1e-9))):
+                    continue
+            return start
         return prev_end
 
     def _blend_source(self, now: float) -> Segment | None:
