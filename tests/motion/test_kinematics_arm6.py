@@ -191,3 +191,22 @@ def test_other_branches_solve_or_report_limits_with_the_axis() -> None:
         assert model.config_of(sol) == bits
         assert np.abs(model.forward(sol) - T).max() < 1e-6
     assert codes.get(0, 0) > 50 and codes.get(-1012, 0) > 50
+
+
+def test_from_the_zero_home_config_zero_takes_the_nearest_wrist_branch() -> None:
+    """All-zero joints (the home posture) put J5 exactly on the Flip/NoFlip boundary: the arm is in
+    both wrist branches.  A Config-0 target just across it must be reached by the nearby Flip
+    solution, not by NoFlip with J4 and J6 swung round half a turn (what "keep the branch
+    config_of reports" gave); away from the boundary the current branch still rules."""
+    model = _model()
+    q = [10.0, 20.0, 30.0, 10.0, -5.0, 20.0]
+    T = model.forward(q)
+    assert model.inverse(T, 0, [0.0] * 6) == pytest.approx(q, abs=1e-6)
+    # a tie keeps the branch config_of reports for the current joints (NoFlip at J5 = 0)
+    straight_up = model.forward([0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    assert model.config_of(model.inverse(straight_up, 0, [0.0] * 6)) == model.config_of([0.0] * 6)
+    # from J5 = 1 degree (NoFlip, off the boundary) the NoFlip solution is kept
+    sol = model.inverse(T, 0, [0.0, 0.0, 0.0, 0.0, 1.0, 0.0])
+    assert sol[4] == pytest.approx(5.0, abs=1e-6) and np.abs(model.forward(sol) - T).max() < 1e-6
+    # an explicit bit still decides
+    assert model.inverse(T, GPL_NOFLIP, [0.0] * 6)[4] == pytest.approx(5.0, abs=1e-6)

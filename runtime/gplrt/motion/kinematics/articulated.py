@@ -23,6 +23,9 @@ documented because no Brooks page defines them for a concrete six-axis geometry)
 * **Flip / NoFlip** (wrist): NoFlip ⇔ J5 ≥ 0 (wrapped), Flip ⇔ J5 < 0.
 * **Single**: J6 in (−180°, 180°]; otherwise J4 and J6 (multi-turn, ±270° / ±360°) are unwound
   toward their current values.
+* A pair the bits leave open keeps the current branch — except exactly on its boundary (J5 = 0 in
+  the all-zero home posture), where both are tried and the in-limits solution nearest the current
+  joints wins (``_solve``).
 
 Inverse: the closed form decouples the wrist (W = p − d6·z), picks J1 by Righty/Lefty, J2/J3 by
 Above/Below (two-link law of cosines in the arm plane) and J4–J6 by Flip/NoFlip (ZYZ of
@@ -33,6 +36,7 @@ to rounding.  Unreachable wrist centres raise -1040 / -1039.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -69,6 +73,9 @@ _NAMES = ("Base", "Shoulder", "Elbow", "Wrist1", "Wrist2", "Wrist3")
 _ROLES = ("j1", "j2", "j3", "j4", "j5", "j6")
 _JOINT_NAMES = {**dict(zip(_ROLES, _NAMES, strict=True)), "gripper": "Gripper"}
 _SINGULAR = 1e-12
+#: Within this of a branch boundary (J5 = 0 or 180°, |sin φ|, the wrist centre's distance from the
+#: J1 axis in m) the arm is in both branches of the pair (``_solve``).
+BRANCH_EDGE = 1e-9
 
 
 def solve_dls(model: pin.Model, data: pin.Data, frame_id: int, target: pin.SE3, q0: np.ndarray,
@@ -198,6 +205,43 @@ class Articulated6Model(RobotModel):
         return q
 
     def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
+        """The branch the bits ask for, the current one for the pairs they leave open — and where
+        the arm sits exactly on the boundary of such a pair (J5 = 0: the all-zero home posture;
+        the wrist centre on the J1 axis; the elbow stretched or folded) it is in both branches at
+        once, so "keep the current branch" decides nothing.  Decision [P] (gpl-classes §22.1
+        item 11: no preference → the solution nearest the current joints): every open boundary
+        pair is tried both ways, and the solution within the soft limits nearest the current
+        joints (sum of squared radians over J1–J6) wins; on a tie, the branch ``config_of``
+        reports now."""
+        open_pairs = self._boundary_pairs(bits, current)
+        if not open_pairs:
+            return self._solve_branch(target, bits, current)
+        found: list[np.ndarray] = []
+        error: GplException | None = None
+        now = self._config(current)
+        choices = [(yes, no) if now & yes else (no, yes) for yes, no in open_pairs]  # current first
+        for combo in itertools.product(*choices):
+            try:
+                found.append(self._solve_branch(target, bits | sum(combo), current))
+            except GplException as exc:
+                error = error or exc
+        if not found:
+            assert error is not None
+            raise error
+        pool = [q for q in found if self._limits_hold(q[None, :])] or found
+        return min(pool, key=lambda q: float(np.sum((q[:6] - current[:6]) ** 2)))  # first of equals
+
+    def _boundary_pairs(self, bits: int, current: np.ndarray) -> list[tuple[int, int]]:
+        """The (yes, no) bit pairs the bits leave open and the current joints sit on the edge of."""
+        phi = current[2] + self.gamma
+        x_wrist = self.a1 + self.a2 * math.sin(current[1]) + self.l3 * math.sin(current[1] + phi)
+        q5 = abs(wrap_pi(float(current[4])))
+        edges = ((GPL_RIGHTY, GPL_LEFTY, abs(x_wrist) <= BRANCH_EDGE),
+                 (GPL_ABOVE, GPL_BELOW, abs(math.sin(phi)) <= BRANCH_EDGE),
+                 (GPL_NOFLIP, GPL_FLIP, q5 <= BRANCH_EDGE or math.pi - q5 <= BRANCH_EDGE))
+        return [(yes, no) for yes, no, on_edge in edges if on_edge and preference(bits, yes, no) is None]
+
+    def _solve_branch(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
         seed = self.analytic(target, bits, current)
         assert self.pin_model is not None and self.pin_data is not None
         with self.lock:
