@@ -178,7 +178,9 @@ class ProcLowerer(ExprLowerer):
         params = ["self"] if method and not p.shared else []
         for v in p.params:
             text = py_ident(v.name)
-            ann = annotation(v.type) if not v.byref else None
+            ann = annotation(v.type)
+            if ann and v.byref:  # the callee gets a cell over the caller's variable (gplrt.lang.byref)
+                ann = f"{self.ctx.helper('gplrt.lang.gpltypes', 'Ref')}[{ann}]"
             if ann:
                 text += f": {ann}"
             if v.optional:

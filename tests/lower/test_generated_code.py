@@ -218,3 +218,11 @@ def test_a_long_condition_breaks_inside_a_call_that_is_compared(tmp_path: Path) 
         End If""")
     assert all(len(line) <= 99 for line in text.splitlines()), text
     compile(text, "m.py", "exec")
+
+
+def test_byref_parameters_are_annotated_as_cells(tmp_path: Path) -> None:
+    text = gen(tmp_path, "        Console.WriteLine(1)", decls="""    Sub Bump(ByRef n As Integer, ByVal k As Double, ByRef s As String)
+        n = n + 1
+    End Sub""")
+    assert "def Bump(n: Ref[int], k: float, s: Ref[str]) -> None:" in text
+    assert "from gplrt.lang.gpltypes import Ref\n" in text
