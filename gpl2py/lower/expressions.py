@@ -38,6 +38,8 @@ _CHK_INT = {t.INTEGER: "chk_int32", t.SHORT: "chk_int16", t.BYTE: "chk_uint8"}
 _RUNTIME_CMP = {"=": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le", ">=": "ge"}
 _PY_CMP = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
 _F32 = struct.Struct("f")
+# a run of this many ``&`` operators or more is lowered as one "".join((...)) (ExprLowerer.flat_concat)
+FLAT_CONCAT_MIN = 200
 
 
 def paren(c: Code, min_prec: int) -> str:
@@ -219,13 +221,74 @@ class ExprLowerer:
             assert isinstance(e, A.Binary)
             if e.op == "Is":
                 return f"{self.sub(e.left, P_CMP + 1)} is {self.sub(e.right, P_CMP + 1)}", P_CMP
-            if e.op in ("AndAlso", "OrElse"):
-                left = paren(self.cond(e.left), P_AND + 1 if e.op == "AndAlso" else P_OR + 1)
-                right = paren(self.cond(e.right), P_AND + 1 if e.op == "AndAlso" else P_OR + 1)
-                return (f"{left} and {right}", P_AND) if e.op == "AndAlso" else (f"{left} or {right}", P_OR)
-            return self.binop(e.op, (*self.expr(e.left), self.type_of(e.left)),
-                              (*self.expr(e.right), self.type_of(e.right)))
+            return self.binary_chain(e)
         return "None", P_ATOM
+
+    def _chains(self, e: A.Expr) -> bool:
+        """Whether ``e`` continues a left-leaning operator chain that :meth:`binary_chain` folds."""
+        if not isinstance(e, A.Binary) or e.op == "Is":
+            return False
+        i = self.model.info.get(e)
+        return i is not None and i.kind == "binary"
+
+    def binary_chain(self, e: A.Binary) -> Code:
+        """Lower ``e`` and the binary operators down its left operand in a loop, not by recursion.
+
+        GPL code continues string building over hundreds of lines (``s = s & "..." & _``); the
+        parser gives a left-leaning tree as deep as the chain, and one Python frame per operator
+        reached the recursion limit near 1,000 operands.  The leftmost operand is lowered first,
+        then each operator folds in its right operand in source order, so the output is what the
+        recursive form gave (Python's left-associative operators need no parentheses for it), except
+        that a very long run of ``&`` becomes one flat join (:meth:`flat_concat`)."""
+        spine: list[A.Binary] = [e]
+        while self._chains(spine[-1].left):
+            spine.append(spine[-1].left)  # type: ignore[arg-type]
+        first = spine[-1].left
+        acc: Code = self.expr(first)
+        acc_type = self.type_of(first)
+        nodes = spine[::-1]
+        at = 0
+        while at < len(nodes):
+            run = 0
+            while at + run < len(nodes) and nodes[at + run].op == "&":
+                run += 1
+            if run >= FLAT_CONCAT_MIN:
+                acc = self.flat_concat(acc, acc_type, nodes[at:at + run])
+                acc_type = t.STRING
+                at += run
+                continue
+            node = nodes[at]
+            at += 1
+            if node.op in ("AndAlso", "OrElse"):
+                prec = P_AND if node.op == "AndAlso" else P_OR
+                # Python's and/or are associative like AndAlso/OrElse: a left operand of the same
+                # operator needs no parentheses (and a chain of 200+ would exceed the parser's limit)
+                left = paren(self.cond_code(acc, acc_type), prec)
+                right = paren(self.cond(node.right), prec + 1)
+                acc = (f"{left} and {right}", P_AND) if node.op == "AndAlso" else (f"{left} or {right}", P_OR)
+            else:
+                acc = self.binop(node.op, (*acc, acc_type), (*self.expr(node.right), self.type_of(node.right)))
+            acc_type = self.type_of(node)
+        return acc
+
+    def flat_concat(self, first: Code, first_type: t.GplType, run: list[A.Binary]) -> Code:
+        """A long run of ``&`` as one ``"".join((...))`` call instead of nested ``+``.
+
+        CPython's compiler recurses on nested binary operations and gives up near 3,000 operands
+        (fewer when the import happens deep in a call stack), while a tuple display is flat.  Short
+        chains keep the more readable ``a + b`` form; only a run of at least ``FLAT_CONCAT_MIN``
+        operators, which nobody reads operand by operand anyway, takes this form."""
+        parts = [self.concat_part(first, first_type)]
+        parts += [self.concat_part(self.expr(n.right), self.type_of(n.right)) for n in run]
+        return f'"".join(({", ".join(parts)}))', P_ATOM
+
+    def concat_part(self, c: Code, typ: t.GplType) -> str:
+        """Operand code of ``&`` converted to a String (§4.4: ``&`` converts both sides)."""
+        if typ is t.STRING:
+            return c[0]
+        if typ is t.ERROR:
+            return self.call(self.rt(CONV, "to_string"), c[0])[0]
+        return self.coerce(c, typ, t.STRING)[0]
 
     def literal(self, e: A.Expr) -> Code:
         if isinstance(e, A.IntegerLiteral):
@@ -306,11 +369,24 @@ class ExprLowerer:
         return None
 
     def _binary_interval(self, e: A.Binary) -> tuple[int, int] | None:
-        a = self.int_interval(e.left)
-        b = self.int_interval(e.right)
-        if a is None or b is None:
+        """Bounds of an integer operator chain, folded along its left spine in a loop (a sum over
+        hundreds of continued lines must not recurse once per operator)."""
+        spine: list[A.Binary] = [e]
+        while isinstance(spine[-1].left, A.Binary) and self.type_of(spine[-1].left) in _INT_OR_BOOL:
+            spine.append(spine[-1].left)  # type: ignore[arg-type]
+        acc = self.int_interval(spine[-1].left)
+        for node in reversed(spine):
+            if acc is None:
+                return None
+            acc = self._fold_interval(node.op, acc, self.int_interval(node.right))
+        return acc
+
+    @staticmethod
+    def _fold_interval(op: str, a: tuple[int, int], b: tuple[int, int] | None) -> tuple[int, int] | None:
+        """The bounds of ``a op b`` for one integer operator, or None when they are not known."""
+        if b is None:
             return None
-        op = e.op.lower()
+        op = op.lower()
         if op == "+":
             return (a[0] + b[0], a[1] + b[1])
         if op == "-":
@@ -380,8 +456,10 @@ class ExprLowerer:
 
     def cond(self, e: A.Expr) -> Code:
         """``e`` as a Python condition (non-zero is True, §4.3)."""
-        src = self.type_of(e)
-        c = self.expr(e)
+        return self.cond_code(self.expr(e), self.type_of(e))
+
+    def cond_code(self, c: Code, src: t.GplType) -> Code:
+        """Already lowered code ``c`` of static type ``src`` as a Python condition."""
         if src is t.BOOLEAN:
             return c
         if src in _PLAIN_NUM:

@@ -550,14 +550,34 @@ class Checker:
                         self.sink.report(M.BAD_OPERANDS, side.span, op="Is", left=str(lt), right=str(rt))
                         break
                 return self._record(e, Info(t.BOOLEAN, "binary"))
-            lt = self._value(e.left, ctx)
-            rt = self._value(e.right, ctx)
-            return self._record(e, Info(self._binary_type(e.op, lt, rt, e), "binary"))
+            return self._binary_chain(e, ctx)
         if isinstance(e, A.New):
             return self._record(e, self._new(e, ctx))
         if isinstance(e, A.AddressOf):
             return self._record(e, self._addressof(e, ctx))
         return self._record(e, Info(t.ERROR, "error"))
+
+    def _binary_chain(self, e: A.Binary, ctx: _Ctx) -> Info:
+        """Type a left-leaning chain of binary operators (``a & b & c ...``) without recursing on it.
+
+        Real GPL code builds strings over hundreds of continued lines (`` & _``); the parser yields
+        a left-leaning tree as deep as the chain is long, so one Python frame per operator would hit
+        the recursion limit near 450 operands.  The left spine is walked in a loop instead: the
+        leftmost operand is typed first, then each right operand in source order, so diagnostics come
+        out in the same order as a recursive walk would give them.  ``Is`` ends the spine (its
+        operands are references, not values, and it never chains in practice)."""
+        spine: list[A.Binary] = [e]
+        left = e.left
+        while isinstance(left, A.Binary) and left.op != "Is":
+            spine.append(left)
+            left = left.left
+        lt = self._value(left, ctx)
+        info = Info(t.ERROR, "binary")
+        for node in reversed(spine):
+            rt = self._value(node.right, ctx)
+            info = self._record(node, Info(self._binary_type(node.op, lt, rt, node), "binary"))
+            lt = info.type
+        return info
 
     def _binary_type(self, op: str, lt: t.GplType, rt: t.GplType, node: A.Node) -> t.GplType:
         if lt is t.ERROR or rt is t.ERROR:
