@@ -518,6 +518,20 @@ REQUIRED_AFTER_OPTIONAL = _error(
     "Optional parameters (an extension, as in VB) come last: arguments are matched by position, "
     "so a required one after an Optional one could never be left out.",
 )
+START_PROTECTED = _error(
+    "GPL2034",
+    "the start procedure '{name}' is not in the readable sources: it is presumably in a protected "
+    "(.gpp) source, whose code is not available, so the project cannot be started from it",
+    "Reported instead of GPL2019 when the project has protected files (GPL1406): gpl2py skips them, "
+    "so a ProjectStart defined there cannot be translated or run. Name a readable Public Sub as "
+    "ProjectStart (for example a small Main that calls into the rest) to translate the project.",
+)
+NO_OBJECT_TYPE = _error(
+    "GPL2035",
+    "GPL has no Object type: declare the class of the objects it holds (late binding is not supported)",
+    "Manual [000 L852-855]: every object in GPL has an explicit class; a variable, parameter or "
+    "result cannot be declared As Object (unless the project itself declares a class named Object).",
+)
 
 # --- lowering and output (GPL3000-GPL3499) -----------------------------------------------------
 

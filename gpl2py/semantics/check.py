@@ -162,14 +162,22 @@ class Checker:
     def _start(self, start: str) -> None:
         parts = start.split(".")
         proc: object = None
+        declared = False  # some readable module declares the name (as anything)
         project = self.model.project
         if len(parts) == 2:
             mod = project.modules.get(parts[0].lower())
             proc = mod.members.get(parts[1].lower()) if mod else None
+            declared = proc is not None
         elif len(parts) == 1:
             cands = [m.members.get(parts[0].lower()) for m in project.module_list]
+            declared = any(c is not None for c in cands)
             cands = [c for c in cands if isinstance(c, ProcSym)]
             proc = cands[0] if len(cands) == 1 else None
+        if not declared and self.stubs.protected:
+            # not declared anywhere readable: in a project with protected files that is where it
+            # lives, and saying so beats "not a Sub of this project" (the user sees the file)
+            self.sink.report(M.START_PROTECTED, None, name=start)
+            return
         if not isinstance(proc, ProcSym) or proc.params:
             self.sink.report(M.START_NOT_FOUND, None, name=start)
             return

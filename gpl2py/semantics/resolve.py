@@ -77,6 +77,12 @@ class Resolver:
             b = self.cat.lookup_class(parts[0])
             if b is not None and not b.is_global:
                 return b.type
+        if len(parts) == 1 and parts[0].lower() == "object":
+            # VB's universal type: GPL has none [000 L852-855], so it is neither unknown (a typo)
+            # nor a class of the protected code, and the message says what to do instead
+            if report:
+                self.sink.report(M.NO_OBJECT_TYPE, ref.span)
+            return t.ERROR
         if self.stubs.protected and len(parts) <= 2 and not (
                 len(parts) == 2 and parts[0].lower() in self.project.modules):
             # a class of the protected code: values of it have the permissive type ANY

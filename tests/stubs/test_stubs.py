@@ -39,6 +39,7 @@ MAIN = """Module Main
                 Console.WriteLine("not reached")
             Catch ex As Exception
                 Console.WriteLine("caught " & CStr(ex.ErrorCode))
+                Console.WriteLine(ex.Message)
             End Try
         End If
         If Mode = 3 Then
@@ -57,11 +58,12 @@ End Module
 """
 
 
-def _project(root: Path, main: str = MAIN, protected: bool = True, name: str = "VendorCell") -> Path:
+def _project(root: Path, main: str = MAIN, protected: bool = True, name: str = "VendorCell",
+             start: str = "Main.Start") -> Path:
     proj = root / name
     proj.mkdir(parents=True)
     (proj / "Main.gpl").write_text(main)
-    lines = ["ProjectBegin", f'ProjectName="{name}"', 'ProjectStart="Main.Start"', 'ProjectSource="Main.gpl"']
+    lines = ["ProjectBegin", f'ProjectName="{name}"', f'ProjectStart="{start}"', 'ProjectSource="Main.gpl"']
     if protected:
         (proj / "VendorLib.gpp").write_bytes(b"'#Protected|\x00\x93\xfa\x01binary vendor code\xff")
         lines.append('ProjectSource="VendorLib.gpp"')
@@ -133,7 +135,9 @@ def test_called_stub_raises_minus_204_catchable(built: tuple[ModuleType, str, Pa
     pkg, _, _ = built
     output, status, _ = _run(pkg, 2)
     assert status == 0
-    assert output == "start\ncaught -204\nspeed 42\ndone\n"
+    # the caught exception's Message names the missing procedure (not a bare "*Not implemented*")
+    assert output == ("start\ncaught -204\n*Not implemented*: protected source not available: VendorLib.Release\n"
+                      "speed 42\ndone\n")
 
 
 def test_unhandled_stub_error_names_the_missing_procedure(built: tuple[ModuleType, str, Path]) -> None:
@@ -180,6 +184,30 @@ def test_unknown_name_without_protected_files_stays_an_error(tmp_path: Path) -> 
     assert status == 1
     assert "error GPL2001: 'Home' is not declared" in err
     assert "GPL3501" not in err
+
+
+@pytest.mark.parametrize("start", ["VendorLib.Boot", "Boot"])
+def test_start_procedure_in_a_protected_file_says_so(tmp_path: Path, start: str) -> None:
+    status, err = _translate(_project(tmp_path, start=start), tmp_path / "out")
+    assert status == 1
+    assert (f"error GPL2034: the start procedure '{start}' is not in the readable sources: it is "
+            "presumably in a protected (.gpp) source, whose code is not available") in err, err
+    assert "GPL2019" not in err
+
+
+def test_start_procedure_missing_without_protected_files_stays_gpl2019(tmp_path: Path) -> None:
+    status, err = _translate(_project(tmp_path, MAIN.replace("Home(1)", ""), protected=False, start="Boot"),
+                             tmp_path / "out")
+    assert status == 1
+    assert "error GPL2019: the start procedure 'Boot' is not a Sub of this project" in err, err
+    assert "GPL2034" not in err
+
+
+def test_readable_start_with_parameters_stays_gpl2019_in_a_protected_project(tmp_path: Path) -> None:
+    main = MAIN.replace("End Module", "    Public Sub Boot(ByVal n As Integer)\n    End Sub\nEnd Module")
+    status, err = _translate(_project(tmp_path, main, start="Boot"), tmp_path / "out")
+    assert status == 1
+    assert "error GPL2019: the start procedure 'Boot'" in err and "GPL2034" not in err, err
 
 
 def test_user_stubs_replace_the_generated_ones(tmp_path: Path) -> None:

@@ -39,7 +39,8 @@ from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import finite, in_range, not_nothing, text, to_integer, wrong_object
 from gplrt.geometry.location import CARTESIAN, MAX_FRAME_DEPTH, Location
 from gplrt.geometry.transforms import IDENTITY, Pose
-from gplrt.lang.errors import FRAME_UNDEFINED_DATA, FRAME_WRONG_TYPE, NOT_CARTESIAN, UNDEFINED_ROBOT, GplException
+from gplrt.lang.errors import (CONVEYOR_MUST_BE_BASE, FRAME_UNDEFINED_DATA, FRAME_WRONG_TYPE, NOT_CARTESIAN,
+                               UNDEFINED_ROBOT, GplException)
 from gplrt.lang.gpltypes import Double, Integer, String
 
 BASIC = 0
@@ -350,7 +351,8 @@ class RefFrame:
         if t == CONVEYOR:
             loc = self._loc
             if loc is not None and loc._ref is not None:
-                raise GplException(-791, detail="a conveyor frame's Loc has a RefFrame: conveyors are base frames")
+                raise GplException(CONVEYOR_MUST_BE_BASE,
+                                   detail="a conveyor frame's Loc has a RefFrame: conveyors are base frames")
             c = self._conveyor()
             return tf.pose_translate(c.nominal, self._belt_travel(), 0.0, 0.0)
         p = self._origin()._total_pose(depth + 1)

@@ -5,7 +5,8 @@ that was thrown (``Throw ex`` raises it, ``Catch`` stores it) and so that runtim
 zero, bad index, robot refusals) arrive as GPL exceptions with the controller's error codes.
 
 Message format (gpl-dictionary.md §8): ``*<text>*``, then ``: <qualifier>`` for a general exception
-with a non-zero qualifier, or `` Robot <n>: <axis>`` for a robot exception.  A ``detail`` string
+with a non-zero qualifier, or `` Robot <n>: <axis>`` for a robot exception, then ``: <subject>`` when
+the runtime names what the error is about (a stub's missing name).  A ``detail`` string
 (not part of the controller's data) may name what failed, e.g. the file that could not be opened;
 it is appended after `` - `` so that Python tracebacks say what went wrong.
 """
@@ -48,6 +49,7 @@ AMBIGUOUS_PUBLIC_REFERENCE = -772
 NOTHING_VALUE = -782
 SHORT_STRING = -783
 PROJECT_ERROR = -786
+CONVEYOR_MUST_BE_BASE = -791
 NO_DELEGATE_DEFINED = -796
 NO_MODULE_DEFINED = -798
 # XML documents.
@@ -141,6 +143,7 @@ class GplException(Exception):
         detail: str | None = None,
         robot_num: int | None = None,
         axis: int = 0,
+        subject: str | None = None,
     ) -> None:
         super().__init__()
         self._code = int(ErrorCode)
@@ -149,6 +152,10 @@ class GplException(Exception):
         self._robot_num = robot_num if robot_num is not None else 0
         self._axis = int(axis)
         self.detail = detail
+        # What the error is about, shown in Message itself (``*Not implemented*: protected source
+        # not available: VendorLib.Grip``): unlike ``detail`` a GPL program that catches the
+        # exception sees it, for errors whose code alone cannot tell the user what is missing.
+        self.subject = subject
         # Where the fault was raised in GPL terms ("Module.gpl:12"), filled in by the runtime.
         self.gpl_location: str | None = None
 
@@ -160,6 +167,8 @@ class GplException(Exception):
 
     @ErrorCode.setter
     def ErrorCode(self, value: int) -> None:
+        if int(value) != self._code:
+            self.subject = None  # it named what the old error was about, not the new one
         self._code = int(value)
 
     @property
@@ -207,10 +216,12 @@ class GplException(Exception):
             text += f" Robot {self._robot_num}: {self._axis}"
         elif self._qualifier:
             text += f": {self._qualifier}"
+        if self.subject:
+            text += f": {self.subject}"
         return text
 
     def Clone(self) -> GplException:
-        twin = GplException(self._code, self._qualifier, detail=self.detail)
+        twin = GplException(self._code, self._qualifier, detail=self.detail, subject=self.subject)
         twin._robot_error = self._robot_error
         twin._robot_num = self._robot_num
         twin._axis = self._axis
@@ -240,6 +251,8 @@ class GplException(Exception):
         return f"GPL error {self._code}: {text}"
 
     def __repr__(self) -> str:
+        if self.subject:
+            return f"GplException({self._code}, detail={self.detail!r}, subject={self.subject!r})"
         return f"GplException({self._code}, detail={self.detail!r})"
 
 

@@ -137,9 +137,11 @@ def not_available(name: str, builtin: bool = False) -> NoReturn:
 
     A name defined only in a protected (.gpp) source, or a built-in member the simulated controller
     lacks, raises -204 *Not implemented*: the code exists on a controller but cannot run here.
-    (-729 *Undefined symbol* would claim the name does not exist, which is not true.)  The detail
-    names what is missing, so an unhandled error reads "*Not implemented* - protected source not
-    available: VendorLib.Grip".
+    (-729 *Undefined symbol* would claim the name does not exist, which is not true.)  The
+    exception's subject names what is missing, in ``Message`` itself, so a program that catches it
+    and an unhandled-error report both read "*Not implemented*: protected source not available:
+    VendorLib.Grip" (the controller's ``*text*: ...`` form; a bare "*Not implemented*" would leave
+    the user guessing which of many stubs was hit).
     """
     what = "not available in the simulated controller" if builtin else "protected source not available"
-    raise GplException(NOT_IMPLEMENTED, detail=f"{what}: {name}")
+    raise GplException(NOT_IMPLEMENTED, subject=f"{what}: {name}")
