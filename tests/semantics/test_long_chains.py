@@ -6,9 +6,11 @@ left spine in a loop, and a very long ``&`` run is emitted flat so CPython's own
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from gpl2py.semantics import types as t
+from gpl2py.semantics.check import Model
 from gpl2py.syntax import ast as A
 from gpltest import analyze_text, module_src, run_gpl
 
@@ -24,7 +26,7 @@ def _expected_output(n: int) -> str:
     return f"{len(s)}\n{s[:12]}|{s[-12:]}\n"
 
 
-def _concat_program(n: int, operand=_operand) -> str:
+def _concat_program(n: int, operand: Callable[[int], str] = _operand) -> str:
     chain = " & _\n            ".join(operand(k) for k in range(n))
     return module_src(f"""    Public Sub Main()
         Dim s As String
@@ -36,8 +38,9 @@ def _concat_program(n: int, operand=_operand) -> str:
     End Sub""")
 
 
-def _assigned_expr(model_units_text: str, tmp_path: Path) -> tuple[A.Expr, object, list[str]]:
-    model, sink = analyze_text(tmp_path, model_units_text)
+def _assigned_expr(text: str, tmp_path: Path) -> tuple[A.Expr, Model, list[str]]:
+    """The value of the first binary assignment in Sub Main, the model, and every diagnostic."""
+    model, sink = analyze_text(tmp_path, text)
     main = next(d for d in model.proc_of_decl if getattr(d, "name", "") == "Main")
     assign = next(s for s in main.body.statements if isinstance(s, A.Assign) and isinstance(s.value, A.Binary))
     return assign.value, model, [d.header() for d in sink.sorted()]
@@ -46,12 +49,12 @@ def _assigned_expr(model_units_text: str, tmp_path: Path) -> tuple[A.Expr, objec
 def test_type_check_of_a_1500_operand_concatenation_has_no_depth_limit(tmp_path: Path) -> None:
     value, model, diags = _assigned_expr(_concat_program(1500), tmp_path)
     assert diags == []
-    assert model.type_of(value) is t.STRING  # type: ignore[attr-defined]
+    assert model.type_of(value) is t.STRING
     # every operator of the chain is typed, down to the first one
     node = value
     depth = 0
     while isinstance(node, A.Binary):
-        assert model.type_of(node) is t.STRING  # type: ignore[attr-defined]
+        assert model.type_of(node) is t.STRING
         node = node.left
         depth += 1
     assert depth == 1499
@@ -74,7 +77,7 @@ def test_integer_chain_is_typed_integer_all_the_way(tmp_path: Path) -> None:
         n = {chain}
     End Sub"""), tmp_path)
     assert diags == []
-    assert model.type_of(value) is t.INTEGER  # type: ignore[attr-defined]
+    assert model.type_of(value) is t.INTEGER
 
 
 def test_a_1500_operand_concatenation_transpiles_and_runs(tmp_path: Path) -> None:
