@@ -276,13 +276,34 @@ def test_blocking_waits_go_through_the_hook(cell: type) -> None:
         seen.append(timeout)
         yield
 
-    _blocking.set_blocking_hook(hook)
+    previous = _blocking.set_blocking_hook(hook)
     try:
         with connected_pair() as (_server, client):
             client.ReceiveTimeout = 30
             with pytest.raises(GplException):
                 client.Receive(cell(), 10)
-    finally:
-        _blocking.set_blocking_hook(None)
+    finally:  # the simulator's hook, not the no-op: later tests run GPL threads on sockets
+        _blocking.set_blocking_hook(previous)
     assert 0.03 in seen  # the receive announced its bound
     assert None in seen  # the accept had none
+
+
+@pytest.mark.parametrize("address", ["0.0.0.0", "192.0.2.17"])
+def test_any_address_and_a_foreign_controller_address_bind_loopback(address: str) -> None:
+    """0.0.0.0 means "any" like a blank; 192.0.2.17 (TEST-NET) stands for the controller's own IP
+    in a program written for one cell: this PC does not have it, so the server binds loopback."""
+    tl = TcpListener(IPEndPoint(address, 0))
+    tl.Start()
+    try:
+        assert tl.LocalEndPoint().IPAddress == "127.0.0.1"
+        with socket.create_connection(("127.0.0.1", tl.LocalEndPoint().Port), timeout=WAIT):
+            accepted = tl.AcceptSocket()
+            accepted.Close()
+    finally:
+        tl.Stop()
+    udp = UdpClient(IPEndPoint(address, 0))
+    try:
+        assert udp.Client()._sock.getsockname()[0] == "127.0.0.1"
+    finally:
+        udp.Close()
+

@@ -46,10 +46,12 @@ def _no_hook(timeout: float | None) -> ContextManager[object]:
 _hook: BlockingHook = _no_hook
 
 
-def set_blocking_hook(hook: BlockingHook | None) -> None:
-    """Install the scheduler's hook (``None`` restores the no-op default)."""
+def set_blocking_hook(hook: BlockingHook | None) -> BlockingHook:
+    """Install the scheduler's hook (``None``: the no-op default); returns the hook it replaced,
+    so that a test can put the simulator's back (``gplrt.sim`` installs one on import)."""
     global _hook
-    _hook = hook if hook is not None else _no_hook
+    previous, _hook = _hook, (hook if hook is not None else _no_hook)
+    return previous
 
 
 def blocking_call(fn: Callable[[], T], timeout: float | None) -> T:

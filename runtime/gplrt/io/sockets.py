@@ -5,8 +5,11 @@ All network I/O goes through :class:`Socket` objects obtained from ``TcpClient.C
 (Latin-1), so binary protocols such as the TFTP examples (EX-20/21) work unchanged.
 
 Simulation switch: a server endpoint with a blank IP address (``New IPEndPoint("", 1234)`` = "any
-address" on a controller) binds to :attr:`NetworkConfig.bind_address`, ``127.0.0.1`` by default, so
-a simulated cell is not reachable from the network unless :func:`configure_network` says so.
+address" on a controller, as is ``"0.0.0.0"``) binds to :attr:`NetworkConfig.bind_address`,
+``127.0.0.1`` by default, so a simulated cell is not reachable from the network unless
+:func:`configure_network` says so.  A server written for a particular controller may bind to that
+controller's own address (``New IPEndPoint("192.168.0.1", 1234)``), which this PC does not have:
+rather than refusing the unchanged program (-1704), such a bind falls back to ``bind_address`` too.
 
 Every wait (connect, accept, receive, send) goes through :func:`gplrt.io._blocking.blocking_call`;
 accept, receive and send wait in short slices (:func:`gplrt.io._blocking.wait_ready`), so a thread
@@ -147,8 +150,8 @@ class IPEndPoint:
         return IPEndPoint(String(self._ip), Integer(self._port))
 
     def _local(self) -> tuple[str, int]:
-        """Address to bind to: a blank IP binds to the configured simulation address."""
-        return (self._ip or _config.bind_address, self._port)
+        """Address to bind to: a blank (or 0.0.0.0) IP binds to the configured simulation address."""
+        return (self._ip if self._ip not in ("", "0.0.0.0") else _config.bind_address, self._port)
 
     def _remote(self) -> tuple[str, int]:
         """Address to reach: a blank IP means this machine."""
@@ -433,6 +436,19 @@ def _ready(sock: _socket.socket, step: float, write: bool = False) -> bool:
     return bool(readable or writable)
 
 
+def _bind(sock: _socket.socket, endpoint: IPEndPoint) -> tuple[str, int]:
+    """Bind ``sock`` to ``endpoint`` (see the module docstring for the simulation's addresses)."""
+    address = endpoint._local()
+    try:
+        sock.bind(address)
+    except OSError as exc:
+        if exc.errno != errno.EADDRNOTAVAIL or address[0] == _config.bind_address:
+            raise
+        address = (_config.bind_address, address[1])  # the controller's own IP, not this PC's
+        sock.bind(address)
+    return address
+
+
 def _peer(sock: _socket.socket) -> Any:
     try:
         return sock.getpeername()
@@ -470,6 +486,7 @@ class TcpListener:
             raise GplException(OBJECT_NOT_INSTANTIATED, detail="TcpListener needs an IPEndPoint")
         self._endpoint = local_endpoint.Clone()
         self._sock: _socket.socket | None = None
+        self._stop_lock = threading.Lock()
 
     def Start(self) -> None:
         """Bind and listen; a port already bound elsewhere raises -304."""
@@ -481,7 +498,7 @@ class TcpListener:
         sock.setsockopt(_socket.SOL_SOCKET, _socket.SO_REUSEADDR, 1)
         address = self._endpoint._local()
         try:
-            sock.bind(address)
+            address = _bind(sock, self._endpoint)
             sock.listen(self.BACKLOG)
             sock.setblocking(False)  # AcceptSocket waits in select slices, never inside accept()
         except OSError as exc:
@@ -497,8 +514,10 @@ class TcpListener:
 
     def Pending(self) -> Boolean:
         """True if a connection request waits, so ``AcceptSocket`` will not block."""
-        ready, _, _ = select.select([self._listening()], [], [], 0)
-        return Boolean(bool(ready))
+        sock = self._listening()
+        ready = _ready(sock, 0.0)
+        self._listening()  # stopped by another thread meanwhile: -1707, not a Python error
+        return Boolean(ready)
 
     def AcceptSocket(self) -> Socket:
         """Wait for a connection and return a new Socket for it."""
@@ -531,9 +550,10 @@ class TcpListener:
 
     def Stop(self) -> None:
         """Stop listening and close the listener socket (accepted Sockets stay open)."""
-        if self._sock is not None:
-            self._sock.close()
-            self._sock = None
+        with self._stop_lock:  # two threads stopping at once release the real-time hold once
+            sock, self._sock = self._sock, None
+        if sock is not None:
+            sock.close()
             self._release()
 
     def Close(self) -> None:
@@ -548,7 +568,7 @@ class UdpClient:
         if local_endpoint is not None:
             address = local_endpoint._local()
             try:
-                self._socket._sock.bind(address)
+                _bind(self._socket._sock, local_endpoint)
             except OSError as exc:
                 self._socket.Close()
                 raise _os_error(exc, f"bind {address[0]}:{address[1]}") from None
