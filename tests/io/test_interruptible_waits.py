@@ -236,3 +236,24 @@ def test_closing_a_socket_ends_a_pending_connect_with_1707() -> None:
     finally:
         first.close()
         full.close()
+
+
+@pytest.mark.parametrize("clock", ["virtual", "real"])
+def test_simulation_stop_ends_a_server_blocked_in_accept_and_a_client_in_receive(clock: str) -> None:
+    """What ``gpl2py run`` does on Ctrl-C: every thread ends, none is left in ``still_alive``."""
+    sim = Simulation(clock=clock, capture=True)
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    peer = TcpClient(IPEndPoint("127.0.0.1", listener.LocalEndPoint().Port))
+    connected = listener.AcceptSocket()
+    try:
+        sim.start(listener.AcceptSocket, name="server")
+        sim.start(lambda: connected.Receive(Box(""), 10), name="reader")
+        time.sleep(0.2)
+        report = sim.stop(grace=BOUND)
+    finally:
+        peer.Close()
+        connected.Close()
+        listener.Stop()
+    assert sorted(report.aborted) == ["reader", "server"]
+    assert report.still_alive == []
