@@ -15,8 +15,9 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
   controller, while allowing them cannot change a program that names a Public procedure.  The
   calling module is the ``_module`` argument when given, else the GPL module whose generated
   code executes the ``New`` (found from the caller's Python module in the procedure registry).
-  A start procedure with parameters cannot be started (the thread passes none): ``New`` raises
-  -741 *Argument mismatch* rather than the thread failing later with a Python TypeError.  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.
+  The start procedure takes no parameters; it reads ``Thread.CurrentThread.Argument``.  One with
+  parameters cannot be started (the thread passes none): ``New`` raises -741 *Argument mismatch*
+  rather than the thread failing later with a Python TypeError.
   The thread name defaults to the procedure name (without module); starting a thread whose name
   is already used by an active thread raises -749 *Thread already exists*, so several threads on
   one procedure need explicit names.
