@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import os
 
 import pytest
@@ -259,3 +260,18 @@ def test_nvram_names_and_sizes(flash: FlashRoot) -> None:
     w.Close()
     assert File.Length("/NVRAM/file1") == 3
     assert list(File.GetFiles("/NVRAM")) == ["file1"]
+
+
+def test_a_writer_freed_without_close_keeps_its_buffered_lines(flash: FlashRoot) -> None:
+    """GPL code often lets a local StreamWriter go at the end of its procedure without Close;
+    the controller closes the stream with its last reference.  The lines must not be lost in our
+    4 KB buffer (before: the file stayed empty)."""
+
+    def log_line(text: str) -> None:  # a GPL Sub with a local writer and no Close
+        sw = StreamWriter("/flash/log.txt", True)
+        sw.WriteLine(text)
+
+    log_line("first")
+    log_line("second")
+    gc.collect()
+    assert (flash.root / "flash" / "log.txt").read_bytes() == b"first\r\nsecond\r\n"

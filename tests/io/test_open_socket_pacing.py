@@ -7,12 +7,13 @@ would expire long before a real client (here: 0.3 s of wall time later) could co
 
 from __future__ import annotations
 
+import gc
 import socket
 import threading
 import time
 
 from gplrt.controller.services import Controller
-from gplrt.io.sockets import IPEndPoint, TcpListener
+from gplrt.io.sockets import IPEndPoint, TcpClient, TcpListener
 from gplrt.sim import Simulation
 from gplrt.threads import Thread
 
@@ -54,3 +55,38 @@ def test_a_polling_server_waits_in_real_time_for_its_client() -> None:
     assert sim.run_main(server, timeout=30) == []
     helper.join(5)
     assert result == ["client arrived", "slept 3600 s"]
+
+
+def _connected_client_dropped_without_close(port: int) -> None:
+    """A GPL procedure whose local TcpClient goes out of scope unclosed (the object is freed)."""
+    tc = TcpClient(IPEndPoint("127.0.0.1", port))
+    tc.Client().Send("hi")
+
+
+def test_sockets_freed_without_close_stop_pacing_virtual_time() -> None:
+    """Programs often let a connection's object go instead of closing it; when the object is
+    freed, so is its connection, and virtual time may jump again (before: paced forever, so this
+    hour of controller time would take an hour)."""
+    sim = Simulation(capture=True)  # virtual clock
+    result: list[str] = []
+    outside = socket.socket()
+    outside.bind(("127.0.0.1", 0))
+    outside.listen(4)
+
+    def program() -> None:
+        _connected_client_dropped_without_close(outside.getsockname()[1])
+        listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+        listener.Start()
+        del listener  # a module variable reassigned, a local at the end of its procedure
+        gc.collect()
+        t1 = Controller.Timer()
+        Thread.Sleep(3_600_000)
+        result.append(f"slept {Controller.Timer() - t1:.0f} s")
+
+    start = time.monotonic()
+    try:
+        assert sim.run_main(program, timeout=10) == []
+    finally:
+        outside.close()
+    assert result == ["slept 3600 s"]
+    assert time.monotonic() - start < 5

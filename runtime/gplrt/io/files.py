@@ -14,7 +14,8 @@ Decisions where the manual is silent (D0 §14, gpl-classes.md §14):
 * ``WriteLine`` appends ``NewLine`` (default CR-LF, D0:3827) and counts as one write (one NVRAM
   record).  Output is buffered (4 KB) unless ``AutoFlush``; defaults: False for files, True for
   serial ports and /NVRAM (D0:3822-3824, 3908-3911, 4076-4078).  ``Close`` flushes.
-* Using a closed stream raises -520 *File not open*; ``Close`` twice is harmless.
+* Using a closed stream raises -520 *File not open*; ``Close`` twice is harmless.  A StreamWriter
+  freed without ``Close`` (its object went out of scope) writes its buffered output and closes.
 * ``File.Copy(src, dst, overwrite=False)``: like VB.NET, an existing destination is refused with
   -510 *File already exists* unless ``overwrite`` is True.
 * ``File.ComputeCRC`` returns the CRC-32 (zlib polynomial) of the file as a signed Integer; the
@@ -29,6 +30,7 @@ from __future__ import annotations
 import io
 import shutil
 import threading
+import weakref
 import zlib
 from pathlib import Path
 from typing import BinaryIO
@@ -324,6 +326,43 @@ class _SerialSink:
         pass
 
 
+def _open_sink(path: str, append: bool) -> tuple[_FileSink | _NvramSink | _SerialSink, bool]:
+    """The device a StreamWriter writes to, and its AutoFlush default (module docstring)."""
+    path_only, switches = (
+        nvram.split_switches(path) if path.lower().startswith("/nvram") else (path, None)
+    )
+    cp = _open_path(path_only)
+    if cp.kind is DeviceKind.SERIAL:
+        return _SerialSink(open_port(cp.device)), True
+    assert cp.host is not None
+    if cp.host.is_dir():
+        raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a directory")
+    if not cp.host.parent.is_dir():
+        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"no folder for {path!r}")
+    if cp.kind is DeviceKind.NVRAM:
+        nv = nvram.open_for_write(cp.host, switches or nvram.NvramSwitches(), append)
+        return _NvramSink(cp.host, nv), True
+    try:
+        return _FileSink(open(cp.host, "ab" if append else "wb")), False
+    except OSError as exc:
+        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{path}: {exc.strerror}") from None
+
+
+def _flush_on_free(buffer: bytearray, sink: _FileSink | _NvramSink | _SerialSink) -> None:
+    """Finalizer of a StreamWriter freed without Close: write what it buffered, then close.
+
+    Runs inside garbage collection, where an exception cannot reach the program: a write error
+    here is dropped (the program had already let the writer go)."""
+    try:
+        if buffer:
+            sink.write(bytes(buffer))
+            buffer.clear()
+    except (OSError, GplException):
+        pass
+    finally:
+        sink.close()
+
+
 class StreamWriter:
     """``New StreamWriter(path [, append])``: write a file, an NVRAM file or a serial port.
 
@@ -337,29 +376,11 @@ class StreamWriter:
         self._buffer = bytearray()
         self._newline = "\r\n"
         self._sink: _FileSink | _NvramSink | _SerialSink | None
-        path_only, switches = (
-            nvram.split_switches(path) if path.lower().startswith("/nvram") else (path, None)
-        )
-        cp = _open_path(path_only)
-        if cp.kind is DeviceKind.SERIAL:
-            self._sink = _SerialSink(open_port(cp.device))
-            self._autoflush = True
-            return
-        assert cp.host is not None
-        if cp.host.is_dir():
-            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a directory")
-        if not cp.host.parent.is_dir():
-            raise GplException(CANT_OPEN_FOR_WRITE, detail=f"no folder for {path!r}")
-        if cp.kind is DeviceKind.NVRAM:
-            nv = nvram.open_for_write(cp.host, switches or nvram.NvramSwitches(), bool(append))
-            self._sink = _NvramSink(cp.host, nv)
-            self._autoflush = True
-            return
-        try:
-            self._sink = _FileSink(open(cp.host, "ab" if append else "wb"))
-        except OSError as exc:
-            raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{path}: {exc.strerror}") from None
-        self._autoflush = False
+        self._sink, self._autoflush = _open_sink(path, bool(append))
+        # A writer freed without Close (a local StreamWriter at the end of its procedure, as GPL
+        # code often leaves it) still writes what it buffered and closes the file, as a controller
+        # closes a stream with its last reference; without this its last lines were lost.
+        self._freed = weakref.finalize(self, _flush_on_free, self._buffer, self._sink)
 
     def _open(self) -> _FileSink | _NvramSink | _SerialSink:
         if self._sink is None:
@@ -404,6 +425,7 @@ class StreamWriter:
         with self._lock:
             if self._sink is None:
                 return
+            self._freed.detach()
             try:
                 self._flush()
             finally:
@@ -421,7 +443,8 @@ class StreamWriter:
     def _flush(self) -> None:
         if not self._buffer or self._sink is None:
             return
-        data, self._buffer = bytes(self._buffer), bytearray()
+        data = bytes(self._buffer)
+        self._buffer.clear()  # in place: the free-time finalizer holds this same buffer
         try:
             self._sink.write(data)
         except OSError as exc:

@@ -29,6 +29,9 @@ Error codes (gpl-dictionary.md §14; the mapping is ours, the manual gives none)
 * ``Receive`` on a non-blocking socket with no data -> -523 *No data available* (returning 0 would
   read as "connection closed")
 * a connected socket connected again -> -1706 *Already connected*
+
+A Socket or TcpListener whose object is freed without ``Close``/``Stop`` closes its connection then,
+as on a controller (otherwise virtual time would stay paced to real time for the rest of the run).
 """
 
 from __future__ import annotations
@@ -42,6 +45,7 @@ import socket as _socket
 import termios
 import threading
 import time
+import weakref
 from dataclasses import dataclass
 from typing import Any
 
@@ -187,6 +191,7 @@ class Socket:
         self._send_ms = 0
         self._lock = threading.RLock()
         self._release = _blocking.opened()  # paces virtual time while the socket is open
+        self._freed = weakref.finalize(self, _free_later, self._sock, self._release)
         self._sock.settimeout(None)
 
     # -- state ---------------------------------------------------------------------------------
@@ -277,6 +282,7 @@ class Socket:
             if not self._closed:
                 self._closed = True
                 self._connected = False
+                self._freed.detach()
                 self._sock.close()
                 self._release()
 
@@ -421,6 +427,19 @@ class Socket:
         return f"<Socket {state}>"
 
 
+def _free_later(sock: _socket.socket, release: _blocking.Release) -> None:
+    """A Socket or TcpListener freed without Close/Stop (its object went out of scope, as GPL code
+    often lets it): close the connection and end its real-time hold, as a controller frees the
+    socket with its last reference.  Runs inside garbage collection, possibly on a thread that
+    holds other runtime locks, so the release (which takes the scheduler lock) runs on a helper
+    thread instead of here."""
+    sock.close()
+    try:
+        threading.Thread(target=release, name="gplrt socket release", daemon=True).start()
+    except RuntimeError:  # interpreter shutdown: nobody left to pace
+        pass
+
+
 def _ready(sock: _socket.socket, step: float, write: bool = False) -> bool:
     """Whether ``sock`` can be read (written) now, waiting up to ``step`` seconds.
 
@@ -506,6 +525,7 @@ class TcpListener:
             raise _os_error(exc, f"listen on {address[0]}:{address[1]}") from None
         self._sock = sock
         self._release = _blocking.opened()  # paces virtual time while listening
+        self._freed = weakref.finalize(self, _free_later, sock, self._release)
 
     def _listening(self) -> _socket.socket:
         if self._sock is None:
@@ -553,6 +573,7 @@ class TcpListener:
         with self._stop_lock:  # two threads stopping at once release the real-time hold once
             sock, self._sock = self._sock, None
         if sock is not None:
+            self._freed.detach()
             sock.close()
             self._release()
 
