@@ -7,10 +7,15 @@ interruptible, both programs below never ended (the run had to be killed).
 
 from __future__ import annotations
 
+import importlib
+import socket
+import sys
+import threading
 import time
 from pathlib import Path
 
-from gpltest import free_port, run_gpl
+from gpltest import free_port, run_gpl, transpile_to
+from gplrt.sim import Simulation
 
 LIMIT = 10.0  # real seconds; each program takes well under one
 
@@ -83,3 +88,84 @@ End Module
     result = run_gpl(tmp_path, src)
     assert time.monotonic() - start < LIMIT
     assert result.output.splitlines() == ["accept ended -1707", "joined"]
+
+
+CELL = """Module Cell
+    Public lst As TcpListener
+    Public conn_thread As Thread
+    Public Sub Main()
+        Dim ep As New IPEndPoint("", PORT)
+        Dim server As New Thread("Server")
+        lst = New TcpListener(ep)
+        lst.Start()
+        server.Start()
+        Console.WriteLine("listening")
+        While Not Signal.DIO(10001)          ' the operator's stop button
+            Thread.Sleep(50)
+        End While
+        server.Abort()
+        If Not conn_thread Is Nothing Then conn_thread.Abort()
+        lst.Stop()
+        Console.WriteLine("stopped " & CStr(server.ThreadState) & " " & CStr(conn_thread.ThreadState))
+    End Sub
+    Sub Server()
+        Dim s As Socket
+        Do
+            s = lst.AcceptSocket()
+            Handler.pending = s
+            conn_thread = New Thread("Handler.Serve")
+            conn_thread.Start()
+        Loop
+    End Sub
+End Module
+"""
+
+HANDLER = """Module Handler
+    Public pending As Socket
+    Public Sub Serve()
+        Dim s As Socket
+        Dim buf As String
+        s = pending
+        Try
+            Do
+                If s.Receive(buf, 100) = 0 Then Exit Do
+                s.Send("pong " & buf.Trim() & Chr(13) & Chr(10))
+            Loop
+        Finally
+            s.Close()
+            Console.WriteLine("connection closed")
+        End Try
+    End Sub
+End Module
+"""
+
+
+def test_a_stop_button_aborts_a_server_blocked_in_accept_and_a_handler_in_receive(tmp_path: Path) -> None:
+    """Signals, threads and sockets together, on the virtual clock: a client is served, then an
+    input ends the cell; the handler's Finally closes the client's connection."""
+    port = free_port()
+    package, _, _ = transpile_to(tmp_path, {"Cell.gpl": CELL.replace("PORT", str(port)), "Handler.gpl": HANDLER},
+                                 start="Main")
+    sys.path.insert(0, str(tmp_path / "out"))
+    try:
+        pkg = importlib.import_module(package)
+    finally:
+        sys.path.remove(str(tmp_path / "out"))
+    sim = Simulation(capture=True)
+    runner = threading.Thread(target=pkg.main, args=(sim,), daemon=True)
+    runner.start()
+    deadline = time.monotonic() + LIMIT
+    while "listening" not in sim.console.output and time.monotonic() < deadline:
+        time.sleep(0.02)
+    client = socket.create_connection(("127.0.0.1", port), timeout=LIMIT)
+    try:
+        client.sendall(b"ping\n")
+        assert client.recv(100) == b"pong ping\r\n"
+        sim.io.set_input(10001, True)
+        runner.join(LIMIT)
+        assert not runner.is_alive()
+        assert client.recv(100) == b""  # the aborted handler's Finally closed the connection
+    finally:
+        client.close()
+    assert sim.console.output.splitlines() == ["listening", "connection closed", "stopped 0 0"]
+    assert sim.controller.error_log == []
