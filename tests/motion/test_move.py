@@ -369,3 +369,35 @@ def test_random_straight_lines_respect_joint_speed_and_acceleration_limits(sim: 
         for t in np.linspace(seg.t0, seg.end, 40):
             p = robot.forward(robot.joints_at(float(t)))[:3, 3]
             assert np.linalg.norm((p - p0) - np.dot(p - p0, d) * d) < 1e-6
+
+
+def test_a_line_that_leaves_a_soft_limit_between_samples_is_refused_when_queued(sim: Simulation) -> None:
+    """Both ends within J2's ±93°, but the shoulder bulges past +93° in between, away from every
+    sample point of the path analysis: the move must be refused with -1012 when queued (it was
+    accepted, and Robot.Where then raised -1012 in the middle of the motion)."""
+    from gplrt.lang.errors import GplException
+
+    q0 = (359.0, 77.02, 269.19, 84.96, 109.06)
+    Move.Loc(angles(*q0), Profile())
+    Move.WaitForEOM()
+    goal = Location.from_matrix(sim.robots[1].forward(np.array([378.07, 87.16, 269.19, -25.54, 101.24])))
+    with pytest.raises(GplException) as exc:
+        Move.Loc(goal, profile(Straight=True))
+    assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2
+    assert Robot.WhereAngles().axis_values() == q0  # nothing was queued
+
+
+def test_a_bulge_past_a_limit_in_the_first_interval_is_refused_too(sim: Simulation) -> None:
+    """From J2 = 92.98° the shoulder first rises past +93° (to 93.03°) and then falls: the bulge
+    lies between the path's first two samples, where no neighbouring samples change direction.
+    Refused when queued (it was accepted, and Robot.Where raised -1012 a few ms into the motion)."""
+    from gplrt.lang.errors import GplException
+
+    q0 = (305.85, 92.98, 330.99, 80.63, 93.97)
+    Move.Loc(angles(*q0), Profile())
+    Move.WaitForEOM()
+    goal = Location.from_matrix(sim.robots[1].forward(np.array([330.0, 61.61, 330.99, 85.52, 100.85])))
+    with pytest.raises(GplException) as exc:
+        Move.Loc(goal, profile(Straight=True))
+    assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2
+    assert Robot.WhereAngles().axis_values() == q0

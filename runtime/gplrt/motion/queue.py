@@ -186,7 +186,7 @@ class BlendedPathSegment(PathSegment):
         seed = np.array(q_prev, dtype=float)
         m = pj.extra_mask
         seed[m] += (pj.extra_end[m] - pj.extra_start[m]) * u  # axes the line moves linearly (rail)
-        return pj.ik(T, seed)
+        return (pj.ik_between or pj.ik)(T, seed)
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         if t - _BLEND_DT >= self.prev_end:

@@ -148,9 +148,9 @@ class RobotState:
     def forward(self, joints: Vec) -> np.ndarray:
         return self.model.forward([float(v) for v in joints])
 
-    def inverse(self, T: np.ndarray, config: int, current: Vec) -> Vec:
+    def inverse(self, T: np.ndarray, config: int, current: Vec, check: bool = True) -> Vec:
         seed = current.tolist() if type(current) is np.ndarray else [float(v) for v in current]
-        return np.array(self.model.inverse(T, int(config), seed))
+        return np.array(self.model.inverse(T, int(config), seed, check))
 
     # -- checks --------------------------------------------------------------------------------
 
@@ -302,6 +302,9 @@ class RobotState:
         def ik(T: np.ndarray, seed: Vec) -> Vec:
             return self.inverse(T, 0, seed)
 
+        def ik_between(T: np.ndarray, seed: Vec) -> Vec:
+            return self.inverse(T, 0, seed, check=False)
+
         self._check_config_kept(config, start_config)
         if path.length < ZERO_PATH and path.turn < ZERO_PATH and np.array_equal(q_extra, q0):
             # Nothing moves (``Move.Rel`` by nothing, a line to where the tool is): the motion is
@@ -311,6 +314,7 @@ class RobotState:
         pj, (v, acc, dec, jerk) = PathJoints.sample_for_plan(
             path, ik, q0, q_extra, mask, self.model.inverse_path, self.limits.joint_limits(prof, system_speed),
             self.limits.path_limits(prof, system_speed), float(prof.AccelRamp), float(prof.DecelRamp))
+        pj.check_between(ik_between, self.model.check_limits)
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than

@@ -36,6 +36,9 @@ CURVATURE_MARGIN = 0.1
 MM_PER_SAMPLE = 25.0
 DEG_PER_SAMPLE = 15.0
 MIN_SAMPLES, MAX_SAMPLES = 4, 48
+#: A joint extreme between samples predicted within this (mm or degrees) of a soft limit is solved
+#: exactly (``PathJoints.check_between``).
+EXTREME_MARGIN = 0.5
 #: The refinement of ``PathJoints.sample_for_plan`` stops at this many intervals.
 MAX_REFINED_SAMPLES = 1536
 
@@ -198,6 +201,9 @@ class PathJoints:
     extra_start: Vec
     extra_end: Vec
     extra_mask: np.ndarray
+    #: The IK without the soft-limit check, for reading the path between its samples (set by
+    #: ``check_between`` once the limits are known to hold there too); None: ``ik``.
+    ik_between: Callable[[np.ndarray, Vec], Vec] | None = None
 
     @classmethod
     def sample(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
@@ -284,7 +290,39 @@ class PathJoints:
         if u >= 1.0:
             return self.q[-1].copy()
         k = int(round(u * (len(self.u) - 1)))
-        return self.ik(self.path.pose(u), self._seed(self.q[k], u))
+        return (self.ik_between or self.ik)(self.path.pose(u), self._seed(self.q[k], u))
+
+    def check_between(self, ik_between: Callable[[np.ndarray, Vec], Vec], check: Callable[[list[float]], None]) -> None:
+        """The soft limits between the samples: the parabola through every three neighbouring
+        samples locates a joint's peak or trough between them (the first and last intervals
+        included); any that lies within one interval of the middle sample and comes within
+        ``EXTREME_MARGIN`` of a limit is solved exactly there, and ``check`` raises -1012 (with the
+        axis) if it is beyond.  The samples themselves were checked by ``ik``.  Afterwards the
+        path is read with ``ik_between``: a motion accepted here never raises -1012 from
+        ``Robot.Where`` halfway through."""
+        q = self.q
+        if len(q) < 3:
+            return
+        h = float(self.u[1] - self.u[0])
+        lows, highs = self._bounds(check, q.shape[1])
+        a, b, c = q[:-2], q[1:-1], q[2:]
+        curve = a - 2.0 * b + c
+        flat = curve == 0.0
+        vertex = 0.5 * (a - c) / np.where(flat, 1.0, curve)  # in intervals from the middle sample
+        peak = b - 0.25 * (a - c) * vertex
+        near = (peak >= np.array(highs) - EXTREME_MARGIN) | (peak <= np.array(lows) + EXTREME_MARGIN)
+        for k, j in np.argwhere(~flat & (np.abs(vertex) <= 1.0) & near):
+            u = min(1.0, max(0.0, float(self.u[k + 1]) + float(vertex[k, j]) * h))
+            check([float(v) for v in ik_between(self.path.pose(u), self._seed(self.q[k + 1], u))])
+        self.ik_between = ik_between
+
+    @staticmethod
+    def _bounds(check: Callable[[list[float]], None], n: int) -> tuple[list[float], list[float]]:
+        """The soft limits ``check`` enforces (its model's), or none."""
+        model = getattr(check, "__self__", None)
+        if model is None:
+            return [-math.inf] * n, [math.inf] * n
+        return list(model.lower_limits), list(model.upper_limits)
 
     def rates(self, u: np.ndarray, ud: np.ndarray, udd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Joint velocities and accelerations (N×n) at path states (u, u̇, ü), by the chain rule

@@ -205,8 +205,12 @@ class RobotModel:
             T = self._base @ T
         return T if self._tool_is_identity else T @ self._tool
 
-    def inverse(self, T: Matrix, config_bits: int = 0, current_joints: Sequence[float] | None = None) -> list[float]:
-        """Joints (mm/deg) that put ``Base · Flange · Tool`` at ``T`` (4×4, mm); see module docstring."""
+    def inverse(self, T: Matrix, config_bits: int = 0, current_joints: Sequence[float] | None = None,
+                check: bool = True) -> list[float]:
+        """Joints (mm/deg) that put ``Base · Flange · Tool`` at ``T`` (4×4, mm); see module docstring.
+
+        ``check=False`` skips the final soft-limit check (-1012): for reading a planned path
+        between the samples its limits were checked at."""
         if self.pin_model is None:
             raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
         current = self.ready_joints() if current_joints is None else list(current_joints)
@@ -219,7 +223,8 @@ class RobotModel:
             target = target @ self._tool_inv
         q = self._solve(units.matrix_to_se3(target), int(config_bits), self._to_si(current))
         joints = units.q_to_joints(q, self._linear)
-        self.check_limits(joints)
+        if check:
+            self.check_limits(joints)
         return joints
 
     def inverse_path(self, Ts: np.ndarray, seeds: np.ndarray) -> np.ndarray | None:
