@@ -250,21 +250,23 @@ class Simulation:
             sched.wait_until_quiet(None, grace)
         except KeyboardInterrupt:
             pass
+        sched.release_timers()  # end the real-time timer thread unless an I/O rule still waits on it
         return StopReport([c.name for c in running], [c.name for c in running if c.phase != "done"])
 
     def close(self, grace: float = 2.0) -> StopReport:
         """End the session: stop its GPL threads (as :meth:`stop`) and release the robots' state.
 
         Why release: a session's robots hold their planned motion (Ruckig trajectories, the
-        kinematic model), and the scheduler may still have a daemon timer pending (a pacing or
-        I/O-rule timer set for a deadline the program never reached) that refers back to this
-        session.  At interpreter exit such a timer is never collected, and everything reachable
+        kinematic model), and the scheduler's real-time timer thread may still hold a pending
+        callback (an I/O-rule action on the real clock) that refers back to this session; close
+        drops those and ends that thread.  At interpreter exit such a timer is never collected, and everything reachable
         from it is reported by nanobind as "leaked" Ruckig objects on stderr — after a run that
         ended cleanly.  A closed session is done with: ``robots`` is emptied (a later
         ``Robot.Where`` would build a fresh robot at its ready position, not the old state).
         ``gpl2py run`` closes its session once everything about the run has been reported.
         """
         report = self.stop(grace)
+        self.scheduler.release_timers(drop_pending=True)
         self.robots.clear()
         return report
 

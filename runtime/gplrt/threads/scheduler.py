@@ -20,9 +20,10 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   freeze instead of racing virtual time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
 * A thread in :func:`external_wait` (socket accept/receive, an operator dialog) is neither
   runnable nor a virtual waiter.  While one exists and nobody is runnable, virtual time advances
-  no faster than real time: a real-time timer fires the earliest virtual deadline when it falls
-  due, and when the external wait ends, time catches up with the real time spent idle.  So a
-  server's timeout still means something to a real client, and no deadline is skipped.
+  no faster than real time: a real-time timer (the scheduler's one timer thread, see
+  :mod:`gplrt.threads.pacer`) fires the earliest virtual deadline when it falls due, and when
+  the external wait ends, time catches up with the real time spent idle.  So a server's timeout
+  still means something to a real client, and no deadline is skipped.
 * The same real-time pace holds while the program has a connection to the outside world open (a
   listening or connected socket: :func:`hold_real_time`), even when no thread is blocked in it: a
   server that polls ``listener.Pending()`` between ``Thread.Sleep(20)`` calls must not race virtual
@@ -58,6 +59,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterator
 
 from gplrt.controller.clock import RealClock, VirtualClock, to_ns
+from gplrt.threads.pacer import RealTimer, TimerHandle
 
 
 class ThreadAbort(BaseException):
@@ -213,6 +215,8 @@ class Scheduler:
         # Virtual time only jumps while there is one: a notebook that started a background thread
         # and went idle does not see the cell run on to infinity behind its back.
         self.drivers = 0
+        # Real-time wake-ups (virtual pacing, real-clock call_at): one reusable thread, see pacer.py.
+        self._real_timer = RealTimer(name=f"gplrt-timer:{type(self).__name__}")
 
     # -- thread lifecycle --------------------------------------------------------------------------
 
@@ -335,6 +339,22 @@ class Scheduler:
     def call_at(self, t: float, callback: Callable[[], None]) -> None:
         raise NotImplementedError
 
+    def release_timers(self, *, drop_pending: bool = False) -> None:
+        """End the scheduler's real-time timer thread (:meth:`Simulation.stop` / ``close``).
+
+        Without ``drop_pending`` (stop) only what a later dispatch re-plans anyway is forgotten —
+        the virtual scheduler's pacing wake-up — and the thread ends if nothing else is pending:
+        a real-clock ``call_at`` (an I/O rule's delayed action) still fires.  With it (close),
+        every pending real-time callback is dropped, so no thread is left that refers back to
+        the session.  Must be called without the scheduler lock (it joins the timer thread,
+        whose callback may be waiting for that lock).
+        """
+        self._real_timer.close(drop_pending=drop_pending)
+
+    def timer_threads_started(self) -> int:
+        """How many OS threads the scheduler's real-time timer has started (a diagnostic)."""
+        return self._real_timer.threads_started
+
     def yield_now(self) -> None:
         raise NotImplementedError
 
@@ -437,6 +457,7 @@ class VirtualScheduler(Scheduler):
         self._idle_real: float | None = None  # monotonic() when the token went idle
         self._idle_virtual = 0  # ns
         self._pacer_gen = 0
+        self._pacer_handle: TimerHandle | None = None  # the one pending pacing wake-up
         self._in_dispatch = False
 
     # -- token handling (call with the lock held) ----------------------------------------------------
@@ -511,16 +532,20 @@ class VirtualScheduler(Scheduler):
             self._idle_real = time.monotonic()
             self._idle_virtual = self.clock.ns
         self._pacer_gen += 1
+        # A new idle spell supersedes the previous one's wake-up: cancel it (the generation
+        # check in _pacer_fire covers one that is already firing).
+        self._real_timer.cancel(self._pacer_handle)
+        self._pacer_handle = None
         if next_deadline is not None and self._paced() and self.drivers > 0:
             gen = self._pacer_gen
             delay = max(0.0, (next_deadline - self.clock.ns) / 1e9)
-            timer = threading.Timer(delay, self._pacer_fire, args=(gen, next_deadline))
-            timer.daemon = True
-            timer.start()
+            self._pacer_handle = self._real_timer.schedule(delay, lambda: self._pacer_fire(gen, next_deadline))
         self._changed.notify_all()
 
     def _pacer_fire(self, gen: int, deadline: int) -> None:
         with self._lock:
+            if gen == self._pacer_gen:
+                self._pacer_handle = None
             if gen != self._pacer_gen or self._running is not None or self.drivers == 0:
                 return
             self._idle_real = None
@@ -626,6 +651,18 @@ class VirtualScheduler(Scheduler):
             heapq.heappush(self._timers, (to_ns(t), next(self._seq), None, 0, callback))
             if self._running is None and not self._in_dispatch:
                 self._dispatch()  # idle: jump to it now, or re-arm the real-time pacer
+
+    def release_timers(self, *, drop_pending: bool = False) -> None:
+        """See :meth:`Scheduler.release_timers`; the pacing wake-up is always dropped here.
+
+        Dropping it loses nothing: ``_go_idle`` plans a new one at the next idle spell, and the
+        virtual ``call_at`` callbacks live in the virtual timer heap, not on the real-time thread.
+        """
+        with self._lock:
+            self._pacer_gen += 1
+            self._real_timer.cancel(self._pacer_handle)
+            self._pacer_handle = None
+        self._real_timer.close(drop_pending=drop_pending)
 
     def _paced(self) -> bool:
         """Virtual time may not run ahead of real time: the outside world is involved."""
@@ -752,6 +789,4 @@ class RealScheduler(Scheduler):
         if delay <= 0:
             fire()
             return
-        timer = threading.Timer(delay, fire)
-        timer.daemon = True
-        timer.start()
+        self._real_timer.schedule(delay, fire)
