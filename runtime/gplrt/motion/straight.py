@@ -311,7 +311,10 @@ class PathJoints:
         vertex = 0.5 * (a - c) / np.where(flat, 1.0, curve)  # in intervals from the middle sample
         peak = b - 0.25 * (a - c) * vertex
         near = (peak >= np.array(highs) - EXTREME_MARGIN) | (peak <= np.array(lows) + EXTREME_MARGIN)
-        for k, j in np.argwhere(~flat & (np.abs(vertex) <= 1.0) & near):
+        # only an extreme beyond the samples around it is new (a joint at rest on a limit, as the
+        # gripper often is, has its "peak" on its samples, which ``ik`` has checked)
+        beyond = (peak > np.maximum(np.maximum(a, b), c) + 1e-12) | (peak < np.minimum(np.minimum(a, b), c) - 1e-12)
+        for k, j in np.argwhere(~flat & (np.abs(vertex) <= 1.0) & near & beyond):
             u = min(1.0, max(0.0, float(self.u[k + 1]) + float(vertex[k, j]) * h))
             check([float(v) for v in ik_between(self.path.pose(u), self._seed(self.q[k + 1], u))])
         self.ik_between = ik_between
