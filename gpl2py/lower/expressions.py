@@ -681,7 +681,13 @@ class ExprLowerer:
             mod = self.ctx.mod.name
             return f"{ref}.from_name({self.conv(args[0], t.STRING)[0]}, {py_string(mod)})", P_ATOM
         if isinstance(target, BuiltinClass):
-            return self.call(self.ctx.builtin(target.python_name), *self.args_code(args, i.params or []))
+            acode = self.args_code(args, i.params or [])
+            if target.name == "Thread" and args:
+                # The start procedure (a String) resolves as seen from the module executing the
+                # New, Private procedures included (gplrt.threads.thread): name that module, as
+                # delegates do, so the runtime never has to infer it from the Python caller.
+                acode.append(f"_module={py_string(self.ctx.mod.name)}")
+            return self.call(self.ctx.builtin(target.python_name), *acode)
         return "None", P_ATOM
 
     def ext_code(self, e: A.Expr, i: Info) -> str:
