@@ -256,7 +256,9 @@ def test_speed_scales_real_time(tmp_path: Path, capsys: pytest.CaptureFixture[st
     wall = time.monotonic() - t0
     assert r.returncode == 0, r.stdout
     run = json.loads(r.stdout)["run"]
-    assert run["console"] == "20.0\n" and run["controller_time"] >= 20.0
+    # Sleep never ends early; it may end late by the scheduling delay, which --speed 100 multiplies
+    # (2 ms of wall-clock jitter on a loaded machine reads as 0.2 s), so only the floor is exact.
+    assert float(run["console"]) >= 20.0 and run["controller_time"] >= 20.0
     assert wall < 8.0  # at speed 1 this run takes 20 s
 
 
