@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 
+from gplrt.lang.conversions import to_bool, to_double, to_string
 from gplrt.lang.errors import VALUE_INFINITE_OR_NAN, VALUE_TOO_SMALL, GplException
 from gplrt.lang.gpltypes import Boolean, Double, String
 
@@ -63,7 +64,9 @@ def set_profile_defaults(
 
 
 def _checked(value: float, name: str, *, positive: bool) -> float:
-    v = float(value)
+    """``value`` as a Double under GPL's conversion rules (a numeric String is parsed, -717 on bad
+    text, -782 for Nothing), refused when not finite or below the member's range."""
+    v = to_double(value)
     if not math.isfinite(v):
         raise GplException(VALUE_INFINITE_OR_NAN, detail=f"Profile.{name} = {v}")
     if v < 0.0 or (positive and v == 0.0):
@@ -150,7 +153,7 @@ class Profile:
 
     @Straight.setter
     def Straight(self, value: Boolean) -> None:
-        self._straight = bool(value)
+        self._straight = to_bool(value)  # "False" is False, as CBool reads it
 
     @property
     def InRange(self) -> Double:
@@ -159,7 +162,7 @@ class Profile:
 
     @InRange.setter
     def InRange(self, value: Double) -> None:
-        v = float(value)
+        v = to_double(value)
         if not math.isfinite(v):
             raise GplException(VALUE_INFINITE_OR_NAN, detail=f"Profile.InRange = {v}")
         self._inrange = v
@@ -171,7 +174,7 @@ class Profile:
 
     @Text.setter
     def Text(self, value: String) -> None:
-        self._text = str(value)
+        self._text = to_string(value)  # CStr rules: 2.0 is "2"
 
     def Clone(self) -> Profile:
         """An independent copy."""
