@@ -76,12 +76,34 @@ def test_close_ends_the_timer_thread_and_frees_the_session() -> None:
 
     assert sim.run_main(sleeper, timeout=0.3) != []  # gave up on it while it slept
     sim.close()
-    assert not [t for t in threading.enumerate() if t.name.startswith("gplrt-timer")]
+    assert not sim.scheduler.timer_thread_alive()
     ref = weakref.ref(sim)
     set_current(None)
     del sim
     gc.collect()
     assert ref() is None, "something still refers to the closed session"
+
+
+def test_a_run_given_up_on_leaves_no_pacing_wake_up_behind() -> None:
+    """Nobody drives the run any more, so time stands still: nothing to wake in 1000 s."""
+    sim = Simulation(capture=True)
+    slept: list[float] = []
+
+    def sleeper() -> None:
+        release = hold_real_time()
+        try:
+            Thread.Sleep(1_000_000)
+            slept.append(sim.now())
+        finally:
+            release()
+
+    assert sim.run_main(sleeper, timeout=0.3) != []
+    assert sim.scheduler.real_time_callbacks_pending() == 0
+    t_idle = sim.now()
+    time.sleep(0.2)
+    assert sim.now() == t_idle  # frozen while nobody drives it
+    sim.close()
+    assert slept == []
 
 
 def test_real_clock_call_at_shares_one_thread_and_keeps_order(thread_starts: list[str]) -> None:
@@ -107,7 +129,7 @@ def test_stop_keeps_a_pending_real_clock_action_and_close_drops_it() -> None:
     assert fired == ["rule"]  # an I/O rule's delayed action outlives stopping the program
     sim.scheduler.call_at(sim.now() + 0.15, lambda: fired.append("late"))
     sim.close()
-    assert not [t for t in threading.enumerate() if t.name.startswith("gplrt-timer")]
+    assert not sim.scheduler.timer_thread_alive()
     time.sleep(0.3)
     assert fired == ["rule"]
 

@@ -263,6 +263,7 @@ class Scheduler:
             bind_current(None)
             with self._lock:
                 self.drivers -= 1
+                self._driver_left()
             self.finish(ctx)
 
     def is_stalled(self) -> bool:
@@ -291,6 +292,7 @@ class Scheduler:
                     self._changed.wait(0.05 if remaining is None else min(0.05, remaining))
             finally:
                 self.drivers -= 1
+                self._driver_left()
 
     # -- waits (public) ----------------------------------------------------------------------------
 
@@ -351,6 +353,14 @@ class Scheduler:
         """
         self._real_timer.close(drop_pending=drop_pending)
 
+    def real_time_callbacks_pending(self) -> int:
+        """Callbacks waiting on the real-time timer thread (a diagnostic)."""
+        return self._real_timer.pending()
+
+    def timer_thread_alive(self) -> bool:
+        """Whether the real-time timer thread is running (it ends when idle or released)."""
+        return self._real_timer.is_running()
+
     def timer_threads_started(self) -> int:
         """How many OS threads the scheduler's real-time timer has started (a diagnostic)."""
         return self._real_timer.threads_started
@@ -404,6 +414,9 @@ class Scheduler:
 
     def _kick(self) -> None:
         """Called (lock held) after making threads ready: start one if nobody is running."""
+
+    def _driver_left(self) -> None:
+        """Called (lock held) after an outside caller stopped waiting on the program."""
 
     def _block(
         self,
@@ -541,6 +554,19 @@ class VirtualScheduler(Scheduler):
             delay = max(0.0, (next_deadline - self.clock.ns) / 1e9)
             self._pacer_handle = self._real_timer.schedule(delay, lambda: self._pacer_fire(gen, next_deadline))
         self._changed.notify_all()
+
+    def _driver_left(self) -> None:
+        """With nobody outside driving the run, time stands still: drop the pacing wake-up.
+
+        It would do nothing when it fires (see ``_pacer_fire``), but a wake-up planned for a far
+        deadline (a thread sleeping for an hour when the notebook cell or test gave up on the
+        run) would keep this scheduler — and its session's robots — reachable from the timer
+        thread until then.  The next driver re-plans it (``_kick`` → ``_dispatch`` → ``_go_idle``).
+        """
+        if self.drivers == 0:
+            self._pacer_gen += 1
+            self._real_timer.cancel(self._pacer_handle)
+            self._pacer_handle = None
 
     def _pacer_fire(self, gen: int, deadline: int) -> None:
         with self._lock:
