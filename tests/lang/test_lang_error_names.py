@@ -30,7 +30,7 @@ def test_conveyor_code_is_named_once_in_the_table() -> None:
     assert errors.error_text(errors.CONVEYOR_MUST_BE_BASE) == "Conveyor must be base RefFrame"
 
 
-@pytest.mark.parametrize("area", ["lang", "geometry/refframe.py"])
+@pytest.mark.parametrize("area", ["lang", "geometry/refframe.py", "controller", "threads"])
 def test_runtime_raises_named_codes_not_literals(area: str) -> None:
     """errors.py is where every code is named once; these modules raise by name."""
     target = RUNTIME / area

@@ -43,6 +43,7 @@ from gplrt.lang.errors import (
     INVALID_DATA_FILE_FORMAT,
     INVALID_DATA_INDEX,
     INVALID_PARAMETER_ARRAY_INDEX,
+    INVALID_ROBOT_TYPE,
     PROTECTION_ERROR,
     READ_ONLY,
     UNKNOWN_DATA_ID,
@@ -513,7 +514,7 @@ def default_database(model: str = "PF400SX") -> ParameterDatabase:
     name = model.strip().upper()
     name = MODEL_ALIASES.get(name, name)
     if name not in MODELS:
-        raise GplException(-221, detail=f"unknown robot model {model!r}; known: {', '.join(model_names())}")
+        raise GplException(INVALID_ROBOT_TYPE, detail=f"unknown robot model {model!r}; known: {', '.join(model_names())}")
     if name not in _DEFAULT_CACHE:
         _DEFAULT_CACHE[name] = ParameterDatabase.load([DATA_DIR / layer for layer in MODELS[name]])
     return _DEFAULT_CACHE[name].copy()

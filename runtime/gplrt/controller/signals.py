@@ -40,9 +40,11 @@ from typing import Any, Callable
 
 from gplrt.lang.errors import (
     INVALID_SIGNAL_NUMBER,
+    KINEMATICS_NOT_INSTALLED,
     LATCH_DATA_OVERRUN,
     OUTPUT_SIGNAL_REQUIRED,
     UNDEFINED_SIGNAL_NUMBER,
+    VALUE_OUT_OF_RANGE,
     GplException,
 )
 from gplrt.lang.gpltypes import Boolean, Double, Integer
@@ -345,7 +347,7 @@ class Latch:
             io.latch_events.pop(int(robot), None)
             return
         if not 1 <= n <= 16:
-            raise GplException(-707, detail=f"latch thread event {n}")
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"latch thread event {n}")
         io.latch_events[int(robot)] = (Thread.CurrentThread(), 1 << (n - 1))
 
     # -- instance members ------------------------------------------------------------------------------
@@ -353,7 +355,7 @@ class Latch:
     def Angle(self, axis: Integer) -> Double:
         i = int(axis)
         if not 1 <= i <= 12:
-            raise GplException(-707, detail=f"latch axis {i}")
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"latch axis {i}")
         return self._angles[i - 1] if i <= len(self._angles) else 0.0  # type: ignore[return-value]
 
     @property
@@ -368,9 +370,9 @@ class Latch:
         if kind == 1:
             return Location.from_angles(self._angles[:12])
         if kind != 0:
-            raise GplException(-707, detail=f"latch Location type {kind} (0 Cartesian, 1 Angles)")
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"latch Location type {kind} (0 Cartesian, 1 Angles)")
         if self._pose is None:
-            raise GplException(-1036, robot_num=self._robot,
+            raise GplException(KINEMATICS_NOT_INSTALLED, robot_num=self._robot,
                                detail=f"robot {self._robot} has no kinematics for a Cartesian latch position")
         matrix, config = self._pose
         loc = Location.from_matrix(matrix)
