@@ -23,9 +23,11 @@ for something no GPL thread or timer can ever provide — on a controller they w
 
 from __future__ import annotations
 
+import atexit
 import io as _io
 import sys
 import threading
+import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Literal, TextIO
@@ -153,6 +155,7 @@ class Simulation:
         self.thread_exit_hooks: list[Callable[[Any], None]] = []
         self.threads: list[Any] = []  # every GPL Thread object started in this session
         self._previous: Simulation | None = None
+        _sessions.add(self)
 
     # -- activation --------------------------------------------------------------------------------
 
@@ -343,6 +346,25 @@ def _install_console(sim: Simulation) -> None:
 
 class _State:
     sim: Simulation | None = None
+
+
+#: Every session not yet garbage-collected (see :func:`_release_robots_at_exit`).
+_sessions: weakref.WeakSet[Simulation] = weakref.WeakSet()
+
+
+@atexit.register
+def _release_robots_at_exit() -> None:
+    """Drop the motion state of sessions nobody closed, before the extension modules are torn down.
+
+    A session can outlive its use: a notebook never closes it, a generated package keeps the one it
+    was initialised for, a GPL thread left blocked keeps its frames.  Its robots hold Ruckig
+    trajectories, and nanobind reports every one still alive when the ``ruckig`` module is
+    finalised as "leaked" on stderr, after a run that ended cleanly.  Nothing can use a robot's
+    planned motion after exit, so releasing it here is safe; :meth:`Simulation.close` does the same
+    for a session that is done with earlier.
+    """
+    for sim in list(_sessions):
+        sim.robots.clear()
 
 
 _state = _State()
