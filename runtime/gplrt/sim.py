@@ -107,6 +107,8 @@ class ControllerState:
     record_button: bool = False
     tick: float = 0.001  # trajectory-generator period (gpl-classes §22.3 item 8)
     power_up_time: float = 0.3  # virtual seconds from the power request to "on"
+    homings: int = 0  # Robot.Home calls in progress (they share PowerState 28, see Robot._home)
+    power_before_homing: int = 0  # the power state the last of them restores
     time_of_day_origin: float = 1135641600.0  # Timer(0) at boot: 2024-01-01 UTC in s since 1988
     system_messages: list[LogEntry] = field(default_factory=list)
     error_log: list[LogEntry] = field(default_factory=list)

@@ -133,16 +133,30 @@ class _RobotClass:
         self._home(s, [registry.robot_of(s, n) for n in registry.robot_numbers(s)])
 
     def _home(self, s: Any, robots: list[RobotState]) -> None:
-        if not _power_on(s):
-            raise GplException(POWER_NOT_ENABLED, detail="homing needs high power")
+        """Home ``robots``: the controller shows PowerState 28 (homing) for ``HOMING_TIME``.
+
+        Threads of a multi-robot cell may home their robots at the same time.  The controller's
+        power state is one for all robots, so a homing that starts while another runs joins it
+        (the state stays 28 until the last one ends) instead of reading 28 as "power not enabled";
+        the state from before the first one is restored, unless power dropped meanwhile.
+        """
         state = s.controller
-        previous = state.power_state
-        state.power_state = registry.POWER_HOMING
-        s.scheduler.sleep(HOMING_TIME)
-        if state.power_state != registry.POWER_HOMING:  # power dropped meanwhile
-            raise GplException(POWER_NOT_ENABLED, detail="power went off during homing")
-        state.power_state = previous
-        registry.refresh_power_state(s)
+        joining = state.homings > 0 and state.power_state == registry.POWER_HOMING
+        if not joining:
+            if not _power_on(s):
+                raise GplException(POWER_NOT_ENABLED, detail="homing needs high power")
+            state.power_before_homing = state.power_state
+            state.power_state = registry.POWER_HOMING
+        state.homings += 1
+        try:
+            s.scheduler.sleep(HOMING_TIME)
+            if state.power_state != registry.POWER_HOMING:  # power dropped meanwhile
+                raise GplException(POWER_NOT_ENABLED, detail="power went off during homing")
+        finally:
+            state.homings -= 1
+            if state.homings == 0 and state.power_state == registry.POWER_HOMING:
+                state.power_state = state.power_before_homing
+                registry.refresh_power_state(s)
         for robot in robots:
             robot.homed = True
 
