@@ -102,7 +102,8 @@ class ControllerState:
     """The controller's non-motion state (read by motion checks: power, speed, E-stop)."""
 
     power_state: int = 7  # off, waiting for the power request (gpl-dictionary §13.3)
-    system_speed: float = 100.0
+    system_speed: float = 100.0  # until the parameter database loads: then its DataID 601
+    system_speed_set: bool = False  # the program (or a test) set SystemSpeed itself
     soft_estop: bool = False
     record_button: bool = False
     tick: float = 0.001  # trajectory-generator period (gpl-classes §22.3 item 8)

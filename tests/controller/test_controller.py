@@ -77,7 +77,9 @@ def test_soft_estop_blocks_power(vsim: Simulation) -> None:
 
 
 def test_system_speed_range(vsim: Simulation) -> None:
-    assert Controller.SystemSpeed == 100.0
+    # boots at the parameter database's DataID 601 "System wide test speed" (robot-models.md §2.4:
+    # a real PF400 reports 50), not at 100
+    assert Controller.SystemSpeed == 50.0 == vsim.pdb.get_num(601)
     Controller.SystemSpeed = 25
     assert Controller.SystemSpeed == 25.0
     for bad in (0, 100.5, -3):
@@ -85,6 +87,16 @@ def test_system_speed_range(vsim: Simulation) -> None:
             Controller.SystemSpeed = bad
         assert info.value.ErrorCode == -707
     assert Controller.SystemSpeed == 25.0
+
+
+def test_system_speed_boots_at_each_robots_database_value() -> None:
+    gcu = Simulation(robot="XYZT-GCU", capture=True)
+    with gcu:
+        assert Controller.SystemSpeed == 10.0  # its DataID 601
+    set_first = Simulation(capture=True)
+    with set_first:
+        Controller.SystemSpeed = 80  # set before the database loads: the program's value wins
+        assert Controller.SystemSpeed == 80.0
 
 
 def test_ex17_system_message_and_scripted_dialog(vsim: Simulation) -> None:

@@ -85,7 +85,8 @@ def test_straight_move_stays_on_the_line_and_within_joint_limits(sim: Simulation
 
 
 def test_straight_move_speed_is_the_cartesian_reference(sim: Simulation) -> None:
-    """A long straight line away from singularities cruises at 2701[1] × Speed %."""
+    """A long straight line away from singularities cruises at 2701[1] × Speed % (× SystemSpeed)."""
+    Controller.SystemSpeed = 100.0  # it boots at DataID 601 (50 on this robot)
     Move.Loc(angles(300.0, 0.0, 90.0, 0.0, 100.0), Profile())
     Move.WaitForEOM()
     goal = Robot.Where()
@@ -140,6 +141,7 @@ def test_inrange_positive_settles(sim: Simulation) -> None:
 
 
 def test_system_speed_scales_joint_speed(sim: Simulation) -> None:
+    Controller.SystemSpeed = 100.0  # it boots at DataID 601 (50 on this robot)
     target = angles(900.0, 0.0, 12.0, 0.0, 69.0)
     Move.Loc(target, profile(Speed=100.0, AccelRamp=0.0, DecelRamp=0.0))
     fast = sim.robots[1].queue.last

@@ -129,14 +129,21 @@ class _ControllerClass:
 
     @property
     def SystemSpeed(self) -> Double:
-        return _sim().controller.system_speed  # type: ignore[no-any-return]
+        """The speed all motions are scaled by (%); boots at the database's DataID 601."""
+        from gplrt.motion import registry
+
+        s = _sim()
+        registry.pdb_of(s)  # the boot value comes from the parameter database
+        return s.controller.system_speed  # type: ignore[no-any-return]
 
     @SystemSpeed.setter
     def SystemSpeed(self, value: Double) -> None:
         v = float(value)
         if not 0.0 < v <= 100.0:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"SystemSpeed {v}")
-        _sim().controller.system_speed = v
+        state = _sim().controller
+        state.system_speed = v
+        state.system_speed_set = True
 
     @property
     def RecordButton(self) -> Boolean:

@@ -61,6 +61,10 @@ def pdb_of(s: Any) -> Any:
         from gplrt.controller.pdb import default_database
 
         s.pdb = default_database(getattr(s, "robot_model", "PF400SX"))
+        if not s.controller.system_speed_set:
+            # DataID 601 "System wide test speed in %" is the SystemSpeed a controller boots with
+            # (robot-models.md §2.4: a real PF400 reports 50); a program's own setting wins.
+            s.controller.system_speed = s.pdb.get_num(601, default=100.0)
     return s.pdb
 
 
