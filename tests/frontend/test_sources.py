@@ -243,7 +243,8 @@ def test_declaration_shapes() -> None:
     assert decls["later"][1].bounds == [None] and decls["later2"][1].bounds == [None, None]
     assert decls["origin"][1].new and decls["tool_off"][1].initializer is not None
     secret, hidden = decls["secret"][1], decls["hidden"][1]
-    assert secret.type is hidden.type or (secret.type and hidden.type and secret.type.name == hidden.type.name)
+    # ``Private secret, hidden As String``: both share the one String type node (spec §3.4).
+    assert secret.type is not None and secret.type is hidden.type and secret.type.name == "String"
     assert decls["a"][1].type.name == "Single" and decls["k"][1].type.name == "Integer"  # type: ignore[union-attr]
     assert decls["calls"][0].keyword == "Static" and decls["STEP_SIZE"][0].is_const
     locals_proc = proc(unit, "Locals")
