@@ -176,3 +176,17 @@ def test_rnd_seed_rules() -> None:
     b = Rnd(1)
     assert Rnd(-5) == a  # same negative seed, same value
     assert Rnd(1) == b
+
+
+@pytest.mark.parametrize(
+    ("value", "spec", "head", "length"),
+    [
+        (1e308, "0", "1", 309),  # 15 significant digits, then zeros: not a decimal-context error
+        (1e308, "F2", "1", 312),
+        (-1.7976931348623157e308, "#,##0.00", "-179,769,313,486,231,600,000", 415),
+    ],
+)
+def test_huge_doubles_are_written_out_in_full(value: float, spec: str, head: str, length: int) -> None:
+    text = Format(value, spec)
+    assert text.startswith(head) and len(text) == length
+    assert set(text[len(head) :]) <= set("0,.")

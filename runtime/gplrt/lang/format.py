@@ -28,7 +28,7 @@ sign.  Invariant culture: ``.`` and ``,``.
 from __future__ import annotations
 
 import re
-from decimal import ROUND_HALF_UP, Decimal
+from decimal import ROUND_HALF_UP, Context, Decimal
 from typing import Any, Final
 
 from gplrt.lang.conversions import to_number, to_string
@@ -66,7 +66,15 @@ def _dec(value: float | int) -> Decimal:
 
 
 def _round(d: Decimal, places: int) -> Decimal:
-    return d.quantize(Decimal(1).scaleb(-places), rounding=ROUND_HALF_UP)
+    """``d`` rounded half away from zero to ``places`` decimals.
+
+    The context's precision is sized to the result: the default 28 digits would make quantize
+    raise ``InvalidOperation`` for a Double such as 1E+300 written out in full ("0" or "F0").
+    """
+    if not d.is_finite():
+        return d
+    digits = max(d.adjusted(), 0) + places + 2
+    return d.quantize(Decimal(1).scaleb(-places), rounding=ROUND_HALF_UP, context=Context(prec=max(digits, 28)))
 
 
 def _group(digits: str) -> str:
