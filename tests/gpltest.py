@@ -16,6 +16,7 @@ import importlib
 import importlib.util
 import itertools
 import os
+import re
 import shutil
 import socket
 import subprocess
@@ -112,6 +113,13 @@ class Transpiled:
     package: ModuleType
     folder: Path
     diagnostics: str
+
+    def assert_clean(self) -> None:
+        """Fail unless the translation printed no diagnostic at all: its stderr must be exactly the
+        summary line, reporting 0 errors and 0 warnings (an exit status of 0 still allows warnings)."""
+        lines = self.diagnostics.strip().splitlines()
+        assert len(lines) == 1 and re.fullmatch(r"transpiled .*: 0 errors, 0 warnings", lines[0]), \
+            self.diagnostics
 
 
 def transpile(project: Path, out_root: Path) -> Transpiled:

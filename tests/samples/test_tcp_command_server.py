@@ -53,7 +53,7 @@ def session(tmp_path_factory: pytest.TempPathFactory) -> tuple[Simulation, list[
     src = copy_project(SAMPLES / "tcp_command_server", tmp_path_factory.mktemp("src") / "tcp_command_server",
                        {"SERVER_PORT As Integer = 10100": f"SERVER_PORT As Integer = {port}"})
     sample: Transpiled = transpile(src, tmp_path_factory.mktemp("out"))
-    assert " warning " not in sample.diagnostics and " error " not in sample.diagnostics, sample.diagnostics
+    sample.assert_clean()
     sim = Simulation(capture=True)  # virtual clock; open sockets keep it to real time
     status: list[int] = []
     runner = threading.Thread(target=lambda: status.append(sample.package.main(sim)), daemon=True)
