@@ -84,10 +84,15 @@ class Project:
 def load_project(path: str | os.PathLike[str], sink: DiagnosticSink) -> Project | None:
     """Load the project at ``path`` (folder, Project.gpr, or one .gpl/.gpo file); never raises."""
     p = Path(path)
-    if not p.exists():
+    try:
+        exists, is_dir = p.exists(), p.is_dir()
+    except OSError as exc:  # e.g. ENAMETOOLONG: the OS refuses the path itself, not just the file
+        sink.report(msg.CANNOT_READ, None, path=str(p)[:200], reason=exc.strerror or str(exc))
+        return None
+    if not exists:
         sink.report(msg.PATH_NOT_FOUND, None, path=str(p))
         return None
-    if p.is_dir():
+    if is_dir:
         gpr = _find_case_insensitive(p, PROJECT_FILE)
         if gpr is not None and gpr.is_file():
             return _load_gpr(gpr, sink)

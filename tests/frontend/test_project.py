@@ -267,6 +267,12 @@ def test_unreadable_file_is_a_diagnostic(tmp_path: Path) -> None:
 # --- malformed Project.gpr ----------------------------------------------------------------------
 
 
+def test_path_the_os_refuses_is_a_diagnostic_not_an_exception(tmp_path: Path) -> None:
+    project, sink = load(tmp_path / ("a" * 5000))  # longer than any file system allows (ENAMETOOLONG)
+    assert project is None
+    assert "too long" in only(sink, "GPL1403").message.lower()
+
+
 def test_malformed_gpr_reports_every_problem_in_one_run(tmp_path: Path) -> None:
     folder = tmp_path / "P"
     write_module(folder, "Main.gpl")
