@@ -141,6 +141,17 @@ def test_axis_count_must_match_the_mask() -> None:
     assert exc.value.ErrorCode == -1516
 
 
+def test_gantry_with_only_a_gripper_axis_is_refused() -> None:
+    """An axis mask with the servo gripper but no X, Y, Z or theta axis describes no gantry."""
+    db = default_database("GANTRY4")
+    db.set(2003, 0x10, key=1)
+    db.set(2000, 1.0, key=1)
+    with pytest.raises(GplException) as exc:
+        build_model(db)
+    assert exc.value.ErrorCode == -1516
+    assert "no X, Y, Z or theta axis" in str(exc.value)
+
+
 def test_link_lengths_come_from_the_database() -> None:
     db = default_database("PF400SX")
     db.set_pdb_text("0, 250, 200, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0", 16050, key=1)

@@ -23,7 +23,7 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
-from gplrt.lang.errors import INVALID_CARTESIAN, GplException
+from gplrt.lang.errors import INVALID_AXIS_COUNT, INVALID_CARTESIAN, GplException
 from gplrt.motion.kinematics.base import (
     RobotModel,
     axis_roles,
@@ -55,6 +55,9 @@ class GantryModel(RobotModel):
         self._build_pin_model()
 
     def _build_pin_model(self) -> None:
+        if not any(role in self._i for role in ("x", "y", "z", "theta")):
+            # checked before building: a gripper alone would otherwise hang off the universe joint
+            raise GplException(INVALID_AXIS_COUNT, detail=f"{self.name}: no X, Y, Z or theta axis in the axis mask")
         model = pin.Model()
         model.name = self.name
         ids: dict[str, int] = {}
@@ -68,8 +71,6 @@ class GantryModel(RobotModel):
         flange = model.addFrame(pin.Frame("flange", parent, pin.SE3.Identity(), pin.FrameType.OP_FRAME))
         if "gripper" in self._i:
             ids["gripper"] = model.addJoint(parent, pin.JointModelPY(), pin.SE3.Identity(), "Gripper")
-        if parent == 0:
-            raise GplException(-1516, detail=f"{self.name}: no X, Y, Z or theta axis in the axis mask")
         self._finish_pin_model(model, [ids[r] for r in self.roles], flange)
 
     def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
