@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import io
 import tokenize
+from collections.abc import Iterator
 
 LIMIT = 99
 _OPS = {"+", "and", "or", "&", "|"}
@@ -78,16 +79,8 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
     header = body.endswith(":") and toks[0].string in ("if", "elif", "while", "for", "return", "def")
     cont = indent + (2 if header and toks[0].string != "return" else 1)
     # where the expression starts: after the first top-level "=", or after a leading keyword
-    start = 0
-    depth = 0
-    for i, tok in enumerate(toks):
-        if tok.string in "([{" and tok.type == tokenize.OP:
-            depth += 1
-        elif tok.string in ")]}" and tok.type == tokenize.OP:
-            depth -= 1
-        elif depth == 0 and tok.type == tokenize.OP and tok.string in _ASSIGN:
-            start = i + 1
-            break
+    start = next((i + 1 for i, tok in _top_level(toks)
+                  if tok.type == tokenize.OP and tok.string in _ASSIGN), 0)
     if start == 0 and toks[0].string in ("if", "elif", "while", "return", "raise"):
         start = 1
     end = len(toks) - (1 if header and toks[-1].string == ":" else 0)
@@ -101,16 +94,9 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
     prefix = body[: expr[0].start[1]]
     suffix = body[expr[-1].end[1]:]
     # 1. top-level binary operators
-    cuts: list[int] = []
-    depth = 0
-    for i, tok in enumerate(expr):
-        if tok.type == tokenize.OP and tok.string in "([{":
-            depth += 1
-        elif tok.type == tokenize.OP and tok.string in ")]}":
-            depth -= 1
-        elif depth == 0 and i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME):
-            cuts.append(i)
-    if depth == 0 and cuts and not any(t.string in ("if", "else", "lambda") for t in expr):
+    cuts = [i for i, tok in _top_level(expr)
+            if i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME)]
+    if _balanced(expr) and cuts and not any(t.string in ("if", "else", "lambda") for t in expr):
         pieces = _pieces(body, expr, cuts)
         if inside and not prefix and not suffix and not comment:
             # the sole argument of a call already broken open: its brackets carry the continuation
@@ -132,15 +118,7 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
                 depth -= 1
         if open_at >= 0 and expr[open_at].string == "(" and open_at + 1 < len(expr) - 1:
             inner = expr[open_at + 1:-1]
-            commas = []
-            d = 0
-            for i, tok in enumerate(inner):
-                if tok.type == tokenize.OP and tok.string in "([{":
-                    d += 1
-                elif tok.type == tokenize.OP and tok.string in ")]}":
-                    d -= 1
-                elif d == 0 and tok.string == ",":
-                    commas.append(i)
+            commas = [i for i, tok in _top_level(inner) if tok.string == ","]
             args: list[str] = []
             last = 0
             for c in [*commas, len(inner)]:
@@ -163,6 +141,25 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         inner = body[open_tok.end[1]:close_tok.start[1]].strip()
         return [(indent, body[: open_tok.end[1]] + comment), (cont, inner), (indent, body[close_tok.start[1]:])]
     return [(indent, text)]
+
+
+def _top_level(toks: list[tokenize.TokenInfo]) -> Iterator[tuple[int, tokenize.TokenInfo]]:
+    """The tokens outside every bracket pair (brackets themselves excluded), with their index:
+    the only places a line may be cut or an assignment found without changing its meaning."""
+    depth = 0
+    for i, tok in enumerate(toks):
+        if tok.type == tokenize.OP and tok.string in "([{":
+            depth += 1
+        elif tok.type == tokenize.OP and tok.string in ")]}":
+            depth -= 1
+        elif depth == 0:
+            yield i, tok
+
+
+def _balanced(toks: list[tokenize.TokenInfo]) -> bool:
+    """Every bracket opened in ``toks`` is closed there (a slice of a line may cut a group)."""
+    opened = sum(1 for t in toks if t.type == tokenize.OP and t.string in "([{")
+    return opened == sum(1 for t in toks if t.type == tokenize.OP and t.string in ")]}")
 
 
 def _longest_group(toks: list[tokenize.TokenInfo]) -> tuple[int, int] | None:
