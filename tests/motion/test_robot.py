@@ -216,6 +216,10 @@ def test_where_dest_source_and_tool(sim: Simulation) -> None:
     after = Robot.Where().matrix()
     assert np.allclose(after[:3, 3] - before[:3, 3], 38.0 * before[:3, 2], atol=1e-9)
     assert np.allclose(Robot.Tool().matrix(), tool.matrix())
+    # Tool/Base take a Cartesian Location: Nothing and an angles Location are refused, unchanged
+    assert code_of(Robot.set_Tool, None) == -782
+    assert code_of(Robot.set_Base, Location.from_angles([0.0] * 5)) == -762
+    assert np.allclose(Robot.Tool().matrix(), tool.matrix()) and np.allclose(Robot.Base().matrix(), np.eye(4))
 
 
 def test_locations_reach_the_robot_through_the_kinematics_hook(sim: Simulation) -> None:

@@ -32,6 +32,7 @@ from gplrt.lang.errors import (
     NOT_CARTESIAN,
     NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
+    NOTHING_VALUE,
     POWER_NOT_ENABLED,
     ROBOT_ALREADY_ATTACHED,
     GplException,
@@ -67,7 +68,7 @@ def _angles(q: np.ndarray) -> Location:
 
 def _matrix_of(value: Location) -> np.ndarray:
     if value is None:
-        raise GplException(-782, detail="Location is Nothing")
+        raise GplException(NOTHING_VALUE, detail="Location is Nothing")
     if value.Type != 0:
         raise GplException(NOT_CARTESIAN, detail="Tool/Base must be a Cartesian Location")
     return value.matrix()
