@@ -1,5 +1,8 @@
 """Under the real clock Python may switch GPL threads between any two bytecodes.
 
+(Under the virtual clock only one GPL thread runs at a time, but an outside caller —
+``Simulation.stop`` on Ctrl-C — may still request an Abort between a thread's look and its wait.)
+
 Each test here forces the unlucky interleaving that once broke a real-clock run, so the fault shows
 every time instead of once in a few hundred runs:
 
@@ -23,7 +26,7 @@ from gplrt.lang.byref import Box
 from gplrt.lang.errors import GplException
 from gplrt.sim import Simulation
 from gplrt.threads import Thread, checkpoint
-from gplrt.threads.scheduler import Phase, RealScheduler
+from gplrt.threads.scheduler import Phase, RealScheduler, Scheduler, VirtualScheduler
 
 GUARD = 10.0  # seconds a forced-race call may take before the test calls it hung
 
@@ -61,14 +64,19 @@ def race_window(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[Any]]:
     That is exactly the window between a caller's ``while not condition`` and its wait.
     """
     actions: list[Any] = []
-    original = RealScheduler._block
 
-    def block(self: RealScheduler, ctx: Any, queue: Any, deadline: Any, until: Any = None) -> bool:
-        while actions:
-            actions.pop(0)()
-        return original(self, ctx, queue, deadline, until)
+    def in_the_window(cls: type[Scheduler]) -> None:
+        original = cls._block
 
-    monkeypatch.setattr(RealScheduler, "_block", block)
+        def block(self: Scheduler, ctx: Any, queue: Any, deadline: Any, until: Any = None) -> bool:
+            while actions:
+                actions.pop(0)()
+            return original(self, ctx, queue, deadline, until)
+
+        monkeypatch.setattr(cls, "_block", block)
+
+    in_the_window(RealScheduler)
+    in_the_window(VirtualScheduler)
     yield actions
 
 
@@ -132,8 +140,9 @@ def test_resume_just_before_the_suspended_thread_waits_lets_it_run(race_window: 
     assert m.after
 
 
-def test_abort_just_before_the_wait_ends_the_thread(race_window: list[Any]) -> None:
-    sim = Simulation(clock="real", capture=True)
+@pytest.mark.parametrize("clock", ["real", "virtual"])
+def test_abort_just_before_the_wait_ends_the_thread(race_window: list[Any], clock: str) -> None:
+    sim = Simulation(clock=clock, capture=True)  # type: ignore[arg-type]
     m = types.SimpleNamespace(after=False)
 
     def main() -> None:

@@ -600,7 +600,9 @@ class VirtualScheduler(Scheduler):
         until: Callable[[], object] | None = None,
     ) -> bool:
         with self._lock:
-            if until is not None and until():
+            # As in RealScheduler._block: an Abort from outside the program (Simulation.stop on
+            # Ctrl-C) may land after the caller's last look; _interrupt only wakes BLOCKED threads.
+            if ctx.abort_requested or (until is not None and until()):
                 return True
             ctx.wait_id += 1
             ctx.phase = Phase.BLOCKED
