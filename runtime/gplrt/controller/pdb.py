@@ -4,7 +4,7 @@ A Precise controller keeps its configuration in ``/flash/config/*.pac`` (robot-m
 record per DataID, keyed by ``(DataID, unit, unit2)`` and holding a list of numbers or a list of
 strings.  This module parses that format exactly (§1.2–1.3), layers files (later files override
 earlier ones for the same key, §1.4), and serves typed reads and checked writes.  It is the data
-source both for ``Controller.PDb`` / ``Controller.PDbNum`` (to be wired by the lead) and for the
+source both for ``Controller.PDb`` / ``Controller.PDbNum`` (gplrt/controller/services.py) and for the
 kinematic modules (``gplrt.motion.kinematics.build_model``), which read link lengths, limits and
 axis masks from here instead of keeping constants of their own.
 
