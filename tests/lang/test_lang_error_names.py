@@ -76,3 +76,26 @@ def test_changing_the_error_code_drops_the_old_subject() -> None:
 def test_plain_exceptions_keep_the_controller_format() -> None:
     assert GplException(-786, 8).Message() == "*Project generated error*: 8"
     assert GplException(-709, detail="x / 0").Message() == "*Division by 0*"
+
+
+def test_integer_members_use_gpl_integer_conversion() -> None:
+    """From Python, ``ex.Qualifier = "3"`` parses and 2.5 rounds half away from zero (not int())."""
+    exc = GplException("-786", 2.5)
+    assert (exc.ErrorCode, exc.Qualifier) == (-786, 3)
+    exc.Qualifier = "7"
+    exc.Axis = 1.5
+    exc.RobotNum = "2"
+    assert (exc.Qualifier, exc.Axis, exc.RobotNum) == (7, 2, 2)
+
+
+@pytest.mark.parametrize(
+    ("member", "value", "code"),
+    [("ErrorCode", "abc", -717), ("Qualifier", "abc", -717), ("Qualifier", float("nan"), -710),
+     ("Axis", float("inf"), -710), ("RobotNum", "x", -717), ("Qualifier", 70000, -707)],
+)  # fmt: skip
+def test_bad_integer_members_raise_gpl_codes(member: str, value: object, code: int) -> None:
+    exc = GplException(-786, 4)
+    with pytest.raises(GplException) as info:
+        setattr(exc, member, value)
+    assert info.value.ErrorCode == code
+    assert (exc.ErrorCode, exc.Qualifier) == (-786, 4)

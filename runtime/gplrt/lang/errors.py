@@ -129,6 +129,20 @@ def error_text(code: int) -> str:
     return ERROR_MESSAGES.get(code, f"Error {code}")
 
 
+def _integer(value: object) -> int:
+    """GPL's Integer conversion of a member value (``ex.Qualifier = "3"``, ``= 1.5``, ``= True``).
+
+    Python's ``int()`` would truncate 1.5 and raise a bare ValueError for "abc" or NaN; the shared
+    conversion rounds half away from zero and raises the controller's codes (-717, -710).
+    Imported on use: ``conversions`` itself imports this module for its codes.
+    """
+    if type(value) is int:
+        return value
+    from gplrt.lang.conversions import to_int32
+
+    return to_int32(value)
+
+
 class GplException(Exception):
     """GPL's ``Exception`` class: ``New Exception``, ``Throw``, ``Catch ex``.
 
@@ -147,11 +161,11 @@ class GplException(Exception):
         subject: str | None = None,
     ) -> None:
         super().__init__()
-        self._code = int(ErrorCode)
-        self._qualifier = int(Qualifier)
+        self._code = _integer(ErrorCode)
+        self._qualifier = _integer(Qualifier)
         self._robot_error = robot_num is not None
         self._robot_num = robot_num if robot_num is not None else 0
-        self._axis = int(axis)
+        self._axis = _integer(axis)
         self.detail = detail
         # What the error is about, shown in Message itself (``*Not implemented*: protected source
         # not available: VendorLib.Grip``): unlike ``detail`` a GPL program that catches the
@@ -168,9 +182,10 @@ class GplException(Exception):
 
     @ErrorCode.setter
     def ErrorCode(self, value: int) -> None:
-        if int(value) != self._code:
+        value = _integer(value)
+        if value != self._code:
             self.subject = None  # it named what the old error was about, not the new one
-        self._code = int(value)
+        self._code = value
 
     @property
     def Qualifier(self) -> int:
@@ -178,7 +193,7 @@ class GplException(Exception):
 
     @Qualifier.setter
     def Qualifier(self, value: int) -> None:
-        value = int(value)
+        value = _integer(value)
         if not 0 <= value <= 65535:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"Qualifier {value}")
         self._qualifier = value
@@ -201,7 +216,7 @@ class GplException(Exception):
 
     @RobotNum.setter
     def RobotNum(self, value: int) -> None:
-        self._robot_num = int(value)
+        self._robot_num = _integer(value)
 
     @property
     def Axis(self) -> int:
@@ -209,7 +224,7 @@ class GplException(Exception):
 
     @Axis.setter
     def Axis(self, value: int) -> None:
-        self._axis = int(value)
+        self._axis = _integer(value)
 
     def Message(self) -> str:
         text = f"*{error_text(self._code)}*"
