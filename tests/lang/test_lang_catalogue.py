@@ -28,8 +28,8 @@ def _callables():
 @pytest.mark.parametrize(("name", "func"), list(_callables()))
 def test_annotations_resolve(name, func) -> None:
     hints = typing.get_type_hints(func)
-    assert "return" in hints or name.startswith("Console."), name
-    assert inspect.signature(func) is not None
+    assert "return" in hints, name  # a Sub says ``-> None``: the catalogue reads it as Void
+    assert inspect.signature(func).parameters.keys() <= hints.keys() | {"self", "cls"}, name
 
 
 def test_function_names_are_gpl_spelling() -> None:
