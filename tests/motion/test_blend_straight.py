@@ -30,6 +30,15 @@ def tool(sim: Simulation, t: float) -> np.ndarray:
     return robot.forward(robot.joints_at(t))
 
 
+def slowest(sim: Simulation, t0: float, t1: float, margin: float, n: int) -> float:
+    """The lowest joint speed (norm over the four arm axes) sampled at ``n`` instants inside
+    [t0 + margin, t1 - margin]: above zero means the robot did not stop in between (the margin
+    skips the jerk-limited start and stop)."""
+    robot = sim.robots[1]
+    return min(float(np.linalg.norm(robot.state_at(float(t))[1][:4]))
+               for t in np.linspace(t0 + margin, t1 - margin, n))
+
+
 def distance_to_segment(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
     d = b - a
     s = float(np.clip(np.dot(p - a, d) / np.dot(d, d), 0.0, 1.0))
@@ -58,11 +67,8 @@ def test_straight_to_straight_rounds_the_corner_within_inrange_without_stopping(
     assert max(off) <= 10.0 + 1e-6
     near = float(np.min(np.linalg.norm(path - p1, axis=1)))
     assert 0.5 < near <= 10.0 + 1e-6
-    # the tool keeps moving between the two ends
-    robot = sim.robots[1]
-    # (the jerk-limited start and stop are slow: look inside them)
-    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.1, t1 - 0.1, 600)]
-    assert min(speeds) > 1.0
+    # the tool keeps moving between the two ends (the jerk-limited start and stop are slow: look inside them)
+    assert slowest(sim, t0, t1, margin=0.1, n=600) > 1.0  # never stops
     # it ends exactly on P2, orientation included
     end = xyz(350.0, 150.0, 300.0, 40.0).matrix()
     assert np.max(np.abs(tool(sim, t1) - end)) < 1e-9
@@ -97,8 +103,7 @@ def test_joint_move_blends_into_a_straight_line(sim: Simulation) -> None:
     Move.WaitForEOM()
     t1 = sim.now()
     assert isinstance(seg, BlendedPathSegment)
-    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.02, t1 - 0.02, 600)]
-    assert min(speeds) > 1.0
+    assert slowest(sim, t0, t1, margin=0.02, n=600) > 1.0  # never stops
     path = np.array([tool(sim, float(t))[:3, 3] for t in np.linspace(t0, t1, 2000)])
     assert float(np.min(np.linalg.norm(path - above.matrix()[:3, 3], axis=1))) <= 5.0 + 1e-6
     # once the joint move has run out, the tool is exactly on the line down to the grip point
@@ -109,7 +114,6 @@ def test_joint_move_blends_into_a_straight_line(sim: Simulation) -> None:
 
 
 def test_a_short_line_after_a_long_blend_still_ends_on_target(sim: Simulation) -> None:
-    robot = sim.robots[1]
     Move.Loc(xyz(300.0, -250.0, 300.0), profile())
     Move.WaitForEOM()
     t0 = sim.now()
@@ -118,8 +122,7 @@ def test_a_short_line_after_a_long_blend_still_ends_on_target(sim: Simulation) -
     Move.WaitForEOM()
     t1 = sim.now()
     assert np.max(np.abs(tool(sim, t1) - xyz(452.0, 100.0, 300.0).matrix())) < 1e-9
-    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.02, t1 - 0.02, 400)]
-    assert min(speeds) > 1e-3
+    assert slowest(sim, t0, t1, margin=0.02, n=400) > 1e-3  # never stops
 
 
 def _on_circle(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[float, float]:
@@ -150,8 +153,7 @@ def test_joint_move_blends_into_an_arc_and_a_line_into_a_circle(sim: Simulation)
     t1 = sim.now()
     assert isinstance(seg, BlendedPathSegment) and seg.kind == "arc"
     # (the jerk-limited start and stop are slow: look inside them)
-    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
-    assert min(speeds) > 1.0
+    assert slowest(sim, t0, t1, margin=0.05, n=600) > 1.0  # never stops
     path = np.array([tool(sim, float(t))[:3, 3] for t in np.linspace(t0, t1, 2000)])
     assert float(np.min(np.linalg.norm(path - via.matrix()[:3, 3], axis=1))) <= 5.0 + 1e-6
     a, b, c = (loc.matrix()[:3, 3] for loc in (via, mid, end))
@@ -169,8 +171,7 @@ def test_joint_move_blends_into_an_arc_and_a_line_into_a_circle(sim: Simulation)
     Move.WaitForEOM()
     t1 = sim.now()
     assert isinstance(seg, BlendedPathSegment) and seg.kind == "circle"
-    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
-    assert min(speeds) > 1.0
+    assert slowest(sim, t0, t1, margin=0.05, n=600) > 1.0  # never stops
     assert np.max(np.abs(tool(sim, t1)[:3, 3] - start.matrix()[:3, 3])) < 1e-9
 
 
@@ -199,8 +200,7 @@ def test_blend_overlap_keeps_joint_accelerations_within_limits(sim: Simulation) 
         _, v, a = robot.state_at(float(t))
         assert np.all(np.abs(v) <= vmax * (1 + 1e-3)), (t, v)
         assert np.all(np.abs(a) <= amax * (1 + 1e-3)), (t, a / amax)
-    speeds = [np.linalg.norm(robot.state_at(float(t))[1][:4]) for t in np.linspace(t0 + 0.05, t1 - 0.05, 600)]
-    assert min(speeds) > 1.0
+    assert slowest(sim, t0, t1, margin=0.05, n=600) > 1.0  # never stops
 
 
 def test_wide_blend_between_lines_keeps_the_tool_within_its_cartesian_speed(sim: Simulation) -> None:
