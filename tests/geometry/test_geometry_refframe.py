@@ -210,7 +210,7 @@ def test_pallet_errors() -> None:
         assert _code(*bad) == -707
     assert _code(setattr, rf, "PalletOrder", 6) == -707
     rf.PalletRowColLay(2, 2, 1)
-    _code(rf.PalletRowColLay, 3, 3, 9)
+    assert _code(rf.PalletRowColLay, 3, 3, 9) == -707
     assert [rf.PalletIndex(d) for d in (1, 2, 3)] == [2, 2, 1]  # a rejected call changes nothing
 
 

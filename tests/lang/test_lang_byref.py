@@ -92,7 +92,7 @@ def test_aliasing_is_visible_across_threads() -> None:
             pass
         seen.append(cell.get())
 
-    t = threading.Thread(target=worker)
+    t = threading.Thread(target=worker, daemon=True)  # a broken alias spins forever: do not hang the run
     t.start()
     holder.flag = 3
     t.join(timeout=5)
