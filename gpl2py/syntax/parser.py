@@ -467,6 +467,20 @@ class Parser:
             self.next()
         return True
 
+    def deeper(self, where: Token, what: str) -> bool:
+        """Enter one more level of expression nesting; ``False`` (with GPL1117) past the limit.
+
+        Every recursive expression rule goes through here, so no spelling of deep nesting
+        (parentheses, signs, ``^-``, arguments, single-line Ifs) can exhaust the Python stack.
+        On ``True`` the caller must ``self.depth -= 1`` when it leaves the level.
+        """
+        self.depth += 1
+        if self.depth <= _MAX_EXPR_DEPTH:
+            return True
+        self.error(M.PARSE_TOO_DEEP, where, what=what, limit=_MAX_EXPR_DEPTH)
+        self.depth -= 1
+        return False
+
     def body(self, kind: str) -> A.Block:
         """The block of a construct of ``kind`` (pushed on the open stack while it is parsed)."""
         if self.too_deep("blocks"):
@@ -1158,10 +1172,7 @@ class Parser:
         tok = self.tok
         k = tok.kind
         if k is K.IF:
-            self.depth += 1
-            if self.depth > _MAX_EXPR_DEPTH:
-                self.error(M.PARSE_TOO_DEEP, tok, what="single-line If statements", limit=_MAX_EXPR_DEPTH)
-                self.depth -= 1
+            if not self.deeper(tok, "single-line If statements"):
                 return None
             try:
                 start = self.next()
@@ -1492,8 +1503,11 @@ class Parser:
         """The right operand of ``^``: a postfix expression, optionally negated (``x ^ -1``)."""
         tok = self.tok
         if tok.kind is K.MINUS or tok.kind is K.PLUS:
+            if not self.deeper(tok, "expressions"):
+                return A.ErrorExpr(tok.span)
             self.next()
             operand = self.pow_operand()
+            self.depth -= 1
             return A.Unary(self.span_from(tok), tok.kind.value, operand)
         return self.postfix()
 
@@ -1501,10 +1515,7 @@ class Parser:
         tok = self.tok
         k = tok.kind
         if k is K.MINUS or k is K.PLUS or k is K.NOT:
-            self.depth += 1
-            if self.depth > _MAX_EXPR_DEPTH:
-                self.error(M.PARSE_TOO_DEEP, tok, what="expressions", limit=_MAX_EXPR_DEPTH)
-                self.depth -= 1
+            if not self.deeper(tok, "expressions"):
                 return A.ErrorExpr(tok.span)
             self.next()
             operand = self.expression(_P_UNARY if k is not K.NOT else _P_REL)
@@ -1539,10 +1550,7 @@ class Parser:
         if self.tok.kind is K.RPAREN:
             self.next()
             return args
-        self.depth += 1
-        if self.depth > _MAX_EXPR_DEPTH:
-            self.error(M.PARSE_TOO_DEEP, self.tok, what="expressions", limit=_MAX_EXPR_DEPTH)
-            self.depth -= 1
+        if not self.deeper(self.tok, "expressions"):
             return args
         while True:
             if self.tok.kind is K.COMMA or self.tok.kind is K.RPAREN:
@@ -1579,10 +1587,7 @@ class Parser:
             self.next()
             return A.RealLiteral(tok.span, tok.value, tok.text)  # type: ignore[arg-type]
         if k is K.LPAREN:
-            self.depth += 1
-            if self.depth > _MAX_EXPR_DEPTH:
-                self.error(M.PARSE_TOO_DEEP, tok, what="parentheses", limit=_MAX_EXPR_DEPTH)
-                self.depth -= 1
+            if not self.deeper(tok, "parentheses"):
                 return A.ErrorExpr(tok.span)
             self.next()
             inner = self.expression()
