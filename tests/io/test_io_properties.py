@@ -50,7 +50,8 @@ def test_plain_nvram_refuses_exactly_when_full(size: int, records: list[bytes]) 
         except GplException as exc:
             assert exc.ErrorCode == -323
             assert nv.used + len(record) + 1 > size and nv.records == before
-        else:
+        else:  # accepted: stored whole as one record (records here are < 255 bytes), nothing dropped
+            assert nv.records == before + [record]
             assert nv.used <= size
 
 
