@@ -15,14 +15,19 @@ module that solves it (pf400.py, articulated.py, gantry.py).  Two rules are shar
 from __future__ import annotations
 
 import math
+from typing import Final
 
-GPL_RIGHTY = 0x01
-GPL_LEFTY = 0x02
-GPL_ABOVE = 0x04
-GPL_BELOW = 0x08
-GPL_FLIP = 0x10
-GPL_NOFLIP = 0x20
-GPL_SINGLE = 0x1000
+from gplrt.lang import constants
+
+# The bit values come from the one table of GPL predefined constants (what programs see as
+# GPL_Righty ...); the upper-case names are the Python spelling used across the kinematics.
+GPL_RIGHTY: Final = constants.GPL_Righty
+GPL_LEFTY: Final = constants.GPL_Lefty
+GPL_ABOVE: Final = constants.GPL_Above
+GPL_BELOW: Final = constants.GPL_Below
+GPL_FLIP: Final = constants.GPL_Flip
+GPL_NOFLIP: Final = constants.GPL_NoFlip
+GPL_SINGLE: Final = constants.GPL_Single
 
 TWO_PI = 2.0 * math.pi
 #: Slack (rad or m) when testing a value against a limit, so that a solution computed exactly at
