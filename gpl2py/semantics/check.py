@@ -35,6 +35,7 @@ from gpl2py.semantics.symbols import (
     PropSym,
     VarSym,
 )
+from gpl2py.semantics.symbols import Member as UserMember
 from gpl2py.syntax import ast as A
 
 
@@ -711,23 +712,15 @@ class Checker:
             return Info(t.ANY, kind, e.name, receiver=e.target)
         if k == "module":
             mod: ModuleSym = tinfo.sym  # type: ignore[assignment]
-            m = mod.members.get(e.name.lower())
+            m = self._visible_member(mod.members, f"module {mod.name}", mod.name, e, ctx)
             if m is None:
-                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"module {mod.name}", member=e.name)
-                return Info(t.ERROR, "error")
-            if not visible(m, ctx.module, ctx.cls):
-                self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=mod.name)
                 return Info(t.ERROR, "error")
             return self._found_info(Found("member", m, mod), e.name, e.span, ctx, None,
                                     as_statement, as_target, in_invoke)
         if k == "class" and isinstance(tinfo.sym, ClassSym):
             cls: ClassSym = tinfo.sym
-            m = cls.members.get(e.name.lower())
+            m = self._visible_member(cls.members, f"class {cls.name}", cls.name, e, ctx)
             if m is None:
-                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name}", member=e.name)
-                return Info(t.ERROR, "error")
-            if not visible(m, ctx.module, ctx.cls):
-                self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=cls.name)
                 return Info(t.ERROR, "error")
             if isinstance(m, (VarSym, ProcSym, PropSym)) and not m.shared:
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name} (Shared members)",
@@ -750,12 +743,10 @@ class Checker:
             return Info(t.ERROR, "error")
         ucls = self.r.class_of(typ)
         if ucls is not None:
-            m = ucls.members.get(e.name.lower())
-            if m is None or isinstance(m, (ClassSym, DelegateSym)):
-                self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {ucls.name}", member=e.name)
-                return Info(t.ERROR, "error")
-            if not visible(m, ctx.module, ctx.cls):
-                self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=ucls.name)
+            # a nested class or delegate is reached through the class name, never an instance
+            m = self._visible_member(ucls.members, f"class {ucls.name}", ucls.name, e, ctx,
+                                     hidden=(ClassSym, DelegateSym))
+            if m is None:
                 return Info(t.ERROR, "error")
             return self._found_info(Found("member", m, ucls.module), e.name, e.span, ctx, e.target,
                                     as_statement, as_target, in_invoke)
@@ -775,6 +766,21 @@ class Checker:
             return Info(t.ERROR, "error")
         return self._bmember_info(bm, b, e, e.target, False, in_invoke,
                                   value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING)
+
+    def _visible_member(self, members: dict[str, UserMember], label: str, owner: str,
+                        e: A.MemberAccess, ctx: _Ctx,
+                        hidden: tuple[type, ...] = ()) -> UserMember | None:
+        """The member ``e.name`` of a user module or class, or None after reporting why not
+        (no such member -- ``hidden`` kinds count as absent -- or a Private one seen from outside).
+        One place for the rule, so module, class and instance access report it alike."""
+        m = members.get(e.name.lower())
+        if m is None or isinstance(m, hidden):
+            self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=label, member=e.name)
+            return None
+        if not visible(m, ctx.module, ctx.cls):
+            self.sink.report(M.PRIVATE_MEMBER, e.span, name=e.name, owner=owner)
+            return None
+        return m
 
     def _bmember_info(self, bm: Member, b: BuiltinClass, e: A.Expr, receiver: A.Expr | None, static: bool,
                       in_invoke: bool, value_type: bool) -> Info:

@@ -305,3 +305,33 @@ End Module
     for name, code in out.files.items():
         if name.endswith(".py"):
             compile(code, name, "exec")
+
+
+def test_member_access_through_a_class_and_an_instance_reports_missing_and_private(tmp_path: Path) -> None:
+    """Module, class and instance member access share one lookup rule (check._visible_member):
+    a Private member seen from outside is GPL2010, a missing one -- or a nested class reached
+    through an instance, or an instance member through the class name -- is GPL2007."""
+    text = """Module Main
+    Public Class Box
+        Private secret As Integer
+        Public size As Integer
+        Public Shared made As Integer
+        Public Class Lid
+        End Class
+    End Class
+    Public Sub Main()
+        Dim b As New Box
+        Dim i As Integer
+        i = b.secret
+        i = b.nothere
+        i = Box.size
+        i = Box.made
+        i = b.size
+        i = b.Lid
+    End Sub
+End Module
+"""
+    _, sink = analyze_text(tmp_path, text)
+    got = [(d.code, d.span.line, d.span.col) for d in sink.sorted()]
+    assert got == [("GPL2010", 12, 13), ("GPL2007", 13, 13), ("GPL2007", 14, 13), ("GPL2007", 17, 13)]
+    assert "Box" in sink.errors[0].message and "secret" in sink.errors[0].message
