@@ -210,27 +210,21 @@ def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bo
                 members[name.lower()] = Member(
                     name, "property", all_shared, (), result, settable=raw.fset is not None
                 )
-            elif isinstance(raw, (staticmethod, classmethod)):
-                func = raw.__func__
-                # A classmethod's first parameter is the class; a value type's staticmethods take
-                # the value itself first, except the type's Shared members (String.Compare).
-                shared_here = not value_type or name in getattr(cls, "shared_members", ())
-                skip = isinstance(raw, classmethod) or not shared_here
+            elif isinstance(raw, (staticmethod, classmethod)) or inspect.isfunction(raw):
+                if inspect.isfunction(raw):  # an instance method: ``self`` is not a GPL parameter
+                    func, shared_here, skip = raw, all_shared, True
+                else:
+                    func = raw.__func__
+                    # A classmethod's first parameter is the class; a value type's staticmethods
+                    # take the value itself first, except the type's Shared members (String.Compare).
+                    shared_here = not value_type or name in getattr(cls, "shared_members", ())
+                    skip = isinstance(raw, classmethod) or not shared_here
                 members[name.lower()] = Member(
                     name,
                     "method",
                     shared_here,
                     _params(func, mapper, skip_first=skip),
                     _result(func, mapper),
-                    settable=hasattr(cls, f"set_{name}"),
-                )
-            elif inspect.isfunction(raw):
-                members[name.lower()] = Member(
-                    name,
-                    "method",
-                    all_shared,
-                    _params(raw, mapper, skip_first=True),
-                    _result(raw, mapper),
                     settable=hasattr(cls, f"set_{name}"),
                 )
     return members
