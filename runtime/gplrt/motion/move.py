@@ -30,7 +30,6 @@ from typing import Any, Callable
 
 import numpy as np
 
-from gplrt.controller.services import POWER_ON_STATES
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import (
     INVALID_AXIS,
@@ -50,10 +49,6 @@ from gplrt.threads.scheduler import current_ctx
 NO_CLEARANCE = 1.0e32
 
 
-def _power_on(s: Any) -> bool:
-    return s.controller.power_state in POWER_ON_STATES
-
-
 def _attached(s: Any, key: Any = None) -> RobotState:
     robot = registry.attached_robot(s, registry.thread_key() if key is None else key)
     if robot is None:
@@ -67,7 +62,7 @@ def _ready(s: Any, key: Any = None) -> RobotState:
     if key is None:
         key = registry.thread_key()
     robot = _attached(s, key)
-    robot.check_can_move(key, s.controller.power_state in POWER_ON_STATES)
+    robot.check_can_move(key, registry.power_on(s))
     queue = robot.queue
     if len(queue.history) < QUEUE_DEPTH:
         return robot  # room whatever has finished
@@ -75,7 +70,7 @@ def _ready(s: Any, key: Any = None) -> RobotState:
     while queue.pending(sched.clock.now()) >= QUEUE_DEPTH:
         # the oldest unfinished segment is QUEUE_DEPTH from the end: wait until it has run
         sched.sleep_until(queue.history[-QUEUE_DEPTH].end)
-        robot.check_can_move(key, _power_on(s))
+        robot.check_can_move(key, registry.power_on(s))
     return robot
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 import threading
 from typing import Any
 
+from gplrt.controller.services import POWER_ON_STATES
 from gplrt.lang.errors import INVALID_ROBOT_NUMBER, POWER_NOT_ENABLED, GplException
 from gplrt.threads.scheduler import WaitQueue, current_ctx
 
@@ -111,6 +112,12 @@ def attached_robot(s: Any, key: Any) -> Any:
         if robot.owner is key:
             return robot
     return None
+
+
+def power_on(s: Any) -> bool:
+    """High power is on (PowerState in the controller's power-on states): the one test Move and
+    Robot both make before a motion or a homing."""
+    return s.controller.power_state in POWER_ON_STATES
 
 
 def refresh_power_state(s: Any) -> None:

@@ -50,12 +50,6 @@ def _robot(n: int = 0) -> RobotState:
     return registry.robot_of(s, n)  # type: ignore[no-any-return]
 
 
-def _power_on(s: Any) -> bool:
-    from gplrt.controller.services import POWER_ON_STATES
-
-    return s.controller.power_state in POWER_ON_STATES
-
-
 def _cart(robot: RobotState, q: np.ndarray) -> Location:
     loc = Location.from_matrix(robot.forward(q))
     loc.Config = robot.model.config_of([float(v) for v in q])
@@ -144,7 +138,7 @@ class _RobotClass:
         state = s.controller
         joining = state.homings > 0 and state.power_state == registry.POWER_HOMING
         if not joining:
-            if not _power_on(s):
+            if not registry.power_on(s):
                 raise GplException(POWER_NOT_ENABLED, detail="homing needs high power")
             state.power_before_homing = state.power_state
             state.power_state = registry.POWER_HOMING
