@@ -35,6 +35,7 @@ from gpl2py import __version__
 from gpl2py import messages as msg
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
 from gpl2py.project import SOURCE_SUFFIXES, Project, load_project
+from gpl2py.run import plural as _plural
 from gpl2py.source import SourceFile
 
 EXIT_OK = 0
@@ -397,10 +398,6 @@ def _counts(diags: Sequence[Diagnostic]) -> dict[str, int]:
         "errors": sum(d.severity is Severity.ERROR for d in diags),
         "warnings": sum(d.severity is Severity.WARNING for d in diags),
     }
-
-
-def _plural(n: int, word: str) -> str:
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
 def _wants_json(argv: Sequence[str]) -> bool:
