@@ -163,8 +163,16 @@ _serial = itertools.count()
 
 def import_built(built: Built) -> ModuleType:
     """Import the generated package under a unique private name (see module docstring)."""
-    folder = built.package_dir
-    name = f"_gpl2py_{built.entry.package}_{built.entry.key[:8]}_{next(_serial)}"
+    return import_package(built.package_dir, f"_gpl2py_{built.entry.package}_{built.entry.key[:8]}_{next(_serial)}")
+
+
+def import_package(folder: str | Path, name: str) -> ModuleType:
+    """Import the package in ``folder`` as ``sys.modules[name]``, whatever the folder is called.
+
+    The one way generated packages are imported (``run``, the notebook API, the tests): the name is
+    the caller's, so it never collides with a standard module or another translation of the project.
+    """
+    folder = Path(folder)
     spec = importlib.util.spec_from_file_location(name, folder / "__init__.py",
                                                   submodule_search_locations=[str(folder)])
     if spec is None or spec.loader is None:
@@ -489,7 +497,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
         where = f"{e['file']}:{e['line']}: " if e["file"] else ""
         stderr.write(f"{where}error {e['code']} in thread {e['thread']}: {e['message']}\n")
     if report.interrupted:
-        text = f"gpl2py: interrupted; stopped {_plural(report.stopped, 'GPL thread')}"
+        text = f"gpl2py: interrupted; stopped {plural(report.stopped, 'GPL thread')}"
         if report.still_alive:
             text += f" ({', '.join(report.still_alive)} did not stop within {STOP_GRACE:g} s)"
         stderr.write(text + "\n")
@@ -505,7 +513,7 @@ def stubs_note(package: ModuleType) -> str | None:
         return None
     names = [f"{s['name']} (--stubs)" if s.get("provided") else str(s["name"]) for s in stubs]
     missing = sum(1 for s in stubs if not s.get("provided"))
-    return (f"note: {_plural(len(stubs), 'stub')} for protected or unsimulated code "
+    return (f"note: {plural(len(stubs), 'stub')} for protected or unsimulated code "
             f"({missing} {'raises' if missing == 1 else 'raise'} error -204 if used): {', '.join(names)}")
 
 
@@ -532,8 +540,8 @@ def _usage_after_emit(out: Outcome, detail: str, as_json: bool, stderr: TextIO) 
 def transpile_summary(files: int, lines: int, sink: DiagnosticSink, seconds: float, cached: bool) -> str:
     errors, warnings = len(sink.errors), len(sink.warnings)
     how = "from the cache" if cached else f"in {seconds:.2f} s"
-    return (f"transpiled {_plural(files, 'file')} ({_plural(lines, 'line')}) {how}: "
-            f"{_plural(errors, 'error')}, {_plural(warnings, 'warning')}")
+    return (f"transpiled {plural(files, 'file')} ({plural(lines, 'line')}) {how}: "
+            f"{plural(errors, 'error')}, {plural(warnings, 'warning')}")
 
 
 def summary_json(built: Built, sink: DiagnosticSink) -> dict[str, object]:
@@ -543,7 +551,7 @@ def summary_json(built: Built, sink: DiagnosticSink) -> dict[str, object]:
 
 def run_summary(report: RunReport, clock: str) -> str:
     text = (f"program ended after {report.controller_time:.3f} s of controller time ({clock} clock, "
-            f"{report.wall_time:.2f} s wall): {_plural(len(report.errors), 'unhandled error')}")
+            f"{report.wall_time:.2f} s wall): {plural(len(report.errors), 'unhandled error')}")
     if report.stalled:
         text += f"; stalled, threads still waiting: {', '.join(report.stalled)}"
     if report.plot:
@@ -553,6 +561,7 @@ def run_summary(report: RunReport, clock: str) -> str:
     return text
 
 
-def _plural(n: int, word: str) -> str:
+def plural(n: int, word: str) -> str:
+    """``n word`` or ``n words``: the one plural rule of every summary line (cli and run)."""
     return f"{n} {word}" if n == 1 else f"{n} {word}s"
 

@@ -27,6 +27,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Callable
 
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.run import import_package
 from gpl2py.transpile import transpile as transpile_project
 from gpl2py.transpile import write_package
 from gplrt.sim import Simulation
@@ -132,13 +133,7 @@ def transpile(project: Path, out_root: Path) -> Transpiled:
     if len(packages) != 1:
         raise TranspileFailed(f"expected one package in {out_root}, found {packages}")
     folder = packages[0]
-    name = f"_gpl_{folder.name}_{next(_counter)}"
-    spec = importlib.util.spec_from_file_location(
-        name, folder / "__init__.py", submodule_search_locations=[str(folder)])
-    assert spec is not None and spec.loader is not None
-    package = importlib.util.module_from_spec(spec)
-    sys.modules[name] = package
-    spec.loader.exec_module(package)
+    package = import_package(folder, f"_gpl_{folder.name}_{next(_counter)}")
     return Transpiled(package, folder, proc.stderr)
 
 

@@ -7,9 +7,7 @@ supplies implementations; unknown built-in members become warnings and stubs eve
 
 from __future__ import annotations
 
-import importlib.util
 import itertools
-import sys
 from pathlib import Path
 from types import ModuleType
 
@@ -17,6 +15,7 @@ import pytest
 
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.run import import_package
 from gpl2py.transpile import transpile
 from gplrt.sim import Simulation
 
@@ -83,14 +82,7 @@ def _translate(proj: Path, out: Path, *options: str) -> tuple[int, str]:
 
 
 def _import(folder: Path) -> ModuleType:
-    name = f"_stubtest_{folder.name}_{next(_serial)}"
-    spec = importlib.util.spec_from_file_location(name, folder / "__init__.py",
-                                                  submodule_search_locations=[str(folder)])
-    assert spec is not None and spec.loader is not None
-    pkg = importlib.util.module_from_spec(spec)
-    sys.modules[name] = pkg
-    spec.loader.exec_module(pkg)
-    return pkg
+    return import_package(folder, f"_stubtest_{folder.name}_{next(_serial)}")
 
 
 def _run(pkg: ModuleType, mode: int) -> tuple[str, int, Simulation]:
