@@ -21,7 +21,9 @@ def test_augmented_assignment_wraps_only_its_value(op: str) -> None:
     lines = wrap(2, text)
     assert len(lines) > 2 and all(4 * ind + len(t) <= 99 for ind, t in lines)
     assert lines[0] == (2, f"self.total {op} (")
-    ast.parse("\n".join("    " * (ind - 2) + t for ind, t in lines))
+    wrapped = ast.parse("\n".join("    " * (ind - 2) + t for ind, t in lines))
+    # valid Python is not enough: the wrapped statement must mean the original one
+    assert ast.dump(wrapped) == ast.dump(ast.parse(text))
 
 
 def test_long_string_building_line_runs(tmp_path: Path) -> None:
