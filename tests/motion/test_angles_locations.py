@@ -55,7 +55,7 @@ def test_a_joint_beyond_the_robots_axes_still_out_of_range_on_its_own_axes(sim: 
     loc.Angles(250.0, 10.0, 90.0, -20.0, 10.0)  # gripper below its 69 mm limit
     with pytest.raises(GplException) as err:
         Move.Loc(loc, Profile())
-    assert err.value.ErrorCode == -1012
+    assert err.value.ErrorCode == -1012 and err.value.Axis == 5  # the gripper, not an axis the robot lacks
 
 
 def test_where_angles_has_the_robots_axes(sim: Simulation) -> None:
