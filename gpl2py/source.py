@@ -6,7 +6,12 @@ Lines and columns are 1-based, columns count characters (tabs count as one), as 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+
+#: What ends a physical line: exactly the lexer's line breaks (spec §1).  ``str.splitlines`` would
+#: also split at form feeds, U+0085 and U+2028 and so number lines differently from every Position.
+LINE_BREAK = re.compile(r"\r\n|\n|\r")
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,9 +63,13 @@ class SourceFile:
     _lines: list[str] | None = field(default=None, repr=False)
 
     def line_text(self, line: int) -> str:
-        """Physical line ``line`` (1-based) without its terminator, or ``""`` if out of range."""
+        """Physical line ``line`` (1-based) without its terminator, or ``""`` if out of range.
+
+        Lines are counted as the lexer counts them (:data:`LINE_BREAK`), and a byte-order mark at
+        the start is not part of line 1 (the lexer skips it), so excerpts match Positions.
+        """
         if self._lines is None:
-            self._lines = self.text.splitlines()
+            self._lines = LINE_BREAK.split(self.text.removeprefix("\ufeff"))
         if 1 <= line <= len(self._lines):
             return self._lines[line - 1]
         return ""

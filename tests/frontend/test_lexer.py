@@ -281,3 +281,20 @@ def test_a_file_ending_in_ctrl_z_checks_clean_through_the_project_loader(tmp_pat
     assert project is not None
     unit = parse(project.sources[0], sink)
     assert list(sink) == [] and [m.name for m in unit.members] == ["Old"]  # type: ignore[attr-defined]
+
+
+
+def test_source_lines_are_the_lexers_lines_so_excerpts_match_positions() -> None:
+    # Form feeds, U+0085, U+2028 and U+001C are not line breaks for GPL (str.splitlines says they
+    # are), and a byte-order mark is not part of line 1: every token must be found where it says.
+    text = "\ufeffModule M\n\f\n' caf\x85e \u2028 \x1c\nSub S()\r\n\tDim alpha As Integer\r\nx = (1 +\r\nEnd Sub\nEnd Module\r"
+    src = SourceFile("t.gpl", text)
+    toks, _ = lex(text)
+    words = [t for t in toks if t.kind in (K.IDENT, K.MODULE, K.DIM, K.END, K.SUB)]
+    assert [t.text for t in words] == ["Module", "M", "Sub", "S", "Dim", "alpha", "Integer", "x", "End", "Sub", "End", "Module"]
+    for t in words:
+        assert src.line_text(t.line)[t.col - 1 : t.span.end_col - 1] == t.text, (t.line, t.col)
+    sink = DiagnosticSink()
+    parse(src, sink)
+    assert [d.code for d in sink.errors] == ["GPL1101"]
+    assert sink.errors[0].render(src).splitlines()[1:] == ["    x = (1 +", "            ^"]
