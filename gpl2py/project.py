@@ -40,7 +40,7 @@ from pathlib import Path
 
 from gpl2py import messages as msg
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.source import Position, SourceFile, Span
+from gpl2py.source import LINE_BREAK, Position, SourceFile, Span
 
 PROJECT_FILE = "Project.gpr"
 SOURCE_SUFFIXES = (".gpl", ".gpo")
@@ -235,7 +235,12 @@ def _parse_gpr(gpr: SourceFile, sink: DiagnosticSink) -> list[_GprEntry]:
     state = "before"  # -> "inside" at ProjectBegin -> "after" at ProjectEnd
     last_line = 1
     text = gpr.text.rstrip("\x1a")  # a DOS end-of-file marker (Ctrl-Z) is not text after ProjectEnd
-    for number, raw in enumerate(text.splitlines(), start=1):
+    # Lines as SourceFile and the lexer count them: splitlines would also break at U+0085 (a
+    # Windows-1252 '…' read as latin-1), U+2028 and form feeds, shifting every later line number.
+    lines = LINE_BREAK.split(text)
+    if lines and lines[-1] == "":
+        lines.pop()  # the terminator of the last line does not start another
+    for number, raw in enumerate(lines, start=1):
         line = raw.strip()
         last_line = number
         if not line or line.startswith("'"):

@@ -267,6 +267,22 @@ def test_unreadable_file_is_a_diagnostic(tmp_path: Path) -> None:
 # --- malformed Project.gpr ----------------------------------------------------------------------
 
 
+def test_windows_1252_ellipsis_in_a_gpr_comment_does_not_shift_lines(tmp_path: Path) -> None:
+    # 0x85 is '…' in Windows-1252; decoded as latin-1 it is U+0085, which str.splitlines treats
+    # as a line break.  Project.gpr lines must be numbered like every other file's.
+    folder = tmp_path / "P"
+    write_module(folder, "Main.gpl")
+    (folder / "Project.gpr").write_bytes(
+        b"ProjectBegin\r\n' cell \x85 v2\r\nProjectStart=\"Main\"\r\nProjectSource=\"Gone.gpl\"\r\nProjectEnd\r\n"
+    )
+    project, sink = load(folder)
+    assert project is not None and project.start == "Main"
+    assert codes(sink) == ["GPL1405"]
+    d = only(sink, "GPL1405")
+    assert (d.span.line, d.span.col) == (4, 16)  # type: ignore[union-attr]
+    assert d.render(project.project_file).splitlines()[1] == '    ProjectSource="Gone.gpl"'
+
+
 def test_path_the_os_refuses_is_a_diagnostic_not_an_exception(tmp_path: Path) -> None:
     project, sink = load(tmp_path / ("a" * 5000))  # longer than any file system allows (ENAMETOOLONG)
     assert project is None
