@@ -15,16 +15,21 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import itertools
+import math
 import os
 import re
 import shutil
 import socket
 import subprocess
 import sys
+import threading
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Callable
+
+import numpy as np
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import import_package
@@ -157,6 +162,47 @@ def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return int(s.getsockname()[1])
+
+
+def hand_rotation(yaw: float) -> np.ndarray:
+    """Rotation of GPL orientation (yaw, 90, 180) = Rz(yaw)·Ry(90)·Rz(180): a PF400 hand horizontal
+    along ``yaw`` (the pose every sample teaches), worked out by hand rather than by the runtime."""
+    c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
+    rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return rz @ np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]) @ np.diag([-1.0, -1.0, 1.0])
+
+
+def wait_for_console(sim: Simulation, runner: threading.Thread, text: str, timeout: float = 10.0) -> None:
+    """Wait until the program running on ``runner`` has written ``text`` on the console; fail the
+    test with everything it wrote when it does not within ``timeout`` real seconds (or ends)."""
+    deadline = time.monotonic() + timeout
+    while text not in sim.console.output and runner.is_alive() and time.monotonic() < deadline:
+        runner.join(0.02)
+    assert text in sim.console.output, sim.console.output + sim.console.log_text
+
+
+def start_server(target: Callable[[], object], sim: Simulation, ready: str = "listening",
+                 timeout: float = 10.0) -> threading.Thread:
+    """Run a sample server (``target`` calls its ``main(sim)``) on a daemon thread and return the
+    thread once the server says ``ready`` on the console."""
+    runner = threading.Thread(target=target, daemon=True)
+    runner.start()
+    wait_for_console(sim, runner, ready, timeout)
+    return runner
+
+
+def shutdown_server(port: int, runner: threading.Thread, timeout: float = 15.0) -> None:
+    """Fixture teardown: a server a test left running is sent ``shutdown`` on a new connection and
+    given ``timeout`` seconds to end (a server that already stopped is left alone)."""
+    if not runner.is_alive():
+        return
+    try:
+        client = LineClient(port)
+        client.ask("shutdown")
+        client.close()
+    except OSError:
+        pass
+    runner.join(timeout)
 
 
 class LineClient:

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gpltest import LineClient, Transpiled, copy_project, free_port, transpile
+from gpltest import LineClient, Transpiled, copy_project, free_port, shutdown_server, transpile, wait_for_console
 from gplrt.sim import Simulation
 
 HERE = Path(__file__).resolve().parent
@@ -67,10 +67,7 @@ class Cell:
 
     def start(self) -> None:
         self.runner.start()
-        deadline = time.monotonic() + TIMEOUT
-        while "TCS listening" not in self.sim.console.output and time.monotonic() < deadline:
-            self.runner.join(0.02)
-        assert "TCS listening" in self.sim.console.output, self.sim.console.output + self.sim.console.log_text
+        wait_for_console(self.sim, self.runner, "TCS listening", TIMEOUT)
 
     def joints(self) -> np.ndarray:
         robot = self.sim.robots[1]
@@ -86,14 +83,7 @@ def cell(tmp_path_factory: pytest.TempPathFactory):
     c = Cell(tmp_path_factory.mktemp("tcs_like"))
     c.start()
     yield c
-    if c.runner.is_alive():
-        try:
-            k = LineClient(c.port)
-            k.ask("shutdown")
-            k.close()
-        except OSError:
-            pass
-        c.runner.join(TIMEOUT)
+    shutdown_server(c.port, c.runner, TIMEOUT)
 
 
 def test_project_is_vendor_sized_and_transpiles_clean(cell: Cell) -> None:

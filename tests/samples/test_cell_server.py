@@ -8,24 +8,17 @@ the commanded targets, read off the simulated robot itself to 1e-6 mm.
 
 from __future__ import annotations
 
-import math
 import threading
 from collections.abc import Iterator
 
 import numpy as np
 import pytest
 
-from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, transpile
+from gpltest import (SAMPLES, LineClient, Transpiled, copy_project, free_port, hand_rotation, shutdown_server,
+                     start_server, transpile)
 from gplrt.sim import Simulation
 
 TIMEOUT = 15.0
-
-
-def hand_rotation(yaw: float) -> np.ndarray:
-    """Rotation of GPL orientation (yaw, 90, 180) = Rz(yaw)·Ry(90)·Rz(180): hand horizontal along yaw."""
-    c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
-    rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]) @ np.diag([-1.0, -1.0, 1.0])
 
 
 @pytest.fixture(scope="module")
@@ -35,22 +28,9 @@ def cell(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Simulation,
                        {"SERVER_PORT As Integer = 10200": f"SERVER_PORT As Integer = {port}"})
     sample: Transpiled = transpile(src, tmp_path_factory.mktemp("cell_server"))
     sim = Simulation(capture=True)  # virtual clock: open sockets keep it to real time
-    runner = threading.Thread(target=sample.package.main, args=(sim,), daemon=True)
-    runner.start()
-    for _ in range(400):
-        if "listening" in sim.console.output:
-            break
-        runner.join(0.025)
-    assert "listening" in sim.console.output, sim.console.output + sim.console.log_text
+    runner = start_server(lambda: sample.package.main(sim), sim)
     yield sim, port, runner
-    if runner.is_alive():
-        try:
-            c = LineClient(port)
-            c.ask("shutdown")
-            c.close()
-        except OSError:
-            pass
-        runner.join(TIMEOUT)
+    shutdown_server(port, runner, TIMEOUT)
 
 
 def tool_pose(sim: Simulation) -> np.ndarray:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, transpile
+from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, shutdown_server, start_server, transpile
 from gplrt.controller.pdb import DATA_DIR, ParameterDatabase, default_database
 from gplrt.motion.registry import robot_of
 from gplrt.sim import Simulation
@@ -56,23 +56,10 @@ def two_pf400_database() -> ParameterDatabase:
 
 def serve(sample: tuple[Transpiled, int], sim: Simulation) -> Iterator[Cell]:
     package, port = sample[0].package, sample[1]
-    runner = threading.Thread(target=package.main, args=(sim,), daemon=True)
-    runner.start()
-    for _ in range(400):
-        if "listening" in sim.console.output:
-            break
-        runner.join(0.025)
-    assert "listening" in sim.console.output, sim.console.output + sim.console.log_text
+    runner = start_server(lambda: package.main(sim), sim)
     cell = Cell(sim, port, runner)
     yield cell
-    if runner.is_alive():
-        try:
-            c = LineClient(port)
-            c.ask("shutdown")
-            c.close()
-        except OSError:
-            pass
-        runner.join(TIMEOUT)
+    shutdown_server(port, runner, TIMEOUT)
     assert not runner.is_alive()
     assert sim.console.output.splitlines()[-1].startswith("cell server stopped after ")
 

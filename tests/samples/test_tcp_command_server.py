@@ -9,13 +9,11 @@ robot is at pick_1 and at place_1, and the program must end by itself after ``sh
 
 from __future__ import annotations
 
-import math
-import threading
 
 import numpy as np
 import pytest
 
-from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, transpile
+from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, hand_rotation, start_server, transpile
 from gplrt.sim import Simulation
 
 TIMEOUT = 30.0
@@ -23,13 +21,6 @@ GRIPPER_OUT = 1
 SAFE = (250.0, 0.0, 300.0, 0.0)  # x, y, z, yaw
 PICK = (300.0, 150.0, 120.0, 90.0)
 PLACE = (350.0, -150.0, 125.5, -60.0)
-
-
-def hand_rotation(yaw: float) -> np.ndarray:
-    """GPL orientation (yaw, 90, 180) = Rz(yaw)·Ry(90)·Rz(180): the hand horizontal along yaw."""
-    c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
-    rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-    return rz @ np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]]) @ np.diag([-1.0, -1.0, 1.0])
 
 
 def assert_at(sim: Simulation, t: float, pose: tuple[float, float, float, float]) -> None:
@@ -56,13 +47,7 @@ def session(tmp_path_factory: pytest.TempPathFactory) -> tuple[Simulation, list[
     sample.assert_clean()
     sim = Simulation(capture=True)  # virtual clock; open sockets keep it to real time
     status: list[int] = []
-    runner = threading.Thread(target=lambda: status.append(sample.package.main(sim)), daemon=True)
-    runner.start()
-    for _ in range(400):
-        if "listening" in sim.console.output:
-            break
-        runner.join(0.025)
-    assert "listening" in sim.console.output, sim.console.output + sim.console.log_text
+    runner = start_server(lambda: status.append(sample.package.main(sim)), sim)
     client = LineClient(port, timeout=TIMEOUT, newline="\n")
     try:
         replies = [client.ask(cmd) for cmd in
