@@ -242,6 +242,39 @@ class LineClient:
     def close(self) -> None:
         self.sock.close()
 
+    def __enter__(self) -> LineClient:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def ask_all(port: int, requests: dict[int, list[str]], timeout: float = 15.0) -> dict[int, list[str]]:
+    """One client per key, all sending at the same moment; each returns its replies in order."""
+    replies: dict[int, list[str]] = {k: [] for k in requests}
+    errors: list[BaseException] = []
+    barrier = threading.Barrier(len(requests))
+
+    def client(k: int) -> None:
+        try:
+            c = LineClient(port, timeout)
+            try:
+                barrier.wait(timeout)
+                for line in requests[k]:
+                    replies[k].append(c.ask(line))
+            finally:
+                c.close()
+        except BaseException as exc:  # reported by the test thread below
+            errors.append(exc)
+
+    workers = [threading.Thread(target=client, args=(k,)) for k in requests]
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join(4 * timeout)
+    assert not errors, errors
+    return replies
+
 
 def code_of(fn: Callable[..., object], *args: object, **kwargs: object) -> int:
     """The controller error code of the GplException that ``fn(*args, **kwargs)`` raises.

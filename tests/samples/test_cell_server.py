@@ -14,7 +14,7 @@ from collections.abc import Iterator
 import numpy as np
 import pytest
 
-from gpltest import (SAMPLES, LineClient, Transpiled, copy_project, free_port, hand_rotation, shutdown_server,
+from gpltest import (SAMPLES, LineClient, Transpiled, ask_all, copy_project, free_port, hand_rotation, shutdown_server,
                      start_server, transpile)
 from gplrt.sim import Simulation
 
@@ -40,22 +40,18 @@ def tool_pose(sim: Simulation) -> np.ndarray:
 
 def test_hello_speed_and_unknown_commands(cell: tuple[Simulation, int, threading.Thread]) -> None:
     sim, port, _ = cell
-    c = LineClient(port)
-    try:
+    with LineClient(port) as c:
         assert c.ask("hello") == "OK hello from cell_server"
         assert c.ask("HELLO") == "OK hello from cell_server"  # names are case-insensitive
         assert c.ask("speed 80") == "OK speed 80"
         assert c.ask("speed") == "OK speed 80"
         assert c.ask("speed 0") == "ERR speed must be 1..100"
         assert c.ask("frobnicate now") == "ERR unknown command frobnicate"
-    finally:
-        c.close()
 
 
 def test_move_and_where_report_and_reach_the_target(cell: tuple[Simulation, int, threading.Thread]) -> None:
     sim, port, _ = cell
-    c = LineClient(port)
-    try:
+    with LineClient(port) as c:
         assert c.ask("move 400 50 200") == "OK moved to 400.000 50.000 200.000"
         T = tool_pose(sim)
         assert np.max(np.abs(T[:3, 3] - [400.0, 50.0, 200.0])) < 1e-6
@@ -63,27 +59,21 @@ def test_move_and_where_report_and_reach_the_target(cell: tuple[Simulation, int,
         assert c.ask("where") == "OK 400.000 50.000 200.000"
         assert c.ask("move 450.25 -30.5 310") == "OK moved to 450.250 -30.500 310.000"
         assert np.max(np.abs(tool_pose(sim)[:3, 3] - [450.25, -30.5, 310.0])) < 1e-6
-    finally:
-        c.close()
 
 
 def test_unreachable_move_is_retried_then_reported(cell: tuple[Simulation, int, threading.Thread]) -> None:
     sim, port, _ = cell
-    c = LineClient(port)
-    try:
+    with LineClient(port) as c:
         assert c.ask("move 350 0 250") == "OK moved to 350.000 0.000 250.000"
         assert c.ask("move 2000 0 250") == "ERR error -1040 after 3 tries"  # -1040 *Position too far*
         assert np.max(np.abs(tool_pose(sim)[:3, 3] - [350.0, 0.0, 250.0])) < 1e-6
         assert c.ask("move 1 2") == "ERR usage: move x y z"
         assert c.ask("move a b c").startswith("ERR -")  # the CDbl error, caught by Dispatch
-    finally:
-        c.close()
 
 
 def test_io_reads_inputs_and_sets_outputs(cell: tuple[Simulation, int, threading.Thread]) -> None:
     sim, port, _ = cell
-    c = LineClient(port)
-    try:
+    with LineClient(port) as c:
         assert c.ask("io 10003") == "OK io 10003 off"
         sim.io.set_input(10003, True)
         assert c.ask("io 10003") == "OK io 10003 on"
@@ -91,29 +81,12 @@ def test_io_reads_inputs_and_sets_outputs(cell: tuple[Simulation, int, threading
         assert sim.io.read_dio(5) is True
         assert c.ask("io 5 0") == "OK io 5 off"
         assert sim.io.read_dio(5) is False
-    finally:
-        c.close()
 
 
 def test_two_clients_move_through_the_one_robot_thread(cell: tuple[Simulation, int, threading.Thread]) -> None:
     sim, port, _ = cell
     targets = {0: (380.0, 80.0, 150.0), 1: (420.0, -60.0, 180.0)}
-    replies: dict[int, list[str]] = {0: [], 1: []}
-
-    def client(k: int) -> None:
-        c = LineClient(port)
-        try:
-            for _ in range(3):
-                x, y, z = targets[k]
-                replies[k].append(c.ask(f"move {x:g} {y:g} {z:g}"))
-        finally:
-            c.close()
-
-    workers = [threading.Thread(target=client, args=(k,)) for k in (0, 1)]
-    for w in workers:
-        w.start()
-    for w in workers:
-        w.join(4 * TIMEOUT)
+    replies = ask_all(port, {k: [f"move {x:g} {y:g} {z:g}"] * 3 for k, (x, y, z) in targets.items()}, TIMEOUT)
     for k, (x, y, z) in targets.items():
         assert replies[k] == [f"OK moved to {x:.3f} {y:.3f} {z:.3f}"] * 3
     final = tool_pose(sim)[:3, 3]

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from gpltest import SAMPLES, LineClient, Transpiled, copy_project, free_port, shutdown_server, start_server, transpile
+from gpltest import (SAMPLES, LineClient, Transpiled, ask_all, copy_project, free_port, shutdown_server, start_server,
+                     transpile)
 from gplrt.controller.pdb import DATA_DIR, ParameterDatabase, default_database
 from gplrt.motion.registry import robot_of
 from gplrt.sim import Simulation
@@ -73,33 +74,6 @@ def thread_names(sim: Simulation) -> list[str]:
     return [str(t.Name) for t in sim.threads]
 
 
-def ask_all(port: int, requests: dict[int, list[str]]) -> dict[int, list[str]]:
-    """One client per key, all sending at the same moment; each returns its replies in order."""
-    replies: dict[int, list[str]] = {k: [] for k in requests}
-    errors: list[BaseException] = []
-    barrier = threading.Barrier(len(requests))
-
-    def client(k: int) -> None:
-        try:
-            c = LineClient(port)
-            try:
-                barrier.wait(TIMEOUT)
-                for line in requests[k]:
-                    replies[k].append(c.ask(line))
-            finally:
-                c.close()
-        except BaseException as exc:  # reported by the test thread below
-            errors.append(exc)
-
-    workers = [threading.Thread(target=client, args=(k,)) for k in requests]
-    for w in workers:
-        w.start()
-    for w in workers:
-        w.join(4 * TIMEOUT)
-    assert not errors, errors
-    return replies
-
-
 # -- the shipped XYZT-GCU set ---------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
@@ -108,12 +82,9 @@ def gcu(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Cell]:
 
 
 def test_gcu_cell_finds_both_robots_and_runs_a_thread_for_each(gcu: Cell) -> None:
-    c = LineClient(gcu.port)
-    try:
+    with LineClient(gcu.port) as c:
         assert c.ask("robots") == "OK robots 2"
         assert c.ask("where 3") == "ERR no robot 3"
-    finally:
-        c.close()
     names = thread_names(gcu.sim)
     assert names.count("robot1") == 1 and names.count("robot2") == 1
     assert "robot3" not in names
@@ -155,8 +126,7 @@ def test_two_clients_move_two_robots_at_the_same_time(twin: Cell) -> None:
 
 
 def test_unnumbered_commands_still_address_robot_1(twin: Cell) -> None:
-    c = LineClient(twin.port)
-    try:
+    with LineClient(twin.port) as c:
         assert c.ask("robots") == "OK robots 2"
         before2 = tool_xyz(twin.sim, 2)
         assert c.ask("move 380 40 200") == "OK moved to 380.000 40.000 200.000"
@@ -165,5 +135,3 @@ def test_unnumbered_commands_still_address_robot_1(twin: Cell) -> None:
         assert c.ask("where") == "OK 380.000 40.000 200.000"
         assert c.ask("move x 1 2 3").startswith("ERR -")  # the CInt error, caught by Dispatch
         assert c.ask("move 0 1 2 3") == "ERR no robot 0"
-    finally:
-        c.close()
