@@ -37,6 +37,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from gplrt.lang.conversions import to_double
 from gplrt.lang.errors import (
     CANT_OPEN_PARAMETER_DB,
     INVALID_ARGUMENT,
@@ -392,8 +393,9 @@ class ParameterDatabase:
             self._store(entry, [self._parse_number(p.strip(), data_id) for p in text.split(",")], index)
 
     def set_pdb_num(self, value: float, data_id: int, unit: int = 1, unit2: int = 1, index: int = 1, key: int = 0) -> None:
-        """``Controller.PDbNum(...) = value``; index 0 writes element 1."""
-        self.set(data_id, float(value), unit, unit2, max(1, index), key)
+        """``Controller.PDbNum(...) = value``; index 0 writes element 1.  The value converts by
+        GPL's Double rules (numeric text parsed, -717 on bad text), never a bare ValueError."""
+        self.set(data_id, to_double(value), unit, unit2, max(1, index), key)
 
     def set(self, data_id: int, value: Value | Sequence[Value], unit: int = 1, unit2: int = 1,
             index: int = 0, key: int = 0) -> None:

@@ -26,6 +26,7 @@ Decisions [P] where the Dictionary gives only a name:
 
 from __future__ import annotations
 
+import math
 from typing import Any, Callable
 
 import numpy as np
@@ -37,8 +38,10 @@ from gplrt.lang.errors import (
     NOTHING_VALUE,
     NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
+    VALUE_INFINITE_OR_NAN,
     GplException,
 )
+from gplrt.lang.conversions import to_double, to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry
 from gplrt.motion.profile import Profile
@@ -77,6 +80,16 @@ def _ready(s: Any, key: Any = None) -> RobotState:
 def _need(obj: Any, what: str) -> None:
     if obj is None:
         raise GplException(NOTHING_VALUE, detail=f"{what} is Nothing")
+
+
+def _finite(value: Any, what: str) -> float:
+    """A numeric argument as a Double by GPL's rules (numeric text parsed, -717 on bad text, -782
+    for Nothing), -708 when it is not finite: hand-written Python may pass anything, and a NaN
+    would otherwise slip through ``max(0, nan)`` into the queue or reach the planner."""
+    v = to_double(value)
+    if not math.isfinite(v):
+        raise GplException(VALUE_INFINITE_OR_NAN, detail=f"{what} = {v}")
+    return v
 
 
 def _angles_of(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray:
@@ -212,12 +225,13 @@ class _MoveClass:
         _need(Profile1, "Profile")
         s = registry.sim()
         robot = _ready(s)
-        axis = int(Axis)
+        axis = to_int32(Axis)
+        position = _finite(Position, "Move.OneAxis position")
         if not 1 <= axis <= robot.axis_count:
             raise GplException(INVALID_AXIS, robot_num=robot.number, axis=axis, detail=f"axis {axis}")
         with robot.lock:
             q = robot.queue.final_joints()
-            q[axis - 1] = q[axis - 1] + float(Position) if RelativeFlag else float(Position)
+            q[axis - 1] = q[axis - 1] + position if RelativeFlag else position
             robot.queue_joint(s.scheduler.clock.now(), q, Profile1, s.controller.system_speed)
 
     def Arc(self, Location1: Location, Location2: Location, Profile1: Profile) -> None:
@@ -244,17 +258,19 @@ class _MoveClass:
 
     def Delay(self, Seconds: Double) -> None:
         """Insert a pause of ``Seconds`` into the motion queue."""
+        seconds = _finite(Seconds, "Move.Delay seconds")
         s = registry.sim()
         robot = _ready(s)
         with robot.lock:
-            robot.queue_delay(s.scheduler.clock.now(), float(Seconds))
+            robot.queue_delay(s.scheduler.clock.now(), seconds)
 
     def Extra(self, Axis1: Double, Axis2: Double | None = None, Axis3: Double | None = None,
               Axis4: Double | None = None) -> None:  # type: ignore[assignment]
         """Positions of the extra axes for the next motion to a Cartesian Location."""
         robot = _attached(registry.sim())
         n_extra = int(np.count_nonzero(robot.extra_mask))
-        vals = [float(v) for v in (Axis1, Axis2, Axis3, Axis4) if v is not None]
+        vals = [_finite(v, f"Move.Extra axis {i}") for i, v in enumerate((Axis1, Axis2, Axis3, Axis4), 1)
+                if v is not None]
         robot.pending_extra = vals[:n_extra]
 
     def WaitForEOM(self) -> None:

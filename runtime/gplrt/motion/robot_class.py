@@ -37,6 +37,7 @@ from gplrt.lang.errors import (
     ROBOT_ALREADY_ATTACHED,
     GplException,
 )
+from gplrt.lang.conversions import to_double, to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry
 from gplrt.motion.profile import Profile
@@ -46,7 +47,7 @@ from gplrt.motion.robot import HOMING_TIME, RobotState
 
 def _robot(n: int = 0) -> RobotState:
     s = registry.sim()
-    n = int(n) or registry.selected(s)
+    n = to_int32(n) or registry.selected(s)
     return registry.robot_of(s, n)  # type: ignore[no-any-return]
 
 
@@ -82,7 +83,7 @@ class _RobotClass:
     def Attached(self, value: Integer) -> None:
         s = registry.sim()
         key = registry.thread_key()
-        n = int(value)
+        n = to_int32(value)
         mine = registry.attached_robot(s, key)
         if n == 0:
             if mine is not None:
@@ -105,7 +106,7 @@ class _RobotClass:
     @Selected.setter
     def Selected(self, value: Integer) -> None:
         s = registry.sim()
-        n = int(value)
+        n = to_int32(value)
         registry.robot_of(s, n)  # -1001 for a robot that does not exist
         mine = registry.attached_robot(s, registry.thread_key())
         if mine is not None and mine.number != n:
@@ -252,15 +253,15 @@ class _RobotClass:
         return _robot(Robot).payload  # type: ignore[return-value]
 
     def set_Payload(self, *args: Any) -> None:
-        _robot(args[0] if len(args) > 1 else 0).payload = float(args[-1])
+        _robot(args[0] if len(args) > 1 else 0).payload = to_double(args[-1])
 
     def Custom(self, Robot: Integer = 0, Index: Integer = 1) -> Double:  # type: ignore[assignment]
-        return _robot(Robot).custom.get(int(Index), 0.0)  # type: ignore[return-value]
+        return _robot(Robot).custom.get(to_int32(Index), 0.0)  # type: ignore[return-value]
 
     def set_Custom(self, *args: Any) -> None:
         """``Robot.Custom(index) = v`` (custom.htm: the set form has only the index)."""
-        index = int(args[0]) if len(args) > 1 else 1
-        _robot(0).custom[index] = float(args[-1])
+        index = to_int32(args[0]) if len(args) > 1 else 1
+        _robot(0).custom[index] = to_double(args[-1])
 
     def CartMode(self, Robot: Integer = 0) -> Integer:  # type: ignore[assignment]
         _robot(Robot)
