@@ -755,7 +755,7 @@ class Parser:
                 for p in pending:
                     p.type = type_
                     p.new = group_new
-                    p.span = Span(p.span.start, self.prev.span.end_line, self.prev.span.end_col)
+                    p.span = p.span.to(self.prev.span)
                 last = pending[-1]
                 last.new_args = new_args
                 last.initializer = init
@@ -1483,7 +1483,7 @@ class Parser:
                     self.error(M.PARSE_UNSUPPORTED, tok, what="'IsNot'", hint=" (write 'Not a Is b')")
                     self.next()
                     right = self.expression(_P_REL + 1)
-                    span = Span(left.span.start, right.span.end_line, right.span.end_col)
+                    span = left.span.to(right.span)
                     left = A.Unary(span, "Not", A.Binary(span, "Is", left, right))
                     continue
                 return left
@@ -1496,7 +1496,7 @@ class Parser:
             else:
                 right = self.expression(prec + 1)
             left = A.Binary(
-                Span(left.span.start, right.span.end_line, right.span.end_col), info[1], left, right
+                left.span.to(right.span), info[1], left, right
             )
 
     def pow_operand(self) -> A.Expr:
@@ -1521,7 +1521,7 @@ class Parser:
             operand = self.expression(_P_UNARY if k is not K.NOT else _P_REL)
             self.depth -= 1
             return A.Unary(
-                Span(tok.span.start, operand.span.end_line, operand.span.end_col), k.value, operand
+                tok.span.to(operand.span), k.value, operand
             )
         return self.postfix()
 
@@ -1535,11 +1535,11 @@ class Parser:
                 if name is None:
                     return expr
                 expr = A.MemberAccess(
-                    Span(expr.span.start, name.span.end_line, name.span.end_col), expr, name.text
+                    expr.span.to(name.span), expr, name.text
                 )
             elif k is K.LPAREN:
                 args = self.arguments()
-                expr = A.Invoke(Span(expr.span.start, self.prev.span.end_line, self.prev.span.end_col), expr, args)
+                expr = A.Invoke(expr.span.to(self.prev.span), expr, args)
             else:
                 return expr
 
