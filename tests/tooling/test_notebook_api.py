@@ -135,6 +135,7 @@ def test_two_loads_share_the_cache_entry_but_not_module_state(tmp_path: Path, pr
     proj = write_project(tmp_path, {"Station.gpl": STATION}, start="Station.Main", name="Station")
     a = Cell.load(proj, echo=False)
     entries = sorted(private_cache.iterdir())
+    assert len(entries) == 1  # the load wrote its entry here: else the checks below compare nothing
     stamps = {p: p.stat().st_mtime_ns for p in private_cache.rglob("*") if "__pycache__" not in p.parts}
     b = Cell.load(proj, echo=False)
     assert sorted(private_cache.iterdir()) == entries
