@@ -20,3 +20,18 @@ def test_unknown_robot_model_is_invalid_robot_type() -> None:
 def test_new_names_follow_the_controller_texts() -> None:
     assert errors.error_text(errors.INVALID_ROBOT_TYPE) == "Invalid robot type"
     assert errors.error_text(errors.KINEMATICS_NOT_INSTALLED) == "Kinematics not installed"
+
+
+def test_pdb_arguments_convert_by_gpl_rules_not_python_int_or_float() -> None:
+    """Controller.PDb/PDbNum from hand-written Python get GPL codes, never a bare ValueError."""
+    from gpltest import code_of
+    from gplrt.controller.services import Controller
+    from gplrt.lang.errors import INVALID_NUMBER_FORMAT
+    from gplrt.sim import Simulation
+
+    with Simulation(capture=True):
+        assert code_of(Controller.PDbNum, "x") == INVALID_NUMBER_FORMAT
+        assert code_of(Controller.PDbNum, 601, "a") == INVALID_NUMBER_FORMAT
+        assert code_of(Controller.set_PDbNum, 601, "fast") == INVALID_NUMBER_FORMAT
+        Controller.set_PDbNum(601, "40")  # numeric text converts, as a GPL store would
+        assert Controller.PDbNum(601.4) == 40.0  # CInt rounding of the DataID

@@ -35,6 +35,7 @@ from __future__ import annotations
 from typing import Any
 
 from gplrt.controller import clock as _clock
+from gplrt.lang.conversions import to_int32, to_string
 from gplrt.lang.errors import (
     NOT_IMPLEMENTED,
     POWER_NOT_ENABLED,
@@ -205,20 +206,20 @@ class _ControllerClass:
     # -- parameter database ------------------------------------------------------------------------
 
     def PDb(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 0) -> String:  # type: ignore[assignment]
-        return _pdb().pdb_text(int(data_id), int(unit), int(unit2), int(array_index))  # type: ignore[no-any-return]
+        return _pdb().pdb_text(*_ints(data_id, unit, unit2, array_index))  # type: ignore[no-any-return]
 
     def set_PDb(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDb(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
         unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 0, 0))
-        _pdb().set_pdb_text(str(rest[-1]), int(data_id), unit, unit2, index, key)
+        _pdb().set_pdb_text(to_string(rest[-1]), to_int32(data_id), unit, unit2, index, key)
 
     def PDbNum(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 1) -> Double:  # type: ignore[assignment]
-        return float(_pdb().pdb_num(int(data_id), int(unit), int(unit2), int(array_index)))  # type: ignore[return-value]
+        return float(_pdb().pdb_num(*_ints(data_id, unit, unit2, array_index)))  # type: ignore[return-value]
 
     def set_PDbNum(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
         unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 1, 0))
-        _pdb().set_pdb_num(float(rest[-1]), int(data_id), unit, unit2, index, key)
+        _pdb().set_pdb_num(rest[-1], to_int32(data_id), unit, unit2, index, key)  # converts by GPL's rules
 
 
 def _power_dropped(sim: Any, code: int = POWER_NOT_ENABLED) -> None:
@@ -235,9 +236,14 @@ def _power_ready(sim: Any) -> None:
     refresh_power_state(sim)
 
 
+def _ints(*values: Any) -> list[int]:
+    """PDb arguments as Integers by GPL's rules (CInt rounding, -717 on bad text), never int()."""
+    return [to_int32(v) for v in values]
+
+
 def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tuple[int, int, int, int]:
     """unit, unit2, array_index, key from the optional arguments that were given."""
-    merged = [int(v) for v in given[:4]] + list(defaults[len(given[:4]) :])
+    merged = _ints(*given[:4]) + list(defaults[len(given[:4]) :])
     return merged[0], merged[1], merged[2], merged[3]
 
 
