@@ -315,7 +315,12 @@ def _load_setup(path: str) -> Any:
     if spec is None or spec.loader is None:
         raise ImportError("not a Python file (it must end in .py)")
     module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    try:
+        spec.loader.exec_module(module)
+    except (SyntaxError, ImportError):
+        raise
+    except Exception as exc:  # the user's module-level code failed, not gpl2py (so not GPL9000)
+        raise ImportError(f"importing it raised {type(exc).__name__}: {exc}") from exc
     setup = getattr(module, "setup", None)
     if not callable(setup):
         raise AttributeError(f"{path} defines no setup(sim) function")

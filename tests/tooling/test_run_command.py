@@ -387,10 +387,14 @@ def test_setup_file_problems_are_command_line_errors(tmp_path: Path, capsys: pyt
     no_func.write_text("X = 1\n")
     failing = tmp_path / "failing.py"
     failing.write_text("def setup(sim):\n    sim.io.set_input(5, True)\n")  # 5 is an output
+    broken = tmp_path / "broken.py"
+    broken.write_text("RATIO = 1 / 0\n\ndef setup(sim):\n    pass\n")  # fails while it is imported
     cases = [(in_process(capsys, "run", str(proj), "--setup", str(tmp_path / "nope.py")), "nope.py: no such file"),
              (in_process(capsys, "run", str(proj), "--setup", str(tmp_path)), "a folder, not a Python file"),
              (in_process(capsys, "run", str(proj), "--setup", str(no_func)), "setup(sim)"),
-             (in_process(capsys, "run", str(proj), "--setup", str(failing)), "GplException")]
+             (in_process(capsys, "run", str(proj), "--setup", str(failing)), "GplException"),
+             (in_process(capsys, "run", str(proj), "--setup", str(broken)),
+              "broken.py: importing it raised ZeroDivisionError: division by zero")]
     for r, text in cases:
         assert r.returncode == 2, r.stderr
         assert text in r.stderr and "Traceback" not in r.stderr and r.stdout == ""
