@@ -268,6 +268,9 @@ class _MoveClass:
         robot = _attached(s)
         sched = s.scheduler
         while True:
+            # the path motions' cycles up to the end: one may stop the robot (and the queue) early
+            end = robot.queue.end_time
+            robot.queue.advance(end)
             end = robot.queue.end_time
             if sched.clock.reached(end):
                 break
