@@ -63,7 +63,7 @@ class Fault:
     error: GplException
 
 
-def path_limits(path: Path, q0: Vec, q1: Vec, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
+def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
                 decel_ramp: float) -> tuple[float, float, float, float]:
     """(u̇_max, ü_max accel, ü_max decel, jerk) of the 1-D plan: the Cartesian limits over the
     path's length and turn, and the joints' chord (see the module docstring)."""
@@ -75,11 +75,13 @@ def path_limits(path: Path, q0: Vec, q1: Vec, joint: AxisLimits, cart: PathLimit
     v = min(ratio(cart.linear_velocity, path.length), ratio(cart.rotation_velocity, path.turn))
     acc = min(ratio(cart.linear_accel, path.length), ratio(cart.rotation_accel, path.turn))
     dec = min(ratio(cart.linear_decel, path.length), ratio(cart.rotation_decel, path.turn))
-    chord = np.abs(np.asarray(q1, float) - np.asarray(q0, float))
-    for j, d in enumerate(chord):
-        v = min(v, ratio(float(joint.velocity[j]), d))
-        acc = min(acc, ratio(float(joint.accel[j]), d))
-        dec = min(dec, ratio(float(joint.decel[j]), d))
+    vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
+    for j, (a, b) in enumerate(zip(q0.tolist(), q1.tolist())):
+        d = abs(b - a)
+        if d > 1e-12:
+            v = min(v, vel[j] / d)
+            acc = min(acc, accel[j] / d)
+            dec = min(dec, decel[j] / d)
     if not math.isfinite(v):  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
     ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else inf
@@ -103,7 +105,6 @@ class PathRun:
     extra_mask: np.ndarray
     q_end: Vec  # the destination's joints, solved (and checked) when the motion was queued
     max_speed: Vec  # per joint: the hard maximum (2700 × 2704 %)
-    axis_of: Callable[[GplException], int] = lambda e: 0
     ik_path: PathIK | None = None
     us: list[float] = field(default_factory=list)
     qs: list[Vec] = field(default_factory=list)

@@ -26,6 +26,10 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
   limits in the overlap (``_blend_within_limits``).
 * **Settling (InRange > 0)**: the robot stops on target and the segment is held for the
   in-range settling time (DataID 2601, 0.05 s on a PF400); InRange = 0 ends at the last set-point.
+* **Cartesian paths** (``queue_path``): planned as the controller plans them — the destination's
+  IK (refused at once with its code) and a 1-D profile of the path parameter; the joints along
+  the way are solved cycle by cycle as the motion runs, and an error found there stops the robot
+  at the last good cycle (``path_run``; reported by ``raise_async_error``).
 * **Power loss / RapidDecel**: power off stops the robot where it is at once (the brakes) and the
   next ``Move`` or ``WaitForEOM`` of the attached thread raises -1046; RapidDecel plans a
   Ruckig stop with the RapidDecel deceleration (DataID 2101 %) and discards the queue.
@@ -33,6 +37,7 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
 
 from __future__ import annotations
 
+import functools
 import math
 import threading
 from collections.abc import Sequence
@@ -122,17 +127,17 @@ class RobotState:
     def axis_count(self) -> int:
         return self._axis_count
 
-    @property
+    @functools.cached_property
     def max_joint_speed(self) -> np.ndarray:
         """Each joint's hard maximum speed: 2700 × 2704 % (the fastest any Profile may ask)."""
         return np.asarray(self.limits.joint_speed, float) * (self.limits.max_speed_pct / 100.0)
 
-    @property
+    @functools.cached_property
     def extra_mask(self) -> np.ndarray:
         """Axes ``Move.Extra`` sets (the rail)."""
         return np.array([j.role in EXTRA_ROLES for j in self.model.joints], dtype=bool)
 
-    @property
+    @functools.cached_property
     def passive_mask(self) -> np.ndarray:
         """Axes the inverse kinematics keeps at their current values (rail, grippers): a straight
         move to an Angles Location interpolates them to their target values instead."""
