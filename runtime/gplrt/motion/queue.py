@@ -235,6 +235,9 @@ class MotionQueue:
     fault: GplException | None = None
     #: Index of the first segment whose cycles may not all have run (``advance``).
     _run_index: int = 0
+    #: A path segment was queued whose cycles may not all have run: ``advance`` has work (a
+    #: queue of joint moves only skips it, on the hot path of Move.Loc).
+    paths_pending: bool = False
 
     def advance(self, t: float) -> None:
         """Run the path motions' cycles up to ``t``, as the controller has by then: the first
@@ -272,8 +275,12 @@ class MotionQueue:
                         return
             i += 1
         self._run_index = i
+        if i >= len(history):
+            self.paths_pending = False
 
     def append(self, seg: Segment) -> None:
+        if isinstance(seg, PathSegment):
+            self.paths_pending = True
         self.history.append(seg)
         self._starts.append(seg.t0)
 
@@ -305,7 +312,8 @@ class MotionQueue:
         return seg if t < end - CLOCK_RESOLUTION or (t < end and seg.cut is not None) else None
 
     def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
-        self.advance(t)
+        if self.paths_pending:
+            self.advance(t)
         seg = self.segment_at(t)
         if seg is not None:
             return seg.state(t)
@@ -314,7 +322,8 @@ class MotionQueue:
         return q, z, z.copy()
 
     def joints_at(self, t: float) -> Vec:
-        self.advance(t)
+        if self.paths_pending:
+            self.advance(t)
         seg = self.segment_at(t)
         return seg.joints(t) if seg is not None else self._resting_joints(t)
 

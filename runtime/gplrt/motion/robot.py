@@ -177,9 +177,10 @@ class RobotState:
         if self.owner is None or self.owner is not key:
             raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
                                detail=f"robot {self.number} is not attached to this thread")
-        from gplrt.motion.registry import now
+        if self.queue.paths_pending:  # the path motions' cycles up to now (path_run)
+            from gplrt.motion.registry import now
 
-        self.queue.advance(now())
+            self.queue.advance(now())
         if self.async_error or self.queue.fault is not None:
             self.raise_async_error()
         if not power_on:
@@ -446,6 +447,8 @@ class RobotState:
         queue = self.queue
         queue.history.append(seg)  # MotionQueue.append, inlined on this hot path
         queue._starts.append(seg.t0)
+        if isinstance(seg, PathSegment):
+            queue.paths_pending = True
         self.source = seg.q_start
         return seg
 
