@@ -15,6 +15,7 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.queue import PathSegment
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
+from gplrt.threads.thread import Thread
 
 
 def angles(*v: float) -> Location:
@@ -316,39 +317,94 @@ def test_zero_length_straight_moves_finish_at_once_without_numeric_warnings(sim:
     assert np.max(np.abs(Robot.Where().matrix() - before)) < 1e-9
 
 
-def test_straight_line_past_the_column_keeps_joint_accelerations_within_limits(sim: Simulation) -> None:
-    """A line that passes close to the PF400's column makes the shoulder and wrist swing round in a
-    few millimetres: the joint curvature has a sharp peak between the first sampling grid's points
-    (the planned shoulder acceleration used to reach 154 % of its limit here)."""
-    Move.Loc(angles(552.002, 13.765, 306.24, -121.479, 80.431), Profile())
+def off_line(p: np.ndarray, p0: np.ndarray, p1: np.ndarray) -> float:
+    """Distance of ``p`` from the line through ``p0`` and ``p1``."""
+    d = (p1 - p0) / np.linalg.norm(p1 - p0)
+    return float(np.linalg.norm((p - p0) - np.dot(p - p0, d) * d))
+
+
+def check_max_joint_speed(sim: Simulation, t0: float, t1: float, n: int = 600) -> None:
+    """Joint speeds read off the queue stay within each joint's hard maximum (2700 × 2704 %):
+    a straight line runs at its Cartesian speed, and a joint that would pass the maximum stops
+    the motion with -3106 (path_run's decision)."""
+    robot = sim.robots[1]
+    for t in np.linspace(t0, t1, n):
+        q, v, _ = robot.state_at(float(t))
+        assert np.all(np.abs(v) <= robot.max_joint_speed * (1 + 1e-3)), (t, v)
+        robot.check_joint_limits(q)
+
+
+def stopped_on_the_line(sim: Simulation, start: Location, goal: Location, code: int, axis: int) -> float:
+    """WaitForEOM reports the mid-path error (code, axis); the robot then rests on the line short
+    of the goal, within its joint limits.  Returns the time it stopped at."""
+    from gplrt.lang.errors import GplException
+
+    robot = sim.robots[1]
+    seg = robot.queue.last
+    planned_end = seg.t0 + seg.duration
+    with pytest.raises(GplException) as exc:
+        Move.WaitForEOM()
+    assert exc.value.ErrorCode == code and exc.value.Axis == axis
+    assert sim.now() < planned_end  # it stopped before the planned end, and WaitForEOM returned there
+    p0, p1 = start.matrix()[:3, 3], goal.matrix()[:3, 3]
+    here = Robot.Where().matrix()[:3, 3]
+    assert off_line(here, p0, p1) < 1e-6
+    assert np.linalg.norm(here - p1) > 1e-3
+    robot.check_joint_limits(robot.joints_at(sim.now()))
+    later = robot.joints_at(sim.now() + 1.0)
+    assert np.array_equal(later, robot.joints_at(sim.now()))  # at rest there
+    for t in np.linspace(seg.t0, sim.now(), 200):
+        assert off_line(robot.forward(robot.joints_at(float(t)))[:3, 3], p0, p1) < 1e-6
+    check_max_joint_speed(sim, seg.t0, sim.now(), n=300)
+    return sim.now()
+
+
+def test_straight_line_past_the_column_stops_with_axis_over_speed_or_runs_slower(sim: Simulation) -> None:
+    """A line that passes close to the PF400's column makes the shoulder swing round in a few
+    millimetres.  The controller plans the line's Cartesian profile and solves the joints each
+    cycle: at full speed the shoulder would pass its maximum speed there, and the motion stops
+    on the line with -3106 *Axis over-speed* (axis 2) at WaitForEOM.  (Before the cycle-by-cycle
+    design this line was slowed at planning time by a joint analysis of the whole path; this
+    test asserted the Profile's joint accelerations along it.)  At a lower speed the same line
+    runs through, on the line, within every joint's maximum speed, exactly to the goal."""
+    start_q = (552.002, 13.765, 306.24, -121.479, 80.431)
+    Move.Loc(angles(*start_q), Profile())
     Move.WaitForEOM()
     start = Robot.Where()
     goal = start.Clone()
     goal.XYZ(-164.883, 44.756, start.Z - 34.81, start.Yaw - 39.469, 90.0, 180.0)
-    prof = profile(Straight=True, Speed=100.0)
-    Move.Loc(goal, prof)
-    seg = sim.robots[1].queue.last
-    Move.WaitForEOM()
     p0, p1 = start.matrix()[:3, 3], goal.matrix()[:3, 3]
-    d = (p1 - p0) / np.linalg.norm(p1 - p0)
-    robot = sim.robots[1]
     closest = min(np.linalg.norm((p0 + s * (p1 - p0))[:2]) for s in np.linspace(0, 1, 2001))
     assert closest < 120.0  # the line really passes near the column (tool 162 mm: the wrist nearer)
+    Move.Loc(goal, profile(Straight=True, Speed=100.0))  # accepted: both ends are fine
+    stopped_on_the_line(sim, start, goal, -3106, 2)
+    Move.Loc(angles(*start_q), Profile())  # reported once: the robot moves again
+    Move.WaitForEOM()
+    Move.Loc(goal, profile(Straight=True, Speed=20.0))
+    seg = sim.robots[1].queue.last
+    Move.WaitForEOM()
+    robot = sim.robots[1]
     for t in np.linspace(seg.t0, seg.end, 400):
-        p = robot.forward(robot.joints_at(float(t)))[:3, 3]
-        assert np.linalg.norm((p - p0) - np.dot(p - p0, d) * d) < 1e-6
-    check_limits(sim, prof, seg.t0, seg.end, n=1500, margin=1e-3)
+        assert off_line(robot.forward(robot.joints_at(float(t)))[:3, 3], p0, p1) < 1e-6
+    check_max_joint_speed(sim, seg.t0, seg.end, n=1500)
     assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
 
 
-def test_random_straight_lines_respect_joint_speed_and_acceleration_limits(sim: Simulation) -> None:
+def test_random_straight_lines_run_on_the_line_or_stop_on_it_with_a_motion_error(sim: Simulation) -> None:
     """Seeded random lines across the PF400's workspace (many pass near the column, turn the tool
-    and change height): the sampled trajectory stays within every joint's limits and on the line."""
+    and change height).  A line whose destination is unreachable is refused when queued; one
+    accepted either runs to its goal exactly, on the line, within every joint's maximum speed,
+    or stops on the line with the mid-path error at WaitForEOM (the controller's IK each cycle).
+    (This test asserted the Profile's joint speeds and accelerations along every line when the
+    plan came from a joint analysis of the whole path; the straight-line speed is now the
+    Cartesian one — path_run's module docstring.)"""
+    from gplrt.lang.errors import GplException
+
     rng = np.random.default_rng(20261121)
     prof = profile(Straight=True, Speed=100.0)
     robot = sim.robots[1]
-    planned = 0
-    while planned < 16:
+    completed = stopped = 0
+    while completed < 16:
         q = rng.uniform([100, -90, 20, -300, 80], [900, 90, 340, 300, 120])
         Move.Loc(angles(*q), Profile())
         Move.WaitForEOM()
@@ -360,45 +416,104 @@ def test_random_straight_lines_respect_joint_speed_and_acceleration_limits(sim: 
         try:
             Move.Loc(goal, prof)
         except GplException as exc:
-            # out of reach, through a joint limit or across an arm configuration change: refused
-            # when queued, as it should be, with the controller's code for that (anything else,
-            # say a planner failure, is a defect)
-            assert exc.ErrorCode in (-1012, -1039, -1040, -1042), (exc.ErrorCode, str(exc))
+            assert exc.ErrorCode in (-1012, -1039, -1040, -1033, -1042), (exc.ErrorCode, str(exc))
+            assert Robot.WhereAngles().axis_values() == tuple(q)  # nothing was queued
             continue
         seg = robot.queue.last
-        Move.WaitForEOM()
-        planned += 1
-        check_limits(sim, prof, seg.t0, seg.end, n=250, margin=1e-3)
         p0, p1 = start.matrix()[:3, 3], goal.matrix()[:3, 3]
-        d = (p1 - p0) / np.linalg.norm(p1 - p0)
+        try:
+            Move.WaitForEOM()
+        except GplException as exc:
+            assert exc.ErrorCode in (-1012, -1039, -1040, -1033, -3106)
+            stopped += 1
+            here = Robot.Where().matrix()[:3, 3]
+            assert off_line(here, p0, p1) < 1e-6
+            check_max_joint_speed(sim, seg.t0, sim.now(), n=100)
+            continue
+        completed += 1
+        assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
+        check_max_joint_speed(sim, seg.t0, seg.end, n=250)
         for t in np.linspace(seg.t0, seg.end, 40):
-            p = robot.forward(robot.joints_at(float(t)))[:3, 3]
-            assert np.linalg.norm((p - p0) - np.dot(p - p0, d) * d) < 1e-6
+            assert off_line(robot.forward(robot.joints_at(float(t)))[:3, 3], p0, p1) < 1e-6
 
 
-def test_a_line_that_leaves_a_soft_limit_between_samples_is_refused_when_queued(sim: Simulation) -> None:
-    """Both ends within J2's ±93°, but the shoulder bulges past +93° in between, away from every
-    sample point of the path analysis: the move must be refused with -1012 when queued (it was
-    accepted, and Robot.Where then raised -1012 in the middle of the motion)."""
+def test_a_line_that_leaves_a_soft_limit_between_its_ends_stops_there_with_1012(sim: Simulation) -> None:
+    """Both ends within J2's ±93°, but the shoulder bulges past +93° in between.  The controller
+    plans the line (both ends are fine, so Move.Loc returns) and finds the limit in the cycle
+    that would pass it: the robot stops on the line at the last good cycle, within the limit,
+    and WaitForEOM raises -1012 with axis 2.  (This test asserted a refusal when queued, which
+    needed the IK of the whole path at queue time.)"""
+    q0 = (359.0, 77.02, 269.19, 84.96, 109.06)
+    Move.Loc(angles(*q0), Profile())
+    Move.WaitForEOM()
+    start = Robot.Where()
+    goal = Location.from_matrix(sim.robots[1].forward(np.array([378.07, 87.16, 269.19, -25.54, 101.24])))
+    Move.Loc(goal, profile(Straight=True))
+    t_stop = stopped_on_the_line(sim, start, goal, -1012, 2)
+    assert Robot.WhereAngles().axis_values()[1] <= 93.0
+    assert t_stop > sim.robots[1].queue.last.t0  # it did move first
+    Move.Loc(angles(*q0), Profile())  # the error was reported once
+    Move.WaitForEOM()
+    assert Robot.WhereAngles().axis_values() == q0
+
+
+def test_a_bulge_past_a_limit_in_the_first_cycles_stops_the_robot_at_once(sim: Simulation) -> None:
+    """From J2 = 92.98° the shoulder first rises past +93° (to 93.03°) and then falls: the robot
+    stops in the first cycles of the line with -1012 (axis 2), within the limit, on the line.
+    (This test asserted a refusal when queued.)"""
+    q0 = (305.85, 92.98, 330.99, 80.63, 93.97)
+    Move.Loc(angles(*q0), Profile())
+    Move.WaitForEOM()
+    start = Robot.Where()
+    goal = Location.from_matrix(sim.robots[1].forward(np.array([330.0, 61.61, 330.99, 85.52, 100.85])))
+    Move.Loc(goal, profile(Straight=True))
+    stopped_on_the_line(sim, start, goal, -1012, 2)
+    assert Robot.WhereAngles().axis_values()[1] <= 93.0
+
+
+def test_a_mid_path_error_reaches_the_next_motion_and_not_before_it_happens(sim: Simulation) -> None:
+    """Without WaitForEOM the error stops the robot when it happens and the next Move of the
+    thread raises it; reading the robot before that moment shows it moving, with no error."""
+    from gplrt.lang.errors import GplException
+
     q0 = (359.0, 77.02, 269.19, 84.96, 109.06)
     Move.Loc(angles(*q0), Profile())
     Move.WaitForEOM()
     goal = Location.from_matrix(sim.robots[1].forward(np.array([378.07, 87.16, 269.19, -25.54, 101.24])))
+    Move.Loc(goal, profile(Straight=True))
+    seg = sim.robots[1].queue.last
+    Thread.Sleep(10)  # a cycle in: the robot moves, nothing to report yet
+    assert Robot.WhereAngles().axis_values() != q0
+    Move.Loc(angles(*q0), Profile())  # queued behind the line
+    Thread.Sleep(int(seg.duration * 1000) + 1000)
     with pytest.raises(GplException) as exc:
-        Move.Loc(goal, profile(Straight=True))
+        Move.Loc(angles(*q0), Profile())
     assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2
-    assert Robot.WhereAngles().axis_values() == q0  # nothing was queued
+    assert len(sim.robots[1].queue.history) and sim.robots[1].queue.last is seg  # the rest was dropped
+    assert Robot.WhereAngles().axis_values()[1] <= 93.0
 
 
-def test_a_bulge_past_a_limit_in_the_first_interval_is_refused_too(sim: Simulation) -> None:
-    """From J2 = 92.98° the shoulder first rises past +93° (to 93.03°) and then falls: the bulge
-    lies between the path's first two samples, where no neighbouring samples change direction.
-    Refused when queued (it was accepted, and Robot.Where raised -1012 a few ms into the motion)."""
-    q0 = (305.85, 92.98, 330.99, 80.63, 93.97)
-    Move.Loc(angles(*q0), Profile())
+def test_queueing_a_straight_line_solves_only_its_destination(sim: Simulation, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The controller's planning of a line: the destination's IK and the path profile; the joints
+    along the way are solved as the motion runs (benchmarks/motion_speed.py times this)."""
+    Move.Loc(angles(300.0, 10.0, 90.0, -100.0, 100.0), Profile())
     Move.WaitForEOM()
-    goal = Location.from_matrix(sim.robots[1].forward(np.array([330.0, 61.61, 330.99, 85.52, 100.85])))
-    with pytest.raises(GplException) as exc:
-        Move.Loc(goal, profile(Straight=True))
-    assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2
-    assert Robot.WhereAngles().axis_values() == q0
+    model = sim.robots[1].model
+    calls = {"inverse": 0, "inverse_path": 0}
+    inverse, inverse_path = model.inverse, model.inverse_path
+
+    def counted(name: str, fn):  # type: ignore[no-untyped-def]
+        def wrapper(*a, **k):  # type: ignore[no-untyped-def]
+            calls[name] += 1
+            return fn(*a, **k)
+        return wrapper
+
+    monkeypatch.setattr(model, "inverse", counted("inverse", inverse))
+    monkeypatch.setattr(model, "inverse_path", counted("inverse_path", inverse_path))
+    goal = Robot.Where()
+    goal.XYZ(goal.X + 200.0, goal.Y - 150.0, goal.Z - 80.0, goal.Yaw + 30.0, 90.0, 180.0)
+    Move.Loc(goal, profile(Straight=True))
+    assert calls == {"inverse": 1, "inverse_path": 0}
+    Move.WaitForEOM()  # the cycles run now
+    assert calls["inverse"] + calls["inverse_path"] > 1
+    assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9

@@ -86,7 +86,13 @@ def test_straight_line_cannot_change_configuration(sim: Simulation) -> None:
     assert Robot.Where().Config == 2
 
 
-def test_straight_line_through_the_workspace_edge_is_refused(sim: Simulation) -> None:
+def test_straight_line_to_a_destination_beyond_reach_is_refused_when_queued(sim: Simulation) -> None:
+    """The line's destination (mirrored across X with the same yaw, so the wrist centre lies
+    further out) is beyond the arm's reach: the controller refuses the motion when it is queued,
+    as it solves the destination before planning the line.  (This test accepted -1039/-1012 from
+    the IK of the whole path at queue time, which met the column before the destination; the
+    destination is now solved first, and its own code is -1040.  Mid-path errors are covered in
+    test_move.py: they stop the robot on the line and reach WaitForEOM.)"""
     ready()
     Move.Loc(angles(300.0, -80.0, 60.0, 0.0, 100.0), Profile())
     Move.WaitForEOM()
@@ -96,9 +102,12 @@ def test_straight_line_through_the_workspace_edge_is_refused(sim: Simulation) ->
     straight = Profile()
     straight.Straight = True
     with pytest.raises(GplException) as info:
-        Move.Loc(b, straight)  # the line passes through the column: too close / out of range
-    assert info.value.ErrorCode in (-1039, -1012)
-
+        Move.Loc(b, straight)
+    assert info.value.ErrorCode == -1040
+    assert Robot.WhereAngles().axis_values() == (300.0, -80.0, 60.0, 0.0, 100.0)  # nothing was queued
+    with pytest.raises(GplException) as joint:
+        Move.Loc(b, Profile())  # the destination itself: the same code for a joint move
+    assert joint.value.ErrorCode == -1040
 
 def test_attach_is_exclusive_between_threads_and_released_at_thread_end(sim: Simulation) -> None:
     codes: list[int] = []

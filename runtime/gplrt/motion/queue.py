@@ -9,7 +9,10 @@ Segment kinds:
 
 * :class:`JointSegment` — a synchronised Ruckig trajectory of all axes;
 * :class:`PathSegment` — a 1-D Ruckig trajectory of the path parameter of a line/arc, mapped to
-  joints by IK (velocities and accelerations by the chain rule with finite-difference ``q'``, ``q''``);
+  joints by IK cycle by cycle as far as the state is read (``path_run.PathRun``; velocities and
+  accelerations by finite differences of ``q(u)``).  ``MotionQueue.advance`` runs those cycles
+  up to the time read: an error found on the way stops the robot at the last good cycle, drops
+  the rest of the queue and is kept in ``MotionQueue.fault`` for the robot to report;
 * :class:`BlendedPathSegment` — a line, arc or circle that starts while the previous motion runs
   out (corner rounding, InRange < 0), the two superimposed in Cartesian space until that motion ends;
 * :class:`DwellSegment` — ``Move.Delay``: the robot holds still.
@@ -27,7 +30,8 @@ import numpy as np
 from gplrt.motion.limits import Vec
 from gplrt.motion.planner import Plan
 from gplrt.motion.profile import Profile
-from gplrt.motion.straight import PathJoints
+from gplrt.lang.errors import GplException
+from gplrt.motion.path_run import PathRun
 
 #: A Profile's values, taken when a motion is queued (cheaper than a Clone on every Move).
 profile_values = operator.attrgetter(*Profile.__slots__)
@@ -111,7 +115,7 @@ class JointSegment(Segment):
 @dataclass(eq=False)
 class PathSegment(Segment):
     plan: Plan | None = None
-    path_joints: PathJoints | None = None
+    path_joints: PathRun | None = None
     u_start: float = 0.0
 
     def parameter(self, t: float) -> tuple[float, float, float]:
@@ -124,14 +128,29 @@ class PathSegment(Segment):
         u, ud, udd = np.array([self.parameter(float(t)) for t in ts]).T
         return self.path_joints.rates(u, ud, udd)
 
+    def _stopped(self, t: float) -> Vec | None:
+        """The joints the robot stopped at if a mid-path error stopped it by ``t`` (the cycles
+        up to ``t`` are run first)."""
+        run = self.path_joints
+        assert run is not None
+        fault = run.run_to(t - self.t0)
+        return fault.q.copy() if fault is not None else None
+
     def joints(self, t: float) -> Vec:
         assert self.path_joints is not None
+        stopped = self._stopped(t)
+        if stopped is not None:
+            return stopped
         if t - self.t0 >= self.duration - CLOCK_RESOLUTION:
             return self.q_end.copy()
         return self.path_joints.joints(self.parameter(t)[0])
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         assert self.path_joints is not None
+        stopped = self._stopped(t + _H)
+        if stopped is not None and self.path_joints.fault is not None and t - self.t0 >= self.path_joints.fault.t:
+            z = np.zeros(len(stopped))
+            return stopped, z, z.copy()
         if t - self.t0 >= self.duration - CLOCK_RESOLUTION:
             z = np.zeros(len(self.q_end))
             return self.q_end.copy(), z, z.copy()
@@ -212,8 +231,56 @@ class MotionQueue:
     rest: Vec
     history: list[Segment] = field(default_factory=list)
     _starts: list[float] = field(default_factory=list)
+    #: The error that stopped a path motion mid-way, until the robot reports it.
+    fault: GplException | None = None
+    #: Index of the first segment whose cycles may not all have run (``advance``).
+    _run_index: int = 0
+    #: A path segment was queued whose cycles may not all have run: ``advance`` has work (a
+    #: queue of joint moves only skips it, on the hot path of Move.Loc).
+    paths_pending: bool = False
+
+    def advance(self, t: float) -> None:
+        """Run the path motions' cycles up to ``t``, as the controller has by then: the first
+        error found stops the robot at its last good cycle (``cut_at``) and is kept in ``fault``."""
+        history = self.history
+        i = min(self._run_index, len(history))
+        while i < len(history):
+            seg = history[i]
+            if seg.t0 > t:
+                break
+            if isinstance(seg, PathSegment) and seg.path_joints is not None:
+                run = seg.path_joints
+                end_local = seg.motion_end - seg.t0
+                fault = run.run_to(min(t - seg.t0, end_local))
+                if fault is not None:
+                    self.cut_at(seg.t0 + fault.t, fault.q)
+                    seg.cut, seg.q_end = seg.t0 + fault.t, fault.q.copy()  # (even when not the last)
+                    self.fault = fault.error
+                    self._run_index = len(history)
+                    return
+                if run.done < end_local - 1e-12:
+                    break
+                if run.final is not None and not np.array_equal(run.final, seg.q_end):
+                    if seg is history[-1]:
+                        seg.q_end = run.final.copy()  # nothing was planned from the other turn yet
+                    else:  # the next motion starts a whole turn away: the servo cannot follow
+                        err = GplException(-3106, axis=int(np.flatnonzero(run.final != seg.q_end)[0]) + 1,
+                                           detail="the path ends a whole turn away from the next motion's start")
+                        q_stop = run.qs[-2].copy()
+                        t_stop = seg.t0 + run.ts[-2]
+                        self.cut_at(t_stop, q_stop)
+                        seg.cut, seg.q_end = t_stop, q_stop
+                        self.fault = err
+                        self._run_index = len(history)
+                        return
+            i += 1
+        self._run_index = i
+        if i >= len(history):
+            self.paths_pending = False
 
     def append(self, seg: Segment) -> None:
+        if isinstance(seg, PathSegment):
+            self.paths_pending = True
         self.history.append(seg)
         self._starts.append(seg.t0)
 
@@ -245,6 +312,8 @@ class MotionQueue:
         return seg if t < end - CLOCK_RESOLUTION or (t < end and seg.cut is not None) else None
 
     def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
+        if self.paths_pending:
+            self.advance(t)
         seg = self.segment_at(t)
         if seg is not None:
             return seg.state(t)
@@ -253,6 +322,8 @@ class MotionQueue:
         return q, z, z.copy()
 
     def joints_at(self, t: float) -> Vec:
+        if self.paths_pending:
+            self.advance(t)
         seg = self.segment_at(t)
         return seg.joints(t) if seg is not None else self._resting_joints(t)
 

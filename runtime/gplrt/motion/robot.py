@@ -26,6 +26,10 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
   limits in the overlap (``_blend_within_limits``).
 * **Settling (InRange > 0)**: the robot stops on target and the segment is held for the
   in-range settling time (DataID 2601, 0.05 s on a PF400); InRange = 0 ends at the last set-point.
+* **Cartesian paths** (``queue_path``): planned as the controller plans them — the destination's
+  IK (refused at once with its code) and a 1-D profile of the path parameter; the joints along
+  the way are solved cycle by cycle as the motion runs, and an error found there stops the robot
+  at the last good cycle (``path_run``; reported by ``raise_async_error``).
 * **Power loss / RapidDecel**: power off stops the robot where it is at once (the brakes) and the
   next ``Move`` or ``WaitForEOM`` of the attached thread raises -1046; RapidDecel plans a
   Ruckig stop with the RapidDecel deceleration (DataID 2101 %) and discards the queue.
@@ -33,6 +37,7 @@ Decisions where the manuals are silent (documented per gpl-classes §22.3 [P]):
 
 from __future__ import annotations
 
+import functools
 import math
 import threading
 from collections.abc import Sequence
@@ -63,7 +68,8 @@ from gplrt.motion.queue import (
     profile_from_values,
     profile_values,
 )
-from gplrt.motion.straight import Path, PathJoints
+from gplrt.motion.path_run import PathRun, path_limits
+from gplrt.motion.straight import Path
 
 QUEUE_DEPTH = 8
 #: Homing duration (s) [P]: PF400 axes have absolute encoders and do not move; the gripper homes.
@@ -82,6 +88,13 @@ ZERO_PATH = 1e-9
 
 EXTRA_ROLES = ("rail",)
 PASSIVE_ROLES = ("rail", "gripper", "gripper2")
+
+
+def _seed_at(q0: Vec, q_extra: Vec, mask: np.ndarray, u: float) -> Vec:
+    """IK seed at path parameter ``u``: the start joints with the linearly moving axes set."""
+    s = np.array(q0, float)
+    s[mask] = q0[mask] + (q_extra[mask] - q0[mask]) * u
+    return s
 
 
 @dataclass(eq=False)
@@ -114,12 +127,17 @@ class RobotState:
     def axis_count(self) -> int:
         return self._axis_count
 
-    @property
+    @functools.cached_property
+    def max_joint_speed(self) -> np.ndarray:
+        """Each joint's hard maximum speed: 2700 × 2704 % (the fastest any Profile may ask)."""
+        return np.asarray(self.limits.joint_speed, float) * (self.limits.max_speed_pct / 100.0)
+
+    @functools.cached_property
     def extra_mask(self) -> np.ndarray:
         """Axes ``Move.Extra`` sets (the rail)."""
         return np.array([j.role in EXTRA_ROLES for j in self.model.joints], dtype=bool)
 
-    @property
+    @functools.cached_property
     def passive_mask(self) -> np.ndarray:
         """Axes the inverse kinematics keeps at their current values (rail, grippers): a straight
         move to an Angles Location interpolates them to their target values instead."""
@@ -159,7 +177,11 @@ class RobotState:
         if self.owner is None or self.owner is not key:
             raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
                                detail=f"robot {self.number} is not attached to this thread")
-        if self.async_error:
+        if self.queue.paths_pending:  # the path motions' cycles up to now (path_run)
+            from gplrt.motion.registry import now
+
+            self.queue.advance(now())
+        if self.async_error or self.queue.fault is not None:
             self.raise_async_error()
         if not power_on:
             raise GplException(POWER_NOT_ENABLED, robot_num=self.number, detail="high power is off")
@@ -169,8 +191,12 @@ class RobotState:
     def raise_async_error(self) -> None:
         """An error that stopped a queued motion, reported once to the attached thread."""
         code, self.async_error = self.async_error, 0
+        fault, self.queue.fault = self.queue.fault, None
         if code:
             raise GplException(code, robot_num=self.number, detail="motion stopped")
+        if fault is not None:  # a path motion stopped mid-way (path_run): its own code and axis
+            raise GplException(fault.ErrorCode, robot_num=self.number, axis=getattr(fault, "Axis", 0) or 0,
+                               detail=f"motion stopped on its path: {fault.detail}")
 
     def check_joint_limits(self, q: Vec) -> None:
         """-1012 for an axis outside its soft limits (the model's check, on a fast path first)."""
@@ -311,11 +337,16 @@ class RobotState:
             # done at once, exactly where it started; a blending motion before it runs to its end.
             seg = DwellSegment(t0, 0.0, q0.copy(), q0.copy(), kind=kind)
             return self._append(seg, prof)
-        pj, (v, acc, dec, jerk) = PathJoints.sample_for_plan(
-            path, ik, q0, q_extra, mask, self.model.inverse_path, self.limits.joint_limits(prof, system_speed),
-            self.limits.path_limits(prof, system_speed), float(prof.AccelRamp), float(prof.DecelRamp))
-        pj.check_between(ik_between, self.model.check_limits)
+        # The controller's planning: the destination's joints (refused at once with their code),
+        # then the 1-D profile of the path parameter; the joints along the way are solved cycle by
+        # cycle as the motion runs (path_run.PathRun, MotionQueue.advance).
+        q1 = self.inverse(path.pose(1.0), 0, _seed_at(q0, q_extra, mask, 1.0))
+        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.joint_limits(prof, system_speed),
+                                        self.limits.path_limits(prof, system_speed), float(prof.AccelRamp),
+                                        float(prof.DecelRamp))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
+        pj = PathRun(path, plan, ik, ik_between, q0.copy(), q_extra, mask, q1, self.max_joint_speed,
+                     ik_path=self.model.inverse_path)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than
             # its duration before that motion's end (a shorter overlap), never before now.
@@ -325,13 +356,13 @@ class RobotState:
             if t_b < prev_end:
                 blend_from.cut = t_b
                 seg: Segment = BlendedPathSegment(
-                    t_b, plan.duration, blend_from.joints(t_b), pj.q[-1].copy(), plan=plan, path_joints=pj,
+                    t_b, plan.duration, blend_from.joints(t_b), pj.q_end.copy(), plan=plan, path_joints=pj,
                     kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=self.forward)
                 return self._append(seg, prof)
-        seg = PathSegment(t0, plan.duration, q0.copy(), pj.q[-1].copy(), plan=plan, path_joints=pj, kind=kind)
+        seg = PathSegment(t0, plan.duration, q0.copy(), pj.q_end.copy(), plan=plan, path_joints=pj, kind=kind)
         return self._append(seg, prof)
 
-    def _blend_within_limits(self, prev: Segment, t_b: float, prev_end: float, plan: Plan, pj: PathJoints,
+    def _blend_within_limits(self, prev: Segment, t_b: float, prev_end: float, plan: Plan, pj: PathRun,
                              prof: Profile, system_speed: float) -> float:
         """The earliest blend start from ``t_b`` on at which the overlap keeps every joint within
         its speed and acceleration limits (``prev_end``: no overlap at all).
@@ -416,6 +447,8 @@ class RobotState:
         queue = self.queue
         queue.history.append(seg)  # MotionQueue.append, inlined on this hot path
         queue._starts.append(seg.t0)
+        if isinstance(seg, PathSegment):
+            queue.paths_pending = True
         self.source = seg.q_start
         return seg
 

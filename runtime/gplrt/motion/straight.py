@@ -1,21 +1,12 @@
-"""Cartesian paths (straight line, arc, circle) and the joint limits seen along them.
+"""Cartesian paths (straight line, arc, circle), and their joints on a sample grid.
 
 A path maps a parameter ``u`` in [0, 1] to a tool pose (4×4, mm): the tool-tip position moves on
 the line / circle at constant rate in ``u`` and the orientation is interpolated by slerp (the
 geodesic ``R0 · exp(u · log(R0ᵀ R1))``).  ``Move.Loc`` with ``Profile.Straight`` plans a 1-D Ruckig
-profile of ``u`` whose limits come from:
-
-* the Cartesian speed/acceleration (DataIDs 2701/2703: mm/s for the tip, deg/s for rotation)
-  divided by the path's length and turning angle;
-* the joints: the path is sampled (its IK solved at ``N`` points, midpoints added until the
-  derived limits settle, see ``PathJoints.sample_for_plan``), ``q'(u)`` and ``q''(u)`` are
-  estimated by finite differences, and ``u̇``, ``ü`` are bounded so that
-  ``|q'_j| u̇ ≤ v_j`` and ``|q'_j| ü + |q''_j| u̇² ≤ a_j`` at every sample — the binding joint
-  sets the limit.  Margins (half an interval of ``q''`` on ``|q'|``, ``CURVATURE_MARGIN`` on
-  ``|q''|``) cover the variation between samples.
-
-Unreachable samples raise the kinematics' own codes (-1039/-1040/-1033/-1012) when the move is
-queued, as a controller refuses a straight-line move that leaves the workspace.
+profile of ``u`` from the Cartesian limits and solves the joints cycle by cycle as the motion
+runs (``path_run.PathRun``, gpl-classes §22.4).  :class:`PathJoints` solves a path on a fixed
+grid at once; the blend planner uses it for its estimate of a line's joint rates where it
+overlaps the previous motion (``PathJoints.rates``).
 """
 
 from __future__ import annotations
@@ -28,19 +19,12 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.lang.errors import INVALID_CARTESIAN, GplException
-from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
+from gplrt.motion.limits import Vec
 
-#: Relative margin on the sampled |q''| for its variation between samples.
-CURVATURE_MARGIN = 0.1
-#: Sampling density for the joint-limit analysis: one interval per this many mm / degrees.
+#: Sampling density of a fixed grid (``PathJoints.sample``): one interval per this many mm / degrees.
 MM_PER_SAMPLE = 25.0
 DEG_PER_SAMPLE = 15.0
 MIN_SAMPLES, MAX_SAMPLES = 4, 48
-#: A joint extreme between samples predicted within this (mm or degrees) of a soft limit is solved
-#: exactly (``PathJoints.check_between``).
-EXTREME_MARGIN = 0.5
-#: The refinement of ``PathJoints.sample_for_plan`` stops at this many intervals.
-MAX_REFINED_SAMPLES = 1536
 
 
 def _base_intervals(path: Path) -> int:
@@ -201,8 +185,7 @@ class PathJoints:
     extra_start: Vec
     extra_end: Vec
     extra_mask: np.ndarray
-    #: The IK without the soft-limit check, for reading the path between its samples (set by
-    #: ``check_between`` once the limits are known to hold there too); None: ``ik``.
+    #: The IK without the soft-limit check, for reading the path between its samples; None: ``ik``.
     ik_between: Callable[[np.ndarray, Vec], Vec] | None = None
 
     @classmethod
@@ -210,44 +193,6 @@ class PathJoints:
                extra_mask: np.ndarray, ik_path: PathIK | None = None) -> PathJoints:
         """Solve the path on the base grid: one interval per ``MM_PER_SAMPLE`` / ``DEG_PER_SAMPLE``."""
         return cls._solve_grid(path, ik, q0, q_extra_end, extra_mask, ik_path, _base_intervals(path))
-
-    @classmethod
-    def sample_for_plan(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
-                        extra_mask: np.ndarray, ik_path: PathIK | None, joint: AxisLimits, cart: PathLimits,
-                        accel_ramp: float, decel_ramp: float) -> tuple[PathJoints, tuple[float, float, float, float]]:
-        """The samples and their ``derived_limits``, on a grid fine enough to see the joint curvature.
-
-        A first grid of half the base density gets its midpoints added, again and again, until
-        the derived path limits (u̇, ü) tighten by less than ``CURVATURE_MARGIN`` from one grid to
-        the next (at most ``MAX_REFINED_SAMPLES`` intervals): the final grid is never coarser
-        than the base one.  A line that passes close to a singular posture (a SCARA's line past
-        its column: the shoulder swings round in a few millimetres) has a sharp curvature peak
-        between the points of a fixed grid; without the refinement the planned acceleration
-        exceeded the joint limits there."""
-        coarse = cls._solve_grid(path, ik, q0, q_extra_end, extra_mask, ik_path,
-                                 max(2, (_base_intervals(path) + 1) // 2))
-        before = coarse.derived_limits(joint, cart, accel_ramp, decel_ramp)
-        while 2 * (len(coarse.u) - 1) <= MAX_REFINED_SAMPLES:
-            fine = coarse._refined(ik_path)
-            after = fine.derived_limits(joint, cart, accel_ramp, decel_ramp)
-            if all(a >= b * (1.0 - CURVATURE_MARGIN) for a, b in zip(after[:3], before[:3])):
-                return fine, after
-            coarse, before = fine, after
-        return coarse, before
-
-    def _refined(self, ik_path: PathIK | None) -> PathJoints:
-        """This grid with its midpoints added, each seeded by the sample before it."""
-        n = len(self.u) - 1
-        mids = (2.0 * np.arange(n) + 1.0) / (2 * n)
-        m = self.extra_mask
-        seeds = self.q[:-1].copy()
-        seeds[:, m] = self.extra_start[m] + (self.extra_end[m] - self.extra_start[m]) * mids[:, None]
-        solved = ik_path(self.path.poses(mids), seeds) if ik_path is not None else None
-        if solved is None:
-            solved = np.array([self.ik(self.path.pose(float(u)), seed) for u, seed in zip(mids, seeds)])
-        q = np.empty((2 * n + 1, self.q.shape[1]))
-        q[0::2], q[1::2] = self.q, solved
-        return PathJoints(self.path, self.ik, np.arange(2 * n + 1) / (2 * n), q, self.extra_start, self.extra_end, m)
 
     @classmethod
     def _solve_grid(cls, path: Path, ik: Callable[[np.ndarray, Vec], Vec], q0: Vec, q_extra_end: Vec,
@@ -292,41 +237,6 @@ class PathJoints:
         k = int(round(u * (len(self.u) - 1)))
         return (self.ik_between or self.ik)(self.path.pose(u), self._seed(self.q[k], u))
 
-    def check_between(self, ik_between: Callable[[np.ndarray, Vec], Vec], check: Callable[[list[float]], None]) -> None:
-        """The soft limits between the samples: the parabola through every three neighbouring
-        samples locates a joint's peak or trough between them (the first and last intervals
-        included); any that lies within one interval of the middle sample and comes within
-        ``EXTREME_MARGIN`` of a limit is solved exactly there, and ``check`` raises -1012 (with the
-        axis) if it is beyond.  The samples themselves were checked by ``ik``.  Afterwards the
-        path is read with ``ik_between``: a motion accepted here never raises -1012 from
-        ``Robot.Where`` halfway through."""
-        q = self.q
-        if len(q) < 3:
-            return
-        h = float(self.u[1] - self.u[0])
-        lows, highs = self._bounds(check, q.shape[1])
-        a, b, c = q[:-2], q[1:-1], q[2:]
-        curve = a - 2.0 * b + c
-        flat = curve == 0.0
-        vertex = 0.5 * (a - c) / np.where(flat, 1.0, curve)  # in intervals from the middle sample
-        peak = b - 0.25 * (a - c) * vertex
-        near = (peak >= np.array(highs) - EXTREME_MARGIN) | (peak <= np.array(lows) + EXTREME_MARGIN)
-        # only an extreme beyond the samples around it is new (a joint at rest on a limit, as the
-        # gripper often is, has its "peak" on its samples, which ``ik`` has checked)
-        beyond = (peak > np.maximum(np.maximum(a, b), c) + 1e-12) | (peak < np.minimum(np.minimum(a, b), c) - 1e-12)
-        for k, j in np.argwhere(~flat & (np.abs(vertex) <= 1.0) & near & beyond):
-            u = min(1.0, max(0.0, float(self.u[k + 1]) + float(vertex[k, j]) * h))
-            check([float(v) for v in ik_between(self.path.pose(u), self._seed(self.q[k + 1], u))])
-        self.ik_between = ik_between
-
-    @staticmethod
-    def _bounds(check: Callable[[list[float]], None], n: int) -> tuple[list[float], list[float]]:
-        """The soft limits ``check`` enforces (its model's), or none."""
-        model = getattr(check, "__self__", None)
-        if model is None:
-            return [-math.inf] * n, [math.inf] * n
-        return list(model.lower_limits), list(model.upper_limits)
-
     def rates(self, u: np.ndarray, ud: np.ndarray, udd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Joint velocities and accelerations (N×n) at path states (u, u̇, ü), by the chain rule
         ``q̇ = q' u̇``, ``q̈ = q' ü + q'' u̇²`` with ``q'``, ``q''`` of the nearest sample: the
@@ -337,39 +247,3 @@ class PathJoints:
         k = np.clip(np.rint(np.asarray(u) / h).astype(int), 0, len(self.u) - 1)
         ud, udd = np.asarray(ud)[:, None], np.asarray(udd)[:, None]
         return dq[k] * ud, dq[k] * udd + ddq[k] * ud * ud
-
-    def derived_limits(self, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
-                       decel_ramp: float) -> tuple[float, float, float, float]:
-        """(u̇_max, ü_max accel, ü_max decel, jerk) for the 1-D plan (see the module docstring)."""
-        h = float(self.u[1] - self.u[0])
-        dq = _gradient(self.q, h)
-        ddq = _gradient(dq, h)
-        d2 = np.max(np.abs(ddq), axis=0)
-        # |q'| between samples is bounded by the sampled maximum plus the change over half an
-        # interval (first order); a joint that moves linearly along the path gets no margin.
-        d1 = np.max(np.abs(dq), axis=0) + 0.5 * h * d2
-        d2 = d2 * (1.0 + CURVATURE_MARGIN)
-        big = math.inf
-
-        def ratio(limit: float, extent: float) -> float:
-            return limit / extent if extent > 1e-12 else big
-
-        v = min(ratio(cart.linear_velocity, self.path.length), ratio(cart.rotation_velocity, self.path.turn))
-        acc = min(ratio(cart.linear_accel, self.path.length), ratio(cart.rotation_accel, self.path.turn))
-        dec = min(ratio(cart.linear_decel, self.path.length), ratio(cart.rotation_decel, self.path.turn))
-        vj = joint.velocity
-        aj = np.minimum(joint.accel, joint.decel)
-        for j in range(len(d1)):
-            v = min(v, ratio(vj[j], d1[j]))
-            if d2[j] > 1e-12 and d2[j] * v * v > 0.5 * aj[j]:
-                v = math.sqrt(0.5 * aj[j] / d2[j])
-        for j in range(len(d1)):
-            if d1[j] > 1e-12:  # (a joint the path does not move leaves u-double-dot free; v may be inf)
-                room = aj[j] - d2[j] * v * v
-                acc = min(acc, room / d1[j])
-                dec = min(dec, room / d1[j])
-        if not math.isfinite(v):  # a path of zero length and zero turn: nothing moves
-            v, acc, dec = 1.0, 1.0, 1.0
-        ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else math.inf
-        jd = dec / decel_ramp if decel_ramp >= MIN_RAMP else math.inf
-        return v, acc, dec, min(ja, jd)

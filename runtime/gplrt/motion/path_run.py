@@ -1,0 +1,227 @@
+"""A Cartesian path motion as the controller runs it: planned once, its joints solved each cycle.
+
+The controller's trajectory planner plans a straight line (or arc) as a profile of the path
+parameter only; the kinematics run every trajectory cycle while the robot moves (gpl-classes
+§22.4: "1-DOF Ruckig on the path parameter ..., limits from the nominal Cartesian speed; IK each
+cycle").  So queueing a straight move costs one IK (the destination, refused at once with its
+code when unreachable or out of range) and one 1-DOF Ruckig plan; :class:`PathRun` then solves
+the joints lazily, cycle by cycle, only as far as the robot's state is actually read (Where,
+the trace, WaitForEOM's end, a blend's start).
+
+Decisions [P] (the manuals are silent on what happens mid-path; documented here):
+
+* **Cycle**: ``CYCLE`` = 16 ms, the standard trajectory generation period ("62.5 Hz", seed
+  002_222113dd5a155b3a.txt:6551).  Each cycle's pose is solved with the full checks of
+  ``RobotModel.inverse`` (soft limits -1012 with the axis, -1039/-1040 too close/far, -1033).
+* **A mid-path error stops the robot at the last good cycle** (its joints, at that cycle's
+  time) and is delivered as the asynchronous motion error of the robot: the next ``Move`` or
+  ``WaitForEOM`` of the attached thread raises it (catchable by the program's Try/Catch).
+* **Joint speed along the path**: the profile is planned from the Cartesian limits, and from
+  the joints' *chord* (``|q1 − q0|`` against the Profile's joint speed and acceleration): any
+  joint path between the two ends needs at least that much, so the bound never slows a line
+  more than the exact joint analysis would, and it alone governs the axes that move linearly
+  along the path (rail, grippers).  The controller does not re-plan a queued motion: where the
+  geometry makes a joint faster than its maximum (``2700 × 2704 %``, e.g. a line grazing the
+  PF400's column) the servo reports -3106 *Axis over-speed* with the axis, and the robot stops
+  at the last good cycle.  Below that maximum, a joint may run faster than the Profile's
+  percentage of its speed: a straight line's speed is the Cartesian one.
+* Soft-limit bulges between two cycles (16 ms apart) are not searched for.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from gplrt.lang.errors import GplException
+from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
+from gplrt.motion.planner import Plan
+from gplrt.motion.straight import Path, PathIK, PathJoints
+
+#: Trajectory cycle (s): the standard 62.5 Hz of the trajectory generator.
+CYCLE = 0.016
+#: The error code of a joint faster than its maximum speed mid-path.
+AXIS_OVER_SPEED = -3106
+#: Relative tolerance on the over-speed check (finite differences over one cycle).
+OVER_SPEED_TOLERANCE = 1e-6
+#: Cycles solved per batch (``RobotModel.inverse_path``) when the state is read far ahead.
+BATCH = 64
+
+
+@dataclass(frozen=True)
+class Fault:
+    """Where a path motion stopped: the last good cycle (local time, path parameter, joints) and
+    the error that stopped it."""
+
+    t: float
+    u: float
+    q: Vec
+    error: GplException
+
+
+def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
+                decel_ramp: float) -> tuple[float, float, float, float]:
+    """(u̇_max, ü_max accel, ü_max decel, jerk) of the 1-D plan: the Cartesian limits over the
+    path's length and turn, and the joints' chord (see the module docstring)."""
+    inf = math.inf
+
+    def ratio(limit: float, extent: float) -> float:
+        return limit / extent if extent > 1e-12 else inf
+
+    v = min(ratio(cart.linear_velocity, path.length), ratio(cart.rotation_velocity, path.turn))
+    acc = min(ratio(cart.linear_accel, path.length), ratio(cart.rotation_accel, path.turn))
+    dec = min(ratio(cart.linear_decel, path.length), ratio(cart.rotation_decel, path.turn))
+    vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
+    for j, (a, b) in enumerate(zip(q0.tolist(), q1.tolist())):
+        d = abs(b - a)
+        if d > 1e-12:
+            v = min(v, vel[j] / d)
+            acc = min(acc, accel[j] / d)
+            dec = min(dec, decel[j] / d)
+    if not math.isfinite(v):  # nothing moves (the caller queues a dwell instead)
+        v, acc, dec = 1.0, 1.0, 1.0
+    ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else inf
+    jd = dec / decel_ramp if decel_ramp >= MIN_RAMP else inf
+    return v, acc, dec, min(ja, jd)
+
+
+@dataclass(eq=False)
+class PathRun:
+    """The joints of one planned path motion, solved cycle by cycle as far as they are read.
+
+    ``us``/``qs`` are the solved cycles (u = 0 is the start joints, never solved again);
+    ``done`` is the local time up to which every cycle has been solved and checked."""
+
+    path: Path
+    plan: Plan
+    ik: Callable[[np.ndarray, Vec], Vec]  # checked (raises the controller's codes)
+    ik_between: Callable[[np.ndarray, Vec], Vec]  # unchecked: reading between checked cycles
+    extra_start: Vec
+    extra_end: Vec
+    extra_mask: np.ndarray
+    q_end: Vec  # the destination's joints, solved (and checked) when the motion was queued
+    max_speed: Vec  # per joint: the hard maximum (2700 × 2704 %)
+    ik_path: PathIK | None = None
+    us: list[float] = field(default_factory=list)
+    qs: list[Vec] = field(default_factory=list)
+    ts: list[float] = field(default_factory=list)  # local times of the solved cycles
+    done: float = 0.0
+    fault: Fault | None = None
+    #: The joints the path ended on when they differ from ``q_end`` by whole turns (``_final``).
+    final: Vec | None = None
+    _grid: PathJoints | None = None
+
+    def __post_init__(self) -> None:
+        self.us, self.ts = [0.0], [0.0]
+        self.qs = [np.asarray(self.extra_start, float).copy()]
+
+    @property
+    def q(self) -> np.ndarray:
+        """Start and destination joints (``q[-1]``: the destination)."""
+        return np.array([self.qs[0], self.q_end])
+
+    @property
+    def duration(self) -> float:
+        return self.plan.duration
+
+    def _seed(self, seed: Vec, u: float) -> Vec:
+        s = np.array(seed, float)
+        m = self.extra_mask
+        s[m] = self.extra_start[m] + (self.extra_end[m] - self.extra_start[m]) * u
+        return s
+
+    def run_to(self, t: float) -> Fault | None:
+        """Solve and check every cycle up to local time ``t`` (the motion's end included when
+        ``t`` reaches it); the fault that stopped the motion, if any, at or before ``t``."""
+        if self.fault is not None:
+            return self.fault if self.fault.t <= t else None
+        end = self.plan.duration
+        if t <= self.done or self.done >= end:
+            return None
+        k0 = int(math.floor(self.done / CYCLE + 1e-9)) + 1
+        k1 = int(math.floor(min(t, end) / CYCLE + 1e-9))
+        times = [k * CYCLE for k in range(k0, k1 + 1) if k * CYCLE < end - 1e-12]
+        if t >= end - 1e-12:
+            times.append(end)
+        i = 0
+        while i < len(times):
+            chunk = times[i:i + BATCH]
+            if self._solve(chunk) is not None:
+                return self.fault
+            i += BATCH
+        self.done = max(self.done, min(t, end))
+        return None
+
+    def _solve(self, times: list[float]) -> Fault | None:
+        us = [min(1.0, max(0.0, self.plan.at(tk)[0][0])) for tk in times]
+        solved: np.ndarray | None = None
+        last_is_end = times[-1] >= self.plan.duration
+        inner = us[:-1] if last_is_end else us
+        if self.ik_path is not None and len(inner) > 1:
+            seeds = np.array([self._seed(self.qs[-1], u) for u in inner])
+            solved = self.ik_path(self.path.poses(np.array(inner)), seeds)
+        t_prev = self.ts[-1]
+        for n, (tk, u) in enumerate(zip(times, us)):
+            try:
+                if last_is_end and n == len(times) - 1:
+                    q = self._final(u)
+                elif solved is not None:
+                    q = solved[n]
+                else:
+                    q = np.asarray(self.ik(self.path.pose(u), self._seed(self.qs[-1], u)), float)
+                dt = tk - t_prev
+                if dt > 0.0:
+                    rate = np.abs(q - self.qs[-1]) / dt
+                    over = np.flatnonzero(rate > self.max_speed * (1.0 + OVER_SPEED_TOLERANCE))
+                    if over.size:
+                        j = int(over[0])
+                        raise GplException(AXIS_OVER_SPEED, axis=j + 1,
+                                           detail=f"axis {j + 1} would reach {rate[j]:.6g}/s on the path "
+                                                  f"(maximum {self.max_speed[j]:.6g}/s)")
+            except GplException as exc:
+                self.fault = Fault(t_prev, self.us[-1], self.qs[-1].copy(), exc)
+                return self.fault
+            self.us.append(u)
+            self.ts.append(tk)
+            self.qs.append(np.asarray(q, float))
+            self.done = tk
+            t_prev = tk
+        return None
+
+    def _final(self, u: float) -> Vec:
+        """The joints the cycles arrive at: the destination solved when queued, unless the path
+        reaches the same pose with a multi-turn joint a whole number of turns away (a wrist that
+        unwinds more than half a turn along the line, which the destination's "nearest to the
+        start" rule cannot know): then the path's own, recorded in ``final`` for the queue."""
+        q_c = np.asarray(self.ik(self.path.pose(u), self._seed(self.qs[-1], u)), float)
+        diff = q_c - self.q_end
+        turns = np.round(diff / 360.0)
+        if np.any(turns != 0.0) and np.allclose(diff, turns * 360.0, atol=1e-6):
+            self.final = q_c
+            return q_c
+        return self.q_end
+
+    def joints(self, u: float) -> Vec:
+        """Joints at ``u`` (solved from the nearest checked cycle; the exact ends)."""
+        if u <= 0.0:
+            return self.qs[0].copy()
+        if u >= 1.0 and self.fault is None:
+            return (self.q_end if self.final is None else self.final).copy()
+        if self.fault is not None and u >= self.fault.u:
+            return self.fault.q.copy()
+        k = bisect.bisect_left(self.us, u)
+        if k >= len(self.us) or (k > 0 and u - self.us[k - 1] <= self.us[k] - u):
+            k -= 1
+        return np.asarray(self.ik_between(self.path.pose(u), self._seed(self.qs[k], u)), float)
+
+    def rates(self, u: np.ndarray, ud: np.ndarray, udd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The blend planner's estimate of joint rates (``PathJoints.rates``) on a coarse grid of
+        the path, solved the first time a blend asks (a blend overlaps two motions' rates)."""
+        if self._grid is None:
+            self._grid = PathJoints.sample(self.path, self.ik_between, self.qs[0], self.extra_end, self.extra_mask,
+                                           self.ik_path)
+        return self._grid.rates(u, ud, udd)
