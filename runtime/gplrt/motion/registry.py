@@ -114,6 +114,18 @@ def attached_robot(s: Any, key: Any) -> Any:
     return None
 
 
+def robot_moving(robot: Any, t: float) -> bool:
+    """Whether ``robot`` has motion queued and not finished at controller time ``t`` (a motion,
+    its InRange settling or a Move.Delay dwell: what ``Robot.TrajState`` reports as non-zero).
+
+    Path motions run their cycles up to ``t`` first, so one that stopped on a mid-path fault
+    counts as stopped where it stopped."""
+    queue = robot.queue
+    if queue.paths_pending:
+        queue.advance(t)
+    return bool(queue.pending(t))
+
+
 def power_on(s: Any) -> bool:
     """High power is on (PowerState in the controller's power-on states): the one test Move and
     Robot both make before a motion or a homing."""

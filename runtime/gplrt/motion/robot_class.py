@@ -10,6 +10,14 @@ Decisions [P] where the manuals are silent:
   GDE start-up code does); a robot held by another thread refuses with -1006; ``0`` releases;
   attaching sets ``Selected``.  A thread holds one robot at a time: attaching another releases
   the first.  The robot is released when the thread ends.
+* Detaching a *moving* robot (a motion queued and not finished at the controller clock's now —
+  Move.Delay dwells and InRange settling included, as ``TrajState`` <> 0 shows) raises -1008
+  *Can't detached a moving robot* (gpl-dictionary.md error table; the GPL manual only says the
+  robot is "un-Attached when the program is terminated or pauses", D0:2659-2662, and is silent on
+  a detach in mid-motion).  The robot stays attached, so the thread can ``Move.WaitForEOM`` and
+  detach again.  Attaching another robot while the first still moves is the same detach and
+  refuses the same way.  The release at thread end or Abort (``registry._release_on_exit``)
+  is the controller's own clean-up, not a GPL detach, and still releases a moving robot.
 * ``Home`` needs the attached robot (-1009) and power (-1046) and takes ``HOMING_TIME`` (1 s) of
   controller time with ``PowerState`` 28; ``HomeAll`` needs power only and homes every robot.
   Joints do not move (absolute encoders, robot-models §2.5).
@@ -44,11 +52,22 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.queue import DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
 
+#: gpl-dictionary.md error table: -1008 *Can't detached a moving robot* (the controller's wording).
+CANT_DETACH_MOVING = -1008
+
 
 def _robot(n: int = 0) -> RobotState:
     s = registry.sim()
     n = to_int32(n) or registry.selected(s)
     return registry.robot_of(s, n)  # type: ignore[no-any-return]
+
+
+def _check_not_moving(robot: RobotState) -> None:
+    """-1008 when ``robot`` still has motion to run at the controller clock's now (see the
+    module docstring: a GPL detach of a moving robot is refused, the thread-end release is not)."""
+    if registry.robot_moving(robot, registry.now()):
+        raise GplException(CANT_DETACH_MOVING, robot_num=robot.number,
+                           detail=f"robot {robot.number} is still moving (Move.WaitForEOM first)")
 
 
 def _cart(robot: RobotState, q: np.ndarray) -> Location:
@@ -87,6 +106,7 @@ class _RobotClass:
         mine = registry.attached_robot(s, key)
         if n == 0:
             if mine is not None:
+                _check_not_moving(mine)
                 mine.owner = None
             registry.refresh_power_state(s)
             return
@@ -94,6 +114,7 @@ class _RobotClass:
         if robot.owner is not None and robot.owner is not key:
             raise GplException(ROBOT_ALREADY_ATTACHED, robot_num=n, detail=f"robot {n} is attached by another thread")
         if mine is not None and mine is not robot:
+            _check_not_moving(mine)
             mine.owner = None
         robot.owner = key
         registry.set_selected(s, n)
