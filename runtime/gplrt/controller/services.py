@@ -14,6 +14,19 @@ silent:
   and returns when power is on — the next statement (typically a homing) can rely on it.  It
   raises -1046 *Power not enabled* while a soft E-stop is set.  ``False`` drops to 7 at once.
   ``PowerEnabled`` reads True in every "on" state of gpl-dictionary §13.3.
+* The controller has one power sequencer (:class:`PowerSequence`, one per session).  A
+  ``PowerEnabled = True`` from a second thread while a power-up runs *joins* it (as concurrent
+  ``Robot.Home`` calls share one homing): it does not restart the sequence, and every requester
+  returns when the one sequence reaches 20 — on the virtual and the real clock (the decision to
+  lead or join is taken under a lock; the joiners wait on the sequence's ``WaitQueue``).
+* ``PowerEnabled = False`` (or ``SoftEStop = True``) while a power-up runs wins: power ends off
+  (7) and every thread waiting for that power-up raises — -1600 *Power off requested* for a
+  power-off request (listed for PowerEnabled in gpl-dictionary.md), -1046 for a soft E-stop.  A
+  ``True`` that arrives after such a cancel (the cancelled sequence has not noticed yet) waits for
+  it to end and starts a fresh power-up.  If the thread running the sequence is aborted, the
+  power-up is abandoned the same way (power back to 7; joiners raise -1046).
+* ``PDb`` writes of the motion DataIDs that need power off (``NEEDS_POWER_OFF``) raise -1522
+  *Cannot write value when power on* while power is on or coming up.
 * ``PowerState(mode)`` — the sequencer state (``mode`` accepted, ignored: undocumented).
 * ``SoftEStop = True`` drops power (state 7) and blocks power-on until set False.
 * ``SystemSpeed`` — percent, 0 < v ≤ 100, else -707; the value only (motion applies it).
@@ -32,6 +45,8 @@ silent:
 
 from __future__ import annotations
 
+import threading
+from dataclasses import dataclass, field
 from typing import Any
 
 from gplrt.controller import clock as _clock
@@ -45,12 +60,53 @@ from gplrt.lang.errors import (
     error_text,
 )
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
+from gplrt.threads.scheduler import WaitQueue
 
 POWER_OFF_WAITING = 7
 POWER_ENABLING_AMPS = 8
 POWER_ENABLING_SERVOS = 10
 POWER_READY = 20
 POWER_ON_STATES = frozenset({9, 11, 12, *range(20, 32)})
+#: "Coming up" states (gpl-dictionary §13.3): amplifiers/servos being enabled, safety diagnostics.
+POWER_COMING_UP_STATES = frozenset({POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS, 16})
+
+#: gpl-dictionary.md error table (the controller's codes; not in gplrt.lang.errors' names yet).
+POWER_OFF_REQUESTED = -1600
+CANT_WRITE_WHEN_POWER_ON = -1522
+
+#: Motion DataIDs whose write needs high power off (-1522), decided [P] since neither the GPL
+#: manual nor robot-models.md says which parameters the controller locks: the 100 % reference
+#: speeds and accelerations (2700 joint speed, 2701 Cartesian speed, 2702 joint accel, 2703
+#: Cartesian accel) are the trajectory generator's base units — every queued motion was planned
+#: in them — so they change with the amplifiers off, like the robot's configuration.  The caps
+#: on Profile percentages (2704-2706), the RapidDecel % (2101) and the settling time (2601) are
+#: tuning a running cell may adjust: they are writable with power on and apply to the motions
+#: queued after the write (gplrt.motion.registry.pdb_written).
+NEEDS_POWER_OFF: frozenset[int] = frozenset({2700, 2701, 2702, 2703})
+
+
+@dataclass(eq=False)
+class PowerSequence:
+    """The controller's one high-power sequencer (see the module docstring).
+
+    ``generation`` numbers the power-ups; ``finished`` is the last one that ended and
+    ``outcome`` how it ended (0 = power on, else the error code its requesters raise)."""
+
+    lock: threading.Lock = field(default_factory=threading.Lock)
+    running: bool = False
+    cancel_code: int = 0  # non-zero: the running power-up was cancelled with this code
+    generation: int = 0
+    finished: int = 0
+    outcome: int = 0
+    done: WaitQueue = field(default_factory=lambda: WaitQueue("power-up"))
+
+
+def power_sequence(sim: Any) -> PowerSequence:
+    """The session's power sequencer, created on first use (kept on the Simulation)."""
+    seq = sim.__dict__.get("_power_sequence")
+    if seq is None:
+        seq = sim.__dict__.setdefault("_power_sequence", PowerSequence())
+    return seq  # type: ignore[no-any-return]
 
 
 def _sim() -> Any:
@@ -95,23 +151,12 @@ class _ControllerClass:
     @PowerEnabled.setter
     def PowerEnabled(self, value: Boolean) -> None:
         sim = _sim()
-        state = sim.controller
         if not value:
-            state.power_state = POWER_OFF_WAITING
+            _cancel_power_up(sim, POWER_OFF_REQUESTED)
+            sim.controller.power_state = POWER_OFF_WAITING
             _power_dropped(sim)
             return
-        if state.power_state in POWER_ON_STATES:
-            return
-        if state.soft_estop:
-            raise GplException(POWER_NOT_ENABLED, detail="soft E-stop is set")
-        step = state.power_up_time / 2.0
-        for phase in (POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS):
-            state.power_state = phase
-            sim.scheduler.sleep(step)
-            if state.power_state != phase:  # E-stop or power-off request meanwhile
-                raise GplException(POWER_NOT_ENABLED, detail="power-up interrupted")
-        state.power_state = POWER_READY
-        _power_ready(sim)
+        _power_up(sim)
 
     def PowerState(self, mode: Integer = 0) -> Integer:  # type: ignore[assignment]
         return _sim().controller.power_state  # type: ignore[no-any-return]
@@ -122,11 +167,13 @@ class _ControllerClass:
 
     @SoftEStop.setter
     def SoftEStop(self, value: Boolean) -> None:
-        state = _sim().controller
+        sim = _sim()
+        state = sim.controller
         state.soft_estop = bool(value)
         if value:
+            _cancel_power_up(sim, POWER_NOT_ENABLED)
             state.power_state = POWER_OFF_WAITING
-            _power_dropped(_sim(), SOFT_ESTOP)
+            _power_dropped(sim, SOFT_ESTOP)
 
     @property
     def SystemSpeed(self) -> Double:
@@ -220,6 +267,73 @@ class _ControllerClass:
         """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
         unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 1, 0))
         _pdb().set_pdb_num(rest[-1], to_int32(data_id), unit, unit2, index, key)  # converts by GPL's rules
+
+
+def _power_up(sim: Any) -> None:
+    """``PowerEnabled = True``: lead a power-up, or join the one in progress (module docstring)."""
+    state = sim.controller
+    seq = power_sequence(sim)
+    while True:
+        with seq.lock:
+            if state.power_state in POWER_ON_STATES:
+                return
+            if state.soft_estop:
+                raise GplException(POWER_NOT_ENABLED, detail="soft E-stop is set")
+            if not seq.running:
+                seq.running, seq.cancel_code = True, 0
+                seq.generation += 1
+                generation = seq.generation
+                state.power_state = POWER_ENABLING_AMPS
+                break
+            generation, doomed = seq.generation, seq.cancel_code != 0
+        _wait_for_power_up(sim, seq, generation)
+        if doomed:
+            continue  # it was cancelled before we asked: start a fresh power-up
+        if seq.outcome:
+            raise GplException(seq.outcome, detail="the power-up this request joined was interrupted")
+        return
+    _run_power_up(sim, seq, generation)
+
+
+def _wait_for_power_up(sim: Any, seq: PowerSequence, generation: int) -> None:
+    """Block (on the active clock) until power-up ``generation`` has ended."""
+    ended = lambda: seq.finished >= generation  # noqa: E731 - read under the scheduler lock
+    while not ended():
+        sim.scheduler.wait(seq.done, None, ended)
+
+
+def _run_power_up(sim: Any, seq: PowerSequence, generation: int) -> None:
+    """Walk PowerState 8 → 10 → 20 over ``power_up_time``; the requesters who joined meanwhile
+    are told the outcome when it ends, however it ends (an Abort of this thread included)."""
+    state = sim.controller
+    outcome = POWER_NOT_ENABLED  # until it completes: an exception or Abort abandons it
+    try:
+        step = state.power_up_time / 2.0
+        for phase in (POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS):
+            state.power_state = phase
+            sim.scheduler.sleep(step)
+            if seq.cancel_code or state.power_state != phase:  # power-off / E-stop meanwhile
+                outcome = seq.cancel_code or POWER_NOT_ENABLED
+                raise GplException(outcome, detail="power-up interrupted")
+        state.power_state = POWER_READY
+        _power_ready(sim)
+        outcome = 0
+    finally:
+        with seq.lock:
+            if outcome and state.power_state in POWER_COMING_UP_STATES:
+                state.power_state = POWER_OFF_WAITING  # abandoned half-way: the amplifiers go off
+            seq.running = False
+            seq.outcome = outcome
+            seq.finished = generation
+        sim.scheduler.notify_all(seq.done)
+
+
+def _cancel_power_up(sim: Any, code: int) -> None:
+    """A power-off request or soft E-stop: the power-up in progress (if any) ends with ``code``."""
+    seq = power_sequence(sim)
+    with seq.lock:
+        if seq.running and not seq.cancel_code:
+            seq.cancel_code = code
 
 
 def _power_dropped(sim: Any, code: int = POWER_NOT_ENABLED) -> None:
