@@ -28,12 +28,18 @@ robot-configuration DataID written without a key), -202 *Invalid argument* (a st
 number is needed, or a whole-array write with the wrong element count), -1515 *Invalid data file
 format* (bad ``.pac`` text; the detail starts with ``file:line``) and -1520 *Can't open parameter
 DB file*.
+
+Write listeners: ``ParameterDatabase.listeners`` are called as ``listener(data_id, unit, unit2)``
+after every value change (GPL writes, ``set``, ``define``, layering more ``.pac`` text).  The
+motion runtime registers one (``gplrt.motion.registry``) so that a written speed or acceleration
+DataID reaches the limits later motions use; the database itself knows nothing of motion.
+Listeners belong to one live database and are not copied by :meth:`ParameterDatabase.copy`.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -259,6 +265,8 @@ class ParameterDatabase:
     """DataID → values, per ``(unit, unit2)``; see the module docstring for the access rules."""
 
     entries: dict[tuple[int, int, int], PdbEntry] = field(default_factory=dict)
+    #: Called after each change as ``listener(data_id, unit, unit2)`` (module docstring).
+    listeners: list[Callable[[int, int, int], None]] = field(default_factory=list, compare=False, repr=False)
 
     # -- loading --------------------------------------------------------------------------------
 
@@ -294,9 +302,11 @@ class ParameterDatabase:
         """Layer the records of one ``.pac`` text; ``filename`` decides per-robot files (``robotNN``)."""
         m = _PER_ROBOT_FILE.match(Path(filename).name)
         file_unit = int(m.group(2)) if m else None
+        changed: dict[tuple[int, int, int], None] = {}  # keys in file order, for the listeners
         for rec in parse_pac(text, filename):
             unit = _norm(rec.unit) if file_unit is None or rec.unit else _norm(file_unit)
             key = (rec.data_id, unit, _norm(rec.unit2))
+            changed[key] = None
             origin = f"{filename}:{rec.line}"
             if rec.index == 0:
                 self.entries[key] = PdbEntry(rec.data_id, key[1], key[2], rec.label, list(rec.values),
@@ -311,6 +321,9 @@ class ParameterDatabase:
             while len(entry.values) < rec.index + len(rec.values) - 1:
                 entry.values.append(filler)
             entry.values[rec.index - 1 : rec.index - 1 + len(rec.values)] = rec.values
+        if self.listeners:
+            for changed_key in changed:
+                self._changed(*changed_key)
 
     def copy(self) -> ParameterDatabase:
         """An independent copy (per-session databases start from a shared default)."""
@@ -412,6 +425,7 @@ class ParameterDatabase:
         key = (int(data_id), _norm(unit), _norm(unit2))
         is_string = bool(values) and isinstance(values[0], str)
         self.entries[key] = PdbEntry(key[0], key[1], key[2], label, list(values), is_string, "<define>")
+        self._changed(*key)
 
     # -- saving ---------------------------------------------------------------------------------
 
@@ -465,10 +479,16 @@ class ParameterDatabase:
                 raise GplException(INVALID_ARGUMENT, detail=(
                     f"DataID {entry.data_id} has {len(entry.values)} values, {len(values)} given"))
             entry.values[:] = values
-            return
-        if len(values) != 1:
-            raise GplException(INVALID_ARGUMENT, detail=f"DataID {entry.data_id}: one value expected at index {index}")
-        entry.values[self._check_index(entry, index)] = values[0]
+        else:
+            if len(values) != 1:
+                raise GplException(INVALID_ARGUMENT, detail=f"DataID {entry.data_id}: one value expected at index {index}")
+            entry.values[self._check_index(entry, index)] = values[0]
+        self._changed(entry.data_id, entry.unit, entry.unit2)
+
+    def _changed(self, data_id: int, unit: int, unit2: int) -> None:
+        """Tell the listeners that a DataID changed (after the change is stored)."""
+        for listener in list(self.listeners):
+            listener(data_id, unit, unit2)
 
 
 # -- shipped default databases ------------------------------------------------------------------

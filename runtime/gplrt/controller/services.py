@@ -258,7 +258,8 @@ class _ControllerClass:
     def set_PDb(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDb(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
         unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 0, 0))
-        _pdb().set_pdb_text(to_string(rest[-1]), to_int32(data_id), unit, unit2, index, key)
+        data_id = _check_power_for_write(to_int32(data_id))
+        _pdb().set_pdb_text(to_string(rest[-1]), data_id, unit, unit2, index, key)
 
     def PDbNum(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 1) -> Double:  # type: ignore[assignment]
         return float(_pdb().pdb_num(*_ints(data_id, unit, unit2, array_index)))  # type: ignore[return-value]
@@ -266,7 +267,8 @@ class _ControllerClass:
     def set_PDbNum(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
         unit, unit2, index, key = _pdb_args(rest[:-1], (1, 1, 1, 0))
-        _pdb().set_pdb_num(rest[-1], to_int32(data_id), unit, unit2, index, key)  # converts by GPL's rules
+        data_id = _check_power_for_write(to_int32(data_id))
+        _pdb().set_pdb_num(rest[-1], data_id, unit, unit2, index, key)  # converts by GPL's rules
 
 
 def _power_up(sim: Any) -> None:
@@ -348,6 +350,16 @@ def _power_ready(sim: Any) -> None:
     from gplrt.motion.registry import refresh_power_state
 
     refresh_power_state(sim)
+
+
+def _check_power_for_write(data_id: int) -> int:
+    """-1522 *Cannot write value when power on* for a ``NEEDS_POWER_OFF`` DataID while high
+    power is on or coming up (module docstring); returns ``data_id``."""
+    if data_id in NEEDS_POWER_OFF:
+        state = _sim().controller.power_state
+        if state in POWER_ON_STATES or state in POWER_COMING_UP_STATES:
+            raise GplException(CANT_WRITE_WHEN_POWER_ON, detail=f"DataID {data_id} can change only with power off")
+    return data_id
 
 
 def _ints(*values: Any) -> list[int]:

@@ -8,6 +8,12 @@ also the deceleration reference), 2701/2703 Cartesian speed/acceleration ([1] li
 rotation deg/s), 2704-2706 caps on Profile.Speed/Accel/Decel (%), 2101 RapidDecel %,
 2601 in-range settling time (s).
 
+A program may change these DataIDs at run time (``Controller.PDb``/``PDbNum``); the motion
+registry then calls :meth:`RobotLimits.reload` on the robot's limits, which rereads them in place
+and drops the ``joint_limits`` memo, so the next motion uses the new values and a Move that
+follows no write pays nothing extra.  Which of them need power off is decided in
+``gplrt.controller.services.NEEDS_POWER_OFF``.
+
 Profile mapping (gpl-classes §22.4, robot-models §2.4 [P]):
 ``v = ref_speed · min(Speed, 2704)/100 · SystemSpeed/100``, ``a = ref_accel · min(Accel, 2705)/100``,
 ``d = ref_accel · min(Decel, 2706)/100``, jerk ``a / AccelRamp`` and ``d / DecelRamp``.  Ruckig has
@@ -28,6 +34,9 @@ Vec = NDArray[np.float64]
 
 #: Settling time for InRange > 0 when the database has no DataID 2601 (s).
 DEFAULT_SETTLE = 0.05
+
+#: The DataIDs :meth:`RobotLimits.from_pdb` reads: a write to one of them reloads the limits.
+LIMIT_DATA_IDS: frozenset[int] = frozenset({2700, 2701, 2702, 2703, 2704, 2705, 2706, 2101, 2601})
 
 
 @dataclass(frozen=True)
@@ -107,6 +116,15 @@ class RobotLimits:
             rapid_decel_pct=float(one(2101, 100.0)),
             settle_time=float(one(2601, DEFAULT_SETTLE)),
         )
+
+    def reload(self, pdb: object, robot: int, n: int) -> None:
+        """Reread the DataIDs after a parameter-database write, in place (whoever holds these
+        limits sees the new values), and forget the memoised ``joint_limits`` results."""
+        fresh = RobotLimits.from_pdb(pdb, robot, n)
+        for name in ("joint_speed", "joint_accel", "cart_speed", "cart_accel", "max_speed_pct",
+                     "max_accel_pct", "max_decel_pct", "rapid_decel_pct", "settle_time"):
+            setattr(self, name, getattr(fresh, name))
+        self._joint_cache.clear()
 
     # -- Profile scaling ------------------------------------------------------------------------
 

@@ -8,6 +8,10 @@
   scheduler record, or the Python thread for code outside the scheduler (a notebook).
 * Thread end releases the robots the thread had attached (gpl-classes §22.3 item 4), through the
   session's ``thread_exit_hooks``.
+* Parameter-database writes: the session's database tells ``_pdb_written`` of every change; a
+  change to one of the DataIDs the limits come from (``limits.LIMIT_DATA_IDS``) reloads that
+  robot's :class:`RobotLimits` (and the robot's ``max_joint_speed``, derived from them), so later
+  motions use the new values; motions already queued keep the plan they were given.
 * Power: ``power_dropped(sim)`` is called by ``Controller.PowerEnabled = False`` / ``SoftEStop``
   (controller/services.py) and stops every robot at once.  ``PowerState`` reads 21 while a robot
   is attached and 28 while homing (gpl-dictionary §13.3).
@@ -15,6 +19,7 @@
 
 from __future__ import annotations
 
+import functools
 import threading
 from typing import Any
 
@@ -87,7 +92,10 @@ def robot_of(s: Any, n: int) -> Any:
     if n < 1:
         raise GplException(INVALID_ROBOT_NUMBER, detail=f"robot {n}")
     pdb = pdb_of(s)
-    _motion(s)
+    state = _motion(s)
+    if state.get("pdb") is not pdb:  # listen to the database the robots are built from
+        pdb.listeners.append(functools.partial(_pdb_written, s, pdb))
+        state["pdb"] = pdb
     model = build_model(pdb, n)  # -1001 when the PDb does not define robot n
     limits = RobotLimits.from_pdb(pdb, n, model.axis_count)
     import numpy as np
@@ -97,6 +105,22 @@ def robot_of(s: Any, n: int) -> Any:
     robot.eom_waiters = WaitQueue(f"robot {n} end of motion")
     s.robots[n] = robot
     return robot
+
+
+def _pdb_written(s: Any, pdb: Any, data_id: int, unit: int, unit2: int) -> None:
+    """A parameter-database value changed: reload the limits of robot ``unit`` when it is one
+    they come from.  Nothing is done per Move: the memo of ``joint_limits`` is dropped here."""
+    from gplrt.motion.limits import LIMIT_DATA_IDS
+
+    if data_id not in LIMIT_DATA_IDS:
+        return
+    robot = s.robots.get(int(unit))
+    if robot is None:
+        return  # not built yet: it reads the database as it is when it is built
+    with robot.lock:
+        robot.limits.reload(pdb, robot.number, robot.axis_count)
+        # RobotState.max_joint_speed is a cached_property of these limits (motion/robot.py)
+        robot.__dict__.pop("max_joint_speed", None)
 
 
 def selected(s: Any) -> int:
