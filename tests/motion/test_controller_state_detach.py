@@ -5,6 +5,7 @@ moves still releases it (the controller's clean-up, not a GPL detach)."""
 from __future__ import annotations
 
 from collections.abc import Iterator
+from pathlib import Path
 
 import pytest
 
@@ -16,7 +17,7 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 from gplrt.threads.thread import Thread
-from gpltest import code_of
+from gpltest import code_of, module_src, run_gpl
 
 FAR = Location.from_angles((1100.0, 10.0, 90.0, 0.0, 100.0))
 NEAR = Location.from_angles((300.0, 10.0, 90.0, 0.0, 100.0))
@@ -127,3 +128,30 @@ def test_thread_end_or_abort_releases_a_moving_robot(abort: bool) -> None:
 
     assert s.run_main(main) == []
     assert seen == [1, 1, True]
+
+
+GPL_DETACH = """    Public Sub Main()
+        Dim prof As New Profile
+        Dim ex As Exception
+        Dim target As New Location
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home
+        target.Angles(1100, 10, 90, 0, 100)
+        Move.Loc(target, prof)
+        Try
+            Robot.Attached = 0
+            Console.WriteLine("detached while moving")
+        Catch ex
+            Console.WriteLine("refused: " & CStr(ex.ErrorCode) & " robot " & CStr(ex.RobotNum))
+        End Try
+        Move.WaitForEOM
+        Robot.Attached = 0
+        Console.WriteLine("attached now: " & CStr(Robot.Attached))
+    End Sub"""
+
+
+def test_a_transpiled_program_catches_1008(tmp_path: Path) -> None:
+    result = run_gpl(tmp_path, module_src(GPL_DETACH))
+    assert result.output == "refused: -1008 robot 1\nattached now: 0\n", result.output + result.log
+    assert result.status == 0

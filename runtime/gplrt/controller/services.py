@@ -81,7 +81,7 @@ CANT_WRITE_WHEN_POWER_ON = -1522
 #: in them — so they change with the amplifiers off, like the robot's configuration.  The caps
 #: on Profile percentages (2704-2706), the RapidDecel % (2101) and the settling time (2601) are
 #: tuning a running cell may adjust: they are writable with power on and apply to the motions
-#: queued after the write (gplrt.motion.registry.pdb_written).
+#: queued after the write (gplrt.motion.registry._pdb_written).
 NEEDS_POWER_OFF: frozenset[int] = frozenset({2700, 2701, 2702, 2703})
 
 
