@@ -88,6 +88,7 @@ class RobotLimits:
     rapid_decel_pct: float
     settle_time: float
     _joint_cache: dict[tuple[float, ...], AxisLimits] = field(default_factory=dict, repr=False)
+    _path_cache: dict[tuple[float, ...], PathLimits] = field(default_factory=dict, repr=False)
 
     @classmethod
     def from_pdb(cls, pdb: object, robot: int, n: int) -> RobotLimits:
@@ -119,12 +120,13 @@ class RobotLimits:
 
     def reload(self, pdb: object, robot: int, n: int) -> None:
         """Reread the DataIDs after a parameter-database write, in place (whoever holds these
-        limits sees the new values), and forget the memoised ``joint_limits`` results."""
+        limits sees the new values), and forget the memoised ``joint_limits``/``path_limits`` results."""
         fresh = RobotLimits.from_pdb(pdb, robot, n)
         for name in ("joint_speed", "joint_accel", "cart_speed", "cart_accel", "max_speed_pct",
                      "max_accel_pct", "max_decel_pct", "rapid_decel_pct", "settle_time"):
             setattr(self, name, getattr(fresh, name))
         self._joint_cache.clear()
+        self._path_cache.clear()
 
     # -- Profile scaling ------------------------------------------------------------------------
 
@@ -151,10 +153,20 @@ class RobotLimits:
         return AxisLimits(self.joint_speed * speed, a, d, jerk_of(a, d, prof.AccelRamp, prof.DecelRamp))
 
     def path_limits(self, prof: Profile, system_speed: float) -> PathLimits:
-        """Straight-line / arc limits: 2701/2703 [1] for translation, [2] for rotation.
+        """Straight-line / arc limits: 2701/2703 [1] for translation, [2] for rotation (memoised
+        per Profile values like ``joint_limits``).
 
         ``Speed2`` > 0 replaces ``Speed`` for the rotation rate ("secondary peak speed for
         selected axes during Cartesian motions"); 0 means "not used" (same as Speed)."""
+        key = (prof._speed, prof._speed2, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
+        lim = self._path_cache.get(key)
+        if lim is None:
+            if len(self._path_cache) > 256:
+                self._path_cache.clear()
+            lim = self._path_cache[key] = self._path_limits(prof, system_speed)
+        return lim
+
+    def _path_limits(self, prof: Profile, system_speed: float) -> PathLimits:
         speed, accel, decel = self._pcts(prof, system_speed)
         rot_speed = speed
         if float(prof.Speed2) > 0.0:

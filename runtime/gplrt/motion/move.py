@@ -32,6 +32,7 @@ from typing import Any, Callable
 import numpy as np
 
 from gplrt.geometry.location import Location
+from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import (
     INVALID_AXIS,
     INVALID_CARTESIAN,
@@ -158,15 +159,16 @@ class _MoveClass:
             if angles is not None and prof.Straight:
                 q1 = angles(robot, dest)
                 T1 = robot.forward(q1)
-                robot.queue_path(t, lambda T0: LinePath(T0, T1), int(loc.Config), prof, speed, q1,
+                robot.queue_path(t, lambda P0: LinePath(P0, T1), int(loc.Config), prof, speed, q1,
                                  extra_mask=robot.passive_mask)
                 return
             assert pose is not None
             T1 = pose(robot, dest)
             if prof.Straight:
-                robot.queue_path(t, lambda T0: LinePath(T0, T1), int(loc.Config), prof, speed, extra_end)
+                robot.queue_path(t, lambda P0: LinePath(P0, T1), int(loc.Config), prof, speed, extra_end)
             else:
-                robot.queue_joint(t, robot.inverse(T1, int(loc.Config), seed), prof, speed)
+                seg = robot.queue_joint(t, robot.inverse(T1, int(loc.Config), seed), prof, speed)
+                robot.remember_pose(seg.q_end, matrix_to_pose(T1))  # where a straight line from here starts
 
     def Loc(self, Location1: Location, Profile1: Profile) -> None:
         """Move to the total position of ``Location1`` (Cartesian or Angles)."""
@@ -187,6 +189,19 @@ class _MoveClass:
                     dest = queue.history[-1].q_end if queue.history else queue.rest
                     values = _angles_of(robot, loc, dest).tolist()
                 robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)
+        elif loc is not None and loc._type != 1 and Profile1 is not None and Profile1._straight:
+            # a straight line to a Cartesian Location: what the controller plans when it is queued
+            # is its destination and the path profile (kept short for the same benchmark)
+            ctx = current_ctx()
+            s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
+            robot = _ready(s, key)
+            P1 = loc.total_pose()
+            with robot.lock:
+                if robot.pending_extra:
+                    self._go(loc, Profile1, pose=lambda r, dest: _cartesian(r, loc, dest))
+                    return
+                robot.queue_path(s.scheduler.clock.now(), lambda P0: LinePath(P0, P1), loc._config, Profile1,
+                                 s.controller.system_speed)
         elif loc is not None and loc.Type == 1:
             self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
         else:
@@ -252,7 +267,7 @@ class _MoveClass:
             _, extra_end = _with_extra(robot, dest)
             p_mid = _cartesian(robot, loc1, dest)[:3, 3]
             T2 = _cartesian(robot, loc2, dest)
-            robot.queue_path(s.scheduler.clock.now(), lambda T0: ArcPath(T0, p_mid, T2, full=full),
+            robot.queue_path(s.scheduler.clock.now(), lambda P0: ArcPath(P0, p_mid, T2, full=full),
                              int(loc2.Config), prof, s.controller.system_speed, extra_end,
                              kind="circle" if full else "arc")
 

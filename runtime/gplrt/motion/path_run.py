@@ -33,7 +33,7 @@ from __future__ import annotations
 import bisect
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -66,58 +66,69 @@ class Fault:
 def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
                 decel_ramp: float) -> tuple[float, float, float, float]:
     """(u̇_max, ü_max accel, ü_max decel, jerk) of the 1-D plan: the Cartesian limits over the
-    path's length and turn, and the joints' chord (see the module docstring)."""
+    path's length and turn, and the joints' chord (see the module docstring).
+
+    Each bound is ``limit / extent`` (u runs 0 → 1 over the extent) and the smallest wins;
+    written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it."""
     inf = math.inf
-
-    def ratio(limit: float, extent: float) -> float:
-        return limit / extent if extent > 1e-12 else inf
-
-    v = min(ratio(cart.linear_velocity, path.length), ratio(cart.rotation_velocity, path.turn))
-    acc = min(ratio(cart.linear_accel, path.length), ratio(cart.rotation_accel, path.turn))
-    dec = min(ratio(cart.linear_decel, path.length), ratio(cart.rotation_decel, path.turn))
+    v = acc = dec = inf
+    for extent, lv, la, ld in ((path.length, cart.linear_velocity, cart.linear_accel, cart.linear_decel),
+                               (path.turn, cart.rotation_velocity, cart.rotation_accel, cart.rotation_decel)):
+        if extent > 1e-12:
+            if lv / extent < v:
+                v = lv / extent
+            if la / extent < acc:
+                acc = la / extent
+            if ld / extent < dec:
+                dec = ld / extent
     vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
-    for j, (a, b) in enumerate(zip(q0.tolist(), q1.tolist())):
-        d = abs(b - a)
+    for a, b, vj, aj, dj in zip(q0.tolist(), q1.tolist(), vel, accel, decel):
+        d = b - a if b >= a else a - b
         if d > 1e-12:
-            v = min(v, vel[j] / d)
-            acc = min(acc, accel[j] / d)
-            dec = min(dec, decel[j] / d)
-    if not math.isfinite(v):  # nothing moves (the caller queues a dwell instead)
+            if vj / d < v:
+                v = vj / d
+            if aj / d < acc:
+                acc = aj / d
+            if dj / d < dec:
+                dec = dj / d
+    if v == inf:  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
     ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else inf
     jd = dec / decel_ramp if decel_ramp >= MIN_RAMP else inf
-    return v, acc, dec, min(ja, jd)
+    return v, acc, dec, ja if ja < jd else jd
 
 
-@dataclass(eq=False)
 class PathRun:
     """The joints of one planned path motion, solved cycle by cycle as far as they are read.
 
     ``us``/``qs`` are the solved cycles (u = 0 is the start joints, never solved again);
-    ``done`` is the local time up to which every cycle has been solved and checked."""
+    ``done`` is the local time up to which every cycle has been solved and checked.  A plain
+    class rather than a dataclass: one is made per straight ``Move.Loc``, on its hot path."""
 
-    path: Path
-    plan: Plan
-    ik: Callable[[np.ndarray, Vec], Vec]  # checked (raises the controller's codes)
-    ik_between: Callable[[np.ndarray, Vec], Vec]  # unchecked: reading between checked cycles
-    extra_start: Vec
-    extra_end: Vec
-    extra_mask: np.ndarray
-    q_end: Vec  # the destination's joints, solved (and checked) when the motion was queued
-    max_speed: Vec  # per joint: the hard maximum (2700 × 2704 %)
-    ik_path: PathIK | None = None
-    us: list[float] = field(default_factory=list)
-    qs: list[Vec] = field(default_factory=list)
-    ts: list[float] = field(default_factory=list)  # local times of the solved cycles
-    done: float = 0.0
-    fault: Fault | None = None
-    #: The joints the path ended on when they differ from ``q_end`` by whole turns (``_final``).
-    final: Vec | None = None
-    _grid: PathJoints | None = None
+    __slots__ = ("path", "plan", "ik", "ik_between", "extra_start", "extra_end", "extra_mask", "q_end",
+                 "max_speed", "ik_path", "us", "qs", "ts", "done", "fault", "final", "_grid")
 
-    def __post_init__(self) -> None:
-        self.us, self.ts = [0.0], [0.0]
-        self.qs = [np.asarray(self.extra_start, float).copy()]
+    def __init__(self, path: Path, plan: Plan, ik: Callable[[np.ndarray, Vec], Vec],
+                 ik_between: Callable[[np.ndarray, Vec], Vec], extra_start: Vec, extra_end: Vec,
+                 extra_mask: np.ndarray, q_end: Vec, max_speed: Vec, ik_path: PathIK | None = None) -> None:
+        self.path = path
+        self.plan = plan
+        self.ik = ik  # checked (raises the controller's codes)
+        self.ik_between = ik_between  # unchecked: reading between checked cycles
+        self.extra_start = extra_start  # the start joints (never changed in place, so not copied)
+        self.extra_end = extra_end
+        self.extra_mask = extra_mask
+        self.q_end = q_end  # the destination's joints, solved (and checked) when the motion was queued
+        self.max_speed = max_speed  # per joint: the hard maximum (2700 × 2704 %)
+        self.ik_path = ik_path
+        self.us: list[float] = [0.0]
+        self.qs: list[Vec] = [extra_start]
+        self.ts: list[float] = [0.0]  # local times of the solved cycles
+        self.done = 0.0
+        self.fault: Fault | None = None
+        #: The joints the path ended on when they differ from ``q_end`` by whole turns (``_final``).
+        self.final: Vec | None = None
+        self._grid: PathJoints | None = None
 
     @property
     def q(self) -> np.ndarray:
@@ -157,40 +168,69 @@ class PathRun:
         return None
 
     def _solve(self, times: list[float]) -> Fault | None:
-        us = [min(1.0, max(0.0, self.plan.at(tk)[0][0])) for tk in times]
-        solved: np.ndarray | None = None
+        """Solve the cycles at local ``times`` (in order, after ``ts[-1]``) and check them.
+
+        The poses are solved in one pass (``ik_path``) where the model can, else one by one up
+        to the first that fails; then the joint speeds of all the cycles are checked at once.
+        The first cycle that fails either way stops the motion at the one before it — the same
+        cycle a check of each cycle in turn would stop at."""
+        plan_at = self.plan.at
+        us = [min(1.0, max(0.0, plan_at(tk)[0][0])) for tk in times]
         last_is_end = times[-1] >= self.plan.duration
         inner = us[:-1] if last_is_end else us
+        prev = self.qs[-1]
+        rows: list[Vec] = []
+        error: GplException | None = None
+        solved = None
         if self.ik_path is not None and len(inner) > 1:
-            seeds = np.array([self._seed(self.qs[-1], u) for u in inner])
-            solved = self.ik_path(self.path.poses(np.array(inner)), seeds)
-        t_prev = self.ts[-1]
-        for n, (tk, u) in enumerate(zip(times, us)):
+            solved = self.ik_path(self.path.poses(np.array(inner)), self._seeds(prev, inner))
+        if solved is not None:
+            rows = list(solved)
+        else:
+            seed = prev
+            for u in inner:
+                try:
+                    seed = np.asarray(self.ik(self.path.pose(u), self._seed(seed, u)), float)
+                except GplException as exc:
+                    error = exc
+                    break
+                rows.append(seed)
+        if error is None and last_is_end:
             try:
-                if last_is_end and n == len(times) - 1:
-                    q = self._final(u)
-                elif solved is not None:
-                    q = solved[n]
-                else:
-                    q = np.asarray(self.ik(self.path.pose(u), self._seed(self.qs[-1], u)), float)
-                dt = tk - t_prev
-                if dt > 0.0:
-                    rate = np.abs(q - self.qs[-1]) / dt
-                    over = np.flatnonzero(rate > self.max_speed * (1.0 + OVER_SPEED_TOLERANCE))
-                    if over.size:
-                        j = int(over[0])
-                        raise GplException(AXIS_OVER_SPEED, axis=j + 1,
-                                           detail=f"axis {j + 1} would reach {rate[j]:.6g}/s on the path "
-                                                  f"(maximum {self.max_speed[j]:.6g}/s)")
+                rows.append(self._final(us[-1]))
             except GplException as exc:
-                self.fault = Fault(t_prev, self.us[-1], self.qs[-1].copy(), exc)
-                return self.fault
-            self.us.append(u)
-            self.ts.append(tk)
-            self.qs.append(np.asarray(q, float))
-            self.done = tk
-            t_prev = tk
+                error = exc
+        ok = len(rows)
+        if ok:
+            t_prev = self.ts[-1]
+            q = np.array(rows)
+            steps = np.diff(np.vstack((prev, q)), axis=0)
+            dts = np.diff(np.array([t_prev, *times[:ok]]))
+            rate = np.abs(steps) / np.where(dts > 0.0, dts, np.inf)[:, None]
+            over = rate > self.max_speed * (1.0 + OVER_SPEED_TOLERANCE)
+            if over.any():
+                k, j = (int(x) for x in np.argwhere(over)[0])
+                ok = k
+                error = GplException(AXIS_OVER_SPEED, axis=j + 1,
+                                     detail=f"axis {j + 1} would reach {rate[k, j]:.6g}/s on the path "
+                                            f"(maximum {self.max_speed[j]:.6g}/s)")
+            self.us.extend(us[:ok])
+            self.ts.extend(times[:ok])
+            self.qs.extend(rows[:ok])
+            if ok:
+                self.done = times[ok - 1]
+        if error is not None:
+            self.fault = Fault(self.ts[-1], self.us[-1], self.qs[-1].copy(), error)
+            return self.fault
         return None
+
+    def _seeds(self, seed: Vec, us: list[float]) -> np.ndarray:
+        """``_seed(seed, u)`` for every u (N×n), in one numpy pass."""
+        out = np.broadcast_to(seed, (len(us), len(seed))).copy()
+        m = self.extra_mask
+        if m.any():
+            out[:, m] = self.extra_start[m] + (self.extra_end[m] - self.extra_start[m]) * np.array(us)[:, None]
+        return out
 
     def _final(self, u: float) -> Vec:
         """The joints the cycles arrive at: the destination solved when queued, unless the path

@@ -105,7 +105,7 @@ def _retry(otg: Ruckig, inp: InputParameter, given: dict[str, object], n: int, w
     for factor in _RETRY_FACTORS:
         inp.max_jerk = given["max_jerk"] = [j * factor for j in jerk]
         inp.max_velocity = given["max_velocity"] = [v * factor for v in vel]
-        given["lim"] = None  # the next joint plan must set its own limits again
+        given["lim"] = given["limits"] = None  # the next plan must set its own limits again
         traj = Trajectory(n)
         try:
             result = otg.calculate(inp, traj)
@@ -134,6 +134,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     p0 = q0.tolist() if type(q0) is np.ndarray else [float(x) for x in q0]
     p1 = q1 if type(q1) is list else q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
     if given.get("mode") is not _AXES:
+        given.clear()  # another mode's memo says nothing of what the input holds now
         zero = [0.0] * n
         for name, value in (("control_interface", ControlInterface.Position),
                             ("synchronization", Synchronization.Time), ("target_velocity", zero),
@@ -169,17 +170,38 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     return _calculate(otg, inp, given, n, "joint move")
 
 
+_SCALAR = "scalar"
+
+
 def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: float, dmax: float,
                 jerk: float) -> Plan:
-    """One-DOF trajectory of a path parameter from (s0, v0, a0) to s1 at rest (s1 ≥ s0)."""
-    otg, inp, given = _solver(1)
-    for name, value in (("control_interface", ControlInterface.Position), ("synchronization", Synchronization.Time),
-                        ("current_position", [s0]), ("current_velocity", [v0]), ("current_acceleration", [a0]),
-                        ("target_position", [s1]), ("target_velocity", [0.0]), ("target_acceleration", [0.0]),
-                        ("max_velocity", [vmax]), ("max_acceleration", [amax]), ("min_acceleration", [-dmax]),
-                        ("max_jerk", [jerk if math.isfinite(jerk) else math.inf])):
-        _set(given, inp, name, value)
-    given["mode"] = "scalar"
+    """One-DOF trajectory of a path parameter from (s0, v0, a0) to s1 at rest (s1 ≥ s0).
+
+    A straight ``Move.Loc`` plans one of these when it is queued: the start (0 → 1 from rest,
+    as a rule) repeats, and so do the limits of a Profile, so only what changed is handed to
+    Ruckig."""
+    otg, inp, given = _cache.solvers.get(1) or _solver(1)
+    if given.get("mode") is not _SCALAR:
+        given.clear()
+        inp.control_interface = ControlInterface.Position
+        inp.synchronization = Synchronization.Time
+        inp.target_velocity = [0.0]
+        inp.target_acceleration = [0.0]
+        given["mode"] = _SCALAR
+    start = (s0, v0, a0, s1)
+    if given.get("start") != start:
+        inp.current_position = [s0]
+        inp.current_velocity = [v0]
+        inp.current_acceleration = [a0]
+        inp.target_position = [s1]
+        given["start"] = start
+    limits = (vmax, amax, dmax, jerk)
+    if given.get("limits") != limits:
+        inp.max_velocity = [vmax]
+        inp.max_acceleration = [amax]
+        inp.min_acceleration = [-dmax]
+        inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
+        given["limits"] = limits
     return _calculate(otg, inp, given, 1, "path move")
 
 
@@ -187,6 +209,8 @@ def plan_stop(q0: Vec, v0: Vec, a0: Vec, decel: Vec, jerk: Vec) -> Plan:
     """Bring every axis to rest as fast as ``decel``/``jerk`` allow (``Robot.RapidDecel``)."""
     n = len(q0)
     otg, inp, given = _solver(n)
+    if given.get("mode") != "stop":
+        given.clear()  # another mode's memo says nothing of what the input holds now
     for name, value in (("control_interface", ControlInterface.Velocity), ("synchronization", Synchronization.No),
                         ("current_position", [float(x) for x in q0]), ("current_velocity", [float(x) for x in v0]),
                         ("current_acceleration", [float(x) for x in a0]), ("target_velocity", [0.0] * n),

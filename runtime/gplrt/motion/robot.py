@@ -40,12 +40,13 @@ from __future__ import annotations
 import functools
 import math
 import threading
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from gplrt.geometry.transforms import Pose, matrix_to_pose
 from gplrt.lang.errors import (
     CANT_CHANGE_CONFIG,
     NO_ROBOT_ATTACHED,
@@ -88,6 +89,8 @@ ZERO_PATH = 1e-9
 
 EXTRA_ROLES = ("rail",)
 PASSIVE_ROLES = ("rail", "gripper", "gripper2")
+#: The Config bits that name an arm branch (a straight line must keep its branch: -1042).
+_BRANCH_BITS = GPL_RIGHTY | GPL_LEFTY | GPL_ABOVE | GPL_BELOW | GPL_FLIP | GPL_NOFLIP
 
 
 def _seed_at(q0: Vec, q_extra: Vec, mask: np.ndarray, u: float) -> Vec:
@@ -119,6 +122,8 @@ class RobotState:
     lock: threading.RLock = field(default_factory=threading.RLock)
     eom_waiters: Any = None  # a scheduler WaitQueue, set by the registry
     _bounds: tuple[list[float], list[float]] | None = None
+    #: (end joints, Tool, Base, tool pose) of the last Cartesian destination (``pose_of``)
+    _known_pose: tuple[Vec, np.ndarray, np.ndarray, Pose] | None = None
 
     def __post_init__(self) -> None:
         self._axis_count = self.model.axis_count  # fixed for the model's lifetime; read per Move
@@ -222,17 +227,18 @@ class RobotState:
         see the module docstring on blending)."""
         queue = self.queue
         last = queue.history[-1] if queue.history else None
+        # (no copies: segments' joint arrays are replaced, never changed in place)
         if last is None:
-            return now, queue.rest.copy(), None, None
+            return now, queue.rest, None, None
         if last.end <= now + CLOCK_RESOLUTION:  # idle: at rest where the last segment left it
-            return now, last.q_end.copy(), None, None
+            return now, last.q_end, None, None
         if can_blend and last.blend and last.cut is None and not isinstance(last, DwellSegment):
             t_b = max(now, self._blend_time(last))
             if t_b < last.motion_end:
                 q, v, a = last.state(t_b)
                 last.cut = t_b
                 return t_b, q, v, a
-        return last.end, last.q_end.copy(), None, None
+        return last.end, last.q_end, None, None
 
     def _blend_time(self, seg: Segment) -> float:
         """First time the tool is within the blend tolerance of the segment's target.
@@ -308,22 +314,40 @@ class RobotState:
         return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
                                          "joint", plan), prof)
 
-    def queue_path(self, now: float, make_path: Any, config: int, prof: Profile, system_speed: float,
-                   extra_end: Vec | None = None, kind: str = "straight",
+    def queue_path(self, now: float, make_path: Callable[[Pose], Path], config: int, prof: Profile,
+                   system_speed: float, extra_end: Vec | None = None, kind: str = "straight",
                    extra_mask: np.ndarray | None = None) -> Segment:
-        """Plan and queue a Cartesian path motion; ``make_path(T_start)`` builds the Path.
+        """Plan and queue a Cartesian path motion; ``make_path(start_pose)`` builds the Path.
 
         The axes in ``extra_mask`` (default: the rail) move linearly along the path to their
-        values in ``extra_end``; the IK solves the others."""
+        values in ``extra_end``; the IK solves the others.
+
+        This is the controller's planning of a path (gpl-classes §22.4), and all of it happens
+        here: the destination's joints (refused at once with their code), then the 1-D profile of
+        the path parameter.  The joints along the way are solved cycle by cycle as the motion
+        runs (``path_run.PathRun``, ``MotionQueue.advance``).  ``benchmarks/motion_speed.py``
+        times this against a bare Ruckig call, so it keeps to Python floats where it can."""
         blend_from = self._blend_source(now)
         if blend_from is not None:
-            t0, q0 = blend_from.end, blend_from.q_end.copy()  # the line starts at the via point
+            t0, q0 = blend_from.end, blend_from.q_end  # the line starts at the via point
         else:
             t0, q0, _, _ = self._start(now, can_blend=False)
-        path: Path = make_path(self.forward(q0))
+        path = make_path(self.pose_of(q0))
         mask = self.extra_mask if extra_mask is None else extra_mask
-        q_extra = q0.copy() if extra_end is None else np.where(mask, extra_end, q0)
-        start_config = self.model.config_of([float(v) for v in q0])
+        q_extra = q0 if extra_end is None else np.where(mask, extra_end, q0)
+        if config & _BRANCH_BITS:
+            self._check_config_kept(config, self.model.config_of(q0.tolist()))
+        if path.length < ZERO_PATH and path.turn < ZERO_PATH and (q_extra is q0 or np.array_equal(q_extra, q0)):
+            # Nothing moves (``Move.Rel`` by nothing, a line to where the tool is): the motion is
+            # done at once, exactly where it started; a blending motion before it runs to its end.
+            seg = DwellSegment(t0, 0.0, q0, q0, kind=kind)
+            return self._append(seg, prof)
+        seed = q0 if q_extra is q0 else _seed_at(q0, q_extra, mask, 1.0)
+        q1 = np.array(self.model.inverse_pose(path.end_pose, 0, seed.tolist()))
+        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.joint_limits(prof, system_speed),
+                                        self.limits.path_limits(prof, system_speed), prof._accel_ramp,
+                                        prof._decel_ramp)
+        plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
 
         def ik(T: np.ndarray, seed: Vec) -> Vec:
             return self.inverse(T, 0, seed)
@@ -331,21 +355,7 @@ class RobotState:
         def ik_between(T: np.ndarray, seed: Vec) -> Vec:
             return self.inverse(T, 0, seed, check=False)
 
-        self._check_config_kept(config, start_config)
-        if path.length < ZERO_PATH and path.turn < ZERO_PATH and np.array_equal(q_extra, q0):
-            # Nothing moves (``Move.Rel`` by nothing, a line to where the tool is): the motion is
-            # done at once, exactly where it started; a blending motion before it runs to its end.
-            seg = DwellSegment(t0, 0.0, q0.copy(), q0.copy(), kind=kind)
-            return self._append(seg, prof)
-        # The controller's planning: the destination's joints (refused at once with their code),
-        # then the 1-D profile of the path parameter; the joints along the way are solved cycle by
-        # cycle as the motion runs (path_run.PathRun, MotionQueue.advance).
-        q1 = self.inverse(path.pose(1.0), 0, _seed_at(q0, q_extra, mask, 1.0))
-        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.joint_limits(prof, system_speed),
-                                        self.limits.path_limits(prof, system_speed), float(prof.AccelRamp),
-                                        float(prof.DecelRamp))
-        plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
-        pj = PathRun(path, plan, ik, ik_between, q0.copy(), q_extra, mask, q1, self.max_joint_speed,
+        pj = PathRun(path, plan, ik, ik_between, q0, q_extra, mask, q1, self.max_joint_speed,
                      ik_path=self.model.inverse_path)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than
@@ -356,11 +366,33 @@ class RobotState:
             if t_b < prev_end:
                 blend_from.cut = t_b
                 seg: Segment = BlendedPathSegment(
-                    t_b, plan.duration, blend_from.joints(t_b), pj.q_end.copy(), plan=plan, path_joints=pj,
+                    t_b, plan.duration, blend_from.joints(t_b), q1, plan=plan, path_joints=pj,
                     kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=self.forward)
+                self.remember_pose(q1, path.end_pose)
                 return self._append(seg, prof)
-        seg = PathSegment(t0, plan.duration, q0.copy(), pj.q_end.copy(), plan=plan, path_joints=pj, kind=kind)
+        seg = PathSegment(t0, plan.duration, q0, q1, plan=plan, path_joints=pj, kind=kind)
+        self.remember_pose(q1, path.end_pose)
         return self._append(seg, prof)
+
+    def pose_of(self, q: Vec) -> Pose:
+        """The tool pose (a pose tuple) of the joints ``q``.
+
+        A path starts where the previous motion ended, and when that motion went to a Cartesian
+        destination the controller knows its pose already: ``remember_pose`` keeps it, keyed by
+        the very array of the motion's end joints (segments' joint arrays are replaced, never
+        changed in place) and by the Tool and Base it was reached with.  Anything else — a
+        motion cut short, a new Tool — is a different key, and gets the forward kinematics."""
+        known = self._known_pose
+        model = self.model
+        if known is not None and known[0] is q and known[1] is model.tool and known[2] is model.base:
+            return known[3]
+        pose = matrix_to_pose(self.forward(q))
+        self._known_pose = (q, model.tool, model.base, pose)
+        return pose
+
+    def remember_pose(self, q: Vec, pose: Pose) -> None:
+        """``q`` (an array no one changes in place) puts the tool at ``pose`` (see ``pose_of``)."""
+        self._known_pose = (q, self.model.tool, self.model.base, pose)
 
     def _blend_within_limits(self, prev: Segment, t_b: float, prev_end: float, plan: Plan, pj: PathRun,
                              prof: Profile, system_speed: float) -> float:

@@ -11,6 +11,7 @@ overlaps the previous motion (``PathJoints.rates``).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -18,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
+from gplrt.geometry.transforms import Pose, matrix_to_pose, pose_to_matrix
 from gplrt.lang.errors import INVALID_CARTESIAN, GplException
 from gplrt.motion.limits import Vec
 
@@ -34,10 +36,12 @@ def _base_intervals(path: Path) -> int:
 
 
 class Path:
-    """A tool path: ``pose(u)`` for u in [0, 1], its length (mm) and turning angle (deg)."""
+    """A tool path: ``pose(u)`` for u in [0, 1], its length (mm) and turning angle (deg), and the
+    pose it ends on as a pose tuple (``end_pose``: the destination the IK solves when queued)."""
 
     length: float
     turn: float
+    end_pose: Pose
 
     def pose(self, u: float) -> np.ndarray:
         raise NotImplementedError
@@ -45,6 +49,11 @@ class Path:
     def poses(self, us: np.ndarray) -> np.ndarray:
         """``pose(u)`` for every u of ``us``, stacked (N×4×4): one numpy pass where a path can."""
         return np.array([self.pose(float(u)) for u in us])
+
+
+def as_pose(T: Pose | np.ndarray) -> Pose:
+    """A pose tuple (``gplrt.geometry.transforms``) of a pose tuple or a 4×4 matrix."""
+    return T if type(T) is tuple else matrix_to_pose(T)
 
 
 def _rodrigues(w: np.ndarray, us: np.ndarray) -> np.ndarray:
@@ -58,6 +67,26 @@ def _rodrigues(w: np.ndarray, us: np.ndarray) -> np.ndarray:
     a = theta * us
     out += np.sin(a)[:, None, None] * K + (1.0 - np.cos(a))[:, None, None] * (K @ K)
     return out
+
+
+def turn_between(P0: Pose, P1: Pose) -> float:
+    """The angle (deg) of the rotation taking ``P0``'s orientation to ``P1``'s: the ``turn`` of a
+    slerp between them.  ``atan2(|axis|, trace − 1)`` of ``R0ᵀ R1`` keeps full precision at small
+    angles, where ``acos`` of the trace alone loses half the digits."""
+    a11, a12, a13, a21, a22, a23, a31, a32, a33 = P0[:9]
+    b11, b12, b13, b21, b22, b23, b31, b32, b33 = P1[:9]
+    # R = R0ᵀ R1: only its trace and antisymmetric part are needed
+    r11 = a11 * b11 + a21 * b21 + a31 * b31
+    r22 = a12 * b12 + a22 * b22 + a32 * b32
+    r33 = a13 * b13 + a23 * b23 + a33 * b33
+    r12 = a11 * b12 + a21 * b22 + a31 * b32
+    r21 = a12 * b11 + a22 * b21 + a32 * b31
+    r13 = a11 * b13 + a21 * b23 + a31 * b33
+    r31 = a13 * b11 + a23 * b21 + a33 * b31
+    r23 = a12 * b13 + a22 * b23 + a32 * b33
+    r32 = a13 * b12 + a23 * b22 + a33 * b32
+    sin2 = math.sqrt((r32 - r23) ** 2 + (r13 - r31) ** 2 + (r21 - r12) ** 2)
+    return math.degrees(math.atan2(sin2, r11 + r22 + r33 - 1.0))
 
 
 class _Slerp:
@@ -81,14 +110,38 @@ class _Slerp:
 
 
 class LinePath(Path):
-    """Straight line of the tool tip from ``T0`` to ``T1`` (both 4×4, mm)."""
+    """Straight line of the tool tip from ``P0`` to ``P1`` (pose tuples or 4×4 matrices, mm).
 
-    def __init__(self, T0: np.ndarray, T1: np.ndarray) -> None:
-        self.T0, self.T1 = np.asarray(T0, float), np.asarray(T1, float)
-        self.p0, self.p1 = self.T0[:3, 3].copy(), self.T1[:3, 3].copy()
-        self.slerp = _Slerp(self.T0[:3, :3], self.T1[:3, :3])
-        self.length = float(np.linalg.norm(self.p1 - self.p0))
-        self.turn = self.slerp.turn
+    Only the length and the turn are computed when the line is made (from the pose tuples, in
+    Python floats): that is all a straight ``Move.Loc`` needs when it is queued.  The matrices
+    and the slerp are built the first time a pose along the line is asked for (the motion's
+    cycles, ``path_run``)."""
+
+    def __init__(self, P0: Pose | np.ndarray, P1: Pose | np.ndarray) -> None:
+        self.start_pose, self.end_pose = P0, P1 = as_pose(P0), as_pose(P1)
+        dx, dy, dz = P1[9] - P0[9], P1[10] - P0[10], P1[11] - P0[11]
+        self.length = math.sqrt(dx * dx + dy * dy + dz * dz)
+        self.turn = turn_between(P0, P1)
+
+    @functools.cached_property
+    def T0(self) -> np.ndarray:
+        return pose_to_matrix(self.start_pose)
+
+    @functools.cached_property
+    def T1(self) -> np.ndarray:
+        return pose_to_matrix(self.end_pose)
+
+    @functools.cached_property
+    def p0(self) -> np.ndarray:
+        return self.T0[:3, 3].copy()
+
+    @functools.cached_property
+    def p1(self) -> np.ndarray:
+        return self.T1[:3, 3].copy()
+
+    @functools.cached_property
+    def slerp(self) -> _Slerp:
+        return _Slerp(self.T0[:3, :3], self.T1[:3, :3])
 
     def pose(self, u: float) -> np.ndarray:
         if u >= 1.0:
@@ -110,10 +163,13 @@ class LinePath(Path):
 
 class ArcPath(Path):
     """Circular arc from ``T0`` through the point ``p_mid`` to ``T2`` (``full``: the whole circle
-    through the three points, back to ``T0`` with constant orientation)."""
+    through the three points, back to ``T0`` with constant orientation).  ``T0`` and ``T2`` are
+    pose tuples or 4×4 matrices (mm)."""
 
-    def __init__(self, T0: np.ndarray, p_mid: Sequence[float], T2: np.ndarray, full: bool = False) -> None:
-        self.T0, self.T2 = np.asarray(T0, float), np.asarray(T2, float)
+    def __init__(self, T0: Pose | np.ndarray, p_mid: Sequence[float], T2: Pose | np.ndarray,
+                 full: bool = False) -> None:
+        self.T0, self.T2 = pose_to_matrix(as_pose(T0)), pose_to_matrix(as_pose(T2))
+        self.end_pose = as_pose(T0) if full else as_pose(T2)
         a, b, c = self.T0[:3, 3], np.asarray(p_mid, float), self.T2[:3, 3]
         ab, ac = b - a, c - a
         n = np.cross(ab, ac)

@@ -10,6 +10,9 @@ axes; poses are 4×4 homogeneous transforms with translation in mm):
   are read-only (their inverses are cached for ``inverse``), so assign, never edit in place;
 * ``forward(joints) -> 4×4``: ``Base · Flange(q) · Tool`` (``Robot.Where``, gpl-classes §22.1.10);
 * ``flange(joints) -> 4×4``: the flange pose without Base and Tool;
+* ``inverse_pose(pose, config_bits=0, current_joints=None)``: the same for a pose tuple
+  (``gplrt.geometry.transforms.Pose``: row-major rotation then translation in mm), the form a
+  Location keeps; ``inverse`` converts its matrix to one and calls it, so the two agree to the bit;
 * ``inverse(T, config_bits=0, current_joints=None) -> list[float]``: solves
   ``Flange(q) = Base⁻¹ · T · Tool⁻¹`` for the branch the bits ask for, unwinding multi-turn axes
   toward ``current_joints`` (axes that do not affect the pose — gripper, rail — keep their
@@ -37,7 +40,7 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
-from gplrt.geometry.transforms import xyzypr_to_matrix
+from gplrt.geometry.transforms import Pose, matrix_to_pose, pose_mul, xyzypr_to_matrix
 from gplrt.lang.errors import (
     INVALID_ARGUMENT,
     INVALID_AXIS_COUNT,
@@ -46,7 +49,7 @@ from gplrt.lang.errors import (
     GplException,
 )
 from gplrt.motion.kinematics import units
-from gplrt.motion.kinematics.config import LIMIT_SLACK, unwind
+from gplrt.motion.kinematics.config import LIMIT_SLACK, TWO_PI, unwind
 from gplrt.motion.kinematics.units import Matrix
 
 #: FLT_MAX as written in .pac files: "no limit".
@@ -93,6 +96,9 @@ class RobotModel:
         self._linear = [j.linear for j in joints]
         self._lower_si = np.array([units.joint_to_si(j.lower, j.linear) for j in joints])
         self._upper_si = np.array([units.joint_to_si(j.upper, j.linear) for j in joints])
+        #: The same limits with ``LIMIT_SLACK``, as Python floats (``_unwind``'s common case).
+        self._slack_lower_si = [v - LIMIT_SLACK for v in self._lower_si.tolist()]
+        self._slack_upper_si = [v + LIMIT_SLACK for v in self._upper_si.tolist()]
         self.pin_model: pin.Model | None = None
         self.pin_data: pin.Data | None = None
         self.flange_frame: int = -1
@@ -115,6 +121,10 @@ class RobotModel:
     @tool.setter
     def tool(self, value: Matrix) -> None:
         self._tool, self._tool_inv, self._tool_is_identity = _frozen_with_inverse(value)
+        self._tool_inv_pose = matrix_to_pose(self._tool_inv)
+        #: Tool⁻¹'s translation when it has no rotation (``inverse_pose``'s shortcut), else None
+        self._tool_inv_shift = (tuple(self._tool_inv_pose[9:])
+                                if self._tool_inv_pose[:9] == (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0) else None)
 
     @property
     def base(self) -> Matrix:
@@ -123,6 +133,7 @@ class RobotModel:
     @base.setter
     def base(self, value: Matrix) -> None:
         self._base, self._base_inv, self._base_is_identity = _frozen_with_inverse(value)
+        self._base_inv_pose = matrix_to_pose(self._base_inv)
 
     # -- description ----------------------------------------------------------------------------
 
@@ -194,6 +205,15 @@ class RobotModel:
             raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {list(joints)}")
         return q
 
+    def _to_si_list(self, joints: Sequence[float]) -> list[float]:
+        """``_to_si`` as a list of Python floats (the scalar solvers' form)."""
+        values = joints if type(joints) is list else joints.tolist() if type(joints) is np.ndarray else list(joints)
+        if len(values) != len(self._linear):
+            raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(values)} values given")
+        if not math.isfinite(sum(values)):
+            raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {values}")
+        return units.joints_to_si_list(values, self._linear)
+
     def flange(self, joints: Sequence[float]) -> Matrix:
         """Flange pose (mm) of a joint vector (mm/deg), without Base and Tool."""
         return units.se3_to_matrix(self.flange_se3(self._to_si(joints)))
@@ -211,17 +231,38 @@ class RobotModel:
 
         ``check=False`` skips the final soft-limit check (-1012): for reading a planned path
         between the samples its limits were checked at."""
-        if self.pin_model is None:
-            raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
-        current = self.ready_joints() if current_joints is None else list(current_joints)
         T = np.asarray(T, dtype=float)
         # A finite sum is a cheap proof that every element is finite (the full check only on failure).
         if T.shape != (4, 4) or (not math.isfinite(float(T.sum())) and not np.all(np.isfinite(T))):
             raise GplException(INVALID_ARGUMENT, detail="target must be a finite 4x4 homogeneous transform")
-        target = T if self._base_is_identity else self._base_inv @ T
+        return self.inverse_pose(matrix_to_pose(T), config_bits, current_joints, check)
+
+    def inverse_pose(self, pose: Pose, config_bits: int = 0, current_joints: Sequence[float] | None = None,
+                     check: bool = True) -> list[float]:
+        """``inverse`` of a pose tuple (translation in mm), in Python floats throughout.
+
+        Why a second entry point: a Location is a pose tuple, and a straight ``Move.Loc`` solves
+        its destination when it is queued — on the hot path ``benchmarks/motion_speed.py`` times.
+        Converting to a matrix and back costs more than a closed-form solution itself."""
+        if self.pin_model is None:
+            raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
+        if not math.isfinite(sum(pose)):
+            raise GplException(INVALID_ARGUMENT, detail="target must be a finite homogeneous transform")
+        if not self._base_is_identity:
+            pose = pose_mul(self._base_inv_pose, pose)
         if not self._tool_is_identity:
-            target = target @ self._tool_inv
-        q = self._solve(units.matrix_to_se3(target), int(config_bits), self._to_si(current))
+            shift = self._tool_inv_shift
+            if shift is None:
+                pose = pose_mul(pose, self._tool_inv_pose)
+            else:  # ``pose_mul`` by a pure translation (the usual gripper offset), term for term
+                r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z = pose
+                tx, ty, tz = shift
+                pose = (r11, r12, r13, r21, r22, r23, r31, r32, r33, r11 * tx + r12 * ty + r13 * tz + x,
+                        r21 * tx + r22 * ty + r23 * tz + y, r31 * tx + r32 * ty + r33 * tz + z)
+        current = self.ready_joints() if current_joints is None else current_joints
+        mm = units.MM_PER_M
+        q = self._solve_pose(pose[:9], (pose[9] / mm, pose[10] / mm, pose[11] / mm), int(config_bits),
+                             self._to_si_list(current))
         joints = units.q_to_joints(q, self._linear)
         if check:
             self.check_limits(joints)
@@ -260,8 +301,12 @@ class RobotModel:
             bounds = self._slack_bounds = [
                 (j.lower - LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi),
                  j.upper + LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi)) for j in self.joints]
-        if len(joints) == len(bounds) and all(lo <= v <= hi for v, (lo, hi) in zip(joints, bounds)):
-            return
+        if len(joints) == len(bounds):
+            for v, (lo, hi) in zip(joints, bounds):
+                if not lo <= v <= hi:
+                    break
+            else:
+                return
         for i, (value, info) in enumerate(zip(joints, self.joints, strict=True)):
             slack = LIMIT_SLACK * (units.MM_PER_M if info.linear else 180.0 / math.pi)
             if not info.lower - slack <= value <= info.upper + slack:
@@ -269,6 +314,15 @@ class RobotModel:
                                    detail=f"{info.name} = {value:.6g} outside [{info.lower:g}, {info.upper:g}]")
 
     # -- for subclasses -------------------------------------------------------------------------
+
+    def _solve_pose(self, rotation: Sequence[float], position: Sequence[float], bits: int,
+                    current: list[float]) -> Sequence[float]:
+        """Flange target (row-major rotation, position in m) → GPL-ordered SI joints.
+
+        Closed-form solvers override this on Python floats; the default hands a ``pin.SE3`` to
+        ``_solve`` (the numeric solver of the articulated arm needs one anyway)."""
+        target = pin.SE3(np.array(rotation, dtype=float).reshape(3, 3), np.array(position, dtype=float))
+        return self._solve(target, bits, np.array(current))
 
     def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
         """Flange target (SI) → GPL-ordered SI joints."""
@@ -282,7 +336,13 @@ class RobotModel:
         otherwise nearest the current value within limits."""
         if single and i == self.single_axis:
             return unwind(angle, 0.0, -math.pi + 1e-15, math.pi)
-        return unwind(angle, float(current[i]), float(self._lower_si[i]), float(self._upper_si[i]))
+        now = float(current[i])
+        # ``unwind``'s first case inline (the turn strictly nearest ``now``, inside the limits):
+        # almost every call ends here, and this runs several times per IK.
+        near = angle + round((now - angle) / TWO_PI) * TWO_PI
+        if abs(near - now) < math.pi and self._slack_lower_si[i] <= near <= self._slack_upper_si[i]:
+            return near
+        return unwind(angle, now, float(self._lower_si[i]), float(self._upper_si[i]))
 
 
 def _frozen_with_inverse(value: Matrix) -> tuple[Matrix, Matrix, bool]:

@@ -18,6 +18,7 @@ within the soft limits (multi-turn theta).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 import pinocchio as pin
@@ -73,20 +74,22 @@ class GantryModel(RobotModel):
             ids["gripper"] = model.addJoint(parent, pin.JointModelPY(), pin.SE3.Identity(), "Gripper")
         self._finish_pin_model(model, [ids[r] for r in self.roles], flange)
 
-    def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
-        R, p = target.rotation, target.translation
-        if math.hypot(R[0, 2], R[1, 2]) > _TOLERANCE or R[2, 2] < 0.0:
+    def _solve_pose(self, rotation: Sequence[float], position: Sequence[float], bits: int,
+                    current: list[float]) -> list[float]:
+        r00, _, r02, r10, _, r12, _, _, r22 = rotation
+        if math.hypot(r02, r12) > _TOLERANCE or r22 < 0.0:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="a gantry tool stays vertical")
-        yaw = math.atan2(R[1, 0], R[0, 0])
-        q = current.copy()
-        wanted = {"x": p[0], "y": p[1], "z": -p[2]}
-        for role, value in wanted.items():
-            if role in self._i:
-                q[self._i[role]] = value
+        yaw = math.atan2(r10, r00)
+        q = list(current)
+        x, y, z = position
+        for role, value in (("x", x), ("y", y), ("z", -z)):
+            k = self._i.get(role)
+            if k is not None:
+                q[k] = value
             elif abs(value) > _POSITION_TOLERANCE:
                 raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail=f"no {_NAMES[role]} axis")
-        if "theta" in self._i:
-            k = self._i["theta"]
+        k = self._i.get("theta")
+        if k is not None:
             q[k] = self._unwind(k, -yaw, current, single=bool(bits & GPL_SINGLE))
         elif abs(yaw) > _TOLERANCE:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="no theta axis")

@@ -29,6 +29,7 @@ controller does, §8 q.4).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 import pinocchio as pin
@@ -78,7 +79,11 @@ class Pf400Model(RobotModel):
         self.l2 = units.length_to_si(pdb.get_num(16050, robot, 1, 3))
         self.rail_angle = math.radians(pdb.get_num(16050, robot, 1, 5, default=0.0))
         self.rail_direction = np.array([-math.sin(self.rail_angle), math.cos(self.rail_angle), 0.0])
+        self.rail_direction_list = self.rail_direction.tolist()
         self._i = {role: roles.index(role) for role in roles}
+        # the axis indices the closed form writes (-1: no such axis), read on every solve
+        self._z, self._shoulder, self._elbow = self._i["z"], self._i["shoulder"], self._i["elbow"]
+        self._wrist, self._rail = self._i.get("wrist", -1), self._i.get("rail", -1)
         self.single_axis = self._i.get("wrist")
         self._build_pin_model()
 
@@ -110,21 +115,22 @@ class Pf400Model(RobotModel):
 
     # -- inverse --------------------------------------------------------------------------------
 
-    def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
-        # Python floats, not numpy scalars: this runs dozens of times per straight-line move.
-        (r00, _, r02), (r10, _, r12), (r20, _, _) = target.rotation.tolist()
+    def _solve_pose(self, rotation: Sequence[float], position: Sequence[float], bits: int,
+                    current: list[float]) -> list[float]:
+        # Python floats throughout, not numpy: a straight Move.Loc solves its destination when
+        # queued, and the path's cycles solve one pose each.
+        r00, _, r02, r10, _, r12, r20, _, _ = rotation
         if math.hypot(r00, r10) > ORIENTATION_TOLERANCE or r20 < 0.0:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail="a PF400 flange must be horizontal (pitch 90, roll 180)")
         psi = math.atan2(r12, r02)
-        i = self._i
-        p = target.translation
-        if "rail" in i:
-            p = p - current[i["rail"]] * self.rail_direction
-        p = p.tolist()
+        x, y, z = position
+        rail = self._rail
+        if rail >= 0:
+            d = self.rail_direction_list
+            x, y, z = x - current[rail] * d[0], y - current[rail] * d[1], z - current[rail] * d[2]
         l1, l2 = self.l1, self.l2
-        rho2 = p[0] * p[0] + p[1] * p[1]
-        rho = math.sqrt(rho2)
+        rho = math.sqrt(x * x + y * y)
         if rho > l1 + l2 + _REACH_SLACK:
             raise GplException(POSITION_TOO_FAR, robot_num=self.robot, detail=f"radius {rho * 1000:.3f} mm")
         if rho < abs(l1 - l2) - _REACH_SLACK:
@@ -135,42 +141,45 @@ class Pf400Model(RobotModel):
         big, small = l1 + l2, abs(l1 - l2)
         elbow = 2.0 * math.atan2(math.sqrt(max(0.0, (big - rho) * (big + rho))),
                                  math.sqrt(max(0.0, (rho - small) * (rho + small))))
-        righty = preference(bits, GPL_RIGHTY, GPL_LEFTY)
+        p = (x, y, z)
+        righty = preference(bits, GPL_RIGHTY, GPL_LEFTY) if bits else None
         if righty is None:
-            e = current[i["elbow"]] % TWO_PI
+            e = current[self._elbow] % TWO_PI
             if min(e, abs(e - math.pi), TWO_PI - e) <= BRANCH_EDGE:
                 return self._nearest_branch(p, psi, elbow, bits, current, first=e < math.pi)
             righty = e < math.pi
         return self._branch(p, psi, elbow, righty, bits, current)
 
-    def _branch(self, p: list[float], psi: float, elbow: float, righty: bool, bits: int,
-                current: np.ndarray) -> np.ndarray:
+    def _solve(self, target: pin.SE3, bits: int, current: np.ndarray) -> np.ndarray:
+        return np.array(self._solve_pose(target.rotation.ravel().tolist(), target.translation.tolist(), bits,
+                                         current.tolist()))
+
+    def _branch(self, p: tuple[float, float, float], psi: float, elbow: float, righty: bool, bits: int,
+                current: list[float]) -> list[float]:
         """The solution on one elbow branch (flange position ``p`` in m, rail removed)."""
-        i = self._i
         l1, l2 = self.l1, self.l2
-        q = current.copy()
+        q = list(current)
         j3 = elbow if righty else TWO_PI - elbow
-        s3, c3 = math.sin(j3), math.cos(j3)
-        j2 = wrap_pi(math.atan2(p[1], p[0]) - math.atan2(l2 * s3, l1 + l2 * c3))
-        q[i["z"]] = p[2]
-        q[i["shoulder"]] = self._unwind(i["shoulder"], j2, current)
-        q[i["elbow"]] = self._unwind(i["elbow"], j3, current)
-        if "wrist" in i:
-            q[i["wrist"]] = self._unwind(i["wrist"], psi - q[i["shoulder"]] - q[i["elbow"]], current,
-                                         single=bool(bits & GPL_SINGLE))
-        elif abs(wrap_pi(psi - q[i["shoulder"]] - q[i["elbow"]])) > ORIENTATION_TOLERANCE:
+        j2 = wrap_pi(math.atan2(p[1], p[0]) - math.atan2(l2 * math.sin(j3), l1 + l2 * math.cos(j3)))
+        shoulder, elbow_i, wrist = self._shoulder, self._elbow, self._wrist
+        q[self._z] = p[2]
+        q[shoulder] = self._unwind(shoulder, j2, current)
+        q[elbow_i] = self._unwind(elbow_i, j3, current)
+        if wrist >= 0:
+            q[wrist] = self._unwind(wrist, psi - q[shoulder] - q[elbow_i], current, single=bool(bits & GPL_SINGLE))
+        elif abs(wrap_pi(psi - q[shoulder] - q[elbow_i])) > ORIENTATION_TOLERANCE:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail="yaw not reachable without a wrist axis")
         return q
 
-    def _nearest_branch(self, p: list[float], psi: float, elbow: float, bits: int, current: np.ndarray,
-                        first: bool) -> np.ndarray:
+    def _nearest_branch(self, p: tuple[float, float, float], psi: float, elbow: float, bits: int,
+                        current: list[float], first: bool) -> list[float]:
         """Config 0 with the elbow exactly on a branch boundary (J3 = 0° or 180°: stretched or
         folded, the PF400's usual parking posture): the arm is in both branches at once, so "keep
         the current branch" decides nothing.  Decision [P] (gpl-classes §22.1 item 11: no
         preference → the solution nearest the current joints): the solution within the soft
         limits nearest the current shoulder/elbow/wrist (sum of squared radians); on a tie the
         branch ``config_of`` reports now (``first``: Righty at 0°, Lefty at 180°)."""
-        found: list[np.ndarray] = []
+        found: list[list[float]] = []
         error: GplException | None = None
         for righty in (first, not first):
             try:
@@ -180,9 +189,9 @@ class Pf400Model(RobotModel):
         if not found:
             assert error is not None
             raise error
-        pool = [q for q in found if self._limits_hold(q[None, :])] or found
+        pool = [q for q in found if self._limits_hold(np.array([q]))] or found
         arm = [self._i[r] for r in ("shoulder", "elbow", "wrist") if r in self._i]
-        return min(pool, key=lambda q: float(np.sum((q[arm] - current[arm]) ** 2)))  # first of equals
+        return min(pool, key=lambda q: sum((q[k] - current[k]) ** 2 for k in arm))  # first of equals
 
     def inverse_path(self, Ts: np.ndarray, seeds: np.ndarray) -> np.ndarray | None:
         """``_solve`` of every pose in numpy (see ``RobotModel.inverse_path``).

@@ -24,10 +24,18 @@ def joints_to_q(joints: Sequence[float], linear: Sequence[bool]) -> NDArray[np.f
     return np.array([j / MM_PER_M if lin else math.radians(j) for j, lin in zip(joints, linear, strict=True)])
 
 
+def joints_to_si_list(joints: Sequence[float], linear: Sequence[bool]) -> list[float]:
+    """``joints_to_q`` as a list of Python floats (for the scalar closed-form solvers)."""
+    radians = math.radians
+    return [j / MM_PER_M if lin else radians(j) for j, lin in zip(joints, linear)]
+
+
 def q_to_joints(q: Sequence[float], linear: Sequence[bool]) -> list[float]:
     """SI joint vector (m, rad) → GPL joint values (mm, degrees), as Python floats."""
-    values = q.tolist() if isinstance(q, np.ndarray) else [float(v) for v in q]  # Python floats: faster below
-    return [v * MM_PER_M if lin else math.degrees(v) for v, lin in zip(values, linear, strict=True)]
+    # Python floats (faster below); a list from the scalar solvers is one already
+    values = q if type(q) is list else q.tolist() if isinstance(q, np.ndarray) else [float(v) for v in q]
+    degrees = math.degrees
+    return [v * MM_PER_M if lin else degrees(v) for v, lin in zip(values, linear, strict=True)]
 
 
 def joint_to_si(value: float, linear: bool) -> float:
