@@ -167,8 +167,7 @@ class _MoveClass:
             if prof.Straight:
                 robot.queue_path(t, lambda P0: LinePath(P0, T1), int(loc.Config), prof, speed, extra_end)
             else:
-                seg = robot.queue_joint(t, robot.inverse(T1, int(loc.Config), seed), prof, speed)
-                robot.remember_pose(seg.q_end, matrix_to_pose(T1))  # where a straight line from here starts
+                robot.queue_pose(t, matrix_to_pose(T1), int(loc.Config), prof, speed, seed)
 
     def Loc(self, Location1: Location, Profile1: Profile) -> None:
         """Move to the total position of ``Location1`` (Cartesian or Angles)."""
@@ -189,9 +188,10 @@ class _MoveClass:
                     dest = queue.history[-1].q_end if queue.history else queue.rest
                     values = _angles_of(robot, loc, dest).tolist()
                 robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)
-        elif loc is not None and loc._type != 1 and Profile1 is not None and Profile1._straight:
-            # a straight line to a Cartesian Location: what the controller plans when it is queued
-            # is its destination and the path profile (kept short for the same benchmark)
+        elif loc is not None and loc._type != 1 and Profile1 is not None:
+            # a Cartesian Location: what the controller plans when the move is queued is the
+            # destination's joints and the profile — of the joints, or of a straight line's path
+            # (kept short for the same benchmark); Move.Extra values take the general way
             ctx = current_ctx()
             s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
             robot = _ready(s, key)
@@ -199,9 +199,11 @@ class _MoveClass:
             with robot.lock:
                 if robot.pending_extra:
                     self._go(loc, Profile1, pose=lambda r, dest: _cartesian(r, loc, dest))
-                    return
-                robot.queue_path(s.scheduler.clock.now(), lambda P0: LinePath(P0, P1), loc._config, Profile1,
-                                 s.controller.system_speed)
+                elif Profile1._straight:
+                    robot.queue_path(s.scheduler.clock.now(), lambda P0: LinePath(P0, P1), loc._config, Profile1,
+                                     s.controller.system_speed)
+                else:
+                    robot.queue_pose(s.scheduler.clock.now(), P1, loc._config, Profile1, s.controller.system_speed)
         elif loc is not None and loc.Type == 1:
             self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
         else:

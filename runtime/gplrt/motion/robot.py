@@ -314,6 +314,18 @@ class RobotState:
         return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
                                          "joint", plan), prof)
 
+    def queue_pose(self, now: float, pose: Pose, config: int, prof: Profile, system_speed: float,
+                   seed: Vec | None = None) -> Segment:
+        """Plan and queue a joint-interpolated motion to a tool pose: its IK with ``config``,
+        unwound toward ``seed`` (default: the previous destination).  The pose is remembered as
+        where the robot will be (``pose_of``): a straight line from there starts on it."""
+        if seed is None:
+            queue = self.queue
+            seed = queue.history[-1].q_end if queue.history else queue.rest
+        seg = self.queue_joint_values(now, self.model.inverse_pose(pose, config, seed.tolist()), prof, system_speed)
+        self.remember_pose(seg.q_end, pose)
+        return seg
+
     def queue_path(self, now: float, make_path: Callable[[Pose], Path], config: int, prof: Profile,
                    system_speed: float, extra_end: Vec | None = None, kind: str = "straight",
                    extra_mask: np.ndarray | None = None) -> Segment:
