@@ -244,6 +244,10 @@ def test_other_robots_move_joint_and_straight(model: str) -> None:
         q = lo + 0.5 * (hi - lo)
         if model == "ARM6":
             q[1], q[2], q[4] = 20.0, 60.0, 40.0
+        elif model.startswith("PF"):
+            # mid-range is the folded arm (elbow 180°), the wrist next to the column: a line from
+            # there asks the shoulder for more than it has (-3122; test_straight_line_past_the_column)
+            q[2] = 90.0
         Move.Loc(angles(*q), Profile())
         Move.WaitForEOM()
         assert np.array_equal(robot.joints_at(s.now()), q)
@@ -259,6 +263,7 @@ def test_other_robots_move_joint_and_straight(model: str) -> None:
         for t in np.linspace(seg.t0, seg.end, 50):
             p = robot.forward(robot.joints_at(float(t)))[:3, 3]
             assert np.linalg.norm((p - p0) - np.dot(p - p0, d) * d) < 1e-6
+        check_cycles_within_hard_limits(s, seg.t0, seg.t0 + seg.duration)
 
 
 def test_real_clock_wait_sleeps_for_the_scaled_motion_time() -> None:
@@ -334,6 +339,28 @@ def check_max_joint_speed(sim: Simulation, t0: float, t1: float, n: int = 600) -
         robot.check_joint_limits(q)
 
 
+def check_cycles_within_hard_limits(sim: Simulation, t0: float, t1: float, at_rest_at_end: bool = True) -> None:
+    """The joints read off the queue at the trajectory generator's 16 ms cycles from ``t0`` (a
+    path motion's start, at rest) to ``t1``: every interval's mean speed within each joint's hard
+    maximum (2700 × 2704 %) and every change of it within the hard maximum acceleration
+    (2702 × 2705 %) — what the servos are asked for.  ``at_rest_at_end``: the motion ends at rest
+    at ``t1`` (a motion a fault stopped is not: the stop itself is not a planned trajectory)."""
+    from gplrt.motion.path_run import CYCLE
+
+    robot = sim.robots[1]
+    ts = [t0 + k * CYCLE for k in range(int((t1 - t0) / CYCLE) + 1) if t0 + k * CYCLE < t1 - CYCLE / 4] + [t1]
+    q = np.array([robot.joints_at(t) for t in ts])
+    dt = np.diff(ts)
+    v = np.diff(q, axis=0) / dt[:, None]
+    mids = np.concatenate(([t0], 0.5 * (np.array(ts[:-1]) + np.array(ts[1:]))))
+    v_all = np.vstack((np.zeros(q.shape[1]), v))
+    if at_rest_at_end:
+        v_all, mids = np.vstack((v_all, np.zeros(q.shape[1]))), np.concatenate((mids, [t1]))
+    a = np.diff(v_all, axis=0) / np.diff(mids)[:, None]
+    assert np.all(np.abs(v) <= robot.limits.max_joint_speed * (1 + 1e-6)), np.abs(v).max(axis=0)
+    assert np.all(np.abs(a) <= robot.limits.max_joint_accel * (1 + 1e-6)), np.abs(a).max(axis=0)
+
+
 def stopped_on_the_line(sim: Simulation, start: Location, goal: Location, code: int, axis: int) -> float:
     """WaitForEOM reports the mid-path error (code, axis); the robot then rests on the line short
     of the goal, within its joint limits.  Returns the time it stopped at."""
@@ -356,17 +383,18 @@ def stopped_on_the_line(sim: Simulation, start: Location, goal: Location, code: 
     for t in np.linspace(seg.t0, sim.now(), 200):
         assert off_line(robot.forward(robot.joints_at(float(t)))[:3, 3], p0, p1) < 1e-6
     check_max_joint_speed(sim, seg.t0, sim.now(), n=300)
+    check_cycles_within_hard_limits(sim, seg.t0, sim.now(), at_rest_at_end=False)
     return sim.now()
 
 
-def test_straight_line_past_the_column_stops_with_axis_over_speed_or_runs_slower(sim: Simulation) -> None:
+def test_straight_line_past_the_column_stops_with_a_servo_error_or_runs_slower(sim: Simulation) -> None:
     """A line that passes close to the PF400's column makes the shoulder swing round in a few
     millimetres.  The controller plans the line's Cartesian profile and solves the joints each
-    cycle: at full speed the shoulder would pass its maximum speed there, and the motion stops
-    on the line with -3106 *Axis over-speed* (axis 2) at WaitForEOM.  (Before the cycle-by-cycle
-    design this line was slowed at planning time by a joint analysis of the whole path; this
-    test asserted the Profile's joint accelerations along it.)  At a lower speed the same line
-    runs through, on the line, within every joint's maximum speed, exactly to the goal."""
+    cycle: at full speed the shoulder would need more than its maximum acceleration there, and
+    the motion stops on the line with -3122 *Soft envelope error* (axis 2) at WaitForEOM.
+    (Before the cycle-by-cycle design this line was slowed at planning time by a joint analysis
+    of the whole path.)  At a lower speed the same line runs through, on the line, within every
+    joint's maximum speed and acceleration, exactly to the goal."""
     start_q = (552.002, 13.765, 306.24, -121.479, 80.431)
     Move.Loc(angles(*start_q), Profile())
     Move.WaitForEOM()
@@ -377,7 +405,7 @@ def test_straight_line_past_the_column_stops_with_axis_over_speed_or_runs_slower
     closest = min(np.linalg.norm((p0 + s * (p1 - p0))[:2]) for s in np.linspace(0, 1, 2001))
     assert closest < 120.0  # the line really passes near the column (tool 162 mm: the wrist nearer)
     Move.Loc(goal, profile(Straight=True, Speed=100.0))  # accepted: both ends are fine
-    stopped_on_the_line(sim, start, goal, -3106, 2)
+    stopped_on_the_line(sim, start, goal, -3122, 2)
     Move.Loc(angles(*start_q), Profile())  # reported once: the robot moves again
     Move.WaitForEOM()
     Move.Loc(goal, profile(Straight=True, Speed=20.0))
@@ -387,14 +415,16 @@ def test_straight_line_past_the_column_stops_with_axis_over_speed_or_runs_slower
     for t in np.linspace(seg.t0, seg.end, 400):
         assert off_line(robot.forward(robot.joints_at(float(t)))[:3, 3], p0, p1) < 1e-6
     check_max_joint_speed(sim, seg.t0, seg.end, n=1500)
+    check_cycles_within_hard_limits(sim, seg.t0, seg.t0 + seg.duration)
     assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
 
 
 def test_random_straight_lines_run_on_the_line_or_stop_on_it_with_a_motion_error(sim: Simulation) -> None:
     """Seeded random lines across the PF400's workspace (many pass near the column, turn the tool
     and change height).  A line whose destination is unreachable is refused when queued; one
-    accepted either runs to its goal exactly, on the line, within every joint's maximum speed,
-    or stops on the line with the mid-path error at WaitForEOM (the controller's IK each cycle).
+    accepted either runs to its goal exactly, on the line, within every joint's maximum speed and
+    acceleration, or stops on the line with the mid-path error at WaitForEOM (the controller's IK
+    each cycle).
     (This test asserted the Profile's joint speeds and accelerations along every line when the
     plan came from a joint analysis of the whole path; the straight-line speed is now the
     Cartesian one — path_run's module docstring.)"""
@@ -424,15 +454,17 @@ def test_random_straight_lines_run_on_the_line_or_stop_on_it_with_a_motion_error
         try:
             Move.WaitForEOM()
         except GplException as exc:
-            assert exc.ErrorCode in (-1012, -1039, -1040, -1033, -3106)
+            assert exc.ErrorCode in (-1012, -1039, -1040, -1033, -3106, -3122)
             stopped += 1
             here = Robot.Where().matrix()[:3, 3]
             assert off_line(here, p0, p1) < 1e-6
             check_max_joint_speed(sim, seg.t0, sim.now(), n=100)
+            check_cycles_within_hard_limits(sim, seg.t0, sim.now(), at_rest_at_end=False)
             continue
         completed += 1
         assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
         check_max_joint_speed(sim, seg.t0, seg.end, n=250)
+        check_cycles_within_hard_limits(sim, seg.t0, seg.t0 + seg.duration)
         for t in np.linspace(seg.t0, seg.end, 40):
             assert off_line(robot.forward(robot.joints_at(float(t)))[:3, 3], p0, p1) < 1e-6
 

@@ -89,6 +89,7 @@ class RobotLimits:
     settle_time: float
     _joint_cache: dict[tuple[float, ...], AxisLimits] = field(default_factory=dict, repr=False)
     _path_cache: dict[tuple[float, ...], PathLimits] = field(default_factory=dict, repr=False)
+    _hard: tuple[Vec, Vec] | None = field(default=None, repr=False)
 
     @classmethod
     def from_pdb(cls, pdb: object, robot: int, n: int) -> RobotLimits:
@@ -127,6 +128,23 @@ class RobotLimits:
             setattr(self, name, getattr(fresh, name))
         self._joint_cache.clear()
         self._path_cache.clear()
+        self._hard = None
+
+    @property
+    def max_joint_speed(self) -> Vec:
+        """Each joint's hard maximum speed, 2700 × 2704 %: the fastest any Profile may ask."""
+        return self._hard_limits()[0]
+
+    @property
+    def max_joint_accel(self) -> Vec:
+        """Each joint's hard maximum acceleration, 2702 × the larger of 2705 % and 2706 %."""
+        return self._hard_limits()[1]
+
+    def _hard_limits(self) -> tuple[Vec, Vec]:
+        if self._hard is None:
+            pct = max(self.max_accel_pct, self.max_decel_pct)
+            self._hard = (self.joint_speed * (self.max_speed_pct / 100.0), self.joint_accel * (pct / 100.0))
+        return self._hard
 
     # -- Profile scaling ------------------------------------------------------------------------
 

@@ -22,9 +22,12 @@ Decisions [P] (the manuals are silent on what happens mid-path; documented here)
   more than the exact joint analysis would, and it alone governs the axes that move linearly
   along the path (rail, grippers).  The controller does not re-plan a queued motion: where the
   geometry makes a joint faster than its maximum (``2700 × 2704 %``, e.g. a line grazing the
-  PF400's column) the servo reports -3106 *Axis over-speed* with the axis, and the robot stops
-  at the last good cycle.  Below that maximum, a joint may run faster than the Profile's
-  percentage of its speed: a straight line's speed is the Cartesian one.
+  PF400's column) the servo reports -3106 *Axis over-speed* with the axis; where it asks a joint
+  for more than its maximum acceleration (``2702 ×`` the larger of 2705 %/2706 %) the servo
+  cannot follow and reports -3122 *Soft envelope error*.  Either stops the robot at the last
+  good cycle (``PathRun._check_rates``: both are checked on the cycles, as the servos see them).
+  Below those maxima a joint may run faster than the Profile's percentage of its speed: a
+  straight line's speed is the Cartesian one.
 * Soft-limit bulges between two cycles (16 ms apart) are not searched for.
 """
 
@@ -44,8 +47,12 @@ from gplrt.motion.straight import Path, PathIK, PathJoints
 
 #: Trajectory cycle (s): the standard 62.5 Hz of the trajectory generator.
 CYCLE = 0.016
-#: The error code of a joint faster than its maximum speed mid-path.
+#: The error codes of a joint faster than its maximum speed, or accelerated harder than its
+#: maximum, mid-path (``PathRun._check_rates``).
 AXIS_OVER_SPEED = -3106
+SOFT_ENVELOPE_ERROR = -3122
+#: The last cycle before a motion's end is at least this far (s) from it (``run_to``).
+END_GAP = CYCLE / 4
 #: Relative tolerance on the over-speed check (finite differences over one cycle).
 OVER_SPEED_TOLERANCE = 1e-6
 #: Cycles solved per batch (``RobotModel.inverse_path``) when the state is read far ahead.
@@ -106,11 +113,13 @@ class PathRun:
     class rather than a dataclass: one is made per straight ``Move.Loc``, on its hot path."""
 
     __slots__ = ("path", "plan", "ik", "ik_between", "extra_start", "extra_end", "extra_mask", "q_end",
-                 "max_speed", "ik_path", "us", "qs", "ts", "done", "fault", "final", "_grid")
+                 "max_speed", "max_accel", "ik_path", "us", "qs", "ts", "done", "fault", "final", "_grid",
+                 "_v_last", "_m_last")
 
     def __init__(self, path: Path, plan: Plan, ik: Callable[[np.ndarray, Vec], Vec],
                  ik_between: Callable[[np.ndarray, Vec], Vec], extra_start: Vec, extra_end: Vec,
-                 extra_mask: np.ndarray, q_end: Vec, max_speed: Vec, ik_path: PathIK | None = None) -> None:
+                 extra_mask: np.ndarray, q_end: Vec, max_speed: Vec, max_accel: Vec,
+                 ik_path: PathIK | None = None) -> None:
         self.path = path
         self.plan = plan
         self.ik = ik  # checked (raises the controller's codes)
@@ -120,6 +129,7 @@ class PathRun:
         self.extra_mask = extra_mask
         self.q_end = q_end  # the destination's joints, solved (and checked) when the motion was queued
         self.max_speed = max_speed  # per joint: the hard maximum (2700 × 2704 %)
+        self.max_accel = max_accel  # per joint: the hard maximum (2702 × 2705/2706 %)
         self.ik_path = ik_path
         self.us: list[float] = [0.0]
         self.qs: list[Vec] = [extra_start]
@@ -129,6 +139,10 @@ class PathRun:
         #: The joints the path ended on when they differ from ``q_end`` by whole turns (``_final``).
         self.final: Vec | None = None
         self._grid: PathJoints | None = None
+        # The joint velocity of the last solved interval and the time it holds at (its middle):
+        # the path starts at rest, so at first zero at the start (``_solve``'s acceleration check).
+        self._v_last: Vec = np.zeros(len(extra_start))
+        self._m_last = 0.0
 
     @property
     def q(self) -> np.ndarray:
@@ -155,7 +169,9 @@ class PathRun:
             return None
         k0 = int(math.floor(self.done / CYCLE + 1e-9)) + 1
         k1 = int(math.floor(min(t, end) / CYCLE + 1e-9))
-        times = [k * CYCLE for k in range(k0, k1 + 1) if k * CYCLE < end - 1e-12]
+        # a cycle closer than END_GAP to the end is left to the end itself: a sliver of an interval
+        # there turns rounding into speeds and accelerations (``_check_rates``)
+        times = [k * CYCLE for k in range(k0, k1 + 1) if k * CYCLE < end - END_GAP]
         if t >= end - 1e-12:
             times.append(end)
         i = 0
@@ -202,18 +218,9 @@ class PathRun:
                 error = exc
         ok = len(rows)
         if ok:
-            t_prev = self.ts[-1]
-            q = np.array(rows)
-            steps = np.diff(np.vstack((prev, q)), axis=0)
-            dts = np.diff(np.array([t_prev, *times[:ok]]))
-            rate = np.abs(steps) / np.where(dts > 0.0, dts, np.inf)[:, None]
-            over = rate > self.max_speed * (1.0 + OVER_SPEED_TOLERANCE)
-            if over.any():
-                k, j = (int(x) for x in np.argwhere(over)[0])
-                ok = k
-                error = GplException(AXIS_OVER_SPEED, axis=j + 1,
-                                     detail=f"axis {j + 1} would reach {rate[k, j]:.6g}/s on the path "
-                                            f"(maximum {self.max_speed[j]:.6g}/s)")
+            stop = self._check_rates(prev, np.array(rows), times[:ok], ended=error is None and last_is_end)
+            if stop is not None:
+                ok, error = stop
             self.us.extend(us[:ok])
             self.ts.extend(times[:ok])
             self.qs.extend(rows[:ok])
@@ -223,6 +230,52 @@ class PathRun:
             self.fault = Fault(self.ts[-1], self.us[-1], self.qs[-1].copy(), error)
             return self.fault
         return None
+
+    def _check_rates(self, prev: Vec, q: np.ndarray, times: list[float],
+                     ended: bool) -> tuple[int, GplException] | None:
+        """Joint speeds and accelerations of the cycles ``q`` (at ``times``, after ``prev``)
+        against the hard maxima; ``ended``: the last cycle is the motion's end, at rest.
+
+        Each interval's mean velocity holds at its middle; the difference of two neighbours
+        over the time between their middles is a weighted mean of the acceleration in between
+        (a hat-shaped weight), so neither check fires on a motion within its limits, whatever
+        the cycle.  Returns (index of the first cycle that fails, the error) or None.
+
+        Decision [P] (the manuals do not say what a servo does when the geometry asks more of a
+        joint than it can give): over its maximum speed the servo reports -3106 *Axis
+        over-speed*; over its maximum acceleration it cannot follow the set-points, and the
+        following error trips -3122 *Soft envelope error*.  Either stops the robot at the last
+        good cycle."""
+        t_prev = self.ts[-1]
+        t = np.array([t_prev, *times])
+        dts = np.diff(t)
+        steps = np.diff(np.vstack((prev, q)), axis=0)
+        vel = steps / np.where(dts > 0.0, dts, np.inf)[:, None]
+        mids = 0.5 * (t[:-1] + t[1:])
+        v_all, m_all = np.vstack((self._v_last, vel)), np.concatenate(((self._m_last,), mids))
+        if ended:  # at rest at the end
+            v_all = np.vstack((v_all, np.zeros(len(prev))))
+            m_all = np.concatenate((m_all, (t[-1],)))
+        gaps = np.diff(m_all)
+        acc = np.diff(v_all, axis=0) / np.where(gaps > 0.0, gaps, np.inf)[:, None]
+        # acc[k] ends at interval k (the last one, when ended, at the end: the last cycle)
+        fast = np.abs(vel) > self.max_speed * (1.0 + OVER_SPEED_TOLERANCE)
+        hard = np.abs(acc) > self.max_accel * (1.0 + OVER_SPEED_TOLERANCE)
+        k_fast = int(np.argmax(fast.any(axis=1))) if fast.any() else len(times)
+        row = int(np.argmax(hard.any(axis=1))) if hard.any() else len(acc)
+        k_hard = min(row, len(times) - 1) if hard.any() else len(times)  # (row N: the stop at the end)
+        if k_fast == k_hard == len(times):
+            self._v_last, self._m_last = vel[-1], float(mids[-1])
+            return None
+        if k_fast <= k_hard:
+            j = int(np.argmax(fast[k_fast]))
+            return k_fast, GplException(AXIS_OVER_SPEED, axis=j + 1,
+                                        detail=f"axis {j + 1} would reach {abs(vel[k_fast, j]):.6g}/s on the path "
+                                               f"(maximum {self.max_speed[j]:.6g}/s)")
+        j = int(np.argmax(hard[row]))
+        return k_hard, GplException(SOFT_ENVELOPE_ERROR, axis=j + 1,
+                                    detail=f"axis {j + 1} would need {abs(acc[row, j]):.6g}/s² on the path "
+                                           f"(maximum {self.max_accel[j]:.6g}/s²)")
 
     def _seeds(self, seed: Vec, us: list[float]) -> np.ndarray:
         """``_seed(seed, u)`` for every u (N×n), in one numpy pass."""

@@ -10,7 +10,7 @@
   session's ``thread_exit_hooks``.
 * Parameter-database writes: the session's database tells ``_pdb_written`` of every change; a
   change to one of the DataIDs the limits come from (``limits.LIMIT_DATA_IDS``) reloads that
-  robot's :class:`RobotLimits` (and the robot's ``max_joint_speed``, derived from them), so later
+  robot's :class:`RobotLimits` (with the hard maxima derived from them), so later
   motions use the new values; motions already queued keep the plan they were given.
 * Power: ``power_dropped(sim)`` is called by ``Controller.PowerEnabled = False`` / ``SoftEStop``
   (controller/services.py) and stops every robot at once.  ``PowerState`` reads 21 while a robot
@@ -119,8 +119,6 @@ def _pdb_written(s: Any, pdb: Any, data_id: int, unit: int, unit2: int) -> None:
         return  # not built yet: it reads the database as it is when it is built
     with robot.lock:
         robot.limits.reload(pdb, robot.number, robot.axis_count)
-        # RobotState.max_joint_speed is a cached_property of these limits (motion/robot.py)
-        robot.__dict__.pop("max_joint_speed", None)
 
 
 def selected(s: Any) -> int:

@@ -132,10 +132,10 @@ class RobotState:
     def axis_count(self) -> int:
         return self._axis_count
 
-    @functools.cached_property
+    @property
     def max_joint_speed(self) -> np.ndarray:
         """Each joint's hard maximum speed: 2700 × 2704 % (the fastest any Profile may ask)."""
-        return np.asarray(self.limits.joint_speed, float) * (self.limits.max_speed_pct / 100.0)
+        return self.limits.max_joint_speed
 
     @functools.cached_property
     def extra_mask(self) -> np.ndarray:
@@ -367,8 +367,9 @@ class RobotState:
         def ik_between(T: np.ndarray, seed: Vec) -> Vec:
             return self.inverse(T, 0, seed, check=False)
 
-        pj = PathRun(path, plan, ik, ik_between, q0, q_extra, mask, q1, self.max_joint_speed,
-                     ik_path=self.model.inverse_path)
+        limits = self.limits
+        pj = PathRun(path, plan, ik, ik_between, q0, q_extra, mask, q1, limits.max_joint_speed,
+                     limits.max_joint_accel, ik_path=self.model.inverse_path)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than
             # its duration before that motion's end (a shorter overlap), never before now.
