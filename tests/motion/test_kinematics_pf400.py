@@ -288,3 +288,47 @@ def test_from_the_folded_posture_config_zero_takes_the_reachable_nearest_branch(
     with pytest.raises(GplException) as exc:
         model.inverse(xyzypr_to_matrix(300, 100, 250, 0, 90, 180), 0, [250.0, 0.0, 181.0, 0.0, 80.0])
     assert exc.value.ErrorCode == -1012
+
+
+@pytest.mark.parametrize("name", ["PF400SX", "PF400SXL", "PF400S-SHORT", "PF3400SX"])
+def test_the_plain_case_path_agrees_with_the_general_steps(name: str) -> None:
+    """``Pf400Model.inverse_pose`` solves the common case in one method (``_plain_inverse``) and
+    hands everything else to ``RobotModel.inverse_pose``'s general steps.  On random targets —
+    reachable or not, every Config the PF400 reads, current joints anywhere including the folded
+    branch boundary, with and without a tool offset — the two give the same joints (the solved
+    axes to the bit; the gripper and rail, which the general steps take through metres and back,
+    within 1e-12) or the same error code and axis, checked and unchecked."""
+    from gplrt.motion.kinematics.base import RobotModel
+
+    rng = np.random.default_rng(RNG_SEED)
+    model = _model(name)
+    plain = 0
+    for k in range(3000):
+        if k == 1500:
+            model.tool = xyzypr_to_matrix(12.0, -3.0, 150.0, 0.0, 0.0, 0.0)  # a pure offset: the shortcut
+        target_q, current = _random_joints(model, rng, 2)
+        if k % 7 == 0:
+            current[2] = 180.0  # folded: on the branch boundary
+        T = model.forward(target_q)
+        T[:3, 3] += rng.normal(0.0, 30.0, 3) * (k % 3 == 0)  # now and then off the joints' pose
+        pose = tuple(T[:3, :3].ravel().tolist() + T[:3, 3].tolist())
+        bits = int(rng.choice([0, GPL_RIGHTY, GPL_LEFTY, GPL_RIGHTY | GPL_LEFTY, GPL_SINGLE, GPL_RIGHTY | GPL_SINGLE]))
+        check = bool(k % 5)
+        got: list[float] | int
+        want: list[float] | int
+        try:
+            got = model.inverse_pose(pose, bits, current.tolist(), check)
+        except GplException as exc:
+            got = (exc.ErrorCode, exc.Axis)
+        try:
+            want = RobotModel.inverse_pose(model, pose, bits, current.tolist(), check)
+        except GplException as exc:
+            want = (exc.ErrorCode, exc.Axis)
+        if isinstance(want, tuple) or isinstance(got, tuple):
+            assert got == want, (k, got, want)
+            continue
+        plain += model._plain_inverse(pose, bits, current.tolist(), check) is not None
+        solved = [model.roles.index(r) for r in ("z", "shoulder", "elbow", "wrist") if r in model.roles]
+        assert [got[i] for i in solved] == [want[i] for i in solved], (k, got, want)
+        assert np.allclose(got, want, rtol=1e-12, atol=1e-12), (k, got, want)
+    assert plain > 500  # the shortcut did run, a good share of the time

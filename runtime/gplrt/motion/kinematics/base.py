@@ -104,7 +104,10 @@ class RobotModel:
         self.flange_frame: int = -1
         # pin q index of each GPL axis (GPL axis order differs from tree order, e.g. the rail).
         self._q_index: list[int] = []
-        self._slack_bounds: list[tuple[float, float]] | None = None
+        #: The soft limits in GPL units with the slack ``check_limits`` allows, per axis.
+        self._joint_bounds = [
+            (j.lower - LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi),
+             j.upper + LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi)) for j in joints]
         # One pin.Data per model: GPL threads sharing a robot must not interleave computations in it.
         self.lock = threading.RLock()
 
@@ -296,11 +299,7 @@ class RobotModel:
 
     def check_limits(self, joints: Sequence[float]) -> None:
         """-1012 *Joint out-of-range* (with ``Axis``) for the first axis outside its soft limits."""
-        bounds = self._slack_bounds
-        if bounds is None:
-            bounds = self._slack_bounds = [
-                (j.lower - LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi),
-                 j.upper + LIMIT_SLACK * (units.MM_PER_M if j.linear else 180.0 / math.pi)) for j in self.joints]
+        bounds = self._joint_bounds
         if len(joints) == len(bounds):
             for v, (lo, hi) in zip(joints, bounds):
                 if not lo <= v <= hi:

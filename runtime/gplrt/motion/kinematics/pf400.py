@@ -35,6 +35,7 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
+from gplrt.geometry.transforms import Pose
 from gplrt.lang.errors import (
     INVALID_CARTESIAN,
     POSITION_TOO_CLOSE,
@@ -84,6 +85,7 @@ class Pf400Model(RobotModel):
         # the axis indices the closed form writes (-1: no such axis), read on every solve
         self._z, self._shoulder, self._elbow = self._i["z"], self._i["shoulder"], self._i["elbow"]
         self._wrist, self._rail = self._i.get("wrist", -1), self._i.get("rail", -1)
+        self._n_axes = len(roles)
         self.single_axis = self._i.get("wrist")
         self._build_pin_model()
 
@@ -114,6 +116,95 @@ class Pf400Model(RobotModel):
         self._finish_pin_model(model, [ids[r] for r in self.roles], flange)
 
     # -- inverse --------------------------------------------------------------------------------
+
+    def inverse_pose(self, pose: Pose, config_bits: int = 0, current_joints: Sequence[float] | None = None,
+                     check: bool = True) -> list[float]:
+        """``RobotModel.inverse_pose`` with the plain case in one method (see ``_plain_inverse``)."""
+        if current_joints is None:
+            current_joints = self.ready_joints()
+        current = current_joints if type(current_joints) is list else list(current_joints)
+        q = self._plain_inverse(pose, config_bits, current, check)
+        return q if q is not None else super().inverse_pose(pose, config_bits, current, check)
+
+    def _plain_inverse(self, pose: Pose, bits: int, current: list[float], check: bool) -> list[float] | None:
+        """The closed form (the steps of ``RobotModel.inverse_pose`` and ``_solve_pose``) for the
+        case nearly every call is: Base the identity, Tool none or a pure offset, the elbow off
+        its branch boundary, every angle's nearest turn within its limits, the result within the
+        soft limits.  None for anything else, which the general steps then solve (and refuse
+        with their codes).
+
+        Why a second path: a straight ``Move.Loc`` solves its destination when it is queued and
+        every cycle of its path solves one pose — ``benchmarks/motion_speed.py`` times the
+        former against a bare Ruckig call, and the general steps' calls cost more than the
+        solution itself.  The arithmetic is the general steps', operation for operation
+        (tests/motion/test_kinematics_pf400.py checks the two agree), except that the axes the
+        arm does not solve (gripper, rail) keep their values exactly instead of going through
+        metres and back."""
+        if not self._base_is_identity or len(current) != self._n_axes or bits & ~(GPL_RIGHTY | GPL_LEFTY):
+            return None
+        r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z = pose
+        if not self._tool_is_identity:
+            shift = self._tool_inv_shift
+            if shift is None:
+                return None
+            tx, ty, tz = shift
+            x = r11 * tx + r12 * ty + r13 * tz + x
+            y = r21 * tx + r22 * ty + r23 * tz + y
+            z = r31 * tx + r32 * ty + r33 * tz + z
+        if not (math.hypot(r11, r21) <= ORIENTATION_TOLERANCE and r31 >= 0.0):
+            return None  # (a NaN anywhere fails a test on this path too)
+        psi = math.atan2(r23, r13)
+        mm = units.MM_PER_M
+        x, y, z = x / mm, y / mm, z / mm
+        rail = self._rail
+        if rail >= 0:
+            c, d = current[rail] / mm, self.rail_direction_list
+            x, y, z = x - c * d[0], y - c * d[1], z - c * d[2]
+        l1, l2 = self.l1, self.l2
+        rho = math.sqrt(x * x + y * y)
+        big, small = l1 + l2, abs(l1 - l2)
+        if not small - _REACH_SLACK <= rho <= big + _REACH_SLACK:
+            return None
+        elbow = 2.0 * math.atan2(math.sqrt(max(0.0, (big - rho) * (big + rho))),
+                                 math.sqrt(max(0.0, (rho - small) * (rho + small))))
+        sh, el, wr = self._shoulder, self._elbow, self._wrist
+        radians = math.radians
+        el_now = radians(current[el])
+        if bits == GPL_RIGHTY or bits == GPL_LEFTY:
+            righty = bits == GPL_RIGHTY
+        else:
+            e = el_now % TWO_PI
+            if min(e, abs(e - math.pi), TWO_PI - e) <= BRANCH_EDGE:
+                return None
+            righty = e < math.pi
+        j3 = elbow if righty else TWO_PI - elbow
+        j2 = math.remainder(math.atan2(y, x) - math.atan2(l2 * math.sin(j3), l1 + l2 * math.cos(j3)), TWO_PI)
+        if j2 == -math.pi:
+            j2 = math.pi  # wrap_pi
+        lo, hi, pi = self._slack_lower_si, self._slack_upper_si, math.pi
+        # each angle the turn nearest its current value (``_unwind``'s first case)
+        sh_now = radians(current[sh])
+        j2 += round((sh_now - j2) / TWO_PI) * TWO_PI
+        j3 += round((el_now - j3) / TWO_PI) * TWO_PI
+        if not (abs(j2 - sh_now) < pi and lo[sh] <= j2 <= hi[sh] and abs(j3 - el_now) < pi and lo[el] <= j3 <= hi[el]):
+            return None
+        q = current.copy()
+        degrees = math.degrees
+        q[self._z], q[sh], q[el] = z * mm, degrees(j2), degrees(j3)
+        if wr >= 0:
+            wr_now = radians(current[wr])
+            j4 = psi - j2 - j3
+            j4 += round((wr_now - j4) / TWO_PI) * TWO_PI
+            if not (abs(j4 - wr_now) < pi and lo[wr] <= j4 <= hi[wr]):
+                return None
+            q[wr] = degrees(j4)
+        elif abs(wrap_pi(psi - j2 - j3)) > ORIENTATION_TOLERANCE:
+            return None
+        if check:
+            for v, (a, b) in zip(q, self._joint_bounds):
+                if not a <= v <= b:
+                    return None
+        return q
 
     def _solve_pose(self, rotation: Sequence[float], position: Sequence[float], bits: int,
                     current: list[float]) -> list[float]:
