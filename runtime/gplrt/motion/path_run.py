@@ -141,7 +141,7 @@ class PathRun:
         self._grid: PathJoints | None = None
         # The joint velocity of the last solved interval and the time it holds at (its middle):
         # the path starts at rest, so at first zero at the start (``_solve``'s acceleration check).
-        self._v_last: Vec = np.zeros(len(extra_start))
+        self._v_last: Vec | None = None  # None: zero (made when first needed)
         self._m_last = 0.0
 
     @property
@@ -252,7 +252,8 @@ class PathRun:
         steps = np.diff(np.vstack((prev, q)), axis=0)
         vel = steps / np.where(dts > 0.0, dts, np.inf)[:, None]
         mids = 0.5 * (t[:-1] + t[1:])
-        v_all, m_all = np.vstack((self._v_last, vel)), np.concatenate(((self._m_last,), mids))
+        v_last = np.zeros(len(prev)) if self._v_last is None else self._v_last
+        v_all, m_all = np.vstack((v_last, vel)), np.concatenate(((self._m_last,), mids))
         if ended:  # at rest at the end
             v_all = np.vstack((v_all, np.zeros(len(prev))))
             m_all = np.concatenate((m_all, (t[-1],)))

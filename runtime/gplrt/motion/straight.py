@@ -121,7 +121,7 @@ class LinePath(Path):
         self.start_pose, self.end_pose = P0, P1 = as_pose(P0), as_pose(P1)
         dx, dy, dz = P1[9] - P0[9], P1[10] - P0[10], P1[11] - P0[11]
         self.length = math.sqrt(dx * dx + dy * dy + dz * dz)
-        self.turn = turn_between(P0, P1)
+        self.turn = 0.0 if P0[:9] == P1[:9] else turn_between(P0, P1)
 
     @functools.cached_property
     def T0(self) -> np.ndarray:
