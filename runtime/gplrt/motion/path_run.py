@@ -78,9 +78,13 @@ def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, c
     Each bound is ``limit / extent`` (u runs 0 → 1 over the extent) and the smallest wins;
     written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it."""
     inf = math.inf
+    vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
+    extents = [path.length, path.turn, *(abs(b - a) for a, b in zip(q0.tolist(), q1.tolist()))]
+    v_lims = [cart.linear_velocity, cart.rotation_velocity, *vel]
+    a_lims = [cart.linear_accel, cart.rotation_accel, *accel]
+    d_lims = [cart.linear_decel, cart.rotation_decel, *decel]
     v = acc = dec = inf
-    for extent, lv, la, ld in ((path.length, cart.linear_velocity, cart.linear_accel, cart.linear_decel),
-                               (path.turn, cart.rotation_velocity, cart.rotation_accel, cart.rotation_decel)):
+    for extent, lv, la, ld in zip(extents, v_lims, a_lims, d_lims):
         if extent > 1e-12:
             if lv / extent < v:
                 v = lv / extent
@@ -88,16 +92,6 @@ def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, c
                 acc = la / extent
             if ld / extent < dec:
                 dec = ld / extent
-    vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
-    for a, b, vj, aj, dj in zip(q0.tolist(), q1.tolist(), vel, accel, decel):
-        d = b - a if b >= a else a - b
-        if d > 1e-12:
-            if vj / d < v:
-                v = vj / d
-            if aj / d < acc:
-                acc = aj / d
-            if dj / d < dec:
-                dec = dj / d
     if v == inf:  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
     ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else inf
