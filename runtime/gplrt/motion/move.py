@@ -4,7 +4,11 @@ Every method acts on the robot attached to the calling thread and returns as soo
 is planned and queued (``Move.WaitForEOM`` waits for the end).  Refusals, in this order:
 -1009 *No robot attached*, -1046 *Power not enabled*, -1021 *Robot not homed*; then the target's
 own errors (-1012 joint out of range, -1039/-1040 too close/far, -1033 invalid Cartesian value,
--1042 configuration change in a straight line, -1036 no kinematics for Cartesian targets).
+-1042 configuration change in a straight line, -1036 no kinematics for Cartesian targets).  A
+straight line or arc is refused for its destination only: its joints along the way are solved
+cycle by cycle as it runs, and an error there (a soft limit between the ends, -3106 / -3122 where
+a joint would pass its maximum speed or acceleration) stops the robot mid-path and is raised by
+the thread's next ``Move`` or ``WaitForEOM`` (``path_run``).
 
 Decisions [P] where the Dictionary gives only a name:
 
