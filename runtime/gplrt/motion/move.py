@@ -303,8 +303,9 @@ class _MoveClass:
             # the path motions' cycles up to the end: one may stop the robot (and the queue) early
             end = robot.queue.end_time
             if robot.queue.paths_pending:
-                robot.queue.advance(end)
-                end = robot.queue.end_time
+                with robot.lock:
+                    robot.queue.advance(end)
+                    end = robot.queue.end_time
             if sched.clock.reached(end):
                 break
             sched.wait(robot.eom_waiters, end, until=lambda: sched.clock.reached(robot.queue.end_time))

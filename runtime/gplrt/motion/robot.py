@@ -150,11 +150,17 @@ class RobotState:
 
     # -- reading the state --------------------------------------------------------------------
 
+    # Reading the state runs the path motions' cycles up to ``t`` (``MotionQueue.advance``), which
+    # changes the queue: under the real clock another thread may be reading the same robot, or
+    # queueing on it, at the same moment — hence the robot's lock.
+
     def joints_at(self, t: float) -> Vec:
-        return self.queue.joints_at(t)
+        with self.lock:
+            return self.queue.joints_at(t)
 
     def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
-        return self.queue.state_at(t)
+        with self.lock:
+            return self.queue.state_at(t)
 
     def latch_angles(self) -> list[float]:
         """Present joints (used by the latch emulation in controller/signals.py)."""
@@ -185,7 +191,8 @@ class RobotState:
         if self.queue.paths_pending:  # the path motions' cycles up to now (path_run)
             from gplrt.motion.registry import now
 
-            self.queue.advance(now())
+            with self.lock:
+                self.queue.advance(now())
         if self.async_error or self.queue.fault is not None:
             self.raise_async_error()
         if not power_on:

@@ -55,9 +55,10 @@ def trace(sim: Any, robot: int = 1, dt: float | None = None) -> Trace:
         if times[-1] < t1:
             times = np.append(times, t1)
         q = np.empty((len(times), n))
-        queue = state.queue
-        for i, t in enumerate(times):
-            q[i] = queue.joints_at(float(t))
+        with state.lock:  # (reading runs the path cycles: the robot's own thread may be queueing)
+            queue = state.queue
+            for i, t in enumerate(times):
+                q[i] = queue.joints_at(float(t))
     xyz = np.full((len(times), 3), np.nan)
     if state.model.has_kinematics:
         for i in range(len(times)):
