@@ -35,3 +35,16 @@ def test_pdb_arguments_convert_by_gpl_rules_not_python_int_or_float() -> None:
         assert code_of(Controller.set_PDbNum, 601, "fast") == INVALID_NUMBER_FORMAT
         Controller.set_PDbNum(601, "40")  # numeric text converts, as a GPL store would
         assert Controller.PDbNum(601.4) == 40.0  # CInt rounding of the DataID
+
+
+@pytest.mark.parametrize(("name", "code", "text"), [
+    ("CANT_DETACH_MOVING_ROBOT", -1008, "Can't detached a moving robot"),
+    ("CANT_WRITE_WHEN_POWER_ON", -1522, "Cannot write value when power on"),
+    ("POWER_OFF_REQUESTED", -1600, "Power off requested"),
+    ("AXIS_OVER_SPEED", -3106, "Axis over-speed"),
+    ("SOFT_ENVELOPE_ERROR", -3122, "Soft envelope error"),
+])
+def test_controller_state_and_servo_codes_are_named_in_the_one_table(name: str, code: int, text: str) -> None:
+    """The codes the detach rule, the power sequencer, PDb writes and path motions raise."""
+    assert getattr(errors, name) == code
+    assert errors.error_text(code) == text

@@ -52,8 +52,10 @@ from typing import Any
 from gplrt.controller import clock as _clock
 from gplrt.lang.conversions import to_int32, to_string
 from gplrt.lang.errors import (
+    CANT_WRITE_WHEN_POWER_ON,
     NOT_IMPLEMENTED,
     POWER_NOT_ENABLED,
+    POWER_OFF_REQUESTED,
     SOFT_ESTOP,
     VALUE_OUT_OF_RANGE,
     GplException,
@@ -69,10 +71,6 @@ POWER_READY = 20
 POWER_ON_STATES = frozenset({9, 11, 12, *range(20, 32)})
 #: "Coming up" states (gpl-dictionary §13.3): amplifiers/servos being enabled, safety diagnostics.
 POWER_COMING_UP_STATES = frozenset({POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS, 16})
-
-#: gpl-dictionary.md error table (the controller's codes; not in gplrt.lang.errors' names yet).
-POWER_OFF_REQUESTED = -1600
-CANT_WRITE_WHEN_POWER_ON = -1522
 
 #: Motion DataIDs whose write needs high power off (-1522), decided [P] since neither the GPL
 #: manual nor robot-models.md says which parameters the controller locks: the 100 % reference

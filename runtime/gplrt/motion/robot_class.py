@@ -37,6 +37,7 @@ import numpy as np
 from gplrt.geometry.kinematics_provider import set_kinematics_provider
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import (
+    CANT_DETACH_MOVING_ROBOT,
     NOT_CARTESIAN,
     NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
@@ -52,9 +53,6 @@ from gplrt.motion.profile import Profile
 from gplrt.motion.queue import DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
 
-#: gpl-dictionary.md error table: -1008 *Can't detached a moving robot* (the controller's wording).
-CANT_DETACH_MOVING = -1008
-
 
 def _robot(n: int = 0) -> RobotState:
     s = registry.sim()
@@ -66,7 +64,7 @@ def _check_not_moving(robot: RobotState) -> None:
     """-1008 when ``robot`` still has motion to run at the controller clock's now (see the
     module docstring: a GPL detach of a moving robot is refused, the thread-end release is not)."""
     if registry.robot_moving(robot, registry.now()):
-        raise GplException(CANT_DETACH_MOVING, robot_num=robot.number,
+        raise GplException(CANT_DETACH_MOVING_ROBOT, robot_num=robot.number,
                            detail=f"robot {robot.number} is still moving (Move.WaitForEOM first)")
 
 
