@@ -8,11 +8,14 @@ The reference for every check is a robot *built* from a database that already ha
 
 from __future__ import annotations
 
+import gc
+import weakref
 from collections.abc import Callable
 
 import numpy as np
 import pytest
 
+from gplrt.controller.pdb import default_database
 from gplrt.controller.services import Controller
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import GplException
@@ -186,3 +189,27 @@ def test_reload_drops_the_memo_and_updates_in_place() -> None:
         assert new is not lim
         assert new.velocity[0] == pytest.approx(100.0 * 1.5, abs=1e-12)
         assert new.velocity[1] == lim.velocity[1]
+
+
+def test_a_database_shared_by_sessions_does_not_keep_a_finished_session_alive() -> None:
+    """A program's database may outlive its session (a notebook sets one ``sim.pdb`` on each new
+    Simulation).  The write listener a session registers on it must not keep that session — and
+    its robots' planned motion — alive once it is closed and dropped, nor pile up per session."""
+    db = default_database("PF400SX")
+    with Simulation(capture=True):  # the session active around the others (a notebook's own)
+        first = Simulation(capture=True)
+        first.pdb = db
+        with first:
+            ready()  # builds robot 1: the session starts listening to ``db``
+        first.close()
+        gone = weakref.ref(first)
+        del first
+        gc.collect()
+        assert gone() is None
+        second = Simulation(capture=True)
+        second.pdb = db
+        with second:
+            ready()
+            Controller.set_PDbNum(2704, 40.0)  # still reaches the live session's robot
+            assert second.robots[1].limits.max_speed_pct == 40.0
+            assert len(db.listeners) == 1  # the dropped session's listener went with it

@@ -8,7 +8,8 @@
   scheduler record, or the Python thread for code outside the scheduler (a notebook).
 * Thread end releases the robots the thread had attached (gpl-classes §22.3 item 4), through the
   session's ``thread_exit_hooks``.
-* Parameter-database writes: the session's database tells ``_pdb_written`` of every change; a
+* Parameter-database writes: the session's database tells ``_pdb_written`` of every change
+  (through a listener that holds the session weakly, ``_listen``); a
   change to one of the DataIDs the limits come from (``limits.LIMIT_DATA_IDS``) reloads that
   robot's :class:`RobotLimits` (with the hard maxima derived from them), so later
   motions use the new values; motions already queued keep the plan they were given.
@@ -19,8 +20,8 @@
 
 from __future__ import annotations
 
-import functools
 import threading
+import weakref
 from typing import Any
 
 from gplrt.controller.services import POWER_ON_STATES
@@ -92,10 +93,7 @@ def robot_of(s: Any, n: int) -> Any:
     if n < 1:
         raise GplException(INVALID_ROBOT_NUMBER, detail=f"robot {n}")
     pdb = pdb_of(s)
-    state = _motion(s)
-    if state.get("pdb") is not pdb:  # listen to the database the robots are built from
-        pdb.listeners.append(functools.partial(_pdb_written, s, pdb))
-        state["pdb"] = pdb
+    _listen(s, pdb)
     model = build_model(pdb, n)  # -1001 when the PDb does not define robot n
     limits = RobotLimits.from_pdb(pdb, n, model.axis_count)
     import numpy as np
@@ -105,6 +103,30 @@ def robot_of(s: Any, n: int) -> Any:
     robot.eom_waiters = WaitQueue(f"robot {n} end of motion")
     s.robots[n] = robot
     return robot
+
+
+def _listen(s: Any, pdb: Any) -> None:
+    """Have ``pdb`` (the database the session's robots are built from) tell ``_pdb_written`` of
+    its changes, once per session and database.
+
+    The listener holds the session weakly: a database can outlive its session (a notebook puts
+    one database on each new Simulation), and a strong reference from it would keep every
+    finished session alive, robots and planned motion included.  A listener whose session is
+    gone removes itself at the next write."""
+    state = _motion(s)
+    if state.get("pdb") is pdb:
+        return
+    session = weakref.ref(s)
+
+    def written(data_id: int, unit: int, unit2: int) -> None:
+        live = session()
+        if live is None:
+            pdb.listeners.remove(written)  # ParameterDatabase calls a copy of its list: safe
+            return
+        _pdb_written(live, pdb, data_id, unit, unit2)
+
+    pdb.listeners.append(written)
+    state["pdb"] = pdb
 
 
 def _pdb_written(s: Any, pdb: Any, data_id: int, unit: int, unit2: int) -> None:
