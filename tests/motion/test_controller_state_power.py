@@ -4,6 +4,8 @@ Before: a second request restarted the sequence (PowerState back to 8) and, when
 the first request's 10 instead of its own 8 and raised -1046 although power came on.  Now the
 second joins the power-up in progress and both return when it reaches 20; a power-off request
 during a power-up wins (power ends off, every requester raises -1600 *Power off requested*).
+The power-up is the controller's, not a thread's: suspending or aborting the thread that asked
+first does not stop it.
 """
 
 from __future__ import annotations
@@ -92,17 +94,17 @@ def test_a_request_once_power_is_on_returns_at_once() -> None:
 
 def test_power_off_during_a_shared_power_up_wins() -> None:
     results, trace, final = run_requests([0, 50], off_at_ms=100)
-    # the leader notices at the end of its phase (0.15); the joiner is told at the same moment
-    assert results == [("req0", -1600, 0.15), ("req1", -1600, 0.15)]
+    # both are told at the moment of the power-off request
+    assert results == [("req0", -1600, 0.1), ("req1", -1600, 0.1)]
     assert trace == [7, 8, 7]  # never 10 or 20 afterwards
     assert final == 7
 
 
 def test_a_request_after_the_power_off_starts_a_fresh_power_up() -> None:
     results, trace, final = run_requests([0], off_at_ms=100, late_on_ms=120)
-    # "late" asked after the power-off cancelled the running power-up: it waits for that one to
-    # end (0.15) and then runs its own (0.15 + 0.3)
-    assert results == [("late", "on", 0.45), ("req0", -1600, 0.15)]
+    # "late" asked after the power-off ended the running power-up: a fresh one starts at its
+    # request (0.12) and takes the whole power-up time
+    assert results == [("late", "on", 0.42), ("req0", -1600, 0.1)]
     assert trace == [7, 8, 7, 8, 10, 20]
     assert final == 20
 
@@ -129,25 +131,26 @@ def test_soft_estop_during_a_power_up_fails_it_with_1046() -> None:
     assert sim.controller.power_state == 7
 
 
-def test_aborting_the_thread_that_runs_the_power_up_leaves_power_off_and_tells_the_joiner() -> None:
+def test_aborting_the_first_requester_does_not_abandon_the_power_up() -> None:
+    """Only the aborted thread stops waiting: the power-up it started is the controller's, and
+    the other requester returns when it completes."""
     sim = Simulation(capture=True)
     results: list[tuple[str, object, float]] = []
 
     def main() -> None:
-        leader = Thread(requester(results), 0, "leader")
+        first = Thread(requester(results), 0, "first")
         joiner = Thread(requester(results), 50, "joiner")
-        leader.Start()
+        first.Start()
         joiner.Start()
         Thread.Sleep(100)
-        leader.Abort()
-        leader.Join()
+        first.Abort()
+        first.Join()
+        results.append(("main", int(Controller.PowerState()), round(Controller.Timer(1), 6)))
         joiner.Join()
-        results.append(("main", int(Controller.PowerState()), 0.0))
-        Controller.PowerEnabled = True  # the sequencer is free again
-        results.append(("main", int(Controller.PowerState()), 0.0))
+        results.append(("main", int(Controller.PowerState()), round(Controller.Timer(1), 6)))
 
     assert sim.run_main(main) == []
-    assert results == [("joiner", -1046, 0.1), ("main", 7, 0.0), ("main", 20, 0.0)]
+    assert results == [("main", 8, 0.1), ("joiner", "on", 0.3), ("main", 20, 0.3)]
 
 
 @pytest.mark.parametrize("threads", [2, 4])
@@ -175,3 +178,28 @@ def test_concurrent_requests_on_the_real_clock(threads: int) -> None:
     assert sim.run_main(main) == []
     assert results == [20] * threads
     assert sim.controller.power_state == 20
+
+
+def test_a_suspended_requester_does_not_hold_up_the_power_up() -> None:
+    """The controller powers up, not the thread that asked first: suspending that thread leaves
+    the power-up (and the other requesters waiting for it) running to time."""
+    sim = Simulation(capture=True)
+    results: list[tuple[str, object, float]] = []
+    seen: list[int] = []
+
+    def main() -> None:
+        first = Thread(requester(results), 0, "first")
+        second = Thread(requester(results), 50, "second")
+        first.Start()
+        second.Start()
+        Thread.Sleep(100)
+        first.Suspend()
+        Thread.Sleep(900)
+        seen.append(int(Controller.PowerState()))
+        first.Resume()
+        first.Join()
+        second.Join()
+
+    assert sim.run_main(main) == []
+    assert seen == [20]
+    assert sorted(results) == [("first", "on", 1.0), ("second", "on", 0.3)]

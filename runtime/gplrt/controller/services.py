@@ -14,17 +14,20 @@ silent:
   and returns when power is on — the next statement (typically a homing) can rely on it.  It
   raises -1046 *Power not enabled* while a soft E-stop is set.  ``False`` drops to 7 at once.
   ``PowerEnabled`` reads True in every "on" state of gpl-dictionary §13.3.
-* The controller has one power sequencer (:class:`PowerSequence`, one per session).  A
-  ``PowerEnabled = True`` from a second thread while a power-up runs *joins* it (as concurrent
-  ``Robot.Home`` calls share one homing): it does not restart the sequence, and every requester
-  returns when the one sequence reaches 20 — on the virtual and the real clock (the decision to
-  lead or join is taken under a lock; the joiners wait on the sequence's ``WaitQueue``).
-* ``PowerEnabled = False`` (or ``SoftEStop = True``) while a power-up runs wins: power ends off
-  (7) and every thread waiting for that power-up raises — -1600 *Power off requested* for a
-  power-off request (listed for PowerEnabled in gpl-dictionary.md), -1046 for a soft E-stop.  A
-  ``True`` that arrives after such a cancel (the cancelled sequence has not noticed yet) waits for
-  it to end and starts a fresh power-up.  If the thread running the sequence is aborted, the
-  power-up is abandoned the same way (power back to 7; joiners raise -1046).
+* The controller has one power sequencer (:class:`PowerSequence`, one per session), and a
+  power-up is the controller's, not a thread's: its PowerState steps are clock callbacks
+  (``scheduler.call_at``), and the threads that asked for it only wait.  A ``PowerEnabled =
+  True`` while a power-up runs *joins* it (as concurrent ``Robot.Home`` calls share one homing)
+  rather than restarting it, and every requester returns when that power-up reaches 20 — on the
+  virtual and the real clock.  Suspending or aborting a requester (the first one included) only
+  stops that thread waiting; the power-up goes on for the others.  [P: the manuals are silent;
+  on a controller the amplifiers come up whatever the program thread that asked does.]
+* ``PowerEnabled = False`` (or ``SoftEStop = True``) while a power-up runs wins at once: power
+  is off (7) and every thread waiting for that power-up raises — -1600 *Power off requested* for
+  a power-off request (listed for PowerEnabled in gpl-dictionary.md), -1046 for a soft E-stop.
+  A ``True`` after that starts a fresh power-up.  The power-off and each power-up step are one
+  locked step each (``PowerSequence.lock``), so a power-off can never be overtaken by a step of
+  the power-up it ended (the real clock runs them on different threads).
 * ``PDb`` writes of the motion DataIDs that need power off (``NEEDS_POWER_OFF``) raise -1522
   *Cannot write value when power on* while power is on or coming up.
 * ``PowerState(mode)`` — the sequencer state (``mode`` accepted, ignored: undocumented).
@@ -84,18 +87,23 @@ NEEDS_POWER_OFF: frozenset[int] = frozenset({2700, 2701, 2702, 2703})
 
 
 @dataclass(eq=False)
+class PowerUp:
+    """One power-up in progress: the requesters who asked for it wait until ``outcome`` is set
+    (0: power came on; else the code they raise — -1600 power off requested, -1046 E-stop)."""
+
+    outcome: int | None = None
+
+
+@dataclass(eq=False)
 class PowerSequence:
     """The controller's one high-power sequencer (see the module docstring).
 
-    ``generation`` numbers the power-ups; ``finished`` is the last one that ended and
-    ``outcome`` how it ended (0 = power on, else the error code its requesters raise)."""
+    ``current`` is the power-up in progress, if any.  Every change of it, and every PowerState
+    step it makes, happens under ``lock``: a power-off request and a power-up step are never
+    interleaved (on the real clock either may run on any thread)."""
 
     lock: threading.Lock = field(default_factory=threading.Lock)
-    running: bool = False
-    cancel_code: int = 0  # non-zero: the running power-up was cancelled with this code
-    generation: int = 0
-    finished: int = 0
-    outcome: int = 0
+    current: PowerUp | None = None
     done: WaitQueue = field(default_factory=lambda: WaitQueue("power-up"))
 
 
@@ -150,8 +158,7 @@ class _ControllerClass:
     def PowerEnabled(self, value: Boolean) -> None:
         sim = _sim()
         if not value:
-            _cancel_power_up(sim, POWER_OFF_REQUESTED)
-            sim.controller.power_state = POWER_OFF_WAITING
+            _power_off(sim, POWER_OFF_REQUESTED)
             _power_dropped(sim)
             return
         _power_up(sim)
@@ -169,8 +176,7 @@ class _ControllerClass:
         state = sim.controller
         state.soft_estop = bool(value)
         if value:
-            _cancel_power_up(sim, POWER_NOT_ENABLED)
-            state.power_state = POWER_OFF_WAITING
+            _power_off(sim, POWER_NOT_ENABLED)
             _power_dropped(sim, SOFT_ESTOP)
 
     @property
@@ -270,70 +276,59 @@ class _ControllerClass:
 
 
 def _power_up(sim: Any) -> None:
-    """``PowerEnabled = True``: lead a power-up, or join the one in progress (module docstring)."""
+    """``PowerEnabled = True``: start a power-up or join the one in progress, and wait for it
+    (module docstring)."""
     state = sim.controller
-    seq = power_sequence(sim)
-    while True:
-        with seq.lock:
-            if state.power_state in POWER_ON_STATES:
-                return
-            if state.soft_estop:
-                raise GplException(POWER_NOT_ENABLED, detail="soft E-stop is set")
-            if not seq.running:
-                seq.running, seq.cancel_code = True, 0
-                seq.generation += 1
-                generation = seq.generation
-                state.power_state = POWER_ENABLING_AMPS
-                break
-            generation, doomed = seq.generation, seq.cancel_code != 0
-        _wait_for_power_up(sim, seq, generation)
-        if doomed:
-            continue  # it was cancelled before we asked: start a fresh power-up
-        if seq.outcome:
-            raise GplException(seq.outcome, detail="the power-up this request joined was interrupted")
-        return
-    _run_power_up(sim, seq, generation)
-
-
-def _wait_for_power_up(sim: Any, seq: PowerSequence, generation: int) -> None:
-    """Block (on the active clock) until power-up ``generation`` has ended."""
-    ended = lambda: seq.finished >= generation  # noqa: E731 - read under the scheduler lock
-    while not ended():
-        sim.scheduler.wait(seq.done, None, ended)
-
-
-def _run_power_up(sim: Any, seq: PowerSequence, generation: int) -> None:
-    """Walk PowerState 8 → 10 → 20 over ``power_up_time``; the requesters who joined meanwhile
-    are told the outcome when it ends, however it ends (an Abort of this thread included)."""
-    state = sim.controller
-    outcome = POWER_NOT_ENABLED  # until it completes: an exception or Abort abandons it
-    try:
-        step = state.power_up_time / 2.0
-        for phase in (POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS):
-            state.power_state = phase
-            sim.scheduler.sleep(step)
-            if seq.cancel_code or state.power_state != phase:  # power-off / E-stop meanwhile
-                outcome = seq.cancel_code or POWER_NOT_ENABLED
-                raise GplException(outcome, detail="power-up interrupted")
-        state.power_state = POWER_READY
-        _power_ready(sim)
-        outcome = 0
-    finally:
-        with seq.lock:
-            if outcome and state.power_state in POWER_COMING_UP_STATES:
-                state.power_state = POWER_OFF_WAITING  # abandoned half-way: the amplifiers go off
-            seq.running = False
-            seq.outcome = outcome
-            seq.finished = generation
-        sim.scheduler.notify_all(seq.done)
-
-
-def _cancel_power_up(sim: Any, code: int) -> None:
-    """A power-off request or soft E-stop: the power-up in progress (if any) ends with ``code``."""
     seq = power_sequence(sim)
     with seq.lock:
-        if seq.running and not seq.cancel_code:
-            seq.cancel_code = code
+        if state.power_state in POWER_ON_STATES:
+            return
+        if state.soft_estop:
+            raise GplException(POWER_NOT_ENABLED, detail="soft E-stop is set")
+        power_up = seq.current
+        started = power_up is None
+        if power_up is None:
+            power_up = seq.current = PowerUp()
+            state.power_state = POWER_ENABLING_AMPS
+    if started:
+        # Scheduled outside ``seq.lock``: a timer callback runs under the scheduler's lock and
+        # then takes ``seq.lock``, so ``seq.lock`` is never held while taking the scheduler's.
+        t0, step = sim.scheduler.clock.now(), state.power_up_time / 2.0
+        sim.scheduler.call_at(t0 + step, lambda: _power_step(sim, seq, power_up, POWER_ENABLING_SERVOS))
+        sim.scheduler.call_at(t0 + 2 * step, lambda: _power_step(sim, seq, power_up, POWER_READY))
+    ended = lambda: power_up.outcome is not None  # noqa: E731 - tested under the scheduler lock
+    while not ended():
+        sim.scheduler.wait(seq.done, None, ended)
+    if power_up.outcome:
+        raise GplException(power_up.outcome, detail="the power-up was interrupted")
+
+
+def _power_step(sim: Any, seq: PowerSequence, power_up: PowerUp, phase: int) -> None:
+    """A timer callback of ``power_up``: PowerState moves to ``phase``; at ``POWER_READY`` the
+    power-up ends and its requesters return.  A power-up that was ended meanwhile (power off,
+    E-stop) is no longer ``seq.current`` and its steps do nothing."""
+    with seq.lock:
+        if seq.current is not power_up:
+            return
+        sim.controller.power_state = phase
+        if phase != POWER_READY:
+            return
+        _power_ready(sim)
+        power_up.outcome, seq.current = 0, None
+    sim.scheduler.notify_all(seq.done)
+
+
+def _power_off(sim: Any, code: int) -> None:
+    """A power-off request or soft E-stop: PowerState 7, and the power-up in progress (if any)
+    ends now — its requesters raise ``code``.  One step under ``seq.lock`` (see PowerSequence)."""
+    seq = power_sequence(sim)
+    with seq.lock:
+        sim.controller.power_state = POWER_OFF_WAITING
+        power_up, seq.current = seq.current, None
+        if power_up is not None:
+            power_up.outcome = code
+    if power_up is not None:
+        sim.scheduler.notify_all(seq.done)
 
 
 def _power_dropped(sim: Any, code: int = POWER_NOT_ENABLED) -> None:
