@@ -40,17 +40,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import AXIS_OVER_SPEED, SOFT_ENVELOPE_ERROR, GplException
 from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
 from gplrt.motion.planner import Plan
 from gplrt.motion.straight import Path, PathIK, PathJoints
 
 #: Trajectory cycle (s): the standard 62.5 Hz of the trajectory generator.
 CYCLE = 0.016
-#: The error codes of a joint faster than its maximum speed, or accelerated harder than its
-#: maximum, mid-path (``PathRun._check_rates``).
-AXIS_OVER_SPEED = -3106
-SOFT_ENVELOPE_ERROR = -3122
 #: The last cycle before a motion's end is at least this far (s) from it (``run_to``).
 END_GAP = CYCLE / 4
 #: Relative tolerance on the over-speed check (finite differences over one cycle).

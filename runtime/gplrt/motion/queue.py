@@ -30,7 +30,7 @@ import numpy as np
 from gplrt.motion.limits import Vec
 from gplrt.motion.planner import Plan
 from gplrt.motion.profile import Profile
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import AXIS_OVER_SPEED, GplException
 from gplrt.motion.path_run import PathRun
 
 #: A Profile's values, taken when a motion is queued (cheaper than a Clone on every Move).
@@ -264,7 +264,7 @@ class MotionQueue:
                     if seg is history[-1]:
                         seg.q_end = run.final.copy()  # nothing was planned from the other turn yet
                     else:  # the next motion starts a whole turn away: the servo cannot follow
-                        err = GplException(-3106, axis=int(np.flatnonzero(run.final != seg.q_end)[0]) + 1,
+                        err = GplException(AXIS_OVER_SPEED, axis=int(np.flatnonzero(run.final != seg.q_end)[0]) + 1,
                                            detail="the path ends a whole turn away from the next motion's start")
                         q_stop = run.qs[-2].copy()
                         t_stop = seg.t0 + run.ts[-2]
