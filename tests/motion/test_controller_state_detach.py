@@ -4,7 +4,6 @@ moves still releases it (the controller's clean-up, not a GPL detach)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -21,16 +20,6 @@ from gpltest import code_of, module_src, run_gpl
 
 FAR = Location.from_angles((1100.0, 10.0, 90.0, 0.0, 100.0))
 NEAR = Location.from_angles((300.0, 10.0, 90.0, 0.0, 100.0))
-
-
-@pytest.fixture
-def sim() -> Iterator[Simulation]:
-    s = Simulation(capture=True)
-    with s:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.Home()
-        yield s
 
 
 def test_detach_while_moving_raises_1008_and_keeps_the_robot_attached(sim: Simulation) -> None:
@@ -81,21 +70,16 @@ def test_detach_just_after_the_motion_ends_works(sim: Simulation) -> None:
     assert Robot.Attached == 0
 
 
-def test_attaching_another_robot_while_the_first_moves_is_refused() -> None:
-    s = Simulation(robot="XYZT-GCU", capture=True)
-    with s:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.HomeAll()
-        target = Robot.WhereAngles()
-        vals = list(target.axis_values())
-        vals[0] += 200.0
-        Move.Loc(Location.from_angles(vals), Profile())
-        assert code_of(setattr, Robot, "Attached", 2) == -1008
-        assert Robot.Attached == 1 and s.robots[2].owner is None
-        Move.WaitForEOM()
-        Robot.Attached = 2
-        assert Robot.Attached == 2 and s.robots[1].owner is None
+@pytest.mark.parametrize("sim", ["XYZT-GCU"], indirect=True)  # a gantry and a second robot
+def test_attaching_another_robot_while_the_first_moves_is_refused(sim: Simulation) -> None:
+    vals = list(Robot.WhereAngles().axis_values())
+    vals[0] += 200.0
+    Move.Loc(Location.from_angles(vals), Profile())
+    assert code_of(setattr, Robot, "Attached", 2) == -1008
+    assert Robot.Attached == 1 and sim.robots[2].owner is None
+    Move.WaitForEOM()
+    Robot.Attached = 2
+    assert Robot.Attached == 2 and sim.robots[1].owner is None
 
 
 @pytest.mark.parametrize("abort", [False, True])

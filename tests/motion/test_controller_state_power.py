@@ -131,28 +131,6 @@ def test_soft_estop_during_a_power_up_fails_it_with_1046() -> None:
     assert sim.controller.power_state == 7
 
 
-def test_aborting_the_first_requester_does_not_abandon_the_power_up() -> None:
-    """Only the aborted thread stops waiting: the power-up it started is the controller's, and
-    the other requester returns when it completes."""
-    sim = Simulation(capture=True)
-    results: list[tuple[str, object, float]] = []
-
-    def main() -> None:
-        first = Thread(requester(results), 0, "first")
-        joiner = Thread(requester(results), 50, "joiner")
-        first.Start()
-        joiner.Start()
-        Thread.Sleep(100)
-        first.Abort()
-        first.Join()
-        results.append(("main", int(Controller.PowerState()), round(Controller.Timer(1), 6)))
-        joiner.Join()
-        results.append(("main", int(Controller.PowerState()), round(Controller.Timer(1), 6)))
-
-    assert sim.run_main(main) == []
-    assert results == [("main", 8, 0.1), ("joiner", "on", 0.3), ("main", 20, 0.3)]
-
-
 @pytest.mark.parametrize("threads", [2, 4])
 def test_concurrent_requests_on_the_real_clock(threads: int) -> None:
     sim = Simulation(clock="real", speed=10.0, capture=True)  # power-up: 0.03 s of wall time
@@ -180,26 +158,27 @@ def test_concurrent_requests_on_the_real_clock(threads: int) -> None:
     assert sim.controller.power_state == 20
 
 
-def test_a_suspended_requester_does_not_hold_up_the_power_up() -> None:
-    """The controller powers up, not the thread that asked first: suspending that thread leaves
-    the power-up (and the other requesters waiting for it) running to time."""
+@pytest.mark.parametrize("interrupt", ["Suspend", "Abort"])
+def test_interrupting_the_first_requester_does_not_hold_up_the_power_up(interrupt: str) -> None:
+    """The power-up is the controller's, not the thread's that asked first: suspending or
+    aborting that thread only stops it waiting, and the power-up runs to time for the others."""
     sim = Simulation(capture=True)
     results: list[tuple[str, object, float]] = []
-    seen: list[int] = []
 
     def main() -> None:
         first = Thread(requester(results), 0, "first")
-        second = Thread(requester(results), 50, "second")
+        joiner = Thread(requester(results), 50, "joiner")
         first.Start()
-        second.Start()
+        joiner.Start()
         Thread.Sleep(100)
-        first.Suspend()
+        getattr(first, interrupt)()
         Thread.Sleep(900)
-        seen.append(int(Controller.PowerState()))
-        first.Resume()
+        results.append(("main", int(Controller.PowerState()), round(Controller.Timer(1), 6)))
+        if interrupt == "Suspend":
+            first.Resume()  # it returns now: power is on
         first.Join()
-        second.Join()
+        joiner.Join()
 
     assert sim.run_main(main) == []
-    assert seen == [20]
-    assert sorted(results) == [("first", "on", 1.0), ("second", "on", 0.3)]
+    first_result = [("first", "on", 1.0)] if interrupt == "Suspend" else []
+    assert sorted(results) == [*first_result, ("joiner", "on", 0.3), ("main", 20, 1.0)]
