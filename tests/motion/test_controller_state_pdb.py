@@ -165,7 +165,7 @@ def test_a_motion_queued_before_the_write_keeps_its_plan() -> None:
         assert Robot.WhereAngles().axis_values() == GOAL.axis_values()
 
 
-def test_other_robots_and_other_data_ids_are_untouched() -> None:
+def test_a_write_to_a_data_id_the_limits_do_not_read_keeps_their_memo() -> None:
     s = Simulation(capture=True)
     with s:
         ready()
@@ -213,3 +213,15 @@ def test_a_database_shared_by_sessions_does_not_keep_a_finished_session_alive() 
             Controller.set_PDbNum(2704, 40.0)  # still reaches the live session's robot
             assert second.robots[1].limits.max_speed_pct == 40.0
             assert len(db.listeners) == 1  # the dropped session's listener went with it
+
+
+def test_a_write_for_one_robot_reloads_that_robot_only() -> None:
+    s = Simulation(robot="XYZT-GCU", capture=True)  # robot 2 (the gripper) has no 2704 shipped
+    with s:
+        registry.pdb_of(s).define(2704, [150.0], unit=2)
+        first, second = registry.robot_of(s, 1), registry.robot_of(s, 2)
+        lim = first.limits.joint_limits(fast(), 100.0)
+        Controller.set_PDbNum(2704, 2, 1, 1, 40.0)  # robot 2's Max %speed
+        assert second.limits.max_speed_pct == 40.0
+        assert first.limits.max_speed_pct != 40.0
+        assert first.limits.joint_limits(fast(), 100.0) is lim

@@ -23,7 +23,7 @@ one jerk per axis, so the smaller of the two is used (a ramp of 0 means no jerk 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 from numpy.typing import NDArray
@@ -123,12 +123,8 @@ class RobotLimits:
         """Reread the DataIDs after a parameter-database write, in place (whoever holds these
         limits sees the new values), and forget the memoised ``joint_limits``/``path_limits`` results."""
         fresh = RobotLimits.from_pdb(pdb, robot, n)
-        for name in ("joint_speed", "joint_accel", "cart_speed", "cart_accel", "max_speed_pct",
-                     "max_accel_pct", "max_decel_pct", "rapid_decel_pct", "settle_time"):
-            setattr(self, name, getattr(fresh, name))
-        self._joint_cache.clear()
-        self._path_cache.clear()
-        self._hard = None
+        for f in fields(self):  # every value read from the database; the memos start empty
+            setattr(self, f.name, getattr(fresh, f.name))
 
     @property
     def max_joint_speed(self) -> Vec:
