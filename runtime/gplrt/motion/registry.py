@@ -163,11 +163,14 @@ def robot_moving(robot: Any, t: float) -> bool:
     its InRange settling or a Move.Delay dwell: what ``Robot.TrajState`` reports as non-zero).
 
     Path motions run their cycles up to ``t`` first, so one that stopped on a mid-path fault
-    counts as stopped where it stopped."""
+    counts as stopped where it stopped.  That changes the queue, so it holds the robot's lock as
+    the state readers do (RobotState.joints_at): under the real clock another thread may be
+    reading or queueing on the same robot."""
     queue = robot.queue
-    if queue.paths_pending:
-        queue.advance(t)
-    return bool(queue.pending(t))
+    with robot.lock:
+        if queue.paths_pending:
+            queue.advance(t)
+        return bool(queue.pending(t))
 
 
 def power_on(s: Any) -> bool:
