@@ -5,7 +5,6 @@ moves still releases it (the controller's clean-up, not a GPL detach)."""
 from __future__ import annotations
 
 import threading
-import time
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +17,7 @@ from gplrt.motion import registry
 from gplrt.motion.move import Move
 from gplrt.motion.path_run import PathRun
 from gplrt.motion.profile import Profile
+from gplrt.motion.robot import RobotState
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 from gplrt.threads.thread import Thread
@@ -146,29 +146,11 @@ def test_a_transpiled_program_catches_1008(tmp_path: Path) -> None:
     assert result.status == 0
 
 
-def test_the_moving_check_and_a_reader_run_a_line_s_cycles_once(sim: Simulation,
-                                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+def test_the_moving_check_and_a_reader_run_a_line_s_cycles_once(slow_line: tuple[RobotState, PathRun, float]) -> None:
     """The -1008 check runs the path cycles up to now (registry.robot_moving): under the real
     clock another thread may read the robot at that moment, so it takes the robot's lock as the
-    readers do (tests/motion/test_path_readers.py)."""
-    Move.Loc(NEAR, Profile())
-    Move.WaitForEOM()
-    goal = Robot.Where()
-    goal.XYZ(goal.X + 150.0, goal.Y - 100.0, goal.Z - 50.0, goal.Yaw, 90.0, 180.0)
-    line = Profile()
-    line.Straight = True
-    Move.Loc(goal, line)
-    robot = sim.robots[1]
-    seg = robot.queue.last
-    run = seg.path_joints
-    solve = PathRun._solve
-
-    def slow_solve(self: PathRun, times: list[float]) -> object:
-        time.sleep(0.05)  # widen the window in which the other thread could start the same cycles
-        return solve(self, times)
-
-    monkeypatch.setattr(PathRun, "_solve", slow_solve)
-    t_end = seg.t0 + seg.duration
+    readers do."""
+    robot, run, t_end = slow_line
     workers = [threading.Thread(target=registry.robot_moving, args=(robot, t_end)),
                threading.Thread(target=robot.joints_at, args=(t_end,))]
     for w in workers:
