@@ -38,6 +38,11 @@ Decisions where the manuals are silent (documented per the team rules):
 * No arithmetic operators: the manuals define none on Locations (composition is only ``Mul``,
   inversion only ``Inverse``; gpl-classes.md §5.2), so ``loc1 * loc2`` is deliberately a Python
   TypeError that the transpiler's type check reports before run time.
+* A pose computed by arithmetic (Mul, Inverse, Pos through frames or pallets, XYZInc, Here3,
+  Distance) that leaves the Double range is -710 *Arithmetic overflow*, as for ``*`` on Doubles
+  (``gplrt.lang.operators``), and the Location is left unchanged; the manuals name no other code.
+  NaN results are -710 as well (they come from overflowed intermediates: operands are finite,
+  since setters and ``from_pose`` reject NaN/inf input with -708).
 * ``Config`` is stored as given; the kinematics provider interprets the bits (contradictory pairs
   such as Righty|Lefty are its business, the controller's behaviour being unconfirmed).
 """
@@ -51,10 +56,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from gplrt.geometry import transforms as tf
-from gplrt.geometry._checks import boolean, finite, in_range, text, to_integer, wrong_object
+from gplrt.geometry._checks import boolean, finite, finite_pose, in_range, text, to_integer, valid_pose, wrong_object
 from gplrt.geometry.kinematics_provider import get_kinematics_provider
 from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
 from gplrt.lang.errors import (
+    ARITHMETIC_OVERFLOW,
     FRAME_UNDEFINED_DATA,
     NOTHING_VALUE,
     NOT_ANGLES,
@@ -75,6 +81,9 @@ MAX_AXES = 12
 NO_CLEARANCE = 1.0e32
 #: Frame chains deeper than this are taken to be loops (-770).
 MAX_FRAME_DEPTH = 64
+#: Here3 scales difference vectors longer than this before its cross product (which would overflow
+#: near the square root of the Double limit, ~1e154).
+_HERE3_SCALE_ABOVE = 2.0**500
 
 
 class Location:
@@ -101,9 +110,10 @@ class Location:
 
     @classmethod
     def from_pose(cls, pose: Pose, ref: RefFrame | None = None) -> Location:
-        """A Cartesian Location whose PosWrtRef is ``pose`` (a 12-float tuple)."""
+        """A Cartesian Location whose PosWrtRef is ``pose`` (a 12-float tuple); a NaN or infinite
+        component is -708, so that Location arithmetic only ever sees finite operands."""
         loc = object.__new__(cls)
-        loc._pose = pose
+        loc._pose = valid_pose(pose, "pose")
         loc._ypr = None
         if ref is not None:
             loc._ref = ref
@@ -136,7 +146,7 @@ class Location:
             return self._pose
         if depth > MAX_FRAME_DEPTH:
             raise GplException(FRAME_UNDEFINED_DATA, detail="reference frames form a loop")
-        return pose_mul(ref._total_pose(depth + 1), self._pose)
+        return finite_pose(pose_mul(ref._total_pose(depth + 1), self._pose), "Pos")
 
     @property
     def pose_wrt_ref(self) -> Pose:
@@ -163,6 +173,8 @@ class Location:
         if self._zworld:
             p = t[:11] + (self._zclear,)
         else:
+            # No overflow check: |ZClearance| < 1e32 is far below one unit in the last place of a
+            # coordinate near the Double limit, so the retraction cannot leave the range.
             p = tf.pose_translate(t, 0.0, 0.0, -self._zclear)
         res = Location.from_pose(p)  # type: ignore[arg-type]
         res._config = self._config
@@ -355,7 +367,7 @@ class Location:
         self._need_cartesian("XYZInc")
         p = self._pose
         dx, dy, dz = finite(X, "X"), finite(Y, "Y"), finite(Z, "Z")
-        self._pose = p[:9] + (p[9] + dx, p[10] + dy, p[11] + dz)  # type: ignore[assignment]
+        self._pose = finite_pose(p[:9] + (p[9] + dx, p[10] + dy, p[11] + dz), "XYZInc")  # type: ignore[assignment]
 
     @staticmethod
     def XYZValue(
@@ -434,7 +446,7 @@ class Location:
                 self._pose = target
                 self._ypr = value._ypr if value._ref is None else None
             else:
-                self._pose = tf.pose_mul(tf.pose_inv(self._ref._total_pose(1)), target)
+                self._pose = finite_pose(tf.pose_mul(tf.pose_inv(self._ref._total_pose(1)), target), "Pos")
                 self._ypr = None
         else:
             if value._type != ANGLES:
@@ -477,7 +489,7 @@ class Location:
         res = object.__new__(Location)
         d = res.__dict__
         d.update(self.__dict__)
-        d["_pose"] = pose_mul(self._pose, b)
+        d["_pose"] = finite_pose(pose_mul(self._pose, b), "Mul")
         d["_ypr"] = None
         return res
 
@@ -490,10 +502,10 @@ class Location:
         d.update(self.__dict__)
         a = self._pose if self._ref is None else self._total_pose(0)
         a11, a12, a13, a21, a22, a23, a31, a32, a33, x, y, z = a
-        d["_pose"] = (
+        d["_pose"] = finite_pose((
             a11, a21, a31, a12, a22, a32, a13, a23, a33,
             -(a11 * x + a21 * y + a31 * z), -(a12 * x + a22 * y + a32 * z), -(a13 * x + a23 * y + a33 * z),
-        )  # fmt: skip
+        ), "Inverse")  # fmt: skip
         d["_ypr"] = None
         d.pop("_ref", None)
         return res
@@ -506,7 +518,12 @@ class Location:
                 raise wrong_object(arg, f"Distance argument {i}", "Location")
         a = Location1.total_pose()
         b = Location2.total_pose()
-        return math.sqrt((a[9] - b[9]) ** 2 + (a[10] - b[10]) ** 2 + (a[11] - b[11]) ** 2)  # type: ignore[return-value]
+        # math.dist scales instead of squaring, so far-apart points (1e200 mm) do not overflow a
+        # square that the distance itself fits; a distance beyond the range is -710.
+        d = math.dist(a[9:], b[9:])
+        if d == math.inf:
+            raise GplException(ARITHMETIC_OVERFLOW, detail="Distance overflows a Double")
+        return d  # type: ignore[return-value]
 
     def Normalize(self) -> None:
         """Remove numerical drift from the rotation of PosWrtRef (re-orthonormalise it).
@@ -535,12 +552,25 @@ class Location:
                 raise wrong_object(p, f"Here3 argument {i}", "Location")
         self._need_cartesian("Here3")
         o, px, pxy = (p.total_pose()[9:] for p in (Location0, LocationX, LocationXY))
-        xv = [px[i] - o[i] for i in range(3)]
-        nx = math.sqrt(sum(c * c for c in xv))
-        v = [pxy[i] - o[i] for i in range(3)]
+        # Differences of points beyond the Double range are -710; norms by hypot, which scales
+        # instead of squaring (points 1e200 mm apart are representable, their squares are not).
+        # Differences of points beyond the Double range are -710.  Differences so large that their
+        # cross product would overflow (points 1e200 mm apart) are first scaled by an exact power of
+        # two - the axes need only directions - and the collinearity test is made on the unscaled
+        # lengths; ordinary points are not scaled, so their result is unchanged to the last bit.
+        xv = finite_pose(tuple(px[i] - o[i] for i in range(3)), "Here3")
+        v = finite_pose(tuple(pxy[i] - o[i] for i in range(3)), "Here3")
+        big = max(map(abs, xv + v))
+        scale = 1.0
+        if big > _HERE3_SCALE_ABOVE:
+            scale = 2.0 ** -math.frexp(big)[1]
+            xv = tuple(c * scale for c in xv)
+            v = tuple(c * scale for c in v)
+        nx = math.hypot(*xv)
         zv = [xv[1] * v[2] - xv[2] * v[1], xv[2] * v[0] - xv[0] * v[2], xv[0] * v[1] - xv[1] * v[0]]
-        nz = math.sqrt(sum(c * c for c in zv))
-        if nx < 1e-9 or nz < 1e-9 * max(nx, 1.0):
+        nz = math.hypot(*zv)
+        limit = 1e-9 * max(nx, 1.0) if scale == 1.0 else 1e-9 * nx * scale  # scaled: true nx > 1
+        if nx < 1e-9 * scale or nz < limit:
             raise GplException(VALUE_OUT_OF_RANGE, detail="Here3 points are coincident or collinear")
         xv = [c / nx for c in xv]
         zv = [c / nz for c in zv]

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 
 from gplrt.geometry import location as _location_module
 from gplrt.geometry import transforms as tf
-from gplrt.geometry._checks import finite, in_range, not_nothing, text, to_integer, wrong_object
+from gplrt.geometry._checks import finite, finite_pose, in_range, not_nothing, text, to_integer, wrong_object
 from gplrt.geometry.location import CARTESIAN, MAX_FRAME_DEPTH, Location
 from gplrt.geometry.transforms import IDENTITY, Pose
 from gplrt.lang.errors import (CONVEYOR_MUST_BE_BASE, FRAME_UNDEFINED_DATA, FRAME_WRONG_TYPE, NOT_CARTESIAN,
@@ -276,7 +276,8 @@ class RefFrame:
 
     def _cell(self, p: Pose) -> Pose:
         i, s = self._index, self._pitch
-        return tf.pose_translate(p, (i[0] - 1) * s[0], (i[1] - 1) * s[1], (i[2] - 1) * s[2])
+        step = (i[0] - 1) * s[0], (i[1] - 1) * s[1], (i[2] - 1) * s[2]
+        return finite_pose(tf.pose_translate(p, *step), "pallet position")
 
     # -- conveyor members ------------------------------------------------------------------------
 
@@ -327,7 +328,7 @@ class RefFrame:
                 break
             if frame._type == CONVEYOR:
                 c = frame._conveyor()
-                along = tf.pose_mul(tf.pose_inv(c.nominal), total)[9]
+                along = finite_pose(tf.pose_mul(tf.pose_inv(c.nominal), total), "ConveyorLimit")[9]
                 return c.downstream_limit - along if mode == 0 else along - c.upstream_limit
             nxt = frame._loc
             frame = nxt._ref if nxt is not None else None
@@ -354,7 +355,7 @@ class RefFrame:
                 raise GplException(CONVEYOR_MUST_BE_BASE,
                                    detail="a conveyor frame's Loc has a RefFrame: conveyors are base frames")
             c = self._conveyor()
-            return tf.pose_translate(c.nominal, self._belt_travel(), 0.0, 0.0)
+            return finite_pose(tf.pose_translate(c.nominal, self._belt_travel(), 0.0, 0.0), "conveyor position")
         p = self._origin()._total_pose(depth + 1)
         if t == PALLET:
             p = self._cell(p)
