@@ -104,17 +104,24 @@ class _RobotClass:
         mine = registry.attached_robot(s, key)
         if n == 0:
             if mine is not None:
-                _check_not_moving(mine)
-                mine.owner = None
+                with mine.lock:
+                    _check_not_moving(mine)
+                    mine.owner = None
             registry.refresh_power_state(s)
             return
         robot = registry.robot_of(s, n)
-        if robot.owner is not None and robot.owner is not key:
-            raise GplException(ROBOT_ALREADY_ATTACHED, robot_num=n, detail=f"robot {n} is attached by another thread")
-        if mine is not None and mine is not robot:
-            _check_not_moving(mine)
-            mine.owner = None
-        robot.owner = key
+        # The test of the owner and its setting are one step: under the real clock two threads
+        # attaching a free robot at once would otherwise both get it.  (Only the thread that
+        # owns ``mine`` takes its lock inside this one, so the nesting cannot deadlock.)
+        with robot.lock:
+            if robot.owner is not None and robot.owner is not key:
+                raise GplException(ROBOT_ALREADY_ATTACHED, robot_num=n,
+                                   detail=f"robot {n} is attached by another thread")
+            if mine is not None and mine is not robot:
+                with mine.lock:
+                    _check_not_moving(mine)
+                    mine.owner = None
+            robot.owner = key
         registry.set_selected(s, n)
         registry.refresh_power_state(s)
 
