@@ -40,6 +40,7 @@ import array
 import errno
 import fcntl
 import os
+import re
 import select
 import socket as _socket
 import termios
@@ -111,11 +112,38 @@ def _os_error(exc: OSError, what: str) -> GplException:
     return GplException(NO_CONNECTION, detail=f"{what}: {exc}")
 
 
+_DOTTED_QUAD = re.compile(r"(\d{1,3})\.(\d{1,3})\.(\d{1,3})\.(\d{1,3})", re.ASCII)
+
+
+def _dotted_quad(text: str) -> str:
+    """``text`` as a canonical dotted-quad IPv4 address ("" for blank), else -1704.
+
+    Exactly four decimal parts of one to three ASCII digits, each 0..255; blanks around the
+    address are ignored (as they always were).  Not ``inet_aton``, which also takes the historic
+    short forms ("1.2.3" is 1.2.0.3), hex and octal parts and anything after a space: a program
+    that wrote those meant something else, and a controller rejects them.  Leading zeros are
+    decimal and dropped ("192.168.000.010" is stored as "192.168.0.10"), so the address the
+    socket reaches is the one the program wrote, not inet_aton's octal reading of it.
+    """
+    text = text.strip()
+    if not text:
+        return ""
+    match = _DOTTED_QUAD.fullmatch(text)
+    parts = [int(p) for p in match.groups()] if match else []
+    if not parts or max(parts) > 255:
+        raise GplException(INVALID_ADDRESS, detail=f"{text!r} is not a dotted IPv4 address (n.n.n.n, each 0-255)")
+    return ".".join(map(str, parts))
+
+
 class IPEndPoint:
     """``New IPEndPoint(ip [, port])``: an IP address (dotted quad text) and a port.
 
     ``""`` means "any address"; an omitted port is 0 (for a UDP/TCP local endpoint: any port; for
     Modbus: the standard port 502).
+
+    Decision (the manual is silent on the accepted text; every example is a dotted quad, and no
+    GPL member resolves names): only a dotted-quad IPv4 address is accepted (``_dotted_quad``);
+    host names ("localhost") and IPv6 were already -1704 *Invalid network address* and stay so.
     """
 
     def __init__(self, ip: String = String(""), port: Integer = Integer(0)) -> None:
@@ -130,13 +158,7 @@ class IPEndPoint:
 
     @IPAddress.setter
     def IPAddress(self, value: String) -> None:
-        text = str(value).strip()
-        if text:
-            try:
-                _socket.inet_aton(text)
-            except OSError:
-                raise GplException(INVALID_ADDRESS, detail=f"{text!r} is not a dotted IP address") from None
-        self._ip = text
+        self._ip = _dotted_quad(str(value))
 
     @property
     def Port(self) -> Integer:
