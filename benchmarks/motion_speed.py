@@ -2,18 +2,21 @@
 
 Printed figures (all measured in this one run, on this machine):
 
-1. ``Move.Loc`` planning time per call (joint-interpolated, and straight-line) against a bare
-   ``Ruckig.calculate`` for the same number of axes (5, a PF400SX) — target <= 3x.  The bare call
-   gets exactly the Ruckig input Move.Loc produces (the robot's limits at the Profile's
-   percentages, the same start and target joints), so the ratio is the cost of everything
-   Move.Loc adds: the attach/power/homed checks, the joint-limit check, the Profile scaling, the
-   queue bookkeeping.  A straight line does what the controller does when it plans one (gpl-classes
-   §22.4): the destination's IK (an unreachable destination is refused at once) and a 1-DOF Ruckig
-   profile of the path parameter; its joints are solved cycle by cycle while it runs
-   (motion/path_run.py).  It is compared with a bare 1-axis ``Ruckig.calculate`` fed the very
-   input its plan used (the path limits Move.Loc derived, recorded per goal in a first pass).
-   For honesty the run also prints what executing each line costs (every 16 ms cycle solved,
-   up to its end: what WaitForEOM pays).
+1. ``Move.Loc`` planning time per call against a bare ``Ruckig.calculate`` of as many axes as
+   the robot has (5, a PF400SX) — target <= 3x — for three kinds of move, each planned from
+   rest at the previous call's goal:
+
+   * joint-interpolated to an Angles Location: the bare call gets exactly the Ruckig input
+     Move.Loc produces (the robot's limits at the Profile's percentages, the same start and
+     target joints), so the ratio is the cost of everything Move.Loc adds — the attach, power
+     and homed checks, the joint-limit check, the Profile scaling, the queue bookkeeping;
+   * joint-interpolated to the same goals as Cartesian Locations: all that plus their IK;
+   * straight line to a Cartesian Location: what the controller does when it plans one
+     (gpl-classes §22.4) — the destination's IK (an unreachable destination is refused at once)
+     and a 1-DOF Ruckig profile of the path parameter; its joints are solved cycle by cycle while
+     it runs (motion/path_run.py).  For reference the run also prints a bare 1-axis
+     ``Ruckig.calculate`` fed the very inputs those plans used, and what executing each line to
+     its end costs (every 16 ms cycle solved: what WaitForEOM pays).
 2. The virtual-time factor of a 200-move pick-and-place program run through the Python API on a
    GPL thread: simulated controller seconds per wall-clock second — target >= 1,000x.
 
