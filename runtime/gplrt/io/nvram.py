@@ -7,6 +7,14 @@ unless it was created with ``-wrap``, in which case the oldest records are dropp
 fits.  EX-27 and EX-28 are the test oracles: ``WriteLine("Record n")`` with the default
 ``AutoFlush = True`` writes one record of 10-11 bytes including CR-LF.
 
+Damage (the manual describes none; decided from its power-fail model, D0:4004-4007, 4068-4073):
+records are written atomically, "the data actively being written may be lost" and the complete
+records never are.  So a host file whose last record is cut short (a copy interrupted, a disk that
+filled) is read as that model reads it: its complete records, the partial one dropped rather than
+returned as data.  The loss is posted to the controller's error log (-519, ``_report_lost_record``)
+and the host file is rewritten without it, so the report comes once and later writes follow the
+last complete record.  Anything no controller could have written is -519 *Invalid file format*.
+
 Host format (private to this module): ``b"GPLNV"``, size (2 bytes, big-endian), wrap flag
 (1 byte), then each record as one length byte followed by its data.  Only file names ``file1`` ..
 ``file16`` exist (D0:4037-4040).
@@ -107,19 +115,39 @@ class NvramFile:
 
     @classmethod
     def load(cls, host: Path) -> NvramFile:
+        """Read the host file; a cut-off last record is dropped and reported (module docstring).
+
+        Anything else a controller could not have written (a bad or short header, a size outside
+        4..7872, a wrap flag other than 0/1, records beyond the size) is -519 *Invalid file format*
+        and the host file is left as it is.
+        """
         raw = host.read_bytes()
-        if not raw.startswith(MAGIC) or len(raw) < len(MAGIC) + 3:
+        header = len(MAGIC) + 3
+        if not raw.startswith(MAGIC) or len(raw) < header:
             raise GplException(INVALID_FILE_FORMAT, detail=f"{host.name} is not an NVRAM file")
-        pos = len(MAGIC)
-        size = int.from_bytes(raw[pos : pos + 2], "big")
-        wrap = bool(raw[pos + 2])
-        pos += 3
-        records: list[bytes] = []
+        size = int.from_bytes(raw[len(MAGIC) : len(MAGIC) + 2], "big")
+        wrap_flag = raw[header - 1]
+        if not MIN_SIZE <= size <= MAX_SIZE or wrap_flag > 1:
+            raise GplException(INVALID_FILE_FORMAT, detail=f"{host.name}: damaged NVRAM header")
+        nv = cls(size, bool(wrap_flag))
+        pos = header
         while pos < len(raw):
             length = raw[pos]
-            records.append(raw[pos + 1 : pos + 1 + length])
+            if pos + 1 + length > len(raw):
+                nv._check_capacity(host)
+                _report_lost_record(host, length, len(raw) - pos - 1)
+                nv.save(host)  # repaired: the next write follows the last complete record
+                return nv
+            nv.records.append(raw[pos + 1 : pos + 1 + length])
             pos += 1 + length
-        return cls(size, wrap, records)
+        nv._check_capacity(host)
+        return nv
+
+    def _check_capacity(self, host: Path) -> None:
+        if self.used > self.size:
+            raise GplException(
+                INVALID_FILE_FORMAT, detail=f"{host.name}: {self.used} bytes of records in a file of {self.size}"
+            )
 
     def save(self, host: Path) -> None:
         out = bytearray(MAGIC)
@@ -131,6 +159,25 @@ class NvramFile:
         tmp = host.with_name("." + host.name + ".new")  # a leading dot: never a controller name
         tmp.write_bytes(bytes(out))
         tmp.replace(host)  # atomic, like the controller's record writes
+
+
+def _report_lost_record(host: Path, length: int, present: int) -> None:
+    """Post the lost record to the controller's error log (and its console log).
+
+    -519 *Invalid file format* is the code: the manual names none for this (it only promises that
+    complete records survive), and -519 is what the rest of this module raises for a damaged file.
+    The reading or writing program itself gets its complete records and no exception, as after a
+    power failure on a controller.  Imported on use: the simulation imports the I/O layer.
+    """
+    from gplrt.sim import current
+    from gplrt.threads.scheduler import current_ctx
+
+    ctx = current_ctx()
+    text = (
+        f"NVRAM {host.name}: last record cut off ({present} of {length} bytes), "
+        "lost as a write interrupted by a power failure; the complete records are kept"
+    )
+    current().report(ctx.name if ctx is not None else "<external>", text, INVALID_FILE_FORMAT)
 
 
 def open_for_write(host: Path, switches: NvramSwitches, append: bool) -> NvramFile:
