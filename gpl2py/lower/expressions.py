@@ -38,8 +38,14 @@ _CHK_INT = {t.INTEGER: "chk_int32", t.SHORT: "chk_int16", t.BYTE: "chk_uint8"}
 _RUNTIME_CMP = {"=": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le", ">=": "ge"}
 _PY_CMP = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
 _F32 = struct.Struct("f")
+# How deep a chain of binary operators may nest in one Python expression (ExprLowerer.binary_chain).
+# Measured on CPython 3.11: the compiler gives up near 2,990 nested ``a + b`` at the top of the
+# stack but near 284 when the import runs 900 frames deep, and the tokenizer allows only 200 nested
+# parentheses (helper calls such as ``idiv(idiv(a, b), c)`` nest one per operator).  100 keeps a 2x
+# margin on each while leaving every chain a person would read in the nested form.
+LONG_CHAIN = 100
 # a run of this many ``&`` operators or more is lowered as one "".join((...)) (ExprLowerer.flat_concat)
-FLAT_CONCAT_MIN = 200
+FLAT_CONCAT_MIN = LONG_CHAIN
 
 
 def paren(c: Code, min_prec: int) -> str:
@@ -96,6 +102,7 @@ class ExprLowerer:
         # Integer locals known to be >= 0 where they are used (counters of ascending For loops
         # from a non-negative start that the body never writes)
         self.nonneg: set[VarSym] = set()
+        self.chain_temps = 0  # temporaries made for long operator chains (chain_temp)
 
     # -- helpers -----------------------------------------------------------------------------------
 
@@ -239,7 +246,8 @@ class ExprLowerer:
         reached the recursion limit near 1,000 operands.  The leftmost operand is lowered first,
         then each operator folds in its right operand in source order, so the output is what the
         recursive form gave (Python's left-associative operators need no parentheses for it), except
-        that a very long run of ``&`` becomes one flat join (:meth:`flat_concat`)."""
+        that a very long run of ``&`` becomes one flat join (:meth:`flat_concat`) and a chain that
+        would nest deeper than ``LONG_CHAIN`` is cut into steps (:meth:`chunked`)."""
         spine: list[A.Binary] = [e]
         while self._chains(spine[-1].left):
             spine.append(spine[-1].left)  # type: ignore[arg-type]
@@ -247,8 +255,15 @@ class ExprLowerer:
         acc: Code = self.expr(first)
         acc_type = self.type_of(first)
         nodes = spine[::-1]
+        chunks: list[str] = []  # the finished steps of a long chain, each ``temp := <code>``
+        temp = ""
+        depth = 0  # how deep ``acc`` nests operators since the last step
         at = 0
         while at < len(nodes):
+            if depth >= LONG_CHAIN:
+                temp = temp or self.chain_temp()
+                chunks.append(f"{temp} := {acc[0]}")
+                acc, depth = (temp, P_ATOM), 0
             run = 0
             while at + run < len(nodes) and nodes[at + run].op == "&":
                 run += 1
@@ -256,20 +271,46 @@ class ExprLowerer:
                 acc = self.flat_concat(acc, acc_type, nodes[at:at + run])
                 acc_type = t.STRING
                 at += run
+                depth += 1
                 continue
             node = nodes[at]
             at += 1
             if node.op in ("AndAlso", "OrElse"):
                 prec = P_AND if node.op == "AndAlso" else P_OR
                 # Python's and/or are associative like AndAlso/OrElse: a left operand of the same
-                # operator needs no parentheses (and a chain of 200+ would exceed the parser's limit)
+                # operator needs no parentheses and adds no depth (one flat BoolOp however long)
                 left = paren(self.cond_code(acc, acc_type), prec)
                 right = paren(self.cond(node.right), prec + 1)
                 acc = (f"{left} and {right}", P_AND) if node.op == "AndAlso" else (f"{left} or {right}", P_OR)
             else:
                 acc = self.binop(node.op, (*acc, acc_type), (*self.expr(node.right), self.type_of(node.right)))
+                depth += 1
             acc_type = self.type_of(node)
-        return acc
+        return self.chunked(chunks, acc)
+
+    def chain_temp(self) -> str:
+        """A fresh name for the running value of a long chain (``_chain1``, ``_chain2``, ...): a
+        GPL name starting with ``_`` is emitted as ``_u...`` (py_ident), so it cannot meet a
+        program's own variable."""
+        self.chain_temps += 1
+        return f"_chain{self.chain_temps}"
+
+    @staticmethod
+    def chunked(chunks: list[str], last: Code) -> Code:
+        """A long chain as a tuple of steps that each fold up to ``LONG_CHAIN`` operators into the
+        running value, the last one giving the result: ``(_chain1 := a + ... + z, _chain1 + ...)[-1]``.
+
+        Why this form and not a runtime ``fold_left(op, first, *rest)``: the elements of a tuple run
+        in order and each step is the nested form's own code, so every operator keeps its exact
+        conversions, overflow checks and short-circuits, and operands and operators interleave just
+        as in the nested form (a ``1 / 0`` early in the chain raises before a later operand's
+        function is called; a fold over pre-evaluated operands would call it first).  The tuple is
+        flat for CPython's compiler however many steps it has, and a step nests at most
+        ``LONG_CHAIN`` operators.  A chain of ``AndAlso``/``OrElse`` stays one ``and``/``or``
+        expression: Python's BoolOp is flat already."""
+        if not chunks:
+            return last
+        return f"({', '.join([*chunks, last[0]])})[-1]", P_ATOM
 
     def flat_concat(self, first: Code, first_type: t.GplType, run: list[A.Binary]) -> Code:
         """A long run of ``&`` as one ``"".join((...))`` call instead of nested ``+``.
@@ -546,8 +587,11 @@ class ExprLowerer:
         if op in ("And", "Or", "Xor"):
             pyop, prec = {"And": ("&", P_BAND), "Or": ("|", P_BOR), "Xor": ("^", P_BXOR)}[op]
             if (lt is t.BOOLEAN and rt_ is t.BOOLEAN) or (lt in _INTS and rt_ in _INTS):
-                # arithmetic operands keep visible parentheses: (a + b) & 255, not a + b & 255
-                return f"{paren(lc, P_UNARY)} {pyop} {paren(rc, P_UNARY)}", prec
+                # arithmetic operands keep visible parentheses: (a + b) & 255, not a + b & 255; a left
+                # operand of the same operator needs none (a & b & c: Python's & is left-associative,
+                # and 200 nested parentheses are more than Python's tokenizer takes)
+                left = lc[0] if lc[1] == prec else paren(lc, P_UNARY)
+                return f"{left} {pyop} {paren(rc, P_UNARY)}", prec
             name = {"And": "and_", "Or": "or_", "Xor": "xor"}[op]
             return self.call(self.rt(OPS, name), lc[0], rc[0])
         return self.call(self.rt(OPS, "eq"), lc[0], rc[0])

@@ -857,27 +857,61 @@ _INT_BOUND = 2.0**31
 _CHUNK = 1024
 
 
-def _bound(e: A.Expr, low: ExprLowerer) -> float:
+def _bound(e: A.Expr, low: ExprLowerer, memo: dict[int, float] | None = None) -> float:
     """An upper bound of ``abs(e)`` from its static types (``inf`` when unknown): Integer values
-    are below 2**31, Sin/Cos below 1, a square root of any Double below 1.4e154."""
+    are below 2**31, Sin/Cos below 1, a square root of any Double below 1.4e154.
+
+    Operators are bounded bottom-up with an explicit stack, not by recursion: a product over
+    thousands of continued lines is a left-leaning tree as deep as it is long.  ``memo`` (by node
+    id) keeps the bounds of every operator visited, so a caller asking about each node of a chain
+    in turn does linear work, not quadratic."""
+    memo = {} if memo is None else memo
+    stack: list[tuple[A.Expr, bool]] = [(e, False)]
+    while stack:
+        node, children_done = stack.pop()
+        if id(node) in memo:
+            continue
+        if not _is_operator(node, low):
+            memo[id(node)] = _leaf_bound(node, low)
+        elif not children_done:
+            stack.append((node, True))
+            kids = [node.operand] if isinstance(node, A.Unary) else [node.left, node.right]  # type: ignore[attr-defined]
+            stack.extend((k, False) for k in kids if id(k) not in memo)
+        elif isinstance(node, A.Unary):
+            memo[id(node)] = memo[id(node.operand)]
+        else:
+            assert isinstance(node, A.Binary)
+            memo[id(node)] = _fold_bound(node, memo[id(node.left)], memo[id(node.right)])
+    return memo[id(e)]
+
+
+def _is_operator(e: A.Expr, low: ExprLowerer) -> bool:
+    """Whether :func:`_bound` derives ``e``'s bound from its operands (an Integer-typed operator
+    is bounded by its type alone)."""
+    return isinstance(e, (A.Unary, A.Binary)) and low.type_of(e) not in (t.BYTE, t.SHORT, t.INTEGER, t.BOOLEAN)
+
+
+def _fold_bound(e: A.Binary, a: float, b: float) -> float:
+    """The bound of ``e`` from the bounds ``a`` and ``b`` of its operands."""
+    import math
+
+    if e.op in ("+", "-"):
+        return a + b
+    if e.op == "*":
+        return a * b if a and b else 0.0
+    if e.op == "/" and isinstance(e.right, (A.IntegerLiteral, A.RealLiteral)) and e.right.value:
+        return a / abs(float(e.right.value))
+    return math.inf
+
+
+def _leaf_bound(e: A.Expr, low: ExprLowerer) -> float:
+    """The bound of an operand that is not an operator: a literal, an integer value, a Math call."""
     import math
 
     if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
         return abs(float(e.value))
-    typ = low.type_of(e)
-    if typ in (t.BYTE, t.SHORT, t.INTEGER, t.BOOLEAN):
+    if low.type_of(e) in (t.BYTE, t.SHORT, t.INTEGER, t.BOOLEAN):
         return _INT_BOUND
-    if isinstance(e, A.Unary):
-        return _bound(e.operand, low)
-    if isinstance(e, A.Binary):
-        a, b = _bound(e.left, low), _bound(e.right, low)
-        if e.op in ("+", "-"):
-            return a + b
-        if e.op == "*":
-            return a * b if a and b else 0.0
-        if e.op == "/" and isinstance(e.right, (A.IntegerLiteral, A.RealLiteral)) and e.right.value:
-            return a / abs(float(e.right.value))
-        return math.inf
     i = low.model.info.get(e)
     if i is not None and i.kind == "bmember" and isinstance(i.sym, Member) and i.owner is not None \
             and getattr(i.owner, "name", "") == "Math":
@@ -902,10 +936,11 @@ def _may_overflow_double(e: A.Expr, low: ExprLowerer) -> bool:
     """Whether a Double value stored from ``e`` needs the overflow check: it contains a product
     whose bound is unknown (sums and differences overflow only from operands that are already
     beyond half the range -- values that a checked product or the runtime produced first)."""
+    memo: dict[int, float] = {}
     stack: list[A.Node] = [e]
     while stack:
         n = stack.pop()
-        if isinstance(n, A.Binary) and n.op == "*" and _bound(n, low) > _SAFE \
+        if isinstance(n, A.Binary) and n.op == "*" and _bound(n, low, memo) > _SAFE \
                 and not (_shrinks(n.left) or _shrinks(n.right)):
             return True
         if isinstance(n, (A.Binary, A.Unary)):

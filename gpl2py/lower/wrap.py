@@ -93,6 +93,12 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         return [(indent, text)]
     prefix = body[: expr[0].start[1]]
     suffix = body[expr[-1].end[1]:]
+    # 0. the steps of a long operator chain, ``(_chain1 := ..., _chain1 := _chain1 + ..., ...)[-1]``
+    #    opened by rule 3: one step a line, each broken before its operators
+    if inside and not prefix and not suffix and not comment:
+        steps = _chain_steps(body, expr)
+        if steps:
+            return _step_lines(indent, steps, limit)
     # 1. top-level binary operators
     cuts = [i for i, tok in _top_level(expr)
             if i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME)]
@@ -141,6 +147,37 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         inner = body[open_tok.end[1]:close_tok.start[1]].strip()
         return [(indent, body[: open_tok.end[1]] + comment), (cont, inner), (indent, body[close_tok.start[1]:])]
     return [(indent, text)]
+
+
+def _chain_steps(body: str, expr: list[tokenize.TokenInfo]) -> list[list[str]] | None:
+    """The steps of the tuple that lowers a long operator chain (ExprLowerer.chunked), each as
+    its pieces cut before top-level operators; None for any other text.  Only that tuple is
+    recognised (its elements assign with ``:=``) so that no other output changes shape."""
+    top = list(_top_level(expr))
+    commas = [i for i, tok in top if tok.type == tokenize.OP and tok.string == ","]
+    if not commas or not any(tok.string == ":=" for _, tok in top):
+        return None
+    steps: list[list[str]] = []
+    for a, b in zip([-1, *commas], [*commas, len(expr)]):
+        seg = expr[a + 1:b]
+        if not seg:
+            return None
+        cuts = [i for i, tok in _top_level(seg)
+                if i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME)]
+        steps.append(_pieces(body, seg, cuts))
+    return steps
+
+
+def _step_lines(indent: int, steps: list[list[str]], limit: int) -> list[tuple[int, str]]:
+    """One line per step (continued one level deeper when too long), a comma after each but the
+    last: the comma stays on the step's last line, inside the tuple's own brackets."""
+    lines: list[tuple[int, str]] = []
+    for k, pieces in enumerate(steps):
+        step = _pack(indent, "", pieces, indent + 1, limit - 1, " ")
+        if k < len(steps) - 1:
+            step[-1] = (step[-1][0], step[-1][1] + ",")
+        lines.extend(step)
+    return lines
 
 
 def _top_level(toks: list[tokenize.TokenInfo]) -> Iterator[tuple[int, tokenize.TokenInfo]]:
