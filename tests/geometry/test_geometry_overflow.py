@@ -2,8 +2,8 @@
 
 Ordinary Double arithmetic raises -710 *Arithmetic overflow* for an infinite result
 (``gplrt.lang.operators``); a pose computed from finite Locations must do the same, whichever member
-computed it.  Every value here is finite and legal on input (the setters accept it); only the result
-is out of range.
+computed it.  Every operand here is finite and legal on input (the setters accept it); only the
+result is out of range.  A NaN/inf operand can only be built from Python, and is -708 there.
 """
 
 from __future__ import annotations
