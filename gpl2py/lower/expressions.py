@@ -258,12 +258,15 @@ class ExprLowerer:
         chunks: list[str] = []  # the finished steps of a long chain, each ``temp := <code>``
         temp = ""
         depth = 0  # how deep ``acc`` nests operators since the last step
+        long = sum(1 for n in nodes if n.op not in ("AndAlso", "OrElse")) > LONG_CHAIN
+        wrapped = False  # the last operator put ``acc`` inside a call or parentheses
         at = 0
         while at < len(nodes):
-            if depth >= LONG_CHAIN:
+            if depth >= LONG_CHAIN or wrapped:
                 temp = temp or self.chain_temp()
                 chunks.append(f"{temp} := {acc[0]}")
                 acc, depth = (temp, P_ATOM), 0
+            before = acc[0]
             run = 0
             while at + run < len(nodes) and nodes[at + run].op == "&":
                 run += 1
@@ -286,6 +289,9 @@ class ExprLowerer:
                 acc = self.binop(node.op, (*acc, acc_type), (*self.expr(node.right), self.type_of(node.right)))
                 depth += 1
             acc_type = self.type_of(node)
+            # in a long chain, an operator that wraps the running value (``div(_chain1, x)``,
+            # ``(_chain1 == x) == y``) ends its step: one readable line each, no nesting to wrap
+            wrapped = long and not acc[0].startswith(before + " ")
         return self.chunked(chunks, acc)
 
     def chain_temp(self) -> str:
@@ -306,7 +312,8 @@ class ExprLowerer:
         as in the nested form (a ``1 / 0`` early in the chain raises before a later operand's
         function is called; a fold over pre-evaluated operands would call it first).  The tuple is
         flat for CPython's compiler however many steps it has, and a step nests at most
-        ``LONG_CHAIN`` operators.  A chain of ``AndAlso``/``OrElse`` stays one ``and``/``or``
+        ``LONG_CHAIN`` operators; an operator lowered to a helper call is a step of its own
+        (``_chain1 := div(_chain1, x)``), so no step nests calls.  A chain of ``AndAlso``/``OrElse`` stays one ``and``/``or``
         expression: Python's BoolOp is flat already."""
         if not chunks:
             return last

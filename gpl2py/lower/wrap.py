@@ -20,11 +20,14 @@ a double continuation indent so that their continuation lines stand apart from t
 from __future__ import annotations
 
 import io
+import keyword
 import tokenize
 from collections.abc import Iterator
 
 LIMIT = 99
 _OPS = {"+", "and", "or", "&", "|"}
+# the operators a step of a long chain (ExprLowerer.chunked) is broken before
+_STEP_OPS = _OPS | {"-", "*", "/", "//", "%", "^", "<<", ">>", "==", "!=", "<", ">", "<=", ">="}
 # plain and augmented assignment: the expression to break starts after any of them (wrapping the
 # whole ``x += a + b`` statement in parentheses would not be Python)
 _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^=", "<<=", ">>="}
@@ -162,18 +165,30 @@ def _chain_steps(body: str, expr: list[tokenize.TokenInfo]) -> list[list[str]] |
         seg = expr[a + 1:b]
         if not seg:
             return None
-        cuts = [i for i, tok in _top_level(seg)
-                if i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME)]
+        cuts = [i for i, tok in _top_level(seg) if i > 0 and _binary_at(seg, i)]
         steps.append(_pieces(body, seg, cuts))
     return steps
 
 
+def _binary_at(toks: list[tokenize.TokenInfo], i: int) -> bool:
+    """Whether ``toks[i]`` is a binary operator a chain step may be broken before: any of the
+    arithmetic, bitwise and Boolean ones (a step is one operator repeated, ``-`` and ``*`` as
+    often as ``+``), but not a sign (``x - -1``: the token before a sign is not an operand)."""
+    tok, prev = toks[i], toks[i - 1]
+    if tok.string not in _STEP_OPS or tok.type not in (tokenize.OP, tokenize.NAME):
+        return False
+    if tok.string in ("and", "or"):
+        return True
+    return prev.type in (tokenize.NUMBER, tokenize.STRING) or prev.string in (")", "]", "}") \
+        or (prev.type == tokenize.NAME and not keyword.iskeyword(prev.string))
+
+
 def _step_lines(indent: int, steps: list[list[str]], limit: int) -> list[tuple[int, str]]:
-    """One line per step (continued one level deeper when too long), a comma after each but the
-    last: the comma stays on the step's last line, inside the tuple's own brackets."""
+    """One line per step (its continuation lines start with an operator), a comma after each but
+    the last: the comma stays on the step's last line, inside the tuple's own brackets."""
     lines: list[tuple[int, str]] = []
     for k, pieces in enumerate(steps):
-        step = _pack(indent, "", pieces, indent + 1, limit - 1, " ")
+        step = _pack(indent, "", pieces, indent, limit - 1, " ")
         if k < len(steps) - 1:
             step[-1] = (step[-1][0], step[-1][1] + ",")
         lines.extend(step)
