@@ -26,8 +26,13 @@ from collections.abc import Iterator
 
 LIMIT = 99
 _OPS = {"+", "and", "or", "&", "|"}
+# how many times a continuation line is broken again: enough for a long chain in an argument of a
+# call in a step of another long chain (each level is a bracket group opened, then its contents)
+_MAX_DEPTH = 8
 # the operators a step of a long chain (ExprLowerer.chunked) is broken before
-_STEP_OPS = _OPS | {"-", "*", "/", "//", "%", "^", "<<", ">>", "==", "!=", "<", ">", "<=", ">="}
+# ... with Python's precedence of each (higher binds tighter)
+_STEP_OPS = {"or": 1, "and": 2, "==": 3, "!=": 3, "<": 3, ">": 3, "<=": 3, ">=": 3, "|": 4, "^": 5,
+             "&": 6, "<<": 7, ">>": 7, "+": 8, "-": 8, "*": 9, "/": 9, "//": 9, "%": 9}
 # plain and augmented assignment: the expression to break starts after any of them (wrapping the
 # whole ``x += a + b`` statement in parentheses would not be Python)
 _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^=", "<<=", ">>="}
@@ -42,7 +47,7 @@ def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tup
 def _wrap_nested(indent: int, text: str, limit: int, depth: int, inside: bool) -> list[tuple[int, str]]:
     """:func:`wrap`; ``inside``: the line is already within the brackets of an enclosing break."""
     lines = _wrap(indent, text, limit, inside)
-    if len(lines) == 1 or depth > 4:
+    if len(lines) == 1 or depth > _MAX_DEPTH:
         return lines
     out: list[tuple[int, str]] = []
     for i, (ind, txt) in enumerate(lines):
@@ -165,8 +170,10 @@ def _chain_steps(body: str, expr: list[tokenize.TokenInfo]) -> list[list[str]] |
         seg = expr[a + 1:b]
         if not seg:
             return None
-        cuts = [i for i, tok in _top_level(seg) if i > 0 and _binary_at(seg, i)]
-        steps.append(_pieces(body, seg, cuts))
+        ops = [i for i, tok in _top_level(seg) if i > 0 and _binary_at(seg, i)]
+        # cut only before the loosest operators (``a - 3 * b`` breaks before ``-``, not ``*``)
+        loosest = min((_STEP_OPS[seg[i].string] for i in ops), default=0)
+        steps.append(_pieces(body, seg, [i for i in ops if _STEP_OPS[seg[i].string] == loosest]))
     return steps
 
 
