@@ -313,8 +313,8 @@ class ExprLowerer:
         function is called; a fold over pre-evaluated operands would call it first).  The tuple is
         flat for CPython's compiler however many steps it has, and a step nests at most
         ``LONG_CHAIN`` operators; an operator lowered to a helper call is a step of its own
-        (``_chain1 := div(_chain1, x)``), so no step nests calls.  A chain of ``AndAlso``/``OrElse`` stays one ``and``/``or``
-        expression: Python's BoolOp is flat already."""
+        (``_chain1 := div(_chain1, x)``), so no step nests calls.  A chain of ``AndAlso`` or
+        ``OrElse`` stays one ``and``/``or`` expression: Python's BoolOp is flat already."""
         if not chunks:
             return last
         return f"({', '.join([*chunks, last[0]])})[-1]", P_ATOM

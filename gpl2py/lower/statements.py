@@ -875,7 +875,7 @@ def _bound(e: A.Expr, low: ExprLowerer, memo: dict[int, float] | None = None) ->
             memo[id(node)] = _leaf_bound(node, low)
         elif not children_done:
             stack.append((node, True))
-            kids = [node.operand] if isinstance(node, A.Unary) else [node.left, node.right]  # type: ignore[attr-defined]
+            kids = [node.operand] if isinstance(node, A.Unary) else [node.left, node.right]  # type: ignore
             stack.extend((k, False) for k in kids if id(k) not in memo)
         elif isinstance(node, A.Unary):
             memo[id(node)] = memo[id(node.operand)]
