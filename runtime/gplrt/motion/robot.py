@@ -162,6 +162,15 @@ class RobotState:
         with self.lock:
             return self.queue.state_at(t)
 
+    def run_cycles(self, t: float) -> None:
+        """Run the path motions' cycles up to ``t`` (``MotionQueue.advance``): whatever reads the
+        queue's plan rather than the joints (TrajState, Dest) must see a mid-path stop that has
+        happened by ``t`` exactly as ``Where`` would, whether or not anything read the robot
+        before."""
+        if self.queue.paths_pending:
+            with self.lock:
+                self.queue.advance(t)
+
     def latch_angles(self) -> list[float]:
         """Present joints (used by the latch emulation in controller/signals.py)."""
         from gplrt.motion.registry import now

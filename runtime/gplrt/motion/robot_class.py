@@ -23,6 +23,9 @@ Decisions [P] where the manuals are silent:
   Joints do not move (absolute encoders, robot-models §2.5).
 * ``TrajState(robot, mode)``: 0 idle (nothing queued or executing), 1 executing a motion,
   2 executing ``Move.Delay``, 3 settling (InRange > 0), 4 rapid deceleration; ``mode`` ignored.
+  A path motion stopped by a mid-path error (``path_run``) is over at its stop: TrajState then
+  says idle and ``Dest`` is where it stopped [P] (the queue was flushed; both run the path's
+  cycles up to now first, as ``Where`` does, so the answer does not depend on earlier reads).
 * ``Tool``/``Base`` assignments apply to later motions and to ``Where``; queued motions are joint
   trajectories and are not changed.  ``RestartTool``/``RestartBase`` are DataIDs 16051/16052.
 * ``JointToMotor``/``MotorToJoint``/``DefLinComp``: -204 (no encoder model in the simulation).
@@ -196,10 +199,13 @@ class _RobotClass:
     def Dest(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Final destination of the last queued motion."""
         robot = _robot(Robot)
+        robot.run_cycles(registry.now())  # a line stopped mid-way by now ends where it stopped
         return _cart(robot, robot.queue.final_joints())
 
     def DestAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
-        return _angles(_robot(Robot).queue.final_joints())
+        robot = _robot(Robot)
+        robot.run_cycles(registry.now())
+        return _angles(robot.queue.final_joints())
 
     def Source(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Start of the last queued motion (the present pose before any motion)."""
@@ -224,6 +230,7 @@ class _RobotClass:
     def TrajState(self, Robot: Integer = 0, Mode: Integer = 0) -> Integer:  # type: ignore[assignment]
         robot = _robot(Robot)
         t = registry.now()
+        robot.run_cycles(t)  # a path motion stopped mid-way by now is no longer executing
         seg = robot.queue.segment_at(t)
         if seg is None:
             return 0  # type: ignore[return-value]

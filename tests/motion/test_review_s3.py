@@ -1,0 +1,62 @@
+"""Review of the straight-line redesign (issue 5): behaviours a user hits, each test failing
+before its fix.  The robot is the conftest's PF400SX, attached, powered and homed."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gplrt.geometry.location import Location
+from gplrt.lang.errors import GplException
+from gplrt.motion.move import Move
+from gplrt.motion.profile import Profile
+from gplrt.motion.robot_class import Robot
+from gplrt.sim import Simulation
+from gplrt.threads.thread import Thread
+
+#: A line between these two postures bulges J2 past its +93° limit (test_midpath_transpiled).
+BULGE_START = (359.0, 77.02, 269.19, 84.96, 109.06)
+BULGE_GOAL = (378.07, 87.16, 269.19, -25.54, 101.24)
+
+
+def angles(*v: float) -> Location:
+    return Location.from_angles(v)
+
+
+def straight(**kw: float) -> Profile:
+    p = Profile()
+    p.Straight = True
+    for k, v in kw.items():
+        setattr(p, k, v)
+    return p
+
+
+def queue_bulging_line(sim: Simulation) -> float:
+    """Rest at BULGE_START, queue the line to BULGE_GOAL (accepted: both ends are fine); return
+    the line's planned end.  It stops with -1012 (axis 2) about 1.0 s into its 1.67 s."""
+    Move.Loc(angles(*BULGE_START), Profile())
+    Move.WaitForEOM()
+    goal = Location.from_matrix(sim.robots[1].forward(np.array(BULGE_GOAL)))
+    Move.Loc(goal, straight())
+    seg = sim.robots[1].queue.last
+    return seg.t0 + seg.duration
+
+
+def test_trajstate_and_dest_after_a_mid_path_stop_agree_with_where(sim: Simulation) -> None:
+    """A program that polls TrajState (not Where) while a line runs: once the line has stopped
+    on its fault, TrajState says idle and Dest is where the robot stopped — as they would had
+    the program read Where first.  TrajState and Dest did not run the path's cycles: they said
+    "executing" toward the planned goal until the planned end, so the answer depended on
+    whether anything else had read the robot."""
+    planned_end = queue_bulging_line(sim)
+    Thread.Sleep(int((planned_end - sim.now() - 0.2) * 1000))  # past the stop, short of the planned end
+    assert sim.now() < planned_end
+    state, dest = Robot.TrajState(), Robot.DestAngles().axis_values()
+    here = Robot.WhereAngles().axis_values()
+    assert here[1] <= 93.0 and here != BULGE_GOAL  # stopped on the line, short of the goal
+    assert state == 0
+    assert dest == here
+    assert Robot.TrajState() == 0
+    with pytest.raises(GplException) as exc:
+        Move.WaitForEOM()
+    assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2
