@@ -60,3 +60,23 @@ def test_trajstate_and_dest_after_a_mid_path_stop_agree_with_where(sim: Simulati
     with pytest.raises(GplException) as exc:
         Move.WaitForEOM()
     assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2
+
+
+def test_straight_move_to_angles_in_the_other_elbow_branch_is_refused(sim: Simulation) -> None:
+    """A straight line keeps the arm's branch (-1042 for a Cartesian Location whose Config asks
+    for the other one).  An Angles Location names its branch through its joints: a straight move
+    to Lefty angles from a Righty arm was accepted and ended on the Righty mirror posture (same
+    tool pose, other joints), so WhereAngles did not report the angles the program moved to.
+    In the arm's own branch the line ends on the angles exactly."""
+    start = (300.0, 10.0, 90.0, -100.0, 100.0)
+    Move.Loc(angles(*start), Profile())
+    Move.WaitForEOM()
+    with pytest.raises(GplException) as exc:
+        Move.Loc(angles(300.0, 60.0, 300.0, 0.0, 90.0), straight())  # Lefty: J3 in [180°, 360°)
+    assert exc.value.ErrorCode == -1042
+    Move.WaitForEOM()
+    assert Robot.WhereAngles().axis_values() == start  # nothing moved
+    same_branch = (350.0, 20.0, 80.0, -90.0, 90.0)
+    Move.Loc(angles(*same_branch), straight())
+    Move.WaitForEOM()
+    assert np.allclose(Robot.WhereAngles().axis_values(), same_branch, rtol=0.0, atol=1e-9)

@@ -164,7 +164,7 @@ class _MoveClass:
                 q1 = angles(robot, dest)
                 T1 = robot.forward(q1)
                 robot.queue_path(t, lambda P0: LinePath(P0, T1), int(loc.Config), prof, speed, q1,
-                                 extra_mask=robot.passive_mask)
+                                 extra_mask=robot.passive_mask, angles_end=q1)
                 return
             assert pose is not None
             T1 = pose(robot, dest)

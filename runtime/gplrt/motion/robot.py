@@ -344,11 +344,16 @@ class RobotState:
 
     def queue_path(self, now: float, make_path: Callable[[Pose], Path], config: int, prof: Profile,
                    system_speed: float, extra_end: Vec | None = None, kind: str = "straight",
-                   extra_mask: np.ndarray | None = None) -> Segment:
+                   extra_mask: np.ndarray | None = None, angles_end: Vec | None = None) -> Segment:
         """Plan and queue a Cartesian path motion; ``make_path(start_pose)`` builds the Path.
 
         The axes in ``extra_mask`` (default: the rail) move linearly along the path to their
-        values in ``extra_end``; the IK solves the others.
+        values in ``extra_end``; the IK solves the others.  ``angles_end``: the joints of an
+        Angles Location the line goes to.  They name the arm's branch, and a line keeps the
+        branch, so a destination the line reaches only on the other branch is refused with
+        -1042, like a Cartesian Location whose Config asks for it.  Decision [P] (the manuals
+        are silent): a multi-turn axis (the wrist) turns the short way, as for the Location's
+        Cartesian pose, so it may end a whole turn away from the Angles' value.
 
         This is the controller's planning of a path (gpl-classes §22.4), and all of it happens
         here: the destination's joints (refused at once with their code), then the 1-D profile of
@@ -372,6 +377,11 @@ class RobotState:
             return self._append(seg, prof)
         seed = q0 if q_extra is q0 else _seed_at(q0, q_extra, mask, 1.0)
         q1 = np.array(self.model.inverse_pose(path.end_pose, 0, seed.tolist()))
+        if angles_end is not None:
+            model = self.model
+            if (model.config_of(q1.tolist()) ^ model.config_of(angles_end.tolist())) & _BRANCH_BITS:
+                raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
+                                   detail="a straight-line motion cannot reach these angles' arm configuration")
         v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.joint_limits(prof, system_speed),
                                         self.limits.path_limits(prof, system_speed), prof._accel_ramp,
                                         prof._decel_ramp)
