@@ -80,3 +80,28 @@ def test_straight_move_to_angles_in_the_other_elbow_branch_is_refused(sim: Simul
     Move.Loc(angles(*same_branch), straight())
     Move.WaitForEOM()
     assert np.allclose(Robot.WhereAngles().axis_values(), same_branch, rtol=0.0, atol=1e-9)
+
+
+def test_extra_waits_for_the_next_cartesian_motion_past_a_straight_move_to_angles() -> None:
+    """Move.Extra sets the rail for the next motion to a Cartesian Location (move.py): an Angles
+    Location carries its own rail value.  A joint move to Angles left the Extra pending, but a
+    straight one consumed it and ignored it, so the Cartesian move after it left the rail where
+    it was."""
+    from gplrt.controller.services import Controller
+
+    s = Simulation(robot="PF400SXL", capture=True)
+    with s:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        Move.Loc(angles(200.0, 10.0, 90.0, 0.0, 100.0, 0.0), Profile())
+        Move.WaitForEOM()
+        goal = Robot.Where()
+        Move.Extra(250.0)
+        Move.Loc(angles(220.0, 20.0, 80.0, 0.0, 100.0, 0.0), straight())  # the rail stays at 0 (its angle)
+        Move.WaitForEOM()
+        assert Robot.WhereAngles().axis_values()[5] == 0.0
+        Move.Loc(goal, Profile())  # the motion to a Cartesian Location the Extra was for
+        Move.WaitForEOM()
+        assert Robot.WhereAngles().axis_values()[5] == pytest.approx(250.0, abs=1e-9)
+        assert np.allclose(Robot.Where().matrix(), goal.matrix(), atol=1e-9)

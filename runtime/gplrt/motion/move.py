@@ -159,14 +159,16 @@ class _MoveClass:
             if joints is not None:
                 robot.queue_joint(t, joints(robot, dest), prof, speed)
                 return
-            seed, extra_end = _with_extra(robot, dest)
             if angles is not None and prof.Straight:
+                # (an Angles Location carries its own extra axes: a pending Extra waits for the
+                # next motion to a Cartesian Location, as after a joint move to Angles)
                 q1 = angles(robot, dest)
                 T1 = robot.forward(q1)
                 robot.queue_path(t, lambda P0: LinePath(P0, T1), int(loc.Config), prof, speed, q1,
                                  extra_mask=robot.passive_mask, angles_end=q1)
                 return
             assert pose is not None
+            seed, extra_end = _with_extra(robot, dest)
             T1 = pose(robot, dest)
             if prof.Straight:
                 robot.queue_path(t, lambda P0: LinePath(P0, T1), int(loc.Config), prof, speed, extra_end)
