@@ -105,3 +105,18 @@ def test_extra_waits_for_the_next_cartesian_motion_past_a_straight_move_to_angle
         Move.WaitForEOM()
         assert Robot.WhereAngles().axis_values()[5] == pytest.approx(250.0, abs=1e-9)
         assert np.allclose(Robot.Where().matrix(), goal.matrix(), atol=1e-9)
+
+
+def test_source_after_a_mid_path_stop_is_the_start_of_the_motion_that_ran(sim: Simulation) -> None:
+    """A line stopped mid-path drops the motion queued behind it.  Source ("start of the last
+    queued motion") went on reporting that dropped motion's start — the line's planned goal,
+    where the robot never was — instead of the start of the line that ran."""
+    planned_end = queue_bulging_line(sim)
+    Move.Loc(angles(*BULGE_START), Profile())  # queued behind the line; dropped by its stop
+    Thread.Sleep(int((planned_end - sim.now() + 0.5) * 1000))
+    here = Robot.WhereAngles().axis_values()
+    assert here[1] <= 93.0 and Robot.DestAngles().axis_values() == here  # stopped, the rest dropped
+    assert Robot.SourceAngles().axis_values() == BULGE_START
+    with pytest.raises(GplException) as exc:
+        Move.WaitForEOM()
+    assert exc.value.ErrorCode == -1012

@@ -113,7 +113,6 @@ class RobotState:
     homed: bool = False
     owner: Any = None  # key of the thread that has it attached (None = free)
     last_profile: tuple[object, ...] | None = None  # queue.profile_values of the last motion
-    source: Vec | None = None
     pending_extra: list[float] = field(default_factory=list)
     async_error: int = 0
     payload: float = 0.0
@@ -170,6 +169,17 @@ class RobotState:
         if self.queue.paths_pending:
             with self.lock:
                 self.queue.advance(t)
+
+    def source_joints(self) -> Vec | None:
+        """Where the last queued motion that is still in the queue started (``Robot.Source``);
+        None before any.  Read off the queue rather than kept when a motion is queued: a stop
+        (a mid-path error, power off) drops the motions queued after it, and the source is then
+        that of the motion that ran.  ``Move.Delay`` and RapidDecel's stop are not motions of
+        the program's and do not count."""
+        for seg in reversed(self.queue.history):
+            if seg.kind not in ("delay", "rapid_decel"):
+                return seg.q_start
+        return None
 
     def latch_angles(self) -> list[float]:
         """Present joints (used by the latch emulation in controller/signals.py)."""
@@ -520,7 +530,6 @@ class RobotState:
         queue._starts.append(seg.t0)
         if isinstance(seg, PathSegment):
             queue.paths_pending = True
-        self.source = seg.q_start
         return seg
 
     # -- stopping ------------------------------------------------------------------------------

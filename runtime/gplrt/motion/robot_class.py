@@ -210,12 +210,18 @@ class _RobotClass:
     def Source(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Start of the last queued motion (the present pose before any motion)."""
         robot = _robot(Robot)
-        q = robot.source if robot.source is not None else robot.joints_at(registry.now())
+        robot.run_cycles(registry.now())  # a stop by now has dropped the motions after it
+        q = robot.source_joints()
+        if q is None:
+            q = robot.joints_at(registry.now())
         return _cart(robot, q)
 
     def SourceAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         robot = _robot(Robot)
-        q = robot.source if robot.source is not None else robot.joints_at(registry.now())
+        robot.run_cycles(registry.now())  # a stop by now has dropped the motions after it
+        q = robot.source_joints()
+        if q is None:
+            q = robot.joints_at(registry.now())
         return _angles(q)
 
     def SpeedAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
