@@ -120,3 +120,42 @@ def test_source_after_a_mid_path_stop_is_the_start_of_the_motion_that_ran(sim: S
     with pytest.raises(GplException) as exc:
         Move.WaitForEOM()
     assert exc.value.ErrorCode == -1012
+
+
+def off_line(p: np.ndarray, p0: np.ndarray, p1: np.ndarray) -> float:
+    """Distance of ``p`` from the line through ``p0`` and ``p1``."""
+    d = (p1 - p0) / np.linalg.norm(p1 - p0)
+    return float(np.linalg.norm((p - p0) - np.dot(p - p0, d) * d))
+
+
+@pytest.mark.parametrize("change", ["Tool", "Base"])
+@pytest.mark.parametrize("inrange", [0.0, -10.0])
+def test_tool_or_base_set_after_queueing_lines_does_not_change_them(sim: Simulation, change: str,
+                                                                    inrange: float) -> None:
+    """Robot.Tool/Base apply to later motions (robot_class): a program that queues a line and
+    then sets the Tool for the next pick (a second gripper) must see the line run as queued.
+    The line's cycles, solved as it runs, took the new Tool: the flange jumped by the offset and
+    the line stopped at its first cycle with -3122."""
+    robot = sim.robots[1]
+    Move.Loc(angles(300.0, 10.0, 90.0, -100.0, 100.0), Profile())
+    Move.WaitForEOM()
+    here = Robot.Where()
+    first, second = here.Clone(), here.Clone()
+    first.XYZ(here.X + 80.0, here.Y - 40.0, here.Z, here.Yaw + 20.0, here.Pitch, here.Roll)
+    second.XYZ(first.X + 60.0, first.Y + 30.0, first.Z + 20.0, first.Yaw, first.Pitch, first.Roll)
+    Move.Loc(first, straight(InRange=inrange))
+    Move.Loc(second, straight())
+    segs = robot.queue.history[-2:]
+    tool, base = robot.model.tool, robot.model.base
+    offset = Location()
+    offset.XYZ(5.0, -10.0, 200.0 if change == "Tool" else 30.0, 15.0, 0.0, 0.0)
+    getattr(Robot, f"set_{change}")(offset)
+    Move.WaitForEOM()  # no error: the lines run as they were queued
+    p = [here.matrix()[:3, 3], first.matrix()[:3, 3], second.matrix()[:3, 3]]
+    for k, seg in enumerate(segs):
+        if inrange == 0.0:  # (a blend leaves the lines at the corner)
+            for t in np.linspace(seg.t0, seg.end, 50):
+                tip = base @ robot.model.flange(robot.joints_at(float(t))) @ tool  # the Tool it was queued with
+                assert off_line(tip[:3, 3], p[k], p[k + 1]) < 1e-6
+    end = base @ robot.model.flange(robot.joints_at(sim.now())) @ tool
+    assert np.max(np.abs(end - second.matrix())) < 1e-9

@@ -100,6 +100,43 @@ def _seed_at(q0: Vec, q_extra: Vec, mask: np.ndarray, u: float) -> Vec:
     return s
 
 
+class QueuedFrames:
+    """The IK (checked, unchecked, batch) and forward kinematics a path motion's cycles use,
+    bound to the Tool and Base the motion was queued with.
+
+    Why: the cycles are solved as the motion runs, and ``Robot.Tool``/``Base`` assigned after a
+    line was queued apply to later motions only (robot_class); the line's poses are tool-tip
+    poses in that Tool and Base.  While they are unchanged (the rule) the model's own calls
+    are used as they are; after a change a pose ``T`` is handed to the model as
+    ``Base_now · Base⁻¹ · T · Tool⁻¹ · Tool_now``, which is the same flange target.  One is
+    made per Tool/Base pair and shared by the lines queued with it (``RobotState.frames``)."""
+
+    __slots__ = ("model", "tool", "base", "tool_inv", "base_inv")
+
+    def __init__(self, model: RobotModel) -> None:
+        self.model = model
+        self.tool, self.base = model.tool, model.base
+        self.tool_inv, self.base_inv = model._tool_inv, model._base_inv
+
+    def _now(self, T: np.ndarray) -> np.ndarray:
+        model = self.model
+        if model.tool is self.tool and model.base is self.base:
+            return T
+        return (model.base @ self.base_inv) @ T @ (self.tool_inv @ model.tool)
+
+    def ik(self, T: np.ndarray, seed: Vec) -> Vec:
+        return np.array(self.model.inverse(self._now(T), 0, seed.tolist()))
+
+    def ik_between(self, T: np.ndarray, seed: Vec) -> Vec:
+        return np.array(self.model.inverse(self._now(T), 0, seed.tolist(), False))
+
+    def ik_path(self, Ts: np.ndarray, seeds: np.ndarray) -> np.ndarray | None:
+        return self.model.inverse_path(self._now(Ts), seeds)
+
+    def forward(self, q: Vec) -> np.ndarray:
+        return self.base @ self.model.flange([float(v) for v in q]) @ self.tool
+
+
 @dataclass(eq=False)
 class RobotState:
     """One robot of the simulated controller (see the module docstring)."""
@@ -123,6 +160,8 @@ class RobotState:
     _bounds: tuple[list[float], list[float]] | None = None
     #: (end joints, Tool, Base, tool pose) of the last Cartesian destination (``pose_of``)
     _known_pose: tuple[Vec, np.ndarray, np.ndarray, Pose] | None = None
+    #: The path motions' kinematics for the present Tool and Base (``QueuedFrames``)
+    _frames: QueuedFrames | None = None
 
     def __post_init__(self) -> None:
         self._axis_count = self.model.axis_count  # fixed for the model's lifetime; read per Move
@@ -397,15 +436,12 @@ class RobotState:
                                         prof._decel_ramp)
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
 
-        def ik(T: np.ndarray, seed: Vec) -> Vec:
-            return self.inverse(T, 0, seed)
-
-        def ik_between(T: np.ndarray, seed: Vec) -> Vec:
-            return self.inverse(T, 0, seed, check=False)
-
+        frames, model = self._frames, self.model
+        if frames is None or frames.tool is not model.tool or frames.base is not model.base:
+            frames = self._frames = QueuedFrames(model)
         limits = self.limits
-        pj = PathRun(path, plan, ik, ik_between, q0, q_extra, mask, q1, limits.max_joint_speed,
-                     limits.max_joint_accel, ik_path=self.model.inverse_path)
+        pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, limits.max_joint_speed,
+                     limits.max_joint_accel, ik_path=frames.ik_path)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than
             # its duration before that motion's end (a shorter overlap), never before now.
@@ -416,7 +452,7 @@ class RobotState:
                 blend_from.cut = t_b
                 seg: Segment = BlendedPathSegment(
                     t_b, plan.duration, blend_from.joints(t_b), q1, plan=plan, path_joints=pj,
-                    kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=self.forward)
+                    kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=frames.forward)
                 self.remember_pose(q1, path.end_pose)
                 return self._append(seg, prof)
         seg = PathSegment(t0, plan.duration, q0, q1, plan=plan, path_joints=pj, kind=kind)

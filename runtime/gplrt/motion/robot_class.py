@@ -26,8 +26,9 @@ Decisions [P] where the manuals are silent:
   A path motion stopped by a mid-path error (``path_run``) is over at its stop: TrajState then
   says idle and ``Dest`` is where it stopped [P] (the queue was flushed; both run the path's
   cycles up to now first, as ``Where`` does, so the answer does not depend on earlier reads).
-* ``Tool``/``Base`` assignments apply to later motions and to ``Where``; queued motions are joint
-  trajectories and are not changed.  ``RestartTool``/``RestartBase`` are DataIDs 16051/16052.
+* ``Tool``/``Base`` assignments apply to later motions and to ``Where``; queued motions are not
+  changed (a line's or arc's cycles, solved as it runs, keep the Tool and Base it was queued
+  with: ``robot.QueuedFrames``).  ``RestartTool``/``RestartBase`` are DataIDs 16051/16052.
 * ``JointToMotor``/``MotorToJoint``/``DefLinComp``: -204 (no encoder model in the simulation).
 """
 
