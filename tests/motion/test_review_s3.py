@@ -159,3 +159,55 @@ def test_tool_or_base_set_after_queueing_lines_does_not_change_them(sim: Simulat
                 assert off_line(tip[:3, 3], p[k], p[k + 1]) < 1e-6
     end = base @ robot.model.flange(robot.joints_at(sim.now())) @ tool
     assert np.max(np.abs(end - second.matrix())) < 1e-9
+
+
+def test_a_move_queued_as_another_thread_finds_the_stop_raises_it(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Real clock: a thread queues a line and then the next motion, while another thread reads
+    Robot.Where.  If the reader's read finds the line's mid-path stop between the mover's
+    checks and its queueing (forced here: the mover's checks wait for it), the next motion was
+    queued after the stop as if nothing had happened — the robot moved on, and the error came
+    one Move late.  The queueing itself must refuse it, as a Move after the stop does."""
+    import threading
+
+    from gplrt.controller.services import Controller
+    from gplrt.motion.robot import RobotState
+
+    sim = Simulation(clock="real", speed=4.0, capture=True)
+    found = threading.Event()
+    outcome: list[object] = []
+    armed: list[bool] = []
+    check = RobotState.check_can_move
+
+    def check_then_wait(self: RobotState, key: object, power_on: bool) -> None:
+        check(self, key, power_on)
+        if armed:  # the move after the line
+            assert found.wait(10.0)  # the reader has found the stop meanwhile
+
+    def reader() -> None:
+        robot = sim.robots[1]
+        while robot.queue.fault is None:
+            Robot.Where(1)
+            Thread.Sleep(5)
+        found.set()
+
+    def main() -> None:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        Move.Loc(angles(*BULGE_START), Profile())
+        Move.WaitForEOM()
+        goal = Location.from_matrix(sim.robots[1].forward(np.array(BULGE_GOAL)))
+        monkeypatch.setattr(RobotState, "check_can_move", check_then_wait)
+        Move.Loc(goal, straight())
+        armed.append(True)
+        watcher = Thread(reader, 0, "reader")
+        watcher.Start()
+        try:
+            Move.Loc(angles(*BULGE_START), Profile())
+            outcome.append("queued")
+        except GplException as exc:
+            outcome.append(exc.ErrorCode)
+        watcher.Join()
+
+    sim.run_main(main)
+    assert outcome == [-1012]

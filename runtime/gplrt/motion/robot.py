@@ -258,6 +258,13 @@ class RobotState:
         if not self.homed:
             raise GplException(ROBOT_NOT_HOMED, robot_num=self.number, detail=f"robot {self.number}")
 
+    def _check_stopped(self) -> None:
+        """Raise the error of a stop found since ``check_can_move`` (under the real clock another
+        thread's read can run the cycles that find it in between): a motion queued after the
+        stop would run as if nothing had happened, and the error would come one Move late."""
+        if self.async_error or self.queue.fault is not None:
+            self.raise_async_error()
+
     def raise_async_error(self) -> None:
         """An error that stopped a queued motion, reported once to the attached thread."""
         code, self.async_error = self.async_error, 0
@@ -362,6 +369,8 @@ class RobotState:
     def queue_joint_values(self, now: float, values: list[float], prof: Profile, system_speed: float) -> Segment:
         """``queue_joint`` for a list of Python floats, the form Ruckig takes: ``Move.Loc`` to an
         Angles Location (the commonest motion of all) converts nothing on its way here."""
+        if self.async_error or self.queue.fault is not None:
+            self.raise_async_error()  # (see ``_check_stopped``; inlined on this hot path)
         self.check_joint_limits(values)
         lim = self.limits.joint_limits(prof, system_speed)
         # ``_start``'s two commonest cases inlined, without its copy: the new segment's q_start may
@@ -409,6 +418,7 @@ class RobotState:
         the path parameter.  The joints along the way are solved cycle by cycle as the motion
         runs (``path_run.PathRun``, ``MotionQueue.advance``).  ``benchmarks/motion_speed.py``
         times this against a bare Ruckig call, so it keeps to Python floats where it can."""
+        self._check_stopped()
         blend_from = self._blend_source(now)
         if blend_from is not None:
             t0, q0 = blend_from.end, blend_from.q_end  # the line starts at the via point
@@ -547,6 +557,7 @@ class RobotState:
                                    detail="a straight-line motion cannot change the arm configuration")
 
     def queue_delay(self, now: float, seconds: float) -> Segment:
+        self._check_stopped()
         t0, q0, _, _ = self._start(now, can_blend=False)
         seg = DwellSegment(t0, max(0.0, float(seconds)), q0.copy(), q0.copy())
         self.queue.append(seg)
