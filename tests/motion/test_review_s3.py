@@ -211,3 +211,32 @@ def test_a_move_queued_as_another_thread_finds_the_stop_raises_it(monkeypatch: p
 
     sim.run_main(main)
     assert outcome == [-1012]
+
+
+def test_a_trace_taken_before_a_mid_path_stop_does_not_bring_it_forward(sim: Simulation) -> None:
+    """A program (or a notebook) that takes a trace while a line runs must not learn of a stop
+    that has not happened yet: the next Move before it is queued as usual, and the error comes
+    at WaitForEOM when the robot stops — exactly as without the trace."""
+
+    def run(with_trace: bool) -> tuple[float, int, tuple[float, ...]]:
+        s = Simulation(capture=True)
+        with s:
+            Robot.Attached = 1
+            from gplrt.controller.services import Controller
+
+            Controller.PowerEnabled = True
+            Robot.Home()
+            Move.Loc(angles(*BULGE_START), Profile())
+            Move.WaitForEOM()
+            goal = Location.from_matrix(s.robots[1].forward(np.array(BULGE_GOAL)))
+            Move.Loc(goal, straight())
+            Thread.Sleep(10)  # the line is under way; its stop is later
+            if with_trace:
+                tr = s.trace(1)
+                assert tr.times[-1] <= s.now() + 1e-9  # what has happened, not what will
+            Move.Loc(angles(*BULGE_START), Profile())  # queued behind the line: no error yet
+            with pytest.raises(GplException) as exc:
+                Move.WaitForEOM()
+            return s.now(), exc.value.ErrorCode, Robot.WhereAngles().axis_values()
+
+    assert run(with_trace=True) == run(with_trace=False)

@@ -4,6 +4,10 @@
 first to the end of the last, every ``dt`` seconds (default: the trajectory-generator period,
 DataID 600, 4 ms on a PF400), and always includes the exact end, so the last row is the final
 target.  Robots without kinematics give ``xyz`` filled with NaN.
+
+A trace is what the robot has done: taken while motions still run, it ends at the controller's
+present time.  Reading further would run a straight line's cycles ahead of the clock, and a stop
+found there would reach the program before it happened (path_run).
 """
 
 from __future__ import annotations
@@ -49,7 +53,10 @@ def trace(sim: Any, robot: int = 1, dt: float | None = None) -> Trace:
         q = state.queue.rest[None, :].copy()
         times = np.array([float(sim.scheduler.clock.now())])
     else:
-        t0, t1 = hist[0].t0, max(seg.end for seg in hist)
+        now = float(sim.scheduler.clock.now())
+        t0, t1 = hist[0].t0, min(max(seg.end for seg in hist), now)
+        if t1 < t0:  # nothing has started yet
+            t0 = t1 = now
         count = int(np.floor((t1 - t0) / step)) + 1
         times = t0 + step * np.arange(count)
         if times[-1] < t1:
