@@ -23,6 +23,17 @@ def angles(*v: float) -> Location:
     return Location.from_angles(v)
 
 
+def ready_at(joints: tuple[float, ...]) -> None:
+    """Attach robot 1, power it, home it and bring it to ``joints`` (a session of one's own)."""
+    from gplrt.controller.services import Controller
+
+    Robot.Attached = 1
+    Controller.PowerEnabled = True
+    Robot.Home()
+    Move.Loc(angles(*joints), Profile())
+    Move.WaitForEOM()
+
+
 def straight(**kw: float) -> Profile:
     p = Profile()
     p.Straight = True
@@ -82,29 +93,23 @@ def test_straight_move_to_angles_in_the_other_elbow_branch_is_refused(sim: Simul
     assert np.allclose(Robot.WhereAngles().axis_values(), same_branch, rtol=0.0, atol=1e-9)
 
 
-def test_extra_waits_for_the_next_cartesian_motion_past_a_straight_move_to_angles() -> None:
+@pytest.mark.parametrize("sim", ["PF400SXL"], indirect=True)
+def test_extra_waits_for_the_next_cartesian_motion_past_a_straight_move_to_angles(sim: Simulation) -> None:
     """Move.Extra sets the rail for the next motion to a Cartesian Location (move.py): an Angles
     Location carries its own rail value.  A joint move to Angles left the Extra pending, but a
     straight one consumed it and ignored it, so the Cartesian move after it left the rail where
     it was."""
-    from gplrt.controller.services import Controller
-
-    s = Simulation(robot="PF400SXL", capture=True)
-    with s:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.Home()
-        Move.Loc(angles(200.0, 10.0, 90.0, 0.0, 100.0, 0.0), Profile())
-        Move.WaitForEOM()
-        goal = Robot.Where()
-        Move.Extra(250.0)
-        Move.Loc(angles(220.0, 20.0, 80.0, 0.0, 100.0, 0.0), straight())  # the rail stays at 0 (its angle)
-        Move.WaitForEOM()
-        assert Robot.WhereAngles().axis_values()[5] == 0.0
-        Move.Loc(goal, Profile())  # the motion to a Cartesian Location the Extra was for
-        Move.WaitForEOM()
-        assert Robot.WhereAngles().axis_values()[5] == pytest.approx(250.0, abs=1e-9)
-        assert np.allclose(Robot.Where().matrix(), goal.matrix(), atol=1e-9)
+    Move.Loc(angles(200.0, 10.0, 90.0, 0.0, 100.0, 0.0), Profile())
+    Move.WaitForEOM()
+    goal = Robot.Where()
+    Move.Extra(250.0)
+    Move.Loc(angles(220.0, 20.0, 80.0, 0.0, 100.0, 0.0), straight())  # the rail stays at 0 (its angle)
+    Move.WaitForEOM()
+    assert Robot.WhereAngles().axis_values()[5] == 0.0
+    Move.Loc(goal, Profile())  # the motion to a Cartesian Location the Extra was for
+    Move.WaitForEOM()
+    assert Robot.WhereAngles().axis_values()[5] == pytest.approx(250.0, abs=1e-9)
+    assert np.allclose(Robot.Where().matrix(), goal.matrix(), atol=1e-9)
 
 
 def test_source_after_a_mid_path_stop_is_the_start_of_the_motion_that_ran(sim: Simulation) -> None:
@@ -169,7 +174,6 @@ def test_a_move_queued_as_another_thread_finds_the_stop_raises_it(monkeypatch: p
     one Move late.  The queueing itself must refuse it, as a Move after the stop does."""
     import threading
 
-    from gplrt.controller.services import Controller
     from gplrt.motion.robot import RobotState
 
     sim = Simulation(clock="real", speed=4.0, capture=True)
@@ -191,11 +195,7 @@ def test_a_move_queued_as_another_thread_finds_the_stop_raises_it(monkeypatch: p
         found.set()
 
     def main() -> None:
-        Robot.Attached = 1
-        Controller.PowerEnabled = True
-        Robot.Home()
-        Move.Loc(angles(*BULGE_START), Profile())
-        Move.WaitForEOM()
+        ready_at(BULGE_START)
         goal = Location.from_matrix(sim.robots[1].forward(np.array(BULGE_GOAL)))
         monkeypatch.setattr(RobotState, "check_can_move", check_then_wait)
         Move.Loc(goal, straight())
@@ -213,7 +213,7 @@ def test_a_move_queued_as_another_thread_finds_the_stop_raises_it(monkeypatch: p
     assert outcome == [-1012]
 
 
-def test_a_trace_taken_before_a_mid_path_stop_does_not_bring_it_forward(sim: Simulation) -> None:
+def test_a_trace_taken_before_a_mid_path_stop_does_not_bring_it_forward() -> None:
     """A program (or a notebook) that takes a trace while a line runs must not learn of a stop
     that has not happened yet: the next Move before it is queued as usual, and the error comes
     at WaitForEOM when the robot stops — exactly as without the trace."""
@@ -221,13 +221,7 @@ def test_a_trace_taken_before_a_mid_path_stop_does_not_bring_it_forward(sim: Sim
     def run(with_trace: bool) -> tuple[float, int, tuple[float, ...]]:
         s = Simulation(capture=True)
         with s:
-            Robot.Attached = 1
-            from gplrt.controller.services import Controller
-
-            Controller.PowerEnabled = True
-            Robot.Home()
-            Move.Loc(angles(*BULGE_START), Profile())
-            Move.WaitForEOM()
+            ready_at(BULGE_START)
             goal = Location.from_matrix(s.robots[1].forward(np.array(BULGE_GOAL)))
             Move.Loc(goal, straight())
             Thread.Sleep(10)  # the line is under way; its stop is later
