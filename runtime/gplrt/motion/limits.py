@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, fields
+from typing import TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -31,6 +32,7 @@ from numpy.typing import NDArray
 from gplrt.motion.profile import Profile
 
 Vec = NDArray[np.float64]
+_T = TypeVar("_T")
 
 #: Settling time for InRange > 0 when the database has no DataID 2601 (s).
 DEFAULT_SETTLE = 0.05
@@ -153,12 +155,8 @@ class RobotLimits:
     def joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
         """Joint-interpolated move limits for ``prof`` at ``Controller.SystemSpeed``."""
         key = (prof._speed, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
-        lim = self._joint_cache.get(key)
-        if lim is None:
-            if len(self._joint_cache) > 256:
-                self._joint_cache.clear()
-            lim = self._joint_cache[key] = self._joint_limits(prof, system_speed)
-        return lim
+        lim = self._joint_cache.get(key)  # (the hit stays inline: every Move.Loc asks)
+        return lim if lim is not None else _remember(self._joint_cache, key, self._joint_limits(prof, system_speed))
 
     def _joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
         speed, accel, decel = self._pcts(prof, system_speed)
@@ -174,11 +172,7 @@ class RobotLimits:
         selected axes during Cartesian motions"); 0 means "not used" (same as Speed)."""
         key = (prof._speed, prof._speed2, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
         lim = self._path_cache.get(key)
-        if lim is None:
-            if len(self._path_cache) > 256:
-                self._path_cache.clear()
-            lim = self._path_cache[key] = self._path_limits(prof, system_speed)
-        return lim
+        return lim if lim is not None else _remember(self._path_cache, key, self._path_limits(prof, system_speed))
 
     def _path_limits(self, prof: Profile, system_speed: float) -> PathLimits:
         speed, accel, decel = self._pcts(prof, system_speed)
@@ -190,6 +184,18 @@ class RobotLimits:
             self.cart_speed[1] * rot_speed, self.cart_accel[1] * accel, self.cart_accel[1] * decel,
             float(prof.AccelRamp), float(prof.DecelRamp),
         )
+
+
+#: Distinct Profiles memoised per robot before the memo starts again (a program uses a handful).
+MEMO_SIZE = 256
+
+
+def _remember(cache: dict[tuple[float, ...], _T], key: tuple[float, ...], value: _T) -> _T:
+    """Store a memo entry (``joint_limits``/``path_limits``), emptying a memo grown past ``MEMO_SIZE``."""
+    if len(cache) >= MEMO_SIZE:
+        cache.clear()
+    cache[key] = value
+    return value
 
 
 #: Ramps shorter than this (s) are treated as 0 = no jerk limit: far below the trajectory
