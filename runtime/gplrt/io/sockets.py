@@ -115,7 +115,7 @@ def _os_error(exc: OSError, what: str) -> GplException:
 _DOTTED_QUAD = re.compile(r"(\d{1,3})\.(\d{1,3})\.(\d{1,3})\.(\d{1,3})", re.ASCII)
 
 
-def _dotted_quad(text: str) -> str:
+def dotted_quad(text: str) -> str:
     """``text`` as a canonical dotted-quad IPv4 address ("" for blank), else -1704.
 
     Exactly four decimal parts of one to three ASCII digits, each 0..255; blanks around the
@@ -142,7 +142,7 @@ class IPEndPoint:
     Modbus: the standard port 502).
 
     Decision (the manual is silent on the accepted text; every example is a dotted quad, and no
-    GPL member resolves names): only a dotted-quad IPv4 address is accepted (``_dotted_quad``);
+    GPL member resolves names): only a dotted-quad IPv4 address is accepted (``dotted_quad``);
     host names ("localhost") and IPv6 were already -1704 *Invalid network address* and stay so.
     """
 
@@ -158,7 +158,7 @@ class IPEndPoint:
 
     @IPAddress.setter
     def IPAddress(self, value: String) -> None:
-        self._ip = _dotted_quad(str(value))
+        self._ip = dotted_quad(str(value))
 
     @property
     def Port(self) -> Integer:

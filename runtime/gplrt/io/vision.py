@@ -31,6 +31,8 @@ from gplrt.lang.errors import (
     VISION_UNKNOWN_TOOL,
     GplException,
 )
+from gplrt.io.sockets import dotted_quad
+from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer, String
 
 
@@ -122,9 +124,10 @@ class VisResult:
 
     def Info(self, n: Integer) -> Double:
         """The n-th numeric information item (0-based)."""
-        if not 0 <= int(n) < len(self._data.info):
-            raise GplException(VISION_INVALID_INDEX, detail=f"Info({n}) of {len(self._data.info)} items")
-        return Double(float(self._data.info[int(n)]))
+        i = to_int32(n)
+        if not 0 <= i < len(self._data.info):
+            raise GplException(VISION_INVALID_INDEX, detail=f"Info({i}) of {len(self._data.info)} items")
+        return Double(float(self._data.info[i]))
 
     @property
     def InfoCount(self) -> Integer:
@@ -174,7 +177,7 @@ class Vision:
 
     @IPAddress.setter
     def IPAddress(self, value: String) -> None:
-        self._ip = str(value)
+        self._ip = dotted_quad(str(value))  # the rule IPEndPoint follows (-1704 otherwise)
 
     @property
     def Instance(self) -> Integer:
@@ -182,7 +185,7 @@ class Vision:
 
     @Instance.setter
     def Instance(self, value: Integer) -> None:
-        self._instance = int(value)
+        self._instance = to_int32(value)
 
     @property
     def ErrorCode(self) -> Integer:
@@ -207,7 +210,7 @@ class Vision:
             self._status, self._error, self._results = STATUS_ERROR, exc.ErrorCode, None
             raise
         self._status, self._error, self._results = STATUS_OK, 0, results
-        self._process_id = int(vision_process_id)
+        self._process_id = to_int32(vision_process_id)
 
     def _tool(self, tool_name: str) -> list[VisionToolResult]:
         _connect()
@@ -223,9 +226,10 @@ class Vision:
         """Result set ``index`` (1 = first) of a tool.  ``location_object`` is accepted for the
         dictionary's three-argument form and not used."""
         sets = self._tool(str(vision_tool_name))
-        if not 1 <= int(index) <= len(sets):
-            raise GplException(VISION_INVALID_INDEX, detail=f"Result({vision_tool_name!r}, {index}) of {len(sets)}")
-        return VisResult(_data=sets[int(index) - 1], _process_id=self._process_id)
+        i = to_int32(index)
+        if not 1 <= i <= len(sets):
+            raise GplException(VISION_INVALID_INDEX, detail=f"Result({vision_tool_name!r}, {i}) of {len(sets)}")
+        return VisResult(_data=sets[i - 1], _process_id=self._process_id)
 
     def ToolProperty(self, tool: String, prop: String) -> String:
         """A tool property (or a ``"system"`` property) of the vision server."""
