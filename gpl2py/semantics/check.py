@@ -816,7 +816,7 @@ class Checker:
 
     def _proc_call_info(self, p: ProcSym, args: list[A.Expr], span: object, ctx: _Ctx,
                         receiver: A.Expr | None) -> Info:
-        if not (p.min_args <= len(args) <= len(p.params)):
+        if not (p.min_args <= len(args) <= len(p.params)) and not _unparsed(args):
             self.sink.report(M.WRONG_ARG_COUNT, span, name=p.name,  # type: ignore[arg-type]
                              expected=_count_text(p.min_args, len(p.params)), given=len(args))
         return Info(p.result, "call", p, params=_pinfo(p.params), receiver=receiver)
@@ -904,7 +904,7 @@ class Checker:
 
     def _check_count(self, name: str, params: list[ParamInfo], args: list[A.Expr], span: object) -> None:
         lo = sum(1 for p in params if not p.optional)
-        if not (lo <= len(args) <= len(params)):
+        if not (lo <= len(args) <= len(params)) and not _unparsed(args):
             self.sink.report(M.WRONG_ARG_COUNT, span, name=name,  # type: ignore[arg-type]
                              expected=_count_text(lo, len(params)), given=len(args))
 
@@ -1018,6 +1018,12 @@ class Checker:
         if d is not None and len(p.params) != len(d.params):
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=p.name, expected=len(d.params), given=len(p.params))
         return self._record(e, Info(d.type if d else t.ERROR, "addressof", p, receiver=ci.receiver))
+
+
+def _unparsed(args: list[A.Expr]) -> bool:
+    """Some argument could not be parsed (the parser has reported why): the count of the
+    arguments says nothing, so it is not checked — one error, not two."""
+    return any(type(a) is A.ErrorExpr for a in args)
 
 
 def _count_text(lo: int, hi: int) -> str:

@@ -1551,7 +1551,7 @@ class Parser:
             self.next()
             return args
         if not self.deeper(self.tok, "expressions"):
-            return args
+            return [A.ErrorExpr(self.tok.span)]  # (arguments unknown: the call's count is not checked)
         while True:
             if self.tok.kind is K.COMMA or self.tok.kind is K.RPAREN:
                 self.error(M.PARSE_EXPECTED, self.tok, expected="an argument (arguments cannot be omitted)", found=self.tok.describe())

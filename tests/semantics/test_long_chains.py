@@ -119,3 +119,23 @@ def test_long_andalso_and_integer_chains_lower_and_run(tmp_path: Path) -> None:
     assert result.output == "all\n1500\n"
     # 1500 * 1500000 overflows Integer: the interval analysis of the chain keeps the range check
     assert "GPL error -710" in result.log and "2250000000" in result.log, result.log
+
+
+def test_a_call_nested_too_deeply_is_one_diagnostic(tmp_path: Path) -> None:
+    """210 calls nested in one another pass the parser's depth limit: GPL1117 is the whole answer.
+    (The call whose arguments the parser gave up on was also reported as "takes 1 argument(s),
+    0 given", GPL2004.)"""
+    from gpl2py.diagnostics import DiagnosticSink
+    from gpl2py.transpile import transpile as transpile_project
+    from gpltest import write_project
+
+    nested = "F(" * 210 + "1" + ")" * 210
+    src = module_src(f"""    Function F(ByVal x As Integer) As Integer
+        Return x + 1
+    End Function
+    Public Sub Main()
+        Console.WriteLine(CStr({nested}))
+    End Sub""")
+    sink = DiagnosticSink()
+    assert transpile_project(write_project(tmp_path, {"Main.gpl": src}), sink) is None
+    assert [d.code for d in sink] == ["GPL1117"], [d.header() for d in sink]
