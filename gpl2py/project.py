@@ -82,8 +82,15 @@ class Project:
 
 
 def load_project(path: str | os.PathLike[str], sink: DiagnosticSink) -> Project | None:
-    """Load the project at ``path`` (folder, Project.gpr, or one .gpl/.gpo file); never raises."""
-    p = Path(path)
+    """Load the project at ``path`` (folder, Project.gpr, or one .gpl/.gpo file); never raises.
+
+    A library caller may hand over anything: a value that is no path at all (None, a number, bytes)
+    is GPL1401 naming it, not a TypeError from ``pathlib``."""
+    try:
+        p = Path(path)
+    except TypeError:
+        sink.report(msg.NOT_A_PROJECT, None, path=f"{path!r} (of type {type(path).__name__}, not a path)"[:200])
+        return None
     try:
         exists, is_dir = p.exists(), p.is_dir()
     except OSError as exc:  # e.g. ENAMETOOLONG: the OS refuses the path itself, not just the file

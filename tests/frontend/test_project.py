@@ -289,6 +289,14 @@ def test_path_the_os_refuses_is_a_diagnostic_not_an_exception(tmp_path: Path) ->
     assert "too long" in only(sink, "GPL1403").message.lower()
 
 
+@pytest.mark.parametrize("value", [None, 12, float("nan"), b"/tmp"])
+def test_a_value_that_is_no_path_is_a_diagnostic_not_a_type_error(value: object) -> None:
+    sink = DiagnosticSink()
+    assert load_project(value, sink) is None  # type: ignore[arg-type]
+    assert codes(sink) == ["GPL1401"]
+    assert f"{value!r} (of type {type(value).__name__}, not a path)" in only(sink, "GPL1401").message
+
+
 def test_malformed_gpr_reports_every_problem_in_one_run(tmp_path: Path) -> None:
     folder = tmp_path / "P"
     write_module(folder, "Main.gpl")
