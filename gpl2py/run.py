@@ -39,6 +39,7 @@ import argparse
 import importlib.util
 import itertools
 import json
+import math
 import sys
 import threading
 import time
@@ -238,6 +239,8 @@ def _positive_float(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
     if not value > 0:
         raise argparse.ArgumentTypeError(f"must be greater than 0: {text!r}")
+    if value == math.inf:  # the real clock needs a finite factor (inf was internal error GPL9000)
+        raise argparse.ArgumentTypeError(f"must be a finite number: {text!r}")
     return value
 
 

@@ -153,6 +153,8 @@ def test_usage_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
     assert r.returncode == 2 and "invalid choice: 'R2D2'" in r.stderr
     assert in_process(capsys, "run", str(proj), "--clock", "sundial").returncode == 2
     assert in_process(capsys, "run", str(proj), "--speed", "0").returncode == 2
+    r = in_process(capsys, "run", str(proj), "--clock", "real", "--speed", "inf")
+    assert r.returncode == 2 and "--speed: must be a finite number: 'inf'" in r.stderr, r.stderr
     no_start = tmp_path / "nostart"
     no_start.mkdir()
     # no Project.gpr and no Public Sub Main (with one, it would start: tests/e2e/test_start_main.py)
