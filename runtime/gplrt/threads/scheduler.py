@@ -544,11 +544,7 @@ class VirtualScheduler(Scheduler):
         if self._paced() and self._idle_real is None:
             self._idle_real = time.monotonic()
             self._idle_virtual = self.clock.ns
-        self._pacer_gen += 1
-        # A new idle spell supersedes the previous one's wake-up: cancel it (the generation
-        # check in _pacer_fire covers one that is already firing).
-        self._real_timer.cancel(self._pacer_handle)
-        self._pacer_handle = None
+        self._cancel_pacing()  # a new idle spell supersedes the previous one's wake-up
         if next_deadline is not None and self._paced() and self.drivers > 0:
             gen = self._pacer_gen
             delay = max(0.0, (next_deadline - self.clock.ns) / 1e9)
@@ -564,9 +560,17 @@ class VirtualScheduler(Scheduler):
         thread until then.  The next driver re-plans it (``_kick`` → ``_dispatch`` → ``_go_idle``).
         """
         if self.drivers == 0:
-            self._pacer_gen += 1
-            self._real_timer.cancel(self._pacer_handle)
-            self._pacer_handle = None
+            self._cancel_pacing()
+
+    def _cancel_pacing(self) -> None:
+        """Forget the pending pacing wake-up (lock held).
+
+        Bumping the generation also covers one that is already firing: ``_pacer_fire`` waits
+        for the lock, then sees a newer generation and does nothing.
+        """
+        self._pacer_gen += 1
+        self._real_timer.cancel(self._pacer_handle)
+        self._pacer_handle = None
 
     def _pacer_fire(self, gen: int, deadline: int) -> None:
         with self._lock:
@@ -687,9 +691,7 @@ class VirtualScheduler(Scheduler):
         virtual ``call_at`` callbacks live in the virtual timer heap, not on the real-time thread.
         """
         with self._lock:
-            self._pacer_gen += 1
-            self._real_timer.cancel(self._pacer_handle)
-            self._pacer_handle = None
+            self._cancel_pacing()
         self._real_timer.close(drop_pending=drop_pending)
 
     def _paced(self) -> bool:
