@@ -53,7 +53,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from gplrt.controller import clock as _clock
-from gplrt.lang.conversions import to_int32, to_string
+from gplrt.lang.conversions import to_bool, to_double, to_int32, to_string
 from gplrt.lang.errors import (
     CANT_WRITE_WHEN_POWER_ON,
     NOT_IMPLEMENTED,
@@ -136,7 +136,7 @@ class _ControllerClass:
     def Timer(self, select: Integer = 0) -> Double:  # type: ignore[assignment]
         sim = _sim()
         t = sim.scheduler.clock.now()
-        if int(select) == 0:
+        if to_int32(select) == 0:
             t += sim.controller.time_of_day_origin
         return _clock.quantise(t)  # type: ignore[return-value]
 
@@ -146,7 +146,7 @@ class _ControllerClass:
 
     def SleepTick(self, ticks: Integer = 1) -> None:  # type: ignore[assignment]
         sim = _sim()
-        sim.scheduler.sleep(max(0, int(ticks)) * sim.controller.tick)
+        sim.scheduler.sleep(max(0, to_int32(ticks)) * sim.controller.tick)
 
     # -- power and speed -------------------------------------------------------------------------
 
@@ -157,7 +157,7 @@ class _ControllerClass:
     @PowerEnabled.setter
     def PowerEnabled(self, value: Boolean) -> None:
         sim = _sim()
-        if not value:
+        if not to_bool(value):  # (text "False" is False, as CBool has it)
             _power_off(sim, POWER_OFF_REQUESTED)
             _power_dropped(sim)
             return
@@ -174,8 +174,8 @@ class _ControllerClass:
     def SoftEStop(self, value: Boolean) -> None:
         sim = _sim()
         state = sim.controller
-        state.soft_estop = bool(value)
-        if value:
+        state.soft_estop = to_bool(value)
+        if state.soft_estop:
             _power_off(sim, POWER_NOT_ENABLED)
             _power_dropped(sim, SOFT_ESTOP)
 
@@ -190,8 +190,8 @@ class _ControllerClass:
 
     @SystemSpeed.setter
     def SystemSpeed(self, value: Double) -> None:
-        v = float(value)
-        if not 0.0 < v <= 100.0:
+        v = to_double(value)
+        if not 0.0 < v <= 100.0:  # (NaN fails this too)
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"SystemSpeed {v}")
         state = _sim().controller
         state.system_speed = v
@@ -203,7 +203,7 @@ class _ControllerClass:
 
     @RecordButton.setter
     def RecordButton(self, value: Boolean) -> None:
-        _sim().controller.record_button = bool(value)
+        _sim().controller.record_button = to_bool(value)
 
     # -- messages and logs -----------------------------------------------------------------------
 
@@ -217,7 +217,7 @@ class _ControllerClass:
 
     def ErrorLog(self, entry: Integer = 1) -> String:  # type: ignore[assignment]
         log = _sim().controller.error_log
-        i = int(entry)
+        i = to_int32(entry)
         if not 1 <= i <= len(log):
             return ""  # type: ignore[return-value]
         e = log[-i]
