@@ -165,3 +165,16 @@ def test_nothing_or_object_as_number() -> None:
 
     assert code_of(to_number, None) == -782
     assert code_of(to_number, object()) == -202
+
+
+@pytest.mark.parametrize("value", [10**400, -(10**400), str(10**400), "1E400", "-1E400"])
+def test_an_integer_beyond_the_double_range_is_710(value: object) -> None:
+    """Only Python callers can pass such an int; it must be -710 like any value too big for its
+    type, in CDbl and in every runtime function that takes a Double (they share to_double)."""
+    from gplrt.lang.mathlib import Math
+    from gplrt.lang.operators import power
+
+    assert CDbl(10**300) == 1e300
+    assert code_of(CDbl, value) == -710
+    assert code_of(Math.Sqrt, value) == -710
+    assert code_of(power, value, 1) == -710

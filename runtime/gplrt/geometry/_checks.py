@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from typing import Any, TypeVar
 
-from gplrt.lang.conversions import to_bool, to_int32, to_number, to_string
+from gplrt.lang.conversions import to_bool, to_double, to_int32, to_number, to_string
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
     INVALID_ARGUMENT,
@@ -46,7 +46,7 @@ def to_integer(value: Any, what: str) -> int:
 
 def finite(value: Any, what: str) -> float:
     """``value`` as a Double; NaN and infinities are GPL error -708 (conversion rules as above)."""
-    v = value if type(value) is float else float(to_number(value))
+    v = value if type(value) is float else to_double(value)
     if not math.isfinite(v):
         raise GplException(VALUE_INFINITE_OR_NAN, detail=f"{what} = {v}")
     return v

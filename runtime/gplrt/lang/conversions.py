@@ -104,7 +104,8 @@ def parse_number(text: str) -> float | int:
     """The number a String stands for when GPL expects a number (§4.2 rule 6).
 
     Decimal text gives a float (arithmetic is in Double); ``&H``/``&O`` text gives the 32-bit
-    two's complement int (``"&HFFFFFFFF"`` is -1, AMB-36).  Bad text raises -717.
+    two's complement int (``"&HFFFFFFFF"`` is -1, AMB-36).  Bad text raises -717; a number too
+    large for its type (``"1E400"`` for a Double, as ``"&H1FFFFFFFF"`` for 32 bits) -710.
     """
     m = _NUMBER_RE.match(text)
     if m is None:
@@ -112,6 +113,8 @@ def parse_number(text: str) -> float | int:
     sign, dec, exp, hexd, octd = m.groups()
     if dec is not None:
         value: float | int = float(dec + (exp or ""))
+        if value == math.inf:
+            raise GplException(ARITHMETIC_OVERFLOW, detail=f"number too large for a Double: {text!r}")
     else:
         raw = int(hexd, 16) if hexd is not None else int(octd, 8)
         if raw > 0xFFFFFFFF:
@@ -261,12 +264,18 @@ _F32: Final = struct.Struct("f")
 
 
 def to_double(x: Any) -> float:
-    """Convert to Double: Booleans -1/0, Strings parsed (-717 on bad text)."""
+    """Convert to Double: Booleans -1/0, Strings parsed (-717 on bad text).
+
+    An integer beyond the Double range (only Python callers can pass one, e.g. ``10**400``) is
+    -710 Arithmetic overflow, as for any value that does not fit its type, not Python's
+    OverflowError.  Every float conversion of a GPL value goes through here for that reason.
+    """
     if type(x) is float:
         return x
-    if type(x) is int:
-        return float(x)
-    return float(to_number(x))
+    try:
+        return float(x if type(x) is int else to_number(x))
+    except OverflowError:
+        raise GplException(ARITHMETIC_OVERFLOW, detail="the value does not fit a Double") from None
 
 
 def to_single(x: Any) -> float:

@@ -30,7 +30,7 @@ import random
 import threading
 from typing import Any
 
-from gplrt.lang.conversions import to_number
+from gplrt.lang.conversions import to_double
 from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE, GplException
 from gplrt.lang.gpltypes import Double
 
@@ -38,9 +38,7 @@ __all__ = ["Math", "Fix", "Int", "Rnd", "rnd_seed"]
 
 
 def _f(x: Any) -> float:
-    if type(x) is float:
-        return x
-    return float(to_number(x))
+    return x if type(x) is float else to_double(x)
 
 
 def _domain(name: str, x: float) -> GplException:

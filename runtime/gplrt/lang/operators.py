@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from typing import Any, Final
 
-from gplrt.lang.conversions import parse_number, to_bool, to_int32, to_number, to_string
+from gplrt.lang.conversions import parse_number, to_bool, to_double, to_int32, to_number, to_string
 from gplrt.lang.errors import ARITHMETIC_OVERFLOW, DIVISION_BY_ZERO, VALUE_OUT_OF_RANGE, GplException
 
 __all__ = [
@@ -153,8 +153,8 @@ def mod(a: Any, b: Any) -> float | int:
 def power(a: Any, b: Any) -> float:
     """GPL ``^`` in Double: a negative base needs an integral exponent (else -707, never NaN
     [000 L869-875]); ``0 ^ -1`` is -709; a result beyond the Double range is -710."""
-    x = float(_num(a))
-    y = float(_num(b))
+    x = to_double(a)
+    y = to_double(b)
     if x < 0.0 and y != math.floor(y):
         raise GplException(VALUE_OUT_OF_RANGE, detail=f"{x} ^ {y}: negative base needs an integral power")
     if x == 0.0 and y < 0.0:

@@ -29,7 +29,7 @@ import struct
 from typing import Any, Final
 
 from gplrt.lang.arrays import GplArray
-from gplrt.lang.conversions import parse_number, to_int16, to_int32, to_number, to_single, to_string, to_uint8
+from gplrt.lang.conversions import parse_number, to_double, to_int16, to_int32, to_number, to_single, to_string, to_uint8
 from gplrt.lang.errors import (
     INVALID_ARGUMENT,
     SHORT_STRING,
@@ -265,7 +265,7 @@ _BIT_TYPES: Final[dict[object, tuple[str, Any]]] = {
     Short: ("h", to_int16),
     Integer: ("i", to_int32),
     Single: ("f", to_single),
-    Double: ("d", lambda x: float(to_number(x))),
+    Double: ("d", to_double),
 }
 _BIT_NAMES: Final = {"byte": Byte, "short": Short, "integer": Integer, "single": Single, "double": Double}
 
