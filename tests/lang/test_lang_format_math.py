@@ -167,6 +167,14 @@ def test_rounding_a_value_that_is_not_finite_is_708(rounding, value: float) -> N
     assert caught.value.ErrorCode == -708
 
 
+@pytest.mark.parametrize("trig", [Math.Sin, Math.Cos, Math.Tan])
+def test_trig_of_an_infinity_is_708(trig) -> None:
+    """An infinite angle has no sine (math would raise a bare ValueError); finite ones still work."""
+    assert trig(0.5) == pytest.approx(getattr(math, trig.__name__.lower())(0.5), abs=1e-15)
+    assert code_of(trig, math.inf) == -708
+    assert code_of(trig, -math.inf) == -708
+
+
 def test_rnd_seed_rules() -> None:
     rnd_seed(1)
     values = [Rnd() for _ in range(100)]

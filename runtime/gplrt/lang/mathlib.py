@@ -14,7 +14,8 @@ gpl-dictionary.md §10.3).
   a result beyond the Double range (``Exp(1000)``, ``Cosh(1000)``) is **-710**.
 * The rounding functions (``Floor``, ``Ceiling``, ``Fix``, ``Int``) of an infinite or NaN value
   are **-708 Value infinite or NaN**: the value has no integer part, and the controller's text
-  names exactly that fault.
+  names exactly that fault.  So are ``Sin``, ``Cos`` and ``Tan`` of an infinity, which has no
+  angle (Python's math module would raise a bare ValueError there).
 * The manuals list no ``Math.Round`` (nor Truncate/IEEERemainder), so there is none: a program
   using it would not run on a controller either.  ``Fix`` (toward zero) and ``Int`` (floor) are
   the documented rounding functions.
@@ -51,6 +52,11 @@ def _whole(name: str, rounding: Any, value: Any) -> float:
     if not math.isfinite(x):
         raise GplException(VALUE_INFINITE_OR_NAN, detail=f"{name}({x}) has no integer part")
     return float(rounding(x))
+
+
+def _no_angle(name: str, x: float) -> GplException:
+    """Sin/Cos/Tan of an infinity (module docstring); the callers keep math's call inline."""
+    return GplException(VALUE_INFINITE_OR_NAN, detail=f"Math.{name}({x}) has no angle")
 
 
 def _overflow(name: str, x: float) -> GplException:
@@ -105,7 +111,11 @@ class _Math:
 
     @staticmethod
     def Cos(angle: Double) -> Double:
-        return math.cos(_f(angle))  # type: ignore[return-value]
+        x = _f(angle)
+        try:
+            return math.cos(x)  # type: ignore[return-value]
+        except ValueError:
+            raise _no_angle("Cos", x) from None
 
     @staticmethod
     def Cosh(angle: Double) -> Double:
@@ -167,7 +177,11 @@ class _Math:
 
     @staticmethod
     def Sin(angle: Double) -> Double:
-        return math.sin(_f(angle))  # type: ignore[return-value]
+        x = _f(angle)
+        try:
+            return math.sin(x)  # type: ignore[return-value]
+        except ValueError:
+            raise _no_angle("Sin", x) from None
 
     @staticmethod
     def Sinh(angle: Double) -> Double:
@@ -187,7 +201,11 @@ class _Math:
 
     @staticmethod
     def Tan(angle: Double) -> Double:
-        return math.tan(_f(angle))  # type: ignore[return-value]
+        x = _f(angle)
+        try:
+            return math.tan(x)  # type: ignore[return-value]
+        except ValueError:
+            raise _no_angle("Tan", x) from None
 
     @staticmethod
     def Tanh(angle: Double) -> Double:
