@@ -324,3 +324,16 @@ def analyze_text(tmp_path: Path, text: str, start: str | None = None) -> tuple[M
     units = [parse(s, sink) for s in project.sources]
     assert not sink.has_errors(), [d.header() for d in sink]
     return analyze(units, sink, load_catalogue(), "P", start), sink
+
+
+def compiled_modules(files: dict[str, str]) -> dict[str, str]:
+    """Compile every generated ``.py`` file of a transpilation (a SyntaxError fails the test) and
+    return the GPL modules' files (not ``__init__``/``__main__``), name -> text, so a test of
+    ``--keep-going`` output asserts on what it compiled (an empty result would prove nothing)."""
+    modules: dict[str, str] = {}
+    for name, code in files.items():
+        if name.endswith(".py"):
+            compile(code, name, "exec")
+            if "__" not in name:
+                modules[name] = code
+    return modules

@@ -16,6 +16,7 @@ import pytest
 import gpl2py.transpile as transpile_module
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.transpile import transpile
+from gpltest import compiled_modules, main_body
 
 REPO = Path(__file__).resolve().parents[2]
 WORDS = ["x", "1", "(", ")", "As", "Integer", "Me", "Nothing", "New", "GoTo L", "L:", ".", "&",
@@ -119,6 +120,7 @@ End Module
     out = transpile(str(path), sink, keep_going=True)
     assert "GPL1100" in [d.code for d in sink.errors]
     assert out is not None
-    for name, code in out.files.items():
-        if name.endswith(".py"):
-            compile(code, name, "exec")
+    body = main_body(compiled_modules(out.files)["sel/sel.py"])
+    # the Case before Case Else and the Case Else itself are kept, the unreachable one is not
+    assert 'Console.WriteLine(1)' in body and "else:\n        Console.WriteLine(2)" in body
+    assert "Console.WriteLine(3)" not in body
