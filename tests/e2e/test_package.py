@@ -53,6 +53,22 @@ def _cli(args: list[str], cwd: Path | None = None) -> subprocess.CompletedProces
     return subprocess.run([PY, "-m", "gpl2py", *args], capture_output=True, text=True, cwd=cwd, timeout=120)
 
 
+
+def two_frames(module: str) -> str:
+    """A module whose Public ``Outer(0)`` fails two calls down (``10 \\ 0`` in ``Inner``, line 3,
+    called from line 6): the traceback tests check that both GPL lines are named."""
+    return f"""Module {module}
+    Function Inner(ByVal d As Integer) As Integer
+        Return 10 \\ d
+    End Function
+    Public Function Outer(ByVal d As Integer) As Integer
+        Return Inner(d) + 1
+    End Function
+    Public Sub Main()
+    End Sub
+End Module
+"""
+
 def test_cli_writes_package_and_python_m_runs_it(tmp_path: Path) -> None:
     proj = write_project(tmp_path, TWO_MODULES, start="App.Main", name="My Cell")
     out = tmp_path / "out"
@@ -151,17 +167,7 @@ End Module
 
 
 def test_traceback_names_gpl_file_and_line_of_each_frame(tmp_path: Path) -> None:
-    src = """Module Main
-    Function Inner(ByVal d As Integer) As Integer
-        Return 10 \\ d
-    End Function
-    Public Function Outer(ByVal d As Integer) As Integer
-        Return Inner(d) + 1
-    End Function
-    Public Sub Main()
-    End Sub
-End Module
-"""
+    src = two_frames("Main")
     result = run_gpl(tmp_path, src)
     mod = result.package.main_mod
     with pytest.raises(Exception) as info:
@@ -236,17 +242,7 @@ def test_uncaught_error_in_a_script_prints_the_gpl_line_of_every_frame(tmp_path:
     """A script (or ``python -c``) that imports the package and calls a Public procedure which
     fails two calls down: the uncaught exception's traceback names each frame's GPL file and line
     (gplrt.lang.sourcemap.install_excepthook), not only generated Python lines."""
-    src = """Module Calc
-    Function Inner(ByVal d As Integer) As Integer
-        Return 10 \\ d
-    End Function
-    Public Function Outer(ByVal d As Integer) As Integer
-        Return Inner(d) + 1
-    End Function
-    Public Sub Main()
-    End Sub
-End Module
-"""
+    src = two_frames("Calc")
     proj = write_project(tmp_path, {"Calc.gpl": src}, start="Calc.Main", name="Tb")
     out = tmp_path / "out"
     assert cli_main([proj, "-o", str(out), "--quiet"]) == 0
