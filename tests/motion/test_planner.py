@@ -10,8 +10,9 @@ from hypothesis import strategies as st
 
 from gplrt.controller.pdb import default_database
 from gplrt.motion.limits import AxisLimits, RobotLimits
-from gplrt.motion.planner import Plan, plan_axes, plan_scalar
+from gplrt.motion.planner import PLANNING_FAILED, Plan, plan_axes, plan_scalar
 from gplrt.motion.profile import Profile
+from gpltest import code_of
 
 LIMITS = RobotLimits.from_pdb(default_database("PF400SX"), 1, 5)
 LOWER = np.array([1.5, -93.0, 12.0, -960.0, 69.0])
@@ -177,3 +178,13 @@ def test_each_thread_plans_with_its_own_ruckig_input() -> None:
     seen.append(planner._solver(5)[1])
     assert seen[0] is not seen[1]
     assert planner._solver(5)[1] is seen[1]  # and it is kept for the thread's next plan
+
+
+def test_a_motion_beyond_ruckigs_duration_range_is_a_gpl_error_not_a_valueerror() -> None:
+    # Speed 1e-9 % makes a 300 mm move last ~1e9 s: Ruckig answers -101 (ErrorTrajectoryDuration),
+    # a code its Python enum does not name, so the binding raises ValueError from calculate().
+    prof = Profile()
+    prof.Speed = 1e-9
+    lim = LIMITS.joint_limits(prof, 100.0)
+    q0 = np.array([300.0, 0.0, 90.0, 0.0, 100.0])
+    assert code_of(plan_axes, q0, None, None, q0 + [300.0, 0, 0, 0, 0], lim) == PLANNING_FAILED

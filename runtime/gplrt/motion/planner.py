@@ -91,7 +91,7 @@ def _calculate(otg: Ruckig, inp: InputParameter, given: dict[str, object], n: in
     traj = Trajectory(n)
     try:
         result = otg.calculate(inp, traj)
-    except RuckigError:
+    except (RuckigError, ValueError):  # ValueError: a Result code the binding's enum lacks
         result = None
     if result is _WORKING or result is _FINISHED:
         return Plan(traj, traj.duration)
@@ -111,6 +111,11 @@ def _retry(otg: Ruckig, inp: InputParameter, given: dict[str, object], n: int, w
             result = otg.calculate(inp, traj)
         except RuckigError as exc:
             detail = str(exc).strip().splitlines()[0] if str(exc).strip() else "RuckigError"
+            continue
+        except ValueError as exc:
+            # Ruckig returned a code its Python enum does not name, e.g. -101
+            # ErrorTrajectoryDuration (a Speed so low the motion would outlast Ruckig's range)
+            detail = f"Ruckig result {exc}"
             continue
         if result in (Result.Working, Result.Finished):
             return Plan(traj, float(traj.duration))
