@@ -13,8 +13,8 @@ import pytest
 
 from gplrt.controller.pdb import default_database
 from gplrt.geometry.location import Location
-from gplrt.lang.errors import INVALID_NUMBER_FORMAT, VALUE_INFINITE_OR_NAN
-from gplrt.motion.move import Move
+from gplrt.lang.errors import INVALID_NUMBER_FORMAT, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE
+from gplrt.motion.move import MAX_DELAY, Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
@@ -27,6 +27,8 @@ from gpltest import code_of
     (lambda: Move.OneAxis("one", 300.0, False, Profile()), INVALID_NUMBER_FORMAT),
     (lambda: Move.Delay("long"), INVALID_NUMBER_FORMAT),
     (lambda: Move.Delay(math.nan), VALUE_INFINITE_OR_NAN),
+    (lambda: Move.Delay(1e300), VALUE_OUT_OF_RANGE),  # was queued, then overflowed at WaitForEOM
+    (lambda: Move.Delay(MAX_DELAY + 0.001), VALUE_OUT_OF_RANGE),
     (lambda: Move.Extra("x"), INVALID_NUMBER_FORMAT),
     (lambda: Move.Extra(100.0, math.inf), VALUE_INFINITE_OR_NAN),
     (lambda: setattr(Robot, "Attached", "robot one"), INVALID_NUMBER_FORMAT),
@@ -56,3 +58,10 @@ def test_pdbnum_write_converts_text_and_refuses_bad_text() -> None:
     assert db.pdb_num(601) == 75.0
     assert code_of(db.set_pdb_num, "fast", 601) == INVALID_NUMBER_FORMAT
     assert db.pdb_num(601) == 75.0
+
+
+def test_the_longest_delay_is_queued_and_waited_for(sim: Simulation) -> None:
+    t0 = sim.now()
+    Move.Delay(MAX_DELAY)
+    Move.WaitForEOM()
+    assert sim.now() - t0 == pytest.approx(MAX_DELAY, abs=1e-6)

@@ -44,6 +44,7 @@ from gplrt.lang.errors import (
     NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
     VALUE_INFINITE_OR_NAN,
+    VALUE_OUT_OF_RANGE,
     GplException,
 )
 from gplrt.lang.conversions import to_double, to_int32
@@ -55,6 +56,8 @@ from gplrt.motion.straight import ArcPath, LinePath
 from gplrt.threads.scheduler import current_ctx
 
 NO_CLEARANCE = 1.0e32
+#: The longest Move.Delay, in seconds (see ``Delay``).
+MAX_DELAY = (2**31 - 1) / 1000.0
 
 
 def _attached(s: Any, key: Any = None) -> RobotState:
@@ -280,8 +283,15 @@ class _MoveClass:
                              kind="circle" if full else "arc")
 
     def Delay(self, Seconds: Double) -> None:
-        """Insert a pause of ``Seconds`` into the motion queue."""
+        """Insert a pause of ``Seconds`` into the motion queue.
+
+        Decision [P] (delay.htm gives no range): a pause longer than ``MAX_DELAY`` (the Int32
+        milliseconds of ``Thread.Sleep``, about 24.8 days) is -707 *Value out of range*; a huge
+        one would otherwise be queued and overflow the clock's nanoseconds at WaitForEOM.
+        """
         seconds = _finite(Seconds, "Move.Delay seconds")
+        if seconds > MAX_DELAY:
+            raise GplException(VALUE_OUT_OF_RANGE, detail=f"Move.Delay {seconds} s (at most {MAX_DELAY} s)")
         s = registry.sim()
         robot = _ready(s)
         with robot.lock:
