@@ -25,8 +25,14 @@ from gplrt.threads import Thread
 BOUND = 5.0  # real seconds any of these runs may take at most
 
 
-def _abort_while_blocked(clock: str, blocked: object) -> tuple[list[str], Simulation, float]:
-    """Start ``blocked`` in a GPL thread, abort it 200 ms later; return the events and the time."""
+def _abort_while_blocked(clock: str, blocked: object) -> Simulation:
+    """Start ``blocked`` in a GPL thread, abort it 200 ms later; check that the Abort ended it.
+
+    ``Thread.Abort`` waits one controller second for its target to unwind (paced to real time
+    while the target waits on the outside world), so "joined True" and ThreadState 0 right after
+    it prove the blocked call noticed the Abort within that second, without a wall-time
+    assertion; ``run_main``'s bound only keeps a hang from stalling the suite.
+    """
     sim = Simulation(clock=clock, capture=True)
     events: list[str] = []
     state: dict[str, int] = {}
@@ -48,12 +54,10 @@ def _abort_while_blocked(clock: str, blocked: object) -> tuple[list[str], Simula
         state["after"] = t.ThreadState
         events.append(f"joined {t.Join(0)}")
 
-    start = time.monotonic()
-    alive = sim.run_main(main, timeout=BOUND)
-    elapsed = time.monotonic() - start
-    assert alive == []
+    assert sim.run_main(main, timeout=BOUND) == []
     events.append(f"state {state['after']}")
-    return events, sim, elapsed
+    assert events == ["finally", "joined True", "state 0"]  # Catch does not see an Abort
+    return sim
 
 
 @pytest.mark.parametrize("clock", ["virtual", "real"])
@@ -61,12 +65,10 @@ def test_abort_a_thread_blocked_in_accept_socket(clock: str) -> None:
     listener = TcpListener(IPEndPoint("127.0.0.1", 0))
     listener.Start()
     try:
-        events, sim, elapsed = _abort_while_blocked(clock, listener.AcceptSocket)
+        sim = _abort_while_blocked(clock, listener.AcceptSocket)
     finally:
         listener.Stop()
-    assert events == ["finally", "joined True", "state 0"]  # Catch does not see an Abort
     assert sim.controller.error_log == []
-    assert elapsed < 2.0
 
 
 @pytest.mark.parametrize("clock", ["virtual", "real"])
@@ -76,13 +78,11 @@ def test_abort_a_thread_blocked_in_receive(clock: str) -> None:
     client = TcpClient(IPEndPoint("127.0.0.1", listener.LocalEndPoint().Port))
     server_side = listener.AcceptSocket()
     try:
-        events, _, elapsed = _abort_while_blocked(clock, lambda: server_side.Receive(Box(""), 100))
+        _abort_while_blocked(clock, lambda: server_side.Receive(Box(""), 100))
     finally:
         client.Close()
         server_side.Close()
         listener.Stop()
-    assert events == ["finally", "joined True", "state 0"]
-    assert elapsed < 2.0
 
 
 def test_abort_a_thread_blocked_on_a_silent_modbus_slave() -> None:
@@ -91,19 +91,15 @@ def test_abort_a_thread_blocked_on_a_silent_modbus_slave() -> None:
     silent.listen(1)  # accepts the connection (in the backlog) but never answers
     mb = Modbus(IPEndPoint("127.0.0.1", silent.getsockname()[1]))  # Timeout 0: wait forever
     try:
-        events, _, elapsed = _abort_while_blocked("virtual", lambda: mb.ReadHoldingRegisters(0, 1, Box(None)))
+        _abort_while_blocked("virtual", lambda: mb.ReadHoldingRegisters(0, 1, Box(None)))
     finally:
         mb.Close()
         silent.close()
-    assert events == ["finally", "joined True", "state 0"]
-    assert elapsed < 2.0
 
 
 def test_abort_a_thread_blocked_reading_a_serial_port() -> None:
     port = LoopbackPort()
-    events, _, elapsed = _abort_while_blocked("virtual", port.read)
-    assert events == ["finally", "joined True", "state 0"]
-    assert elapsed < 2.0
+    _abort_while_blocked("virtual", port.read)
 
 
 def _wait_in_thread(fn: object) -> tuple[threading.Thread, list[object]]:
@@ -192,12 +188,10 @@ def test_send_to_a_peer_that_never_reads_is_abortable() -> None:
             server_side.Send(big)
 
     try:
-        events, _, elapsed = _abort_while_blocked("virtual", flood)
+        _abort_while_blocked("virtual", flood)
     finally:
         server_side.Close()
         peer.close()
-    assert events == ["finally", "joined True", "state 0"]
-    assert elapsed < 2.0
 
 
 def _unanswered_endpoint() -> tuple[socket.socket, socket.socket, int]:
@@ -214,14 +208,12 @@ def test_abort_a_thread_blocked_in_connect() -> None:
     full, first, port = _unanswered_endpoint()
     client = TcpClient()
     try:
-        events, _, elapsed = _abort_while_blocked(
+        _abort_while_blocked(
             "virtual", lambda: client.Client().Connect(IPEndPoint("127.0.0.1", port)))
     finally:
         client.Close()
         first.close()
         full.close()
-    assert events == ["finally", "joined True", "state 0"]
-    assert elapsed < 2.0
 
 
 def test_closing_a_socket_ends_a_pending_connect_with_1707() -> None:
