@@ -147,3 +147,27 @@ def test_set_encoder_converts_and_checks() -> None:
         assert _code(rf.set_encoder, "fast") == -717
     finally:
         register_conveyor(4, None)
+
+
+@pytest.mark.parametrize(
+    ("make", "code"),
+    [
+        (lambda: Location.from_pose(None), -782),  # type: ignore[arg-type]
+        (lambda: Location.from_pose((1.0, 2.0)), -202),  # type: ignore[arg-type]
+        (lambda: Location.from_pose(("a",) * 12), -202),  # type: ignore[arg-type]
+        (lambda: Location.from_matrix([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]), -202),  # type: ignore[arg-type]
+        (lambda: Location.from_matrix("eye"), -202),  # type: ignore[arg-type]
+        (lambda: Location.from_angles(None), -782),
+        (lambda: Location.from_angles(5), -202),
+    ],
+)
+def test_python_constructors_reject_what_is_not_a_pose(make: Callable[[], Location], code: int) -> None:
+    """Python-side constructors get GPL codes too, not a TypeError/ValueError from deep inside."""
+    assert _code(make) == code
+
+
+def test_from_pose_takes_any_sequence_of_12_numbers() -> None:
+    loc = Location.from_pose([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 5.0, 6.0, 7.0])  # type: ignore[arg-type]
+    assert (loc.X, loc.Y, loc.Z) == (5.0, 6.0, 7.0)
+    moved = loc.Mul(_loc(1, 0, 0))  # a list stored as is would break tuple arithmetic here
+    assert (moved.X, moved.Y, moved.Z) == (6.0, 6.0, 7.0)

@@ -20,6 +20,7 @@ from gplrt.geometry.transforms import (
     sincos_deg,
     xyzypr_to_matrix,
 )
+from gplrt.lang.errors import GplException
 
 HYP = settings(max_examples=300, deadline=None)
 
@@ -90,8 +91,13 @@ def test_normalize_angle_range_and_negative_zero() -> None:
 
 
 def test_matrix_shape_is_checked() -> None:
-    with pytest.raises(ValueError):
+    """A matrix of another shape, or not numeric, is the GPL error -202 (never a ValueError)."""
+    with pytest.raises(GplException) as caught:
         matrix_to_xyzypr(np.eye(3))
+    assert caught.value.ErrorCode == -202
+    with pytest.raises(GplException) as caught:
+        matrix_to_xyzypr([["a"] * 4] * 4)  # type: ignore[arg-type]
+    assert caught.value.ErrorCode == -202
 
 
 def test_orthonormalize_removes_drift_and_keeps_position() -> None:

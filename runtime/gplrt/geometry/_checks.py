@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from typing import Any, TypeVar
 
+from gplrt.geometry.transforms import Pose
 from gplrt.lang.conversions import to_bool, to_double, to_int32, to_number, to_string
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
@@ -73,12 +74,26 @@ def finite_pose(pose: _P, what: str) -> _P:
     return pose
 
 
-def valid_pose(pose: _P, what: str) -> _P:
-    """``pose`` built by Python (``Location.from_pose``, a Conveyor's nominal) if every component
-    is finite, else -708 *Value infinite or NAN*: a bad *input*, like ``loc.X = NaN``."""
-    s = sum(pose)
+def valid_pose(pose: Any, what: str) -> Pose:
+    """``pose`` built by Python (``Location.from_pose``) if it is 12 finite numbers.
+
+    A non-finite component is -708 *Value infinite or NAN*: a bad *input*, like ``loc.X = NaN``.
+    Anything but a tuple of 12 numbers (None, a short tuple, Strings) is -202 *Invalid argument*,
+    the code ``wrong_object`` gives Python callers, rather than a TypeError or unpacking error
+    from deep inside the first computation that uses it.
+    """
+    try:
+        s = sum(pose)
+        n = len(pose)
+    except TypeError:
+        code = NOTHING_VALUE if pose is None else INVALID_ARGUMENT
+        raise GplException(code, detail=f"{what} must be 12 numbers, not {pose!r:.60}") from None
+    if n != 12:
+        raise GplException(INVALID_ARGUMENT, detail=f"{what} has {n} components, not 12")
+    if type(pose) is not tuple:
+        pose = tuple(pose)
     if s - s == 0.0 or all(math.isfinite(v) for v in pose):
-        return pose
+        return pose  # type: ignore[no-any-return]
     raise GplException(VALUE_INFINITE_OR_NAN, detail=f"{what} has a non-finite component")
 
 

@@ -129,6 +129,10 @@ class Location:
         """An Angles Location holding ``values`` (axis 1 first)."""
         loc = object.__new__(cls)
         loc._type = ANGLES
+        try:
+            values = tuple(values)
+        except TypeError:
+            raise wrong_object(values, "axis values", "sequence of numbers") from None
         loc._angles = tuple(finite(v, "axis value") for v in values)
         if len(loc._angles) > MAX_AXES:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"{len(loc._angles)} axes, at most {MAX_AXES}")

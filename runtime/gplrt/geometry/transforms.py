@@ -42,6 +42,8 @@ from typing import TypeAlias
 import numpy as np
 from numpy.typing import NDArray
 
+from gplrt.lang.errors import INVALID_ARGUMENT, GplException
+
 Pose: TypeAlias = tuple[float, float, float, float, float, float, float, float, float, float, float, float]
 
 #: A pose is singular (pitch 0 or 180) when sin(pitch) is at most this.
@@ -193,10 +195,17 @@ def pose_to_matrix(p: Pose) -> NDArray[np.float64]:
 
 
 def matrix_to_pose(m: NDArray[np.float64]) -> Pose:
-    """Pose tuple of a (4, 4) (or (3, 4)) homogeneous matrix; the bottom row is ignored."""
-    a = np.asarray(m, dtype=float)
+    """Pose tuple of a (4, 4) (or (3, 4)) homogeneous matrix; the bottom row is ignored.
+
+    Anything else (another shape, non-numeric entries) is -202 *Invalid argument*: it reaches
+    here from Python callers (``Location.from_matrix``), who get GPL codes, not ValueError.
+    """
+    try:
+        a = np.asarray(m, dtype=float)
+    except (TypeError, ValueError):
+        raise GplException(INVALID_ARGUMENT, detail=f"not a numeric matrix: {type(m).__name__}") from None
     if a.shape not in ((4, 4), (3, 4)):
-        raise ValueError(f"expected a (4, 4) matrix, got shape {a.shape}")
+        raise GplException(INVALID_ARGUMENT, detail=f"expected a (4, 4) matrix, got shape {a.shape}")
     r = a[:3, :3].ravel().tolist()
     t = a[:3, 3].tolist()
     return tuple(r + t)  # type: ignore[return-value]
