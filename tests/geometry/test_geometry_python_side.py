@@ -169,5 +169,5 @@ def test_python_constructors_reject_what_is_not_a_pose(make: Callable[[], Locati
 def test_from_pose_takes_any_sequence_of_12_numbers() -> None:
     loc = Location.from_pose([1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 5.0, 6.0, 7.0])  # type: ignore[arg-type]
     assert (loc.X, loc.Y, loc.Z) == (5.0, 6.0, 7.0)
-    moved = loc.Mul(_loc(1, 0, 0))  # a list stored as is would break tuple arithmetic here
-    assert (moved.X, moved.Y, moved.Z) == (6.0, 6.0, 7.0)
+    loc.XYZInc(1, 0, 0)  # a list stored as is breaks the tuple arithmetic here (TypeError)
+    assert (loc.X, loc.Y, loc.Z) == (6.0, 6.0, 7.0)
