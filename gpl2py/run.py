@@ -313,7 +313,9 @@ def _stop_all(sim: Any) -> tuple[int, list[str]]:
 def _load_setup(path: str) -> Any:
     """The ``setup`` function of the --setup file; OSError/SyntaxError/... say what is wrong with it."""
     if not Path(path).is_file():
-        raise FileNotFoundError("a folder, not a Python file" if Path(path).is_dir() else "no such file")
+        what = "a folder, not a Python file" if Path(path).is_dir() else \
+            "not a regular file" if Path(path).exists() else "no such file"
+        raise FileNotFoundError(what)
     spec = importlib.util.spec_from_file_location(f"_gpl2py_setup_{next(_serial)}", path)
     if spec is None or spec.loader is None:
         raise ImportError("not a Python file (it must end in .py)")

@@ -85,7 +85,8 @@ def load_user_stubs(path: str | os.PathLike[str], sink: DiagnosticSink) -> UserS
     """Read every ``*.py`` of ``path``; None (with error GPL3503) if the folder or a file is unusable."""
     root = Path(path)
     if not root.is_dir():
-        sink.report(M.STUBS_DIR_ERROR, None, path=str(path), detail="no such folder")
+        what = "not a folder" if root.exists() else "no such folder"
+        sink.report(M.STUBS_DIR_ERROR, None, path=str(path), detail=what)
         return None
     out = UserStubs(root)
     ok = True

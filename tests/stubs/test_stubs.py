@@ -343,6 +343,8 @@ def test_check_takes_the_same_stub_options_as_translate_and_run(tmp_path: Path) 
     assert err.splitlines()[-1] == "checked 1 file: 0 errors, 6 warnings"
     status, err = _check(str(proj), "--stubs", str(tmp_path / "nowhere"))
     assert status == 1 and "error GPL3503: --stubs" in err and "no such folder" in err
+    status, err = _check(str(proj), "--stubs", str(good / "vendorlib.py"))  # a file, not a folder
+    assert status == 1 and "vendorlib.py: not a folder" in err, err
     broken = tmp_path / "broken"
     broken.mkdir()
     (broken / "vendorlib.py").write_text("def Grip(w)\n    return w\n")  # a missing colon

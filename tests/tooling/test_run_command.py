@@ -393,6 +393,7 @@ def test_setup_file_problems_are_command_line_errors(tmp_path: Path, capsys: pyt
     broken.write_text("RATIO = 1 / 0\n\ndef setup(sim):\n    pass\n")  # fails while it is imported
     cases = [(in_process(capsys, "run", str(proj), "--setup", str(tmp_path / "nope.py")), "nope.py: no such file"),
              (in_process(capsys, "run", str(proj), "--setup", str(tmp_path)), "a folder, not a Python file"),
+             (in_process(capsys, "run", str(proj), "--setup", os.devnull), f"{os.devnull}: not a regular file"),
              (in_process(capsys, "run", str(proj), "--setup", str(no_func)), "setup(sim)"),
              (in_process(capsys, "run", str(proj), "--setup", str(failing)), "GplException"),
              (in_process(capsys, "run", str(proj), "--setup", str(broken)),
