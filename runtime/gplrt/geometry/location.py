@@ -556,12 +556,11 @@ class Location:
                 raise wrong_object(p, f"Here3 argument {i}", "Location")
         self._need_cartesian("Here3")
         o, px, pxy = (p.total_pose()[9:] for p in (Location0, LocationX, LocationXY))
-        # Differences of points beyond the Double range are -710; norms by hypot, which scales
-        # instead of squaring (points 1e200 mm apart are representable, their squares are not).
         # Differences of points beyond the Double range are -710.  Differences so large that their
         # cross product would overflow (points 1e200 mm apart) are first scaled by an exact power of
-        # two - the axes need only directions - and the collinearity test is made on the unscaled
-        # lengths; ordinary points are not scaled, so their result is unchanged to the last bit.
+        # two - the axes need only directions - and the collinearity thresholds are scaled with
+        # them, so the test means what it means unscaled; norms use hypot.  Ordinary points are
+        # not scaled, so their result is unchanged to the last bit.
         xv = finite_pose(tuple(px[i] - o[i] for i in range(3)), "Here3")
         v = finite_pose(tuple(pxy[i] - o[i] for i in range(3)), "Here3")
         big = max(map(abs, xv + v))
