@@ -83,10 +83,9 @@ def test_sockets_freed_without_close_stop_pacing_virtual_time() -> None:
         Thread.Sleep(3_600_000)
         result.append(f"slept {Controller.Timer() - t1:.0f} s")
 
-    start = time.monotonic()
     try:
+        # Paced, the hour would take an hour: the bound (a hang guard) fails it; no wall-time assert.
         assert sim.run_main(program, timeout=10) == []
     finally:
         outside.close()
     assert result == ["slept 3600 s"]
-    assert time.monotonic() - start < 5
