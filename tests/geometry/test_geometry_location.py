@@ -9,23 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gplrt.geometry import Location, RefFrame, set_kinematics_provider
+from geomtest import angles as _angles, cartesian as _loc, in_a_frame_loop, xyz as _xyz
 from gpltest import code_of as _code
-
-
-def _xyz(loc: Location) -> tuple[float, ...]:
-    return (loc.X, loc.Y, loc.Z, loc.Yaw, loc.Pitch, loc.Roll)
-
-
-def _loc(*v: float) -> Location:
-    loc = Location()
-    loc.XYZ(*v)
-    return loc
-
-
-def _angles(*v: float) -> Location:
-    loc = Location()
-    loc.Angles(*v)
-    return loc
 
 
 # -- manual and Dictionary examples ------------------------------------------------------------
@@ -302,11 +287,7 @@ def test_bad_type_and_values() -> None:
 
 
 def test_frame_loop_raises_770() -> None:
-    f1, f2 = RefFrame(), RefFrame()
-    f1.Loc.RefFrame = f2
-    f2.Loc.RefFrame = f1
-    loc = Location()
-    loc.RefFrame = f1
+    loc = in_a_frame_loop()
     assert _code(lambda: loc.Pos) == -770
 
 

@@ -12,13 +12,8 @@ from typing import Any, Callable
 import pytest
 
 from gplrt.geometry import Conveyor, Location, RefFrame, register_conveyor
+from geomtest import cartesian as _loc, xyz as _xyz
 from gpltest import code_of as _code
-
-
-def _loc(*v: float) -> Location:
-    loc = Location()
-    loc.XYZ(*v)
-    return loc
 
 
 def test_numeric_strings_are_converted_like_gpl() -> None:
@@ -80,10 +75,6 @@ def test_bad_numbers_raise_gpl_errors(bad: Any, code: int) -> None:
     for fn in calls:
         assert _code(fn) == code
     assert _xyz(loc) == (0, 0, 0, 0, 0, 0)  # nothing was half-written
-
-
-def _xyz(loc: Location) -> tuple[float, ...]:
-    return (loc.X, loc.Y, loc.Z, loc.Yaw, loc.Pitch, loc.Roll)
 
 
 def test_an_integer_beyond_32_bits_overflows() -> None:

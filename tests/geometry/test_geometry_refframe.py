@@ -9,11 +9,8 @@ import pytest
 
 from gplrt.geometry import Conveyor, Location, RefFrame, register_conveyor, xyzypr_to_matrix
 from gplrt.geometry.refframe import PALLET_ORDERS
+from geomtest import in_a_frame_loop, xyz as _xyz
 from gpltest import code_of as _code
-
-
-def _xyz(loc: Location) -> tuple[float, ...]:
-    return (loc.X, loc.Y, loc.Z, loc.Yaw, loc.Pitch, loc.Roll)
 
 
 # -- basic frames ------------------------------------------------------------------------------------
@@ -352,9 +349,5 @@ def test_a_conveyor_frame_relative_to_another_frame_is_791(belt: Conveyor) -> No
 
 
 def test_conveyor_limit_through_a_looping_chain_is_770() -> None:
-    f1, f2 = RefFrame(), RefFrame()
-    f1.Loc.RefFrame = f2
-    f2.Loc.RefFrame = f1
-    loc = Location()
-    loc.RefFrame = f1
+    loc = in_a_frame_loop()
     assert _code(loc.ConveyorLimit) == -770
