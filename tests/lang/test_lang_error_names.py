@@ -30,13 +30,23 @@ def test_conveyor_code_is_named_once_in_the_table() -> None:
     assert errors.error_text(errors.CONVEYOR_MUST_BE_BASE) == "Conveyor must be base RefFrame"
 
 
-@pytest.mark.parametrize("area", ["lang", "geometry", "controller", "threads"])
+#: Every package of the runtime, found on disk (so a new one is checked without editing this list),
+#: and "." for the modules at the top (sim.py, notebook.py...).
+AREAS = sorted(p.name for p in RUNTIME.iterdir() if (p / "__init__.py").is_file()) + ["."]
+
+
+def test_the_areas_are_found() -> None:
+    """Guards the discovery above: were the runtime moved, the check below would pass vacuously."""
+    assert {"lang", "geometry", "controller", "threads", "motion", "io"} <= set(AREAS)
+
+
+@pytest.mark.parametrize("area", AREAS)
 def test_runtime_raises_named_codes_not_literals(area: str) -> None:
-    """errors.py is where every code is named once; these modules raise by name."""
+    """errors.py is where every code is named once; every runtime module raises by name."""
     target = RUNTIME / area
-    files = sorted(target.glob("*.py")) if target.is_dir() else [target]
-    assert files, f"{target} has no modules: the area was moved and this check would pass vacuously"
-    offenders = [hit for f in files if f.name != "errors.py" for hit in _literal_codes(f)]
+    files = sorted(target.glob("*.py")) if area == "." else sorted(target.rglob("*.py"))
+    assert files, f"{target} has no modules"
+    offenders = [hit for f in files if f != Path(errors.__file__).resolve() for hit in _literal_codes(f)]
     assert offenders == []
 
 
