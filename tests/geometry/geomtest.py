@@ -36,3 +36,11 @@ def in_a_frame_loop() -> Location:
     loc = Location()
     loc.RefFrame = f1
     return loc
+
+
+def conveyor_frame(robot: int) -> RefFrame:
+    """A new conveyor RefFrame (Type 2) following the belt registered as conveyor robot ``robot``."""
+    rf = RefFrame()
+    rf.Type = 2
+    rf.ConveyorRobot = robot
+    return rf

@@ -9,13 +9,13 @@ result is out of range.  A NaN/inf operand can only be built from Python, and is
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 
 import numpy as np
 import pytest
 
 from gplrt.geometry import Conveyor, Location, RefFrame, register_conveyor
 from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE
+from geomtest import conveyor_frame
 from gpltest import code_of
 
 BIG = 1.0e308  # finite; twice it is not
@@ -124,17 +124,14 @@ def test_pallet_cell_that_overflows_is_710() -> None:
 
 
 @pytest.fixture
-def runaway_belt() -> Iterator[Conveyor]:
+def runaway_belt() -> Conveyor:
     c = Conveyor(mm_per_count=BIG, encoder=2.0)  # belt travel 2 * 1e308 mm
-    register_conveyor(7, c)
-    yield c
-    register_conveyor(7, None)
+    register_conveyor(7, c)  # conftest.py unregisters it
+    return c
 
 
 def test_conveyor_position_that_overflows_is_710(runaway_belt: Conveyor) -> None:
-    frame = RefFrame()
-    frame.Type = 2
-    frame.ConveyorRobot = 7
+    frame = conveyor_frame(7)
     assert code_of(frame.Pos) == ARITHMETIC_OVERFLOW
     runaway_belt.set_count(1.0)
     assert frame.Pos().X == BIG
@@ -162,9 +159,7 @@ def test_conveyor_limit_that_overflows_is_710(runaway_belt: Conveyor) -> None:
     for this (finite, rotated) nominal; the NaN that the overflow leaves in the result is -710 too."""
     runaway_belt.set_count(0.0)
     runaway_belt.nominal = Location.XYZValue(1.5e308, 1.5e308, 0, 45).pose_wrt_ref
-    frame = RefFrame()
-    frame.Type = 2
-    frame.ConveyorRobot = 7
+    frame = conveyor_frame(7)
     part = Location()
     part.RefFrame = frame
     assert part.Pos.X == 1.5e308  # the part's own position is in range

@@ -12,7 +12,7 @@ from typing import Any, Callable
 import pytest
 
 from gplrt.geometry import Conveyor, Location, RefFrame, register_conveyor
-from geomtest import cartesian as _loc, xyz as _xyz
+from geomtest import cartesian as _loc, conveyor_frame, xyz as _xyz
 from gpltest import code_of as _code
 
 
@@ -128,16 +128,11 @@ def test_nothing_stays_782() -> None:
 
 def test_set_encoder_converts_and_checks() -> None:
     register_conveyor(4, Conveyor())
-    try:
-        rf = RefFrame()
-        rf.Type = 2
-        rf.ConveyorRobot = 4
-        rf.set_encoder("250")  # type: ignore[arg-type]
-        assert rf.Pos().X == 250.0
-        assert _code(rf.set_encoder, float("inf")) == -708
-        assert _code(rf.set_encoder, "fast") == -717
-    finally:
-        register_conveyor(4, None)
+    rf = conveyor_frame(4)
+    rf.set_encoder("250")  # type: ignore[arg-type]
+    assert rf.Pos().X == 250.0
+    assert _code(rf.set_encoder, float("inf")) == -708
+    assert _code(rf.set_encoder, "fast") == -717
 
 
 @pytest.mark.parametrize(

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import itertools
-from typing import Iterator
 
 import pytest
 
 from gplrt.geometry import Conveyor, Location, RefFrame, register_conveyor, xyzypr_to_matrix
 from gplrt.geometry.refframe import PALLET_ORDERS
-from geomtest import in_a_frame_loop, xyz as _xyz
+from geomtest import conveyor_frame, in_a_frame_loop, xyz as _xyz
 from gpltest import code_of as _code
 
 
@@ -223,22 +222,20 @@ def test_pallet_members_on_a_basic_frame_raise_769() -> None:
 
 
 @pytest.fixture
-def belt() -> Iterator[Conveyor]:
+def belt() -> Conveyor:
     c = Conveyor(
         nominal=Location.XYZValue(500, -200, 10, 90, 0, 0).pose_wrt_ref,
         mm_per_count=0.01,
         upstream_limit=-100.0,
         downstream_limit=400.0,
     )
-    register_conveyor(3, c)
-    yield c
-    register_conveyor(3, None)
+    register_conveyor(3, c)  # conftest.py unregisters it
+    return c
 
 
 def _conveyor_frame() -> RefFrame:
-    rf = RefFrame()
-    rf.Type = 2
-    rf.ConveyorRobot = 3
+    """A frame on the ``belt`` fixture's conveyor whose zero is 1000 counts along it."""
+    rf = conveyor_frame(3)
     rf.ConveyorOffset = 1000
     return rf
 
@@ -296,22 +293,17 @@ def test_a_running_belt_moves_with_its_clock() -> None:
     t = [10.0]
     c = Conveyor(mm_per_count=0.5, counts_per_second=200.0, clock=lambda: t[0])
     register_conveyor(5, c)
-    try:
-        rf = RefFrame()
-        rf.Type = 2
-        rf.ConveyorRobot = 5
-        part = Location()
-        part.RefFrame = rf
-        rf.set_encoder(0)  # belt at its zero position at t = 10 s
-        assert part.Pos.X == 0.0
-        t[0] = 12.5  # 2.5 s x 200 counts/s x 0.5 mm = 250 mm
-        assert part.Pos.X == 250.0
-        c.advance(100)  # a hand-made jump of 50 mm on top
-        assert part.Pos.X == 300.0
-        rf.ConveyorOffset = 600  # the zero position is 600 counts = 300 mm downstream
-        assert part.Pos.X == 0.0
-    finally:
-        register_conveyor(5, None)
+    rf = conveyor_frame(5)
+    part = Location()
+    part.RefFrame = rf
+    rf.set_encoder(0)  # belt at its zero position at t = 10 s
+    assert part.Pos.X == 0.0
+    t[0] = 12.5  # 2.5 s x 200 counts/s x 0.5 mm = 250 mm
+    assert part.Pos.X == 250.0
+    c.advance(100)  # a hand-made jump of 50 mm on top
+    assert part.Pos.X == 300.0
+    rf.ConveyorOffset = 600  # the zero position is 600 counts = 300 mm downstream
+    assert part.Pos.X == 0.0
 
 
 def test_a_running_belt_follows_the_simulation_virtual_clock() -> None:
@@ -320,18 +312,13 @@ def test_a_running_belt_follows_the_simulation_virtual_clock() -> None:
 
     c = Conveyor(mm_per_count=0.01, counts_per_second=10_000.0)  # 100 mm/s
     register_conveyor(6, c)
-    try:
-        with Simulation() as sim:
-            rf = RefFrame()
-            rf.Type = 2
-            rf.ConveyorRobot = 6
-            rf.set_encoder(0)
-            start = sim.now()
-            sim.run_for(1.5)
-            assert sim.now() - start == pytest.approx(1.5)
-            assert rf.Pos().X == pytest.approx(150.0, abs=1e-9)
-    finally:
-        register_conveyor(6, None)
+    with Simulation() as sim:
+        rf = conveyor_frame(6)
+        rf.set_encoder(0)
+        start = sim.now()
+        sim.run_for(1.5)
+        assert sim.now() - start == pytest.approx(1.5)
+        assert rf.Pos().X == pytest.approx(150.0, abs=1e-9)
 
 
 def test_a_conveyor_frame_relative_to_another_frame_is_791(belt: Conveyor) -> None:
