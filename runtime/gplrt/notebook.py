@@ -41,7 +41,14 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from gplrt.lang.errors import AMBIGUOUS_PUBLIC_REFERENCE, NO_MODULE_DEFINED, UNDEFINED_SYMBOL, GplException
+from gplrt.lang.errors import (
+    AMBIGUOUS_PUBLIC_REFERENCE,
+    INVALID_ARGUMENT,
+    NO_MODULE_DEFINED,
+    NOTHING_VALUE,
+    UNDEFINED_SYMBOL,
+    GplException,
+)
 from gplrt.sim import ConsoleSink, Simulation
 
 __all__ = ["Cell", "RobotPose", "ProjectError", "save_motion_plot"]
@@ -83,6 +90,18 @@ class RobotPose:
     @property
     def xyz(self) -> tuple[float, float, float] | None:
         return None if self.cartesian is None else self.cartesian[:3]
+
+
+def _name(value: Any, what: str) -> str:
+    """``value`` if it is a String; a GPL name looked up by the notebook must be one.
+
+    Nothing is -782 and any other value -202, as for a GPL member given the wrong argument, so a
+    notebook typo (``cell.get(None)``) reads like every other runtime error, not AttributeError.
+    """
+    if type(value) is str:
+        return value
+    code = NOTHING_VALUE if value is None else INVALID_ARGUMENT
+    raise GplException(code, detail=f"{what} must be a String, not {value!r}")
 
 
 class Cell:
@@ -177,7 +196,7 @@ class Cell:
     def procedure(self, name: str) -> Any:
         """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``."""
         mine = self._procedures
-        want = name.strip().lower()
+        want = _name(name, "procedure name").strip().lower()
         if "." in want:
             found = [e for e in mine if e.qualified_name.lower() == want]
         else:
@@ -198,7 +217,7 @@ class Cell:
 
     def module(self, name: str) -> ModuleType:
         """The generated Python module of GPL module ``name`` (case-insensitive)."""
-        want = name.strip().lower()
+        want = _name(name, "module name").strip().lower()
         prefix = self.package.__name__ + "."
         for value in vars(self.package).values():
             if isinstance(value, ModuleType) and value.__name__.startswith(prefix):
@@ -209,9 +228,9 @@ class Cell:
 
     def get(self, variable: str) -> Any:
         """The value of a module variable, ``"Module.name"`` (case-insensitive)."""
-        module, _, name = variable.rpartition(".")
+        module, _, name = _name(variable, "variable name").rpartition(".")
         if not module:
-            raise ValueError(f"say which module: 'Module.{variable}'")
+            raise GplException(NO_MODULE_DEFINED, detail=f"say which module: 'Module.{variable}'")
         mod = self.module(module)
         want = name.lower()
         for attr, value in vars(mod).items():
