@@ -133,5 +133,5 @@ def test_unnumbered_commands_still_address_robot_1(twin: Cell) -> None:
         assert np.max(np.abs(tool_xyz(twin.sim, 1) - [380.0, 40.0, 200.0])) < 1e-6
         assert np.max(np.abs(tool_xyz(twin.sim, 2) - before2)) < 1e-9
         assert c.ask("where") == "OK 380.000 40.000 200.000"
-        assert c.ask("move x 1 2 3").startswith("ERR -")  # the CInt error, caught by Dispatch
+        assert c.ask("move x 1 2 3") == "ERR -717 *Invalid number format*"  # CInt("x"), caught by Dispatch
         assert c.ask("move 0 1 2 3") == "ERR no robot 0"
