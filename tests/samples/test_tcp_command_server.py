@@ -9,7 +9,6 @@ robot is at pick_1 and at place_1, and the program must end by itself after ``sh
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
 

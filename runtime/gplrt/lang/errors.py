@@ -131,6 +131,7 @@ VISION_UNKNOWN_TOOL = -4013
 VISION_INVALID_INDEX = -4014
 VISION_PROPERTY_NOT_FOUND = -4017
 
+
 def error_text(code: int) -> str:
     """The controller's short text for ``code``; unknown codes read ``Error <code>``."""
     return ERROR_MESSAGES.get(code, f"Error {code}")
