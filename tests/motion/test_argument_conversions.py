@@ -1,8 +1,9 @@
 """Move, Robot and PDb arguments convert by GPL's rules, as a transpiled call would.
 
 Hand-written Python (a notebook, a --setup file) can pass any value: it must get the controller's
-codes (-717 bad numeric text, -708 a NaN/infinite value), never a bare ValueError, and Integer
-arguments round as CInt does instead of truncating.
+codes (-717 bad numeric text, -708 a NaN/infinite value, -202 another object than a Location or
+Profile), never a bare ValueError or AttributeError, and Integer arguments round as CInt does
+instead of truncating.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import pytest
 
 from gplrt.controller.pdb import default_database
 from gplrt.geometry.location import Location
-from gplrt.lang.errors import INVALID_NUMBER_FORMAT, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE
+from gplrt.lang.errors import INVALID_ARGUMENT, INVALID_NUMBER_FORMAT, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE
 from gplrt.motion.move import MAX_DELAY, Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
@@ -34,6 +35,16 @@ from gpltest import code_of
     (lambda: setattr(Robot, "Attached", "robot one"), INVALID_NUMBER_FORMAT),
     (lambda: setattr(Robot, "Selected", "x"), INVALID_NUMBER_FORMAT),
     (lambda: Robot.set_Payload("heavy"), INVALID_NUMBER_FORMAT),
+    # another object than the Location/Profile asked for (was an AttributeError)
+    (lambda: Move.Loc(3.0, Profile()), INVALID_ARGUMENT),
+    (lambda: Move.Loc(Location.from_angles([300.0, 0.0, 90.0, 0.0, 100.0]), "fast"), INVALID_ARGUMENT),
+    (lambda: Move.Loc(Location.XYZValue(300.0, 0.0, 200.0, 0.0, 90.0, 180.0), 1), INVALID_ARGUMENT),
+    (lambda: Move.Rel("x", Profile()), INVALID_ARGUMENT),
+    (lambda: Move.Approach(1, Profile()), INVALID_ARGUMENT),
+    (lambda: Move.Arc(Location(), 2.0, Profile()), INVALID_ARGUMENT),
+    (lambda: Move.OneAxis(1, 300.0, False, "p"), INVALID_ARGUMENT),
+    (lambda: Robot.set_Tool("flange"), INVALID_ARGUMENT),
+    (lambda: Robot.set_Base(0), INVALID_ARGUMENT),
 ])
 def test_bad_values_get_gpl_codes_and_queue_nothing(sim: Simulation, call: object, code: int) -> None:
     before = len(sim.robots[1].queue.history)

@@ -35,12 +35,12 @@ from typing import Any, Callable
 
 import numpy as np
 
+from gplrt.geometry._checks import wrong_object
 from gplrt.geometry.location import Location
 from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import (
     INVALID_AXIS,
     INVALID_CARTESIAN,
-    NOTHING_VALUE,
     NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
     VALUE_INFINITE_OR_NAN,
@@ -85,9 +85,11 @@ def _ready(s: Any, key: Any = None) -> RobotState:
     return robot
 
 
-def _need(obj: Any, what: str) -> None:
-    if obj is None:
-        raise GplException(NOTHING_VALUE, detail=f"{what} is Nothing")
+def _need(obj: Any, cls: type, what: str) -> None:
+    """-782 for Nothing, -202 for any other object than a ``cls`` (reached from Python only: the
+    transpiler's type check stops it in GPL source)."""
+    if not isinstance(obj, cls):
+        raise wrong_object(obj, what, cls.__name__)
 
 
 def _finite(value: Any, what: str) -> float:
@@ -150,8 +152,8 @@ class _MoveClass:
         (straight or joint per the Profile); ``angles`` the joint target of a straight move to an
         Angles Location, whose axes that do not set the tool pose (rail, grippers) must also
         reach their values."""
-        _need(loc, "Location")
-        _need(prof, "Profile")
+        _need(loc, Location, "Location")
+        _need(prof, Profile, "Profile")
         s = registry.sim()
         robot = _ready(s)
         t = s.scheduler.clock.now()
@@ -182,7 +184,7 @@ class _MoveClass:
         """Move to the total position of ``Location1`` (Cartesian or Angles)."""
         loc = Location1
         # (the runtime's own fields, not the GPL properties: this is the hot path)
-        if loc is not None and loc._type == 1 and Profile1 is not None and not Profile1._straight:
+        if isinstance(loc, Location) and loc._type == 1 and isinstance(Profile1, Profile) and not Profile1._straight:
             # the commonest move of all, kept short (benchmarks/motion_speed.py measures it)
             ctx = current_ctx()
             s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
@@ -197,7 +199,7 @@ class _MoveClass:
                     dest = queue.history[-1].q_end if queue.history else queue.rest
                     values = _angles_of(robot, loc, dest).tolist()
                 robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)
-        elif loc is not None and loc._type != 1 and Profile1 is not None:
+        elif isinstance(loc, Location) and loc._type != 1 and isinstance(Profile1, Profile):
             # a Cartesian Location: what the controller plans when the move is queued is the
             # destination's joints and the profile — of the joints, or of a straight line's path
             # (kept short for the same benchmark); Move.Extra values take the general way
@@ -213,7 +215,7 @@ class _MoveClass:
                                      s.controller.system_speed)
                 else:
                     robot.queue_pose(s.scheduler.clock.now(), P1, loc._config, Profile1, s.controller.system_speed)
-        elif loc is not None and loc.Type == 1:
+        elif isinstance(loc, Location) and loc.Type == 1:
             self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
         else:
             self._go(loc, Profile1, pose=lambda r, dest: _cartesian(r, loc, dest))
@@ -239,16 +241,16 @@ class _MoveClass:
         """Move relative to the destination of the previous motion (see the module docstring)."""
         loc = Location1
         # (the runtime's own fields, not the GPL properties: this is the hot path)
-        if loc is not None and loc._type == 1 and Profile1 is not None and not Profile1._straight:
+        if isinstance(loc, Location) and loc._type == 1 and isinstance(Profile1, Profile) and not Profile1._straight:
             self._go(loc, Profile1, joints=lambda r, dest: dest + _angles_of(r, loc, np.zeros_like(dest)))
-        elif loc is not None and loc.Type == 1:
+        elif isinstance(loc, Location) and loc.Type == 1:
             self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest + _angles_of(r, loc, np.zeros_like(dest))))
         else:
             self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest) @ loc.matrix())
 
     def OneAxis(self, Axis: Integer, Position: Double, RelativeFlag: Boolean, Profile1: Profile) -> None:
         """Move one axis (1-based) to ``Position`` (or by it, when ``RelativeFlag``)."""
-        _need(Profile1, "Profile")
+        _need(Profile1, Profile, "Profile")
         s = registry.sim()
         robot = _ready(s)
         axis = to_int32(Axis)
@@ -269,8 +271,9 @@ class _MoveClass:
         self._circular(Location1, Location2, Profile1, full=True)
 
     def _circular(self, loc1: Location, loc2: Location, prof: Profile, *, full: bool) -> None:
-        for obj, what in ((loc1, "Location1"), (loc2, "Location2"), (prof, "Profile")):
-            _need(obj, what)
+        _need(loc1, Location, "Location1")
+        _need(loc2, Location, "Location2")
+        _need(prof, Profile, "Profile")
         s = registry.sim()
         robot = _ready(s)
         with robot.lock:

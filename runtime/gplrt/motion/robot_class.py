@@ -38,6 +38,7 @@ from typing import Any
 
 import numpy as np
 
+from gplrt.geometry._checks import wrong_object
 from gplrt.geometry.kinematics_provider import set_kinematics_provider
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import (
@@ -45,7 +46,6 @@ from gplrt.lang.errors import (
     NOT_CARTESIAN,
     NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
-    NOTHING_VALUE,
     POWER_NOT_ENABLED,
     ROBOT_ALREADY_ATTACHED,
     GplException,
@@ -83,8 +83,8 @@ def _angles(q: np.ndarray) -> Location:
 
 
 def _matrix_of(value: Location) -> np.ndarray:
-    if value is None:
-        raise GplException(NOTHING_VALUE, detail="Location is Nothing")
+    if not isinstance(value, Location):  # -782 for Nothing, -202 for another object
+        raise wrong_object(value, "Tool/Base", "Location")
     if value.Type != 0:
         raise GplException(NOT_CARTESIAN, detail="Tool/Base must be a Cartesian Location")
     return value.matrix()
