@@ -11,9 +11,9 @@ from __future__ import annotations
 import pytest
 
 from gplrt.io import IPEndPoint
-from gplrt.lang.errors import INVALID_ADDRESS
+from gplrt.lang.errors import ARITHMETIC_OVERFLOW, INVALID_ADDRESS, INVALID_NUMBER_FORMAT, VALUE_OUT_OF_RANGE
 from gplrt.lang.gpltypes import Integer, String
-from gpltest import code_of
+from gpltest import code_of, free_port
 
 MALFORMED = [
     "1.2.3",  # three parts
@@ -71,3 +71,54 @@ def test_well_formed_address_is_accepted(text: str, stored: str) -> None:
     if stored:
         assert ep._remote() == (stored, 80)
 
+
+
+# -- the Integer arguments of IPEndPoint and Socket convert by GPL's rules, not Python's int() ------
+
+
+@pytest.mark.parametrize(("value", "port"), [(80.5, 81), (80.4, 80), ("8080", 8080), (-0.4, 0)])
+def test_port_converts_like_any_integer_argument(value: object, port: int) -> None:
+    assert IPEndPoint(String("1.2.3.4"), value).Port == port  # CInt rounds; int() truncated 80.5
+
+
+@pytest.mark.parametrize(
+    ("value", "code"),
+    [("abc", INVALID_NUMBER_FORMAT), (float("nan"), ARITHMETIC_OVERFLOW), (1e300, ARITHMETIC_OVERFLOW),
+     (65536, VALUE_OUT_OF_RANGE), (-1, VALUE_OUT_OF_RANGE)],
+)
+def test_bad_port_is_a_gpl_error(value: object, code: int) -> None:
+    """Before: ValueError from int() for "abc" and NaN."""
+    assert code_of(IPEndPoint, String("1.2.3.4"), value) == code
+
+
+@pytest.mark.parametrize("member", ["ReceiveTimeout", "SendTimeout"])
+def test_socket_timeouts_convert_by_gpl_rules(member: str) -> None:
+    from gplrt.io.sockets import UdpClient
+
+    udp = UdpClient(IPEndPoint(String("127.0.0.1"), Integer(0)))
+    try:
+        sock = udp.Client()
+        setattr(sock, member, 99.5)
+        assert getattr(sock, member) == 100
+        assert code_of(setattr, sock, member, "soon") == INVALID_NUMBER_FORMAT
+        assert code_of(setattr, sock, member, float("nan")) == ARITHMETIC_OVERFLOW
+    finally:
+        udp.Close()
+
+
+def test_receive_and_send_lengths_convert_by_gpl_rules() -> None:
+    from gplrt.io.sockets import UdpClient
+    from gplrt.lang.byref import Box
+
+    me = IPEndPoint(String("127.0.0.1"), Integer(free_port()))
+    udp = UdpClient(me)
+    try:
+        sock = udp.Client()
+        assert sock.SendTo(String("abcdef"), 2.5, me) == 3  # CInt(2.5) = 3 (half away from zero)
+        got = Box("")
+        assert sock.ReceiveFrom(got, 10, Box(None)) == 3 and got.value == "abc"
+        assert code_of(sock.Receive, Box(""), float("nan")) == ARITHMETIC_OVERFLOW
+        assert code_of(sock.ReceiveFrom, Box(""), "many", Box(None)) == INVALID_NUMBER_FORMAT
+        assert code_of(sock.SendTo, String("x"), "all", me) == INVALID_NUMBER_FORMAT
+    finally:
+        udp.Close()

@@ -67,6 +67,7 @@ from gplrt.lang.errors import (
     VALUE_OUT_OF_RANGE,
     GplException,
 )
+from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 
 
@@ -166,7 +167,7 @@ class IPEndPoint:
 
     @Port.setter
     def Port(self, value: Integer) -> None:
-        port = int(value)
+        port = to_int32(value)  # GPL's Integer conversion: CInt rounding, -717/-710, not int()
         if not 0 <= port <= 65535:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"port {port}")
         self._port = port
@@ -279,7 +280,7 @@ class Socket:
 
     @ReceiveTimeout.setter
     def ReceiveTimeout(self, value: Integer) -> None:
-        self._recv_ms = max(0, int(value))
+        self._recv_ms = max(0, to_int32(value))
 
     @property
     def SendTimeout(self) -> Integer:
@@ -288,7 +289,7 @@ class Socket:
 
     @SendTimeout.setter
     def SendTimeout(self, value: Integer) -> None:
-        self._send_ms = max(0, int(value))
+        self._send_ms = max(0, to_int32(value))
 
     @property
     def RemoteEndPoint(self) -> IPEndPoint | None:
@@ -347,7 +348,7 @@ class Socket:
         0 means the peer closed the connection (EX-18).  Waits up to ``ReceiveTimeout`` ms.
         """
         sock = self._connected_tcp() if self._kind == _socket.SOCK_STREAM else self._open()
-        data, _ = self._receive(sock, int(max_length), from_=False)
+        data, _ = self._receive(sock, to_int32(max_length), from_=False)
         if not data and self._kind == _socket.SOCK_STREAM:
             self._peer_closed = True
         input_buffer.set(String(from_bytes(data)))
@@ -358,7 +359,7 @@ class Socket:
     ) -> Integer:
         """Receive one datagram; the sender is stored in ``remote_endpoint`` (allocated if Nothing)."""
         sock = self._open()
-        data, address = self._receive(sock, int(max_length), from_=True)
+        data, address = self._receive(sock, to_int32(max_length), from_=True)
         input_buffer.set(String(from_bytes(data)))
         current = remote_endpoint.get()
         if isinstance(current, IPEndPoint) and address is not None:
@@ -400,8 +401,9 @@ class Socket:
         if self._peer_closed:
             raise GplException(CONNECTION_CLOSED, detail="the peer closed the connection")
         data = to_bytes(as_text(output_buffer))
-        if max_length >= 0:
-            data = data[: int(max_length)]
+        limit = to_int32(max_length)
+        if limit >= 0:
+            data = data[:limit]
         self._send(sock, data, None, "send")
         return Integer(len(data))
 
@@ -411,8 +413,9 @@ class Socket:
         if remote_endpoint is None:
             raise GplException(OBJECT_NOT_INSTANTIATED, detail="SendTo needs an IPEndPoint")
         data = to_bytes(as_text(output_buffer))
-        if max_length > 0:
-            data = data[: int(max_length)]
+        limit = to_int32(max_length)
+        if limit > 0:
+            data = data[:limit]
         address = remote_endpoint._remote()
         self._send(sock, data, address, f"send to {address[0]}:{address[1]}")
         return Integer(len(data))
