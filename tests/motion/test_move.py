@@ -54,6 +54,14 @@ def test_joint_move_ends_exactly_on_target_and_wait_advances_virtual_time(sim: S
     check_limits(sim, prof, seg.t0, seg.end)
 
 
+def test_waitforeom_before_any_motion_returns_at_once(sim: Simulation) -> None:
+    # (an empty queue ends at -inf: the virtual clock's nanoseconds overflowed on it)
+    t_start = sim.now()
+    Move.WaitForEOM()
+    assert sim.now() == t_start
+    assert Robot.TrajState() == 0
+
+
 def test_cartesian_joint_move_reaches_the_pose(sim: Simulation) -> None:
     goal = Location()
     goal.XYZ(400.0, 200.0, 300.0, 30.0, 90.0, 180.0)

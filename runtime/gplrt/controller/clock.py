@@ -62,7 +62,10 @@ class VirtualClock:
         return self.ns / 1e9
 
     def reached(self, t: float) -> bool:
-        return self.ns >= to_ns(t)
+        try:
+            return self.ns >= to_ns(t)
+        except OverflowError:  # beyond the nanoseconds: -inf (an empty motion queue's end) has
+            return t < 0.0  # always come, +inf or a huge time never does
 
     def real_seconds(self, dt: float) -> float:
         return 0.0
