@@ -72,6 +72,14 @@ def _check_not_moving(robot: RobotState) -> None:
                            detail=f"robot {robot.number} is still moving (Move.WaitForEOM first)")
 
 
+def _source(robot: RobotState) -> np.ndarray:
+    """Joints at the start of the last queued motion, or the present ones before any motion."""
+    now = registry.now()
+    robot.run_cycles(now)  # a stop by now has dropped the motions after it
+    q = robot.source_joints()
+    return q if q is not None else robot.joints_at(now)
+
+
 def _cart(robot: RobotState, q: np.ndarray) -> Location:
     loc = Location.from_matrix(robot.forward(q))
     loc.Config = robot.model.config_of([float(v) for v in q])
@@ -211,19 +219,10 @@ class _RobotClass:
     def Source(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Start of the last queued motion (the present pose before any motion)."""
         robot = _robot(Robot)
-        robot.run_cycles(registry.now())  # a stop by now has dropped the motions after it
-        q = robot.source_joints()
-        if q is None:
-            q = robot.joints_at(registry.now())
-        return _cart(robot, q)
+        return _cart(robot, _source(robot))
 
     def SourceAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
-        robot = _robot(Robot)
-        robot.run_cycles(registry.now())  # a stop by now has dropped the motions after it
-        q = robot.source_joints()
-        if q is None:
-            q = robot.joints_at(registry.now())
-        return _angles(q)
+        return _angles(_source(_robot(Robot)))
 
     def SpeedAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Present speed of every axis (mm/s or deg/s) as an Angles Location."""
