@@ -352,3 +352,46 @@ def test_stalled_program_returns_with_the_waiting_threads(vsim: Simulation) -> N
 
     assert vsim.run_main(main) == ["Forever"]
     assert "stalled" in vsim.console.log_text
+
+
+# ---- Integer arguments convert by GPL's rules --------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("value", "code"),
+    [(float("nan"), -710), (1e300, -710), ("soon", -717), (None, -782)],
+)
+def test_bad_millisecond_and_mask_arguments_are_gpl_errors(vsim: Simulation, value: object, code: int) -> None:
+    """Hand-written Python (a notebook) may pass anything; before, int() and comparisons leaked
+    ValueError/TypeError, and Sleep(1e300) slept forever instead of overflowing."""
+    from gpltest import code_of
+
+    t = Thread(lambda: Thread.Sleep(100), 0, "sleeper")
+    got: list[int] = []
+
+    def main() -> None:
+        t.Start()
+        got.append(code_of(t.Join, value))
+        got.append(code_of(Thread.Sleep, value))
+        got.append(code_of(Thread.WaitEvent, 1, value))
+        got.append(code_of(Thread.WaitEvent, value, 0))
+        got.append(code_of(t.SendEvent, value))
+        t.Join()
+
+    assert vsim.run_main(main, timeout=10) == []
+    assert got == [code] * 5
+
+
+def test_millisecond_arguments_round_like_cint(vsim: Simulation) -> None:
+    got: list[float] = []
+
+    def main() -> None:
+        t0 = now()
+        Thread.Sleep(2.5)  # CInt(2.5) = 3 ms; int() truncated it to 2
+        got.append(round((now() - t0) * 1000, 6))
+        t0 = now()
+        Thread.WaitEvent(1, "4")  # numeric text converts
+        got.append(round((now() - t0) * 1000, 6))
+
+    vsim.run_main(main)
+    assert got == [3.0, 4.0]

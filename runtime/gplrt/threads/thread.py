@@ -65,6 +65,7 @@ from gplrt.lang.errors import (
     VALUE_OUT_OF_RANGE,
     GplException,
 )
+from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 from gplrt.threads.scheduler import ThreadAbort, ThreadCtx, WaitQueue, current_ctx
 
@@ -258,6 +259,7 @@ class Thread:
         if self._ctx is not None and self._ctx is current_ctx():
             raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail="a thread cannot join itself")
         sched = self._sim.scheduler
+        timeout = to_int32(timeout)
         deadline = None if timeout < 0 else sched.clock.now() + timeout / 1000.0
         if timeout == 0:
             return (not self._active)  # type: ignore[return-value]
@@ -316,12 +318,13 @@ class Thread:
         """Suspend the calling thread; ``Sleep(0)`` (or negative) just yields."""
         from gplrt.sim import current
 
-        current().scheduler.sleep(max(0, milliseconds) / 1000.0)
+        current().scheduler.sleep(max(0, to_int32(milliseconds)) / 1000.0)
 
     @staticmethod
     def WaitEvent(event_mask: Integer, time_out: Integer) -> Integer:
         me = Thread.CurrentThread()
         mask = _check_mask(event_mask)
+        time_out = to_int32(time_out)
         if time_out > MAX_WAIT_MS:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"WaitEvent timeout {time_out} ms")
         sched = me._sim.scheduler
@@ -407,7 +410,7 @@ class Thread:
 
 
 def _check_mask(mask: int) -> int:
-    mask = int(mask)
+    mask = to_int32(mask)  # GPL's Integer conversion (-717/-710), not int()'s ValueError
     if not 0 <= mask <= MAX_EVENT_MASK:
         raise GplException(VALUE_OUT_OF_RANGE, detail=f"event mask {mask}")
     return mask
