@@ -122,7 +122,7 @@ def test_a_short_line_after_a_long_blend_still_ends_on_target(sim: Simulation) -
     Move.WaitForEOM()
     t1 = sim.now()
     assert np.max(np.abs(tool(sim, t1) - xyz(452.0, 100.0, 300.0).matrix())) < 1e-9
-    assert slowest(sim, t0, t1, margin=0.02, n=400) > 1e-3  # never stops
+    assert slowest(sim, t0, t1, margin=0.02, n=400) > 0.1  # never stops (a stop samples < 1e-3)
 
 
 def _on_circle(p: np.ndarray, a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[float, float]:
