@@ -133,7 +133,8 @@ class Writer:
 def wrap_comment(indent: int, text: str, limit: int = LIMIT) -> list[str]:
     """A ``#`` comment re-flowed at word boundaries to fit ``limit`` at ``indent``; every piece
     keeps the original's prefix (``#`` and the spaces after it).  A single word longer than the
-    line (a URL) stays whole."""
+    line (a URL) stays whole.  A piece never ends in spaces (PEP 8 W291), though a GPL comment may
+    hold runs of them (aligned columns) that a break lands in."""
     if 4 * indent + len(text) <= limit:
         return [text]
     body = text.lstrip("#")
@@ -145,10 +146,10 @@ def wrap_comment(indent: int, text: str, limit: int = LIMIT) -> list[str]:
     cur = ""
     for word in stripped.split(" "):
         if cur and len(cur) + 1 + len(word) > room:
-            out.append(prefix + cur)
+            out.append((prefix + cur).rstrip())
             cur = word
         else:
             cur = f"{cur} {word}" if cur else word
     if cur or not out:
-        out.append(prefix + cur)
+        out.append((prefix + cur).rstrip())
     return out

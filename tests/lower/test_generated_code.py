@@ -200,6 +200,22 @@ def test_long_gpl_comments_are_reflowed_and_moved_above_long_statements(tmp_path
     assert "total = chk_int32(total + 1)  # one more" in short  # a short one stays trailing
 
 
+def test_reflowed_comments_with_runs_of_spaces_have_no_trailing_whitespace(tmp_path: Path) -> None:
+    """A long GPL comment with aligned columns (runs of spaces) breaks inside a run; no piece may
+    end in spaces (pycodestyle W291), and every word is kept in order."""
+    words = [f"col{i}" for i in range(12)]
+    aligned = (" " * 9).join(words)
+    text = gen(tmp_path, f"""        Dim total As Integer
+        ' {aligned}
+        total = total + 1   ' {aligned}""")
+    comments = [ln for ln in main_body(text).splitlines() if ln.strip().startswith("#")]
+    assert len(comments) >= 4 and all(ln == ln.rstrip() for ln in comments), comments
+    assert " ".join(" ".join(c.split()[1:]) for c in comments).split() == words * 2
+    path = tmp_path / "m.py"
+    path.write_text(text)
+    assert pycodestyle.StyleGuide(max_line_length=99, quiet=True).check_files([str(path)]).total_errors == 0
+
+
 def test_comparison_with_a_boolean_literal_is_the_condition_itself(tmp_path: Path) -> None:
     body = main_body(gen(tmp_path, """        Dim ok As Boolean
         If ok = True Then Console.WriteLine(1)
