@@ -24,6 +24,7 @@ for something no GPL thread or timer can ever provide — on a controller they w
 from __future__ import annotations
 
 import atexit
+import numbers
 import io as _io
 import sys
 import threading
@@ -35,6 +36,17 @@ from typing import Any, Callable, Literal, TextIO
 from gplrt.controller.clock import RealClock, VirtualClock
 from gplrt.threads.scheduler import RealScheduler, Scheduler, VirtualScheduler, current_ctx
 
+
+
+def _seconds(value: Any, what: str) -> Any:
+    """A duration argument of the Python API (``run_for``, ``timeout=``): None or a finite number
+    >= 0, else a ValueError that names it.  (Python callers get Python's error for a Python
+    argument; a NaN or a string would otherwise fail deep inside the scheduler.)"""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not 0 <= value < float("inf"):
+        raise ValueError(f"{what} must be a finite number of seconds >= 0, not {value!r}")
+    return value
 
 class SimulationStalled(RuntimeError):
     """``Simulation.call`` cannot finish: every GPL thread waits for something that never comes.
@@ -203,6 +215,7 @@ class Simulation:
         """
         from gplrt.threads.thread import Thread
 
+        timeout = _seconds(timeout, "timeout")  # (before anything starts)
         with self:
             main = Thread(proc, 0, name or "", _sim=self)
             main.Start()
@@ -220,6 +233,7 @@ class Simulation:
         """
         from gplrt.threads.thread import Thread
 
+        timeout = _seconds(timeout, "timeout")  # (before anything starts)
         with self:
             t = Thread(proc, 0, "", _sim=self, _args=args, _propagate=True)
             t.Start()
@@ -278,6 +292,7 @@ class Simulation:
 
     def run_for(self, seconds: float) -> None:
         """Let the session's GPL threads run for ``seconds`` of controller time, then return."""
+        seconds = _seconds(seconds, "seconds")
         self.activate()
         self.scheduler.sleep(seconds)
 
