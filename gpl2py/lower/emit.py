@@ -108,9 +108,9 @@ class Writer:
                 gmap.append(ln.gpl_line)
                 continue
             pad = "    " * ln.indent
-            comment = ln.comment
+            comment = inline_comment(ln.comment) if ln.comment else ""
             if comment and 4 * ln.indent + len(ln.text) + 2 + len(comment) > LIMIT:
-                for text in wrap_comment(ln.indent, comment):  # too long together: comment above
+                for text in wrap_comment(ln.indent, ln.comment):  # too long together: comment above
                     out.append(pad + text)
                     gmap.append(ln.gpl_line)
                 comment = ""
@@ -128,6 +128,16 @@ class Writer:
             out.pop()
             gmap.pop()
         return "\n".join(out) + "\n", gmap
+
+
+def inline_comment(comment: str) -> str:
+    """``comment`` as it stands after code: PEP 8 wants exactly ``# `` before an inline comment's
+    text (pycodestyle E262), so the spaces or tabs a GPL comment starts with (``x = 1   '   note``,
+    kept to align columns) are dropped there; a comment on its own line keeps them."""
+    if not comment.startswith("#"):
+        return comment
+    body = comment[1:].lstrip(" \t\xa0")
+    return "# " + body if body else "#"
 
 
 def wrap_comment(indent: int, text: str, limit: int = LIMIT) -> list[str]:

@@ -200,6 +200,24 @@ def test_long_gpl_comments_are_reflowed_and_moved_above_long_statements(tmp_path
     assert "total = chk_int32(total + 1)  # one more" in short  # a short one stays trailing
 
 
+def test_an_indented_gpl_comment_after_code_starts_with_one_space(tmp_path: Path) -> None:
+    """``x = 1   '   note``: after code the comment reads ``# note`` (pycodestyle E262 wants exactly
+    '# '); the same comment on its own line keeps its indentation."""
+    text = gen(tmp_path, """        Dim total As Integer
+        '    indented note
+        total = total + 1   '    indented note
+        If total > 0 Then   '\tafter a tab
+            total = 0
+        End If""")
+    body = main_body(text)
+    assert "    #    indented note\n" in body
+    assert "total = chk_int32(total + 1)  # indented note\n" in body
+    assert "if total > 0:  # after a tab\n" in body
+    path = tmp_path / "m.py"
+    path.write_text(text)
+    assert pycodestyle.StyleGuide(max_line_length=99, quiet=True).check_files([str(path)]).total_errors == 0
+
+
 def test_reflowed_comments_with_runs_of_spaces_have_no_trailing_whitespace(tmp_path: Path) -> None:
     """A long GPL comment with aligned columns (runs of spaces) breaks inside a run; no piece may
     end in spaces (pycodestyle W291), and every word is kept in order."""
