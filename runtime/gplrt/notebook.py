@@ -32,6 +32,7 @@ procedures can be called, as from another GPL module (§12): a Private one raise
 
 from __future__ import annotations
 
+import os
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -144,6 +145,8 @@ class Cell:
         from gplrt.controller.pdb import default_database
 
         default_database(robot)  # an unknown model fails here, with -221 and the known names
+        if stubs is not None and not isinstance(stubs, (str, os.PathLike)):
+            raise TypeError(f"stubs is the folder of Python stubs (a str or Path), not {stubs!r}")
 
         from gpl2py.diagnostics import DiagnosticSink
         from gpl2py.run import build, import_built

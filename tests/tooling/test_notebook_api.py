@@ -131,6 +131,20 @@ def test_robot_model_and_clock_are_chosen_at_load(tmp_path: Path) -> None:
     assert info.value.ErrorCode == -221
 
 
+@pytest.mark.parametrize("robot", [None, 400, ["PF400SX"]])
+def test_a_robot_that_is_not_a_model_name_is_221(tmp_path: Path, robot: object) -> None:
+    proj = write_project(tmp_path, {"Station.gpl": STATION}, start="Station.Main", name="Station")
+    with pytest.raises(GplException) as info:
+        Cell.load(proj, robot=robot)  # type: ignore[arg-type]
+    assert info.value.ErrorCode == -221 and "a robot model is a name" in str(info.value)
+
+
+def test_stubs_that_are_not_a_path_are_named(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Station.gpl": STATION}, start="Station.Main", name="Station")
+    with pytest.raises(TypeError, match="stubs is the folder of Python stubs"):
+        Cell.load(proj, stubs=5)  # type: ignore[arg-type]
+
+
 def test_two_loads_share_the_cache_entry_but_not_module_state(tmp_path: Path, private_cache: Path) -> None:
     proj = write_project(tmp_path, {"Station.gpl": STATION}, start="Station.Main", name="Station")
     a = Cell.load(proj, echo=False)

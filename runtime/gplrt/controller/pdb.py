@@ -532,7 +532,9 @@ def model_names() -> list[str]:
 def default_database(model: str = "PF400SX") -> ParameterDatabase:
     """A fresh copy of the shipped database for ``model`` (case-insensitive; see ``MODELS``).
 
-    Unknown names raise -221 *Invalid robot type*."""
+    Unknown names (and anything that is not a name) raise -221 *Invalid robot type*."""
+    if not isinstance(model, str):
+        raise GplException(INVALID_ROBOT_TYPE, detail=f"a robot model is a name, not {model!r}; known: {', '.join(model_names())}")
     name = model.strip().upper()
     name = MODEL_ALIASES.get(name, name)
     if name not in MODELS:
