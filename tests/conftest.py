@@ -1,7 +1,8 @@
 """Fixtures shared by every test package.
 
 The runtime has process-wide state a test can change: the active simulation, the Console sink it
-installs, the controller's flash root and the kinematics provider behind ``Location.Here``.
+installs, the controller's flash root, the kinematics provider behind ``Location.Here`` and the
+table of conveyor belts RefFrames register.
 ``_isolate_runtime_state`` starts each test with no active simulation and puts everything back
 afterwards, so that no test depends on which tests ran before it.
 """
@@ -17,7 +18,7 @@ import pytest
 # Shared test helpers (tests/gpltest.py) import as a top-level module: test folders are not packages.
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from gplrt.geometry import kinematics_provider
+from gplrt.geometry import kinematics_provider, refframe
 from gplrt.io import flashroot
 from gplrt.lang.console import get_console_sink, set_console_sink
 from gplrt.sim import Simulation, _state, set_current
@@ -29,12 +30,15 @@ def _isolate_runtime_state() -> Iterator[None]:
     sim = _state.sim
     flash = flashroot._current
     provider = kinematics_provider._provider
+    conveyors = dict(refframe._conveyors)
     set_current(None)
     yield
     set_console_sink(sink)
     set_current(sim)
     flashroot._current = flash
     kinematics_provider._provider = provider
+    refframe._conveyors.clear()
+    refframe._conveyors.update(conveyors)
 
 
 @pytest.fixture
