@@ -14,7 +14,8 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import default_code
-from gpl2py.lower.names import py_ident, py_string
+from gpl2py.lower.names import py_ident
+from gpl2py.lower.text import py_string
 from gpl2py.lower.statements import ProcLowerer
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
 from gpl2py.syntax import ast as A
@@ -49,6 +50,8 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
     instance_fields = [m for m in cls.fields() if not m.shared]
     slots = ", ".join(py_string(py_ident(f.name)) for f in instance_fields)
     w.line(f"__slots__ = ({slots}{',' if len(instance_fields) == 1 else ''})")
+    if ctx.names.dynamic_members:
+        w.line(f"_gpl_members_ = {{{gpl_members(cls)}}}")
     for member in decl.members:
         if isinstance(member, A.VarDecl):
             for d in member.declarators:
@@ -125,6 +128,15 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
     w.comments(decl.end_comments)
     w.dedent()
     return w
+
+
+def gpl_members(cls: ClassSym) -> str:
+    """The Public members of ``cls`` for ``gplrt.lang.members``: GPL name (lower case) -> Python
+    name.  Only a project that reads members of values of unknown type needs it (a stub's result
+    may be one of its objects); the runtime reaches nothing of a class that is not listed."""
+    members = sorted((m.name.lower(), py_ident(m.name)) for m in cls.members.values()
+                     if isinstance(m, (VarSym, ProcSym, PropSym)) and m.public)
+    return ", ".join(f"{py_string(k)}: {py_string(v)}" for k, v in members)
 
 
 def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink, extra: list[str]) -> Writer:

@@ -18,12 +18,19 @@ from gpl2py.semantics.stubs import Stub
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, PropSym, VarSym
 
 
+# Info kinds that name a member of a value whose class is unknown at translation time.
+DYNAMIC_MEMBER_KINDS = frozenset({"extattr", "extinvoke"})
+
+
 @dataclass
 class ProjectNames:
     module_py: dict[ModuleSym, str] = field(default_factory=dict)
     taken: set[str] = field(default_factory=set)
     # stub modules (Module.Name of a module only protected code declares): lower name -> file
     stub_module_py: dict[str, str] = field(default_factory=dict)
+    # Some expression reads a member of a value of unknown type (a stub's result): classes then
+    # list their Public members for gplrt.lang.members (see lower/classes.py).
+    dynamic_members: bool = False
 
     @classmethod
     def build(cls, model: Model) -> ProjectNames:
@@ -37,6 +44,7 @@ class ProjectNames:
         for c in model.project.classes:
             taken.update(py_ident(m.name) for m in c.members.values())
         names.taken = taken
+        names.dynamic_members = any(i.kind in DYNAMIC_MEMBER_KINDS for i in model.info.values())
         used: set[str] = set()
         mods = list(model.project.module_list)
         top = model.project.modules.get(TOP_MODULE.lower())

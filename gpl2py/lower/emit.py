@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gpl2py.lower.text import escape
 from gpl2py.lower.wrap import LIMIT, wrap
 from gpl2py.syntax import ast as A
 
@@ -38,8 +39,10 @@ class Line:
 
 
 def comment_text(c: A.Comment) -> str:
-    """A GPL comment as a Python comment (``' note`` -> ``# note``; ``#Region`` kept after ``# ``)."""
-    text = c.text.rstrip()
+    """A GPL comment as a Python comment (``' note`` -> ``# note``; ``#Region`` kept after ``# ``).
+
+    The text passes the input-text gate (:mod:`gpl2py.lower.text`): nothing in it can end the line."""
+    text = escape(c.text.rstrip(), "comment")
     if c.directive:
         return "# " + text
     if not text:

@@ -11,7 +11,8 @@ from __future__ import annotations
 import struct
 
 from gpl2py.lower.context import ModuleContext
-from gpl2py.lower.names import py_float, py_ident, py_string
+from gpl2py.lower.names import py_float, py_ident
+from gpl2py.lower.text import py_string
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Member
 from gpl2py.semantics.check import Info, Model, ParamInfo
@@ -28,6 +29,7 @@ Code = tuple[str, int]
 CONV = "gplrt.lang.conversions"
 OPS = "gplrt.lang.operators"
 BYREF = "gplrt.lang.byref"
+MEMBERS = "gplrt.lang.members"
 
 _PLAIN_NUM = (t.BYTE, t.SHORT, t.INTEGER, t.SINGLE, t.DOUBLE)
 _INTS = (t.BYTE, t.SHORT, t.INTEGER)
@@ -746,12 +748,13 @@ class ExprLowerer:
         since nothing is known to convert; the stub raises -204 unless the user supplied it."""
         args = [self.val(a) for a in e.args] if isinstance(e, (A.Invoke, A.New)) and e.args else []
         if i.kind == "extattr":
-            return f"{self.sub(i.receiver, P_ATOM)}.{i.sym}"  # type: ignore[arg-type]
+            # never a raw Python attribute: the runtime admits GPL members only (docs/security.md)
+            return self.dynamic_member(i.receiver, str(i.sym))  # type: ignore[arg-type]
         if i.kind == "extinvoke":
             if isinstance(e, A.Invoke):
                 return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})"
             assert isinstance(e, A.MemberAccess)
-            return f"{self.sub(e.target, P_ATOM)}.{e.name}()"
+            return f"{self.dynamic_member(e.target, e.name)}()"
         stub: Stub | None = i.sym  # type: ignore[assignment]
         if stub is None:
             return "None"
@@ -761,6 +764,10 @@ class ExprLowerer:
         if i.kind == "extname" and stub.builtin is None and stub.kind != "procedure":
             return ref  # a variable of the protected code
         return f"{ref}({', '.join(args)})"
+
+    def dynamic_member(self, receiver: A.Expr, name: str) -> str:
+        """``receiver.name`` where the receiver's class is unknown (gplrt.lang.members)."""
+        return f"{self.rt(MEMBERS, 'get_member')}({self.val(receiver)}, {py_string(name)})"
 
     def addressof_code(self, i: Info) -> str:
         p: ProcSym = i.sym  # type: ignore[assignment]

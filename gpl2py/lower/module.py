@@ -15,7 +15,8 @@ from gpl2py.lower.classes import delegate_line, field_value, lower_class, regist
 from gpl2py.lower.context import ModuleContext, ProjectNames
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import annotation, default_code
-from gpl2py.lower.names import py_ident, py_string
+from gpl2py.lower.names import py_ident
+from gpl2py.lower.text import escape, py_string
 from gpl2py.lower.statements import ProcLowerer
 from gpl2py.semantics.check import Model
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, VarSym
@@ -166,7 +167,7 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     out = Writer()
     source = mod.path
     what = f"Module {mod.name}" if decl is not None else "Top-level classes"
-    out.line(f'"""{what}, transpiled by gpl2py from {os.path.basename(source)}."""')
+    out.line(f'"""{what}, transpiled by gpl2py from {escape(os.path.basename(source), "docstring")}."""')
     if decl is not None:
         out.comments(decl.leading_comments)
     imports = _import_lines(ctx)

@@ -36,30 +36,6 @@ def snake_case(name: str) -> str:
     return s
 
 
-def py_string(text: str) -> str:
-    """A Python string literal for ``text`` (double quotes, escapes for controls and code points
-    above 126, so generated files are ASCII and stable)."""
-    out = ['"']
-    for ch in text:
-        o = ord(ch)
-        if ch == "\\":
-            out.append("\\\\")
-        elif ch == '"':
-            out.append('\\"')
-        elif ch == "\n":
-            out.append("\\n")
-        elif ch == "\r":
-            out.append("\\r")
-        elif ch == "\t":
-            out.append("\\t")
-        elif o < 32 or o > 126:
-            out.append(f"\\x{o:02x}" if o < 256 else f"\\u{o:04x}")
-        else:
-            out.append(ch)
-    out.append('"')
-    return "".join(out)
-
-
 def py_float(value: float) -> str:
     """A Python float literal that round-trips (``1.0``, ``0.1``, ``1e+300``)."""
     text = repr(float(value))

@@ -8,7 +8,8 @@ procedure with ``sim.call(pkg.module.Proc, args...)``.
 
 from __future__ import annotations
 
-from gpl2py.lower.names import py_ident, py_string
+from gpl2py.lower.names import py_ident
+from gpl2py.lower.text import escape, py_string
 from gpl2py.semantics.check import Model
 from gpl2py.semantics.symbols import ModuleSym
 
@@ -27,7 +28,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     start = model.start
     has_start = start is not None and start.module is not None
     lines = [
-        f'"""GPL project {project_name}, transpiled by gpl2py.',
+        f'"""GPL project {escape(project_name, "docstring")}, transpiled by gpl2py.',
         "",
         "Importing this package starts nothing.  ``main()`` runs the project (ProjectStart) on a simulated",
         "controller; ``init()`` initialises the modules (variables in ProjectSource order, then each",

@@ -17,6 +17,7 @@ from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import (
     BYREF,
     CONV,
+    MEMBERS,
     P_AND,
     P_ATOM,
     P_NOT,
@@ -30,6 +31,7 @@ from gpl2py.lower.expressions import (
 )
 from gpl2py.lower.goto import GotoPlan, plan_gotos
 from gpl2py.lower.names import py_ident
+from gpl2py.lower.text import py_string
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import Member
 from gpl2py.semantics.check import child_blocks
@@ -135,7 +137,10 @@ class ProcLowerer(ExprLowerer):
                 self.w.line(f"{head}.set_{m.name}({', '.join([*args, value])})")
             return
         if k == "extattr":
-            self.w.line(f"{self.sub(i.receiver, P_ATOM)}.{i.sym} = {value}")  # type: ignore[arg-type]
+            # a member of a value of unknown type: the runtime admits GPL members only
+            setter = self.rt(MEMBERS, "set_member")
+            recv = self.val(i.receiver)  # type: ignore[arg-type]
+            self.w.line(f"{setter}({recv}, {py_string(str(i.sym))}, {value})")
             return
         if k == "extname":
             stub: Stub = i.sym  # type: ignore[assignment]

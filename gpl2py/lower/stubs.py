@@ -11,7 +11,7 @@ in place of the stand-in.
 
 from __future__ import annotations
 
-from gpl2py.lower.names import py_string
+from gpl2py.lower.text import escape, py_string
 from gpl2py.lower.stub_names import STUBS_MODULE, stub_attr, stub_module_name
 from gpl2py.lower.user_stubs import UserFile, UserStubs
 from gpl2py.semantics.stubs import Stub, StubTable
@@ -44,7 +44,8 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
                "protected (.gpp) files, and members of built-in classes that the simulated controller lacks.")
     else:
         gpl = stubs[0].module or module
-        doc = f"Stubs for Module {gpl}: its source is protected (.gpp), gpl2py could not translate it."
+        doc = (f"Stubs for Module {escape(gpl, 'docstring')}: its source is protected (.gpp), gpl2py could not "
+               "translate it.")
     head = [
         f'"""{doc}',
         "",
@@ -86,7 +87,7 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
             else:
                 needs_helper = True
                 defs.extend(["", "", f"def set_{attr}(*args: object) -> None:",
-                             f'    """Assigning {stub.name}: not simulated, raises -204."""',
+                             f'    """Assigning {escape(stub.name, "docstring")}: not simulated, raises -204."""',
                              f"    not_available({py_string(stub.name)}, builtin=True)"])
         if stub.kind == "variable" and found is None:
             variables.append((attr, stub.name))
@@ -132,17 +133,17 @@ def _stand_in(stub: Stub, attr: str) -> list[str]:
         return []
     if stub.kind == "class":
         return ["", "", f"class {attr}:",
-                f'    """{stub.name} (protected source): creating one raises -204."""',
+                f'    """{escape(stub.name, "docstring")} (protected source): creating one raises -204."""',
                 "",
                 "    def __init__(self, *args: object) -> None:",
                 f"        not_available({name})"]
     if stub.kind == "member":
         how = "" if stub.shared else " (the object comes first)"
         return ["", "", f"def {attr}(*args: object) -> object:",
-                f'    """{stub.name}{how}: not in the simulated controller, raises -204."""',
+                f'    """{escape(stub.name, "docstring")}{how}: not in the simulated controller, raises -204."""',
                 f"    return not_available({name}, builtin=True)"]
     return ["", "", f"def {attr}(*args: object) -> object:",
-            f'    """{stub.name} (protected source): raises -204."""',
+            f'    """{escape(stub.name, "docstring")} (protected source): raises -204."""',
             f"    return not_available({name})"]
 
 
