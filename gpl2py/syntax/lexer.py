@@ -22,7 +22,11 @@ Decisions documented here (the spec leaves them open):
   trailing comment.  The warning is given once per logical line, at its first such comment: vendor
   code annotates long continued expressions line by line, and a hundred identical warnings for one
   statement would bury everything else.
-* A `` _`` must be preceded by a blank (spec §1.3); ``x_`` is an identifier and ``)_`` is an error.
+* A ``_`` followed only by blanks or a comment ends a continued line whenever the character before
+  it cannot be part of a name: a blank (spec §1.3), but also ``,_`` ``)_`` ``&_`` ``"a"_``.  The
+  manual asks for a blank before the ``_``; the vendor's own code glues it to a comma
+  (``lcc.XYZ(a, b,_``, docs/design/real-code.md) and the controller compiles it.  ``x_`` is an
+  identifier; a ``_`` glued to a number (``1_``) stays an error (GPL1006 and GPL1001).
 * ``&H``/``&O`` literals are lexed greedily (spec §1.9), so ``String &HEAD`` is ``String`` followed by
   the hex literal ``&HEAD``.  Values are 32-bit two's complement (``&HFFFFFFFF`` = -1, AMB-36).
 * String literals over 128 characters get a warning (AMB-35), non-ASCII characters in them an error.
@@ -63,6 +67,8 @@ _MASTER = re.compile(
     re.VERBOSE,
 )
 
+# characters that can be part of a name: a '_' right after one of these is not a continuation
+_NAME_CHAR = re.compile(r"[A-Za-z0-9_]").fullmatch
 _CONDITIONAL = re.compile(r"#\s*(if|else|elseif|end\s+if|const)\b", re.IGNORECASE)
 _MAX_NAME = 128
 _MAX_STRING = 128
@@ -234,8 +240,8 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
         elif g == 8:  # CONT
             start = m.start(g)
             col = start - line_start + 1
-            if start == 0 or text[start - 1] not in " \t\f\v":
-                # '_' glued to the previous token is not a continuation (spec §1.3).
+            if start > 0 and _NAME_CHAR(text[start - 1]):
+                # '_' glued to a number ('1_') is not a continuation: it cannot be one token's end
                 sink.report(
                     M.LEX_INVALID_CHAR, _span(path, line, col, col + 1), char="'_'"
                 )

@@ -180,9 +180,35 @@ def test_underscore_identifiers_are_not_continuations() -> None:
     assert len(sink) == 0
 
 
-def test_underscore_glued_to_a_token_is_not_a_continuation() -> None:
-    _, sink = lex("x = f(a)_\n+ 1\n")
-    assert codes(sink) == ["GPL1001"]
+@pytest.mark.parametrize("text", [
+    "lcc.XYZ(a, b,_\n   c)\n",        # the vendor's TCS, Cmd.gpl: '_' glued to a comma
+    "x = f(a)_\n+ 1\n",
+    'x = "a"&_\n"b"\n',
+    'x = "a" &_ \' blanks and a comment may follow\n"b"\n',
+    "x = (a +_\t \nb)\n",
+])
+def test_underscore_after_a_character_that_cannot_end_a_name_is_a_continuation(text: str) -> None:
+    """Real code glues the continuation to a comma (real-code.md): wherever the character before
+    the '_' cannot be part of a name, the '_' (then only blanks or a comment) continues the line."""
+    toks, sink = lex(text)
+    assert [t.kind for t in toks].count(K.NEWLINE) == 1
+    assert K.ERROR not in [t.kind for t in toks]
+    assert [d.code for d in sink.errors] == []
+
+
+def test_call_continued_after_a_glued_underscore_parses_as_one_call() -> None:
+    sink = DiagnosticSink()
+    unit = parse(SourceFile("t.gpl", "Module M\nSub S()\n    f(1, 2,_\n      3)\nEnd Sub\nEnd Module\n"), sink)
+    assert len(sink) == 0
+    call = unit.members[0].members[0].body.statements[0]
+    assert len(call.expr.args) == 3
+
+
+def test_underscore_glued_to_a_number_is_not_a_continuation() -> None:
+    """A '_' right after a character that can be part of a name is never a continuation: after a
+    number it is a bad suffix (GPL1006) and an invalid character, not a hidden line join."""
+    _, sink = lex("x = 1_\n+ 1\n")
+    assert codes(sink) == ["GPL1006", "GPL1001"]
 
 
 def test_comment_after_continuation_is_a_warning_and_kept() -> None:
