@@ -152,11 +152,9 @@ PARSE_UNCLOSED_BLOCK = _error(
     "'{opener}' block is not closed: expected '{closer}' before {found}",
     "Reported at the statement that opens the block.",
 )
-PARSE_NESTED_DECLARATION = _error(
-    "GPL1106",
-    "declarations are allowed only at the outermost level of a procedure, not inside {block}",
-    "Manual §3.2.6: move the Dim to the top level of the procedure (its scope is the whole procedure).",
-)
+# GPL1106 (a declaration inside a block) is retired, never to be reused: the manual (§3.2.6) forbids
+# it, but the vendor's code declares inside If/Select/For blocks and the controller compiles it
+# (docs/design/real-code.md).
 PARSE_MISSING_TYPE = _error(
     "GPL1107",
     "'{name}' has no type: add an 'As' clause",

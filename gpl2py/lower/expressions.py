@@ -15,7 +15,7 @@ from gpl2py.lower.names import py_float, py_ident
 from gpl2py.lower.text import py_string
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Member
-from gpl2py.semantics.check import Info, Model, ParamInfo
+from gpl2py.semantics.check import Info, Model, ParamInfo, nothing_as_string
 from gpl2py.semantics.stubs import Stub
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
 from gpl2py.syntax import ast as A
@@ -229,7 +229,7 @@ class ExprLowerer:
         if k == "binary":
             assert isinstance(e, A.Binary)
             if e.op == "Is":
-                return f"{self.sub(e.left, P_CMP + 1)} is {self.sub(e.right, P_CMP + 1)}", P_CMP
+                return self.identity(e, negate=False)
             return self.binary_chain(e)
         return "None", P_ATOM
 
@@ -464,6 +464,8 @@ class ExprLowerer:
         return None
 
     def coerce(self, c: Code, src: t.GplType, dst: t.GplType, may_overflow: bool = True) -> Code:
+        if src is t.NOTHING and dst is t.STRING:
+            return '""', P_ATOM  # Nothing stored into a String is "" (docs/design/real-code.md)
         if dst is t.ERROR or src is t.ERROR or not isinstance(dst, t.PrimitiveType):
             return c
         if dst in _INT_RANGE:
@@ -522,8 +524,7 @@ class ExprLowerer:
         ot = self.type_of(e.operand)
         if e.op == "Not":
             if isinstance(e.operand, A.Binary) and e.operand.op == "Is":  # Not x Is Nothing
-                o = e.operand
-                return f"{self.sub(o.left, P_CMP + 1)} is not {self.sub(o.right, P_CMP + 1)}", P_CMP
+                return self.identity(e.operand, negate=True)
             if ot is t.BOOLEAN:
                 return f"not {self.sub(e.operand, P_NOT)}", P_NOT
             if ot in _PLAIN_NUM:
@@ -538,10 +539,34 @@ class ExprLowerer:
             return self.expr(e.operand)
         return self.call(self.rt(CONV, "to_number"), self.val(e.operand))
 
+    def identity(self, e: A.Binary, negate: bool) -> Code:
+        """``a Is b`` (``Not a Is b`` when ``negate``).
+
+        Objects compare by identity.  A String tested against Nothing asks whether it is empty:
+        gpl2py stores Nothing into a String as "" (docs/design/real-code.md), so ``s Is Nothing``
+        is ``s == ""``.  A value of unknown type (a stub's result) may be either, which the runtime
+        decides (``is_nothing``)."""
+        types = (self.type_of(e.left), self.type_of(e.right))
+        if t.NOTHING in types:
+            value, vt = (e.right, types[1]) if types[0] is t.NOTHING else (e.left, types[0])
+            if vt is t.STRING:
+                return f"{self.sub(value, P_CMP + 1)} {'!=' if negate else '=='} \"\"", P_CMP
+            if vt is t.ANY:
+                test = self.call(self.rt(OPS, "is_nothing"), self.val(value))
+                return (f"not {test[0]}", P_NOT) if negate else test
+        op = "is not" if negate else "is"
+        return f"{self.sub(e.left, P_CMP + 1)} {op} {self.sub(e.right, P_CMP + 1)}", P_CMP
+
     def binop(self, op: str, left: tuple[str, int, t.GplType], right: tuple[str, int, t.GplType]) -> Code:
         lc: Code = (left[0], left[1])
         rc: Code = (right[0], right[1])
         lt, rt_ = left[2], right[2]
+        if t.NOTHING in (lt, rt_):  # Nothing beside a String is "" (nothing_as_string)
+            lt2, rt2 = nothing_as_string(op, lt, rt_)
+            if lt2 is not lt:
+                lc, lt = ('""', P_ATOM), lt2
+            if rt2 is not rt_:
+                rc, rt_ = ('""', P_ATOM), rt2
         plain = lt in _PLAIN_NUM and rt_ in _PLAIN_NUM
         if op in ("+", "-", "*"):
             if plain or (op == "+" and lt is t.STRING and rt_ is t.STRING):
@@ -614,13 +639,15 @@ class ExprLowerer:
             if p is None or (p.type is t.ERROR and not p.byref):
                 out.append(self.val(a))
             elif p.byref:
-                out.append(self.cell(a))
+                out.append(self.cell(a, p.type))
             else:
                 out.append(self.conv(a, p.type)[0])
         return out
 
-    def cell(self, a: A.Expr) -> str:
-        """The ByRef cell for argument ``a`` (§9.3: a variable, element or field aliases)."""
+    def cell(self, a: A.Expr, dst: t.GplType = t.ERROR) -> str:
+        """The ByRef cell for argument ``a`` (§9.3: a variable, element or field aliases); a value
+        that is not a variable goes in a temporary box, as the parameter's type ``dst`` holds it
+        (a Nothing passed to a ByRef String is "")."""
         i = self.model.info.get(a)
         if a not in self.model.byref_temps and i is not None:
             if i.kind == "var":
@@ -646,7 +673,8 @@ class ExprLowerer:
                 idx = [self.val(x) for x in a.args]
                 key = idx[0] if len(idx) == 1 else "(" + ", ".join(idx) + ")"
                 return f"{self.rt(BYREF, 'ItemRef')}({self.val(a.target)}, {key})"
-        return f"{self.rt(BYREF, 'Box')}({self.val(a)})"
+        value = self.conv(a, dst)[0] if self.type_of(a) is t.NOTHING else self.val(a)
+        return f"{self.rt(BYREF, 'Box')}({value})"
 
     def user_call(self, i: Info, args: list[A.Expr]) -> Code:
         p: ProcSym = i.sym  # type: ignore[assignment]

@@ -367,8 +367,8 @@ class ProcLowerer(ExprLowerer):
         p = self.proc
         assert p is not None
         for d in s.declarators:
-            v = p.locals.get(d.name.lower())
-            if v is None or v.decl is not d:
+            v = self.model.local_of.get(d)
+            if v is None:
                 continue
             value = self.declarator_value(d, v)
             if value is None:
@@ -846,7 +846,8 @@ class ProcLowerer(ExprLowerer):
         tt = self.type_of(s.target)
         elem = tt.element if isinstance(tt, t.ArrayType) else t.ERROR
         bounds = [self.val(b) for b in s.bounds]
-        self.store(s.target, f"{self.rt(ARRAYS, 'redim')}({', '.join([self.val(s.target), elem_type_code(elem), *bounds])})")
+        helper = self.rt(ARRAYS, "redim_preserve" if s.preserve else "redim")
+        self.store(s.target, f"{helper}({', '.join([self.val(s.target), elem_type_code(elem), *bounds])})")
 
 
 # -- helpers ---------------------------------------------------------------------------------------

@@ -77,6 +77,9 @@ class Model:
     start: ProcSym | None = None
     byref_temps: set[A.Expr] = field(default_factory=set)
     decl_new: dict[A.VarDeclarator, A.New] = field(default_factory=dict)
+    # every local declarator -> the variable it declares; a Dim repeated in another block of the
+    # procedure declares the same variable (_declare_locals), a rejected duplicate is absent
+    local_of: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
     stubs: StubTable | None = None  # names defined in protected code / missing built-in members
 
     def type_of(self, e: A.Expr) -> t.GplType:
@@ -93,6 +96,8 @@ def assignable(src: t.GplType, dst: t.GplType) -> bool:
     """Can a ``src`` value be stored in a ``dst`` variable (§4.2)?"""
     if t.permissive(src) or t.permissive(dst):
         return True
+    if src is t.NOTHING and dst is t.STRING:
+        return True  # Nothing stored into a String is the empty String (docs/design/real-code.md)
     if isinstance(dst, t.PrimitiveType):
         return isinstance(src, t.PrimitiveType)
     if src is t.NOTHING:
@@ -108,8 +113,42 @@ def assignable(src: t.GplType, dst: t.GplType) -> bool:
 _COMPARE = {"=", "<>", "<", ">", "<=", ">="}
 
 
+def nothing_as_string(op: str, lt: t.GplType, rt: t.GplType) -> tuple[t.GplType, t.GplType]:
+    """The operand types of ``op`` with a Nothing beside a String read as a String.
+
+    Real code compares Strings with Nothing (``s = Nothing``, ``s <> Nothing``) and tests
+    ``s Is Nothing``; gpl2py makes Nothing the empty String wherever it meets one
+    (docs/design/real-code.md), so comparisons and ``&`` see ``""``."""
+    if op in _COMPARE or op == "&":
+        if lt is t.STRING and rt is t.NOTHING:
+            return lt, t.STRING
+        if rt is t.STRING and lt is t.NOTHING:
+            return t.STRING, rt
+    return lt, rt
+
+
+def _identity_operand(typ: t.GplType, other: t.GplType) -> bool:
+    """Whether ``typ`` may stand on one side of ``Is`` with ``other`` on the other side.
+
+    References and Nothing, as the manual says; a value of unknown type (a stub's result: it may
+    be an object); and a String tested against Nothing, which real code does and which asks
+    whether the String is empty (docs/design/real-code.md)."""
+    if typ.is_reference or typ is t.NOTHING or t.permissive(typ):
+        return True
+    return typ is t.STRING and (other is t.NOTHING or other is t.ERROR)
+
+
 def _scalar(typ: t.GplType) -> bool:
     return isinstance(typ, t.PrimitiveType) or t.permissive(typ)
+
+
+@dataclass(frozen=True)
+class _LocalDecl:
+    """One declaration of a local, with the blocks around it (innermost last)."""
+
+    var: VarSym
+    keyword: str | None
+    chain: list[A.Block]
 
 
 class _Ctx:
@@ -244,14 +283,19 @@ class Checker:
                 if v.default is not None:
                     self._store_value(v.default, v.type, ctx)
         # locals are visible in the whole procedure (§6.2): declare them all first
-        self._declare_locals(decl.body, p, ctx)
+        self._declare_locals(decl.body, p, ctx, [], {})
         self._block(decl.body, ctx)
 
-    def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx) -> None:
+    def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx, outer: list[A.Block],
+                        seen: dict[str, list[_LocalDecl]]) -> None:
+        """Declare the locals of ``block`` and the blocks inside it in ``p.locals``.
+
+        A declaration inside an If/Select/For/While/Try block (real code, docs/design/real-code.md)
+        has procedure scope like any other.  ``outer`` is the chain of blocks around ``block``;
+        ``seen`` the declarations made so far, by lower-cased name (see :meth:`_redeclares`)."""
+        chain = [*outer, block]
         for s in block.statements:
             if isinstance(s, A.VarDecl):
-                # a declaration inside a block is reported by the parser (GPL1106); it is still
-                # declared here so that its uses do not cascade into "not declared" errors
                 storage = "static" if s.keyword == "Static" else "local"
                 for d in s.declarators:
                     if not d.name:
@@ -261,24 +305,48 @@ class Checker:
                         typ = t.ArrayType(typ, len(d.bounds))
                     v = VarSym(d.name, d.span, typ, storage, owner=p, const=s.is_const, decl=d)
                     key = d.name.lower()
+                    here = _LocalDecl(v, s.keyword, chain)
                     if key in p.locals:
                         prev = p.locals[key]
-                        self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
-                                         line=prev.span.line if prev.span else 0)
+                        if self._redeclares(here, seen.get(key, [])):
+                            self.model.local_of[d] = prev
+                        else:
+                            self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
+                                             line=prev.span.line if prev.span else 0)
                     else:
                         p.locals[key] = v
+                        self.model.local_of[d] = v
+                    seen.setdefault(key, []).append(here)
             elif isinstance(s, A.Label):
                 key = s.name.lower()
                 if key in p.labels:
                     self.sink.report(M.DUPLICATE_LABEL, s.span, name=s.name)
                 p.labels[key] = s
             for child in _child_blocks(s):
-                self._declare_locals(child, p, ctx)
+                self._declare_locals(child, p, ctx, chain, seen)
             if isinstance(s, A.Try) and s.catch is not None and s.catch.type is not None and s.catch.variable:
                 key = s.catch.variable.lower()
                 if key not in p.locals:
                     typ = self.r.resolve_type(s.catch.type, ctx.module, ctx.cls)
                     p.locals[key] = VarSym(s.catch.variable, s.catch.span, typ, "local", owner=p)
+
+    @staticmethod
+    def _redeclares(here: _LocalDecl, earlier: list[_LocalDecl]) -> bool:
+        """Whether a Dim of a name the procedure already declares is the same variable again.
+
+        VB accepts one name declared in two blocks that do not contain one another (the Then and
+        Else of an If, two Cases); in GPL a local has procedure scope, so both declarations name
+        one variable, which is sound only when they agree on its type.  Anything else stays a
+        duplicate (GPL2002): two declarations in one block or in nested blocks, a Static or Const,
+        another type (docs/design/real-code.md)."""
+        if here.keyword != "Dim" or not earlier:
+            return False
+        for prev in earlier:
+            if prev.keyword != "Dim" or prev.var.type != here.var.type or t.ERROR in (prev.var.type, here.var.type):
+                return False
+            if any(b is prev.chain[-1] for b in here.chain) or any(b is here.chain[-1] for b in prev.chain):
+                return False  # one block holds the other (or both are the same block)
+        return True
 
     # -- statements ---------------------------------------------------------------------------------------
 
@@ -294,8 +362,8 @@ class Checker:
         assert p is not None
         if isinstance(s, A.VarDecl):
             for d in s.declarators:
-                v = p.locals.get(d.name.lower())
-                if v is not None and v.decl is d:
+                v = self.model.local_of.get(d)
+                if v is not None:
                     self._declarator_exprs(d, v, ctx)
         elif isinstance(s, A.Assign):
             self._assign(s, ctx)
@@ -475,7 +543,7 @@ class Checker:
         vt = self._value(e, ctx)
         if dst is t.STRING and isinstance(vt, t.PrimitiveType) and vt is not t.STRING:
             self.sink.report(M.IMPLICIT_TO_STRING, e.span, src=str(vt))
-        if vt is t.NOTHING and isinstance(dst, t.PrimitiveType):
+        if vt is t.NOTHING and isinstance(dst, t.PrimitiveType) and dst is not t.STRING:
             self.sink.report(M.TYPE_MISMATCH, e.span, src="Nothing", dst=str(dst))
         elif not assignable(vt, dst):
             self.sink.report(M.TYPE_MISMATCH, e.span, src=str(vt), dst=str(dst))
@@ -554,8 +622,8 @@ class Checker:
             if e.op == "Is":
                 lt = self._expr(e.left, ctx).type
                 rt = self._expr(e.right, ctx).type
-                for side, st in ((e.left, lt), (e.right, rt)):
-                    if st is not t.ERROR and not (st.is_reference or st is t.NOTHING):
+                for side, st, other in ((e.left, lt, rt), (e.right, rt, lt)):
+                    if not _identity_operand(st, other):
                         self.sink.report(M.BAD_OPERANDS, side.span, op="Is", left=str(lt), right=str(rt))
                         break
                 return self._record(e, Info(t.BOOLEAN, "binary"))
@@ -591,6 +659,7 @@ class Checker:
     def _binary_type(self, op: str, lt: t.GplType, rt: t.GplType, node: A.Node) -> t.GplType:
         if lt is t.ERROR or rt is t.ERROR:
             return t.ERROR
+        lt, rt = nothing_as_string(op, lt, rt)
         if (lt is t.ANY or rt is t.ANY) and _scalar(lt) and _scalar(rt):
             # one operand of unknown type (a stub's value): the result type is known only for
             # operators whose result type does not depend on the operands; the runtime converts

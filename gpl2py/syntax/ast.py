@@ -408,7 +408,7 @@ class Try(Stmt):
 
 @dataclass(slots=True, eq=False)
 class ReDim(Stmt):
-    """``ReDim target(bounds)``; ``preserve`` records a (reported, unsupported) ``ReDim Preserve``."""
+    """``ReDim target(bounds)``; ``preserve``: ``ReDim Preserve``, which keeps the elements that fit."""
 
     target: Expr
     bounds: list[Expr]

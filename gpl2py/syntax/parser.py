@@ -26,8 +26,12 @@ Grammar decisions beyond the spec's EBNF (spec §3), each an extension that real
   ``Property Name As T``: the manual omits the parentheses, but they are optional on every other
   parameterless declaration (spec §3.3) and say nothing different here.  A non-empty list is reported.
 * A ``Class`` at the top level of a file is accepted (AMB-1).
-* ``ReDim Preserve`` and ``IsNot`` are parsed and reported as not supported in GPL (spec §15); VB
-  statements (``GoSub``, ``With``, ``On Error``, ``Enum`` …) get a "not supported in GPL" diagnostic
+* ``ReDim Preserve`` is accepted: the manuals never mention it, but the vendor's own code uses it
+  and the controller runs it (docs/design/real-code.md).
+* ``Dim``/``Static``/``Const`` inside If/Select/For/While/Do/Try blocks are accepted: the manual
+  (§3.2.6) allows declarations only at a procedure's outermost level, but real code declares in
+  blocks and the controller compiles it; the variable has procedure scope (semantics).
+* ``IsNot`` is parsed and reported as not supported in GPL (spec §15); VB statements (``GoSub``, ``With``, ``On Error``, ``Enum`` …) get a "not supported in GPL" diagnostic
   when they appear in statement or member position.  They remain usable as names otherwise.
 * A line holding only ``:`` (a documentation ellipsis in the manuals) is an error, like any other
   use of ``:`` as a statement separator.
@@ -244,7 +248,6 @@ class Parser:
         self.tok: Token = self.toks[0]
         self.failed = False  # an error was reported on the current logical line
         self.open: list[str] = []  # constructs whose end has not been seen, innermost last
-        self.nest = 0  # block depth inside the current procedure body (0 = outermost level)
         self.in_proc = False
         self.depth = 0  # expression nesting depth (recursion guard)
         self.aborted = False  # the block nesting limit was hit and the rest of the file skipped
@@ -486,21 +489,18 @@ class Parser:
         if self.too_deep("blocks"):
             return A.Block(self.tok.span, [])
         self.open.append(kind)
-        self.nest += 1
         try:
             return self.block()
         finally:
-            self.nest -= 1
             self.open.pop()
 
     def proc_body(self, kind: str) -> A.Block:
-        saved = (self.nest, self.in_proc)
-        self.nest = -1  # body() adds one: the procedure's own block is level 0
+        saved = self.in_proc
         self.in_proc = True
         try:
             return self.body(kind)
         finally:
-            self.nest, self.in_proc = saved
+            self.in_proc = saved
 
     def close_end(self, kind: str, start: Token, node: A.Stmt) -> bool:
         """Consume ``End <kind>`` (attaching its comment to ``node.end_comment``) or report.
@@ -688,12 +688,12 @@ class Parser:
         name = self.ident("a class name")
         node = A.ClassDecl(start.span, name.text if name else "", mods, [])
         self.end_of_line(node)
-        saved = (self.in_proc, self.nest)
+        saved = self.in_proc
         self.in_proc = False
         try:
             node.members = self.members("Class", start, node)
         finally:
-            self.in_proc, self.nest = saved
+            self.in_proc = saved
         node.span = self.span_from(start)
         return node
 
@@ -1085,17 +1085,11 @@ class Parser:
             keyword = tok.kind.value
         else:
             keyword = None
-        if self.nest > 0 and self.open:
-            self.sink.report(M.PARSE_NESTED_DECLARATION, start.span, block=f"a {self._innermost_block()} block")
+        # a declaration inside a block (If, Select, For, Try ...) is legal: real code does it and the
+        # controller compiles it (docs/design/real-code.md); it has procedure scope (semantics)
         node = self.var_decl(start, keyword, mods)
         self.end_of_line(node)
         return node
-
-    def _innermost_block(self) -> str:
-        for kind in reversed(self.open):
-            if kind not in _DECL_CONTAINERS:
-                return kind
-        return self.open[-1]
 
     # -- block statements (each consumes its own lines)
 
@@ -1284,7 +1278,6 @@ class Parser:
         node = A.Select(self.span_from(start), subject, [])
         self.end_of_line(node)
         self.open.append("Select")
-        self.nest += 1
         try:
             pre = self.block()
             if pre.statements:
@@ -1302,7 +1295,6 @@ class Parser:
                 node.cases.append(clause)
             node.end_comments = pending
         finally:
-            self.nest -= 1
             self.open.pop()
         self.close_end("Select", start, node)
         node.span = self.span_from(start)
@@ -1441,7 +1433,7 @@ class Parser:
         preserve = False
         tok = self.tok
         if tok.kind is K.IDENT and tok.text.lower() == "preserve" and self.peek().kind is K.IDENT:
-            self.sink.report(M.PARSE_UNSUPPORTED, tok.span, what="'ReDim Preserve'", hint=" (ReDim reallocates the array with default values)")
+            # real code uses it and the controller runs it (docs/design/real-code.md)
             self.next()
             preserve = True
         expr = self.postfix()

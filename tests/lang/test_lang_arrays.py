@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from gplrt.lang.arrays import GplArray, redim
+from gplrt.lang.arrays import GplArray, redim, redim_preserve
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 from gpltest import code_of
 
@@ -131,13 +131,54 @@ def test_redim_gives_fresh_defaults_and_keeps_rank() -> None:
     assert count.Length == 10
     count[3] = 42
     count = redim(count, None, 4)
-    assert count.Length == 5 and list(count) == [0] * 5  # no Preserve (AMB-17)
+    assert count.Length == 5 and list(count) == [0] * 5  # without Preserve: defaults (AMB-17)
     two = GplArray(Integer, 2, 3)
     two = redim(two, None, 1, 100)  # ReDim TwoDCount(1,100)
     assert two.GetUpperBound(1) == 100 and two.Length == 202
     assert code_of(redim, two, None, 5) == -766  # cannot change rank
     s = redim(GplArray(String, 1), None, 2)
     assert list(s) == ["", "", ""]
+
+
+def test_redim_preserve_keeps_the_elements_that_still_fit() -> None:
+    """ReDim Preserve (real code, docs/design/real-code.md): a new array of the new size holding
+    the old elements that fit, defaults after them; growing and shrinking alike."""
+    a = GplArray(String, 2)
+    a[0], a[1], a[2] = "a", "b", "c"
+    grown = redim_preserve(a, "String", 4)
+    assert list(grown) == ["a", "b", "c", "", ""] and grown is not a
+    assert list(a) == ["a", "b", "c"]  # another variable holding the old array keeps it
+    shrunk = redim_preserve(grown, "String", 0)
+    assert list(shrunk) == ["a"]
+    assert list(redim_preserve(shrunk, "String", -1)) == []  # an empty array (upper bound -1)
+    objs = GplArray(None, 1)
+    w = Widget()
+    objs[1] = w
+    assert list(redim_preserve(objs, None, 2)) == [None, w, None]  # element type kept from the array
+
+
+def test_redim_preserve_of_nothing_allocates() -> None:
+    assert list(redim_preserve(None, Integer, 2)) == [0, 0, 0]
+    assert list(redim_preserve(None, "Double", 1)) == [0.0, 0.0]
+
+
+def test_redim_preserve_keeps_elements_at_their_subscripts_in_every_dimension() -> None:
+    m = GplArray(Integer, 1, 2)  # 2 x 3
+    for i in range(2):
+        for j in range(3):
+            m[i, j] = 10 * i + j
+    last = redim_preserve(m, None, 1, 4)  # the last dimension only: VB's case
+    assert [[last[i, j] for j in range(5)] for i in range(2)] == [[0, 1, 2, 0, 0], [10, 11, 12, 0, 0]]
+    first = redim_preserve(m, None, 2, 1)  # the first grows, the last shrinks: what fits is kept
+    assert [[first[i, j] for j in range(2)] for i in range(3)] == [[0, 1], [10, 11], [0, 0]]
+    cube = GplArray(Integer, 1, 1, 1)
+    cube[1, 1, 1] = 7
+    cube[0, 1, 0] = 3
+    big = redim_preserve(cube, None, 2, 2, 2)
+    assert big[1, 1, 1] == 7 and big[0, 1, 0] == 3 and sum(big) == 10
+    assert sum(redim_preserve(cube, None, 1, -1, 1)) == 0  # an empty dimension keeps nothing
+    assert code_of(redim_preserve, m, None, 5) == -766  # the rank cannot change
+    assert code_of(redim_preserve, m, None, 1, 2, 3) == -766
 
 
 def test_whole_array_assignment_shares_the_reference() -> None:

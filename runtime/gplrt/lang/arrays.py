@@ -15,6 +15,9 @@
   yields elements in that order.
 * Arrays are references: assignment shares the object (``CountB = CountA`` [000 L390-398]).
   ``ReDim`` (``redim``) allocates a fresh array of defaults and keeps the rank (AMB-17).
+  ``ReDim Preserve`` (``redim_preserve``), which the manuals never mention but real code uses,
+  also allocates a fresh array and copies into it every element that still fits
+  (docs/design/real-code.md).
 * Element stores do **not** convert the value: the lowering converts to the element type before
   storing (it knows the static types), which keeps ``a[i] = v`` as cheap as a list store.
 * GPL members: ``GetUpperBound(dim)`` (dimension numbered from 0, AMB-18), ``Length`` (all
@@ -38,7 +41,7 @@ from gplrt.lang.errors import (
 from gplrt.lang.gpltypes import Boolean, Byte, Double, Integer, Short, Single, String
 
 
-__all__ = ["GplArray", "redim", "default_value", "ARRAY_INDEX_MISMATCH", "INVALID_ARRAY_INDEX"]
+__all__ = ["GplArray", "redim", "redim_preserve", "default_value", "ARRAY_INDEX_MISMATCH", "INVALID_ARRAY_INDEX"]
 
 _DEFAULTS: Final[dict[object, object]] = {
     Integer: 0,
@@ -254,3 +257,46 @@ def redim(array: GplArray | None, element_type: object, *upper_bounds: Any) -> G
         if element_type is None:
             element_type = array._etype
     return GplArray(element_type, *upper_bounds)
+
+
+def redim_preserve(array: GplArray | None, element_type: object, *upper_bounds: Any) -> GplArray:
+    """GPL ``ReDim Preserve``: a new array with new bounds that keeps every element that still fits.
+
+    Real code (the vendor's TCS) grows arrays this way; the manuals do not document it, so it
+    follows VB where VB defines it and stays total where VB would fail (docs/design/real-code.md):
+
+    * an element whose subscripts are all within the new bounds keeps its value; new elements hold
+      the element type's default;
+    * an array that is Nothing is simply allocated (``redim``);
+    * any dimension may change, not only the last one as in VB (where changing another dimension
+      is an error): the elements at the same subscripts are kept, which equals VB's result
+      wherever VB gives one;
+    * the rank cannot change: a different number of bounds is -766, as for ``ReDim``.
+
+    The new array is a new object, as VB's is: another variable that shared the old array keeps it.
+    """
+    new = redim(array, element_type, *upper_bounds)
+    if array is None:
+        return new
+    old_ub = array._ub
+    if len(old_ub) == 1:
+        n = min(old_ub[0], new._ub[0]) + 1
+        new._data[:n] = array._data[:n]
+        return new
+    keep = tuple(min(a, b) + 1 for a, b in zip(old_ub, new._ub))
+    if min(keep) <= 0:
+        return new
+    _copy_block(array._data, array._strides, new._data, new._strides, keep, 0, 0, 0)
+    return new
+
+
+def _copy_block(src: list[Any], src_strides: tuple[int, ...], dst: list[Any], dst_strides: tuple[int, ...],
+                keep: tuple[int, ...], dim: int, src_at: int, dst_at: int) -> None:
+    """Copy the ``keep``-sized corner of a row-major array into another of other bounds, one
+    contiguous run of the last dimension at a time."""
+    if dim == len(keep) - 1:
+        dst[dst_at:dst_at + keep[dim]] = src[src_at:src_at + keep[dim]]
+        return
+    for i in range(keep[dim]):
+        _copy_block(src, src_strides, dst, dst_strides, keep, dim + 1,
+                    src_at + i * src_strides[dim], dst_at + i * dst_strides[dim])

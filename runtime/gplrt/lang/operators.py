@@ -45,6 +45,7 @@ __all__ = [
     "or_",
     "xor",
     "not_",
+    "is_nothing",
 ]
 
 _INF: Final = math.inf
@@ -236,6 +237,18 @@ def ge(a: Any, b: Any) -> bool:
     """GPL ``>=``."""
     a, b = _pair(a, b)
     return a >= b
+
+
+# -- Nothing ----------------------------------------------------------------------------------------
+
+
+def is_nothing(x: Any) -> bool:
+    """GPL ``x Is Nothing`` on a value whose type is known only at run time (a stub's result).
+
+    An object is Nothing when it is ``None``.  A String is Nothing when it is empty: GPL code tests
+    ``s Is Nothing`` on Strings and means "has no text", and gpl2py stores Nothing into a String as
+    "" (docs/design/real-code.md), so both spellings of "no string" answer True here."""
+    return x is None or (type(x) is str and not x)
 
 
 # -- logical / bitwise ----------------------------------------------------------------------------------
