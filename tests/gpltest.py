@@ -45,6 +45,49 @@ SAMPLES = REPO / "samples"
 _counter = itertools.count()
 
 
+def _main_checkout(repo: Path) -> Path:
+    """The repository's main working tree: ``repo`` itself, or for a linked worktree (whose
+    ``.git`` is a file ``gitdir: <common>/worktrees/<name>``) the folder holding the common ``.git``."""
+    git = repo / ".git"
+    if not git.is_file():
+        return repo
+    gitdir = Path(git.read_text(encoding="utf-8").split(":", 1)[1].strip())
+    common = gitdir / "commondir"
+    root = (gitdir / common.read_text(encoding="utf-8").strip()).resolve() if common.is_file() else gitdir.parents[1]
+    return root.parent
+
+
+def shared_dir(name: str, env: str) -> Path:
+    """A folder of the project's shared material (``corpus``, ``spec``): ``$<env>`` if set, else
+    ``../shared/<name>`` next to the repository root (of the main checkout, for a worktree).
+
+    CI always has it, so there a missing folder fails the test; elsewhere the test is skipped
+    with the reason.  (Tests read the material in place and never copy it into the project.)
+    """
+    import pytest
+
+    given = os.environ.get(env)
+    candidates = [Path(given)] if given else [REPO.parent / "shared" / name,
+                                              _main_checkout(REPO).parent / "shared" / name]
+    for path in candidates:
+        if path.is_dir():
+            return path
+    reason = f"shared {name} not found (looked in {', '.join(map(str, candidates))}; set {env})"
+    if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+        pytest.fail(reason)
+    pytest.skip(reason)
+
+
+def corpus_dir() -> Path:
+    """The real GPL written by others (``../shared/corpus``, or ``$GPL_CORPUS``)."""
+    return shared_dir("corpus", "GPL_CORPUS")
+
+
+def spec_dir() -> Path:
+    """The specs distilled from the manuals (``../shared/spec``, or ``$GPL_SPEC``)."""
+    return shared_dir("spec", "GPL_SPEC")
+
+
 class TranspileFailed(AssertionError):
     """gpl2py rejected the project: carries its diagnostics, which say which construct is missing."""
 
