@@ -60,13 +60,16 @@ def test_a_block_variable_resets_on_each_procedure_entry(tmp_path: Path) -> None
         If declare Then
             Dim count As Integer
             Dim loc As New Location
+            Static calls As Integer = 100
             count += 5
+            calls += 1
         End If
         count += 1
-        Console.WriteLine("exit " & CStr(count) & " " & CStr(loc Is Nothing))
+        Console.WriteLine("exit " & CStr(count) & " " & CStr(loc Is Nothing) & " " & CStr(calls))
     End Sub""")
-    # read before its Dim ran: the default; each call starts again from the defaults
-    assert out == "entry 0 -1\nexit 6 0\nentry 0 -1\nexit 1 -1\nentry 0 -1\nexit 6 0\n"
+    # read before its Dim ran: the default; each call starts again from the defaults (a Static in a
+    # block is initialised once, on the first execution of its statement, and keeps its value)
+    assert out == "entry 0 -1\nexit 6 0 101\nentry 0 -1\nexit 1 -1 101\nentry 0 -1\nexit 6 0 102\n"
 
 
 def test_dims_in_select_try_and_catch_blocks_run_where_they_stand(tmp_path: Path) -> None:
