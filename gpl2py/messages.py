@@ -356,7 +356,9 @@ UNDECLARED_NAME = _error(
 DUPLICATE_DECLARATION = _error(
     "GPL2002",
     "'{name}' is already declared in this {scope} (line {line})",
-    "Names must be unique within a procedure, class or module regardless of their kind (§6.4).",
+    "Names must be unique within a procedure, class or module regardless of their kind (§6.4). "
+    "One exception, from real code: Dims of one name and one type in two blocks of a procedure that "
+    "do not contain one another (Then and Else, two Cases) declare the same local again.",
 )
 UNKNOWN_TYPE = _error(
     "GPL2003",
