@@ -521,7 +521,8 @@ def stubs_note(package: ModuleType) -> str | None:
     stubs = getattr(package, "PROJECT", {}).get("stubs") or []
     if not stubs:
         return None
-    names = [f"{s['name']} (--stubs)" if s.get("provided") else str(s["name"]) for s in stubs]
+    names = [f"{s['name']} ({'gpl2py stand-in' if s.get('standin') else '--stubs'})" if s.get("provided")
+             else str(s["name"]) for s in stubs]
     missing = sum(1 for s in stubs if not s.get("provided"))
     return (f"note: {plural(len(stubs), 'stub')} for protected or unsimulated code "
             f"({missing} {'raises' if missing == 1 else 'raise'} error -204 if used): {', '.join(names)}")

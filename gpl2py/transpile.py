@@ -27,7 +27,13 @@ from gpl2py.lower.names import snake_case
 from gpl2py.lower.package import package_init, package_main
 from gpl2py.lower.sourcemap import sourcemap_json
 from gpl2py.lower.stubs import stub_files
-from gpl2py.lower.user_stubs import UserStubs, load_user_stubs
+from gpl2py.lower.user_stubs import (
+    SHIPPED_PREFIX,
+    USER_PREFIX,
+    UserStubs,
+    load_user_stubs,
+    with_shipped_standins,
+)
 from gpl2py.project import Project, load_project
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model, analyze
@@ -83,6 +89,8 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
     if loaded is not None:
         loaded(project)
     user = load_user_stubs(stubs_dir, sink) if stubs_dir is not None else None
+    if stubs_dir is None or user is not None:  # (a bad --stubs folder is already an error)
+        user = with_shipped_standins(user, sink)
     protected = bool(project.protected)
     units = []
     for i, src in enumerate(project.sources):
@@ -125,7 +133,8 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
     stub_texts, records = stub_files(model.stubs, names.stub_module_py, package, user) \
         if model.stubs is not None and model.stubs.stubs else ({}, [])
     out.files.update(stub_texts)
-    stub_modules = sorted({Path(rel).stem for rel in stub_texts if not Path(rel).stem.startswith("_user_")})
+    stub_modules = sorted({Path(rel).stem for rel in stub_texts
+                           if not Path(rel).stem.startswith((USER_PREFIX, SHIPPED_PREFIX))})
     out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra,
                                                        records, stub_modules)
     out.files[f"{package}/__main__.py"] = package_main()

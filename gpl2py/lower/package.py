@@ -126,7 +126,7 @@ def _stub_lines(stubs: list[dict[str, object]]) -> list[str]:
     out = ['    "stubs": [']
     for r in stubs:
         out.append(f'        {{"name": {py_string(str(r["name"]))}, "kind": {py_string(str(r["kind"]))}, '
-                   f'"provided": {bool(r["provided"])}}},')
+                   f'"provided": {bool(r["provided"])}, "standin": {bool(r.get("standin"))}}},')
     out.append("    ],")
     return out
 
