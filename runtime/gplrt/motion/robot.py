@@ -148,6 +148,7 @@ class RobotState:
     restart_base: np.ndarray
     queue: MotionQueue
     homed: bool = False
+    homing: int = 0  # homings of this robot in progress (TrajState 9)
     owner: Any = None  # key of the thread that has it attached (None = free)
     last_profile: tuple[object, ...] | None = None  # queue.profile_values of the last motion
     pending_extra: list[float] = field(default_factory=list)
@@ -162,6 +163,19 @@ class RobotState:
     _known_pose: tuple[Vec, np.ndarray, np.ndarray, Pose] | None = None
     #: The path motions' kinematics for the present Tool and Base (``QueuedFrames``)
     _frames: QueuedFrames | None = None
+    #: The servo gripper (``gplrt.motion.servo``), None for a robot without one
+    gripper: Any = None
+    #: Motor counts per mm or degree of each joint (DataID 2300; ``Robot.JointToMotor``)
+    motor_scale: list[float] = field(default_factory=list)
+    #: Brake control (DataIDs 14500/14002): the chosen axis, and the axes whose brake is released
+    brake_axis: int = 0
+    brakes_released: set[int] = field(default_factory=set)
+    #: The special trajectory mode in force (jog, torque: ``gplrt.motion.special``), or None
+    special: Any = None
+    #: ``Move.Trigger`` actions armed for the next motion (``gplrt.motion.special``)
+    pending_triggers: list[Any] = field(default_factory=list)
+    #: ``Move.ForceOverlap`` percentage for the next motion, or None
+    pending_overlap: float | None = None
 
     def __post_init__(self) -> None:
         self._axis_count = self.model.axis_count  # fixed for the model's lifetime; read per Move
@@ -193,12 +207,35 @@ class RobotState:
     # queueing on it, at the same moment — hence the robot's lock.
 
     def joints_at(self, t: float) -> Vec:
+        """Where the joints are at ``t``: the command, except where the gripper's fingers are
+        held back by a plate or their stop (``gplrt.motion.servo``)."""
         with self.lock:
-            return self.queue.joints_at(t)
+            q = self.queue.joints_at(t)
+        gripper = self.gripper
+        if gripper is not None:
+            i = gripper.axis
+            held = gripper.actual(float(q[i]))
+            if held != q[i]:
+                q = q.copy()
+                q[i] = held
+        return q
 
     def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
         with self.lock:
-            return self.queue.state_at(t)
+            q, v, a = self.queue.state_at(t)
+        gripper = self.gripper
+        if gripper is not None:
+            i = gripper.axis
+            held = gripper.actual(float(q[i]))
+            if held != q[i]:  # the fingers rest on the plate or their stop
+                q, v, a = q.copy(), v.copy(), a.copy()
+                q[i], v[i], a[i] = held, 0.0, 0.0
+        return q, v, a
+
+    def commanded_torques(self) -> dict[int, float]:
+        """Axis (0-based) -> torque (tcnt) of the axes in torque mode (``gplrt.motion.special``)."""
+        special = self.special
+        return special.torques if special is not None and special.kind == "torque" else {}
 
     def run_cycles(self, t: float) -> None:
         """Run the path motions' cycles up to ``t`` (``MotionQueue.advance``): whatever reads the
