@@ -49,6 +49,7 @@ import numpy as np
 from gplrt.geometry.transforms import Pose, matrix_to_pose
 from gplrt.lang.errors import (
     CANT_CHANGE_CONFIG,
+    NOT_IN_POSITION_MODE,
     NO_ROBOT_ATTACHED,
     POWER_NOT_ENABLED,
     ROBOT_NOT_HOMED,
@@ -292,6 +293,9 @@ class RobotState:
             self.raise_async_error()
         if not power_on:
             raise GplException(POWER_NOT_ENABLED, robot_num=self.number, detail="high power is off")
+        if self.special is not None:
+            raise GplException(NOT_IN_POSITION_MODE, robot_num=self.number,
+                               detail=f"robot {self.number} is in {self.special.kind} mode (Move.StopSpecialModes)")
         if not self.homed:
             raise GplException(ROBOT_NOT_HOMED, robot_num=self.number, detail=f"robot {self.number}")
 
@@ -419,11 +423,34 @@ class RobotState:
             t0, q0, v0, a0 = now, queue.rest, None, None
         elif history[-1].end <= now + CLOCK_RESOLUTION:
             t0, q0, v0, a0 = now, history[-1].q_end, None, None
+        elif self.pending_overlap is not None:
+            return self._queue_overlapped(now, values, lim, prof)
         else:
             t0, q0, v0, a0 = self._start(now, can_blend=True)
+        self.pending_overlap = None
         plan = plan_axes(q0, v0, a0, values, lim)
         return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
                                          "joint", plan), prof)
+
+    def _queue_overlapped(self, now: float, values: list[float], lim: Any, prof: Profile) -> Segment:
+        """A joint motion that ``Move.ForceOverlap`` overlaps with the running one
+        (``gplrt.motion.special``): planned from rest at its target, started when it has the
+        overlap percentage of its duration left, and superimposed on it until it ends."""
+        from gplrt.motion.special import OverlapSegment
+
+        prev = self.queue.history[-1]
+        pct, self.pending_overlap = float(self.pending_overlap or 0.0), None
+        prev_end = prev.motion_end
+        t_b = max(now, prev_end - prev.duration * pct / 100.0, prev.t0)
+        q0 = prev.q_end
+        plan = plan_axes(q0, None, None, values, lim)
+        if t_b >= prev_end:
+            t_b = prev.end
+        else:
+            prev.cut = t_b  # the overlap segment covers the rest of it
+        seg = OverlapSegment(t_b, plan.duration, q0, np.array(values), kind="overlap", plan=plan, prev=prev,
+                             prev_end=prev_end)
+        return self._append(seg, prof)
 
     def queue_pose(self, now: float, pose: Pose, config: int, prof: Profile, system_speed: float,
                    seed: Vec | None = None) -> Segment:
@@ -614,6 +641,11 @@ class RobotState:
         queue._starts.append(seg.t0)
         if isinstance(seg, PathSegment):
             queue.paths_pending = True
+        if self.pending_triggers:  # Move.Trigger armed for this motion
+            from gplrt.motion import registry, special
+
+            triggers, self.pending_triggers = self.pending_triggers, []
+            special.fire_triggers(registry.sim(), seg, triggers)
         return seg
 
     # -- stopping ------------------------------------------------------------------------------

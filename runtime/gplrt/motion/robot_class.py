@@ -62,9 +62,9 @@ from gplrt.lang.errors import (
 )
 from gplrt.lang.conversions import to_double, to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer
-from gplrt.motion import registry
-from gplrt.motion.profile import Profile
 from gplrt.lang.arrays import GplArray
+from gplrt.motion import registry, servo  # noqa: F401 - servo provides the gripper's inputs
+from gplrt.motion.profile import Profile
 from gplrt.motion.queue import BlendedPathSegment, DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
 

@@ -43,6 +43,8 @@ from typing import Any
 
 import numpy as np
 
+from gplrt.controller.signals import add_input_provider
+
 #: mm between the gripper's minimum soft limit and its mechanical closed stop (module docstring).
 CLOSED_STOP_MARGIN = 4.0
 #: mm from the closed stop within which the end-of-travel sensor is on.
@@ -142,7 +144,7 @@ def axis_torques(robot: Any, t: float) -> tuple[list[float], list[float]]:
 def eot_input(sim: Any, signal: int) -> bool | None:
     """The end-of-travel input ``signal`` of a robot's gripper (on while the fingers are fully
     closed), or None when ``signal`` is not such an input."""
-    if signal != EOT_INPUT:
+    if signal != EOT_INPUT or sim is None:
         return None
     from gplrt.motion import registry
 
@@ -151,3 +153,6 @@ def eot_input(sim: Any, signal: int) -> bool | None:
         return None
     robot = registry.robot_of(sim, 1)
     return gripper.fully_closed(float(robot.joints_at(registry.now())[gripper.axis]))
+
+
+add_input_provider(eot_input)
