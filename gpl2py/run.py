@@ -470,6 +470,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
     console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
                      project=project.name if project else "", robot=args.robot)
+    install_project_files(sim, args.path, project)
     if args.setup:
         try:
             setup = _load_setup(args.setup)
@@ -514,6 +515,21 @@ def run_command(args: argparse.Namespace) -> Outcome:
     elif not args.quiet:
         stderr.write(run_summary(report, args.clock) + "\n")
     return out
+
+
+def install_project_files(sim: Any, path: str | Path, project: Project | None) -> None:
+    """Install the project's own files in its controller folder (``Simulation.install_project_files``):
+    every regular file of a project folder; for a single source file, just that file."""
+    if project is None:
+        return
+    given = Path(path)
+    if given.is_dir() or given.name.lower() == "project.gpr":
+        sim.install_project_files(project.root, project.name)
+    elif given.is_file():
+        from gplrt.io.project_files import read_project_files
+
+        files = {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
+        sim.install_project_files(files, project.name)
 
 
 def stubs_note(package: ModuleType) -> str | None:
