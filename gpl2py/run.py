@@ -470,6 +470,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
     console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
                      project=project.name if project else "", robot=args.robot)
+    install_project_files(sim, args.path, project)
     if args.setup:
         try:
             setup = _load_setup(args.setup)
@@ -516,12 +517,28 @@ def run_command(args: argparse.Namespace) -> Outcome:
     return out
 
 
+def install_project_files(sim: Any, path: str | Path, project: Project | None) -> None:
+    """Install the project's own files in its controller folder (``Simulation.install_project_files``):
+    every regular file of a project folder; for a single source file, just that file."""
+    if project is None:
+        return
+    given = Path(path)
+    if given.is_dir() or given.name.lower() == "project.gpr":
+        sim.install_project_files(project.root, project.name)
+    elif given.is_file():
+        from gplrt.io.project_files import read_project_files
+
+        files = {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
+        sim.install_project_files(files, project.name)
+
+
 def stubs_note(package: ModuleType) -> str | None:
     """One line naming the package's stubs (PROJECT["stubs"]), or None when it has none."""
     stubs = getattr(package, "PROJECT", {}).get("stubs") or []
     if not stubs:
         return None
-    names = [f"{s['name']} (--stubs)" if s.get("provided") else str(s["name"]) for s in stubs]
+    names = [f"{s['name']} ({'gpl2py stand-in' if s.get('standin') else '--stubs'})" if s.get("provided")
+             else str(s["name"]) for s in stubs]
     missing = sum(1 for s in stubs if not s.get("provided"))
     return (f"note: {plural(len(stubs), 'stub')} for protected or unsimulated code "
             f"({missing} {'raises' if missing == 1 else 'raise'} error -204 if used): {', '.join(names)}")

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import gc
 import os
+import shutil
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,7 +28,13 @@ from gpl2py.lower.names import snake_case
 from gpl2py.lower.package import package_init, package_main
 from gpl2py.lower.sourcemap import sourcemap_json
 from gpl2py.lower.stubs import stub_files
-from gpl2py.lower.user_stubs import UserStubs, load_user_stubs
+from gpl2py.lower.user_stubs import (
+    SHIPPED_PREFIX,
+    USER_PREFIX,
+    UserStubs,
+    load_user_stubs,
+    with_shipped_standins,
+)
 from gpl2py.project import Project, load_project
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model, analyze
@@ -42,9 +49,14 @@ class Output:
     package: str
     files: dict[str, str] = field(default_factory=dict)
     project: Project | None = None
+    #: The project's own files (name -> bytes), written to ``<package>/_project_files/`` so that
+    #: ``python -m <package>`` installs them where the controller has them (package_main)
+    data_files: dict[str, bytes] = field(default_factory=dict)
 
 
 Progress = Callable[[str, int, int], None]
+#: Where a written package keeps the project's own files (``Output.data_files``).
+DATA_FOLDER = "_project_files"
 
 
 def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
@@ -83,6 +95,8 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
     if loaded is not None:
         loaded(project)
     user = load_user_stubs(stubs_dir, sink) if stubs_dir is not None else None
+    if stubs_dir is None or user is not None:  # (a bad --stubs folder is already an error)
+        user = with_shipped_standins(user, sink)
     protected = bool(project.protected)
     units = []
     for i, src in enumerate(project.sources):
@@ -97,7 +111,18 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
     output = _lower(project, model, sink, progress, user)
     if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
         return None
+    output.data_files = _project_data(Path(path), project)
     return output
+
+
+def _project_data(given: Path, project: Project) -> dict[str, bytes]:
+    """The files the controller's project folder holds: every regular file of a project folder
+    (read without following links: ``gplrt.io.project_files``); for one source file, that file."""
+    from gplrt.io.project_files import read_project_files
+
+    if given.is_dir() or given.name.lower() == "project.gpr":
+        return read_project_files(project.root)
+    return {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
 
 
 def _lower(project: Project, model: Model, sink: DiagnosticSink,
@@ -125,7 +150,8 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
     stub_texts, records = stub_files(model.stubs, names.stub_module_py, package, user) \
         if model.stubs is not None and model.stubs.stubs else ({}, [])
     out.files.update(stub_texts)
-    stub_modules = sorted({Path(rel).stem for rel in stub_texts if not Path(rel).stem.startswith("_user_")})
+    stub_modules = sorted({Path(rel).stem for rel in stub_texts
+                           if not Path(rel).stem.startswith((USER_PREFIX, SHIPPED_PREFIX))})
     out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra,
                                                        records, stub_modules)
     out.files[f"{package}/__main__.py"] = package_main()
@@ -147,6 +173,13 @@ def write_package(output: Output, out_dir: str | os.PathLike[str], sink: Diagnos
         for rel, text in sorted(output.files.items()):
             target = root / rel
             target.write_text(text, encoding="utf-8", newline="\n")
+        data = pkg / DATA_FOLDER
+        if data.is_dir():
+            shutil.rmtree(data)
+        if output.data_files:
+            data.mkdir()
+            for name, blob in sorted(output.data_files.items()):
+                (data / name).write_bytes(blob)
     except OSError as exc:
         sink.report(M.OUTPUT_ERROR, None, path=str(pkg), detail=exc.strerror or str(exc))
         return False

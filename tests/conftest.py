@@ -29,6 +29,7 @@ def _isolate_runtime_state() -> Iterator[None]:
     sink = get_console_sink()
     sim = _state.sim
     flash = flashroot._current
+    working = flashroot._working_folder
     provider = kinematics_provider._provider
     conveyors = dict(refframe._conveyors)
     set_current(None)
@@ -36,6 +37,7 @@ def _isolate_runtime_state() -> Iterator[None]:
     set_console_sink(sink)
     set_current(sim)
     flashroot._current = flash
+    flashroot._working_folder = working
     kinematics_provider._provider = provider
     refframe._conveyors.clear()
     refframe._conveyors.update(conveyors)

@@ -127,16 +127,24 @@ def _stub_lines(stubs: list[dict[str, object]]) -> list[str]:
     out = ['    "stubs": [']
     for r in stubs:
         out.append(f'        {{"name": {py_string(str(r["name"]))}, "kind": {py_string(str(r["kind"]))}, '
-                   f'"provided": {bool(r["provided"])}}},')
+                   f'"provided": {bool(r["provided"])}, "standin": {bool(r.get("standin"))}}},')
     out.append("    ],")
     return out
 
 
 def package_main() -> str:
+    """``python -m``: the project's own files (``_project_files/``, written next to the modules by
+    ``gpl2py PROJECT -o OUT``) go to its controller folder first, as ``gpl2py run`` does."""
     return (
         '"""``python -m <package>``: run the project on a simulated controller."""\n'
         "\n"
-        "from . import main\n"
+        "from pathlib import Path\n"
         "\n"
-        "raise SystemExit(main())\n"
+        "from gplrt.sim import Simulation\n"
+        "\n"
+        "from . import PROJECT, main\n"
+        "\n"
+        'sim = Simulation(project=PROJECT["name"])\n'
+        'sim.install_project_files(Path(__file__).parent / "_project_files")\n'
+        "raise SystemExit(main(sim))\n"
     )

@@ -60,6 +60,7 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
     records: list[dict[str, object]] = []
     needs_helper = False
     supplied: set[str] = set()
+    shipped: set[str] = set()
 
     def user_has(stub: Stub) -> bool:
         return user is not None and user.find(stub) is not None
@@ -67,11 +68,12 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
     for stub in stubs:
         attr = stub_attr(stub)
         found = user.find(stub) if user is not None else None
-        records.append({"name": stub.name, "kind": stub.kind, "provided": found is not None})
+        records.append({"name": stub.name, "kind": stub.kind, "provided": found is not None,
+                        "standin": found is not None and found[0].shipped})
         if found is not None:
             uf, spelled = found
             used_files[uf.package_module] = uf
-            supplied.add(uf.path.name)
+            (shipped if uf.shipped else supplied).add(uf.path.name)
             alias = spelled if spelled == attr else f"{spelled} as {attr}"
             imports.append(f"from .{uf.package_module} import {alias}")
         else:
@@ -82,7 +84,7 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
             if setter is not None:
                 uf, spelled = setter
                 used_files[uf.package_module] = uf
-                supplied.add(uf.path.name)
+                (shipped if uf.shipped else supplied).add(uf.path.name)
                 imports.append(f"from .{uf.package_module} import {spelled} as set_{attr}")
             else:
                 needs_helper = True
@@ -97,7 +99,10 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
     if imports:
         if needs_helper:
             lines.append("")
-        lines.append("# supplied with --stubs: " + ", ".join(sorted(supplied)))
+        if supplied:
+            lines.append("# supplied with --stubs: " + ", ".join(sorted(supplied)))
+        if shipped:
+            lines.append("# gpl2py's own stand-ins (gpl2py/standins): " + ", ".join(sorted(shipped)))
         lines.extend(sorted(imports))
     exported = sorted({stub_attr(st) for st in stubs if st.kind != "variable" or user_has(st)}
                       | {f"set_{stub_attr(st)}" for st in stubs if st.builtin is not None and st.assigned})

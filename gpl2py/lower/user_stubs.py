@@ -13,6 +13,11 @@ Convention (README "Porting your own project"), case-insensitive throughout:
 
 The files are read with :mod:`ast` (never imported at translation time) and copied verbatim into the
 generated package as ``_user_<file>.py``, so the package stays self-contained.
+
+gpl2py also ships stand-ins of its own for protected vendor code that real projects need on paths
+every user takes (``gpl2py/standins/``: the TCS PARobot plug-in's ``PARobot_auto_center``).  They
+follow the same convention, are copied as ``_standin_<file>.py``, and are used only for stubs that
+the user's ``--stubs`` folder does not implement (:func:`with_shipped_standins`).
 """
 
 from __future__ import annotations
@@ -27,6 +32,10 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.names import snake_case
 from gpl2py.semantics.stubs import Stub
 
+#: gpl2py's own stand-ins (see the module docstring).
+SHIPPED_DIR = Path(__file__).resolve().parent.parent / "standins"
+USER_PREFIX = "_user_"
+SHIPPED_PREFIX = "_standin_"
 
 @dataclass
 class UserFile:
@@ -35,6 +44,7 @@ class UserFile:
     path: Path
     text: str
     names: dict[str, str] = field(default_factory=dict)
+    prefix: str = USER_PREFIX
 
     @property
     def stem(self) -> str:
@@ -43,7 +53,12 @@ class UserFile:
     @property
     def package_module(self) -> str:
         """The module name of its copy in the generated package."""
-        return f"_user_{snake_case(self.path.stem)}"
+        return f"{self.prefix}{snake_case(self.path.stem)}"
+
+    @property
+    def shipped(self) -> bool:
+        """A stand-in shipped with gpl2py rather than one of the user's ``--stubs`` files."""
+        return self.prefix == SHIPPED_PREFIX
 
 
 @dataclass
@@ -81,7 +96,8 @@ def _top_level_names(tree: ast.Module) -> dict[str, str]:
     return names
 
 
-def load_user_stubs(path: str | os.PathLike[str], sink: DiagnosticSink) -> UserStubs | None:
+def load_user_stubs(path: str | os.PathLike[str], sink: DiagnosticSink,
+                    prefix: str = USER_PREFIX) -> UserStubs | None:
     """Read every ``*.py`` of ``path``; None (with error GPL3503) if the folder or a file is unusable."""
     root = Path(path)
     if not root.is_dir():
@@ -98,8 +114,19 @@ def load_user_stubs(path: str | os.PathLike[str], sink: DiagnosticSink) -> UserS
             sink.report(M.STUBS_DIR_ERROR, None, path=str(path), detail=f"{file.name}: {exc}")
             ok = False
             continue
-        out.files.append(UserFile(file, text, _top_level_names(tree)))
+        out.files.append(UserFile(file, text, _top_level_names(tree), prefix))
     return out if ok else None
 
 
-__all__ = ["UserFile", "UserStubs", "load_user_stubs"]
+def with_shipped_standins(user: UserStubs | None, sink: DiagnosticSink) -> UserStubs | None:
+    """The user's stubs (if any) followed by gpl2py's shipped stand-ins: ``find`` tries the
+    user's files first, so a ``--stubs`` implementation always wins over a shipped one."""
+    shipped = load_user_stubs(SHIPPED_DIR, sink, SHIPPED_PREFIX) if SHIPPED_DIR.is_dir() else None
+    if shipped is None or not shipped.files:
+        return user
+    if user is None:
+        return shipped
+    return UserStubs(user.root, [*user.files, *shipped.files])
+
+
+__all__ = ["SHIPPED_DIR", "UserFile", "UserStubs", "load_user_stubs", "with_shipped_standins"]

@@ -160,6 +160,9 @@ class Cell:
         package = import_built(built)
         sim = Simulation(clock=clock, speed=speed, io=io, console=_EchoConsole(echo), flash_root=flash,
                          project=built.project.name, robot=robot)
+        from gpl2py.run import install_project_files
+
+        install_project_files(sim, project, built.project)  # where the controller has them
         return cls(package, sim, rendered, Path(project))
 
     # -- running GPL code ------------------------------------------------------------------------------

@@ -162,6 +162,8 @@ class Simulation:
         self.console = console if console is not None else ConsoleSink(capture=capture)
         self.flash_root = Path(flash_root) if flash_root is not None else None
         self.project = project
+        #: The running project's folder on the flash disk (``install_project_files``), or None
+        self.project_folder: str | None = None
         self.max_threads = max_threads
         self.controller = ControllerState()
         self.robots: dict[int, Any] = {}  # gplrt.motion.robot.RobotState, built on first use
@@ -181,11 +183,11 @@ class Simulation:
         """
         set_current(self)
         _install_console(self)
-        if self.flash_root is not None:
-            from gplrt.io.flashroot import get_flash_root, set_flash_root
+        from gplrt.io.flashroot import get_flash_root, set_flash_root, set_working_folder
 
-            if get_flash_root().root != self.flash_root.resolve():
-                set_flash_root(self.flash_root, clear_romdisk=False)
+        if self.flash_root is not None and get_flash_root().root != self.flash_root.resolve():
+            set_flash_root(self.flash_root, clear_romdisk=False)
+        set_working_folder(self.project_folder)  # relative file names: this session's project
         return self
 
     def __enter__(self) -> Simulation:
@@ -199,6 +201,20 @@ class Simulation:
         if self._previous is not None:
             set_current(self._previous)
             _install_console(self._previous)
+
+    def install_project_files(self, files: dict[str, bytes] | str | Path, name: str | None = None) -> str | None:
+        """Put the project's own files where the controller has them, ``/flash/projects/<name>/``
+        (``name`` defaults to ``project``), and resolve relative file names there
+        (``gplrt.io.project_files``: only regular files, never through a link).  ``files`` is
+        a host project folder or a name -> bytes map.  Returns the controller folder, or None
+        when ``name`` cannot be one."""
+        from gplrt.io.project_files import install_project, read_project_files
+
+        data = files if isinstance(files, dict) else read_project_files(files)
+        self.activate()
+        self.project_folder = install_project(data, name if name is not None else self.project)
+        self.activate()
+        return self.project_folder
 
     # -- time ------------------------------------------------------------------------------------
 

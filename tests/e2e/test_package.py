@@ -76,7 +76,10 @@ def test_cli_writes_package_and_python_m_runs_it(tmp_path: Path) -> None:
     assert r.returncode == 0, r.stderr
     pkg = out / "my_cell"
     assert sorted(p.name for p in pkg.iterdir()) == [
-        "__init__.py", "__main__.py", "_sourcemap.json", "app.py", "globals_.py"]
+        "__init__.py", "__main__.py", "_project_files", "_sourcemap.json", "app.py", "globals_.py"]
+    # the project folder's own files, which python -m installs in /flash/projects/<project>/
+    assert sorted(p.name for p in (pkg / "_project_files").iterdir()) == \
+        sorted(p.name for p in Path(proj).iterdir())
     run = subprocess.run([PY, "-m", "my_cell"], capture_output=True, text=True, cwd=out, timeout=120)
     assert run.returncode == 0, run.stderr
     # module variables initialised in ProjectSource order, then each module's Init, then ProjectStart

@@ -71,7 +71,7 @@ def test_transpiled_gpl_moves_to_an_angles_location(tmp_path: Path) -> None:
         Dim l As New Location
         Dim p As New Profile
         Dim w As Location
-        l.Angles(250, 0, 90, 0, 69)
+        l.Angles(250, 0, 90, 0, 100)
         Robot.Attached = 1
         Controller.PowerEnabled = True
         Robot.Home
@@ -85,5 +85,5 @@ def test_transpiled_gpl_moves_to_an_angles_location(tmp_path: Path) -> None:
     res = run_gpl(tmp_path, src)
     assert res.log == ""
     # PF400SX: l1 = 302 mm, l2 = 289 mm; J2 = 0, J3 = 90 -> X = 302
-    assert res.output.splitlines()[0] == "250 90 69"
+    assert res.output.splitlines()[0] == "250 90 100"
     assert res.output.splitlines()[1] == "302.000"

@@ -59,7 +59,7 @@ def test_waitforeom_before_any_motion_returns_at_once(sim: Simulation) -> None:
     t_start = sim.now()
     Move.WaitForEOM()
     assert sim.now() == t_start
-    assert Robot.TrajState() == 0
+    assert Robot.TrajState() == 1  # idle (TCS's label; 0 is "halted", power off)
 
 
 def test_cartesian_joint_move_reaches_the_pose(sim: Simulation) -> None:

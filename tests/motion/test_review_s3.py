@@ -65,9 +65,9 @@ def test_trajstate_and_dest_after_a_mid_path_stop_agree_with_where(sim: Simulati
     state, dest = Robot.TrajState(), Robot.DestAngles().axis_values()
     here = Robot.WhereAngles().axis_values()
     assert here[1] <= 93.0 and here != BULGE_GOAL  # stopped on the line, short of the goal
-    assert state == 0
+    assert state == 1  # idle
     assert dest == here
-    assert Robot.TrajState() == 0
+    assert Robot.TrajState() == 1
     with pytest.raises(GplException) as exc:
         Move.WaitForEOM()
     assert exc.value.ErrorCode == -1012 and exc.value.Axis == 2

@@ -34,6 +34,14 @@ after every value change (GPL writes, ``set``, ``define``, layering more ``.pac`
 motion runtime registers one (``gplrt.motion.registry``) so that a written speed or acceleration
 DataID reaches the limits later motions use; the database itself knows nothing of motion.
 Listeners belong to one live database and are not copied by :meth:`ParameterDatabase.copy`.
+
+Live DataIDs: some DataIDs are not stored values but the controller's own state (the GPL version,
+the power state, a robot's trajectory mode, an axis's output torque) or commands (writing 213
+homes the robots).  ``ParameterDatabase.live`` maps such a DataID to a :class:`LiveParameter`
+whose ``read`` gives the present values and whose ``write`` acts on a GPL write (after the value
+is checked and stored).  The controller registers them on the session's database
+(``gplrt.controller.live_pdb``); the database only calls them, and, like listeners, they are
+not copied.
 """
 
 from __future__ import annotations
@@ -102,6 +110,21 @@ class PacRecord:
     values: list[Value]
     is_string: bool
     line: int
+
+
+@dataclass
+class LiveParameter:
+    """A DataID the controller maintains rather than stores (module docstring, "Live DataIDs").
+
+    ``read(unit, unit2)`` gives the present values; ``units()`` the units that have the DataID
+    (robot numbers; default: unit 1 only); ``write(unit, unit2, values)``, if any, is what the
+    controller does when a program writes it (None: the DataID is read-only, -209)."""
+
+    label: str
+    read: Callable[[int, int], list[Value]]
+    write: Callable[[int, int, list[Value]], None] | None = None
+    units: Callable[[], Iterable[int]] | None = None
+    is_string: bool = False
 
 
 # -- parsing ------------------------------------------------------------------------------------
@@ -267,6 +290,8 @@ class ParameterDatabase:
     entries: dict[tuple[int, int, int], PdbEntry] = field(default_factory=dict)
     #: Called after each change as ``listener(data_id, unit, unit2)`` (module docstring).
     listeners: list[Callable[[int, int, int], None]] = field(default_factory=list, compare=False, repr=False)
+    #: DataID -> the controller's live value (module docstring, "Live DataIDs").
+    live: dict[int, LiveParameter] = field(default_factory=dict, compare=False, repr=False)
 
     # -- loading --------------------------------------------------------------------------------
 
@@ -335,6 +360,9 @@ class ParameterDatabase:
     def entry(self, data_id: int, unit: int = 1, unit2: int = 1) -> PdbEntry:
         """The record for a key, or -1501 (unknown DataID) / -1509 (not for this unit)."""
         key = (int(data_id), _norm(unit), _norm(unit2))
+        live = self.live.get(key[0]) if self.live else None
+        if live is not None:
+            return self._live_entry(live, key)
         found = self.entries.get(key)
         if found is not None:
             return found
@@ -342,11 +370,27 @@ class ParameterDatabase:
             raise GplException(INVALID_DATA_INDEX, detail=f"DataID {data_id} has no unit {key[1]}, unit2 {key[2]}")
         raise GplException(UNKNOWN_DATA_ID, detail=f"DataID {data_id}")
 
+    def _live_entry(self, live: LiveParameter, key: tuple[int, int, int]) -> PdbEntry:
+        """A fresh record of a live DataID's present values (-1509 for a unit it does not have)."""
+        units = list(live.units()) if live.units is not None else [1]
+        if key[1] not in units or key[2] != 1:
+            raise GplException(INVALID_DATA_INDEX, detail=f"DataID {key[0]} has no unit {key[1]}, unit2 {key[2]}")
+        return PdbEntry(key[0], key[1], key[2], live.label, list(live.read(key[1], key[2])), live.is_string, "<live>")
+
     def has(self, data_id: int, unit: int = 1, unit2: int = 1) -> bool:
+        if int(data_id) in self.live:
+            try:
+                self.entry(data_id, unit, unit2)
+            except GplException:
+                return False
+            return True
         return (int(data_id), _norm(unit), _norm(unit2)) in self.entries
 
     def units(self, data_id: int) -> list[int]:
         """The units (robot/device numbers) that have ``data_id``, sorted."""
+        live = self.live.get(int(data_id))
+        if live is not None:
+            return sorted(live.units()) if live.units is not None else [1]
         return sorted({k[1] for k in self.entries if k[0] == data_id})
 
     def robots(self) -> list[int]:
@@ -460,7 +504,8 @@ class ParameterDatabase:
 
     def _writable(self, data_id: int, unit: int, unit2: int, key: int) -> PdbEntry:
         entry = self.entry(data_id, unit, unit2)
-        if entry.data_id in READ_ONLY_IDS:
+        live = self.live.get(entry.data_id)
+        if entry.data_id in READ_ONLY_IDS or (live is not None and live.write is None):
             raise GplException(READ_ONLY, detail=f"DataID {data_id}")
         if entry.data_id in PROTECTED_IDS and not key:
             raise GplException(PROTECTION_ERROR, detail=f"DataID {data_id} needs the key argument")
@@ -483,6 +528,9 @@ class ParameterDatabase:
             if len(values) != 1:
                 raise GplException(INVALID_ARGUMENT, detail=f"DataID {entry.data_id}: one value expected at index {index}")
             entry.values[self._check_index(entry, index)] = values[0]
+        live = self.live.get(entry.data_id) if entry.origin == "<live>" else None
+        if live is not None and live.write is not None:
+            live.write(entry.unit, entry.unit2, list(entry.values))  # the controller acts on it
         self._changed(entry.data_id, entry.unit, entry.unit2)
 
     def _changed(self, data_id: int, unit: int, unit2: int) -> None:

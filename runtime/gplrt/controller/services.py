@@ -30,6 +30,11 @@ silent:
   the power-up it ended (the real clock runs them on different threads).
 * ``PDb`` writes of the motion DataIDs that need power off (``NEEDS_POWER_OFF``) raise -1522
   *Cannot write value when power on* while power is on or coming up.
+* ``Controller.PowerEnabled(timeout) = True`` (real code, TCS ``hp 1 20``; the Dictionary shows
+  only the plain form): ``timeout`` > 0 waits at most that many seconds and raises -1025
+  *Timeout enabling power* if power is not on by then (the power-up goes on); 0 waits as long
+  as it takes, like the plain form.  Writing DataID 241 starts a power-up and does not wait
+  (``start_power_up``, gplrt.controller.live_pdb).
 * ``PowerState(mode)`` — the sequencer state (``mode`` accepted, ignored: undocumented).
 * ``SoftEStop = True`` drops power (state 7) and blocks power-on until set False.
 * ``SystemSpeed`` — percent, 0 < v ≤ 100, else -707; the value only (motion applies it).
@@ -60,6 +65,7 @@ from gplrt.lang.errors import (
     POWER_NOT_ENABLED,
     POWER_OFF_REQUESTED,
     SOFT_ESTOP,
+    TIMEOUT_ENABLING_POWER,
     VALUE_OUT_OF_RANGE,
     GplException,
     error_text,
@@ -158,10 +164,20 @@ class _ControllerClass:
     def PowerEnabled(self, value: Boolean) -> None:
         sim = _sim()
         if not to_bool(value):  # (text "False" is False, as CBool has it)
-            _power_off(sim, POWER_OFF_REQUESTED)
-            _power_dropped(sim)
+            power_off(sim)
             return
         _power_up(sim)
+
+    def set_PowerEnabled(self, *args: Any) -> None:
+        """``Controller.PowerEnabled[(timeout)] = value`` (module docstring): the value comes last."""
+        if len(args) == 1:
+            self.PowerEnabled = args[0]
+            return
+        timeout = to_double(args[0])
+        if not to_bool(args[-1]):
+            self.PowerEnabled = False
+            return
+        _power_up(_sim(), timeout=timeout if timeout > 0 else None)
 
     def PowerState(self, mode: Integer = 0) -> Integer:  # type: ignore[assignment]
         return _sim().controller.power_state  # type: ignore[no-any-return]
@@ -275,9 +291,20 @@ class _ControllerClass:
         _pdb().set_pdb_num(rest[-1], data_id, unit, unit2, index, key)  # converts by GPL's rules
 
 
-def _power_up(sim: Any) -> None:
-    """``PowerEnabled = True``: start a power-up or join the one in progress, and wait for it
-    (module docstring)."""
+def start_power_up(sim: Any) -> None:
+    """Start a power-up (or let the one in progress go on) and return at once: DataID 241."""
+    _power_up(sim, wait=False)
+
+
+def power_off(sim: Any) -> None:
+    """``PowerEnabled = False``: high power off now, motion stops (module docstring)."""
+    _power_off(sim, POWER_OFF_REQUESTED)
+    _power_dropped(sim)
+
+
+def _power_up(sim: Any, *, wait: bool = True, timeout: float | None = None) -> None:
+    """``PowerEnabled = True``: start a power-up or join the one in progress, and (``wait``) wait
+    for it, at most ``timeout`` controller seconds when given (-1025 after that; module docstring)."""
     state = sim.controller
     seq = power_sequence(sim)
     with seq.lock:
@@ -296,9 +323,14 @@ def _power_up(sim: Any) -> None:
         t0, step = sim.scheduler.clock.now(), state.power_up_time / 2.0
         sim.scheduler.call_at(t0 + step, lambda: _power_step(sim, seq, power_up, POWER_ENABLING_SERVOS))
         sim.scheduler.call_at(t0 + 2 * step, lambda: _power_step(sim, seq, power_up, POWER_READY))
+    if not wait:
+        return
     ended = lambda: power_up.outcome is not None  # noqa: E731 - tested under the scheduler lock
+    deadline = None if timeout is None else sim.scheduler.clock.now() + timeout
     while not ended():
-        sim.scheduler.wait(seq.done, None, ended)
+        if deadline is not None and sim.scheduler.clock.reached(deadline):
+            raise GplException(TIMEOUT_ENABLING_POWER, detail=f"power not on after {timeout} s")
+        sim.scheduler.wait(seq.done, deadline, ended)
     if power_up.outcome:
         raise GplException(power_up.outcome, detail="the power-up was interrupted")
 

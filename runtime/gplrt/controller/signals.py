@@ -17,6 +17,12 @@ range raises -1518 *Undefined signal number*; 0 raises -1517 *Invalid signal num
 number addresses the same signal with inverted logic (``Signal.DIO(-10001)`` is True while input
 10001 is off) — the controller's convention for signal numbers in its configuration.
 
+Device inputs: a robot's own sensors are digital inputs outside these ranges (the PF400 gripper's
+end-of-travel sensor is input 210002: servo node 2, input 2).  The motion runtime provides them
+(:func:`add_input_provider`, ``gplrt.motion.servo``): a provider answers a signal number with the
+input's present state, or None when it is not one of its inputs; such an input reads like any
+input (inverted by a negative number) and writing it raises -1519.
+
 Latches (gpl-classes §11) are emulated: ``io.configure_latch(signal, robot)`` makes a change of
 that input queue a :class:`Latch` result for the robot, time-stamped on the controller clock, with
 the axis positions that ``Simulation.robots[robot].latch_angles()`` reports (the motion work
@@ -50,6 +56,15 @@ from gplrt.lang.errors import (
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 
 LATCH_QUEUE_SIZE = 128
+
+#: Device-input providers (module docstring): ``provider(sim, signal) -> bool | None``.
+_input_providers: list[Callable[[Any, int], bool | None]] = []
+
+
+def add_input_provider(provider: Callable[[Any, int], bool | None]) -> None:
+    """Let ``provider`` answer digital inputs outside the I/O map (module docstring)."""
+    if provider not in _input_providers:
+        _input_providers.append(provider)
 
 
 @dataclass(frozen=True)
@@ -154,12 +169,30 @@ class IoMap:
     # -- GPL access --------------------------------------------------------------------------------
 
     def read_dio(self, signal: int) -> bool:
-        n, inverted = self._digital_number(signal, write=False)
+        try:
+            n, inverted = self._digital_number(signal, write=False)
+        except GplException as exc:
+            device = self._device_input(signal, exc)
+            return device != (int(signal) < 0)
         return self._digital.get(n, False) != inverted
 
     def write_dio(self, signal: int, value: bool) -> None:
-        n, inverted = self._digital_number(signal, write=True)
+        try:
+            n, inverted = self._digital_number(signal, write=True)
+        except GplException as exc:
+            self._device_input(signal, exc)  # an input of a device: -1519, else the original error
+            raise GplException(OUTPUT_SIGNAL_REQUIRED, detail=f"signal {signal} is a device input") from None
         self._change_digital(n, bool(value) != inverted, "gpl")
+
+    def _device_input(self, signal: int, error: GplException) -> bool:
+        """The state of a device input (module docstring); re-raises ``error`` when no provider
+        knows ``signal``."""
+        if error.ErrorCode == UNDEFINED_SIGNAL_NUMBER:
+            for provider in list(_input_providers):
+                state = provider(self._sim, abs(int(signal)))
+                if state is not None:
+                    return bool(state)
+        raise error
 
     def read_aio(self, channel: int) -> float:
         return self._analog.get(self._analog_number(channel, write=False), 0.0)

@@ -12,6 +12,11 @@ The simulated controller's disks live under one host folder, :attr:`FlashRoot.ro
 Device names are matched case-insensitively (``/ROMDISK`` and ``/romdisk``); file and folder names
 are case-sensitive, as on the controller (D0:3620-3624).
 
+A relative name (``Tcs.gpo``) is relative to the running project's folder, as on a controller:
+``/flash/projects/<project>/`` once the project's files are installed there
+(``gplrt.io.project_files``, :func:`set_working_folder`); without a running project it is
+-301 as before.
+
 Refusals, each with the controller code that fits best (the manual names none for this case):
 
 * a component ``..`` or ``.`` or any name with a leading ``.``, an empty name, a name longer than
@@ -95,7 +100,12 @@ class FlashRoot:
         if len(path) > MAX_PATH:
             raise GplException(PATH_TOO_LONG, detail=f"{len(path)} characters: {path[:40]}...")
         if not path.startswith("/"):
-            raise GplException(UNDEFINED_DEVICE, detail=f"{path!r}: a path starts with /device")
+            working = _working_folder
+            if working is None or path == "":
+                raise GplException(UNDEFINED_DEVICE, detail=f"{path!r}: a path starts with /device")
+            path = f"{working}/{path}"
+            if len(path) > MAX_PATH:
+                raise GplException(PATH_TOO_LONG, detail=f"{len(path)} characters: {path[:40]}...")
         parts = path.split("/")[1:]
         device = parts[0]
         names = [p for p in parts[1:] if p != ""]  # tolerate "//" and a trailing "/"
@@ -133,6 +143,18 @@ def _check_name(name: str, path: str) -> None:
 
 _lock = threading.Lock()
 _current: FlashRoot | None = None
+#: The running project's folder (a controller path), for relative names; None: no project.
+_working_folder: str | None = None
+
+
+def set_working_folder(folder: str | None) -> None:
+    """Resolve relative names against the controller folder ``folder`` (None: refuse them)."""
+    global _working_folder
+    _working_folder = folder.rstrip("/") if folder else None
+
+
+def get_working_folder() -> str | None:
+    return _working_folder
 _session_dir: tempfile.TemporaryDirectory[str] | None = None
 
 

@@ -23,9 +23,11 @@ Decisions [P] where the Dictionary gives only a name:
 * ``Extra(a1[, a2, a3, a4])``: the robot's extra axes (the linear rail of a PF400 SXL) go to these
   values during the next motion to a Cartesian Location; values beyond the robot's extra axes are
   ignored (extra.htm).
-* Jog, velocity, torque and real-time-modification modes, ``StartSpeedDAC``, ``Trigger`` and
-  ``ForceOverlap`` are not emulated: -204 *Not implemented* with the member named
-  (gpl-classes §22.5).  ``StopSpecialModes`` has nothing to stop and returns.
+* Jog mode (``StartJogMode``, ``SetJogCommand``), torque mode (``StartTorqueCntrl``,
+  ``SetTorques``), ``StopSpecialModes``, ``Trigger`` and ``ForceOverlap``: see
+  ``gplrt.motion.special`` for what the simulation does with them.
+* Velocity and real-time-modification modes and ``StartSpeedDAC`` are not emulated: -204 *Not
+  implemented* with the member named (gpl-classes §22.5).
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ from gplrt.geometry._checks import wrong_object
 from gplrt.geometry.location import Location
 from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import (
+    INCONSISTENT_TRIGGER_MODE,
     INVALID_AXIS,
     INVALID_CARTESIAN,
     NOT_IMPLEMENTED,
@@ -49,7 +52,8 @@ from gplrt.lang.errors import (
 )
 from gplrt.lang.conversions import to_double, to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer
-from gplrt.motion import registry
+from gplrt.lang.arrays import GplArray
+from gplrt.motion import registry, special
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot import QUEUE_DEPTH, RobotState
 from gplrt.motion.straight import ArcPath, LinePath
@@ -82,6 +86,17 @@ def _ready(s: Any, key: Any = None) -> RobotState:
         # the oldest unfinished segment is QUEUE_DEPTH from the end: wait until it has run
         sched.sleep_until(queue.history[-QUEUE_DEPTH].end)
         robot.check_can_move(key, registry.power_on(s))
+    return robot
+
+
+def _special_ready(s: Any) -> RobotState:
+    """The attached robot, checked as for a motion, once its queued motions have ended: a
+    special mode starts from rest (``gplrt.motion.special``)."""
+    robot = _ready(s)
+    sched = s.scheduler
+    while not sched.clock.reached(robot.queue.end_time):
+        sched.sleep_until(robot.queue.end_time)
+    robot.raise_async_error()
     return robot
 
 
@@ -314,6 +329,8 @@ class _MoveClass:
         s = registry.sim()
         robot = _attached(s)
         sched = s.scheduler
+        while robot.special is not None:  # a special mode has no end of motion until it stops
+            sched.wait(robot.eom_waiters, None, until=lambda: robot.special is None)
         while True:
             # the path motions' cycles up to the end: one may stop the robot (and the queue) early
             end = robot.queue.end_time
@@ -326,25 +343,59 @@ class _MoveClass:
             sched.wait(robot.eom_waiters, end, until=lambda: sched.clock.reached(robot.queue.end_time))
         robot.raise_async_error()
 
+    # -- special modes and motion events (gplrt.motion.special) -----------------------------------
+
     def StopSpecialModes(self) -> None:
-        """No special trajectory mode is ever active in the simulation: nothing to stop."""
+        """End jog or torque mode where the robot is (nothing to do in position mode)."""
+        s = registry.sim()
+        special.stop_special_modes(s, _attached(s))
+
+    def StartJogMode(self) -> None:
+        """Enter jog mode, holding where the queued motions end."""
+        s = registry.sim()
+        robot = _special_ready(s)
+        special.start_jog_mode(s, robot)
+
+    def SetJogCommand(self, JogMode: Integer, JogAxis: Integer, JogSpeed: Double) -> None:
+        """Jog mode 0 (hold), 1 (joint ``JogAxis`` at ``JogSpeed`` %) or 4 (free ``JogAxis``)."""
+        s = registry.sim()
+        special.set_jog_command(s, _attached(s), to_int32(JogMode), to_int32(JogAxis),
+                                _finite(JogSpeed, "Move.SetJogCommand speed"))
+
+    def StartTorqueCntrl(self, MotorMask: Integer, AdcMask: Integer, Torques: GplArray[Double]) -> None:
+        """Torque control of the axes in ``MotorMask`` with ``Torques`` (% of peak, per axis)."""
+        s = registry.sim()
+        _need(Torques, GplArray, "Torques array")
+        special.start_torque_mode(s, _special_ready(s), to_int32(MotorMask), to_int32(AdcMask), Torques)
+
+    def SetTorques(self, Torques: GplArray[Double]) -> None:
+        """New torques for the axes in torque mode."""
+        s = registry.sim()
+        _need(Torques, GplArray, "Torques array")
+        special.set_torques(s, _attached(s), Torques)
+
+    def Trigger(self, Mode: Integer, TriggerPt: Double, Target: Any, EventMask: Integer = 0) -> None:  # type: ignore[assignment]
+        """At ``TriggerPt`` % of the next motion, send ``EventMask`` to the Thread ``Target`` (or
+        turn on output ``Target``).  The four-argument form is the one real code uses."""
+        s = registry.sim()
+        robot = _attached(s)
+        target = Target if hasattr(Target, "SendEvent") else to_int32(Target)
+        special.arm_trigger(robot, to_int32(Mode), _finite(TriggerPt, "Move.Trigger point"), target,
+                            to_int32(EventMask))
+
+    def ForceOverlap(self, Mode: Integer, Criterion: Double) -> None:
+        """Overlap the next joint motion with the running one by ``Criterion`` % of its duration."""
+        s = registry.sim()
+        robot = _attached(s)
+        if to_int32(Mode) != 0:
+            raise GplException(INCONSISTENT_TRIGGER_MODE, robot_num=robot.number,
+                               detail=f"Move.ForceOverlap mode {Mode}: only mode 0 is simulated")
+        robot.pending_overlap = max(0.0, min(100.0, _finite(Criterion, "Move.ForceOverlap criterion")))
 
     # -- not emulated (gpl-classes §22.5) ----------------------------------------------------------
 
     def _unsupported(self, name: str) -> None:
         raise GplException(NOT_IMPLEMENTED, detail=f"Move.{name} is not supported in simulation")
-
-    def ForceOverlap(self, *args: Any) -> None:
-        self._unsupported("ForceOverlap")
-
-    def Trigger(self, *args: Any) -> None:
-        self._unsupported("Trigger")
-
-    def SetJogCommand(self, *args: Any) -> None:
-        self._unsupported("SetJogCommand")
-
-    def StartJogMode(self, *args: Any) -> None:
-        self._unsupported("StartJogMode")
 
     def SetRealTimeMod(self, *args: Any) -> None:
         self._unsupported("SetRealTimeMod")
@@ -355,14 +406,8 @@ class _MoveClass:
     def SetSpeeds(self, *args: Any) -> None:
         self._unsupported("SetSpeeds")
 
-    def SetTorques(self, *args: Any) -> None:
-        self._unsupported("SetTorques")
-
     def StartSpeedDAC(self, *args: Any) -> None:
         self._unsupported("StartSpeedDAC")
-
-    def StartTorqueCntrl(self, *args: Any) -> None:
-        self._unsupported("StartTorqueCntrl")
 
     def StartVelocityCntrl(self, *args: Any) -> None:
         self._unsupported("StartVelocityCntrl")

@@ -72,6 +72,10 @@ def pdb_of(s: Any) -> Any:
             # DataID 601 "System wide test speed in %" is the SystemSpeed a controller boots with
             # (robot-models.md §2.4: a real PF400 reports 50); a program's own setting wins.
             s.controller.system_speed = s.pdb.get_num(601, default=100.0)
+    if not s.pdb.live:
+        from gplrt.controller.live_pdb import install
+
+        install(s.pdb)  # the controller's own DataIDs (power state, version, torques, ...)
     return s.pdb
 
 
@@ -85,6 +89,7 @@ def robot_of(s: Any, n: int) -> Any:
     from gplrt.motion.limits import RobotLimits
     from gplrt.motion.queue import MotionQueue
     from gplrt.motion.robot import RobotState
+    from gplrt.motion.servo import joint_to_motor_scale, make_gripper
 
     n = int(n)
     robot = s.robots.get(n)
@@ -99,8 +104,13 @@ def robot_of(s: Any, n: int) -> Any:
     import numpy as np
 
     rest = np.array(model.ready_joints(), dtype=float)
+    gripper = make_gripper(model)
+    if gripper is not None:  # the fingers rest closed, on their stop (not beyond it)
+        rest[gripper.axis] = max(rest[gripper.axis], gripper.closed_stop)
     robot = RobotState(n, model, limits, model.tool.copy(), model.base.copy(), MotionQueue(rest))
     robot.eom_waiters = WaitQueue(f"robot {n} end of motion")
+    robot.gripper = gripper
+    robot.motor_scale = joint_to_motor_scale(pdb, n, model.axis_count)
     s.robots[n] = robot
     return robot
 

@@ -49,6 +49,7 @@ import numpy as np
 from gplrt.geometry.transforms import Pose, matrix_to_pose
 from gplrt.lang.errors import (
     CANT_CHANGE_CONFIG,
+    NOT_IN_POSITION_MODE,
     NO_ROBOT_ATTACHED,
     POWER_NOT_ENABLED,
     ROBOT_NOT_HOMED,
@@ -148,6 +149,7 @@ class RobotState:
     restart_base: np.ndarray
     queue: MotionQueue
     homed: bool = False
+    homing: int = 0  # homings of this robot in progress (TrajState 9)
     owner: Any = None  # key of the thread that has it attached (None = free)
     last_profile: tuple[object, ...] | None = None  # queue.profile_values of the last motion
     pending_extra: list[float] = field(default_factory=list)
@@ -162,6 +164,19 @@ class RobotState:
     _known_pose: tuple[Vec, np.ndarray, np.ndarray, Pose] | None = None
     #: The path motions' kinematics for the present Tool and Base (``QueuedFrames``)
     _frames: QueuedFrames | None = None
+    #: The servo gripper (``gplrt.motion.servo``), None for a robot without one
+    gripper: Any = None
+    #: Motor counts per mm or degree of each joint (DataID 2300; ``Robot.JointToMotor``)
+    motor_scale: list[float] = field(default_factory=list)
+    #: Brake control (DataIDs 14500/14002): the chosen axis, and the axes whose brake is released
+    brake_axis: int = 0
+    brakes_released: set[int] = field(default_factory=set)
+    #: The special trajectory mode in force (jog, torque: ``gplrt.motion.special``), or None
+    special: Any = None
+    #: ``Move.Trigger`` actions armed for the next motion (``gplrt.motion.special``)
+    pending_triggers: list[Any] = field(default_factory=list)
+    #: ``Move.ForceOverlap`` percentage for the next motion, or None
+    pending_overlap: float | None = None
 
     def __post_init__(self) -> None:
         self._axis_count = self.model.axis_count  # fixed for the model's lifetime; read per Move
@@ -193,12 +208,35 @@ class RobotState:
     # queueing on it, at the same moment — hence the robot's lock.
 
     def joints_at(self, t: float) -> Vec:
+        """Where the joints are at ``t``: the command, except where the gripper's fingers are
+        held back by a plate or their stop (``gplrt.motion.servo``)."""
         with self.lock:
-            return self.queue.joints_at(t)
+            q = self.queue.joints_at(t)
+        gripper = self.gripper
+        if gripper is not None:
+            i = gripper.axis
+            held = gripper.actual(float(q[i]))
+            if held != q[i]:
+                q = q.copy()
+                q[i] = held
+        return q
 
     def state_at(self, t: float) -> tuple[Vec, Vec, Vec]:
         with self.lock:
-            return self.queue.state_at(t)
+            q, v, a = self.queue.state_at(t)
+        gripper = self.gripper
+        if gripper is not None:
+            i = gripper.axis
+            held = gripper.actual(float(q[i]))
+            if held != q[i]:  # the fingers rest on the plate or their stop
+                q, v, a = q.copy(), v.copy(), a.copy()
+                q[i], v[i], a[i] = held, 0.0, 0.0
+        return q, v, a
+
+    def commanded_torques(self) -> dict[int, float]:
+        """Axis (0-based) -> torque (tcnt) of the axes in torque mode (``gplrt.motion.special``)."""
+        special = self.special
+        return special.torques if special is not None and special.kind == "torque" else {}
 
     def run_cycles(self, t: float) -> None:
         """Run the path motions' cycles up to ``t`` (``MotionQueue.advance``): whatever reads the
@@ -255,6 +293,9 @@ class RobotState:
             self.raise_async_error()
         if not power_on:
             raise GplException(POWER_NOT_ENABLED, robot_num=self.number, detail="high power is off")
+        if self.special is not None:
+            raise GplException(NOT_IN_POSITION_MODE, robot_num=self.number,
+                               detail=f"robot {self.number} is in {self.special.kind} mode (Move.StopSpecialModes)")
         if not self.homed:
             raise GplException(ROBOT_NOT_HOMED, robot_num=self.number, detail=f"robot {self.number}")
 
@@ -382,11 +423,34 @@ class RobotState:
             t0, q0, v0, a0 = now, queue.rest, None, None
         elif history[-1].end <= now + CLOCK_RESOLUTION:
             t0, q0, v0, a0 = now, history[-1].q_end, None, None
+        elif self.pending_overlap is not None:
+            return self._queue_overlapped(now, values, lim, prof)
         else:
             t0, q0, v0, a0 = self._start(now, can_blend=True)
+        self.pending_overlap = None
         plan = plan_axes(q0, v0, a0, values, lim)
         return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
                                          "joint", plan), prof)
+
+    def _queue_overlapped(self, now: float, values: list[float], lim: Any, prof: Profile) -> Segment:
+        """A joint motion that ``Move.ForceOverlap`` overlaps with the running one
+        (``gplrt.motion.special``): planned from rest at its target, started when it has the
+        overlap percentage of its duration left, and superimposed on it until it ends."""
+        from gplrt.motion.special import OverlapSegment
+
+        prev = self.queue.history[-1]
+        pct, self.pending_overlap = float(self.pending_overlap or 0.0), None
+        prev_end = prev.motion_end
+        t_b = max(now, prev_end - prev.duration * pct / 100.0, prev.t0)
+        q0 = prev.q_end
+        plan = plan_axes(q0, None, None, values, lim)
+        if t_b >= prev_end:
+            t_b = prev.end
+        else:
+            prev.cut = t_b  # the overlap segment covers the rest of it
+        seg = OverlapSegment(t_b, plan.duration, q0, np.array(values), kind="overlap", plan=plan, prev=prev,
+                             prev_end=prev_end)
+        return self._append(seg, prof)
 
     def queue_pose(self, now: float, pose: Pose, config: int, prof: Profile, system_speed: float,
                    seed: Vec | None = None) -> Segment:
@@ -577,6 +641,11 @@ class RobotState:
         queue._starts.append(seg.t0)
         if isinstance(seg, PathSegment):
             queue.paths_pending = True
+        if self.pending_triggers:  # Move.Trigger armed for this motion
+            from gplrt.motion import registry, special
+
+            triggers, self.pending_triggers = self.pending_triggers, []
+            special.fire_triggers(registry.sim(), seg, triggers)
         return seg
 
     # -- stopping ------------------------------------------------------------------------------

@@ -21,15 +21,25 @@ Decisions [P] where the manuals are silent:
 * ``Home`` needs the attached robot (-1009) and power (-1046) and takes ``HOMING_TIME`` (1 s) of
   controller time with ``PowerState`` 28; ``HomeAll`` needs power only and homes every robot.
   Joints do not move (absolute encoders, robot-models §2.5).
-* ``TrajState(robot, mode)``: 0 idle (nothing queued or executing), 1 executing a motion,
-  2 executing ``Move.Delay``, 3 settling (InRange > 0), 4 rapid deceleration; ``mode`` ignored.
-  A path motion stopped by a mid-path error (``path_run``) is over at its stop: TrajState then
-  says idle and ``Dest`` is where it stopped [P] (the queue was flushed; both run the path's
-  cycles up to now first, as ``Where`` does, so the answer does not depend on earlier reads).
+* ``TrajState(robot, mode)``: the codes TCS labels (Globals.gpl:118-132; docs/design/real-code.md,
+  "TrajState codes"): 0 halted (high power off), 1 idle, 2 accelerating, 3 constant speed,
+  4 blending into the next motion, 5 decelerating (rapid deceleration included), 6 a motion
+  overlapped by ``Move.ForceOverlap``, 8 torque mode [P: no label for it], 9 homing, 10 jog
+  mode, 15 nulling (InRange > 0 settling at the end).  A ``Move.Delay`` reads 3 [P: the
+  set-point holds, at constant zero speed].  ``mode`` is ignored.  A path motion stopped by a
+  mid-path error (``path_run``) is over at its stop: TrajState then says idle and ``Dest`` is
+  where it stopped [P] (the queue was flushed; both run the path's cycles up to now first, as
+  ``Where`` does, so the answer does not depend on earlier reads).
 * ``Tool``/``Base`` assignments apply to later motions and to ``Where``; queued motions are not
   changed (a line's or arc's cycles, solved as it runs, keep the Tool and Base it was queued
   with: ``robot.QueuedFrames``).  ``RestartTool``/``RestartBase`` are DataIDs 16051/16052.
-* ``JointToMotor``/``MotorToJoint``/``DefLinComp``: -204 (no encoder model in the simulation).
+* Writing DataID 213 homes every robot as the controller's own action (``start_homing_all``):
+  the writer does not wait; PowerState reads 28 for ``HOMING_TIME``.
+* ``JointToMotor(robot, joints, motors)`` / ``MotorToJoint(robot, motors, joints)``: motor
+  position = joint position × DataID 2300's scale for that axis (``gplrt.motion.servo``; motor
+  counts per mm or degree), element by element for the robot's axes; the output array is
+  filled in place (arrays are references); elements beyond either array are left alone.
+* ``DefLinComp``: -204 (no encoder linearity model in the simulation).
 """
 
 from __future__ import annotations
@@ -52,10 +62,15 @@ from gplrt.lang.errors import (
 )
 from gplrt.lang.conversions import to_double, to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer
-from gplrt.motion import registry
+from gplrt.lang.arrays import GplArray
+from gplrt.motion import registry, servo  # noqa: F401 - servo provides the gripper's inputs
 from gplrt.motion.profile import Profile
-from gplrt.motion.queue import DwellSegment, profile_from_values
+from gplrt.motion.queue import BlendedPathSegment, DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
+
+#: ``Robot.TrajState`` codes (module docstring).
+TRAJ_HALTED, TRAJ_IDLE, TRAJ_ACCEL, TRAJ_CONSTANT, TRAJ_BLENDING, TRAJ_DECEL, TRAJ_OVERLAP = range(7)
+TRAJ_TORQUE, TRAJ_HOMING, TRAJ_JOG, TRAJ_NULLING = 8, 9, 10, 15
 
 
 def _robot(n: int = 0) -> RobotState:
@@ -174,25 +189,15 @@ class _RobotClass:
         (the state stays 28 until the last one ends) instead of reading 28 as "power not enabled";
         the state from before the first one is restored, unless power dropped meanwhile.
         """
-        state = s.controller
-        joining = state.homings > 0 and state.power_state == registry.POWER_HOMING
-        if not joining:
-            if not registry.power_on(s):
-                raise GplException(POWER_NOT_ENABLED, detail="homing needs high power")
-            state.power_before_homing = state.power_state
-            state.power_state = registry.POWER_HOMING
-        state.homings += 1
+        _begin_homing(s, robots)
+        ok = False
         try:
             s.scheduler.sleep(HOMING_TIME)
-            if state.power_state != registry.POWER_HOMING:  # power dropped meanwhile
+            ok = s.controller.power_state == registry.POWER_HOMING
+            if not ok:  # power dropped meanwhile
                 raise GplException(POWER_NOT_ENABLED, detail="power went off during homing")
         finally:
-            state.homings -= 1
-            if state.homings == 0 and state.power_state == registry.POWER_HOMING:
-                state.power_state = state.power_before_homing
-                registry.refresh_power_state(s)
-        for robot in robots:
-            robot.homed = True
+            _end_homing(s, robots, ok)
 
     # -- where the robot is -------------------------------------------------------------------
 
@@ -234,19 +239,7 @@ class _RobotClass:
         return profile_from_values(robot.last_profile) if robot.last_profile is not None else None
 
     def TrajState(self, Robot: Integer = 0, Mode: Integer = 0) -> Integer:  # type: ignore[assignment]
-        robot = _robot(Robot)
-        t = registry.now()
-        robot.run_cycles(t)  # a path motion stopped mid-way by now is no longer executing
-        seg = robot.queue.segment_at(t)
-        if seg is None:
-            return 0  # type: ignore[return-value]
-        if seg.kind == "rapid_decel":
-            return 4  # type: ignore[return-value]
-        if isinstance(seg, DwellSegment):
-            return 2  # type: ignore[return-value]
-        if t >= seg.motion_end:
-            return 3  # type: ignore[return-value]
-        return 1  # type: ignore[return-value]
+        return traj_state(_robot(Robot))  # type: ignore[return-value]
 
     # -- rapid deceleration ---------------------------------------------------------------------
 
@@ -314,17 +307,100 @@ class _RobotClass:
         _robot(Robot)
         return Location()
 
-    def JointToMotor(self, *args: Any) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail="Robot.JointToMotor: no encoder model in simulation")
+    def JointToMotor(self, Robot: Integer, JointPos: GplArray[Double], MotorPos: GplArray[Double]) -> None:
+        """Motor positions (motor counts) of joint positions (mm or degrees): see the module docstring."""
+        _scale_into(_robot(Robot), JointPos, MotorPos, to_motor=True)
 
-    def MotorToJoint(self, *args: Any) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail="Robot.MotorToJoint: no encoder model in simulation")
+    def MotorToJoint(self, Robot: Integer, MotorPos: GplArray[Double], JointPos: GplArray[Double]) -> None:
+        """Joint positions of motor positions: the inverse of ``JointToMotor``."""
+        _scale_into(_robot(Robot), MotorPos, JointPos, to_motor=False)
 
     def DefLinComp(self, *args: Any) -> None:
         raise GplException(NOT_IMPLEMENTED, detail="Robot.DefLinComp: no encoder model in simulation")
 
 
 Robot = _RobotClass()
+
+
+def _scale_into(robot: RobotState, source: Any, target: Any, *, to_motor: bool) -> None:
+    """``target(i) = source(i)`` × (or ÷) the joint-to-motor scale of axis i+1, for the robot's axes."""
+    for arr, what in ((source, "input"), (target, "output")):
+        if not isinstance(arr, GplArray):
+            raise wrong_object(arr, f"{what} array", "array")
+    count = min(robot.axis_count, source.Length, target.Length)
+    for i in range(count):
+        scale = robot.motor_scale[i]
+        value = to_double(source[i])
+        target[i] = value * scale if to_motor else (value / scale if scale else 0.0)
+
+
+def traj_state(robot: RobotState) -> int:
+    """``Robot.TrajState`` and DataID 3520 (see the module docstring for the codes)."""
+    t = registry.now()
+    if robot.special is not None:
+        return robot.special.traj_state
+    if robot.homing:
+        return TRAJ_HOMING
+    robot.run_cycles(t)  # a path motion stopped mid-way by now is no longer executing
+    seg = robot.queue.segment_at(t)
+    if seg is None:
+        return TRAJ_IDLE if registry.power_on(registry.sim()) else TRAJ_HALTED
+    if isinstance(seg, DwellSegment):
+        return TRAJ_CONSTANT
+    if t >= seg.motion_end:
+        return TRAJ_NULLING
+    if seg.kind == "rapid_decel":
+        return TRAJ_DECEL
+    if seg.kind == "overlap":
+        return TRAJ_OVERLAP
+    if isinstance(seg, BlendedPathSegment) and t < seg.prev_end:
+        return TRAJ_BLENDING
+    _, v, a = robot.queue.state_at(t)
+    power = float(np.dot(v, a))
+    if power > 1e-9:
+        return TRAJ_ACCEL
+    if power < -1e-9:
+        return TRAJ_DECEL
+    return TRAJ_CONSTANT
+
+
+def _begin_homing(s: Any, robots: list[RobotState]) -> None:
+    """PowerState 28 while the first of overlapping homings runs (see ``Robot._home``)."""
+    state = s.controller
+    joining = state.homings > 0 and state.power_state == registry.POWER_HOMING
+    if not joining:
+        if not registry.power_on(s):
+            raise GplException(POWER_NOT_ENABLED, detail="homing needs high power")
+        state.power_before_homing = state.power_state
+        state.power_state = registry.POWER_HOMING
+    state.homings += 1
+    for robot in robots:
+        robot.homing += 1
+
+
+def _end_homing(s: Any, robots: list[RobotState], ok: bool) -> None:
+    state = s.controller
+    state.homings -= 1
+    for robot in robots:
+        robot.homing -= 1
+    if state.homings == 0 and state.power_state == registry.POWER_HOMING:
+        state.power_state = state.power_before_homing
+        registry.refresh_power_state(s)
+    if ok:
+        for robot in robots:
+            robot.homed = True
+
+
+def start_homing_all(s: Any) -> None:
+    """Home every robot as the controller's own action (DataID 213): PowerState 28 for
+    ``HOMING_TIME`` on the controller clock, and the caller does not wait."""
+    robots = [registry.robot_of(s, n) for n in registry.robot_numbers(s)]
+    _begin_homing(s, robots)
+
+    def done() -> None:
+        _end_homing(s, robots, s.controller.power_state == registry.POWER_HOMING)
+
+    s.scheduler.call_at(s.scheduler.clock.now() + HOMING_TIME, done)
 
 
 class SimulatedKinematics:

@@ -1,0 +1,190 @@
+"""The parameter database's live DataIDs: the controller's own state and commands, read and
+written through ``Controller.PDb`` / ``PDbNum`` like any stored parameter.
+
+A real controller answers these DataIDs from its running state; none of them is in a ``.pac``
+backup.  Vendor code relies on them (TCS reads the GPL version at start-up, the power state for
+``sysState``, writes 241 for ``hp 1`` and 213 for ``homeAll``; PARobot reads 3520 and the gripper's
+torques), so the simulation serves them from its own state
+(``gplrt.controller.pdb.LiveParameter``).  What each one is, and the decisions where the manuals
+are silent (docs/design/real-code.md has the ones where real code departs from the manuals):
+
+=======  =====================================================================================
+103      software version text, ``GPL 4.2J2, Mar  6 2020, Release``: the GPL of the controller
+         whose ``.pac`` files ship as the PF400SX (data/robots/README.md); 104/105/106 encode it
+         as major 4, minor 2, edit 1002 (letter J = 10, times 100, plus 2): TCS computes
+         ``104·10⁶ + 105·10⁴ + 106`` and compares it with 4020109 for "4.2a9" (Cmd.gpl:1677)
+111/113  number of robots (units with DataID 2000): TCS checks robot numbers against them
+121      date and time text ``MM-DD-YYYY HH:MM:SS`` on the controller clock (the form a real
+         controller wrote into docs/Tcs-taught-stations-2022.gpo); writing sets the clock
+213      write 1: home every robot, as the web page's Home button; the writer does not wait
+         (TCS sleeps 100 ms after it "in case of error"); -1046 when power is off; reads 0
+234      power state (``Controller.PowerState``), read-only
+241      write 1: start a power-up and return at once (TCS ``hp 1``), 0: power off; reads 1
+         while power is on or coming up
+375      status bits: &H100000 while a robot has an asynchronous motion error not yet reported
+         (TCS waits a tick for it when bits &H700000 are set)
+3520     per robot: the trajectory-generator state, as ``Robot.TrajState(robot)``
+12304    per robot and axis: output torque in torque counts (±32768 = amplifier peak);
+12331    filtered feedforward torque (the gripper's spring compensation): see
+         ``gplrt.motion.servo`` for how the simulation computes both
+14500    per robot: the axis the brake DataID 14002 acts on
+14002    per robot: 1 releases the brake of axis 14500, 0 sets it; reads that axis's state
+=======  =====================================================================================
+
+The callbacks find the session through ``gplrt.motion.registry.sim()`` (the calling GPL thread's
+own), so one database may serve several sessions, as the notebook's does.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+from typing import Any
+
+from gplrt.controller.pdb import LiveParameter, ParameterDatabase, Value
+from gplrt.lang.errors import INVALID_ARGUMENT, INVALID_AXIS, GplException
+
+#: GPL 4.2J2 (data/robots/README.md): what 103-106 report.
+GPL_VERSION_TEXT = "GPL 4.2J2, Mar  6 2020, Release"
+GPL_VERSION = (4, 2, 1002)
+#: Bit of DataID 375 set while a robot has an unreported asynchronous error.
+STATUS_ASYNC_ERROR = 0x100000
+#: The date text of DataID 121.
+DATE_FORMAT = "%m-%d-%Y %H:%M:%S"
+_EPOCH_1988 = _dt.datetime(1988, 1, 1)
+
+
+def _sim() -> Any:
+    from gplrt.motion import registry
+
+    return registry.sim()
+
+
+def _const(*values: Value) -> Any:
+    return lambda unit, unit2: list(values)
+
+
+def install(pdb: ParameterDatabase) -> None:
+    """Register the live DataIDs on ``pdb`` (once; a database that has them keeps them)."""
+    if pdb.live:
+        return
+    robots = pdb.robots
+
+    def robot_count(unit: int, unit2: int) -> list[Value]:
+        return [float(len(robots()))]
+
+    pdb.live.update({
+        103: LiveParameter("Software version", _const(GPL_VERSION_TEXT), is_string=True),
+        104: LiveParameter("Software major version number", _const(float(GPL_VERSION[0]))),
+        105: LiveParameter("Software minor version number", _const(float(GPL_VERSION[1]))),
+        106: LiveParameter("Software edit number", _const(float(GPL_VERSION[2]))),
+        111: LiveParameter("Number of robots", robot_count),
+        113: LiveParameter("Number of configured robots", robot_count),
+        121: LiveParameter("Date and time", _date, _set_date, is_string=True),
+        213: LiveParameter("Home all robots", _const(0.0), _home_all),
+        234: LiveParameter("Power state", lambda u, u2: [float(_sim().controller.power_state)]),
+        241: LiveParameter("Power request, do not wait", _power_requested, _request_power),
+        375: LiveParameter("Controller status bits", _status_bits),
+        3520: LiveParameter("Trajectory mode", _traj_mode, units=robots),
+        12304: LiveParameter("Compensator output torque, tcnt", _torques(output=True), units=robots),
+        12331: LiveParameter("Filtered feedforward torque, tcnt", _torques(output=False), units=robots),
+        14500: LiveParameter("Brake control axis", _brake_axis, _set_brake_axis, units=robots),
+        14002: LiveParameter("Brake release", _brake_released, _set_brake, units=robots),
+    })
+
+
+# -- controller ---------------------------------------------------------------------------------
+
+
+def _date(unit: int, unit2: int) -> list[Value]:
+    sim = _sim()
+    seconds = sim.controller.time_of_day_origin + sim.now()
+    return [(_EPOCH_1988 + _dt.timedelta(seconds=int(seconds))).strftime(DATE_FORMAT)]
+
+
+def _set_date(unit: int, unit2: int, values: list[Value]) -> None:
+    try:
+        when = _dt.datetime.strptime(str(values[0]).strip(), DATE_FORMAT)
+    except ValueError:
+        raise GplException(INVALID_ARGUMENT, detail=f"date {values[0]!r} is not MM-DD-YYYY HH:MM:SS") from None
+    sim = _sim()
+    sim.controller.time_of_day_origin = (when - _EPOCH_1988).total_seconds() - sim.now()
+
+
+def _home_all(unit: int, unit2: int, values: list[Value]) -> None:
+    if values[0]:
+        from gplrt.motion.robot_class import start_homing_all
+
+        start_homing_all(_sim())
+
+
+def _power_requested(unit: int, unit2: int) -> list[Value]:
+    from gplrt.controller.services import POWER_COMING_UP_STATES, POWER_ON_STATES
+
+    state = _sim().controller.power_state
+    return [1.0 if state in POWER_ON_STATES or state in POWER_COMING_UP_STATES else 0.0]
+
+
+def _request_power(unit: int, unit2: int, values: list[Value]) -> None:
+    from gplrt.controller.services import power_off, start_power_up
+
+    (start_power_up if values[0] else power_off)(_sim())
+
+
+def _status_bits(unit: int, unit2: int) -> list[Value]:
+    sim = _sim()
+    pending = any(r.async_error or r.queue.fault is not None for r in sim.robots.values())
+    return [float(STATUS_ASYNC_ERROR if pending else 0)]
+
+
+# -- per robot ----------------------------------------------------------------------------------
+
+
+def _robot(unit: int) -> Any:
+    from gplrt.motion import registry
+
+    s = _sim()
+    return registry.robot_of(s, unit)
+
+
+def _traj_mode(unit: int, unit2: int) -> list[Value]:
+    from gplrt.motion.robot_class import traj_state
+
+    return [float(traj_state(_robot(unit)))]
+
+
+def _torques(output: bool) -> Any:
+    def read(unit: int, unit2: int) -> list[Value]:
+        from gplrt.motion import registry
+        from gplrt.motion.servo import axis_torques
+
+        pid, feedforward = axis_torques(_robot(unit), registry.now())
+        return [float(f + p) if output else float(f) for p, f in zip(pid, feedforward)]
+
+    return read
+
+
+def _brake_axis(unit: int, unit2: int) -> list[Value]:
+    return [float(_robot(unit).brake_axis)]
+
+
+def _set_brake_axis(unit: int, unit2: int, values: list[Value]) -> None:
+    robot = _robot(unit)
+    axis = int(float(values[0]))
+    if not 1 <= axis <= robot.axis_count:
+        raise GplException(INVALID_AXIS, robot_num=robot.number, axis=axis, detail=f"brake axis {axis}")
+    robot.brake_axis = axis
+
+
+def _brake_released(unit: int, unit2: int) -> list[Value]:
+    robot = _robot(unit)
+    return [1.0 if robot.brake_axis in robot.brakes_released else 0.0]
+
+
+def _set_brake(unit: int, unit2: int, values: list[Value]) -> None:
+    robot = _robot(unit)
+    if not 1 <= robot.brake_axis <= robot.axis_count:
+        raise GplException(INVALID_AXIS, robot_num=robot.number, detail="no brake axis chosen (DataID 14500)")
+    if values[0]:
+        robot.brakes_released.add(robot.brake_axis)
+    else:
+        robot.brakes_released.discard(robot.brake_axis)
