@@ -7,7 +7,13 @@ from collections.abc import Iterator
 import pytest
 
 from gplrt.lang.delegates import Delegate, delegate_type, invoke
-from gplrt.lang.procedures import clear_procedures, find_procedure, find_procedure_entry, register_procedure
+from gplrt.lang.procedures import (
+    clear_procedures,
+    find_procedure,
+    find_procedure_entry,
+    register_procedure,
+    registered_procedures,
+)
 from gpltest import code_of
 
 
@@ -156,3 +162,47 @@ def test_delegates_in_an_array() -> None:
     dels[0] = tmpl(f0)
     dels[1] = tmpl(gripper_open)
     assert dels[1](2) == "Gripper.Open(2)"  # str = del_obj(index)(3)
+
+
+def log_1(msg: str) -> str:
+    return f"Log.1({msg})"
+
+
+def log_2(msg: str, level: int = 0) -> str:
+    return f"Log.2({msg}, {level})"
+
+
+def log_s(msg: str) -> str:
+    return f"Log.s({msg})"
+
+
+def test_overloads_stay_registered_and_the_argument_count_chooses() -> None:
+    register_procedure("Tools", "Log", log_1, public=True, overload=0)
+    register_procedure("Tools", "Log", log_2, public=True, overload=1)
+    assert find_procedure("Log", nargs=2)("m", 3) == "Log.2(m, 3)"
+    assert find_procedure("Tools.Log", nargs=2)("m", 3) == "Log.2(m, 3)"
+    # one argument fits both (the second has an Optional parameter): ambiguous, as is not saying
+    assert code_of(find_procedure, "Log", nargs=1) == -772
+    assert code_of(find_procedure, "Tools.Log") == -772
+    assert code_of(find_procedure, "Log", nargs=0) == -741  # no overload takes none
+    assert code_of(find_procedure, "Log", nargs=3) == -741
+    # registering again (a new session) replaces each overload, never adds a third
+    register_procedure("Tools", "Log", log_s, public=True, overload=0)
+    assert find_procedure("Tools.Log", "Tools", nargs=2)("m", 1) == "Log.2(m, 1)"
+    register_procedure("Tools", "Log", log_2, public=True, overload=0)
+    register_procedure("Tools", "Log", log_s, public=True, overload=1)
+    assert len([e for e in registered_procedures() if e.name == "Log"]) == 2
+
+
+def test_overloads_in_two_modules_are_still_ambiguous_without_a_module() -> None:
+    register_procedure("Tools", "Log", log_1, public=True, overload=0)
+    register_procedure("Tools", "Log", log_2, public=True, overload=1)
+    register_procedure("IO", "Log", log_s, public=True)
+    assert code_of(find_procedure, "Log", nargs=1) == -772
+    assert find_procedure("Log", "IO", nargs=1)("x") == "Log.s(x)"  # the caller's own first
+    assert find_procedure("IO.Log", nargs=1)("x") == "Log.s(x)"
+
+
+def test_a_lone_procedure_is_found_whatever_the_count() -> None:
+    # its caller checks the parameters (a thread's -741, a delegate's -741) as before
+    assert find_procedure("f0", nargs=3) is f0

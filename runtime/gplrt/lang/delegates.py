@@ -58,7 +58,8 @@ class Delegate:
 
     def __init__(self, target: Callable[..., Any] | str, *, module: str | None = None) -> None:
         if isinstance(target, str):
-            target = find_procedure(target, module)
+            # an overloaded name: the overload taking the template's parameter count
+            target = find_procedure(target, module, type(self).param_count)
             self._check_signature(target)
         elif target is None or not callable(target):
             raise GplException(NO_DELEGATE_DEFINED, detail=f"no procedure to bind: {target!r}")

@@ -22,6 +22,15 @@ and the runtime resolves names with ``find_procedure``.  The rules (§6.4, [000 
 Registration replaces an earlier entry for the same qualified name, so re-importing a module (a
 new simulation session) is harmless; ``clear_procedures`` empties the registry for tests.
 
+**Overloads.**  Real GPL declares several procedures of one name in a module or class, told apart
+by their parameter lists.  Generated code registers each with its index (``overload=k``), so all
+of them stay registered under the one GPL name.  A lookup that finds several overloads of the
+name in one module picks the one whose parameter count admits the arguments the caller will pass
+(``nargs``: none for a thread's start procedure, the template's count for a delegate): exactly
+one must, else **-741 Argument mismatch** (none) or **-772 Ambiguous** (several, or the caller
+does not say how many arguments it passes).  A lone procedure is returned as before and its
+caller checks its parameters (threads and delegates raise -741 themselves).
+
 **One registry per generated package.**  Two projects loaded in one process (two notebook Cells)
 may both have a ``Main.Worker``; with one process-wide table, a thread started by name would find
 the project loaded last.  So generated code registers into its package's own
@@ -36,6 +45,8 @@ one dictionary access more.
 
 from __future__ import annotations
 
+import inspect
+import math
 import threading
 import weakref
 from collections.abc import Callable
@@ -44,6 +55,7 @@ from typing import Any
 
 from gplrt.lang.errors import (
     AMBIGUOUS_PUBLIC_REFERENCE,
+    ARGUMENT_MISMATCH,
     NO_MODULE_DEFINED,
     UNDEFINED_SYMBOL,
     GplException,
@@ -76,6 +88,12 @@ class ProcedureEntry:
     qualified_name: str
     func: Callable[..., Any]
     public: bool
+    overload: int = 0
+
+    def accepts(self, nargs: int) -> bool:
+        """Whether ``func`` can be called with ``nargs`` positional arguments."""
+        low, high = _arity(self.func)
+        return low <= nargs <= high
 
 
 class ProcedureRegistry:
@@ -86,12 +104,13 @@ class ProcedureRegistry:
         self._by_name: dict[str, list[ProcedureEntry]] = {}
         self._qualifiers: set[str] = set()
 
-    def register(self, module_name: str, proc_name: str, func: Callable[..., Any], public: bool) -> None:
+    def register(self, module_name: str, proc_name: str, func: Callable[..., Any], public: bool,
+                 overload: int = 0) -> None:
         path = tuple(part.lower() for part in module_name.split("."))
-        entry = ProcedureEntry(path, proc_name, f"{module_name}.{proc_name}", func, public)
+        entry = ProcedureEntry(path, proc_name, f"{module_name}.{proc_name}", func, public, overload)
         key = proc_name.lower()
         with self._lock:
-            entries = [e for e in self._by_name.get(key, ()) if e.path != path]
+            entries = [e for e in self._by_name.get(key, ()) if (e.path, e.overload) != (path, overload)]
             entries.append(entry)
             self._by_name[key] = entries
             self._qualifiers.update(path)
@@ -106,8 +125,9 @@ class ProcedureRegistry:
         with self._lock:
             return sorted((e for es in self._by_name.values() for e in es), key=lambda e: e.qualified_name.lower())
 
-    def find(self, name: str, module: str | None = None) -> ProcedureEntry:
-        """The entry for ``name`` as seen from ``module`` (rules in the module docstring)."""
+    def find(self, name: str, module: str | None = None, nargs: int | None = None) -> ProcedureEntry:
+        """The entry for ``name`` as seen from ``module`` (rules in the module docstring);
+        ``nargs``: how many arguments the caller passes, which chooses among overloads."""
         parts = [p.strip().lower() for p in name.strip().split(".")]
         if not parts or not all(parts):
             raise GplException(UNDEFINED_SYMBOL, detail=f"invalid procedure name {name!r}")
@@ -117,14 +137,14 @@ class ProcedureRegistry:
 
         if not qual:
             if caller is not None:
-                for e in candidates:
-                    if e.path == caller:
-                        return e
+                own = [e for e in candidates if e.path == caller]
+                if own:
+                    return _overload(own, nargs, name)
             public = [e for e in candidates if e.public and len(e.path) == 1]
-            if len(public) == 1:
-                return public[0]
+            if len({e.path for e in public}) == 1:
+                return _overload(public, nargs, name)
             if len(public) > 1:
-                where = ", ".join(sorted(e.qualified_name for e in public))
+                where = ", ".join(sorted({e.qualified_name for e in public}))
                 raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
             private = [e.qualified_name for e in candidates]
             hint = f" (Private: {', '.join(sorted(private))})" if private else ""
@@ -136,15 +156,46 @@ class ProcedureRegistry:
                 raise GplException(NO_MODULE_DEFINED, detail=f"no module or class {'.'.join(qual)!r} for {name!r}")
             raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure {name!r}")
         allowed = [e for e in matches if e.public or (caller is not None and e.path[: len(caller)] == caller)]
-        if len(allowed) == 1:
-            return allowed[0]
+        if len({e.path for e in allowed}) == 1:
+            return _overload(allowed, nargs, name)
         if not allowed:
             raise GplException(UNDEFINED_SYMBOL, detail=f"{matches[0].qualified_name} is Private")
-        where = ", ".join(sorted(e.qualified_name for e in allowed))
+        where = ", ".join(sorted({e.qualified_name for e in allowed}))
         raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
 
     def __len__(self) -> int:
         return sum(len(es) for es in self._by_name.values())
+
+
+def _overload(entries: list[ProcedureEntry], nargs: int | None, name: str) -> ProcedureEntry:
+    """The one entry of ``entries`` (the overloads of one procedure) a caller passing ``nargs``
+    arguments means (module docstring, "Overloads")."""
+    if len(entries) == 1:
+        return entries[0]
+    fits = entries if nargs is None else [e for e in entries if e.accepts(nargs)]
+    if len(fits) == 1:
+        return fits[0]
+    if not fits:
+        raise GplException(ARGUMENT_MISMATCH, detail=f"no overload of {name!r} takes {nargs} argument(s)")
+    how = "" if nargs is None else f" with {nargs} argument(s)"
+    raise GplException(AMBIGUOUS_PUBLIC_REFERENCE,
+                       detail=f"{name!r} has {len(fits)} overloads that can be called{how}")
+
+
+def _arity(func: Callable[..., Any]) -> tuple[int, float]:
+    """(required, maximum) positional arguments of ``func`` (through ``gpl_entry``'s wrapper)."""
+    try:
+        params = inspect.signature(func).parameters.values()
+    except (TypeError, ValueError):
+        return 0, math.inf
+    low, high = 0, 0.0
+    for p in params:
+        if p.kind is p.VAR_POSITIONAL:
+            high = math.inf
+        elif p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD):
+            high += 1
+            low += p.default is p.empty
+    return low, high
 
 
 _default = ProcedureRegistry()
@@ -181,13 +232,13 @@ def _active() -> ProcedureRegistry:
 
 def register_procedure(
     module_name: str, proc_name: str, func: Callable[..., Any], *, public: bool = True,
-    package: str | None = None,
+    overload: int = 0, package: str | None = None,
 ) -> Callable[..., Any]:
     """Register ``func`` as ``module_name.proc_name``; returns ``func`` (usable as a decorator
     helper).  ``public`` is the GPL access level (module members are Private by default in GPL,
     but the lowering always passes it explicitly).  ``package``: the generated package whose
     registry receives it (generated code passes ``__package__``); None: the default registry."""
-    registry_for(package).register(module_name, proc_name, func, public)
+    registry_for(package).register(module_name, proc_name, func, public, overload)
     return func
 
 
@@ -202,25 +253,26 @@ def registered_procedures(package: str | None = None) -> list[ProcedureEntry]:
     return registry_for(package).entries()
 
 
-def find_procedure_entry(name: str, module: str | None = None) -> ProcedureEntry:
+def find_procedure_entry(name: str, module: str | None = None, nargs: int | None = None) -> ProcedureEntry:
     """Like ``find_procedure`` but returns the registry entry (name, access, qualifier)."""
     active = _active()
     if active is _default:
-        return _default.find(name, module)
+        return _default.find(name, module, nargs)
     try:
-        return active.find(name, module)
+        return active.find(name, module, nargs)
     except GplException as exc:
         if exc.ErrorCode in (UNDEFINED_SYMBOL, NO_MODULE_DEFINED) and len(_default):
             try:  # hand-written Python registered next to the project
-                return _default.find(name, module)
+                return _default.find(name, module, nargs)
             except GplException:
                 pass
         raise
 
 
-def find_procedure(name: str, module: str | None = None) -> Callable[..., Any]:
+def find_procedure(name: str, module: str | None = None, nargs: int | None = None) -> Callable[..., Any]:
     """The procedure called ``name`` (``"Proc"`` or ``"Module.Proc"``), looked up as seen from
     procedures of ``module`` (``None``: from outside any module), in the registry of the running
-    simulation's project.  Raises GplException -729, -772 or -798 as described in the module
+    simulation's project; ``nargs`` (the arguments the caller will pass) chooses among
+    overloads.  Raises GplException -729, -741, -772 or -798 as described in the module
     docstring."""
-    return find_procedure_entry(name, module).func
+    return find_procedure_entry(name, module, nargs).func

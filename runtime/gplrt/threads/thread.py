@@ -90,7 +90,7 @@ def _resolve(procedure: str, module: str | None, given: int = 0) -> Callable[...
     """Find ``"Proc"`` or ``"Module.Proc"`` in the generated-code registry, as seen from ``module``."""
     from gplrt.lang.procedures import find_procedure
 
-    proc = find_procedure(procedure, module)
+    proc = find_procedure(procedure, module, given)  # an overloaded name: the one taking no arguments
     if proc is None:
         raise GplException(UNDEFINED_SYMBOL, detail=f"procedure {procedure!r}")
     required = _required_parameters(proc)
