@@ -533,6 +533,26 @@ NO_OBJECT_TYPE = _error(
     "result cannot be declared As Object (unless the project itself declares a class named Object).",
 )
 
+AMBIGUOUS_OVERLOAD = _error(
+    "GPL2040",
+    "the call of '{name}' is ambiguous: {candidates} fit these arguments equally well",
+    "Overloads are chosen by argument count, then by how little converting the arguments costs "
+    "(same type, then widening numbers, then narrowing, then String <-> number); convert an "
+    "argument (CInt, CDbl, CStr ...) so that one overload fits best.",
+)
+NO_OVERLOAD = _error(
+    "GPL2041",
+    "no overload of '{name}' takes {count} argument(s) of these types; declared: {candidates}",
+    "Each call must fit one of the procedure's parameter lists in number and types (an object "
+    "only fits a parameter of its own class).",
+)
+CONST_CYCLE = _error(
+    "GPL2042",
+    "Const '{name}' is defined in terms of itself: {cycle}",
+    "Constants are evaluated when the project is translated, whatever the module order; a chain "
+    "of Consts that leads back to its start has no value.",
+)
+
 # --- lowering and output (GPL3000-GPL3499) -----------------------------------------------------
 
 GOTO_INTO_BLOCK = _error(

@@ -153,7 +153,7 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
     stub_modules = sorted({Path(rel).stem for rel in stub_texts
                            if not Path(rel).stem.startswith((USER_PREFIX, SHIPPED_PREFIX))})
     out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra,
-                                                       records, stub_modules)
+                                                       records, stub_modules, names.proc_name)
     out.files[f"{package}/__main__.py"] = package_main()
     out.files[f"{package}/_sourcemap.json"] = sourcemap_json(smap)
     return out

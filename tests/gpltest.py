@@ -30,6 +30,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Callable
 
 import numpy as np
+import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import import_package
@@ -367,6 +368,37 @@ def analyze_text(tmp_path: Path, text: str, start: str | None = None) -> tuple[M
     units = [parse(s, sink) for s in project.sources]
     assert not sink.has_errors(), [d.header() for d in sink]
     return analyze(units, sink, load_catalogue(), "P", start), sink
+
+
+def analyze_project(path: Path) -> tuple[Model, DiagnosticSink]:
+    """Load, parse and analyze a project folder as ``gpl2py check`` does (protected files make
+    unknown names stubs), without lowering it: the model and every diagnostic."""
+    from gpl2py.project import load_project
+    from gpl2py.semantics.catalogue import load_catalogue
+    from gpl2py.semantics.check import analyze
+    from gpl2py.syntax.parser import parse
+
+    sink = DiagnosticSink()
+    project = load_project(path, sink)
+    assert project is not None, [d.header() for d in sink]
+    units = [parse(s, sink) for s in project.sources]
+    model = analyze(units, sink, load_catalogue(), project.name, project.start,
+                    protected=bool(project.protected))
+    return model, sink
+
+
+def corpus_dir(*parts: str) -> Path:
+    """The shared corpus of real GPL (corpus/README.md), or the folder ``parts`` inside it: read in
+    place from ``../shared/corpus`` next to the repository, or from ``$GPL_CORPUS``.  When it is
+    missing the test fails under ``CI=true`` (CI always has it) and is skipped elsewhere, saying why."""
+    root = Path(os.environ.get("GPL_CORPUS") or REPO.parent / "shared" / "corpus")
+    path = root.joinpath(*parts)
+    if not path.is_dir():
+        reason = f"the GPL corpus is not at {path} (set GPL_CORPUS to the shared corpus folder)"
+        if os.environ.get("CI", "").strip().lower() == "true":
+            pytest.fail(reason)
+        pytest.skip(reason)
+    return path
 
 
 def compiled_modules(files: dict[str, str]) -> dict[str, str]:

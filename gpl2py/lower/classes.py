@@ -14,11 +14,15 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import default_code
-from gpl2py.lower.names import py_ident
+from gpl2py.lower.names import py_ident, py_literal
 from gpl2py.lower.text import py_string
 from gpl2py.lower.statements import ProcLowerer
-from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
+from gpl2py.semantics import types as t
+from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym, procedures
 from gpl2py.syntax import ast as A
+
+
+_UNFOLDED = object()
 
 
 def field_value(low: ProcLowerer, v: VarSym) -> str:
@@ -59,7 +63,9 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
                 if isinstance(v, VarSym) and v.decl is d and v.shared:
                     w.gpl_line = member.span.line
                     w.comments(member.leading_comments)
-                    w.line(f"{py_ident(v.name)} = {default_code(v.type)}")
+                    folded = ctx.model.const_values.get(v, _UNFOLDED)
+                    value = default_code(v.type) if folded is _UNFOLDED else py_literal(folded)
+                    w.line(f"{py_ident(v.name)} = {value}")
     for member in decl.members:
         if isinstance(member, A.DelegateDecl):
             d = cls.members.get(member.name.lower())
@@ -89,8 +95,8 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
         w.line("def __init__(self, *args) -> None:")
         w.indent()
         w.line("self._init_fields()")
-        for k, c in enumerate(cls.ctors):
-            w.line(f"{'if' if k == 0 else 'elif'} len(args) == {len(c.params)}:")
+        for k, (c, test) in enumerate(_ctor_dispatch(ctx, cls.ctors)):
+            w.line(f"{'if' if k == 0 else 'elif'} {test}:")
             w.line(f"    self._new_{c.overload_index}({'*args' if c.params else ''})")
         w.dedent()
         w.blank()
@@ -114,9 +120,10 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
             w.dedent()
     for member in decl.members:
         sym = cls.members.get(getattr(member, "name", "").lower()) if hasattr(member, "name") else None
-        if isinstance(member, A.ProcDecl) and isinstance(sym, ProcSym) and sym.decl is member:
+        proc = ctx.model.proc_of_decl.get(member) if isinstance(member, A.ProcDecl) else None
+        if proc is not None and proc.kind != "New":  # (each overload is a declaration of its own)
             w.blank()
-            w.extend(_method(ctx, cls, sym, sink, []), extra_indent=w.level)
+            w.extend(_method(ctx, cls, proc, sink, []), extra_indent=w.level)
         elif isinstance(member, A.PropertyDecl) and isinstance(sym, PropSym) and sym.decl is member:
             for acc in (sym.getter, sym.setter):
                 if acc is not None:
@@ -137,6 +144,40 @@ def gpl_members(cls: ClassSym) -> str:
     members = sorted((m.name.lower(), py_ident(m.name)) for m in cls.members.values()
                      if isinstance(m, (VarSym, ProcSym, PropSym)) and m.public)
     return ", ".join(f"{py_string(k)}: {py_string(v)}" for k, v in members)
+
+
+def _ctor_dispatch(ctx: ModuleContext, ctors: list[ProcSym]) -> list[tuple[ProcSym, str]]:
+    """How ``__init__(*args)`` (for hand-written Python; generated code calls ``_create_<k>``)
+    picks among several ``Sub New``: by argument count, and among constructors with the same
+    count by the Python types of the arguments (``isinstance(args[0], str)``), the last declared
+    of them taking whatever the others did not."""
+    groups: dict[int, list[ProcSym]] = {}
+    for c in ctors:
+        groups.setdefault(len(c.params), []).append(c)
+    out: list[tuple[ProcSym, str]] = []
+    for count, group in groups.items():
+        required = min(c.min_args for c in group)
+        size = f"len(args) == {count}" if required == count else f"{required} <= len(args) <= {count}"
+        for i, c in enumerate(group):
+            tests = [_isinstance_test(ctx, k, p.type) for k, p in enumerate(c.params)] if i < len(group) - 1 else []
+            out.append((c, " and ".join([size, *[x for x in tests if x]])))
+    return out
+
+
+def _isinstance_test(ctx: ModuleContext, k: int, typ: t.GplType) -> str:
+    """``isinstance(args[k], <the Python type of a GPL typ value>)``, or "" if it cannot be told."""
+    py = {t.BOOLEAN: "bool", t.BYTE: "int", t.SHORT: "int", t.INTEGER: "int", t.SINGLE: "float",
+          t.DOUBLE: "float", t.STRING: "str"}.get(typ)  # type: ignore[call-overload]
+    if py is None and isinstance(typ, t.ClassType):
+        user = ctx.model.resolver.class_of(typ)
+        builtin = ctx.model.resolver.builtin_of(typ)
+        if user is not None:
+            py = ctx.class_ref(user)
+        elif builtin is not None and not builtin.is_global:
+            py = ctx.builtin(builtin.python_name)
+    if py is None and isinstance(typ, t.ArrayType):
+        py = ctx.helper("gplrt.lang.arrays", "GplArray")
+    return f"isinstance(args[{k}], {py})" if py else ""
 
 
 def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink, extra: list[str]) -> Writer:
@@ -162,11 +203,22 @@ def register_lines(ctx: ModuleContext, cls: ClassSym) -> list[str]:
     qual = ".".join(([cls.module.name] if cls.module and cls.module.name != "_Top" else []) + cls.path)
     ref = ctx.class_ref(cls)
     for m in cls.members.values():
-        if isinstance(m, ProcSym) and m.shared:
-            reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
-            entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
-            out.append(f"{reg}({py_string(qual)}, {py_string(m.name)}, {entry}({ref}.{py_ident(m.name)}), "
-                       f"public={m.public and cls.public}, package=__package__)")
-        elif isinstance(m, ClassSym):
+        for p in procedures(m):
+            if p.shared:
+                out.append(register_line(ctx, qual, p, ref + ".", public=p.public and cls.public))
+        if isinstance(m, ClassSym):
             out.extend(register_lines(ctx, m))
     return out
+
+
+def register_line(ctx: ModuleContext, qualifier: str, p: ProcSym, prefix: str,
+                  public: bool | None = None) -> str:
+    """``register_procedure("Module", "Proc", gpl_entry(Proc), ...)`` for procedure ``p`` (§9.4):
+    into this package's own registry (gplrt.lang.procedures).  An overload also passes its
+    index, so the registry keeps every overload of the name and a lookup by name can choose
+    by argument count."""
+    reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
+    entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
+    overload = f", overload={p.overload_index}" if p in ctx.names.overload_py else ""
+    return (f"{reg}({py_string(qualifier)}, {py_string(p.name)}, {entry}({prefix}{ctx.names.proc_name(p)}), "
+            f"public={p.public if public is None else public}{overload}, package=__package__)")

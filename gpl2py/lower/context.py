@@ -10,12 +10,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from gpl2py.lower.names import py_ident, snake_case
+from gpl2py.lower.names import overload_names, py_ident, snake_case
 from gpl2py.lower.stub_names import stub_attr, stub_module_name
 from gpl2py.semantics.check import Model
 from gpl2py.semantics.resolve import TOP_MODULE
 from gpl2py.semantics.stubs import Stub
-from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, PropSym, VarSym
+from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, OverloadSet, ProcSym, PropSym, VarSym
 
 
 # Info kinds that name a member of a value whose class is unknown at translation time.
@@ -31,6 +31,12 @@ class ProjectNames:
     # Some expression reads a member of a value of unknown type (a stub's result): classes then
     # list their Public members for gplrt.lang.members (see lower/classes.py).
     dynamic_members: bool = False
+    # overloaded procedures (one Python function each); the others keep py_ident(name)
+    overload_py: dict[ProcSym, str] = field(default_factory=dict)
+
+    def proc_name(self, p: ProcSym) -> str:
+        """The Python name of procedure ``p`` (not a constructor or property accessor)."""
+        return self.overload_py.get(p) or py_ident(p.name)
 
     @classmethod
     def build(cls, model: Model) -> ProjectNames:
@@ -43,6 +49,11 @@ class ProjectNames:
             taken.update(py_ident(v.name) for v in p.locals.values())
         for c in model.project.classes:
             taken.update(py_ident(m.name) for m in c.members.values())
+        tables = [mod.members for mod in model.project.module_list] + [c.members for c in model.project.classes]
+        for table in tables:
+            for m in table.values():
+                if isinstance(m, OverloadSet):
+                    names._name_overloads(m, taken)
         names.taken = taken
         names.dynamic_members = any(i.kind in DYNAMIC_MEMBER_KINDS for i in model.info.values())
         used: set[str] = set()
@@ -66,6 +77,17 @@ class ProjectNames:
             used.add(name)
             names.stub_module_py[key] = name
         return names
+
+
+    def _name_overloads(self, group: OverloadSet, taken: set[str]) -> None:
+        """One Python name per overload (names.overload_names), none equal to another name of
+        the project; the names become taken."""
+        wanted = overload_names(group.name, [[str(v.type) for v in p.params] for p in group.procs])
+        for p, name in zip(group.procs, wanted):
+            while name in taken:
+                name += "_"
+            taken.add(name)
+            self.overload_py[p] = name
 
 
 class ModuleContext:

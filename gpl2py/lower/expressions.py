@@ -139,9 +139,12 @@ class ExprLowerer:
             owner = p.owner
             if isinstance(owner, ClassSym):
                 parts.extend(owner.path)
-            parts.append(p.name if p.kind not in ("Get", "Set") else f"{p.name}{p.kind}")
-            if p.kind == "New":
-                parts.append(str(p.overload_index))
+            if p.kind in ("Get", "Set"):
+                parts.append(f"{p.name}{p.kind}")
+            elif p.kind == "New":
+                parts.extend((p.name, str(p.overload_index)))
+            else:
+                parts.append(self.ctx.names.overload_py.get(p, p.name))  # one per overload
         parts.append(v.name)
         return "_s_" + "_".join(parts)
 
@@ -681,7 +684,7 @@ class ExprLowerer:
         return f"{self.proc_ref(p, i.receiver)}({', '.join(self.args_code(args, i.params or []))})", P_ATOM
 
     def proc_ref(self, p: ProcSym, receiver: A.Expr | None) -> str:
-        name = py_ident(p.name)
+        name = self.ctx.names.proc_name(p)
         if isinstance(p.owner, ClassSym) and not p.shared:
             recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
             return f"{recv}.{name}"

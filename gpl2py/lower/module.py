@@ -11,11 +11,11 @@ from __future__ import annotations
 import os
 
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.lower.classes import delegate_line, field_value, lower_class, register_lines
+from gpl2py.lower.classes import delegate_line, field_value, lower_class, register_line, register_lines
 from gpl2py.lower.context import ModuleContext, ProjectNames
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import annotation, default_code
-from gpl2py.lower.names import py_ident
+from gpl2py.lower.names import py_ident, py_literal
 from gpl2py.lower.text import escape, py_string
 from gpl2py.lower.statements import ProcLowerer
 from gpl2py.semantics.check import Model
@@ -77,6 +77,8 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
                 value = default_code(v.type)
                 if _literal_value(d.initializer) and not d.bounds:
                     value = init_low.conv(d.initializer, v.type)[0]  # type: ignore[arg-type]
+                elif v in model.const_values:  # a Const folded at translation time
+                    value = py_literal(model.const_values[v])
                 body.line(f"{py_ident(v.name)}{': ' + ann if ann else ''} = {value}")
             body.trailing(m.trailing_comment, mark)
     # classes and procedures, in source order
@@ -89,10 +91,11 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             defs.blank(2)
             defs.extend(lower_class(ctx, sym, sink))
             classes.append(sym)
-        elif isinstance(m, A.ProcDecl) and isinstance(sym, ProcSym) and sym.decl is m:
+        elif isinstance(m, A.ProcDecl) and m in model.proc_of_decl:
+            proc = model.proc_of_decl[m]  # (each overload of a name is a declaration of its own)
             defs.blank(2)
-            defs.extend(ProcLowerer(ctx, sym, None, sink).procedure(sym, method=False))
-            procs.append(sym)
+            defs.extend(ProcLowerer(ctx, proc, None, sink).procedure(proc, method=False))
+            procs.append(proc)
     # _init: module variables and Shared fields, textual order
     init = Writer()
     init.level = 1
@@ -100,7 +103,7 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
         if isinstance(m, A.VarDecl):
             for d in m.declarators:
                 v = mod.members.get(d.name.lower())
-                if isinstance(v, VarSym) and v.decl is d:
+                if isinstance(v, VarSym) and v.decl is d and v not in model.const_values:
                     init.gpl_line = d.span.line
                     init_low.globals.add(py_ident(v.name))
                     init.line(f"{py_ident(v.name)} = {field_value(init_low, v)}")
@@ -116,7 +119,7 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             for d in m.declarators:
                 v = mod.members.get(d.name.lower())
                 if isinstance(v, VarSym) and v.decl is d:
-                    resets.append(f"{py_ident(v.name)} = {default_code(v.type)}")
+                    resets.append(f"{py_ident(v.name)} = {reset_value(ctx, v)}")
         elif isinstance(m, A.ClassDecl):
             cls = mod.members.get(m.name.lower())
             if isinstance(cls, ClassSym):
@@ -147,11 +150,7 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     # registrations
     reg_lines: list[str] = []
     for p in procs:
-        reg = ctx.helper("gplrt.lang.procedures", "register_procedure")
-        entry = ctx.helper("gplrt.lang.exceptions", "gpl_entry")
-        reg_lines.append(
-            f"{reg}({py_string(mod.name)}, {py_string(p.name)}, {entry}({py_ident(p.name)}), public={p.public}, "
-            "package=__package__)")  # this package's own registry (gplrt.lang.procedures)
+        reg_lines.append(register_line(ctx, mod.name, p, ""))
     for c in classes:
         reg_lines.extend(register_lines(ctx, c))
     if ctx.statics:
@@ -191,11 +190,19 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     return out.render()
 
 
+def reset_value(ctx: ModuleContext, v: VarSym) -> str:
+    """What ``_reset()`` stores: the default of the type, or the value of a Const folded at
+    translation time, which stays valid whatever order the modules initialise in."""
+    if v in ctx.model.const_values:
+        return py_literal(ctx.model.const_values[v])
+    return default_code(v.type)
+
+
 def _shared_resets(ctx: ModuleContext, cls: ClassSym) -> list[str]:
     out: list[str] = []
     for m in cls.members.values():
         if isinstance(m, VarSym) and m.shared:
-            out.append(f"{ctx.class_ref(cls)}.{py_ident(m.name)} = {default_code(m.type)}")
+            out.append(f"{ctx.class_ref(cls)}.{py_ident(m.name)} = {reset_value(ctx, m)}")
         elif isinstance(m, ClassSym):
             out.extend(_shared_resets(ctx, m))
     return out
@@ -207,7 +214,7 @@ def _shared_inits(ctx: ModuleContext, cls: ClassSym, init: Writer, low: ProcLowe
         if isinstance(m, A.VarDecl):
             for d in m.declarators:
                 v = cls.members.get(d.name.lower())
-                if isinstance(v, VarSym) and v.decl is d and v.shared:
+                if isinstance(v, VarSym) and v.decl is d and v.shared and v not in ctx.model.const_values:
                     init.gpl_line = d.span.line
                     init.line(f"{ctx.class_ref(cls)}.{py_ident(v.name)} = {field_value(shared_low, v)}")
         elif isinstance(m, A.ClassDecl):

@@ -8,17 +8,25 @@ procedure with ``sim.call(pkg.module.Proc, args...)``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from gpl2py.lower.names import py_ident
 from gpl2py.lower.text import escape, py_string
 from gpl2py.semantics.check import Model
-from gpl2py.semantics.symbols import ModuleSym
+from gpl2py.semantics.symbols import ModuleSym, ProcSym
 
 
 def package_init(model: Model, project_name: str, start_text: str | None, modules: list[ModuleSym],
                  extra: list[ModuleSym], stubs: list[dict[str, object]] | None = None,
-                 stub_modules: list[str] | None = None) -> str:
+                 stub_modules: list[str] | None = None,
+                 proc_name: Callable[[ProcSym], str] | None = None) -> str:
     """``stubs``: the PROJECT["stubs"] records (name, kind, provided by the user); ``stub_modules``:
-    the generated stub modules, reset with the others for a new session."""
+    the generated stub modules, reset with the others for a new session; ``proc_name``: the
+    Python name of a procedure (``ProjectNames.proc_name``: an overloaded Init or start
+    procedure has a name of its own)."""
+    if proc_name is None:
+        def proc_name(p: ProcSym) -> str:
+            return py_ident(p.name)
     all_mods = modules + extra
     start_name = "None"
     if model.start is not None and model.start.module is not None:
@@ -73,7 +81,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         lines.append(f"    {m.py_name}._init()")
     for m in modules:
         if m.init_proc is not None:
-            lines.append(f"    {m.py_name}.{py_ident(m.init_proc.name)}()")
+            lines.append(f"    {m.py_name}.{proc_name(m.init_proc)}()")
     lines += [
         "",
         "",
@@ -93,7 +101,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
             "",
             "    def _start() -> None:",
             "        init()",
-            f"        {start.module.py_name}.{py_ident(start.name)}()",
+            f"        {start.module.py_name}.{proc_name(start)}()",
             "",
             f"    _start.__gpl_name__ = {py_string(thread)}  # type: ignore[attr-defined]",
             f"    sim.run_main(gpl_entry(_start), name={py_string(thread)})",

@@ -201,7 +201,7 @@ class ProcLowerer(ExprLowerer):
         elif p.kind == "Get" and p.prop is not None:
             ann = annotation(p.prop.type)
             ret = f" -> {ann}" if ann else ""
-        name = py_ident(p.name)
+        name = self.ctx.names.proc_name(p)
         if p.kind == "New":
             name = "__init__" if len(p.owner.ctors) <= 1 else f"_new_{p.overload_index}"  # type: ignore[union-attr]
         if p.kind in ("Get", "Set") and p.prop is not None and p.prop.shared:

@@ -24,16 +24,20 @@ from gpl2py.semantics.catalogue import (
     Member,
     Param,
 )
+from gpl2py.semantics.consts import fold_constants
+from gpl2py.semantics.overloads import best_overloads, signature_text
 from gpl2py.semantics.resolve import TOP_MODULE, Collector, Found, Resolver, visible
 from gpl2py.semantics.stubs import Stub, StubTable
 from gpl2py.semantics.symbols import (
     ClassSym,
     DelegateSym,
     ModuleSym,
+    OverloadSet,
     ProcSym,
     ProjectSyms,
     PropSym,
     VarSym,
+    procedures,
 )
 from gpl2py.semantics.symbols import Member as UserMember
 from gpl2py.syntax import ast as A
@@ -81,6 +85,8 @@ class Model:
     # procedure declares the same variable (_declare_locals), a rejected duplicate is absent
     local_of: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
     stubs: StubTable | None = None  # names defined in protected code / missing built-in members
+    # module and class Consts whose value translation computed (semantics/consts.py)
+    const_values: dict[VarSym, object] = field(default_factory=dict)
 
     def type_of(self, e: A.Expr) -> t.GplType:
         i = self.info.get(e)
@@ -182,9 +188,11 @@ class Checker:
         col = Collector(self.r, self.sink)
         col.collect_units(units)
         col.resolve_pending()
+        col.check_overloads()
         project = self.model.project
         for mod in list(project.modules.values()):
             self._module(mod)
+        self.model.const_values = fold_constants(project, self.model.info, self.sink)
         if start:
             self._start(start)
         else:
@@ -194,8 +202,8 @@ class Checker:
     def _assume_main(self) -> None:
         """No ProjectStart: the single Public parameterless ``Sub Main`` starts the project (a
         folder without Project.gpr, or one file); none or several leave it without a start."""
-        found = [m.members.get("main") for m in self.model.project.module_list]
-        subs = [p for p in found if isinstance(p, ProcSym) and p.kind == "Sub" and p.public and not p.params]
+        found = [_parameterless(m.members.get("main")) for m in self.model.project.module_list]
+        subs = [p for p in found if p is not None and p.kind == "Sub" and p.public]
         if len(subs) == 1:
             self.model.start = subs[0]  # the translation warns (GPL2032) when it writes the package
 
@@ -211,8 +219,10 @@ class Checker:
         elif len(parts) == 1:
             cands = [m.members.get(parts[0].lower()) for m in project.module_list]
             declared = any(c is not None for c in cands)
-            cands = [c for c in cands if isinstance(c, ProcSym)]
+            cands = [c for c in cands if isinstance(c, (ProcSym, OverloadSet))]
             proc = cands[0] if len(cands) == 1 else None
+        if isinstance(proc, OverloadSet):  # the thread starts it without arguments
+            proc = _parameterless(proc) or proc.procs[0]
         if not declared and self.stubs.protected:
             # not declared anywhere readable: in a project with protected files that is where it
             # lives, and saying so beats "not a Sub of this project" (the user sees the file)
@@ -232,8 +242,9 @@ class Checker:
         for m in members:
             if isinstance(m, VarSym):
                 self._field_init(m, mod, cls)
-            elif isinstance(m, ProcSym):
-                self._proc(m, mod, cls)
+            elif isinstance(m, (ProcSym, OverloadSet)):
+                for p in procedures(m):
+                    self._proc(p, mod, cls)
             elif isinstance(m, PropSym):
                 for acc in (m.getter, m.setter):
                     if acc is not None:
@@ -539,8 +550,9 @@ class Checker:
         if not _scalar(vt):
             self.sink.report(M.TYPE_MISMATCH, e.span, src=str(vt), dst="a condition")
 
-    def _store_value(self, e: A.Expr, dst: t.GplType, ctx: _Ctx) -> None:
-        vt = self._value(e, ctx)
+    def _store_value(self, e: A.Expr, dst: t.GplType, ctx: _Ctx, info: Info | None = None) -> None:
+        """Check ``e`` as a value stored into a ``dst`` variable (``info``: ``e`` is typed already)."""
+        vt = self._value_check(e, info) if info is not None else self._value(e, ctx)
         if dst is t.STRING and isinstance(vt, t.PrimitiveType) and vt is not t.STRING:
             self.sink.report(M.IMPLICIT_TO_STRING, e.span, src=str(vt))
         if vt is t.NOTHING and isinstance(dst, t.PrimitiveType) and dst is not t.STRING:
@@ -696,7 +708,9 @@ class Checker:
     # -- names and members ------------------------------------------------------------------------------
 
     def _found_info(self, found: Found, name: str, span: object, ctx: _Ctx, receiver: A.Expr | None,
-                    as_statement: bool, as_target: bool, in_invoke: bool = False) -> Info:
+                    as_statement: bool, as_target: bool, in_invoke: bool = False,
+                    static: bool = False) -> Info:
+        """``static``: a member reached through its class's name, so only Shared overloads count."""
         k = found.kind
         s = found.sym
         if k == "result":
@@ -728,6 +742,13 @@ class Checker:
             if in_invoke:
                 return Info(s.result, "procref", s, receiver=receiver)
             return self._proc_call_info(s, [], span, ctx, receiver)
+        if isinstance(s, OverloadSet):
+            if in_invoke:  # the arguments choose the overload (_invoke)
+                return Info(s.result, "procref", s, receiver=receiver, static=static)
+            chosen = self._choose_overload(s, [], [], span, ctx, static)
+            if chosen is None:
+                return Info(t.ERROR, "error")
+            return self._proc_call_info(chosen, [], span, ctx, receiver)
         if isinstance(s, PropSym):
             if s.getter is None and not as_target:
                 self.sink.report(M.PROPERTY_ACCESS, span, name=s.name, what="write-only")  # type: ignore[arg-type]
@@ -791,12 +812,12 @@ class Checker:
             m = self._visible_member(cls.members, f"class {cls.name}", cls.name, e, ctx)
             if m is None:
                 return Info(t.ERROR, "error")
-            if isinstance(m, (VarSym, ProcSym, PropSym)) and not m.shared:
+            if isinstance(m, (VarSym, ProcSym, PropSym, OverloadSet)) and not m.shared:
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name} (Shared members)",
                                  member=e.name)
                 return Info(t.ERROR, "error")
             return self._found_info(Found("member", m, cls.module), e.name, e.span, ctx, None,
-                                    as_statement, as_target, in_invoke)
+                                    as_statement, as_target, in_invoke, static=True)
         if k == "bclass":
             b: BuiltinClass = tinfo.sym  # type: ignore[assignment]
             bm = b.member(e.name) if b is not None else None
@@ -827,6 +848,14 @@ class Checker:
             self.sink.report(M.NOT_AN_OBJECT, e.span, type=str(typ), member=e.name)
             return Info(t.ERROR, "error")
         bm = b.member(e.name)
+        if b.is_global:
+            # a variable typed as a class with only Shared members (Private CTL As Controller)
+            # stands for the class itself: CTL.PDbNum(...) is Controller.PDbNum(...), never an
+            # object that was not instantiated (docs/design/real-code.md)
+            if bm is None:
+                stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=True)
+                return self._builtin_stub_use(stub, None, as_statement, as_target, in_invoke)
+            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=False)
         if bm is None and isinstance(typ, t.ClassType):
             stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=False)
             return self._builtin_stub_use(stub, e.target, as_statement, as_target, in_invoke)
@@ -904,10 +933,11 @@ class Checker:
             if isinstance(found, str):
                 self.sink.report(M.AMBIGUOUS_NAME, e.span, name=e.name, where=found)
                 return self._record(e, Info(t.ERROR, "error"))
-            if found.kind == "result":
+            if found.kind == "result":  # a Function calling itself -- or another overload of its name
                 assert isinstance(found.sym, ProcSym)
-                return self._record(e, Info(found.sym.result, "procref", found.sym))
-            if isinstance(found.sym, ProcSym):
+                callee = _overloads_of(found.sym)
+                return self._record(e, Info(callee.result, "procref", callee))
+            if isinstance(found.sym, (ProcSym, OverloadSet)):
                 return self._record(e, Info(found.sym.result, "procref", found.sym))
             if found.kind == "builtin_function":
                 f: BuiltinFunction = found.sym  # type: ignore[assignment]
@@ -935,6 +965,14 @@ class Checker:
             for a in e.args:
                 self._value(a, ctx)
             return Info(t.ANY, "extinvoke")
+        if k == "procref" and isinstance(ci.sym, OverloadSet):
+            infos = [self._expr(a, ctx) for a in e.args]
+            chosen = self._choose_overload(ci.sym, e.args, infos, e.span, ctx, ci.static)
+            if chosen is None:
+                return Info(t.ERROR, "error")
+            info = Info(chosen.result, "call", chosen, params=_pinfo(chosen.params), receiver=ci.receiver)
+            self._args(e.args, info.params or [], ctx, infos)
+            return info
         if k == "procref":
             p: ProcSym = ci.sym  # type: ignore[assignment]
             info = self._proc_call_info(p, e.args, e.span, ctx, ci.receiver)
@@ -977,14 +1015,19 @@ class Checker:
             self.sink.report(M.WRONG_ARG_COUNT, span, name=name,  # type: ignore[arg-type]
                              expected=_count_text(lo, len(params)), given=len(args))
 
-    def _args(self, args: list[A.Expr], params: list[ParamInfo], ctx: _Ctx) -> None:
+    def _args(self, args: list[A.Expr], params: list[ParamInfo], ctx: _Ctx,
+              infos: list[Info] | None = None) -> None:
+        """Check each argument against its parameter.  ``infos``: the arguments were already
+        typed (to choose an overload), so they are checked without being typed again."""
         for i, a in enumerate(args):
             p = params[i] if i < len(params) else None
+            given = infos[i] if infos is not None else None
             if p is None:
-                self._expr(a, ctx)
+                if given is None:
+                    self._expr(a, ctx)
                 continue
             if p.byref:
-                info = self._expr(a, ctx)
+                info = given or self._expr(a, ctx)
                 if not self._mark_byref(a, info, p):
                     self.model.byref_temps.add(a)
                     if p.type is not t.ERROR:
@@ -994,11 +1037,11 @@ class Checker:
                 elif not assignable(info.type, p.type) and p.type is not t.ERROR:
                     self.sink.report(M.TYPE_MISMATCH, a.span, src=str(info.type), dst=str(p.type))
             elif t.permissive(p.type):  # Any-annotated runtime parameter: any value (or a type name)
-                info = self._expr(a, ctx)
+                info = given or self._expr(a, ctx)
                 if info.kind != "typename":
                     self._value_check(a, info)
             else:
-                self._store_value(a, p.type, ctx)
+                self._store_value(a, p.type, ctx, given)
 
     def _mark_byref(self, a: A.Expr, info: Info, p: ParamInfo) -> bool:
         """Whether ``a`` is a variable that can be passed by reference; boxes locals that are."""
@@ -1038,10 +1081,14 @@ class Checker:
                     self.sink.report(M.NO_CTOR_OVERLOAD, e.span, cls=cls.name, count=len(args))
                 return Info(typ, "new", cls)
             arg_types = [self._value(a, ctx) for a in args]
-            ctor = self._pick_ctor(cls, arg_types)
-            if ctor is None:
+            best = best_overloads(cls.ctors, arg_types)
+            if not best:
                 self.sink.report(M.NO_CTOR_OVERLOAD, e.span, cls=cls.name, count=len(args))
                 return Info(typ, "new", cls)
+            ctor = best[0]
+            if len(best) > 1 and not any(t.permissive(a) for a in arg_types):
+                self.sink.report(M.AMBIGUOUS_OVERLOAD, e.span, name=f"New {cls.name}",
+                                 candidates=_overload_list(best))
             for a, prm in zip(args, ctor.params):
                 if prm.byref:
                     info = self.model.info[a]
@@ -1063,30 +1110,94 @@ class Checker:
         b = self.r.builtin_of(typ)
         if b is None:
             return Info(t.ERROR, "error")
+        if b.is_global:
+            self.sink.report(M.NOT_SUPPORTED, e.span, what=f"New {b.name} (a class with only Shared members has no objects)")
+            return Info(t.ERROR, "error")
         params = _pinfo(b.constructor or ())
         if b.constructor is not None and params:
             self._check_count(b.name, params, args, e.span)
         self._args(args, params, ctx)
         return Info(typ, "new", b, params=params)
 
-    def _pick_ctor(self, cls: ClassSym, arg_types: list[t.GplType]) -> ProcSym | None:
-        by_count = [c for c in cls.ctors if c.min_args <= len(arg_types) <= len(c.params)]
-        exact = [c for c in by_count if all(assignable(a, p.type) for a, p in zip(arg_types, c.params))]
-        if len(exact) > 1:
-            same = [c for c in exact if all(a == p.type for a, p in zip(arg_types, c.params))]
-            if same:
-                return same[0]
-        return exact[0] if exact else None
+    def _address_overload(self, group: OverloadSet, e: A.AddressOf, ctx: _Ctx, d: DelegateSym | None,
+                          static: bool) -> ProcSym | None:
+        """The overload ``AddressOf`` binds: the one whose parameters fit the delegate's (the
+        template of ``New D(AddressOf f)``), or the only one there is."""
+        cands = [p for p in group.procs if visible(p, ctx.module, ctx.cls) and (p.shared or not static)]
+        if d is not None:
+            cands = [p for p in cands if len(p.params) == len(d.params)]
+            best = best_overloads(cands, [v.type for v in d.params])
+        else:
+            best = cands
+        if len(best) == 1:
+            return best[0]
+        if not best:
+            self.sink.report(M.NO_OVERLOAD, e.span, name=group.name, count=len(d.params) if d else 0,
+                             candidates=_overload_list(group.procs))
+        else:
+            self.sink.report(M.AMBIGUOUS_OVERLOAD, e.span, name=group.name, candidates=_overload_list(best))
+        return None
+
+    def _choose_overload(self, group: OverloadSet, args: list[A.Expr], infos: list[Info], span: object,
+                         ctx: _Ctx, static: bool) -> ProcSym | None:
+        """The overload of ``group`` a call with these (already typed) arguments runs, or None
+        after reporting why there is none (overloads.py has the rule).  Only the overloads
+        visible from here count, and only Shared ones when the call names the class."""
+        cands = [p for p in group.procs if visible(p, ctx.module, ctx.cls) and (p.shared or not static)]
+        if not cands:  # the set is visible (checked by the caller), so some overload is Private
+            self.sink.report(M.PRIVATE_MEMBER, span, name=group.name,  # type: ignore[arg-type]
+                             owner=group.owner.name if group.owner is not None else "?")
+            return None
+        arg_types = [_arg_type(i) for i in infos]
+        best = best_overloads(cands, arg_types)
+        if not best:
+            if not _unparsed(args):
+                self.sink.report(M.NO_OVERLOAD, span, name=group.name,  # type: ignore[arg-type]
+                                 count=len(args), candidates=_overload_list(cands))
+            return None
+        if len(best) > 1 and not any(t.permissive(a) for a in arg_types):
+            self.sink.report(M.AMBIGUOUS_OVERLOAD, span, name=group.name,  # type: ignore[arg-type]
+                             candidates=_overload_list(best))
+        return best[0]
 
     def _addressof(self, e: A.AddressOf, ctx: _Ctx, d: DelegateSym | None = None) -> Info:
         ci = self._callee(e.target, ctx)
         if ci.kind != "procref":
             self.sink.report(M.ADDRESSOF_TARGET, e.span, what=f"'{_text(e.target)}'")
             return self._record(e, Info(t.ERROR, "error"))
+        if isinstance(ci.sym, OverloadSet):
+            chosen = self._address_overload(ci.sym, e, ctx, d, ci.static)
+            if chosen is None:
+                return self._record(e, Info(t.ERROR, "error"))
+            ci = Info(chosen.result, "procref", chosen, receiver=ci.receiver)
         p: ProcSym = ci.sym  # type: ignore[assignment]
         if d is not None and len(p.params) != len(d.params):
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=p.name, expected=len(d.params), given=len(p.params))
         return self._record(e, Info(d.type if d else t.ERROR, "addressof", p, receiver=ci.receiver))
+
+
+def _overloads_of(p: ProcSym) -> ProcSym | OverloadSet:
+    """The overload set ``p`` belongs to, or ``p`` itself."""
+    members = getattr(p.owner, "members", {})
+    group = members.get(p.name.lower())
+    return group if isinstance(group, OverloadSet) and p in group.procs else p
+
+
+def _arg_type(info: Info) -> t.GplType:
+    """The type an argument offers to overload resolution (a type or module name offers none)."""
+    if info.kind in ("typename", "module", "class", "bclass", "extmodule"):
+        return t.ERROR
+    return info.type
+
+
+def _overload_list(procs: list[ProcSym]) -> str:
+    return ", ".join(signature_text(p) for p in procs)
+
+
+def _parameterless(member: object) -> ProcSym | None:
+    """The procedure of ``member`` that can be called without arguments (ProjectStart, a module's
+    Init, Sub Main), or None."""
+    return next((p for p in procedures(member) if not p.params), None)
 
 
 def _unparsed(args: list[A.Expr]) -> bool:

@@ -27,6 +27,7 @@ from gpl2py.semantics.symbols import (
     DelegateSym,
     Member,
     ModuleSym,
+    OverloadSet,
     ProcSym,
     ProjectSyms,
     PropSym,
@@ -74,8 +75,10 @@ class Resolver:
         if sym is not None:
             return sym.type
         if len(parts) == 1:
+            # a global class (Controller, Math ...) is a type too: a variable of it stands for
+            # the class (check.py, docs/design/real-code.md)
             b = self.cat.lookup_class(parts[0])
-            if b is not None and not b.is_global:
+            if b is not None:
                 return b.type
         if len(parts) == 1 and parts[0].lower() == "object":
             # VB's universal type: GPL has none [000 L852-855], so it is neither unknown (a typo)
@@ -118,7 +121,8 @@ class Resolver:
             if top is not None and isinstance(top.members.get(first), ClassSym):
                 start = top.members[first]
         if start is None:
-            cands = [m for _, m in self.project.public_members(first) if isinstance(m, (ClassSym, DelegateSym))]
+            cands = [p.member for p in self.project.public_members(first)
+                     if isinstance(p.member, (ClassSym, DelegateSym))]
             if len(cands) == 1:
                 start = cands[0]
         for part in parts[1:]:
@@ -168,9 +172,9 @@ class Resolver:
             return Found("module", self.project.modules[key])
         pub = self.project.public_members(key)
         if len(pub) == 1:
-            return Found("member", pub[0][1], pub[0][0])
+            return Found("member", pub[0].member, pub[0].module)
         if len(pub) > 1:
-            return ", ".join(mod.name for mod, _ in pub)
+            return ", ".join(p.where for p in pub)
         b = self.cat.lookup_class(key)
         if b is not None:
             return Found("builtin_class", b)
@@ -206,6 +210,7 @@ class Collector:
         self.r = resolver
         self.sink = sink
         self.pending_types: list[tuple[object, A.TypeRef | None, ModuleSym, ClassSym | None, int]] = []
+        self.overload_sets: list[tuple[dict[str, Member], OverloadSet]] = []
 
     def collect_units(self, units: list[A.SourceUnit]) -> None:
         project = self.r.project
@@ -229,6 +234,7 @@ class Collector:
                     if top is None:
                         top = ModuleSym(TOP_MODULE, None, unit.path, None, order=-1)
                         project.modules[TOP_MODULE.lower()] = top
+                        project.top = top
                     self._class(top, None, member, default_public=True)
 
     # -- members ------------------------------------------------------------------------------------
@@ -246,6 +252,44 @@ class Collector:
         table[key] = sym
         return True
 
+    def _overload(self, table: dict[str, Member], p: ProcSym) -> bool:
+        """Add ``p`` to the procedures already declared under its name (real GPL overloads
+        procedures by parameter list, docs/design/real-code.md); False when the name is free or
+        taken by something that is not a procedure (then it is declared, or reported, as usual).
+        Overloads with the same parameter types are reported once the types are known
+        (:meth:`check_overloads`)."""
+        prev = table.get(p.name.lower())
+        if isinstance(prev, ProcSym) and prev.kind in ("Sub", "Function"):
+            group = OverloadSet(prev.name, prev.span, prev.owner, [prev])
+            table[p.name.lower()] = group
+            self.overload_sets.append((table, group))
+        elif isinstance(prev, OverloadSet):
+            group = prev
+        else:
+            return False
+        p.overload_index = len(group.procs)
+        group.procs.append(p)
+        return True
+
+    def check_overloads(self) -> None:
+        """Report an overload whose parameter types repeat an earlier one's (no call could tell
+        them apart) and drop it, so the rest of the pipeline sees well-formed sets."""
+        for table, group in self.overload_sets:
+            kept: list[ProcSym] = []
+            for p in group.procs:
+                same = next((q for q in kept if _signature(q) == _signature(p)), None)
+                if same is not None:
+                    self.sink.report(M.DUPLICATE_DECLARATION, p.span, name=p.name, scope="overload set",
+                                     line=same.span.line if same.span else 0)
+                    self.r.project.procs.remove(p)
+                    continue
+                p.overload_index = len(kept)
+                kept.append(p)
+            group.procs = kept
+            if len(kept) == 1:  # nothing left to choose from: a plain procedure again
+                kept[0].overload_index = 0
+                table[group.name.lower()] = kept[0]
+
     def _members(self, mod: ModuleSym, cls: ClassSym | None, members: list[A.Stmt]) -> None:
         table = cls.members if cls is not None else mod.members
         scope = "class" if cls is not None else "module"
@@ -254,7 +298,9 @@ class Collector:
                 continue  # a declaration the parser could not read (already reported)
             if isinstance(m, A.VarDecl):
                 public = _access(m.modifiers)
-                shared = cls is None or _shared(m.modifiers)
+                # a Const is implicitly Shared: one value for the class, usable in Shared
+                # procedures (real code: corpus Class_station.gpl:120; docs/design/real-code.md)
+                shared = cls is None or m.is_const or _shared(m.modifiers)
                 for d in m.declarators:
                     if not d.name:
                         continue
@@ -268,7 +314,8 @@ class Collector:
                     p.overload_index = len(cls.ctors)
                     cls.ctors.append(p)
                     continue
-                self._declare(table, m.name, p, m.span, scope)
+                if not self._overload(table, p):
+                    self._declare(table, m.name, p, m.span, scope)
             elif isinstance(m, A.PropertyDecl) and cls is not None:
                 prop = PropSym(m.name, m.span, t.ERROR, cls, _access(m.modifiers), _shared(m.modifiers), decl=m)
                 self.pending_types.append((prop, m.type, mod, cls, 0))
@@ -359,6 +406,11 @@ class Collector:
             else:
                 sym.type = typ  # type: ignore[union-attr]
         self.pending_types.clear()
+
+
+def _signature(p: ProcSym) -> tuple[object, ...]:
+    """What tells overloads apart: the parameter types in order (not names, not ByRef)."""
+    return tuple(v.type for v in p.params)
 
 
 def visible(member: object, from_module: ModuleSym | None, from_class: ClassSym | None) -> bool:

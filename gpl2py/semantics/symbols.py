@@ -140,11 +140,63 @@ class ModuleSym:
 
     @property
     def init_proc(self) -> ProcSym | None:
-        m = self.members.get("init")
-        return m if isinstance(m, ProcSym) and not m.params else None
+        return next((p for p in procedures(self.members.get("init")) if not p.params), None)
 
 
-Member = Union[VarSym, ProcSym, PropSym, ClassSym, DelegateSym]
+@dataclass(eq=False)
+class OverloadSet:
+    """Procedures of one module or class that share a name (real GPL overloads them by
+    parameter list; docs/design/real-code.md).  The member table holds the set in place of a
+    single :class:`ProcSym`; the checker picks one overload per call (argument count, then
+    argument types), so the lowering only ever sees the chosen :class:`ProcSym`.
+
+    ``procs`` keeps declaration order; ``procs[k].overload_index == k``.
+    """
+
+    name: str
+    span: Span | None
+    owner: Union[ModuleSym, ClassSym, None]
+    procs: list[ProcSym] = field(default_factory=list)
+
+    @property
+    def public(self) -> bool:
+        """Public if any overload is (each call still checks the overload it picks)."""
+        return any(p.public for p in self.procs)
+
+    @property
+    def shared(self) -> bool:
+        return any(p.shared for p in self.procs)
+
+    @property
+    def result(self) -> t.GplType:
+        """The result type when every overload agrees, else ERROR (a call's type is the chosen
+        overload's)."""
+        first = self.procs[0].result
+        return first if all(p.result == first for p in self.procs) else t.ERROR
+
+
+Member = Union[VarSym, ProcSym, PropSym, ClassSym, DelegateSym, OverloadSet]
+
+
+def procedures(member: object) -> list[ProcSym]:
+    """The procedures a member table entry stands for: the overloads of a set, the procedure
+    itself, or none (a variable, class ...)."""
+    if isinstance(member, OverloadSet):
+        return list(member.procs)
+    if isinstance(member, ProcSym):
+        return [member]
+    return []
+
+
+@dataclass(frozen=True)
+class PublicName:
+    """A Public name reachable without qualification (§6.4): a module's Public member, a
+    top-level class, or a Public Shared/Const member of a top-level class.  ``where`` names the
+    module or class that declares it (for the ambiguity message)."""
+
+    where: str
+    module: ModuleSym
+    member: Member
 
 
 @dataclass
@@ -158,12 +210,30 @@ class ProjectSyms:
     procs: list[ProcSym] = field(default_factory=list)
     classes: list[ClassSym] = field(default_factory=list)
 
-    def public_members(self, name: str) -> list[tuple[ModuleSym, Member]]:
-        """Public members called ``name`` in all modules (the "unambiguous Public name" rule)."""
+    # the synthetic module holding top-level classes (resolve.TOP_MODULE), if any
+    top: ModuleSym | None = None
+
+    def public_members(self, name: str) -> list[PublicName]:
+        """Every Public ``name`` that may be used unqualified (the "unambiguous Public name"
+        rule, §6.4): Public members of all modules and, as real code uses them, top-level
+        classes and the Public Shared or Const members of top-level classes (a top-level class
+        is reachable like a module: ``Station.LoadFile``, ``STA_FL_PAL``)."""
         key = name.lower()
         out = []
         for mod in self.module_list:
             m = mod.members.get(key)
             if m is not None and getattr(m, "public", False):
-                out.append((mod, m))
+                out.append(PublicName(mod.name, mod, m))
+        top = self.top
+        if top is not None:
+            cls = top.members.get(key)
+            if isinstance(cls, ClassSym):
+                out.append(PublicName(cls.name, top, cls))
+            for c in top.members.values():
+                if not isinstance(c, ClassSym) or not c.public:
+                    continue
+                m = c.members.get(key)
+                if m is not None and not isinstance(m, ClassSym) and getattr(m, "public", False) \
+                        and (getattr(m, "shared", False) or getattr(m, "const", False)):
+                    out.append(PublicName(c.name, top, m))
         return out

@@ -1,0 +1,160 @@
+"""Constants folded at translation time (docs/design/real-code.md, "Constants across modules").
+
+A module's or class's ``Const`` whose initializer is built from literals, built-in constants, the
+pure conversion functions (``CInt``, ``CStr``, ``Chr`` ...: :data:`PURE_FUNCTIONS`) and other such
+Consts -- of any module or class, in any order -- gets its value here, once the whole
+project is typed.  The generated module then holds that value from the moment it is imported and
+``_reset()`` keeps it, so ``Public Const N_ROB As Integer = Startup.NumRobots`` in a module that
+initialises before ``Startup`` still sizes ``CmdObject(N_ROB)`` right.  A Const whose initializer
+needs the running controller (``Controller.PDbNum(104) * 1000000``) keeps being evaluated by the
+module's initializer, as before.
+
+Values are computed with the runtime's own operators and conversions (``gplrt.lang``), the
+functions the generated code would call, so a folded value is exactly the one the program would
+compute; an expression that raises (overflow, division by zero) is left to raise at run time.
+A chain of Consts that leads back to its start is GPL2042.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from typing import Any
+
+from gplrt.lang import conversions as conv
+from gplrt.lang import operators as ops
+from gplrt.lang.errors import GplException
+
+from gpl2py import messages as M
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.semantics import types as t
+from gpl2py.semantics.catalogue import BuiltinConstant, BuiltinFunction
+from gpl2py.semantics.symbols import ProjectSyms, VarSym
+from gpl2py.syntax import ast as A
+
+_BINARY: dict[str, Callable[[Any, Any], Any]] = {
+    "+": ops.add, "-": ops.sub, "*": ops.mul, "/": ops.div, "\\": ops.idiv, "Mod": ops.mod,
+    "^": ops.power, "<<": ops.shl, ">>": ops.shr, "&": ops.concat,
+    "=": ops.eq, "<>": ops.ne, "<": ops.lt, ">": ops.gt, "<=": ops.le, ">=": ops.ge,
+    "And": ops.and_, "Or": ops.or_, "Xor": ops.xor,
+    "AndAlso": lambda a, b: conv.to_bool(a) and conv.to_bool(b),
+    "OrElse": lambda a, b: conv.to_bool(a) or conv.to_bool(b),
+}
+_UNARY: dict[str, Callable[[Any], Any]] = {"-": ops.neg, "+": conv.to_number, "Not": ops.not_}
+# Built-in functions whose result depends on their arguments alone (no controller state)
+PURE_FUNCTIONS = frozenset({"CBool", "CByte", "CShort", "CInt", "CSng", "CDbl", "CStr", "Chr", "Asc",
+                            "Hex", "Fix", "Int", "Len"})
+
+
+class _NotConstant(Exception):
+    """The expression needs the running program (a variable, a call, ...)."""
+
+
+class ConstFolder:
+    """Computes the value of every foldable module and class Const of a project."""
+
+    def __init__(self, info: dict[A.Node, Any], sink: DiagnosticSink) -> None:
+        self.info = info  # check.Model.info: what each name in an initializer refers to
+        self.sink = sink
+        self.values: dict[VarSym, object] = {}
+        self._unfoldable: set[VarSym] = set()
+        self._stack: list[VarSym] = []
+
+    def fold(self, consts: list[VarSym]) -> dict[VarSym, object]:
+        for v in consts:
+            try:
+                self._const(v)
+            except _NotConstant:
+                pass
+        return self.values
+
+    def _const(self, v: VarSym) -> object:
+        if v in self.values:
+            return self.values[v]
+        if v in self._unfoldable:
+            raise _NotConstant
+        if v in self._stack:
+            self._cycle(v)
+        d = v.decl
+        if d is None or d.initializer is None or d.bounds is not None or not isinstance(v.type, t.PrimitiveType):
+            self._unfoldable.add(v)
+            raise _NotConstant
+        self._stack.append(v)
+        try:
+            value = conv.convert(self._value(d.initializer), v.type.name)
+        except (_NotConstant, GplException, ArithmeticError, ValueError, TypeError):
+            self._unfoldable.add(v)
+            raise _NotConstant from None
+        finally:
+            self._stack.pop()
+        self.values[v] = value
+        return value
+
+    def _cycle(self, v: VarSym) -> None:
+        """``v`` is being folded already: report the loop once, at the Const it starts from."""
+        loop = self._stack[self._stack.index(v):]
+        if not any(c in self._unfoldable for c in loop):
+            names = " -> ".join(_qualified(c) for c in [*loop, v])
+            self.sink.report(M.CONST_CYCLE, v.span, name=v.name, cycle=names)
+        self._unfoldable.update(loop)
+        raise _NotConstant
+
+    def _value(self, e: A.Expr) -> object:
+        if isinstance(e, (A.IntegerLiteral, A.RealLiteral, A.StringLiteral, A.BooleanLiteral)):
+            return e.value
+        if isinstance(e, A.Unary) and e.op in _UNARY:
+            return _UNARY[e.op](self._value(e.operand))
+        if isinstance(e, A.Binary) and e.op in _BINARY:
+            return self._binary(e)
+        info = self.info.get(e)
+        if info is not None and info.kind == "var" and isinstance(info.sym, VarSym) and info.sym.const \
+                and info.sym.storage in ("module", "field"):
+            return self._const(info.sym)
+        if info is not None and info.kind == "bconst" and isinstance(info.sym, BuiltinConstant):
+            return info.sym.value
+        if info is not None and info.kind == "bfunc" and isinstance(info.sym, BuiltinFunction) \
+                and info.sym.name in PURE_FUNCTIONS and isinstance(e, A.Invoke):
+            args = [self._value(a) for a in e.args]
+            return _builtin(info.sym.python_name)(*args)
+        raise _NotConstant
+
+    def _binary(self, e: A.Binary) -> object:
+        """A left-leaning chain without recursing on its spine (real code has long ones)."""
+        spine = [e]
+        left = e.left
+        while isinstance(left, A.Binary) and left.op in _BINARY:
+            spine.append(left)
+            left = left.left
+        value = self._value(left)
+        for node in reversed(spine):
+            value = _BINARY[node.op](value, self._value(node.right))
+        return value
+
+
+def _builtin(python_name: str) -> Callable[..., Any]:
+    """A function of ``gplrt.builtins``, imported when first needed (the catalogue has loaded the
+    module by then; importing it up front would cost every import of the checker 0.2 s)."""
+    return getattr(importlib.import_module("gplrt.builtins"), python_name)  # type: ignore[no-any-return]
+
+
+def _qualified(v: VarSym) -> str:
+    """``Module.Name`` or ``Class.Name``: a loop may run through several modules."""
+    owner = getattr(v.owner, "name", "")
+    return f"{owner}.{v.name}" if owner else v.name
+
+
+def project_consts(project: ProjectSyms) -> list[VarSym]:
+    """Every module-level and class-level Const, modules in ProjectSource order."""
+    out: list[VarSym] = []
+    tables = [m.members for m in project.module_list] + [c.members for c in project.classes]
+    for table in tables:
+        out.extend(m for m in table.values() if isinstance(m, VarSym) and m.const)
+    return out
+
+
+def fold_constants(project: ProjectSyms, info: dict[A.Node, Any], sink: DiagnosticSink) -> dict[VarSym, object]:
+    """The value of every module and class Const that translation can compute (module doc)."""
+    return ConstFolder(info, sink).fold(project_consts(project))
+
+
+__all__ = ["fold_constants", "ConstFolder"]
