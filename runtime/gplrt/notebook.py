@@ -50,6 +50,7 @@ from gplrt.lang.errors import (
     UNDEFINED_SYMBOL,
     GplException,
 )
+from gplrt.lang.procedures import choose_overload
 from gplrt.sim import ConsoleSink, Simulation
 
 __all__ = ["Cell", "RobotPose", "ProjectError", "save_motion_plot"]
@@ -178,13 +179,13 @@ class Cell:
         not handle is raised here as ``GplException`` (with ``ErrorCode``); ``timeout`` is in real
         seconds (``gplrt.sim.SimulationStalled`` when exceeded or when the program deadlocks).
         """
-        func = self.procedure(procedure)
+        func = self.procedure(procedure, len(args))
         self.init()
         return self.sim.call(func, *args, timeout=timeout)
 
     def start(self, procedure: str, *args: Any, name: str = "") -> Any:
         """Start a Public procedure as a background GPL thread (e.g. a server); returns the Thread."""
-        func = self.procedure(procedure)
+        func = self.procedure(procedure, len(args))
         self.init()
         return self.sim.start(func, *args, name=name or procedure.rpartition(".")[2])
 
@@ -199,8 +200,9 @@ class Cell:
         """Let the GPL threads run for ``seconds`` of controller time (virtual: takes no wall time)."""
         self.sim.run_for(seconds)
 
-    def procedure(self, name: str) -> Any:
-        """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``."""
+    def procedure(self, name: str, nargs: int | None = None) -> Any:
+        """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``;
+        ``nargs`` (how many arguments it will get) chooses among overloads of the name."""
         mine = self._procedures
         want = _name(name, "procedure name").strip().lower()
         if "." in want:
@@ -208,8 +210,8 @@ class Cell:
         else:
             found = [e for e in mine if e.name.lower() == want]
         public = [e for e in found if e.public]
-        if len(public) == 1:
-            return public[0].func
+        if public and len({e.qualified_name.lower() for e in public}) == 1:
+            return choose_overload(public, nargs, name).func  # one procedure, or its overloads
         if len(public) > 1:
             names = ", ".join(sorted(e.qualified_name for e in public))
             raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {names}: say which module")

@@ -226,3 +226,25 @@ End Module
     r = run_gpl(tmp_path, {"Globals.gpl": globals_, "Startup.gpl": startup})
     assert r.status == 0, r.log
     assert r.output.splitlines() == ["5 14 13"]
+
+
+def test_a_notebook_calls_the_overload_its_arguments_fit(tmp_path: Path) -> None:
+    from gplrt.notebook import Cell
+    from gpltest import code_of, write_project
+
+    proj = write_project(tmp_path, {"Main.gpl": """Module Main
+    Public Function Twice(ByVal x As Integer) As Integer
+        Return 2 * x
+    End Function
+    Public Function Twice(ByVal x As Integer, ByVal y As Integer) As Integer
+        Return 2 * x + y
+    End Function
+    Public Sub Main()
+    End Sub
+End Module
+"""})
+    cell = Cell.load(proj, cache_dir=tmp_path / "cache", echo=False)
+    assert cell.call("Twice", 3) == 6
+    assert cell.call("Main.Twice", 3, 4) == 10
+    assert code_of(cell.call, "Twice") == -741  # neither takes no argument
+    assert code_of(cell.procedure, "Twice") == -772  # which one, without a count?

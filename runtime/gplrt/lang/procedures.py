@@ -70,6 +70,7 @@ __all__ = [
     "register_procedure",
     "find_procedure",
     "find_procedure_entry",
+    "choose_overload",
     "clear_procedures",
     "registered_procedures",
     "UNDEFINED_SYMBOL",
@@ -139,10 +140,10 @@ class ProcedureRegistry:
             if caller is not None:
                 own = [e for e in candidates if e.path == caller]
                 if own:
-                    return _overload(own, nargs, name)
+                    return choose_overload(own, nargs, name)
             public = [e for e in candidates if e.public and len(e.path) == 1]
             if len({e.path for e in public}) == 1:
-                return _overload(public, nargs, name)
+                return choose_overload(public, nargs, name)
             if len(public) > 1:
                 where = ", ".join(sorted({e.qualified_name for e in public}))
                 raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {where}")
@@ -157,7 +158,7 @@ class ProcedureRegistry:
             raise GplException(UNDEFINED_SYMBOL, detail=f"no procedure {name!r}")
         allowed = [e for e in matches if e.public or (caller is not None and e.path[: len(caller)] == caller)]
         if len({e.path for e in allowed}) == 1:
-            return _overload(allowed, nargs, name)
+            return choose_overload(allowed, nargs, name)
         if not allowed:
             raise GplException(UNDEFINED_SYMBOL, detail=f"{matches[0].qualified_name} is Private")
         where = ", ".join(sorted({e.qualified_name for e in allowed}))
@@ -167,9 +168,9 @@ class ProcedureRegistry:
         return sum(len(es) for es in self._by_name.values())
 
 
-def _overload(entries: list[ProcedureEntry], nargs: int | None, name: str) -> ProcedureEntry:
+def choose_overload(entries: list[ProcedureEntry], nargs: int | None, name: str) -> ProcedureEntry:
     """The one entry of ``entries`` (the overloads of one procedure) a caller passing ``nargs``
-    arguments means (module docstring, "Overloads")."""
+    arguments means (module docstring, "Overloads"); ``name`` is for the error's text."""
     if len(entries) == 1:
         return entries[0]
     fits = entries if nargs is None else [e for e in entries if e.accepts(nargs)]
