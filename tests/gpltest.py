@@ -30,7 +30,6 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Callable
 
 import numpy as np
-import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import import_package
@@ -385,20 +384,6 @@ def analyze_project(path: Path) -> tuple[Model, DiagnosticSink]:
     model = analyze(units, sink, load_catalogue(), project.name, project.start,
                     protected=bool(project.protected))
     return model, sink
-
-
-def corpus_dir(*parts: str) -> Path:
-    """The shared corpus of real GPL (corpus/README.md), or the folder ``parts`` inside it: read in
-    place from ``../shared/corpus`` next to the repository, or from ``$GPL_CORPUS``.  When it is
-    missing the test fails under ``CI=true`` (CI always has it) and is skipped elsewhere, saying why."""
-    root = Path(os.environ.get("GPL_CORPUS") or REPO.parent / "shared" / "corpus")
-    path = root.joinpath(*parts)
-    if not path.is_dir():
-        reason = f"the GPL corpus is not at {path} (set GPL_CORPUS to the shared corpus folder)"
-        if os.environ.get("CI", "").strip().lower() == "true":
-            pytest.fail(reason)
-        pytest.skip(reason)
-    return path
 
 
 def compiled_modules(files: dict[str, str]) -> dict[str, str]:

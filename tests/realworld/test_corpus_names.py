@@ -26,7 +26,7 @@ def _declared_names(model: object) -> set[str]:
 
 @pytest.mark.parametrize("name", PROJECTS)
 def test_names_the_server_declares_all_resolve(name: str) -> None:
-    model, sink = analyze_project(corpus_dir(name))
+    model, sink = analyze_project(corpus_dir() / name)
     by_code: dict[str, list[str]] = {}
     for d in sink:
         by_code.setdefault(d.code, []).append(d.header())
@@ -44,7 +44,7 @@ def test_names_the_server_declares_all_resolve(name: str) -> None:
 
 @pytest.mark.parametrize("name", PROJECTS)
 def test_server_constants_have_their_values_whatever_the_module_order(name: str) -> None:
-    model, _ = analyze_project(corpus_dir(name))
+    model, _ = analyze_project(corpus_dir() / name)
     values = {(getattr(v.owner, "name", ""), v.name): value for v, value in model.const_values.items()}
     # Globals initialises before Startup (Project.gpr order); N_ROB sizes every per-robot array
     assert values[("Globals", "N_ROB")] == values[("Startup", "NumRobots")] == 4
@@ -59,7 +59,7 @@ def test_server_constants_have_their_values_whatever_the_module_order(name: str)
 
 
 def test_a_controller_variable_of_the_plugin_is_the_controller_class() -> None:
-    model, _ = analyze_project(corpus_dir("tcs-3.0C1-pa"))
+    model, _ = analyze_project(corpus_dir() / "tcs-3.0C1-pa")
     ssgrip = model.project.modules["ssgrip"]
     ctl = ssgrip.members["ctl"]
     assert isinstance(ctl, VarSym) and str(ctl.type) == "Controller"
