@@ -568,7 +568,7 @@ class Checker:
         if k == "bmember":
             m: Member = info.sym  # type: ignore[assignment]
             if m.settable:
-                return info.type if m.kind == "property" else m.result
+                return info.type  # the value's type in the assignment form used (_assigned_member)
             self.sink.report(M.PROPERTY_ACCESS, e.span, name=m.name, what="read-only")
             return t.ERROR
         self.sink.report(M.NOT_ASSIGNABLE, e.span, what=f"'{_text(e)}'")
@@ -603,7 +603,7 @@ class Checker:
         if isinstance(e, A.MemberAccess):
             return self._record(e, self._member(e, ctx, as_statement, as_target))
         if isinstance(e, A.Invoke):
-            return self._record(e, self._invoke(e, ctx))
+            return self._record(e, self._invoke(e, ctx, as_target))
         if isinstance(e, A.Unary):
             ot = self._value(e.operand, ctx)
             if e.op == "Not":
@@ -806,7 +806,8 @@ class Checker:
             if bm is None or (not bm.shared and not b.is_global):
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=b.name if b else "?", member=e.name)
                 return Info(t.ERROR, "error")
-            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=b.name == "String")
+            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=b.name == "String",
+                                      as_target=as_target)
         typ = tinfo.type
         if typ is t.ERROR:
             return Info(t.ERROR, "error")
@@ -834,7 +835,8 @@ class Checker:
             self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=str(typ), member=e.name)
             return Info(t.ERROR, "error")
         return self._bmember_info(bm, b, e, e.target, False, in_invoke,
-                                  value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING)
+                                  value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING,
+                                  as_target=as_target)
 
     def _visible_member(self, members: dict[str, UserMember], label: str, owner: str,
                         e: A.MemberAccess, ctx: _Ctx,
@@ -852,15 +854,32 @@ class Checker:
         return m
 
     def _bmember_info(self, bm: Member, b: BuiltinClass, e: A.Expr, receiver: A.Expr | None, static: bool,
-                      in_invoke: bool, value_type: bool) -> Info:
+                      in_invoke: bool, value_type: bool, as_target: bool = False) -> Info:
         kind = "vmember" if value_type and b.name in ("String", "Array") else "bmember"
+        if as_target and not in_invoke and bm.settable:  # ``X.M = v``
+            return self._assigned_member(bm, Info(bm.result, kind, bm, owner=b, receiver=receiver,
+                                                  static=static), [], e.span)
         if bm.kind == "property":
             return Info(bm.result, kind, bm, owner=b, receiver=receiver, static=static)
-        info = Info(bm.result, kind, bm, owner=b, params=_pinfo(bm.params), receiver=receiver,
-                    static=static)
-        if not in_invoke and bm.min_args > 0:
+        form = bm.call_form(0) if not in_invoke else None
+        info = Info(bm.result, kind, bm, owner=b, params=_pinfo(form if form is not None else bm.params),
+                    receiver=receiver, static=static)
+        if not in_invoke and form is None:
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
         return info
+
+    def _assigned_member(self, m: Member, ci: Info, args: list[A.Expr], span: object) -> Info:
+        """``X.M = v`` or ``X.M(args) = v`` of a built-in member: the assignment form with that
+        many arguments (Member.set_forms); its parameters, and the value's type as the type.  The
+        arguments are checked by the caller against the returned parameters."""
+        form = m.set_form(len(args))
+        if form is None:
+            if not _unparsed(args):
+                self.sink.report(M.WRONG_ARG_COUNT, span, name=m.name,  # type: ignore[arg-type]
+                                 expected=_count_text(m.set_min_args, m.set_max_args), given=len(args))
+            return Info(t.ERROR, ci.kind, m, owner=ci.owner, params=[], receiver=ci.receiver, static=ci.static)
+        return Info(form[-1].type, ci.kind, m, owner=ci.owner, params=_pinfo(form[:-1]), receiver=ci.receiver,
+                    static=ci.static)
 
     def _stub_use(self, stub: Stub, as_statement: bool, as_target: bool) -> Info:
         """A protected name used without parentheses: a call as a statement, else a value/target."""
@@ -917,9 +936,13 @@ class Checker:
             return self._record(e, self._member(e, ctx, False, False, in_invoke=True))
         return self._expr(e, ctx)
 
-    def _invoke(self, e: A.Invoke, ctx: _Ctx) -> Info:
+    def _invoke(self, e: A.Invoke, ctx: _Ctx, as_target: bool = False) -> Info:
         ci = self._callee(e.target, ctx)
         k = ci.kind
+        if as_target and k == "bmember" and isinstance(ci.sym, Member) and ci.sym.settable:
+            info = self._assigned_member(ci.sym, ci, e.args, e.span)  # ``X.M(args) = v``
+            self._args(e.args, info.params or [], ctx)
+            return info
         if k == "error":
             for a in e.args:
                 self._expr(a, ctx)
@@ -947,8 +970,11 @@ class Checker:
             self._args(e.args, params, ctx)
             return Info(f.result, "bfunc", f, params=params)
         if k in ("bmember", "vmember") and isinstance(ci.sym, Member) and ci.sym.kind == "method":
-            params = ci.params or []
-            self._check_count(ci.sym.name, params, e.args, e.span)
+            form = ci.sym.call_form(len(e.args))  # the overload called with that many arguments
+            params = _pinfo(form) if form is not None else ci.params or []
+            if form is None and not _unparsed(e.args):
+                self.sink.report(M.WRONG_ARG_COUNT, e.span, name=ci.sym.name,
+                                 expected=_count_text(ci.sym.min_args, ci.sym.max_args), given=len(e.args))
             self._args(e.args, params, ctx)
             return Info(ci.type, k, ci.sym, owner=ci.owner, params=params, receiver=ci.receiver,
                         static=ci.static)
