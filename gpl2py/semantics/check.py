@@ -834,7 +834,9 @@ class Checker:
         if bm is None:
             self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=str(typ), member=e.name)
             return Info(t.ERROR, "error")
-        return self._bmember_info(bm, b, e, e.target, False, in_invoke,
+        # a Shared member of a global class through a variable of its type (``Dim CTL As
+        # Controller``: the variable is Nothing) is the class's own member
+        return self._bmember_info(bm, b, e, e.target, b.is_global, in_invoke,
                                   value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING,
                                   as_target=as_target)
 
@@ -1088,6 +1090,9 @@ class Checker:
             return Info(typ, "new", d)
         b = self.r.builtin_of(typ)
         if b is None:
+            return Info(t.ERROR, "error")
+        if b.is_global:  # Move, Controller, ...: one per controller, never created
+            self.sink.report(M.NEW_OF_GLOBAL_CLASS, e.span, cls=b.name)
             return Info(t.ERROR, "error")
         params = _pinfo(b.constructor or ())
         if b.constructor is not None and params:

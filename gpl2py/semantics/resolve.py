@@ -75,7 +75,7 @@ class Resolver:
             return sym.type
         if len(parts) == 1:
             b = self.cat.lookup_class(parts[0])
-            if b is not None and not b.is_global:
+            if b is not None:  # a global class too: ``Dim CTL As Controller`` (real-code.md)
                 return b.type
         if len(parts) == 1 and parts[0].lower() == "object":
             # VB's universal type: GPL has none [000 L852-855], so it is neither unknown (a typo)

@@ -95,9 +95,12 @@ def test_members_the_simulator_lacks_translate_and_raise_204_into_a_catch(tmp_pa
 
 def test_power_enabled_is_read_bare_assigned_bare_and_assigned_with_a_timeout(tmp_path: Path) -> None:
     """Cmd.gpl:351-365 reads ``Controller.PowerEnabled``, assigns it, and assigns
-    ``Controller.PowerEnabled(timeout) = True``.  A power-up slower than the timeout is -1025 *Timeout enabling power*;
+    ``Controller.PowerEnabled(timeout) = True``; PARobot.gpl:2917 does it through a variable
+    ``CTL As Controller``.  A power-up slower than the timeout is -1025 *Timeout enabling power*;
     a timeout of 0 waits as long as power takes."""
     src = module_src(REPORT + """
+    Private CTL As Controller
+
     Public Sub Main()
         Const PWR_ENB_TIMEOUT As Integer = 30
         Dim t0 As Double
@@ -114,8 +117,8 @@ def test_power_enabled_is_read_bare_assigned_bare_and_assigned_with_a_timeout(tm
                           & CStr(CInt(Controller.Timer(1) - t0)))
         Controller.PowerEnabled = False
         Console.WriteLine("power " & CStr(-Controller.PowerEnabled And 1))
-        Controller.PowerEnabled(PWR_ENB_TIMEOUT) = True
-        Console.WriteLine("power " & CStr(-Controller.PowerEnabled And 1) & " state " & CStr(Controller.PowerState))
+        CTL.PowerEnabled(PWR_ENB_TIMEOUT) = True
+        Console.WriteLine("power " & CStr(-CTL.PowerEnabled And 1) & " state " & CStr(Controller.PowerState))
     End Sub
 """)
 
@@ -132,6 +135,24 @@ def test_power_enabled_is_read_bare_assigned_bare_and_assigned_with_a_timeout(tm
         "power 0",
         "power 1 state 20",
     ]
+
+
+def test_a_variable_of_a_global_class_reaches_its_shared_members(tmp_path: Path) -> None:
+    """PARobot.gpl:2614 ``Private CTL As Controller  ' Shorthand for Controller class``, then
+    ``CTL.PDbNum(...) = v`` and ``x = CTL.PDbNum(...)``; PDbNum's assignment takes the key too."""
+    src = module_src("""
+    Private CTL As Controller
+
+    Public Sub Main()
+        CTL.PDbNum(601) = 50
+        Console.WriteLine(CStr(CTL.PDbNum(601)))
+        Controller.PDbNum(601, 1, 1, 1, 0) = 40
+        Console.WriteLine(CStr(Controller.PDbNum(601)))
+    End Sub
+""")
+    res = run_gpl(tmp_path, src)
+    assert res.status == 0, res.log
+    assert res.output.splitlines() == ["50", "40"]
 
 
 @pytest.fixture
@@ -246,11 +267,13 @@ def test_robot_offsets_are_assigned_with_and_without_a_robot_number(tmp_path: Pa
     ("Robot.Custom(1, 2) = 3", "GPL2004", "'Custom' takes 0 to 1 argument(s), 2 given"),
     ('vis.ToolProperty("a", "b", "c") = "x"', "GPL2004", "'ToolProperty' takes 1 to 2 argument(s), 3 given"),
     ("x = vis.Result(\"a\", 1, Nothing, 4)", "GPL2004", "'Result' takes 0 to 3 argument(s), 4 given"),
+    ("c = New Controller", "GPL2036", "'Controller' has only Shared members and cannot be created with New"),
 ])
 def test_wrong_arguments_are_translation_errors(tmp_path: Path, statement: str, code: str, message: str) -> None:
     model, sink = analyze_text(tmp_path, module_src(f"""
     Public Sub Main()
         Dim b As Boolean
+        Dim c As Controller
         Dim vis As New Vision
         Dim x As VisResult
         Dim arr(3) As Double
