@@ -532,6 +532,12 @@ NO_OBJECT_TYPE = _error(
     "Manual [000 L852-855]: every object in GPL has an explicit class; a variable, parameter or "
     "result cannot be declared As Object (unless the project itself declares a class named Object).",
 )
+NEW_OF_GLOBAL_CLASS = _error(
+    "GPL2036",
+    "'{cls}' has only Shared members and cannot be created with New",
+    "Move, Robot, Controller, Signal, Math and Console exist once per controller; a variable of such "
+    "a class (real code declares them as shorthands) reaches the Shared members without an object.",
+)
 
 AMBIGUOUS_OVERLOAD = _error(
     "GPL2040",

@@ -74,10 +74,7 @@ class ProcLowerer(ExprLowerer):
     # -- stores -------------------------------------------------------------------------------------------
 
     def target_type(self, e: A.Expr) -> t.GplType:
-        i = self.info(e)
-        if i.kind == "bmember" and isinstance(i.sym, Member) and i.sym.kind == "method":
-            return i.sym.result
-        return i.type
+        return self.info(e).type  # a built-in member's: the value type of its assignment form
 
     def store(self, target: A.Expr, value: str) -> None:
         """Emit ``target = value`` (``value`` already converted to the target's type)."""
@@ -130,9 +127,9 @@ class ProcLowerer(ExprLowerer):
             m: Member = i.sym  # type: ignore[assignment]
             head = (self.ctx.builtin(i.owner.python_name) if i.static  # type: ignore[union-attr]
                     else self.sub(i.receiver, P_ATOM))  # type: ignore[arg-type]
-            if m.kind == "property":
+            if m.kind == "property" and not isinstance(target, A.Invoke):
                 self.w.line(f"{head}.{m.name} = {value}")
-            else:
+            else:  # ``X.M(args) = v``, or a member whose getter takes arguments: its set_ companion
                 args = self.args_code(target.args if isinstance(target, A.Invoke) else [], i.params or [])
                 self.w.line(f"{head}.set_{m.name}({', '.join([*args, value])})")
             return

@@ -7,8 +7,16 @@ conventions it relies on are written down in ``runtime/gplrt/CATALOGUE.md``:
 * GPL members are the attributes whose name starts with an upper-case letter;
 * properties are ``property`` objects (settable when they have a setter);
 * an assignable member with arguments ``M(args)`` has a companion method ``set_M(args, value)``;
+  a property may have one too (``Controller.PowerEnabled(timeout) = True`` beside
+  ``Controller.PowerEnabled = True``);
+* a member with several forms (``Vision.Result()`` / ``Result(tool, index)``, ``Robot.Tool = loc``
+  / ``Robot.Tool(robot) = loc``) declares each with ``typing.overload``; otherwise its Python
+  signature is its one GPL signature, and ``*args`` is refused (it would hide the real arity);
 * Shared members are staticmethods/classmethods; global classes are exported as one instance;
-* a ByRef parameter is annotated ``Ref[T]``.
+* a ByRef parameter is annotated ``Ref[T]``;
+* a member the simulated controller does not implement is marked by
+  ``gplrt.lang.exceptions.not_simulated``: it keeps its real signature, so calls are checked here,
+  and raises -204 when it runs (``Member.simulated`` is False).
 
 Lookups are case-insensitive; every entry keeps the runtime's canonical spelling, which the
 lowering uses in generated code.
@@ -52,24 +60,66 @@ class Param:
     default: object = None
 
 
+Form = tuple[Param, ...]
+
+
+def _min_args(form: Form) -> int:
+    return sum(1 for p in form if not p.optional)
+
+
+def _pick(forms: tuple[Form, ...], count: int) -> Form | None:
+    """The first form that accepts ``count`` arguments."""
+    return next((f for f in forms if _min_args(f) <= count <= len(f)), None)
+
+
 @dataclass(frozen=True)
 class Member:
-    """A GPL member of a built-in class (or of a value type such as String)."""
+    """A GPL member of a built-in class (or of a value type such as String).
+
+    ``params`` is the call form with the most parameters; ``overloads`` holds every call form when
+    the runtime declares several (``typing.overload``).  ``set_forms`` are the ways to assign the
+    member, each the argument list followed by the value: ``(value,)`` for ``X.M = v`` (a property
+    setter, or ``set_M(value)``), ``(index, value)`` for ``X.M(i) = v``.
+    """
 
     name: str  # canonical spelling, as in the runtime
     kind: str  # "property" | "method"
     shared: bool
-    params: tuple[Param, ...]
+    params: Form
     result: t.GplType  # t.VOID for Subs
-    settable: bool = False  # property with a setter, or method with a set_<Name> companion
+    settable: bool = False  # has at least one assignment form
+    overloads: tuple[Form, ...] = ()
+    set_forms: tuple[Form, ...] = ()
+    simulated: bool = True  # False: the runtime only raises -204 (``not_simulated``)
+
+    @property
+    def call_forms(self) -> tuple[Form, ...]:
+        return self.overloads or (self.params,)
 
     @property
     def min_args(self) -> int:
-        return sum(1 for p in self.params if not p.optional)
+        return min(_min_args(f) for f in self.call_forms)
 
     @property
     def max_args(self) -> int:
-        return len(self.params)
+        return max(len(f) for f in self.call_forms)
+
+    def call_form(self, count: int) -> Form | None:
+        """The parameters of the form called with ``count`` arguments (None: no such form)."""
+        return _pick(self.call_forms, count)
+
+    @property
+    def set_min_args(self) -> int:
+        return min((_min_args(f) - 1 for f in self.set_forms), default=0)
+
+    @property
+    def set_max_args(self) -> int:
+        return max((len(f) - 1 for f in self.set_forms), default=0)
+
+    def set_form(self, count: int) -> Form | None:
+        """The assignment form with ``count`` arguments before the value: its parameters, the
+        value's last (None: the member cannot be assigned that way)."""
+        return next((f for f in self.set_forms if _min_args(f) - 1 <= count <= len(f) - 1), None)
 
 
 @dataclass(frozen=True)
@@ -174,6 +224,10 @@ def _hints(func: Callable[..., Any]) -> dict[str, Any]:
         return dict(getattr(func, "__annotations__", {}))
 
 
+class CatalogueError(TypeError):
+    """The runtime declares a GPL member the catalogue cannot read (a bug in the runtime)."""
+
+
 def _params(func: Callable[..., Any], mapper: _TypeMapper, skip_first: bool) -> tuple[Param, ...]:
     hints = _hints(func)
     out: list[Param] = []
@@ -181,7 +235,10 @@ def _params(func: Callable[..., Any], mapper: _TypeMapper, skip_first: bool) -> 
     for i, (name, p) in enumerate(sig.parameters.items()):
         if skip_first and i == 0:
             continue
-        if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD, p.KEYWORD_ONLY):
+        if p.kind is p.VAR_POSITIONAL:
+            raise CatalogueError(f"{func.__qualname__} takes *{name}: declare its GPL forms with "
+                                 "typing.overload (runtime/gplrt/CATALOGUE.md)")
+        if p.kind in (p.VAR_KEYWORD, p.KEYWORD_ONLY):
             continue
         typ, byref = mapper.convert(hints.get(name, inspect.Parameter.empty))
         optional = p.default is not inspect.Parameter.empty
@@ -197,6 +254,34 @@ def _result(func: Callable[..., Any], mapper: _TypeMapper) -> t.GplType:
     return typ
 
 
+def _forms(func: Callable[..., Any], mapper: _TypeMapper, skip_first: bool) -> tuple[Form, ...]:
+    """Every GPL form of a runtime function: its ``typing.overload`` declarations, if it has any,
+    else its own signature."""
+    overloads = typing.get_overloads(func)
+    if overloads:
+        return tuple(_params(o, mapper, skip_first) for o in overloads)
+    return (_params(func, mapper, skip_first),)
+
+
+def _set_forms(cls: type, name: str, prop: property | None, mapper: _TypeMapper,
+               skip_first: bool) -> tuple[Form, ...]:
+    """The assignment forms of member ``name``: the property's setter (``X.M = v``) and the forms
+    of the ``set_<name>`` companion (``X.M(args) = v``), each ending with the value."""
+    forms: list[Form] = []
+    if prop is not None and prop.fset is not None:
+        forms.append((Param("value", _result(prop.fget, mapper) if prop.fget else t.ERROR),))
+    raw = inspect.getattr_static(cls, f"set_{name}", None)
+    if raw is not None:
+        func = raw.__func__ if isinstance(raw, (staticmethod, classmethod)) else raw
+        skip = skip_first if inspect.isfunction(raw) else isinstance(raw, classmethod)
+        forms.extend(f for f in _forms(func, mapper, skip) if f)
+    return tuple(forms)
+
+
+def _simulated(func: Callable[..., Any]) -> bool:
+    return not getattr(func, "__gpl_not_simulated__", False)
+
+
 def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bool) -> dict[str, Member]:
     members: dict[str, Member] = {}
     for klass in reversed(cls.__mro__):
@@ -207,8 +292,10 @@ def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bo
                 continue
             if isinstance(raw, property):
                 result = _result(raw.fget, mapper) if raw.fget else t.VOID
+                set_forms = _set_forms(cls, name, raw, mapper, skip_first=True)
                 members[name.lower()] = Member(
-                    name, "property", all_shared, (), result, settable=raw.fset is not None
+                    name, "property", all_shared, (), result, settable=bool(set_forms),
+                    set_forms=set_forms, simulated=raw.fget is None or _simulated(raw.fget),
                 )
             elif isinstance(raw, (staticmethod, classmethod)) or inspect.isfunction(raw):
                 if inspect.isfunction(raw):  # an instance method: ``self`` is not a GPL parameter
@@ -219,13 +306,18 @@ def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bo
                     # take the value itself first, except the type's Shared members (String.Compare).
                     shared_here = not value_type or name in getattr(cls, "shared_members", ())
                     skip = isinstance(raw, classmethod) or not shared_here
+                forms = _forms(func, mapper, skip_first=skip)
+                set_forms = _set_forms(cls, name, None, mapper, skip_first=True)
                 members[name.lower()] = Member(
                     name,
                     "method",
                     shared_here,
-                    _params(func, mapper, skip_first=skip),
+                    max(forms, key=len),
                     _result(func, mapper),
-                    settable=hasattr(cls, f"set_{name}"),
+                    settable=bool(set_forms),
+                    overloads=forms if len(forms) > 1 else (),
+                    set_forms=set_forms,
+                    simulated=_simulated(func),
                 )
     return members
 

@@ -580,7 +580,7 @@ class Checker:
         if k == "bmember":
             m: Member = info.sym  # type: ignore[assignment]
             if m.settable:
-                return info.type if m.kind == "property" else m.result
+                return info.type  # the value's type in the assignment form used (_assigned_member)
             self.sink.report(M.PROPERTY_ACCESS, e.span, name=m.name, what="read-only")
             return t.ERROR
         self.sink.report(M.NOT_ASSIGNABLE, e.span, what=f"'{_text(e)}'")
@@ -615,7 +615,7 @@ class Checker:
         if isinstance(e, A.MemberAccess):
             return self._record(e, self._member(e, ctx, as_statement, as_target))
         if isinstance(e, A.Invoke):
-            return self._record(e, self._invoke(e, ctx))
+            return self._record(e, self._invoke(e, ctx, as_target))
         if isinstance(e, A.Unary):
             ot = self._value(e.operand, ctx)
             if e.op == "Not":
@@ -827,7 +827,8 @@ class Checker:
             if bm is None or (not bm.shared and not b.is_global):
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=b.name if b else "?", member=e.name)
                 return Info(t.ERROR, "error")
-            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=b.name == "String")
+            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=b.name == "String",
+                                      as_target=as_target)
         typ = tinfo.type
         if typ is t.ERROR:
             return Info(t.ERROR, "error")
@@ -848,22 +849,19 @@ class Checker:
             self.sink.report(M.NOT_AN_OBJECT, e.span, type=str(typ), member=e.name)
             return Info(t.ERROR, "error")
         bm = b.member(e.name)
-        if b.is_global:
-            # a variable typed as a class with only Shared members (Private CTL As Controller)
-            # stands for the class itself: CTL.PDbNum(...) is Controller.PDbNum(...), never an
-            # object that was not instantiated (docs/design/real-code.md)
-            if bm is None:
-                stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=True)
-                return self._builtin_stub_use(stub, None, as_statement, as_target, in_invoke)
-            return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=False)
         if bm is None and isinstance(typ, t.ClassType):
-            stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=False)
-            return self._builtin_stub_use(stub, e.target, as_statement, as_target, in_invoke)
+            # through a variable of a global class (CTL As Controller) the member is the class's own
+            stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=b.is_global)
+            return self._builtin_stub_use(stub, None if b.is_global else e.target, as_statement, as_target,
+                                          in_invoke)
         if bm is None:
             self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=str(typ), member=e.name)
             return Info(t.ERROR, "error")
-        return self._bmember_info(bm, b, e, e.target, False, in_invoke,
-                                  value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING)
+        # a Shared member of a global class through a variable of its type (``Dim CTL As
+        # Controller``: the variable is Nothing) is the class's own member
+        return self._bmember_info(bm, b, e, None if b.is_global else e.target, b.is_global, in_invoke,
+                                  value_type=isinstance(typ, (t.ArrayType,)) or typ is t.STRING,
+                                  as_target=as_target)
 
     def _visible_member(self, members: dict[str, UserMember], label: str, owner: str,
                         e: A.MemberAccess, ctx: _Ctx,
@@ -881,15 +879,32 @@ class Checker:
         return m
 
     def _bmember_info(self, bm: Member, b: BuiltinClass, e: A.Expr, receiver: A.Expr | None, static: bool,
-                      in_invoke: bool, value_type: bool) -> Info:
+                      in_invoke: bool, value_type: bool, as_target: bool = False) -> Info:
         kind = "vmember" if value_type and b.name in ("String", "Array") else "bmember"
+        if as_target and not in_invoke and bm.settable:  # ``X.M = v``
+            return self._assigned_member(bm, Info(bm.result, kind, bm, owner=b, receiver=receiver,
+                                                  static=static), [], e.span)
         if bm.kind == "property":
             return Info(bm.result, kind, bm, owner=b, receiver=receiver, static=static)
-        info = Info(bm.result, kind, bm, owner=b, params=_pinfo(bm.params), receiver=receiver,
-                    static=static)
-        if not in_invoke and bm.min_args > 0:
+        form = bm.call_form(0) if not in_invoke else None
+        info = Info(bm.result, kind, bm, owner=b, params=_pinfo(form if form is not None else bm.params),
+                    receiver=receiver, static=static)
+        if not in_invoke and form is None:
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
         return info
+
+    def _assigned_member(self, m: Member, ci: Info, args: list[A.Expr], span: object) -> Info:
+        """``X.M = v`` or ``X.M(args) = v`` of a built-in member: the assignment form with that
+        many arguments (Member.set_forms); its parameters, and the value's type as the type.  The
+        arguments are checked by the caller against the returned parameters."""
+        form = m.set_form(len(args))
+        if form is None:
+            if not _unparsed(args):
+                self.sink.report(M.WRONG_ARG_COUNT, span, name=m.name,  # type: ignore[arg-type]
+                                 expected=_count_text(m.set_min_args, m.set_max_args), given=len(args))
+            return Info(t.ERROR, ci.kind, m, owner=ci.owner, params=[], receiver=ci.receiver, static=ci.static)
+        return Info(form[-1].type, ci.kind, m, owner=ci.owner, params=_pinfo(form[:-1]), receiver=ci.receiver,
+                    static=ci.static)
 
     def _stub_use(self, stub: Stub, as_statement: bool, as_target: bool) -> Info:
         """A protected name used without parentheses: a call as a statement, else a value/target."""
@@ -947,9 +962,13 @@ class Checker:
             return self._record(e, self._member(e, ctx, False, False, in_invoke=True))
         return self._expr(e, ctx)
 
-    def _invoke(self, e: A.Invoke, ctx: _Ctx) -> Info:
+    def _invoke(self, e: A.Invoke, ctx: _Ctx, as_target: bool = False) -> Info:
         ci = self._callee(e.target, ctx)
         k = ci.kind
+        if as_target and k == "bmember" and isinstance(ci.sym, Member) and ci.sym.settable:
+            info = self._assigned_member(ci.sym, ci, e.args, e.span)  # ``X.M(args) = v``
+            self._args(e.args, info.params or [], ctx)
+            return info
         if k == "error":
             for a in e.args:
                 self._expr(a, ctx)
@@ -985,8 +1004,11 @@ class Checker:
             self._args(e.args, params, ctx)
             return Info(f.result, "bfunc", f, params=params)
         if k in ("bmember", "vmember") and isinstance(ci.sym, Member) and ci.sym.kind == "method":
-            params = ci.params or []
-            self._check_count(ci.sym.name, params, e.args, e.span)
+            form = ci.sym.call_form(len(e.args))  # the overload called with that many arguments
+            params = _pinfo(form) if form is not None else ci.params or []
+            if form is None and not _unparsed(e.args):
+                self.sink.report(M.WRONG_ARG_COUNT, e.span, name=ci.sym.name,
+                                 expected=_count_text(ci.sym.min_args, ci.sym.max_args), given=len(e.args))
             self._args(e.args, params, ctx)
             return Info(ci.type, k, ci.sym, owner=ci.owner, params=params, receiver=ci.receiver,
                         static=ci.static)
@@ -1110,8 +1132,8 @@ class Checker:
         b = self.r.builtin_of(typ)
         if b is None:
             return Info(t.ERROR, "error")
-        if b.is_global:
-            self.sink.report(M.NOT_SUPPORTED, e.span, what=f"New {b.name} (a class with only Shared members has no objects)")
+        if b.is_global:  # Move, Controller, ...: one per controller, never created
+            self.sink.report(M.NEW_OF_GLOBAL_CLASS, e.span, cls=b.name)
             return Info(t.ERROR, "error")
         params = _pinfo(b.constructor or ())
         if b.constructor is not None and params:

@@ -3,9 +3,15 @@
 from __future__ import annotations
 
 import types as pytypes
+import typing
+from typing import Any
+
+import pytest
 
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import build_catalogue, load_catalogue
+from gpl2py.semantics.catalogue import BuiltinClass, CatalogueError, build_catalogue, load_catalogue
+from gplrt.lang.errors import GplException
+from gplrt.lang.exceptions import not_simulated
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 
 
@@ -142,3 +148,113 @@ def test_the_real_runtime_catalogue_has_the_exception_class() -> None:
     assert code is not None and code.settable and code.result is t.INTEGER
     msg = exc.member("Message")
     assert msg is not None and msg.kind == "method" and msg.result is t.STRING
+
+
+class _Panel:
+    """A fake global class with the forms real members have: a property also assigned with an
+    argument, setters whose argument lists differ from the getter's, overloaded calls."""
+
+    @property
+    def Power(self) -> Boolean:
+        return Boolean(True)
+
+    @Power.setter
+    def Power(self, value: Boolean) -> None: ...
+
+    def set_Power(self, timeout: Double, value: Boolean) -> None: ...
+
+    def Custom(self, robot: Integer = Integer(0), index: Integer = Integer(1)) -> Double:
+        return Double(0.0)
+
+    @typing.overload
+    def set_Custom(self, value: Double) -> None: ...
+
+    @typing.overload
+    def set_Custom(self, index: Integer, value: Double) -> None: ...
+
+    def set_Custom(self, *args: Any) -> None: ...
+
+    @typing.overload
+    def Pick(self) -> String: ...
+
+    @typing.overload
+    def Pick(self, name: String, index: Integer) -> String: ...
+
+    def Pick(self, *args: Any) -> String:
+        return String("")
+
+    @not_simulated
+    def Jog(self, mode: Integer, axis: Integer, speed: Double = Double(50.0)) -> None:
+        """Not simulated: the catalogue still reads this signature."""
+
+
+def _panel() -> BuiltinClass:
+    mod = fake_module()
+    mod.Panel = _Panel()
+    mod.GLOBAL_CLASSES = {"Machine": "Machine", "Panel": "Panel"}
+    panel = build_catalogue(mod).lookup_class("Panel")
+    assert panel is not None
+    return panel
+
+
+def test_a_property_with_a_set_companion_is_assigned_bare_and_with_arguments() -> None:
+    power = _panel().member("power")
+    assert power is not None and power.kind == "property" and power.settable
+    assert (power.min_args, power.max_args) == (0, 0)  # read bare only
+    assert (power.set_min_args, power.set_max_args) == (0, 1)
+    bare, timed = power.set_form(0), power.set_form(1)
+    assert bare is not None and [p.type for p in bare] == [t.BOOLEAN]
+    assert timed is not None and [(p.name, p.type) for p in timed] == [("timeout", t.DOUBLE), ("value", t.BOOLEAN)]
+    assert power.set_form(2) is None
+
+
+def test_overloads_declare_the_forms_of_setters_and_calls() -> None:
+    panel = _panel()
+    custom = panel.member("Custom")
+    assert custom is not None and (custom.min_args, custom.max_args) == (0, 2)
+    assert (custom.set_min_args, custom.set_max_args) == (0, 1)  # Custom(index) = v: not the getter's
+    one = custom.set_form(1)
+    assert one is not None and [p.name for p in one] == ["index", "value"]
+    pick = panel.member("Pick")
+    assert pick is not None and (pick.min_args, pick.max_args) == (0, 2)
+    assert pick.call_form(0) == () and pick.call_form(1) is None
+    two = pick.call_form(2)
+    assert two is not None and [p.type for p in two] == [t.STRING, t.INTEGER]
+
+
+def test_a_member_that_is_not_simulated_keeps_its_signature() -> None:
+    panel = _panel()
+    jog = panel.member("jog")
+    assert jog is not None and not jog.simulated
+    assert (jog.min_args, jog.max_args) == (2, 3) and jog.params[2].optional
+    power = panel.member("Power")
+    assert power is not None and power.simulated
+    with pytest.raises(GplException) as info:
+        _Panel().Jog(1, 2)
+    assert info.value.ErrorCode == -204 and "Panel.Jog" in info.value.Message()
+
+
+def test_star_args_in_a_gpl_member_is_refused() -> None:
+    """``*args`` read as "no parameters" made every call of Move.Trigger an arity error; the
+    reader now says which member hides its signature instead."""
+
+    class _Bad:
+        def Trigger(self, *args: Any) -> None: ...
+
+    mod = fake_module()
+    mod.Bad = _Bad()
+    mod.GLOBAL_CLASSES = {"Bad": "Bad"}
+    with pytest.raises(CatalogueError, match=r"_Bad.Trigger takes \*args"):
+        build_catalogue(mod)
+
+
+def test_every_runtime_member_declares_its_signature() -> None:
+    """No member of the real runtime hides its parameters (the catalogue builds), and the
+    simulator's gaps are the members marked not_simulated."""
+    cat = load_catalogue()
+    move = cat.lookup_class("Move")
+    assert move is not None
+    speeds = move.member("SetSpeeds")
+    assert speeds is not None and not speeds.simulated and (speeds.min_args, speeds.max_args) == (2, 2)
+    trigger = move.member("Trigger")
+    assert trigger is not None and trigger.simulated and (trigger.min_args, trigger.max_args) == (3, 4)

@@ -147,7 +147,7 @@ End Module
 def test_new_of_a_global_class_is_an_error(tmp_path: Path) -> None:
     text = "Module M\n    Public Sub Main()\n        Dim c As Controller = New Controller\n    End Sub\nEnd Module\n"
     _, sink = analyze_text(tmp_path, text)
-    assert _codes(sink) == [("GPL3005", 3)]
+    assert _codes(sink) == [("GPL2036", 3)]
 
 
 OVERLOADS = """Module M

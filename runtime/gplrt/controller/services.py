@@ -48,17 +48,19 @@ silent:
 * ``PDb``/``PDbNum`` — served by ``Simulation.pdb`` (a
   ``gplrt.controller.pdb.ParameterDatabase``: ``pdb_text``/``set_pdb_text``/``pdb_num``/
   ``set_pdb_num``); a session without one loads its robot model's shipped database on first use.
-* ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not emulated: -204 with a detail.
+* ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not simulated (``@not_simulated``): -204
+  naming the member.
 """
 
 from __future__ import annotations
 
 import threading
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, overload
 
 from gplrt.controller import clock as _clock
 from gplrt.lang.conversions import to_bool, to_double, to_int32, to_string
+from gplrt.lang.exceptions import not_simulated
 from gplrt.lang.errors import (
     CANT_WRITE_WHEN_POWER_ON,
     NOT_IMPLEMENTED,
@@ -162,22 +164,19 @@ class _ControllerClass:
 
     @PowerEnabled.setter
     def PowerEnabled(self, value: Boolean) -> None:
+        self.set_PowerEnabled(0, value)
+
+    def set_PowerEnabled(self, timeout: Double, value: Boolean) -> None:
+        """``Controller.PowerEnabled(timeout) = True``: power on, waiting at most ``timeout``
+        seconds (0 or less: as long as it takes, like ``PowerEnabled = True``) for power to come
+        on, else -1025 *Timeout enabling power* (TCS 3.0C1 ``hp 1 t``; docs/design/real-code.md).
+        ``False`` turns power off at once whatever the timeout."""
         sim = _sim()
         if not to_bool(value):  # (text "False" is False, as CBool has it)
             power_off(sim)
             return
-        _power_up(sim)
-
-    def set_PowerEnabled(self, *args: Any) -> None:
-        """``Controller.PowerEnabled[(timeout)] = value`` (module docstring): the value comes last."""
-        if len(args) == 1:
-            self.PowerEnabled = args[0]
-            return
-        timeout = to_double(args[0])
-        if not to_bool(args[-1]):
-            self.PowerEnabled = False
-            return
-        _power_up(_sim(), timeout=timeout if timeout > 0 else None)
+        wait = to_double(timeout)
+        _power_up(sim, timeout=wait if wait > 0 else None)
 
     def PowerState(self, mode: Integer = 0) -> Integer:  # type: ignore[assignment]
         return _sim().controller.power_state  # type: ignore[no-any-return]
@@ -258,22 +257,43 @@ class _ControllerClass:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"dialog answer {choice} for {labels}")
         button.set(int(choice))
 
+    @not_simulated
     def ShowDialogMCP(self, button_mask: Integer, message: String, button_return: Ref[Integer]) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail="ShowDialogMCP: no Manual Control Pendant in simulation")
+        """A dialog on the Manual Control Pendant (the simulation has none)."""
 
+    @not_simulated
     def Command(self, command: String) -> String:
-        raise GplException(NOT_IMPLEMENTED, detail=f"Controller.Command({command!r}) is not emulated")
+        """Run a console command."""
 
+    @not_simulated
     def Load(self, project_path: String) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail="Controller.Load is not emulated")
+        """Load and compile a GPL project."""
 
+    @not_simulated
     def Unload(self, project: String) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail="Controller.Unload is not emulated")
+        """Remove a project from memory."""
 
     # -- parameter database ------------------------------------------------------------------------
 
     def PDb(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 0) -> String:  # type: ignore[assignment]
         return _pdb().pdb_text(*_ints(data_id, unit, unit2, array_index))  # type: ignore[no-any-return]
+
+    @overload
+    def set_PDb(self, data_id: Integer, value: String) -> None: ...
+
+    @overload
+    def set_PDb(self, data_id: Integer, unit: Integer, value: String) -> None: ...
+
+    @overload
+    def set_PDb(self, data_id: Integer, unit: Integer, unit2: Integer, value: String) -> None: ...
+
+    @overload
+    def set_PDb(self, data_id: Integer, unit: Integer, unit2: Integer, array_index: Integer,
+                value: String) -> None: ...
+
+    @overload
+    def set_PDb(self, data_id: Integer, unit: Integer, unit2: Integer, array_index: Integer, key: Integer,
+                value: String) -> None: ...
 
     def set_PDb(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDb(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""
@@ -283,6 +303,23 @@ class _ControllerClass:
 
     def PDbNum(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 1) -> Double:  # type: ignore[assignment]
         return float(_pdb().pdb_num(*_ints(data_id, unit, unit2, array_index)))  # type: ignore[return-value]
+
+    @overload
+    def set_PDbNum(self, data_id: Integer, value: Double) -> None: ...
+
+    @overload
+    def set_PDbNum(self, data_id: Integer, unit: Integer, value: Double) -> None: ...
+
+    @overload
+    def set_PDbNum(self, data_id: Integer, unit: Integer, unit2: Integer, value: Double) -> None: ...
+
+    @overload
+    def set_PDbNum(self, data_id: Integer, unit: Integer, unit2: Integer, array_index: Integer,
+                   value: Double) -> None: ...
+
+    @overload
+    def set_PDbNum(self, data_id: Integer, unit: Integer, unit2: Integer, array_index: Integer, key: Integer,
+                   value: Double) -> None: ...
 
     def set_PDbNum(self, data_id: Integer, *rest: Any) -> None:
         """``Controller.PDbNum(id[, unit[, unit2[, index[, key]]]]) = value``: the value comes last."""

@@ -42,7 +42,7 @@ from __future__ import annotations
 import threading
 from collections import deque
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any, Callable, overload
 
 from gplrt.lang.errors import (
     INVALID_SIGNAL_NUMBER,
@@ -53,6 +53,8 @@ from gplrt.lang.errors import (
     VALUE_OUT_OF_RANGE,
     GplException,
 )
+from gplrt.lang.conversions import to_int32
+from gplrt.lang.exceptions import not_available
 from gplrt.lang.gpltypes import Boolean, Double, Integer
 
 LATCH_QUEUE_SIZE = 128
@@ -441,17 +443,37 @@ class _SignalClass:
 
         return current().io  # type: ignore[no-any-return]
 
-    def DIO(self, signal: Integer) -> Boolean:
+    def DIO(self, signal: Integer, count: Integer = Integer(1)) -> Boolean:
+        """One digital signal.  ``Signal.DIO(signal, count)`` is the Dictionary's form (several
+        consecutive signals, meaning unconfirmed: gpl-dictionary §9.1): a count other than 1 is
+        -204 *Not implemented* until its meaning is known."""
+        if count != 1:  # (a test, not a call: DIO is read in polling loops)
+            _one_signal(count)
         return self._io().read_dio(signal)  # type: ignore[return-value]
 
-    def set_DIO(self, signal: Integer, value: Boolean) -> None:
-        self._io().write_dio(signal, value)
+    @overload
+    def set_DIO(self, signal: Integer, value: Boolean) -> None: ...
+
+    @overload
+    def set_DIO(self, signal: Integer, count: Integer, value: Boolean) -> None: ...
+
+    def set_DIO(self, signal: Integer, *rest: Any) -> None:
+        """``Signal.DIO(signal) = v`` (``Signal.DIO(signal, count) = v``: see ``DIO``)."""
+        if len(rest) > 1:
+            _one_signal(rest[0])
+        self._io().write_dio(signal, rest[-1])
 
     def AIO(self, channel: Integer) -> Double:
         return self._io().read_aio(channel)  # type: ignore[return-value]
 
     def set_AIO(self, channel: Integer, value: Double) -> None:
         self._io().write_aio(channel, value)
+
+
+def _one_signal(count: Any) -> None:
+    """``Signal.DIO``'s ``count``: only 1 (the default) is simulated."""
+    if to_int32(count) != 1:
+        not_available("Signal.DIO(signal, count)", builtin=True)
 
 
 Signal = _SignalClass()

@@ -41,6 +41,7 @@ from gplrt.geometry.location import CARTESIAN, MAX_FRAME_DEPTH, Location
 from gplrt.geometry.transforms import IDENTITY, Pose
 from gplrt.lang.errors import (CONVEYOR_MUST_BE_BASE, FRAME_UNDEFINED_DATA, FRAME_WRONG_TYPE, NOT_CARTESIAN,
                                UNDEFINED_ROBOT, GplException)
+from gplrt.lang.exceptions import not_available
 from gplrt.lang.gpltypes import Double, Integer, String
 
 BASIC = 0
@@ -166,23 +167,33 @@ class RefFrame:
     def Text(self, value: String) -> None:
         self._text = text(value)
 
-    def Pos(self) -> Location:
+    def Pos(self, location: Location | None = None) -> Location:
         """The frame's total (absolute) position as a new Cartesian Location.
+
+        ``frame.Pos(location)`` is the Dictionary's form (gpl-dictionary §2, a location expressed
+        in this frame, meaning unconfirmed; the manuals have only ``frame.Pos``): accepted, and
+        -204 *Not implemented* until its meaning is known.
 
         A basic frame with no parent is exactly its Loc, so angles written into the Loc read back
         from ``frame.Pos`` too (the manual prefers ``frame.Pos`` to ``frame.Loc.Pos``, D0:2422-2427,
         so the two must agree); every other frame position is computed and decomposed.
         """
+        if location is not None:
+            not_available("RefFrame.Pos(location)", builtin=True)
         res = Location.from_pose(self._total_pose(0))
         if self._type == BASIC and self._loc is not None and self._loc._ref is None:
             res._ypr = self._loc._ypr
         return res
 
-    def PosWrtRef(self) -> Location:
+    def PosWrtRef(self, location: Location | None = None) -> Location:
         """The frame's position ignoring further frames (conveyor: the nominal transformation).
+
+        ``frame.PosWrtRef(location)`` (gpl-dictionary §2, meaning unconfirmed) is -204, as for ``Pos``.
 
         A basic frame's PosWrtRef is its Loc's, written angles included (see ``Pos``).
         """
+        if location is not None:
+            not_available("RefFrame.PosWrtRef(location)", builtin=True)
         if self._type == CONVEYOR:
             return Location.from_pose(self._conveyor().nominal)
         loc = self._origin()

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import threading
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any, Protocol, overload
 
 from gplrt.lang.errors import (
     VISION_CANNOT_CONNECT,
@@ -213,30 +213,57 @@ class Vision:
         self._process_id = to_int32(vision_process_id)
 
     def _tool(self, tool_name: str) -> list[VisionToolResult]:
+        """The result sets of a tool of the last process; ``""`` is the default tool, the
+        process's first (TCS 3.0C1 asks for "the default result" without naming a tool)."""
         _connect()
+        if self._results is not None and tool_name == "" and self._results:
+            return next(iter(self._results.values()))
         if self._results is None or tool_name not in self._results:
             raise GplException(VISION_UNKNOWN_TOOL, detail=f"no results for vision tool {tool_name!r}")
         return self._results[tool_name]
 
-    def ResultCount(self, vision_tool_name: String) -> Integer:
-        """Number of result sets the tool produced in the last process."""
+    def ResultCount(self, vision_tool_name: String = String("")) -> Integer:
+        """Number of result sets the tool produced in the last process (no name: the default
+        tool's, as ``vis.ResultCount`` reads in TCS; docs/design/real-code.md)."""
         return Integer(len(self._tool(str(vision_tool_name))))
 
-    def Result(self, vision_tool_name: String, index: Integer = Integer(1), location_object: Any = None) -> VisResult:
-        """Result set ``index`` (1 = first) of a tool.  ``location_object`` is accepted for the
-        dictionary's three-argument form and not used."""
+    def Result(self, vision_tool_name: String = String(""), index: Integer = Integer(1),
+               location_object: Any = None) -> VisResult:
+        """Result set ``index`` (1 = first) of a tool; ``Result()`` is the default tool's first
+        (TCS's "default result").  ``location_object`` is accepted for the dictionary's
+        three-argument form and not used."""
         sets = self._tool(str(vision_tool_name))
         i = to_int32(index)
         if not 1 <= i <= len(sets):
             raise GplException(VISION_INVALID_INDEX, detail=f"Result({vision_tool_name!r}, {i}) of {len(sets)}")
         return VisResult(_data=sets[i - 1], _process_id=self._process_id)
 
-    def ToolProperty(self, tool: String, prop: String) -> String:
-        """A tool property (or a ``"system"`` property) of the vision server."""
-        return String(_connect().get_property(str(tool), str(prop)))
+    def ToolProperty(self, tool: String, prop: String | None = None) -> String:
+        """A tool property (or a ``"system"`` property) of the vision server:
+        ``ToolProperty("tool.prop")`` or ``ToolProperty(tool, prop)``."""
+        return String(_connect().get_property(*_tool_and_property(tool, prop)))
 
-    def set_ToolProperty(self, tool: String, prop: String, value: String) -> None:
-        _connect().set_property(str(tool), str(prop), str(value))
+    @overload
+    def set_ToolProperty(self, tool_prop: String, value: String) -> None: ...
+
+    @overload
+    def set_ToolProperty(self, tool: String, prop: String, value: String) -> None: ...
+
+    def set_ToolProperty(self, tool: String, *rest: String) -> None:
+        """``vis.ToolProperty("tool.prop") = v`` or ``vis.ToolProperty(tool, prop) = v``."""
+        prop = rest[0] if len(rest) > 1 else None
+        _connect().set_property(*_tool_and_property(tool, prop), str(rest[-1]))
+
+
+def _tool_and_property(tool: Any, prop: Any) -> tuple[str, str]:
+    """The tool and property a ``ToolProperty`` call names: ``("tool.prop")`` is split at its
+    last dot; a name without one names no property (-4017)."""
+    if prop is not None:
+        return str(tool), str(prop)
+    name, dot, prop_name = str(tool).rpartition(".")
+    if not dot:
+        raise GplException(VISION_PROPERTY_NOT_FOUND, detail=f"{tool!r} is not \"tool.property\"")
+    return name, prop_name
 
 
 __all__ = ["Vision", "VisResult", "ScriptedVisionServer", "VisionToolResult", "set_vision_server"]

@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import functools
 from collections.abc import Callable
-from typing import Any, NoReturn
+from typing import Any, NoReturn, TypeVar
 
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
@@ -55,7 +55,7 @@ from gplrt.lang.errors import (
 )
 
 
-__all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available"]
+__all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available", "not_simulated"]
 
 
 def gpl_code_for(exc: BaseException) -> int:
@@ -145,3 +145,34 @@ def not_available(name: str, builtin: bool = False) -> NoReturn:
     """
     what = "not available in the simulated controller" if builtin else "protected source not available"
     raise GplException(NOT_IMPLEMENTED, subject=f"{what}: {name}")
+
+
+def gpl_member_name(qualname: str) -> str:
+    """``Move.Trigger`` from a runtime method's ``__qualname__`` (``_MoveClass.Trigger``): the
+    global classes are private classes named ``_<GPL name>Class`` (or ``_<GPL name>``)."""
+    owner, _, member = qualname.rpartition(".")
+    owner = owner.lstrip("_")
+    if owner.endswith("Class") and len(owner) > len("Class"):
+        owner = owner[: -len("Class")]
+    return f"{owner}.{member}" if owner else member
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def not_simulated(func: _F) -> _F:
+    """Mark a built-in member that the simulated controller does not implement.
+
+    The member keeps its real GPL signature (the transpiler reads it, so a wrong argument count is
+    a translation error, ``runtime/gplrt/CATALOGUE.md``) and raises -204 *Not implemented* when a
+    program calls it, which a GPL ``Catch`` sees like any other error.  The body of a decorated
+    method is never run: to implement the member, delete the decorator and write the body.
+    """
+    name = gpl_member_name(func.__qualname__)
+
+    @functools.wraps(func)
+    def raiser(*args: Any, **kwargs: Any) -> NoReturn:
+        not_available(name, builtin=True)
+
+    raiser.__gpl_not_simulated__ = True  # type: ignore[attr-defined]
+    return raiser  # type: ignore[return-value]

@@ -26,8 +26,9 @@ Decisions [P] where the Dictionary gives only a name:
 * Jog mode (``StartJogMode``, ``SetJogCommand``), torque mode (``StartTorqueCntrl``,
   ``SetTorques``), ``StopSpecialModes``, ``Trigger`` and ``ForceOverlap``: see
   ``gplrt.motion.special`` for what the simulation does with them.
-* Velocity and real-time-modification modes and ``StartSpeedDAC`` are not emulated: -204 *Not
-  implemented* with the member named (gpl-classes §22.5).
+* Velocity and real-time-modification modes and ``StartSpeedDAC`` are not simulated: they have
+  their real signatures (``@not_simulated``, CATALOGUE.md) and raise -204 *Not implemented* with
+  the member named (gpl-classes §22.5).
 """
 
 from __future__ import annotations
@@ -44,15 +45,15 @@ from gplrt.lang.errors import (
     INCONSISTENT_TRIGGER_MODE,
     INVALID_AXIS,
     INVALID_CARTESIAN,
-    NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
     VALUE_INFINITE_OR_NAN,
     VALUE_OUT_OF_RANGE,
     GplException,
 )
-from gplrt.lang.conversions import to_double, to_int32
-from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.lang.arrays import GplArray
+from gplrt.lang.conversions import to_double, to_int32
+from gplrt.lang.exceptions import not_simulated
+from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry, special
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot import QUEUE_DEPTH, RobotState
@@ -392,25 +393,30 @@ class _MoveClass:
                                detail=f"Move.ForceOverlap mode {Mode}: only mode 0 is simulated")
         robot.pending_overlap = max(0.0, min(100.0, _finite(Criterion, "Move.ForceOverlap criterion")))
 
-    # -- not emulated (gpl-classes §22.5) ----------------------------------------------------------
+    # -- special trajectory modes, not simulated (gpl-classes §22.5) -------------------------------
+    # Their real signatures (gpl-dictionary §4) let the transpiler check calls; each raises -204.
 
-    def _unsupported(self, name: str) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail=f"Move.{name} is not supported in simulation")
+    @not_simulated
+    def SetRealTimeMod(self, changes: GplArray[Double]) -> None:
+        """Incremental path changes while real-time modification is on."""
 
-    def SetRealTimeMod(self, *args: Any) -> None:
-        self._unsupported("SetRealTimeMod")
+    @not_simulated
+    def StartRealTimeMod(self, coordinates: Integer, change_type: Integer) -> None:
+        """Start real-time modification of the planned path."""
 
-    def StartRealTimeMod(self, *args: Any) -> None:
-        self._unsupported("StartRealTimeMod")
+    @not_simulated
+    def SetSpeeds(self, speeds: GplArray[Double], profile: Profile) -> None:
+        """Target speed of every axis in velocity-control mode."""
 
-    def SetSpeeds(self, *args: Any) -> None:
-        self._unsupported("SetSpeeds")
+    @not_simulated
+    def StartSpeedDAC(self, mode: Integer, n_segments: Integer, speeds: GplArray[Double],
+                      dacs: GplArray[Double]) -> None:
+        """Drive an analog output from the tool-tip speed."""
 
-    def StartSpeedDAC(self, *args: Any) -> None:
-        self._unsupported("StartSpeedDAC")
-
-    def StartVelocityCntrl(self, *args: Any) -> None:
-        self._unsupported("StartVelocityCntrl")
+    @not_simulated
+    def StartVelocityCntrl(self, mode: Integer, adc_mask: Integer, speeds: GplArray[Double],
+                           profile: Profile) -> None:
+        """Switch every axis from position to velocity control."""
 
 
 Move = _MoveClass()

@@ -44,7 +44,7 @@ Decisions [P] where the manuals are silent:
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 
@@ -54,15 +54,15 @@ from gplrt.geometry.location import Location
 from gplrt.lang.errors import (
     CANT_DETACH_MOVING_ROBOT,
     NOT_CARTESIAN,
-    NOT_IMPLEMENTED,
     NO_ROBOT_ATTACHED,
     POWER_NOT_ENABLED,
     ROBOT_ALREADY_ATTACHED,
     GplException,
 )
-from gplrt.lang.conversions import to_double, to_int32
-from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.lang.arrays import GplArray
+from gplrt.lang.conversions import to_double, to_int32
+from gplrt.lang.exceptions import not_simulated
+from gplrt.lang.gpltypes import Boolean, Double, Integer
 from gplrt.motion import registry, servo  # noqa: F401 - servo provides the gripper's inputs
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import BlendedPathSegment, DwellSegment, profile_from_values
@@ -247,6 +247,12 @@ class _RobotClass:
         """True while a rapid deceleration is in progress."""
         return (registry.now() < _robot(Robot).rapid_decel_until)  # type: ignore[return-value]
 
+    @overload
+    def set_RapidDecel(self, value: Boolean) -> None: ...
+
+    @overload
+    def set_RapidDecel(self, Robot: Integer, value: Boolean) -> None: ...
+
     def set_RapidDecel(self, *args: Any) -> None:
         """``Robot.RapidDecel[(robot)] = True``: stop the robot's motion as fast as allowed."""
         robot = _robot(args[0] if len(args) > 1 else 0)
@@ -261,6 +267,12 @@ class _RobotClass:
     def Tool(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         return Location.from_matrix(_robot(Robot).model.tool)
 
+    @overload
+    def set_Tool(self, value: Location) -> None: ...
+
+    @overload
+    def set_Tool(self, Robot: Integer, value: Location) -> None: ...
+
     def set_Tool(self, *args: Any) -> None:
         """``Robot.Tool = loc`` (attached/selected robot) or ``Robot.Tool(robot) = loc``."""
         robot = _robot(args[0] if len(args) > 1 else 0)
@@ -268,6 +280,12 @@ class _RobotClass:
 
     def Base(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         return Location.from_matrix(_robot(Robot).model.base)
+
+    @overload
+    def set_Base(self, value: Location) -> None: ...
+
+    @overload
+    def set_Base(self, Robot: Integer, value: Location) -> None: ...
 
     def set_Base(self, *args: Any) -> None:
         robot = _robot(args[0] if len(args) > 1 else 0)
@@ -284,11 +302,23 @@ class _RobotClass:
     def Payload(self, Robot: Integer = 0) -> Double:  # type: ignore[assignment]
         return _robot(Robot).payload  # type: ignore[return-value]
 
+    @overload
+    def set_Payload(self, value: Double) -> None: ...
+
+    @overload
+    def set_Payload(self, Robot: Integer, value: Double) -> None: ...
+
     def set_Payload(self, *args: Any) -> None:
         _robot(args[0] if len(args) > 1 else 0).payload = to_double(args[-1])
 
     def Custom(self, Robot: Integer = 0, Index: Integer = 1) -> Double:  # type: ignore[assignment]
         return _robot(Robot).custom.get(to_int32(Index), 0.0)  # type: ignore[return-value]
+
+    @overload
+    def set_Custom(self, value: Double) -> None: ...
+
+    @overload
+    def set_Custom(self, Index: Integer, value: Double) -> None: ...
 
     def set_Custom(self, *args: Any) -> None:
         """``Robot.Custom(index) = v`` (custom.htm: the set form has only the index)."""
@@ -315,8 +345,12 @@ class _RobotClass:
         """Joint positions of motor positions: the inverse of ``JointToMotor``."""
         _scale_into(_robot(Robot), MotorPos, JointPos, to_motor=False)
 
-    def DefLinComp(self, *args: Any) -> None:
-        raise GplException(NOT_IMPLEMENTED, detail="Robot.DefLinComp: no encoder model in simulation")
+    # -- linearity compensation: not simulated (no encoder model) ---------------------------------
+
+    @not_simulated
+    def DefLinComp(self, Robot: Integer, motor: Integer, enc_start: Integer, enc_step: Integer,
+                   num_cor: Integer, cor: GplArray[Double]) -> None:
+        """Define a motor's linearity-compensation table."""
 
 
 Robot = _RobotClass()
