@@ -124,7 +124,7 @@ class Cell:
         project: str | Path,
         *,
         robot: str = "PF400SX",
-        clock: Literal["virtual", "real"] = "virtual",
+        clock: Literal["virtual", "fast", "real"] = "virtual",
         speed: float = 1.0,
         flash: str | Path | None = None,
         io: Any = None,
