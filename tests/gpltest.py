@@ -153,13 +153,18 @@ def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main")
     return out.package, out.files, sink
 
 
-def run_gpl(root: Path, sources: dict[str, str] | str, start: str = "Main") -> RunResult:
+def run_gpl(root: Path, sources: dict[str, str] | str, start: str = "Main",
+            setup: Callable[[Simulation], object] | None = None) -> RunResult:
+    """Transpile and run ``sources``; ``setup(sim)`` prepares the controller first (a slow
+    power-up, an input), as ``gpl2py run --setup`` does."""
     package, files, _ = transpile_to(root, sources, start)
     out_dir = str(root / "out")
     sys.path.insert(0, out_dir)
     try:
         pkg = importlib.import_module(package)
         sim = Simulation(capture=True, project=package)
+        if setup is not None:
+            setup(sim)
         status = pkg.main(sim)
     finally:
         sys.path.remove(out_dir)
