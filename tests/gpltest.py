@@ -42,30 +42,6 @@ if TYPE_CHECKING:
 
 REPO = Path(__file__).resolve().parents[1]
 SAMPLES = REPO / "samples"
-
-
-def corpus_path(*parts: str) -> Path:
-    """Where a corpus folder is, whether it exists or not (for conditions; tests use corpus_dir)."""
-    return Path(os.environ.get("GPL_CORPUS") or REPO.parent / "shared" / "corpus").joinpath(*parts)
-
-
-def corpus_dir(*parts: str) -> Path:
-    """A folder of the shared corpus of real GPL (``$GPL_CORPUS``, else ``../shared/corpus`` from
-    the repository root), e.g. ``corpus_dir("tcs-3.0C1-pa")``.
-
-    Tests read the corpus in place and never copy its code into the project.  CI always has it,
-    so under ``CI=true`` a missing folder fails the test; elsewhere the test is skipped with the
-    reason.
-    """
-    import pytest
-
-    folder = corpus_path(*parts)
-    if not folder.is_dir():
-        reason = f"the GPL corpus folder {folder} is missing (set GPL_CORPUS to the corpus)"
-        if os.environ.get("CI", "").lower() == "true":
-            pytest.fail(reason)
-        pytest.skip(reason)
-    return folder
 _counter = itertools.count()
 
 
