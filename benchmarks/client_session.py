@@ -76,7 +76,8 @@ def run_sample(moves: int, speed: float, work: Path, clock: str) -> tuple[float,
         port = probe.getsockname()[1]
     project = shutil.copytree(REPO / "samples" / "tcp_command_server", work / "tcp_command_server")
     startup = project / "Startup.gpl"
-    startup.write_text(startup.read_text().replace("SERVER_PORT As Integer = 10100", f"SERVER_PORT As Integer = {port}"))
+    startup.write_text(startup.read_text().replace("SERVER_PORT As Integer = 10100",
+                                                   f"SERVER_PORT As Integer = {port}"))
     cell = Cell.load(project, clock=clock, echo=False, cache_dir=work / "cache")
     with cell.serve(ports=[port], timeout=120.0), socket.create_connection(("127.0.0.1", port), timeout=60) as conn:
         lines = conn.makefile("r", encoding="latin-1", newline="\r\n")
@@ -113,7 +114,8 @@ def main() -> None:
         else:
             wall, motion = run_sample(args.moves, args.speed, Path(tmp), args.clock)
     print(f"{args.server}, {args.clock} clock: {args.moves} moves at {args.speed:g} % speed, each waited for: "
-          f"{motion:.1f} s of simulated motion in {wall:.2f} s of wall time: {motion / wall:.1f}x faster than the robot")
+          f"{motion:.1f} s of simulated motion in {wall:.2f} s of wall time: "
+          f"{motion / wall:.1f}x faster than the robot")
 
 
 if __name__ == "__main__":
