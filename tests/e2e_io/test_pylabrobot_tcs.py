@@ -30,6 +30,7 @@ ROBOT_PORT, STATUS_PORT = 10100, 10000  # Startup.gpl: Robot1Port, Status1Port
 READ_BACK = 5e-4  # TCS replies with three decimals (Functions.gpl sFormat(value, 3))
 JOINTS_A = (300.0, 10.0, 90.0, -100.0, 90.0)  # Z mm, shoulder, elbow, wrist deg, gripper mm
 JOINTS_B = (250.0, -20.0, 110.0, -80.0, 90.0)
+SAFE = (170.0, 0.0, 180.0, -180.0, 75.5)  # PARobot.gpl:243, GRIP_CLOSE 75.5 (PARobot.gpl:230)
 
 #: Why the end-to-end test is expected to fail for now (marked once the corpus is found: without
 #: it the test must fail under CI=true, which an expected failure would hide).
@@ -108,10 +109,10 @@ async def session(cell: Cell, tmp_path: Path) -> None:
     await arm.wait_for_eom()
     assert joints(cell)[4] == pytest.approx(80.0, abs=1e-6)
 
-    await arm.move_to_safe()  # "movetosafe": PARobot's SafeLoc, gripper closed
-    here = joints(cell)
-    assert here[:3] == pytest.approx((170.0, 0.0, 180.0), abs=1e-6)
-    assert here[4] == pytest.approx(80.0, abs=1e-6)
+    # "movetosafe": closes the gripper, then goes to PARobot's SafeLoc, built when the connection
+    # began with the PF400's default close position (PARobot.gpl:229-243), not the one set since
+    await arm.move_to_safe()
+    assert joints(cell) == pytest.approx(np.array(SAFE), abs=1e-6)
 
     await arm.halt()  # "halt": stops motion, power stays on
     assert sim.controller.power_state in POWER_ON_STATES
