@@ -97,7 +97,8 @@ def _special_ready(s: Any) -> RobotState:
     robot = _ready(s)
     sched = s.scheduler
     while not sched.clock.reached(robot.queue.end_time):
-        sched.sleep_until(robot.queue.end_time)
+        with controller_wait(robot.queue.end_time):
+            sched.sleep_until(robot.queue.end_time)
     robot.raise_async_error()
     return robot
 
