@@ -34,8 +34,8 @@ SAFE = (170.0, 0.0, 180.0, -180.0, 75.5)  # PARobot.gpl:243, GRIP_CLOSE 75.5 (PA
 
 #: Why the end-to-end test is expected to fail for now (marked once the corpus is found: without
 #: it the test must fail under CI=true, which an expected failure would hide).
-WAITS_FOR = ("TCS 3.0C1-pa does not transpile and run on main yet: waits for the branches real-blocks, "
-             "real-names, catalogue and tcs-runtime (issue 11)")
+WAITS_FOR = ("TCS 3.0C1-pa does not transpile on main yet: waits for the branches real-names and "
+             "catalogue (issue 11; with them merged this session passes)")
 
 
 def tcs_cell(corpus: Path, tmp_path: Path) -> Cell:
