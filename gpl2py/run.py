@@ -206,10 +206,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--robot", default="PF400SX", type=str.upper, choices=robots, metavar="MODEL",
                         help="robot model of the simulated controller (default: PF400SX); one of: "
                         + ", ".join(robots))
-    parser.add_argument("--clock", choices=("virtual", "real"), default="virtual",
+    parser.add_argument("--clock", choices=("virtual", "fast", "real"), default="virtual",
                         help="virtual (default): waits and motions take no wall time and every run "
-                        "is identical; real: controller time follows the wall clock (for servers "
-                        "that talk to real clients)")
+                        "is identical, but keep to real time while a socket is open; fast: virtual, "
+                        "and a client that waits for a motion, homing or power-up does not wait "
+                        "for it in wall time (see docs/design/clock.md); real: controller time "
+                        "follows the wall clock (for servers that talk to real clients)")
     parser.add_argument("--speed", type=_positive_float, default=1.0, metavar="FACTOR",
                         help="real clock only: controller seconds per wall-clock second (default 1)")
     parser.add_argument("--flash", metavar="DIR", default=None,

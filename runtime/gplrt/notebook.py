@@ -34,6 +34,9 @@ from __future__ import annotations
 
 import os
 import sys
+import threading
+import time
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
@@ -51,9 +54,9 @@ from gplrt.lang.errors import (
     GplException,
 )
 from gplrt.lang.procedures import choose_overload
-from gplrt.sim import ConsoleSink, Simulation
+from gplrt.sim import ConsoleSink, Simulation, StopReport
 
-__all__ = ["Cell", "RobotPose", "ProjectError", "save_motion_plot"]
+__all__ = ["Cell", "RobotPose", "ProjectError", "Serving", "save_motion_plot"]
 
 PLOT_SAMPLES = 3000  # samples per plotted trace at most (see save_motion_plot)
 
@@ -106,6 +109,52 @@ def _name(value: Any, what: str) -> str:
     raise GplException(code, detail=f"{what} must be a String, not {value!r}")
 
 
+class Serving:
+    """A project's ProjectStart running in the background (:meth:`Cell.serve`)."""
+
+    POLL = 0.01  # real seconds between looks at the listening ports
+
+    def __init__(self, cell: Cell) -> None:
+        self.cell = cell
+        self.status: int | None = None  # run_main's result once the program has ended
+        self._thread = threading.Thread(target=self._run, name=f"gplrt-serve:{cell.sim.project}", daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        self.status = self.cell.run_main()
+
+    @property
+    def running(self) -> bool:
+        return self._thread.is_alive()
+
+    def wait_listening(self, ports: Iterable[int], timeout: float = 30.0) -> None:
+        """Block until the program listens on every port of ``ports`` (see :meth:`Cell.serve`)."""
+        from gplrt.io.sockets import listening_ports
+
+        wanted = set(ports)
+        end = time.monotonic() + timeout
+        while not wanted <= listening_ports():
+            if not self.running:
+                raise RuntimeError(f"the program ended (status {self.status}) before listening on "
+                                   f"{sorted(wanted - listening_ports())}:\n{self.cell.log}")
+            if time.monotonic() > end:
+                raise TimeoutError(f"ports {sorted(wanted - listening_ports())} not listening after "
+                                   f"{timeout} s:\n{self.cell.log}")
+            time.sleep(self.POLL)
+
+    def stop(self, grace: float = 5.0) -> StopReport:
+        """Abort every GPL thread (``Simulation.stop``) and wait for ProjectStart's runner."""
+        report = self.cell.sim.stop(grace)
+        self._thread.join(grace)
+        return report
+
+    def __enter__(self) -> Serving:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+
+
 class Cell:
     """A transpiled GPL project on its own simulated controller (see module docstring)."""
 
@@ -125,7 +174,7 @@ class Cell:
         project: str | Path,
         *,
         robot: str = "PF400SX",
-        clock: Literal["virtual", "real"] = "virtual",
+        clock: Literal["virtual", "fast", "real"] = "virtual",
         speed: float = 1.0,
         flash: str | Path | None = None,
         io: Any = None,
@@ -195,6 +244,25 @@ class Cell:
         Returns when every GPL thread has ended (or, virtual clock, when the program stalled).
         """
         return int(self.package.main(self.sim))
+
+    def serve(self, ports: Iterable[int] = (), timeout: float = 30.0) -> Serving:
+        """Run ProjectStart in the background, for a server that Python clients talk to.
+
+        Returns once the program listens on every TCP port of ``ports`` (a client may connect
+        then) as a :class:`Serving` handle; use it in a ``with`` block, or call ``stop()``, to
+        end the program.  Why not ``start``: ``serve`` drives the session as ``run_main`` does,
+        so controller time moves while the notebook or test talks to the server instead of
+        freezing between calls.  Raises ``TimeoutError`` (naming the ports still closed and the
+        program's log) if the ports do not open within ``timeout`` real seconds, or
+        ``RuntimeError`` if the program ends before they do.
+        """
+        serving = Serving(self)
+        try:
+            serving.wait_listening(ports, timeout)
+        except BaseException:
+            serving.stop()
+            raise
+        return serving
 
     def run_for(self, seconds: float) -> None:
         """Let the GPL threads run for ``seconds`` of controller time (virtual: takes no wall time)."""

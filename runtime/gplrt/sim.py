@@ -3,7 +3,9 @@
 A notebook, a test or ``python -m out.project`` makes a :class:`Simulation` (or lets
 :func:`current` make a default one) and chooses:
 
-* the clock — ``clock="virtual"`` (default: deterministic, waits cost no wall time) or
+* the clock — ``clock="virtual"`` (default: deterministic, waits cost no wall time; paced to
+  real time while a socket is open), ``clock="fast"`` (virtual, and a client that waits for a
+  motion, homing or power-up does not wait for it in wall time: docs/design/clock.md) or
   ``clock="real"`` with a ``speed`` factor (servers talking to real clients);
 * the I/O map (``io``: digital/analog signals, scripted input rules, output trace);
 * the console sink (``console``: stdout, or ``capture=True`` to collect the text);
@@ -36,6 +38,8 @@ from typing import Any, Callable, Literal, TextIO
 from gplrt.controller.clock import RealClock, VirtualClock
 from gplrt.threads.scheduler import RealScheduler, Scheduler, VirtualScheduler, current_ctx
 
+#: The clocks a Simulation can run on (``gpl2py run --clock``): the two virtual ones, then the real one.
+CLOCKS = ("virtual", "fast", "real")
 
 
 def _seconds(value: Any, what: str) -> Any:
@@ -47,6 +51,7 @@ def _seconds(value: Any, what: str) -> Any:
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not 0 <= value < float("inf"):
         raise ValueError(f"{what} must be a finite number of seconds >= 0, not {value!r}")
     return value
+
 
 class SimulationStalled(RuntimeError):
     """``Simulation.call`` cannot finish: every GPL thread waits for something that never comes.
@@ -135,7 +140,7 @@ class Simulation:
     def __init__(
         self,
         *,
-        clock: Literal["virtual", "real"] = "virtual",
+        clock: Literal["virtual", "fast", "real"] = "virtual",
         speed: float = 1.0,
         io: Any = None,
         console: ConsoleSink | None = None,
@@ -147,12 +152,13 @@ class Simulation:
         robot: str = "PF400SX",
     ) -> None:
         self.scheduler: Scheduler
-        if clock == "virtual":
-            self.scheduler = VirtualScheduler(VirtualClock(), slice_checkpoints=slice_checkpoints)
+        if clock in CLOCKS[:2]:
+            self.scheduler = VirtualScheduler(VirtualClock(), slice_checkpoints=slice_checkpoints,
+                                              run_ahead=clock == "fast")
         elif clock == "real":
             self.scheduler = RealScheduler(RealClock(speed), slice_checkpoints=slice_checkpoints)
         else:
-            raise ValueError(f"clock must be 'virtual' or 'real', not {clock!r}")
+            raise ValueError(f"clock must be one of {', '.join(map(repr, CLOCKS))}, not {clock!r}")
         self.mode = clock
         self.scheduler.sim = self
         from gplrt.controller.signals import IoMap

@@ -73,7 +73,7 @@ from gplrt.lang.errors import (
     error_text,
 )
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
-from gplrt.threads.scheduler import WaitQueue
+from gplrt.threads.scheduler import WaitQueue, controller_wait
 
 POWER_OFF_WAITING = 7
 POWER_ENABLING_AMPS = 8
@@ -100,6 +100,7 @@ class PowerUp:
     (0: power came on; else the code they raise — -1600 power off requested, -1046 E-stop)."""
 
     outcome: int | None = None
+    ends_at: float = 0.0  # controller time the power-up reaches POWER_READY, unless interrupted
 
 
 @dataclass(eq=False)
@@ -352,22 +353,23 @@ def _power_up(sim: Any, *, wait: bool = True, timeout: float | None = None) -> N
         power_up = seq.current
         started = power_up is None
         if power_up is None:
-            power_up = seq.current = PowerUp()
+            t0, step = sim.scheduler.clock.now(), state.power_up_time / 2.0
+            power_up = seq.current = PowerUp(ends_at=t0 + 2 * step)
             state.power_state = POWER_ENABLING_AMPS
     if started:
         # Scheduled outside ``seq.lock``: a timer callback runs under the scheduler's lock and
         # then takes ``seq.lock``, so ``seq.lock`` is never held while taking the scheduler's.
-        t0, step = sim.scheduler.clock.now(), state.power_up_time / 2.0
         sim.scheduler.call_at(t0 + step, lambda: _power_step(sim, seq, power_up, POWER_ENABLING_SERVOS))
         sim.scheduler.call_at(t0 + 2 * step, lambda: _power_step(sim, seq, power_up, POWER_READY))
     if not wait:
         return
     ended = lambda: power_up.outcome is not None  # noqa: E731 - tested under the scheduler lock
     deadline = None if timeout is None else sim.scheduler.clock.now() + timeout
-    while not ended():
-        if deadline is not None and sim.scheduler.clock.reached(deadline):
-            raise GplException(TIMEOUT_ENABLING_POWER, detail=f"power not on after {timeout} s")
-        sim.scheduler.wait(seq.done, deadline, ended)
+    with controller_wait(power_up.ends_at):
+        while not ended():
+            if deadline is not None and sim.scheduler.clock.reached(deadline):
+                raise GplException(TIMEOUT_ENABLING_POWER, detail=f"power not on after {timeout} s")
+            sim.scheduler.wait(seq.done, deadline, ended)
     if power_up.outcome:
         raise GplException(power_up.outcome, detail="the power-up was interrupted")
 

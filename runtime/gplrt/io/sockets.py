@@ -551,6 +551,7 @@ class TcpListener:
         self._sock = sock
         self._release = _blocking.opened()  # paces virtual time while listening
         self._freed = weakref.finalize(self, _free_later, sock, self._release)
+        _listeners.add(self)
 
     def _listening(self) -> _socket.socket:
         if self._sock is None:
@@ -606,6 +607,28 @@ class TcpListener:
         self.Stop()
 
 
+#: Every TcpListener started in this process (see :func:`listening_ports`).
+_listeners: weakref.WeakSet[TcpListener] = weakref.WeakSet()
+
+
+def listening_ports() -> set[int]:
+    """The TCP ports the GPL programs of this process listen on now (``Start`` until ``Stop``).
+
+    For a Python client that must not connect before its server listens (``Cell.serve``): a
+    probing connection would be a client of its own — TCS serves one connection per port and
+    stops listening while it has it.
+    """
+    ports = set()
+    for listener in list(_listeners):
+        sock = listener._sock
+        try:
+            if sock is not None:
+                ports.add(int(sock.getsockname()[1]))
+        except OSError:  # stopped meanwhile
+            pass
+    return ports
+
+
 class UdpClient:
     """``New UdpClient([local_ep])``: a UDP endpoint, bound to ``local_ep`` if given (port 0 = any)."""
 
@@ -627,4 +650,5 @@ class UdpClient:
         self._socket.Close()
 
 
-__all__ = ["IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "NetworkConfig", "configure_network"]
+__all__ = ["IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "NetworkConfig", "configure_network",
+           "listening_ports"]

@@ -58,7 +58,7 @@ from gplrt.motion import registry, special
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot import QUEUE_DEPTH, RobotState
 from gplrt.motion.straight import ArcPath, LinePath
-from gplrt.threads.scheduler import current_ctx
+from gplrt.threads.scheduler import controller_wait, current_ctx
 
 NO_CLEARANCE = 1.0e32
 #: The longest Move.Delay, in seconds (see ``Delay``).
@@ -85,7 +85,9 @@ def _ready(s: Any, key: Any = None) -> RobotState:
     sched = s.scheduler
     while queue.pending(sched.clock.now()) >= QUEUE_DEPTH:
         # the oldest unfinished segment is QUEUE_DEPTH from the end: wait until it has run
-        sched.sleep_until(queue.history[-QUEUE_DEPTH].end)
+        end = queue.history[-QUEUE_DEPTH].end
+        with controller_wait(end):
+            sched.sleep_until(end)
         robot.check_can_move(key, registry.power_on(s))
     return robot
 
@@ -96,7 +98,8 @@ def _special_ready(s: Any) -> RobotState:
     robot = _ready(s)
     sched = s.scheduler
     while not sched.clock.reached(robot.queue.end_time):
-        sched.sleep_until(robot.queue.end_time)
+        with controller_wait(robot.queue.end_time):
+            sched.sleep_until(robot.queue.end_time)
     robot.raise_async_error()
     return robot
 
@@ -341,7 +344,8 @@ class _MoveClass:
                     end = robot.queue.end_time
             if sched.clock.reached(end):
                 break
-            sched.wait(robot.eom_waiters, end, until=lambda: sched.clock.reached(robot.queue.end_time))
+            with controller_wait(end):
+                sched.wait(robot.eom_waiters, end, until=lambda: sched.clock.reached(robot.queue.end_time))
         robot.raise_async_error()
 
     # -- special modes and motion events (gplrt.motion.special) -----------------------------------

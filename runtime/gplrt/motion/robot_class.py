@@ -67,6 +67,7 @@ from gplrt.motion import registry, servo  # noqa: F401 - servo provides the grip
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import BlendedPathSegment, DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
+from gplrt.threads.scheduler import controller_wait
 
 #: ``Robot.TrajState`` codes (module docstring).
 TRAJ_HALTED, TRAJ_IDLE, TRAJ_ACCEL, TRAJ_CONSTANT, TRAJ_BLENDING, TRAJ_DECEL, TRAJ_OVERLAP = range(7)
@@ -192,7 +193,8 @@ class _RobotClass:
         _begin_homing(s, robots)
         ok = False
         try:
-            s.scheduler.sleep(HOMING_TIME)
+            with controller_wait(s.scheduler.clock.now() + HOMING_TIME):
+                s.scheduler.sleep(HOMING_TIME)
             ok = s.controller.power_state == registry.POWER_HOMING
             if not ok:  # power dropped meanwhile
                 raise GplException(POWER_NOT_ENABLED, detail="power went off during homing")

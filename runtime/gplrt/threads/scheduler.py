@@ -28,6 +28,18 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   listening or connected socket: :func:`hold_real_time`), even when no thread is blocked in it: a
   server that polls ``listener.Pending()`` between ``Thread.Sleep(20)`` calls must not race virtual
   time (and the CPU) ahead of the clients it waits for.
+* FAST mode (``VirtualScheduler(run_ahead=True)``, ``--clock fast``) relaxes the two rules above
+  for the case a client session is made of: while some GPL thread waits *for the controller* — a
+  motion to end (``WaitForEOM``, a full motion queue), homing, a power-up; the runtime marks such
+  waits with :func:`controller_wait` and the controller time they end at — and no thread can run,
+  time jumps to the next deadline instead of pacing, as long as that deadline is no later than
+  the last of those controller waits ends.  Nothing else runs ahead: with no controller wait in
+  progress (a server polling ``Pending()`` for a client that has not come, a client thinking
+  between two requests) the paced rules apply unchanged, so the clock never races ahead of a
+  client that has not asked for anything.  A motion nobody waits for keeps real-time pace too, so
+  a client that queues moves or watches one still sees it take its time.  Every jump goes through
+  the deadlines in order, as virtual time always does: each sleeping poller wakes at its own
+  deadline on the way.  docs/design/clock.md says when this is safe.
 * Code running on Python threads the scheduler does not know (a notebook, pytest) never holds the
   token, so it cannot deadlock the scheduler: ``checkpoint`` is a no-op there, and a blocking call
   (``Thread.Sleep``, ``WaitEvent``, ``clock.sleep``) *adopts* the thread for the duration of that
@@ -94,6 +106,8 @@ class ThreadCtx:
     suspend_requested: bool = False
     saved_budget: int | None = None
     owner: Any = None  # the GPL Thread object, if any
+    # While the thread waits for the controller (controller_wait): when that work ends, in ns.
+    busy_until: int | None = None
     resume_q: "WaitQueue" = field(default_factory=lambda: WaitQueue("resume"))
 
     def force_slow_path(self) -> None:
@@ -170,6 +184,31 @@ def external_wait() -> Iterator[None]:
         yield
     finally:
         ctx.sched._leave_external(ctx)
+
+
+@contextmanager
+def controller_wait(end: float) -> Iterator[None]:
+    """Mark the calling GPL thread as waiting for the controller until controller time ``end``.
+
+    The runtime wraps the waits whose end the controller, not the program or the outside world,
+    decides — the end of the queued motions, homing, a power-up — so that the FAST scheduler may
+    jump time to ``end`` even while sockets are open (see the module docstring).  Every other
+    scheduler ignores the mark; so does a thread unknown to the scheduler.  An ``end`` beyond the
+    clock's range (an infinite wait) marks nothing: there is no motion end to jump to.
+    """
+    ctx = _tls.ctx
+    try:
+        end_ns = to_ns(end)
+    except (OverflowError, ValueError):
+        end_ns = None
+    if ctx is None or end_ns is None:
+        yield
+        return
+    previous, ctx.busy_until = ctx.busy_until, end_ns
+    try:
+        yield
+    finally:
+        ctx.busy_until = previous
 
 
 def hold_real_time() -> Callable[[], None]:
@@ -455,9 +494,12 @@ class VirtualScheduler(Scheduler):
         clock: VirtualClock | None = None,
         slice_checkpoints: int = 1000,
         slice_time: float = 0.001,
+        run_ahead: bool = False,
     ) -> None:
         super().__init__()
         self.clock = clock if clock is not None else VirtualClock()
+        # FAST mode: controller waits are not paced to real time (module docstring).
+        self.run_ahead = run_ahead
         self.slice_checkpoints = slice_checkpoints
         self.slice_time = slice_time
         self.yield_cost = max(1, slice_checkpoints // 10)
@@ -526,7 +568,7 @@ class VirtualScheduler(Scheduler):
             while not self._ready:
                 nd = self._next_deadline()
                 # With no GPL thread alive, or nobody outside driving the run, time stands still.
-                if nd is None or self._paced() or not self.live or self.drivers == 0:
+                if nd is None or not self.live or self.drivers == 0 or (self._paced() and not self._may_run_ahead(nd)):
                     self._go_idle(nd)
                     return
                 self.clock.advance_to_ns(nd)
@@ -537,6 +579,21 @@ class VirtualScheduler(Scheduler):
             nxt.go.set()
         finally:
             self._in_dispatch = False
+
+    def _may_run_ahead(self, deadline: int) -> bool:
+        """FAST mode, paced run: may time jump to ``deadline`` anyway (lock held)?
+
+        Yes while some blocked thread waits for the controller and ``deadline`` comes no later
+        than the last such wait ends: the controller's own work (a motion, homing, a power-up)
+        is what the program waits for, and nothing from outside is awaited for longer than that.
+        """
+        if not self.run_ahead:
+            return False
+        horizon = max(
+            (c.busy_until for c in self.live if c.busy_until is not None and c.phase == Phase.BLOCKED),
+            default=None,
+        )
+        return horizon is not None and deadline <= horizon
 
     def _go_idle(self, next_deadline: int | None) -> None:
         self._running = None
