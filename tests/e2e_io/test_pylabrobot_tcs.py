@@ -32,12 +32,6 @@ JOINTS_A = (300.0, 10.0, 90.0, -100.0, 90.0)  # Z mm, shoulder, elbow, wrist deg
 JOINTS_B = (250.0, -20.0, 110.0, -80.0, 90.0)
 SAFE = (170.0, 0.0, 180.0, -180.0, 75.5)  # PARobot.gpl:243, GRIP_CLOSE 75.5 (PARobot.gpl:230)
 
-#: Why the end-to-end test is expected to fail for now (marked once the corpus is found: without
-#: it the test must fail under CI=true, which an expected failure would hide).
-WAITS_FOR = ("TCS 3.0C1-pa does not transpile on main yet: waits for the branches real-names and "
-             "catalogue (issue 11; with them merged this session passes)")
-
-
 def tcs_cell(corpus: Path, tmp_path: Path) -> Cell:
     """TCS with the PARobot plug-in, copied as it is, on a simulated PF400SX with the fast clock."""
     project = copy_project(corpus, tmp_path / "tcs-3.0C1-pa")
@@ -124,7 +118,6 @@ async def session(cell: Cell, tmp_path: Path) -> None:
 
 def test_pylabrobot_drives_tcs_on_the_simulated_pf400(tmp_path: Path, request: Any) -> None:
     corpus = corpus_dir() / "tcs-3.0C1-pa"  # skipped (failed under CI) here when missing
-    request.applymarker(pytest.mark.xfail(strict=True, reason=WAITS_FOR))
     if not private_network(request):
         return  # ran, and passed, in a network namespace of its own
     cell = tcs_cell(corpus, tmp_path)
