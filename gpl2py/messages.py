@@ -578,13 +578,9 @@ EXIT_TRY_IN_FINALLY = _error(
     "'Exit Try' is not allowed in a Finally block",
     "§11.4.",
 )
-GOTO_OUT_OF_TRY = _warning(
-    "GPL3006",
-    "GoTo {name} leaves a Try or Catch block: a controller rejects this; gpl2py leaves the block "
-    "(running its Finally) and continues at the label",
-    "The manual marks branches out of try/catch statements as illegal (§11.3); accepted so that "
-    "code written against a lenient compiler still runs.",
-)
+# GPL3006 (a GoTo out of a Try or Catch block) is retired, never to be reused: the manual (§11.3)
+# calls the jump illegal, but the vendor's TCS jumps out of a Try (Class_command.gpl:288) and the
+# controller compiles and runs it (docs/design/real-code.md).
 OUTPUT_ERROR = _error(
     "GPL3004",
     "cannot write {path}: {detail}",

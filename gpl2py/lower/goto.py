@@ -15,9 +15,9 @@ A GoTo may target a label in the same or an enclosing block, and (§10.7 recomme
 inside an If, While, Do or Select body of such a block: the enclosing statements are entered
 through an entry flag that skips their condition.  It may jump from a Catch back into its own Try
 body (the retry idiom, §11.3).  Jumps into a For body (its limit and step were never evaluated) are
-GPL3001; jumps into a Try/Catch/Finally or out of a Finally are GPL3002; a jump out of a Try or
-Catch block (illegal on a controller) is accepted with warning GPL3006 -- Python leaves the
-``try`` through its ``finally``.
+GPL3001; jumps into a Try/Catch/Finally or out of a Finally are GPL3002.  A jump out of a Try or
+Catch block, which the manual calls illegal but the controller runs (the vendor's TCS does it,
+docs/design/real-code.md), leaves the ``try`` through its ``finally``.
 """
 
 from __future__ import annotations
@@ -114,8 +114,8 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
             if any(c.role == "finally" for c in crossed):
                 sink.report(M.GOTO_ACROSS_TRY, g.span, name=g.label)
                 continue
-            # out of a Try or Catch block: illegal on a controller, accepted with a warning
-            sink.report(M.GOTO_OUT_OF_TRY, g.span, name=g.label)
+            # out of a Try or Catch block: the manual's "illegal" jump, which real code makes and
+            # the controller runs (docs/design/real-code.md): Python leaves through the finally
         # enter the blocks between the common block and the label's block
         path = list(reversed(down[: down.index(common) + 1]))  # common ... target
         states: list[tuple[BlockInfo, A.Stmt]] = []
