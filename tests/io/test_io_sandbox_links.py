@@ -247,6 +247,52 @@ def test_a_fifo_is_not_a_file_and_never_blocks(flash: FlashRoot) -> None:
     assert list(File.GetFiles("/flash")) == []
 
 
+def test_a_device_node_and_a_unix_socket_are_not_files(flash: FlashRoot) -> None:
+    import socket
+    import stat
+
+    node = flash.root / "flash" / "null"
+    try:
+        os.mknod(node, stat.S_IFCHR | 0o666, os.makedev(1, 3))  # /dev/null's numbers
+    except (PermissionError, OSError) as exc:
+        pytest.skip(f"cannot make a device node here ({exc}): needs root")
+    assert code_of(lambda: StreamReader("/flash/null")) == -521
+    assert code_of(lambda: write("/flash/null")) == -521
+    assert code_of(lambda: File.DeleteFile("/flash/null")) == -521
+    server = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+    try:
+        server.bind(str(flash.root / "flash" / "sock"))
+        assert _ends(lambda: StreamReader("/flash/sock")) == -521
+        assert _ends(lambda: write("/flash/sock")) == -521
+    finally:
+        server.close()
+
+
+# --- other ways in that were already held: kept so that they stay held ----------------------------
+
+
+def test_file_copy_onto_itself_leaves_the_file_whole(flash: FlashRoot) -> None:
+    write("/flash/same", "keep me")
+    assert code_of(lambda: File.Copy("/flash/same", "/flash/same", True)) == -512
+    assert read("/flash/same") == "keep me"
+
+
+def test_xml_never_reads_an_external_entity_or_dtd(flash: FlashRoot, outside: Path) -> None:
+    (flash.root / "flash" / "x.xml").write_text(
+        f'<?xml version="1.0"?><!DOCTYPE x SYSTEM "file://{outside}/secret" '
+        f'[<!ENTITY e SYSTEM "file://{outside}/secret">]><x>&e;</x>')
+    doc = XmlDoc.LoadFile("/flash/x.xml")
+    assert "outside the sandbox" not in doc.SaveString()
+
+
+def test_clearing_the_romdisk_removes_links_in_it_not_their_targets(flash: FlashRoot, outside: Path) -> None:
+    os.symlink(outside, flash.root / "ROMDISK" / "dir")
+    os.symlink(outside / "secret", flash.root / "ROMDISK" / "file")
+    set_flash_root(flash.root)
+    assert list((flash.root / "ROMDISK").iterdir()) == []
+    untouched(outside)
+
+
 # --- a name swapped between the check and the open ------------------------------------------------
 
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import errno
 import io
+import os
 import shutil
 import stat
 import threading
@@ -96,6 +97,10 @@ def _file_error(exc: OSError, text: str, code: int) -> GplException:
     return GplException(code, detail=f"{text}: {exc.strerror or exc}")
 
 
+def _same_file(a: os.stat_result, b: os.stat_result) -> bool:
+    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
+
+
 def _file_bytes(cp: ControllerPath) -> bytes:
     """Every data byte of a disk or NVRAM file (NVRAM: its records, concatenated)."""
     assert cp.file is not None
@@ -151,6 +156,9 @@ class File:
                 raise GplException(INVALID_FILE_TYPE, detail=f"{destination_file!r} is a directory")
             if there is not None and not overwrite:
                 raise GplException(FILE_EXISTS, detail=destination_file)
+            if there is not None and _same_file(there, os.fstat(reader.fileno())):
+                # Opening the destination for writing would empty the source: leave it as it is.
+                raise GplException(WRITE_ERROR, detail=f"{source_file!r} and {destination_file!r} are the same file")
             try:
                 with dst.file.open("w") as writer:
                     shutil.copyfileobj(reader, writer)
