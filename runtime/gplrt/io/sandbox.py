@@ -113,9 +113,6 @@ class SandboxPath:
         """A folder directly below the root (the controller's device folders)."""
         return len(self.parts) == 1
 
-    def child(self, name: str) -> SandboxPath:
-        return self.box.path(*self.parts, name)
-
     # -- queries ---------------------------------------------------------------------------------
 
     def lstat(self) -> os.stat_result | None:
@@ -215,11 +212,6 @@ class SandboxPath:
             os.rmdir(self.name, dir_fd=folder)
         finally:
             os.close(folder)
-
-    def is_folder(self) -> bool:
-        """Whether this is a folder that can be walked into (False for a link to one)."""
-        found = self.lstat()
-        return found is not None and stat.S_ISDIR(found.st_mode)
 
     def ensure_folder(self) -> None:
         """Create the folder if nothing has the name; whatever else is there is left alone (and
