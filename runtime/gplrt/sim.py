@@ -197,7 +197,6 @@ class Simulation:
 
         if network_config().listen != self.listen:
             configure_network(listen=self.listen)
-
         if self.flash_root is not None and get_flash_root().root != self.flash_root.resolve():
             set_flash_root(self.flash_root, clear_romdisk=False)
         set_working_folder(self.project_folder)  # relative file names: this session's project

@@ -364,32 +364,59 @@ def test_a_gpl_catch_sees_the_protection_error(tmp_path: Path) -> None:
     assert secret.read_bytes() == SECRET
 
 
-# --- installing a project's own files into /flash -------------------------------------------------
+# --- installing a project's own files into /flash/projects/<project>/ -----------------------------
 
 
-def test_install_copies_a_project_file_and_makes_its_folders(flash: FlashRoot, tmp_path: Path) -> None:
+def test_installed_project_files_are_read_like_any_file(flash: FlashRoot, tmp_path: Path) -> None:
+    from gplrt.io.project_files import install_project_folder
+
     project = tmp_path / "project"
-    (project / "data").mkdir(parents=True)
-    (project / "data" / "Locations.txt").write_bytes(b"table")
-    flash.install(project, "data/Locations.txt", "/flash/projects/Cell/Locations.txt")
+    project.mkdir()
+    (project / "Locations.txt").write_bytes(b"table")
+    assert install_project_folder(project, "Cell") == "/flash/projects/Cell"
     assert read("/flash/projects/Cell/Locations.txt") == "table"
+    assert read("Locations.txt") == "table"  # relative names resolve in the project's folder
 
 
-def test_install_refuses_links_in_the_project_and_at_the_destination(
-    flash: FlashRoot, outside: Path, tmp_path: Path
-) -> None:
+def test_a_project_cannot_smuggle_an_outside_file_into_flash(flash: FlashRoot, outside: Path, tmp_path: Path) -> None:
+    from gplrt.io.project_files import install_project_folder
+
     project = tmp_path / "project"
     project.mkdir()
     os.symlink(outside / "secret", project / "Stolen.txt")
     os.link(outside / "secret", project / "Shared.txt")
     (project / "ok.txt").write_bytes(b"ok")
-    assert code_of(lambda: flash.install(project, "Stolen.txt", "/flash/Stolen.txt")) == -208
-    assert code_of(lambda: flash.install(project, "Shared.txt", "/flash/Shared.txt")) == -208
-    assert code_of(lambda: flash.install(project, "../outside/secret", "/flash/x")) == -516
-    assert not (flash.root / "flash" / "Stolen.txt").exists()
-    os.symlink(outside / "secret", flash.root / "flash" / "ok.txt")
-    flash.install(project, "ok.txt", "/flash/ok.txt")  # replaces the planted link, never follows it
-    assert (flash.root / "flash" / "ok.txt").read_bytes() == b"ok"
+    install_project_folder(project, "Cell")
+    installed = flash.root / "flash" / "projects" / "Cell"
+    assert sorted(p.name for p in installed.iterdir()) == ["ok.txt"]
+    untouched(outside)
+
+
+def test_installing_never_writes_through_a_link_in_flash(flash: FlashRoot, outside: Path, tmp_path: Path) -> None:
+    from gplrt.io.project_files import install_project_folder
+
+    project = tmp_path / "project"
+    project.mkdir()
+    (project / "hl.txt").write_bytes(b"project data")
+    (project / "sym.txt").write_bytes(b"project data")
+    installed = flash.root / "flash" / "projects" / "Cell"
+    installed.mkdir(parents=True)
+    os.link(outside / "secret", installed / "hl.txt")
+    os.symlink(outside / "planted", installed / "sym.txt")
+    install_project_folder(project, "Cell")
+    untouched(outside)  # the hard link was replaced, not truncated and overwritten
+    assert read("/flash/projects/Cell/hl.txt") == "project data"
+    assert read("/flash/projects/Cell/sym.txt") == "project data"
+
+
+def test_installing_into_a_projects_folder_that_is_a_link_writes_nothing(
+    flash: FlashRoot, outside: Path, tmp_path: Path
+) -> None:
+    from gplrt.io.project_files import install_project_folder
+
+    project = tmp_path / "project"
+    project.mkdir()
+    (project / "data.txt").write_bytes(b"project data")
     os.symlink(outside, flash.root / "flash" / "projects")
-    assert code_of(lambda: flash.install(project, "ok.txt", "/flash/projects/P/ok.txt")) == -208
+    assert install_project_folder(project, "Cell") is None
     untouched(outside)

@@ -33,7 +33,7 @@ Refusals, each with the controller code that fits best (the manual names none fo
 
 Everything that puts files into the controller's disks goes through :class:`FlashRoot` and the
 :class:`~gplrt.io.sandbox.SandboxPath` of a :class:`ControllerPath`, including the copy of a
-project's own data files into ``/flash`` (:meth:`FlashRoot.install`).
+project's own files into ``/flash/projects/<project>/`` (``gplrt.io.project_files``).
 """
 
 from __future__ import annotations
@@ -48,7 +48,6 @@ from pathlib import Path
 from gplrt.io.sandbox import Sandbox, SandboxPath
 from gplrt.lang.errors import (
     INVALID_FILE_NAME,
-    INVALID_FILE_TYPE,
     PATH_TOO_LONG,
     UNDEFINED_DEVICE,
     GplException,
@@ -104,29 +103,6 @@ class FlashRoot:
         Whatever has the name is removed without following links (a link planted there is
         removed, its target untouched), then an empty folder is made."""
         self.box.path("ROMDISK").recreate_folder()
-
-    def install(self, source_folder: Path | str, relative: str, destination: str) -> None:
-        """Copy the file ``relative`` (``/``-separated) of the host folder ``source_folder`` to the
-        controller path ``destination``, making its folders; ``gpl2py run`` installs a project's
-        own data files with it.
-
-        The source is read under the same rules as the controller's disks (a project folder is
-        untrusted too: a link in it to a file elsewhere is refused, -208); the destination is
-        checked like any path a program writes and replaced atomically.  Raises GplException
-        (-208, -516, -521, ...) or OSError (the source is missing or unreadable).
-        """
-        target = self.resolve(destination)
-        if target.file is None or target.kind is not DeviceKind.DISK or target.file.is_top:
-            raise GplException(INVALID_FILE_TYPE, detail=f"{destination!r}: not a file on a disk device")
-        source = Sandbox(Path(source_folder))
-        try:
-            data = source.path(*relative.split("/")).read_bytes()
-        except ValueError:  # an empty name, "." or "..": not a file of the project folder
-            raise GplException(INVALID_FILE_NAME, detail=f"{relative!r}: not a file name inside the project") from None
-        finally:
-            source.close()
-        target.file.box.path(*target.file.parts[:-1]).mkdir()
-        target.file.replace(data)
 
     def resolve(self, path: str) -> ControllerPath:
         """Check ``path`` and map it onto the sandbox (or onto a serial device)."""

@@ -88,6 +88,11 @@ class Sandbox:
             raise ValueError("a sandbox path names at least one entry below the root")
         return SandboxPath(self, parts)
 
+    def entries(self) -> list[tuple[str, Kind]]:
+        """Names and kinds directly in the root, unsorted (links and special files: ``OTHER``)."""
+        with os.scandir(self.fd) as found:  # CPython reads a copy of the descriptor, rewound after
+            return [(e.name, _kind(e)) for e in found]
+
     def close(self) -> None:
         self._closer()
 
