@@ -265,6 +265,7 @@ class Socket:
         self._blocking = True
         self._recv_ms = 0
         self._send_ms = 0
+        self._bound_for_sending = False  # UDP: SendTo has made sure the socket is bound
         self._lock = threading.RLock()
         self._release = _blocking.opened()  # paces virtual time while the socket is open
         self._freed = weakref.finalize(self, _free_later, self._sock, self._release)
@@ -471,11 +472,12 @@ class Socket:
             data = data[:limit]
         address = remote_endpoint._remote()
         what = f"send to {address[0]}:{address[1]}"
-        if self._kind == _socket.SOCK_DGRAM:
+        if not self._bound_for_sending and self._kind == _socket.SOCK_DGRAM:
             try:
                 _bind_for_sending(sock, address)
             except OSError as exc:
                 raise _os_error(exc, what) from None
+            self._bound_for_sending = True
         self._send(sock, data, address, what)
         return Integer(len(data))
 
