@@ -2,6 +2,6 @@
 
 import sys
 
-from gpl2py.cli import main
+from gpl2py.entry import main
 
 sys.exit(main())

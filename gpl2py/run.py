@@ -217,6 +217,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--flash", metavar="DIR", default=None,
                         help="folder that holds the controller's disks: DIR/flash is /flash, "
                         "DIR/ROMDISK is /ROMDISK (default: a temporary folder, removed at exit)")
+    parser.add_argument("--listen", metavar="ADDRESS", default=None,
+                        help="let the program's servers (TcpListener, UdpClient) be reached from the "
+                        "network on ADDRESS, an IPv4 address of this computer, or 0.0.0.0 for every "
+                        "interface; without it they listen on loopback (127.0.0.1) only, whatever "
+                        "address the GPL code binds")
     parser.add_argument("--setup", metavar="FILE.py", default=None,
                         help="Python file whose setup(sim) is called before ProjectStart: wire "
                         "inputs to outputs (sim.io.when_output(2).set_input(10001, after=0.2)), "
@@ -429,6 +434,17 @@ def _flash_problem(path: str) -> str | None:
     return None
 
 
+def _listen_problem(address: str) -> str | None:
+    """Why ``--listen address`` cannot be used (not IPv4, not an address of this computer), or None."""
+    from gplrt.io.sockets import listen_address
+
+    try:
+        listen_address(address)
+    except ValueError as exc:
+        return f"--listen {address}: {exc}"
+    return None
+
+
 def run_command(args: argparse.Namespace) -> Outcome:
     """The ``run`` command (``gpl2py.cli`` calls it); prints everything itself."""
     from gpl2py import cli
@@ -464,6 +480,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
 
     problem = _plot_problem(args.plot) if args.plot else None
     problem = problem or (_flash_problem(args.flash) if args.flash else None)
+    problem = problem or (_listen_problem(args.listen) if args.listen is not None else None)
     if problem is not None:
         return _usage_after_emit(out, problem, args.json, stderr)
 
@@ -471,7 +488,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
 
     console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
-                     project=project.name if project else "", robot=args.robot)
+                     project=project.name if project else "", robot=args.robot, listen=args.listen)
     install_project_files(sim, args.path, project)
     if args.setup:
         try:

@@ -1,8 +1,8 @@
 """Fixtures shared by every test package.
 
 The runtime has process-wide state a test can change: the active simulation, the Console sink it
-installs, the controller's flash root, the kinematics provider behind ``Location.Here`` and the
-table of conveyor belts RefFrames register.
+installs, the controller's flash root, where servers may listen (``gplrt.io.sockets``), the kinematics
+provider behind ``Location.Here`` and the table of conveyor belts RefFrames register.
 ``_isolate_runtime_state`` starts each test with no active simulation and puts everything back
 afterwards, so that no test depends on which tests ran before it.
 """
@@ -19,7 +19,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from gplrt.geometry import kinematics_provider, refframe
-from gplrt.io import flashroot
+from gplrt.io import flashroot, sockets
 from gplrt.lang.console import get_console_sink, set_console_sink
 from gplrt.sim import Simulation, _state, set_current
 
@@ -30,6 +30,7 @@ def _isolate_runtime_state() -> Iterator[None]:
     sim = _state.sim
     flash = flashroot._current
     working = flashroot._working_folder
+    network = (sockets._config.listen, sockets._config.connect_timeout)
     provider = kinematics_provider._provider
     conveyors = dict(refframe._conveyors)
     set_current(None)
@@ -38,6 +39,7 @@ def _isolate_runtime_state() -> Iterator[None]:
     set_current(sim)
     flashroot._current = flash
     flashroot._working_folder = working
+    sockets._config.listen, sockets._config.connect_timeout = network
     kinematics_provider._provider = provider
     refframe._conveyors.clear()
     refframe._conveyors.update(conveyors)

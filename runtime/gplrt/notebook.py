@@ -182,6 +182,7 @@ class Cell:
         cache_dir: str | Path | None = None,
         rebuild: bool = False,
         stubs: str | Path | None = None,
+        listen: str | None = None,
     ) -> Cell:
         """Translate ``project`` (through the cache), import it and make its Simulation.
 
@@ -189,12 +190,18 @@ class Cell:
         that holds the controller's disks (``flash/`` in it is ``/flash``); ``io`` an ``IoMap``
         prepared beforehand (or use ``cell.io`` afterwards); ``stubs`` the folder of Python
         implementations for protected code, as ``gpl2py run --stubs DIR`` takes it (the same
-        project is ported in a notebook and on the command line with the same stubs).  Raises
-        :class:`ProjectError` when the project has errors.
+        project is ported in a notebook and on the command line with the same stubs).  ``listen``
+        opens the program's servers to the network as ``gpl2py run --listen`` does (an address of
+        this computer, or ``"0.0.0.0"`` for every interface); by default they listen on loopback
+        only, whatever address the GPL code binds.  Raises :class:`ProjectError` when the project
+        has errors, ValueError for a ``listen`` that is not an address of this computer.
         """
         from gplrt.controller.pdb import default_database
+        from gplrt.io.sockets import listen_address
 
         default_database(robot)  # an unknown model fails here, with -221 and the known names
+        if listen is not None:
+            listen_address(listen)  # before the translation: a typo fails at once
         if stubs is not None and not isinstance(stubs, (str, os.PathLike)):
             raise TypeError(f"stubs is the folder of Python stubs (a str or Path), not {stubs!r}")
 
@@ -209,7 +216,7 @@ class Cell:
             raise ProjectError(f"{project} could not be translated:\n" + "\n".join(rendered))
         package = import_built(built)
         sim = Simulation(clock=clock, speed=speed, io=io, console=_EchoConsole(echo), flash_root=flash,
-                         project=built.project.name, robot=robot)
+                         project=built.project.name, robot=robot, listen=listen)
         from gpl2py.run import install_project_files
 
         install_project_files(sim, project, built.project)  # where the controller has them

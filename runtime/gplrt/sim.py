@@ -10,6 +10,8 @@ A notebook, a test or ``python -m out.project`` makes a :class:`Simulation` (or 
 * the I/O map (``io``: digital/analog signals, scripted input rules, output trace);
 * the console sink (``console``: stdout, or ``capture=True`` to collect the text);
 * the flash root (``flash_root``: folder standing in for ``/flash``);
+* where the program's servers may listen (``listen``: loopback unless the user names an address of
+  this computer or ``"0.0.0.0"``; ``gplrt.io.sockets`` and docs/security.md say what each means);
 * the robot (``robot="PF400SX"``: any name of ``gplrt.controller.pdb.model_names()``; its shipped
   parameter database is loaded into ``pdb`` on first motion use unless ``pdb`` was set), the
   robots registry (``robots``: ``gplrt.motion.robot.RobotState`` per robot number, built on first
@@ -150,7 +152,12 @@ class Simulation:
         max_threads: int = 32,
         slice_checkpoints: int = 1000,
         robot: str = "PF400SX",
+        listen: str | None = None,
     ) -> None:
+        from gplrt.io.sockets import LOOPBACK, listen_address
+
+        # Checked first, before anything starts: a typo must not expose or break a run halfway.
+        self.listen = listen_address(listen) if listen is not None else LOOPBACK
         self.scheduler: Scheduler
         if clock in CLOCKS[:2]:
             self.scheduler = VirtualScheduler(VirtualClock(), slice_checkpoints=slice_checkpoints,
@@ -185,12 +192,17 @@ class Simulation:
     def activate(self) -> Simulation:
         """Make this the session that ``current()`` returns, and send ``Console`` output to it.
 
-        Also points the controller's file system (``/flash`` ...) at this session's flash root.
+        Also points the controller's file system (``/flash`` ...) at this session's flash root, and
+        the network at this session's ``listen`` address (always: another session's opt-in to the
+        network must not carry over to this one).
         """
         set_current(self)
         _install_console(self)
         from gplrt.io.flashroot import get_flash_root, set_flash_root, set_working_folder
+        from gplrt.io.sockets import configure_network, network_config
 
+        if network_config().listen != self.listen:
+            configure_network(listen=self.listen)
         if self.flash_root is not None and get_flash_root().root != self.flash_root.resolve():
             set_flash_root(self.flash_root, clear_romdisk=False)
         set_working_folder(self.project_folder)  # relative file names: this session's project

@@ -371,6 +371,58 @@ def _press_ctrl_c_during_runs(tmp_path: Path, clock: str) -> None:
         assert all(c.phase == "done" for c in sim.scheduler.live), (clock, delay)
 
 
+# The installed `gpl2py` script is `from <module> import <function>; sys.exit(<function>())` for the
+# console-script entry point in the package metadata: run exactly that, after a prelude (as in a
+# terminal's foreground, see FOREGROUND) that delivers a real SIGINT at one chosen moment, so the
+# moment is the same on every machine however fast it starts.
+ENTRY_POINT = ("import importlib.metadata as md; "
+               "ep = next(e for e in md.entry_points(group='console_scripts') if e.name == 'gpl2py'); "
+               "sys.exit(ep.load()())")
+CTRL_C_ON_IMPORT = """
+import os, signal, sys
+signal.signal(signal.SIGINT, signal.default_int_handler)
+class CtrlC:
+    def find_spec(self, name, path=None, target=None):
+        if name == {module!r}:
+            sys.meta_path.remove(self)
+            os.kill(os.getpid(), signal.SIGINT)  # lands inside this import
+        return None
+sys.meta_path.insert(0, CtrlC())
+"""
+CTRL_C_AT_EXIT = """
+import atexit, os, signal, sys, time
+signal.signal(signal.SIGINT, signal.default_int_handler)
+def press():
+    os.kill(os.getpid(), signal.SIGINT)  # while Python cleans up after the command has ended
+    time.sleep(2)
+atexit.register(press)
+"""
+
+
+@pytest.mark.parametrize("module", ["gpl2py.cli", "gpl2py.run", "gplrt.controller.pdb", "numpy"])
+def test_ctrl_c_while_gpl2py_starts_exits_130_without_a_traceback(tmp_path: Path, module: str) -> None:
+    """Issue 12 item 11: the first 0.1 s of `gpl2py run` are imports (the CLI, then the simulator)."""
+    proj = write_project(tmp_path, {"Main.gpl": LOOP})
+    code = CTRL_C_ON_IMPORT.format(module=module) + ENTRY_POINT
+    r = subprocess.run([sys.executable, "-c", code, "run", proj], capture_output=True, text=True,
+                       cwd=REPO, timeout=120)
+    assert r.returncode == 130, r.stderr
+    assert "Traceback" not in r.stderr and "KeyboardInterrupt" not in r.stderr, r.stderr
+    assert r.stderr.splitlines()[-1] == "gpl2py: interrupted"
+    assert "started" not in r.stdout
+
+
+def test_ctrl_c_while_gpl2py_cleans_up_exits_130_without_a_traceback(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": module_src('''    Public Sub Main()
+        Console.WriteLine("done")
+    End Sub''')})
+    r = subprocess.run([sys.executable, "-c", CTRL_C_AT_EXIT + ENTRY_POINT, "run", proj, "-q"],
+                       capture_output=True, text=True, cwd=REPO, timeout=120)
+    assert r.stdout == "done\n"
+    assert r.returncode == 130, r.stderr
+    assert "Traceback" not in r.stderr and "KeyboardInterrupt" not in r.stderr, r.stderr
+
+
 def test_cache_keeps_a_bounded_number_of_entries(tmp_path: Path) -> None:
     from gpl2py.cache import Cache
 

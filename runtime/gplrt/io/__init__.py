@@ -3,7 +3,8 @@
 GPL classes (members in GPL spelling, see ``gplrt/CATALOGUE.md``):
 
 * files      -- ``File`` (Shared), ``StreamReader``, ``StreamWriter``; controller paths are mapped
-                into a sandbox by ``flashroot`` (``set_flash_root``), NVRAM by ``nvram``
+                into a sandbox by ``flashroot`` (``set_flash_root``) and every host operation
+                walks it link-free through ``sandbox``; NVRAM by ``nvram``
 * xmldoc     -- ``XmlDoc``, ``XmlNode``
 * sockets    -- ``IPEndPoint``, ``Socket``, ``TcpClient``, ``TcpListener``, ``UdpClient``
 * modbus     -- ``Modbus`` (MODBUS/TCP master)

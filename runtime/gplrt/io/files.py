@@ -27,12 +27,14 @@ directory not empty -202 (no closer code exists), read failure -513, write failu
 
 from __future__ import annotations
 
+import errno
 import io
+import os
 import shutil
+import stat
 import threading
 import weakref
 import zlib
-from pathlib import Path
 from typing import BinaryIO
 
 from gplrt.io import nvram
@@ -46,6 +48,7 @@ from gplrt.io.flashroot import (
     resolve,
     set_flash_root,
 )
+from gplrt.io.sandbox import Kind, SandboxPath
 from gplrt.io.serial import SerialPort, open_port
 from gplrt.lang.errors import (
     CANT_CREATE_DIRECTORY,
@@ -74,25 +77,39 @@ def _open_path(path: str) -> ControllerPath:
     return resolve(path)
 
 
-def _existing_file(path: str) -> ControllerPath:
+def _disk_path(path: str) -> ControllerPath:
+    """A path on a disk or NVRAM device (not a serial port)."""
     cp = resolve(path)
-    if cp.kind is DeviceKind.SERIAL or cp.host is None:
+    if cp.file is None:
         raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a device, not a file")
-    if not cp.host.exists():
-        raise GplException(FILE_NOT_FOUND, detail=path)
-    if not cp.host.is_file():
-        raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a directory")
     return cp
 
 
+def _file_error(exc: OSError, text: str, code: int) -> GplException:
+    """The GPL error for a host error on ``text``: missing -> -508, a folder -> -521, else ``code``.
+
+    Links, several hard links and special files never get here: the sandbox refuses them itself
+    with -208 / -521 (gplrt.io.sandbox)."""
+    if isinstance(exc, FileNotFoundError | NotADirectoryError):
+        return GplException(FILE_NOT_FOUND, detail=text)
+    if isinstance(exc, IsADirectoryError):
+        return GplException(INVALID_FILE_TYPE, detail=f"{text!r} is a directory")
+    return GplException(code, detail=f"{text}: {exc.strerror or exc}")
+
+
+def _same_file(a: os.stat_result, b: os.stat_result) -> bool:
+    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
+
+
 def _file_bytes(cp: ControllerPath) -> bytes:
-    assert cp.host is not None
+    """Every data byte of a disk or NVRAM file (NVRAM: its records, concatenated)."""
+    assert cp.file is not None
     try:
         if cp.kind is DeviceKind.NVRAM:
-            return nvram.read_data(cp.host)
-        return cp.host.read_bytes()
+            return nvram.read_data(cp.file)
+        return cp.file.read_bytes()
     except OSError as exc:
-        raise GplException(READ_ERROR, detail=f"{cp.text}: {exc.strerror}") from None
+        raise _file_error(exc, cp.text, READ_ERROR) from None
 
 
 class File:
@@ -101,51 +118,63 @@ class File:
     @staticmethod
     def ComputeCRC(path: String) -> Integer:
         """CRC-32 of the file's bytes, as a signed 32-bit Integer (read through the file)."""
-        crc = zlib.crc32(_file_bytes(_existing_file(path)))
+        crc = zlib.crc32(_file_bytes(_disk_path(path)))
         return Integer(crc - (1 << 32) if crc >= 1 << 31 else crc)
 
     @staticmethod
     def ComputeLength(path: String) -> Integer:
         """Length in bytes, found by reading the whole file."""
-        return Integer(len(_file_bytes(_existing_file(path))))
+        return Integer(len(_file_bytes(_disk_path(path))))
 
     @staticmethod
     def Length(path: String) -> Integer:
         """Length in bytes from the directory entry (NVRAM: the data bytes of its records)."""
-        cp = _existing_file(path)
+        cp = _disk_path(path)
         if cp.kind is DeviceKind.NVRAM:
             return Integer(len(_file_bytes(cp)))
-        assert cp.host is not None
-        return Integer(cp.host.stat().st_size)
+        assert cp.file is not None
+        try:
+            return Integer(cp.file.file_size())
+        except OSError as exc:
+            raise _file_error(exc, path, READ_ERROR) from None
 
     @staticmethod
     def Copy(source_file: String, destination_file: String, overwrite: Boolean = Boolean(False)) -> None:
         """Copy one file; an existing destination needs ``overwrite = True``."""
-        src = _existing_file(source_file)
+        src = _disk_path(source_file)
         dst = resolve(destination_file)
-        if dst.host is None or dst.kind is not DeviceKind.DISK or src.kind is not DeviceKind.DISK:
+        if dst.file is None or dst.kind is not DeviceKind.DISK or src.kind is not DeviceKind.DISK:
             raise GplException(INVALID_FILE_TYPE, detail="File.Copy copies disk files only")
-        if dst.host.exists():
-            if dst.host.is_dir():
-                raise GplException(INVALID_FILE_TYPE, detail=f"{destination_file!r} is a directory")
-            if not overwrite:
-                raise GplException(FILE_EXISTS, detail=destination_file)
-        if not dst.host.parent.is_dir():
-            raise GplException(FILE_NOT_FOUND, detail=f"no folder for {destination_file!r}")
-        assert src.host is not None
+        assert src.file is not None
         try:
-            shutil.copyfile(src.host, dst.host)
+            reader = src.file.open("r")
         except OSError as exc:
-            raise GplException(WRITE_ERROR, detail=f"{destination_file}: {exc.strerror}") from None
+            raise _file_error(exc, source_file, READ_ERROR) from None
+        with reader:
+            there = dst.file.lstat()
+            if there is not None and stat.S_ISDIR(there.st_mode):
+                raise GplException(INVALID_FILE_TYPE, detail=f"{destination_file!r} is a directory")
+            if there is not None and not overwrite:
+                raise GplException(FILE_EXISTS, detail=destination_file)
+            if there is not None and _same_file(there, os.fstat(reader.fileno())):
+                # Opening the destination for writing would empty the source: leave it as it is.
+                raise GplException(WRITE_ERROR, detail=f"{source_file!r} and {destination_file!r} are the same file")
+            try:
+                with dst.file.open("w") as writer:
+                    shutil.copyfileobj(reader, writer)
+            except (FileNotFoundError, NotADirectoryError):
+                raise GplException(FILE_NOT_FOUND, detail=f"no folder for {destination_file!r}") from None
+            except OSError as exc:
+                raise _file_error(exc, destination_file, WRITE_ERROR) from None
 
     @staticmethod
     def CreateDirectory(path: String) -> None:
         """Create a directory and any missing parents; an existing directory is fine."""
         cp = resolve(path)
-        if cp.host is None or cp.kind is not DeviceKind.DISK:
+        if cp.file is None or cp.kind is not DeviceKind.DISK:
             raise GplException(CANT_CREATE_DIRECTORY, detail=f"{path!r}: not on a disk device")
         try:
-            cp.host.mkdir(parents=True, exist_ok=True)
+            cp.file.mkdir()
         except (FileExistsError, NotADirectoryError):
             raise GplException(CANT_CREATE_DIRECTORY, detail=f"{path!r}: a file is in the way") from None
         except OSError as exc:
@@ -155,41 +184,52 @@ class File:
     def DeleteDirectory(path: String) -> None:
         """Delete one empty directory."""
         cp = resolve(path)
-        if cp.host is None or not cp.host.exists():
+        found = cp.file.lstat() if cp.file is not None else None
+        if cp.file is None or found is None:
             raise GplException(FILE_NOT_FOUND, detail=path)
-        if not cp.host.is_dir() or cp.host == get_flash_root().root / cp.device:
+        if cp.file.is_top or not (stat.S_ISDIR(found.st_mode) or stat.S_ISLNK(found.st_mode)):
             raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a deletable directory")
-        if any(cp.host.iterdir()):
-            raise GplException(INVALID_ARGUMENT, detail=f"directory {path!r} is not empty")
-        cp.host.rmdir()
+        try:
+            cp.file.rmdir()  # a link is refused (-208), not removed
+        except OSError as exc:
+            if exc.errno in (errno.ENOTEMPTY, errno.EEXIST):
+                raise GplException(INVALID_ARGUMENT, detail=f"directory {path!r} is not empty") from None
+            raise _file_error(exc, path, WRITE_ERROR) from None
 
     @staticmethod
     def DeleteFile(path: String) -> None:
         """Delete one file."""
-        cp = _existing_file(path)
-        assert cp.host is not None
-        cp.host.unlink()
+        cp = _disk_path(path)
+        assert cp.file is not None
+        try:
+            cp.file.unlink()
+        except OSError as exc:
+            raise _file_error(exc, path, WRITE_ERROR) from None
 
     @staticmethod
     def GetDirectories(path: String) -> list[String]:
         """Names (not paths) of the sub-directories of ``path``, sorted, as a String array."""
-        return make_array((p.name for p in File._listing(path) if p.is_dir()), String)
+        return make_array(File._listing(path, Kind.FOLDER), String)
 
     @staticmethod
     def GetFiles(path: String) -> list[String]:
         """Names (not paths) of the files in ``path``, sorted, as a String array."""
-        return make_array((p.name for p in File._listing(path) if p.is_file()), String)
+        return make_array(File._listing(path, Kind.FILE), String)
 
     @staticmethod
-    def _listing(path: str) -> list[Path]:
+    def _listing(path: str, kind: Kind) -> list[str]:
+        """Sorted names of one kind; links and special files are neither files nor folders here."""
         cp = resolve(path)
-        if cp.host is None:
+        if cp.file is None:
             raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a device")
-        if not cp.host.exists():
-            raise GplException(FILE_NOT_FOUND, detail=path)
-        if not cp.host.is_dir():
-            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a directory")
-        return sorted(p for p in cp.host.iterdir() if not p.name.startswith("."))  # no controller name starts with "."
+        try:
+            entries = cp.file.entries()
+        except NotADirectoryError:
+            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a directory") from None
+        except OSError as exc:
+            raise _file_error(exc, path, READ_ERROR) from None
+        # No controller name starts with "." (the NVRAM's temporary files do).
+        return sorted(name for name, found in entries if found is kind and not name.startswith("."))
 
 
 class _SerialSource:
@@ -239,15 +279,14 @@ class StreamReader:
             return
         if cp.kind is DeviceKind.NVRAM:
             path_only, _ = nvram.split_switches(path)
-            cp = _existing_file(path_only)
+            cp = _disk_path(path_only)
             self._source = _FileSource(io.BytesIO(_file_bytes(cp)))  # type: ignore[arg-type]
             return
-        cp = _existing_file(path)
-        assert cp.host is not None
+        assert cp.file is not None
         try:
-            self._source = _FileSource(open(cp.host, "rb"))
+            self._source = _FileSource(cp.file.open("r"))
         except OSError as exc:
-            raise GplException(READ_ERROR, detail=f"{path}: {exc.strerror}") from None
+            raise _file_error(exc, path, READ_ERROR) from None
 
     def _open(self) -> _SerialSource | _FileSource:
         if self._source is None:
@@ -302,14 +341,14 @@ class _FileSink:
 
 
 class _NvramSink:
-    def __init__(self, host: Path, nv: nvram.NvramFile) -> None:
-        self.host, self.nv = host, nv
+    def __init__(self, file: SandboxPath, nv: nvram.NvramFile) -> None:
+        self.file, self.nv = file, nv
 
     def write(self, data: bytes) -> None:
         try:
             self.nv.append(data)
         finally:
-            self.nv.save(self.host)  # records written before a -323 stay written
+            self.nv.save(self.file)  # records written before a -323 stay written
 
     def close(self) -> None:
         pass
@@ -334,18 +373,18 @@ def _open_sink(path: str, append: bool) -> tuple[_FileSink | _NvramSink | _Seria
     cp = _open_path(path_only)
     if cp.kind is DeviceKind.SERIAL:
         return _SerialSink(open_port(cp.device)), True
-    assert cp.host is not None
-    if cp.host.is_dir():
-        raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a directory")
-    if not cp.host.parent.is_dir():
-        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"no folder for {path!r}")
-    if cp.kind is DeviceKind.NVRAM:
-        nv = nvram.open_for_write(cp.host, switches or nvram.NvramSwitches(), append)
-        return _NvramSink(cp.host, nv), True
+    assert cp.file is not None
     try:
-        return _FileSink(open(cp.host, "ab" if append else "wb")), False
+        if cp.kind is DeviceKind.NVRAM:
+            nv = nvram.open_for_write(cp.file, switches or nvram.NvramSwitches(), append)
+            return _NvramSink(cp.file, nv), True
+        return _FileSink(cp.file.open("a" if append else "w")), False
+    except IsADirectoryError:
+        raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a directory") from None
+    except (FileNotFoundError, NotADirectoryError):
+        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"no folder for {path!r}") from None
     except OSError as exc:
-        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{path}: {exc.strerror}") from None
+        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{path}: {exc.strerror or exc}") from None
 
 
 def _flush_on_free(buffer: bytearray, sink: _FileSink | _NvramSink | _SerialSink) -> None:

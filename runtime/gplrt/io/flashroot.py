@@ -25,23 +25,30 @@ Refusals, each with the controller code that fits best (the manual names none fo
 * a path that is not absolute, or whose first component is not a controller device (a host path
   such as ``/etc/passwd`` or ``C:\\x``) -> **-301 Undefined device**;
 * a path longer than 255 characters -> **-517 File path too long** (limit chosen by us);
-* a path that resolves outside the sandbox through a symbolic link -> **-208 Protection error**.
+* a symbolic link anywhere on the way (also one that stays inside), or a file with more than one
+  hard link -> **-208 Protection error**; a FIFO, socket or device -> **-521 Invalid file type**.
+  These are checked when the file is used, by :mod:`gplrt.io.sandbox` (every operation walks from
+  the root's descriptor without following links), not here: a check here would be out of date by
+  the time the file is opened.
+
+Everything that puts files into the controller's disks goes through :class:`FlashRoot` and the
+:class:`~gplrt.io.sandbox.SandboxPath` of a :class:`ControllerPath`, including the copy of a
+project's own files into ``/flash/projects/<project>/`` (``gplrt.io.project_files``).
 """
 
 from __future__ import annotations
 
 import atexit
-import shutil
 import tempfile
 import threading
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
 
+from gplrt.io.sandbox import Sandbox, SandboxPath
 from gplrt.lang.errors import (
     INVALID_FILE_NAME,
     PATH_TOO_LONG,
-    PROTECTION_ERROR,
     UNDEFINED_DEVICE,
     GplException,
 )
@@ -67,12 +74,12 @@ class DeviceKind(Enum):
 
 @dataclass(frozen=True)
 class ControllerPath:
-    """A checked controller path: its device, the host path (disks) and the original text."""
+    """A checked controller path: its device, where it lives in the sandbox, the original text."""
 
     text: str
     kind: DeviceKind
     device: str  # "flash", "ROMDISK", "NVRAM", or the serial name "com1"
-    host: Path | None  # None for serial devices
+    file: SandboxPath | None  # None for serial devices; every host operation goes through it
 
 
 @dataclass
@@ -80,18 +87,22 @@ class FlashRoot:
     """The sandbox folder holding the simulated controller's disks."""
 
     root: Path
+    box: Sandbox = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         self.root = Path(self.root).resolve()
         self.root.mkdir(parents=True, exist_ok=True)
+        self.box = Sandbox(self.root)
         for folder in DISK_DEVICES.values():
-            (self.root / folder).mkdir(exist_ok=True)
+            # A device folder that is a link or a file is left as it is: using it is refused.
+            self.box.path(folder).ensure_folder()
 
     def clear_romdisk(self) -> None:
-        """Empty ``/ROMDISK`` — the RAM disk is lost on every controller restart (D0:3806-3810)."""
-        romdisk = self.root / "ROMDISK"
-        shutil.rmtree(romdisk, ignore_errors=True)
-        romdisk.mkdir()
+        """Empty ``/ROMDISK`` — the RAM disk is lost on every controller restart (D0:3806-3810).
+
+        Whatever has the name is removed without following links (a link planted there is
+        removed, its target untouched), then an empty folder is made."""
+        self.box.path("ROMDISK").recreate_folder()
 
     def resolve(self, path: str) -> ControllerPath:
         """Check ``path`` and map it onto the sandbox (or onto a serial device)."""
@@ -118,14 +129,9 @@ class FlashRoot:
             raise GplException(UNDEFINED_DEVICE, detail=f"{path!r}: no device /{device} on the controller")
         for name in names:
             _check_name(name, path)
-        folder = self.root / DISK_DEVICES[low]
-        host = folder.joinpath(*names)
-        # Symbolic links may point anywhere on the host: the resolved target must stay inside.
-        real = host.resolve()
-        if not real.is_relative_to(folder.resolve()):
-            raise GplException(PROTECTION_ERROR, detail=f"{path!r} leads outside the controller's disks")
         kind = DeviceKind.NVRAM if low == "nvram" else DeviceKind.DISK
-        return ControllerPath(path, kind, DISK_DEVICES[low], host)
+        # Links are refused when the file is used (sandbox.py), not here: see the module docstring.
+        return ControllerPath(path, kind, DISK_DEVICES[low], self.box.path(DISK_DEVICES[low], *names))
 
 
 def _is_serial(name: str) -> bool:

@@ -24,8 +24,8 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
-from pathlib import Path
 
+from gplrt.io.sandbox import SandboxPath
 from gplrt.lang.errors import (
     DEVICE_FULL,
     INVALID_ARGUMENT,
@@ -74,10 +74,10 @@ def split_switches(path: str) -> tuple[str, NvramSwitches]:
     return words[0], NvramSwitches(size, wrap)
 
 
-def check_name(host: Path) -> None:
-    """Only ``file1`` .. ``file16`` exist on the NVRAM device."""
-    if host.parent.name != "NVRAM" or not _NAME.fullmatch(host.name):
-        raise GplException(INVALID_FILE_NAME, detail=f"NVRAM files are file1..file16, not {host.name!r}")
+def check_name(file: SandboxPath) -> None:
+    """Only ``file1`` .. ``file16`` exist on the NVRAM device (no folders in it)."""
+    if len(file.parts) != 2 or file.parts[0] != "NVRAM" or not _NAME.fullmatch(file.name):
+        raise GplException(INVALID_FILE_NAME, detail=f"NVRAM files are file1..file16, not {'/'.join(file.parts[1:])!r}")
 
 
 @dataclass
@@ -114,7 +114,7 @@ class NvramFile:
     # -- host storage ---------------------------------------------------------------------------
 
     @classmethod
-    def load(cls, host: Path) -> NvramFile:
+    def load(cls, host: SandboxPath) -> NvramFile:
         """Read the host file; a cut-off last record is dropped and reported (module docstring).
 
         Anything else a controller could not have written (a bad or short header, a size outside
@@ -143,25 +143,26 @@ class NvramFile:
         nv._check_capacity(host)
         return nv
 
-    def _check_capacity(self, host: Path) -> None:
+    def _check_capacity(self, host: SandboxPath) -> None:
         if self.used > self.size:
             raise GplException(
                 INVALID_FILE_FORMAT, detail=f"{host.name}: {self.used} bytes of records in a file of {self.size}"
             )
 
-    def save(self, host: Path) -> None:
+    def save(self, host: SandboxPath) -> None:
         out = bytearray(MAGIC)
         out += self.size.to_bytes(2, "big")
         out.append(1 if self.wrap else 0)
         for record in self.records:
             out.append(len(record))
             out += record
-        tmp = host.with_name("." + host.name + ".new")  # a leading dot: never a controller name
-        tmp.write_bytes(bytes(out))
-        tmp.replace(host)  # atomic, like the controller's record writes
+        # Atomic, like the controller's record writes: a new temporary ".fileN.new", created
+        # exclusively (a link planted at that name is removed, never written through), renamed
+        # over the file (sandbox.py).
+        host.replace(bytes(out))
 
 
-def _report_lost_record(host: Path, length: int, present: int) -> None:
+def _report_lost_record(host: SandboxPath, length: int, present: int) -> None:
     """Post the lost record to the controller's error log (and its console log).
 
     -519 *Invalid file format* is the code: the manual names none for this (it only promises that
@@ -180,22 +181,23 @@ def _report_lost_record(host: Path, length: int, present: int) -> None:
     current().report(ctx.name if ctx is not None else "<external>", text, INVALID_FILE_FORMAT)
 
 
-def open_for_write(host: Path, switches: NvramSwitches, append: bool) -> NvramFile:
+def open_for_write(host: SandboxPath, switches: NvramSwitches, append: bool) -> NvramFile:
     """The NVRAM file to write: existing (size fixed until deleted) or created with the switches."""
     check_name(host)
-    if host.exists():
+    try:
         nv = NvramFile.load(host)
+    except FileNotFoundError:
+        nv = NvramFile(switches.size or DEFAULT_SIZE, switches.wrap)
+    else:
         if not append:
             nv.records.clear()
         if switches.wrap:
             nv.wrap = True
-    else:
-        nv = NvramFile(switches.size or DEFAULT_SIZE, switches.wrap)
     nv.save(host)
     return nv
 
 
-def read_data(host: Path) -> bytes:
+def read_data(host: SandboxPath) -> bytes:
     """All bytes of an NVRAM file, records concatenated (what a StreamReader sees)."""
     check_name(host)
     return NvramFile.load(host).data()

@@ -7,21 +7,24 @@ in the program (``New StreamReader("Tcs.gpo")``) is relative to that folder.
 relative names resolve against (``gplrt.io.flashroot.set_working_folder``).  ``gpl2py run``,
 ``Cell.load`` and ``python -m <package>`` call it before the project starts.
 
-The project folder is untrusted input: only regular files directly in it are installed, each
-opened without following a symbolic link (``O_NOFOLLOW``) and checked to be a regular file on
-the open descriptor; links, folders, devices and names the controller would refuse (a leading
-``.``, more than 43 characters) are skipped, as are files over ``MAX_FILE_BYTES``.  Each file is
-written through the flash sandbox (``flashroot.resolve``), whose rules apply as to any GPL write,
-and an existing copy is replaced: installing is the controller's "download the project".
+The project folder is untrusted input, read and written under the rules of the flash sandbox
+(``gplrt.io.sandbox``, docs/security.md "Files"): only regular files directly in it, with one hard
+link, each read through the folder's descriptor without following a link, are installed; links,
+hard-linked files (their data may be a file outside), folders, FIFOs, devices, names the
+controller would refuse (a leading ``.``, more than 43 characters) and files over
+``MAX_FILE_BYTES`` are skipped.  Each file is written by temporary and rename through the flash
+sandbox, so a link or hard link waiting at its name in ``/flash`` is replaced, never written
+through, and a ``/flash/projects`` that is a link installs nothing; an existing copy is replaced:
+installing is the controller's "download the project".
 """
 
 from __future__ import annotations
 
 import os
-import stat
 from pathlib import Path
 
 from gplrt.io import flashroot
+from gplrt.io.sandbox import Kind, Sandbox, SandboxPath
 from gplrt.lang.errors import GplException
 
 #: Files larger than this are not installed (a project folder is no place for bulk data).
@@ -31,38 +34,33 @@ PROJECTS = "/flash/projects"
 
 def read_project_files(folder: str | os.PathLike[str]) -> dict[str, bytes]:
     """The regular files directly in ``folder`` (module docstring: what is skipped), by name."""
-    root = Path(folder)
-    out: dict[str, bytes] = {}
     try:
-        names = sorted(os.listdir(root))
+        box = Sandbox(Path(folder))
     except OSError:
+        return {}
+    try:
+        out: dict[str, bytes] = {}
+        for name, kind in sorted(box.entries()):
+            if kind is not Kind.FILE or name.startswith(".") or len(name) > flashroot.MAX_NAME:
+                continue
+            data = _read_regular(box.path(name))
+            if data is not None:
+                out[name] = data
         return out
-    for name in names:
-        if name.startswith(".") or len(name) > flashroot.MAX_NAME:
-            continue
-        data = _read_regular(root / name)
-        if data is not None:
-            out[name] = data
-    return out
-
-
-def _read_regular(path: Path) -> bytes | None:
-    try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
-    except OSError:
-        return None  # a link (ELOOP), gone, or unreadable
-    try:
-        info = os.fstat(fd)
-        if not stat.S_ISREG(info.st_mode) or info.st_size > MAX_FILE_BYTES:
-            return None
-        chunks = []
-        while chunk := os.read(fd, 1 << 20):
-            chunks.append(chunk)
-        return b"".join(chunks)
-    except OSError:
-        return None
     finally:
-        os.close(fd)
+        box.close()
+
+
+def _read_regular(file: SandboxPath) -> bytes | None:
+    """The file's bytes, or None: a link, several hard links, not regular, too big, unreadable."""
+    try:
+        with file.open("r") as stream:
+            if os.fstat(stream.fileno()).st_size > MAX_FILE_BYTES:
+                return None
+            data = stream.read(MAX_FILE_BYTES + 1)
+    except (OSError, GplException):
+        return None
+    return data if len(data) <= MAX_FILE_BYTES else None
 
 
 def project_folder(name: str) -> str | None:
@@ -78,16 +76,19 @@ def install_project(files: dict[str, bytes], name: str) -> str | None:
     folder = project_folder(name)
     if folder is None:
         return None
-    base = flashroot.resolve(folder)
-    assert base.host is not None
-    base.host.mkdir(parents=True, exist_ok=True)
+    try:
+        base = flashroot.resolve(folder)
+        assert base.file is not None
+        base.file.mkdir()
+    except (OSError, GplException):
+        return None  # a link or a file in the way (-208 / not a folder): nothing is written
     for file, data in sorted(files.items()):
         try:
             target = flashroot.resolve(f"{folder}/{file}")
-        except GplException:
-            continue  # a name the controller refuses
-        assert target.host is not None
-        _write_no_follow(target.host, data)
+            assert target.file is not None
+            target.file.replace(data)
+        except (OSError, GplException):
+            continue  # a name the controller refuses, a folder in the way
     flashroot.set_working_folder(folder)
     return folder
 
@@ -95,17 +96,3 @@ def install_project(files: dict[str, bytes], name: str) -> str | None:
 def install_project_folder(folder: str | os.PathLike[str], name: str) -> str | None:
     """:func:`install_project` of the files of a host project folder."""
     return install_project(read_project_files(folder), name)
-
-
-def _write_no_follow(host: Path, data: bytes) -> None:
-    flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | getattr(os, "O_NOFOLLOW", 0)
-    try:
-        fd = os.open(host, flags, 0o644)
-    except OSError:
-        return  # a link or a folder in the way: left alone
-    try:
-        view = memoryview(data)
-        while view:
-            view = view[os.write(fd, view):]
-    finally:
-        os.close(fd)

@@ -4,12 +4,25 @@ All network I/O goes through :class:`Socket` objects obtained from ``TcpClient.C
 ``TcpListener.AcceptSocket`` and ``UdpClient.Client``.  Strings are bytes, one per character
 (Latin-1), so binary protocols such as the TFTP examples (EX-20/21) work unchanged.
 
-Simulation switch: a server endpoint with a blank IP address (``New IPEndPoint("", 1234)`` = "any
-address" on a controller, as is ``"0.0.0.0"``) binds to :attr:`NetworkConfig.bind_address`,
-``127.0.0.1`` by default, so a simulated cell is not reachable from the network unless
-:func:`configure_network` says so.  A server written for a particular controller may bind to that
-controller's own address (``New IPEndPoint("192.168.0.1", 1234)``), which this PC does not have:
-rather than refusing the unchanged program (-1704), such a bind falls back to ``bind_address`` too.
+Where servers listen (docs/security.md, "Network"): a GPL program is untrusted, so whatever local
+address it binds — blank or ``"0.0.0.0"`` ("any address" on a controller), a port only, or an
+explicit address such as its controller's own LAN IP — binds **loopback** (``127.0.0.1``) unless
+the user opted in with :attr:`NetworkConfig.listen` (``gpl2py run --listen ADDRESS``,
+``Simulation(listen=...)``):
+
+* ``listen = "127.0.0.1"`` (default): every bind goes to loopback, keeping its port;
+* ``listen = <an address of this computer>``: binds of blank, ``0.0.0.0`` or any explicit
+  non-loopback address go to that one interface;
+* ``listen = "0.0.0.0"``: the program's own choice stands — blank and ``0.0.0.0`` bind every
+  interface, an explicit address binds that address, or every interface when this computer does not
+  have it (a program written for a controller whose IP this PC lacks).
+
+A loopback address the program asks for (``127.x.x.x``) is always bound as asked.  A UDP socket that
+sends before it was bound is bound first, as the kernel would otherwise bind it to every interface:
+to loopback when it sends to loopback, else to the one address that reaches the peer.  The
+program's own ``IPEndPoint`` objects keep the address it wrote (a listener binds a copy), so GPL
+code that reads them back sees what it asked for; ``TcpListener.LocalEndPoint`` ([P]) tells where
+the socket really is, which is what a client must connect to.
 
 Every wait (connect, accept, receive, send) goes through :func:`gplrt.io._blocking.blocking_call`;
 accept, receive and send wait in short slices (:func:`gplrt.io._blocking.wait_ready`), so a thread
@@ -71,24 +84,68 @@ from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 
 
+LOOPBACK = "127.0.0.1"
+ANY = "0.0.0.0"
+
+
 @dataclass
 class NetworkConfig:
-    """How simulated servers bind: ``bind_address`` replaces the blank "any" address."""
+    """Where simulated servers may listen (module docstring) and how long a connect waits."""
 
-    bind_address: str = "127.0.0.1"
+    listen: str = LOOPBACK  # the user's opt-in: an address of this computer, or ANY
     connect_timeout: float | None = 30.0  # seconds; a real controller's TCP gives up eventually
 
 
 _config = NetworkConfig()
 
 
-def configure_network(bind_address: str | None = None, connect_timeout: float | None = -1.0) -> NetworkConfig:
-    """Change the network switches (``bind_address="0.0.0.0"`` exposes servers to the LAN)."""
-    if bind_address is not None:
-        _config.bind_address = bind_address
+def configure_network(listen: str | None = None, connect_timeout: float | None = -1.0) -> NetworkConfig:
+    """Change the network switches; ``listen`` is checked by :func:`listen_address`.
+
+    A :class:`gplrt.sim.Simulation` sets ``listen`` to its own (loopback unless given) whenever it
+    becomes the active session, so one Cell's opt-in never carries over to another."""
+    if listen is not None:
+        _config.listen = listen_address(listen)
     if connect_timeout is None or connect_timeout >= 0:
         _config.connect_timeout = connect_timeout
     return _config
+
+
+def network_config() -> NetworkConfig:
+    """The switches in force (the active Simulation set ``listen``)."""
+    return _config
+
+
+def listen_address(text: str) -> str:
+    """``text`` as an address servers may listen on: ``0.0.0.0``, loopback, or an IPv4 address
+    this computer has (checked by binding a throwaway socket).  ValueError says what is wrong."""
+    try:
+        address = dotted_quad(str(text))
+    except GplException:
+        raise ValueError(f"{text!r} is not an IPv4 address (n.n.n.n)") from None
+    if not address:
+        raise ValueError("the listen address is empty: give 127.0.0.1, 0.0.0.0 or an address of this computer")
+    probe = _socket.socket(_socket.AF_INET, _socket.SOCK_DGRAM)
+    try:
+        probe.bind((address, 0))
+    except OSError as exc:
+        raise ValueError(f"{address} is not an address of this computer ({exc.strerror})") from None
+    finally:
+        probe.close()
+    return address
+
+
+def _is_loopback(address: str) -> bool:
+    return address.startswith("127.")
+
+
+def _bind_address(requested: str) -> str:
+    """Where a bind the program asked for at ``requested`` ("" = any) really goes (module doc)."""
+    if _is_loopback(requested):
+        return requested
+    if _config.listen == ANY:
+        return requested or ANY
+    return _config.listen
 
 
 def _os_error(exc: OSError, what: str) -> GplException:
@@ -176,10 +233,6 @@ class IPEndPoint:
         """[P] An independent copy ("many classes" have Clone, D0:596-637)."""
         return IPEndPoint(String(self._ip), Integer(self._port))
 
-    def _local(self) -> tuple[str, int]:
-        """Address to bind to: a blank (or 0.0.0.0) IP binds to the configured simulation address."""
-        return (self._ip if self._ip not in ("", "0.0.0.0") else _config.bind_address, self._port)
-
     def _remote(self) -> tuple[str, int]:
         """Address to reach: a blank IP means this machine."""
         return (self._ip or "127.0.0.1", self._port)
@@ -212,6 +265,7 @@ class Socket:
         self._blocking = True
         self._recv_ms = 0
         self._send_ms = 0
+        self._bound_for_sending = False  # UDP: SendTo has made sure the socket is bound
         self._lock = threading.RLock()
         self._release = _blocking.opened()  # paces virtual time while the socket is open
         self._freed = weakref.finalize(self, _free_later, self._sock, self._release)
@@ -417,7 +471,14 @@ class Socket:
         if limit > 0:
             data = data[:limit]
         address = remote_endpoint._remote()
-        self._send(sock, data, address, f"send to {address[0]}:{address[1]}")
+        what = f"send to {address[0]}:{address[1]}"
+        if not self._bound_for_sending and self._kind == _socket.SOCK_DGRAM:
+            try:
+                _bind_for_sending(sock, address)
+            except OSError as exc:
+                raise _os_error(exc, what) from None
+            self._bound_for_sending = True
+        self._send(sock, data, address, what)
         return Integer(len(data))
 
     def _send(self, sock: _socket.socket, data: bytes, address: Any, what: str) -> None:
@@ -481,16 +542,36 @@ def _ready(sock: _socket.socket, step: float, write: bool = False) -> bool:
 
 
 def _bind(sock: _socket.socket, endpoint: IPEndPoint) -> tuple[str, int]:
-    """Bind ``sock`` to ``endpoint`` (see the module docstring for the simulation's addresses)."""
-    address = endpoint._local()
+    """Bind ``sock`` where ``endpoint`` may go (module docstring); returns the address bound."""
+    address = (_bind_address(endpoint._ip), endpoint._port)
     try:
         sock.bind(address)
     except OSError as exc:
-        if exc.errno != errno.EADDRNOTAVAIL or address[0] == _config.bind_address:
+        fallback = LOOPBACK if _is_loopback(address[0]) else _config.listen
+        if exc.errno != errno.EADDRNOTAVAIL or address[0] == fallback:
             raise
-        address = (_config.bind_address, address[1])  # the controller's own IP, not this PC's
+        address = (fallback, address[1])  # the controller's own IP, which this PC does not have
         sock.bind(address)
     return address
+
+
+def _bind_for_sending(sock: _socket.socket, destination: tuple[str, int]) -> None:
+    """Bind an unbound UDP socket before it sends to ``destination`` (module docstring): the
+    kernel's own choice would be every interface, open to datagrams from the whole network."""
+    if sock.getsockname()[1] != 0:
+        return  # bound by UdpClient(endpoint), or by Connect (which binds the routed address)
+    if _is_loopback(destination[0]):
+        sock.bind((LOOPBACK, 0))
+        return
+    if _config.listen not in (LOOPBACK, ANY):
+        sock.bind((_config.listen, 0))  # the one interface the user opened
+        return
+    route = _socket.socket(_socket.AF_INET, _socket.SOCK_DGRAM)
+    try:
+        route.connect(destination)  # no packet: asks the routing table which address reaches it
+        sock.bind((route.getsockname()[0], 0))
+    finally:
+        route.close()
 
 
 def _peer(sock: _socket.socket) -> Any:
@@ -540,7 +621,7 @@ class TcpListener:
         # Like a controller (and .NET), allow re-binding a port whose old connections linger in
         # TIME_WAIT; a port actively bound by another socket is still refused.
         sock.setsockopt(_socket.SOL_SOCKET, _socket.SO_REUSEADDR, 1)
-        address = self._endpoint._local()
+        address = (_bind_address(self._endpoint._ip), self._endpoint._port)
         try:
             address = _bind(sock, self._endpoint)
             sock.listen(self.BACKLOG)
@@ -635,7 +716,7 @@ class UdpClient:
     def __init__(self, local_endpoint: IPEndPoint | None = None) -> None:
         self._socket = Socket(_kind=_socket.SOCK_DGRAM)
         if local_endpoint is not None:
-            address = local_endpoint._local()
+            address = (_bind_address(local_endpoint._ip), local_endpoint._port)
             try:
                 _bind(self._socket._sock, local_endpoint)
             except OSError as exc:
@@ -650,5 +731,7 @@ class UdpClient:
         self._socket.Close()
 
 
-__all__ = ["IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "NetworkConfig", "configure_network",
-           "listening_ports"]
+__all__ = [
+    "IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "NetworkConfig", "configure_network",
+    "listen_address", "listening_ports",
+]

@@ -47,6 +47,7 @@ from gplrt.lang.errors import (
     INVALID_NODE_TYPE,
     NOTHING_VALUE,
     NO_XML_NODE,
+    READ_ERROR,
     UNDEFINED_XML_NAME,
     XML_ERROR,
     GplException,
@@ -107,11 +108,15 @@ class XmlDoc:
     def LoadFile(input_file: String, options: Integer = Integer(0)) -> XmlDoc:
         """Parse a file; test ``ErrorCode`` afterwards (malformed XML does not throw)."""
         cp = resolve(input_file)
-        if cp.host is None or cp.kind is DeviceKind.SERIAL:
+        if cp.file is None or cp.kind is DeviceKind.SERIAL:
             raise GplException(INVALID_FILE_TYPE, detail=f"{input_file!r} is a device")
-        if not cp.host.is_file():
-            raise GplException(FILE_NOT_FOUND, detail=input_file)
-        return XmlDoc._parse(cp.host.read_bytes())
+        try:
+            data = cp.file.read_bytes()  # links and special files: -208 / -521 (sandbox.py)
+        except (FileNotFoundError, NotADirectoryError, IsADirectoryError):
+            raise GplException(FILE_NOT_FOUND, detail=input_file) from None
+        except OSError as exc:
+            raise GplException(READ_ERROR, detail=f"{input_file}: {exc.strerror or exc}") from None
+        return XmlDoc._parse(data)
 
     @staticmethod
     def LoadString(input_string: String, options: Integer = Integer(0)) -> XmlDoc:
@@ -201,12 +206,13 @@ class XmlDoc:
     def SaveFile(self, output_file: String, options: Integer = Integer(0)) -> None:
         """Write the document as XML text to a controller file."""
         cp = resolve(output_file)
-        if cp.host is None or cp.kind is not DeviceKind.DISK:
+        if cp.file is None or cp.kind is not DeviceKind.DISK:
             raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{output_file!r}: not a disk file")
-        if not cp.host.parent.is_dir() or cp.host.is_dir():
+        try:
+            cp.file.write_bytes(self._serialize().encode("utf-8"))
+        except OSError as exc:  # no folder, a folder of that name, the disk refused
             self._error, self._message = CANT_OPEN_FOR_WRITE, f"cannot create {output_file}"
-            raise GplException(CANT_OPEN_FOR_WRITE, detail=output_file)
-        cp.host.write_bytes(self._serialize().encode("utf-8"))
+            raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{output_file}: {exc.strerror or exc}") from None
         self._error, self._message = 0, ""
 
     # -- Python side -----------------------------------------------------------------------------
