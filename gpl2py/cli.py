@@ -109,7 +109,7 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     translation would (GPL3501); ``--strict`` makes them errors.  ``--stubs DIR`` is read as
     ``translate`` and ``run`` read it, so a folder or file they would refuse (GPL3503) is
     reported here too: the three commands take the same stub options."""
-    from gpl2py.lower.user_stubs import load_user_stubs
+    from gpl2py.lower.user_stubs import load_user_stubs, with_shipped_standins
     from gpl2py.semantics.catalogue import load_catalogue
     from gpl2py.semantics.check import analyze
 
@@ -118,15 +118,17 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     if project is None:
         return out
     _remember(out, project)
-    if args.stubs is not None:
-        load_user_stubs(args.stubs, out.sink)
+    user = load_user_stubs(args.stubs, out.sink) if args.stubs is not None else None
+    if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
+        user = with_shipped_standins(user, out.sink)
     incomplete = out.sink.has_errors()  # a source could not be loaded: it may declare the start
     units = []
     for source in project.sources:
         units.append(_parse(source, out.sink))
         out.checked += 1
     analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
-            None if incomplete else project.start, protected=bool(project.protected), strict=args.strict)
+            None if incomplete else project.start, protected=bool(project.protected), strict=args.strict,
+            stub_provider=user.provider if user is not None else None)
     return out
 
 

@@ -597,15 +597,16 @@ NOT_SUPPORTED = _error(
 STUB_PROTECTED = _warning(
     "GPL3501",
     "'{name}' is not declared in the readable sources; assuming the protected code defines it: "
-    "a stub is generated that raises error -204 if the program uses it",
+    "{consequence}",
     "Reported once per name, only in projects with protected (.gpp) files (elsewhere an unknown "
-    "name stays error GPL2001). The rest of the project runs; supply a Python implementation with "
-    "--stubs DIR, or make this an error with --strict (same code, severity error).",
+    "name stays error GPL2001). Without an implementation the message says that a stub raising "
+    "-204 is generated; the rest of the project runs. Supply a Python implementation with --stubs "
+    "DIR (the message then names the file; gpl2py ships a few stand-ins of its own, used when "
+    "--stubs has none), or make this an error with --strict (same code, severity error).",
 )
 STUB_BUILTIN_MEMBER = _warning(
     "GPL3502",
-    "{owner} has no member '{member}' in the simulated controller: a stub is generated that "
-    "raises error -204 if the program uses it",
+    "{owner} has no member '{member}' in the simulated controller: {consequence}",
     "Reported once per member. The member may exist on a newer controller, or is not simulated. "
     "Supply a Python implementation with --stubs DIR, or make this an error with --strict (same code, "
     "severity error).",

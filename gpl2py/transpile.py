@@ -105,7 +105,7 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
             progress("parsing", i + 1, len(project.sources))
     # the semantic pass runs even after syntax errors, so every error is reported in one run
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
-                    strict=strict)
+                    strict=strict, stub_provider=user.provider if user is not None else None)
     if sink.has_errors() and not keep_going:
         return None
     output = _lower(project, model, sink, progress, user)

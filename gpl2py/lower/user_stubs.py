@@ -66,6 +66,15 @@ class UserStubs:
     root: Path
     files: list[UserFile] = field(default_factory=list)
 
+    def provider(self, stub: Stub) -> str | None:
+        """Who implements ``stub``, for its warning: "the --stubs file vendorlib.py" or "gpl2py's
+        stand-in parobot_auto_center.py"; None when nothing does."""
+        found = self.find(stub)
+        if found is None:
+            return None
+        file = found[0]
+        return f"gpl2py's stand-in {file.path.name}" if file.shipped else f"the --stubs file {file.path.name}"
+
     def _files_for(self, qualifier: str) -> list[UserFile]:
         keys = {qualifier.lower(), snake_case(qualifier)}
         return [f for f in self.files if f.stem in keys]

@@ -10,7 +10,7 @@ reports every independent mistake.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 from gpl2py import messages as M
@@ -1271,13 +1271,14 @@ def _text(e: A.Expr) -> str:
 
 def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogue,
             project_name: str = "", start: str | None = None, *, protected: bool = False,
-            strict: bool = False) -> Model:
+            strict: bool = False, stub_provider: Callable[[Stub], str | None] | None = None) -> Model:
     """Semantic analysis of a parsed project (units in ProjectSource order).
 
     ``protected``: the project has protected (.gpp) files, so unknown names become stubs
-    (``gpl2py.semantics.stubs``); ``strict`` reports every stub as an error."""
+    (``gpl2py.semantics.stubs``); ``strict`` reports every stub as an error; ``stub_provider``
+    names the stand-in that implements a stub, for its warning."""
     checker = Checker(ProjectSyms(project_name), catalogue, sink,
-                      StubTable(sink, protected=protected, strict=strict))
+                      StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
     return checker.run(units, start)
 
 

@@ -26,6 +26,7 @@ a *class*.  The qualifier of an unknown ``Module.Name`` is a *stub module*.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
@@ -68,6 +69,15 @@ class StubTable:
     strict: bool = False  # report stubs as errors
     stubs: dict[str, Stub] = field(default_factory=dict)
     modules: dict[str, str] = field(default_factory=dict)  # lower -> declared spelling
+    # Who implements a stub, if anyone: "the stand-in vendorlib.py" (a --stubs file or one gpl2py
+    # ships); None when the generated stub raises -204.  The warning says which.
+    provider: Callable[[Stub], str | None] | None = None
+
+    def _consequence(self, stub: Stub) -> str:
+        found = self.provider(stub) if self.provider is not None else None
+        if found is not None:
+            return f"{found} implements it"
+        return "a stub is generated that raises error -204 if the program uses it"
 
     def _report(self, message: M.Message, span: Span | None, **args: object) -> None:
         if self.strict:
@@ -86,7 +96,7 @@ class StubTable:
         if stub is None:
             stub = Stub(full, name, module=module, span=span)
             self.stubs[key] = stub
-            self._report(M.STUB_PROTECTED, span, name=full)
+            self._report(M.STUB_PROTECTED, span, name=full, consequence=self._consequence(stub))
         return stub
 
     def builtin_member(self, owner: str, member: str, span: Span | None, shared: bool) -> Stub:
@@ -97,7 +107,8 @@ class StubTable:
         if stub is None:
             stub = Stub(full, member, builtin=owner, shared=shared, span=span)
             self.stubs[key] = stub
-            self._report(M.STUB_BUILTIN_MEMBER, span, owner=owner, member=member)
+            self._report(M.STUB_BUILTIN_MEMBER, span, owner=owner, member=member,
+                         consequence=self._consequence(stub))
         return stub
 
     def ordered(self) -> list[Stub]:

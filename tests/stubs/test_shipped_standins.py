@@ -82,3 +82,17 @@ def test_a_user_stub_wins_over_the_shipped_stand_in(tmp_path: Path) -> None:
     records = {s["name"]: (s["provided"], s["standin"]) for s in pkg.PROJECT["stubs"]}  # type: ignore[attr-defined]
     assert records["PARobot_auto_center.Version"] == (True, False)
     assert records["AC_InitAutoCenter"] == (True, True)
+
+
+def test_the_warning_names_the_shipped_stand_in(tmp_path: Path) -> None:
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        status = cli_main(["check", str(_project(tmp_path))])
+    assert status == 0, err.getvalue()
+    warned = {line.split("warning GPL3501: ")[1].split("'")[1]: line.rsplit(": ", 1)[1]
+              for line in err.getvalue().splitlines() if "warning GPL3501" in line}
+    assert warned == {
+        "PARobot_auto_center.Version": "gpl2py's stand-in parobot_auto_center.py implements it",
+        "AC_InitAutoCenter": "gpl2py's stand-in parobot_auto_center.py implements it",
+        "AC_HeightDetect": "a stub is generated that raises error -204 if the program uses it",
+    }

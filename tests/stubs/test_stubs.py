@@ -375,3 +375,21 @@ def test_notebook_cell_loads_a_protected_project_with_user_stubs(tmp_path: Path)
     assert info.value.ErrorCode == -204 and "VendorLib.Release" in str(info.value)
     plain = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache")  # no --stubs: its own entry
     assert not any(s["provided"] for s in plain.package.PROJECT["stubs"])
+
+
+def test_stub_warning_names_what_implements_it(tmp_path: Path) -> None:
+    """GPL3501 said "a stub is generated that raises -204" even for a name the user's --stubs file
+    implements; check, translate and run now say which file does, and keep the -204 wording for
+    the names nothing implements."""
+    proj = _project(tmp_path)
+    good = tmp_path / "good"
+    good.mkdir()
+    (good / "vendorlib.py").write_text("def Grip(w):\n    return w\n")
+    for status, err in (_check(str(proj), "--stubs", str(good)),
+                        _translate(proj, tmp_path / "out", "--stubs", str(good))):
+        assert status == 0, err
+        lines = {line.split("warning GPL3501: ")[1] for line in err.splitlines() if "warning GPL3501" in line}
+        prefix = "is not declared in the readable sources; assuming the protected code defines it: "
+        assert f"'VendorLib.Grip' {prefix}the --stubs file vendorlib.py implements it" in lines, err
+        assert (f"'VendorLib.Release' {prefix}a stub is generated that raises error -204 if the program "
+                "uses it") in lines, err

@@ -12,8 +12,8 @@ Python attribute.  What it may reach:
   that has such accesses;
 * an object of the runtime (``gplrt``: Location, Exception, a socket ...): its GPL members, which
   are exactly its attributes whose name starts with an upper-case letter (runtime/gplrt/CATALOGUE.md);
-* an object of a user stub (``gpl2py --stubs``: Python the user wrote for the protected code): its
-  public attributes (names not starting with ``_``);
+* an object of a user stub (``gpl2py --stubs``: Python the user wrote for the protected code) or of
+  one of gpl2py's shipped stand-ins: its public attributes (names not starting with ``_``);
 * nothing else: Python's own objects (numbers, strings, functions, modules, frames) have no GPL
   members, and no name starting with ``_`` is ever looked up, so ``X.__class__`` or
   ``X.__reduce_ex__(2)`` from untrusted GPL cannot reach the interpreter's internals.
@@ -32,12 +32,13 @@ from gplrt.lang.errors import OBJECT_NOT_INSTANTIATED, READ_ONLY, UNDEFINED_SYMB
 # process; the tables are small.
 _TABLES: dict[type, dict[str, str]] = {}
 
-_USER_STUB_PREFIX = "_user_"  # generated package modules that hold --stubs files (lower/user_stubs.py)
+# generated package modules that hold --stubs files and shipped stand-ins (gpl2py/lower/user_stubs.py)
+_STUB_MODULE_PREFIXES = ("_user_", "_standin_")
 
 
 def _is_user_stub(cls: type) -> bool:
     module = getattr(cls, "__module__", "") or ""
-    return module.rpartition(".")[2].startswith(_USER_STUB_PREFIX)
+    return module.rpartition(".")[2].startswith(_STUB_MODULE_PREFIXES)
 
 
 def _is_runtime(cls: type) -> bool:
