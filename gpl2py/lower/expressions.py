@@ -718,7 +718,8 @@ class ExprLowerer:
             return self.call(self.rt(CONV, "to_string_single"), self.val(args[0]))
         return self.call(self.ctx.builtin(f.python_name), *self.args_code(args, i.params or []))
 
-    def builtin_member(self, i: Info, e: A.Expr, args: list[A.Expr] | None) -> Code:
+    def builtin_member(self, i: Info, e: A.Expr, args: list[A.Expr] | None, statement: bool = False) -> Code:
+        """A built-in member read or called; ``statement``: its statement form (``Member.action``)."""
         m: Member = i.sym  # type: ignore[assignment]
         b: BuiltinClass = i.owner  # type: ignore[assignment]
         acode = self.args_code(args or [], i.params or [])
@@ -740,12 +741,13 @@ class ExprLowerer:
             return f"{self.rt('math', _PLAIN_MATH[m.name])}({', '.join(acode)})", P_ATOM
         if i.static and b.name == "Console" and args and len(acode) == 1 and self.type_of(args[0]) is t.SINGLE:
             acode = [self.call(self.rt(CONV, "to_string_single"), acode[0])[0]]  # 7 digits (AMB-22)
+        name = m.action if statement and m.action else m.name
         if i.static:
-            head = f"{self.ctx.builtin(b.python_name)}.{m.name}"
+            head = f"{self.ctx.builtin(b.python_name)}.{name}"
         else:
             assert i.receiver is not None
-            head = f"{self.sub(i.receiver, P_ATOM)}.{m.name}"
-        if m.kind == "property":
+            head = f"{self.sub(i.receiver, P_ATOM)}.{name}"
+        if m.kind == "property" and not statement:
             return head, P_ATOM
         return f"{head}({', '.join(acode)})", P_ATOM
 

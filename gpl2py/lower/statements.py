@@ -495,6 +495,12 @@ class ProcLowerer(ExprLowerer):
         return new
 
     def s_CallStmt(self, s: A.CallStmt) -> None:
+        i = self.model.info.get(s.expr)
+        if i is not None and i.kind == "bmember" and getattr(i.sym, "action", None):
+            # a built-in member whose statement form acts (Robot.RapidDecel(1) stops robot 1)
+            args = s.expr.args if isinstance(s.expr, A.Invoke) else []
+            self.w.line(self.builtin_member(i, s.expr, args, statement=True)[0])
+            return
         self.w.line(self.val(s.expr))
 
     def entered_cond(self, s: A.Stmt, body: A.Block | None, c: Code) -> str:

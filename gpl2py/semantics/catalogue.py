@@ -91,6 +91,10 @@ class Member:
     overloads: tuple[Form, ...] = ()
     set_forms: tuple[Form, ...] = ()
     simulated: bool = True  # False: the runtime only raises -204 (``not_simulated``)
+    # The Python method that the member's statement form calls, when used as a statement it acts
+    # rather than reads: ``Robot.RapidDecel(1)`` alone stops robot 1 (``do_RapidDecel``;
+    # CATALOGUE.md rule 10).  None: a statement evaluates the member like any call.
+    action: str | None = None
 
     @property
     def call_forms(self) -> tuple[Form, ...]:
@@ -308,6 +312,7 @@ def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bo
                     skip = isinstance(raw, classmethod) or not shared_here
                 forms = _forms(func, mapper, skip_first=skip)
                 set_forms = _set_forms(cls, name, None, mapper, skip_first=True)
+                action = f"do_{name}" if callable(getattr(cls, f"do_{name}", None)) else None
                 members[name.lower()] = Member(
                     name,
                     "method",
@@ -318,6 +323,7 @@ def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bo
                     overloads=forms if len(forms) > 1 else (),
                     set_forms=set_forms,
                     simulated=_simulated(func),
+                    action=action,
                 )
     return members
 

@@ -108,7 +108,14 @@ async def session(cell: Cell, tmp_path: Path) -> None:
     await arm.move_to_safe()
     assert joints(cell) == pytest.approx(np.array(SAFE), abs=1e-6)
 
-    await arm.halt()  # "halt": stops motion, power stays on
+    # "halt" (Robot.RapidDecel(robot) alone, Cmd.gpl:1841) stops a motion on its way: a move of
+    # tens of degrees, halted as soon as it is queued, ends far from its target; power stays on
+    await arm.move_j(1, dict(zip(PFAxis, JOINTS_A)))
+    await arm.halt()
+    stopped = await arm.get_joint_position()  # "waitForEom", "wherej"
+    here = joints(cell)
+    assert np.max(np.abs(here - np.array(JOINTS_A))) > 10.0, here
+    assert [stopped[axis] for axis in range(1, 6)] == pytest.approx(here, abs=READ_BACK)
     assert sim.controller.power_state in POWER_ON_STATES
 
     await arm.stop()  # "attach 0", "hp 0", "exit"

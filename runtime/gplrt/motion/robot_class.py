@@ -257,12 +257,17 @@ class _RobotClass:
 
     def set_RapidDecel(self, *args: Any) -> None:
         """``Robot.RapidDecel[(robot)] = True``: stop the robot's motion as fast as allowed."""
-        robot = _robot(args[0] if len(args) > 1 else 0)
         if args[-1]:
-            s = registry.sim()
-            with robot.lock:
-                robot.rapid_decel(registry.now())
-            s.scheduler.notify_all(robot.eom_waiters)
+            self.do_RapidDecel(args[0] if len(args) > 1 else 0)
+
+    def do_RapidDecel(self, Robot: Integer = 0) -> None:
+        """``Robot.RapidDecel(robot)`` as a statement: the same as assigning True.  The vendor's
+        TCS stops a robot this way (its ``halt`` command, Cmd.gpl:1841); docs/design/real-code.md."""
+        robot = _robot(Robot)
+        s = registry.sim()
+        with robot.lock:
+            robot.rapid_decel(registry.now())
+        s.scheduler.notify_all(robot.eom_waiters)
 
     # -- offsets -------------------------------------------------------------------------------
 
