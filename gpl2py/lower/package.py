@@ -134,8 +134,13 @@ def _stub_lines(stubs: list[dict[str, object]]) -> list[str]:
         return ['    "stubs": [],']
     out = ['    "stubs": [']
     for r in stubs:
-        out.append(f'        {{"name": {py_string(str(r["name"]))}, "kind": {py_string(str(r["kind"]))}, '
-                   f'"provided": {bool(r["provided"])}, "standin": {bool(r.get("standin"))}}},')
+        fields = [f'"name": {py_string(str(r["name"]))}', f'"kind": {py_string(str(r["kind"]))}',
+                  f'"provided": {bool(r["provided"])}', f'"standin": {bool(r.get("standin"))}']
+        line = f"        {{{', '.join(fields)}}},"
+        if len(line) <= 99:
+            out.append(line)
+        else:  # one field a line
+            out.extend(["        {", *(f"            {f}," for f in fields), "        },"])
     out.append("    ],")
     return out
 

@@ -66,6 +66,16 @@ class ProcLowerer(ExprLowerer):
         self.plan: GotoPlan | None = None
         self.state_var: dict[A.Block, str] = {}
         self.entry_flag: dict[A.Stmt, str] = {}
+        self._used_beyond_counters: set[str] | None = None
+
+    def used_beyond_counters(self, v: VarSym) -> bool:
+        """Whether the procedure mentions ``v`` anywhere but as the counter of a For loop (its
+        ``For v =`` and ``Next v``): only then does a loop need to leave the first value past the
+        end in it (a store nothing reads would be dead code, pyflakes F841)."""
+        if self._used_beyond_counters is None:
+            body = getattr(getattr(self.proc, "decl", None), "body", None)
+            self._used_beyond_counters = _names_beyond_for_counters(body) if body is not None else None
+        return self._used_beyond_counters is None or v.name.lower() in self._used_beyond_counters
 
     def fresh(self, stem: str) -> str:
         self.counter += 1
@@ -610,7 +620,8 @@ class ProcLowerer(ExprLowerer):
                 self.w.line(f"{self.rt(THREADS, 'checkpoint')}()")
                 self.w.dedent()
             self.nonneg.discard(v)
-            self.w.line(final + "  # the first value past the end (§10.3)")
+            if self.used_beyond_counters(v):
+                self.w.line(final + "  # the first value past the end (§10.3)")
             return
         self.store(s.var, self.conv(s.start, vt)[0])
         end = self.once(s.end, s.body, force=True)
@@ -962,6 +973,24 @@ def _names_in(node: A.Node) -> set[str]:
     stack: list[A.Node] = [node]
     while stack:
         n = stack.pop()
+        if isinstance(n, A.Name):
+            out.add(n.name.lower())
+        stack.extend(n.children())
+    return out
+
+
+def _names_beyond_for_counters(body: A.Node) -> set[str]:
+    """The names ``body`` mentions, leaving out the plain counters of its For loops (a For's own
+    ``var`` and ``next_var``)."""
+    out: set[str] = set()
+    stack: list[A.Node] = [body]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, A.For):
+            stack.extend(c for c in (n.start, n.end, n.step, n.body) if c is not None)
+            if not isinstance(n.var, A.Name):  # an element or field counter: its parts are read
+                stack.append(n.var)
+            continue
         if isinstance(n, A.Name):
             out.add(n.name.lower())
         stack.extend(n.children())

@@ -44,8 +44,8 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
                "protected (.gpp) files, and members of built-in classes that the simulated controller lacks.")
     else:
         gpl = stubs[0].module or module
-        doc = (f"Stubs for Module {escape(gpl, 'docstring')}: its source is protected (.gpp), gpl2py could not "
-               "translate it.")
+        doc = (f"Stubs for Module {escape(gpl, 'docstring')}: its source is protected (.gpp),\n"
+               "gpl2py could not translate it.")
     head = [
         f'"""{doc}',
         "",

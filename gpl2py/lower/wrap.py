@@ -6,6 +6,8 @@ far longer than PEP 8's limit.  :func:`wrap` breaks such a line:
 * ``global a, b, ...`` -> several ``global`` statements;
 * an expression with top-level ``+``, ``and`` or ``or`` (string building, long conditions) ->
   parenthesised, broken *before* the operators (PEP 8's recommended style);
+* other top-level binary operators (``*``, ``-``, comparisons) -> the same, broken before the
+  loosest of them;
 * a call whose arguments run past the limit -> the arguments packed on continuation lines (a
   sole argument that is still too long breaks before its operators without parentheses of its
   own: the call's brackets already carry the continuation).
@@ -51,7 +53,9 @@ def _wrap_nested(indent: int, text: str, limit: int, depth: int, inside: bool) -
         return lines
     out: list[tuple[int, str]] = []
     for i, (ind, txt) in enumerate(lines):
-        if i > 0 and 4 * ind + len(txt) > limit:
+        # the first line too, when it is a piece of the text (an operand packed without brackets
+        # of its own) rather than the text's unchanged opening
+        if (i > 0 or txt != text) and 4 * ind + len(txt) > limit:
             out.extend(_wrap_nested(ind, txt, limit, depth + 1, inside=i < len(lines) - 1))
         else:
             out.append((ind, txt))
@@ -119,7 +123,12 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         lines.extend(_pack(cont, "", pieces, cont, limit, " "))
         lines.append((indent, ")" + suffix))
         return lines
-    # 2. a call closing at the end of the expression: pack its arguments
+    # 2. other binary operators (``*``, ``-``, comparisons): broken before the loosest of them
+    if _balanced(expr) and not any(t.string in ("if", "else", "lambda") for t in expr):
+        loose = _loosest_cuts(expr)
+        if loose:
+            return _operator_lines(indent, cont, prefix, suffix, comment, body, expr, loose, limit, inside)
+    # 3. a call closing at the end of the expression: pack its arguments
     if expr[-1].string == ")":
         depth = 0
         open_at = -1
@@ -146,7 +155,7 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
             lines.extend(_pack(cont, "", args, cont, limit, " "))
             lines.append((indent, ")" + suffix))
             return lines
-    # 3. otherwise open the longest top-level bracket group: its contents go on a continuation
+    # 4. otherwise open the longest top-level bracket group: its contents go on a continuation
     #    line (broken again if still too long), the closing bracket and the rest of the line after
     #    ("f(<args>) != x" in a long condition)
     group = _longest_group(toks)
@@ -175,6 +184,24 @@ def _chain_steps(body: str, expr: list[tokenize.TokenInfo]) -> list[list[str]] |
         loosest = min((_STEP_OPS[seg[i].string] for i in ops), default=0)
         steps.append(_pieces(body, seg, [i for i in ops if _STEP_OPS[seg[i].string] == loosest]))
     return steps
+
+
+def _loosest_cuts(expr: list[tokenize.TokenInfo]) -> list[int]:
+    """The top-level binary operators of ``expr`` that bind loosest (``a * f(x) * g(y)``: both
+    ``*``; ``a - 3 * b``: the ``-``), the places a line may be broken before."""
+    ops = [i for i, tok in _top_level(expr) if i > 0 and _binary_at(expr, i)]
+    loosest = min((_STEP_OPS[expr[i].string] for i in ops), default=0)
+    return [i for i in ops if _STEP_OPS[expr[i].string] == loosest]
+
+
+def _operator_lines(indent: int, cont: int, prefix: str, suffix: str, comment: str, body: str,
+                    expr: list[tokenize.TokenInfo], cuts: list[int], limit: int,
+                    inside: bool) -> list[tuple[int, str]]:
+    """Rule 1's shape for any operator: parenthesised, broken before the operators at ``cuts``."""
+    pieces = _pieces(body, expr, cuts)
+    if inside and not prefix and not suffix and not comment:
+        return _pack(indent, "", pieces, indent, limit, " ")
+    return [(indent, prefix + "(" + comment), *_pack(cont, "", pieces, cont, limit, " "), (indent, ")" + suffix)]
 
 
 def _binary_at(toks: list[tokenize.TokenInfo], i: int) -> bool:

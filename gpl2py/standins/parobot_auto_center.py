@@ -1,5 +1,5 @@
-"""Stand-ins for ``PARobot_auto_center.gpp``, the protected auto-centring module of Precise's PARobot
-plug-in for the TCP Command Server (TCS 3.0C1 with PARobot).
+"""Stand-ins for ``PARobot_auto_center.gpp``, the protected auto-centring module of Precise's
+PARobot plug-in for the TCP Command Server (TCS 3.0C1 with PARobot).
 
 The module's source is encrypted, so gpl2py cannot translate it.  Two of its names are used on
 paths every TCS user takes, and would otherwise end TCS before it serves anyone:
