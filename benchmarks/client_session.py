@@ -15,7 +15,10 @@ the segments queued meanwhile, read off robot 1) and their ratio.  Two servers:
 * ``--server sample``: samples/tcp_command_server on a free port, with a plain line client
   ("move pick", "move place"), which needs no corpus.
 
-    python benchmarks/client_session.py [--server tcs|sample] [--moves 50] [--speed 50] [--clock virtual]
+    python benchmarks/client_session.py [--server tcs|sample] [--moves 50] [--speed 50] [--clock virtual] [--runs 5]
+
+It prints the median wall time of ``--runs`` sessions and their spread (the machine is shared and
+noisy; the motion time is the same in every run).
 
 ``--clock virtual`` runs the same session on the paced virtual clock, for comparison: there the
 wall time is about the motion time.
@@ -28,6 +31,7 @@ import asyncio
 import os
 import shutil
 import socket
+import statistics
 import tempfile
 import time
 from pathlib import Path
@@ -107,15 +111,23 @@ def main() -> None:
                         help="virtual: the paced clock, for comparison (wall time ~ motion time)")
     parser.add_argument("--as-written", action="store_true",
                         help="tcs: wait with get_joint_position (PyLabRobot sleeps 0.2 s after each)")
+    parser.add_argument("--runs", type=int, default=5, help="sessions to run (each a fresh server; default 5)")
     args = parser.parse_args()
-    with tempfile.TemporaryDirectory() as tmp:
-        if args.server == "tcs":
-            wall, motion = run_tcs(args.moves, args.speed, args.as_written, Path(tmp), args.clock)
-        else:
-            wall, motion = run_sample(args.moves, args.speed, Path(tmp), args.clock)
+    walls: list[float] = []
+    motion = 0.0
+    for _ in range(args.runs):
+        with tempfile.TemporaryDirectory() as tmp:
+            if args.server == "tcs":
+                wall, motion = run_tcs(args.moves, args.speed, args.as_written, Path(tmp), args.clock)
+            else:
+                wall, motion = run_sample(args.moves, args.speed, Path(tmp), args.clock)
+        walls.append(wall)
+    walls.sort()
+    median = statistics.median(walls)
     print(f"{args.server}, {args.clock} clock: {args.moves} moves at {args.speed:g} % speed, each waited for: "
-          f"{motion:.1f} s of simulated motion in {wall:.2f} s of wall time: "
-          f"{motion / wall:.1f}x faster than the robot")
+          f"{motion:.1f} s of simulated motion; wall time over {args.runs} sessions: median {median:.3f} s "
+          f"(spread {walls[0]:.3f}-{walls[-1]:.3f} s): {motion / median:.1f}x faster than the robot "
+          f"({motion / walls[-1]:.1f}-{motion / walls[0]:.1f}x)")
 
 
 if __name__ == "__main__":
