@@ -22,12 +22,14 @@ import shutil
 import socket
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Callable
+from xml.etree import ElementTree
 
 import numpy as np
 
@@ -208,6 +210,16 @@ def copy_project(project: Path, dest: Path, replace: dict[str, str] | None = Non
 PRIVATE_NETWORK = "GPL2PY_TEST_PRIVATE_NETWORK"  # set inside the network namespace of private_network
 
 
+def _namespace_prefix() -> list[str] | None:
+    """The command prefix that runs a program in a fresh network namespace with its loopback up
+    (``unshare --net``), or None where none can be made (not root, no ``unshare``/``ip``)."""
+    unshare, ip = shutil.which("unshare"), shutil.which("ip")
+    if unshare is None or ip is None or subprocess.run(
+            [unshare, "--net", "true"], capture_output=True).returncode != 0:
+        return None
+    return [unshare, "--net", "sh", "-c", f'"{ip}" link set lo up && exec "$0" "$@"']
+
+
 def private_network(request: object, timeout: float = 900.0) -> bool:
     """Give a test that must listen on fixed ports (TCS: 10100, 10000) a loopback of its own.
 
@@ -223,20 +235,97 @@ def private_network(request: object, timeout: float = 900.0) -> bool:
 
     if os.environ.get(PRIVATE_NETWORK) == "1":
         return True
-    unshare, ip = shutil.which("unshare"), shutil.which("ip")
-    if unshare is None or ip is None or subprocess.run(
-            [unshare, "--net", "true"], capture_output=True).returncode != 0:
+    prefix = _namespace_prefix()
+    if prefix is None:
         return True
     nodeid = request.node.nodeid  # type: ignore[attr-defined]
-    script = f'"{ip}" link set lo up && exec "$0" "$@"'
     env = dict(os.environ, **{PRIVATE_NETWORK: "1"})
-    run = subprocess.run([unshare, "--net", "sh", "-c", script, sys.executable, "-m", "pytest", "-q",
+    run = subprocess.run([*prefix, sys.executable, "-m", "pytest", "-q",
                           "-p", "no:cacheprovider", "--runxfail", "-rN", nodeid],
                          cwd=REPO, env=env, capture_output=True, text=True, timeout=timeout)
     if run.returncode != 0:
         pytest.fail(f"{nodeid} failed in its own network namespace:\n{run.stdout[-20000:]}{run.stderr[-5000:]}",
                     pytrace=False)
     return False
+
+
+@dataclass
+class PrivateRun:
+    """The tests of one module, run again together in a network namespace of their own
+    (:func:`private_network_module`): each one's outcome there, by node id."""
+
+    outcomes: dict[str, tuple[str, str]]  # node id -> ("passed"|"failed"|"skipped", text)
+    output: str  # the inner pytest's own output, for a test that has no outcome
+
+    def reproduce(self, request: object) -> None:
+        """Give the calling test the outcome its twin had inside: fail or skip with the inner
+        run's text, or return (it passed)."""
+        import pytest
+
+        nodeid = request.node.nodeid  # type: ignore[attr-defined]
+        outcome = self.outcomes.get(nodeid)
+        if outcome is None:
+            pytest.fail(f"{nodeid} has no outcome from its network namespace:\n{self.output[-20000:]}",
+                        pytrace=False)
+        kind, text = outcome
+        if kind == "failed":
+            pytest.fail(f"{nodeid} failed in its own network namespace:\n{text}", pytrace=False)
+        if kind == "skipped":
+            pytest.skip(text)
+
+
+def private_network_module(request: object, timeout: float = 900.0) -> PrivateRun | None:
+    """:func:`private_network` for a module whose tests share one server (a module-scoped
+    fixture that listens on fixed ports): call it from that fixture.
+
+    Returns None when the module's tests should run here (inside the namespace, or where none
+    can be made).  Otherwise, the first call runs every test of the module that this session
+    selected, together and in order, in a fresh network namespace with ``--runxfail`` (one
+    server for all of them, as here), and returns their outcomes; each test then calls
+    :meth:`PrivateRun.reproduce`, so it passes, fails or is skipped as it did inside, and an
+    expected failure stays expected.  Later calls (a parametrized fixture) reuse that run.
+    """
+    import pytest
+
+    if os.environ.get(PRIVATE_NETWORK) == "1":
+        return None
+    prefix = _namespace_prefix()
+    if prefix is None:
+        return None
+    module = request.node  # type: ignore[attr-defined]
+    runs: dict[str, PrivateRun] = module.config.__dict__.setdefault("_gpl2py_private_runs", {})
+    if module.nodeid in runs:
+        return runs[module.nodeid]
+    nodeids = [item.nodeid for item in module.session.items if item.nodeid.split("::")[0] == module.nodeid]
+    env = dict(os.environ, **{PRIVATE_NETWORK: "1"})
+    with tempfile.TemporaryDirectory() as tmp:
+        junit = Path(tmp) / "junit.xml"
+        run = subprocess.run([*prefix, sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                              "--runxfail", "-rN", f"--junitxml={junit}", "-o", "junit_family=xunit1",
+                              *nodeids],
+                             cwd=REPO, env=env, capture_output=True, text=True, timeout=timeout)
+        output = run.stdout[-20000:] + run.stderr[-5000:]
+        if not junit.is_file():
+            pytest.fail(f"{module.nodeid}: no results from its network namespace:\n{output}", pytrace=False)
+        cases = ElementTree.parse(junit).getroot().iter("testcase")
+        by_name = {(case.get("classname", ""), case.get("name", "")): case for case in cases}
+    outcomes: dict[str, tuple[str, str]] = {}
+    for nodeid in nodeids:
+        path, *classes, name = nodeid.split("::")
+        classname = ".".join([*Path(path).with_suffix("").parts, *classes])
+        case = by_name.get((classname, name))
+        if case is None:
+            continue
+        failed = case.find("failure") if case.find("failure") is not None else case.find("error")
+        skipped = case.find("skipped")
+        if failed is not None:
+            outcomes[nodeid] = ("failed", f"{failed.get('message', '')}\n{failed.text or ''}")
+        elif skipped is not None:
+            outcomes[nodeid] = ("skipped", skipped.get("message", ""))
+        else:
+            outcomes[nodeid] = ("passed", "")
+    runs[module.nodeid] = PrivateRun(outcomes, output)
+    return runs[module.nodeid]
 
 
 def free_port() -> int:

@@ -8,6 +8,7 @@ without that, each of these tests hangs until its bound and fails.
 
 from __future__ import annotations
 
+import gc
 import socket
 import threading
 import time
@@ -249,3 +250,41 @@ def test_simulation_stop_ends_a_server_blocked_in_accept_and_a_client_in_receive
         listener.Stop()
     assert sorted(report.aborted) == ["reader", "server"]
     assert report.still_alive == []
+
+
+def test_an_aborted_thread_frees_a_socket_held_in_a_reference_cycle() -> None:
+    """Abort frees what the thread held at once, as a controller frees a stopped thread's
+    objects, even when they sit in a reference cycle: the client of the connection sees it
+    close.  (TCS's ``reset`` relies on it: "Any TCP/IP connections made by these threads are
+    broken"; there a caught exception's traceback ties the server's frame into a cycle.)
+    Python frees a cycle only when its cyclic collector runs, which it does whenever allocations
+    add up, so the collector is off here: the test does not depend on when it would run."""
+    listener = TcpListener(IPEndPoint("127.0.0.1", 0))
+    listener.Start()
+    client = socket.create_connection(("127.0.0.1", listener.LocalEndPoint().Port), timeout=BOUND)
+    sim = Simulation(clock="virtual", capture=True)
+    accepted: list[bool] = []
+
+    def server() -> None:
+        held: list[object] = [listener.AcceptSocket()]
+        held.append(held)  # the cycle: nothing but itself keeps the socket alive once the frame goes
+        accepted.append(True)
+        held[0].Receive(Box(""), 600_000)  # type: ignore[attr-defined]
+
+    def main() -> None:
+        t = Thread(server, 0, "server")
+        t.Start()
+        while not accepted:
+            Thread.Sleep(10)
+        t.Abort()
+
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        assert sim.run_main(main, timeout=BOUND) == []
+        assert client.recv(16) == b""  # closed by the controller (a time-out raises instead)
+    finally:
+        if enabled:
+            gc.enable()
+        client.close()
+        listener.Stop()

@@ -29,6 +29,8 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
   timeout.  Joining the calling thread itself raises -750.
 * ``Abort`` requests the stop and waits (up to 1 s of controller time) for the thread to unwind;
   ``Finally`` blocks run, ``Catch`` blocks do not see it.  Aborting the calling thread stops it at once.
+  What the aborted thread held is freed when it ends, reference cycles included (one collection
+  of Python's cyclic garbage per Abort), so its sockets close as a controller's do.
 * ``Suspend``/``Resume`` are cooperative: the target parks at its next checkpoint or scheduling
   point (a sleeping target finishes its sleep first).
 * ``ThreadState`` codes are undocumented; we use the five states the controller's console shows
@@ -48,6 +50,7 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
 
 from __future__ import annotations
 
+import gc
 import inspect
 import sys
 import threading
@@ -377,16 +380,23 @@ class Thread:
         ctx = self._ctx
         assert ctx is not None and self._target is not None
         sim = self._sim
+        aborted = False
         try:
             sim.scheduler._service_requests(ctx)  # aborted/suspended before it first ran
             self._result = self._target(*self._args)
         except ThreadAbort:
-            pass
+            aborted = True
         except GplException as exc:
             self._fail(exc, exc.ErrorCode, str(exc))
         except Exception as exc:  # a bug in generated or hand-written Python: still only this thread
             self._fail(exc, INTERNAL_ERROR, f"Python error {type(exc).__name__}: {exc}")
         finally:
+            if aborted:
+                # A controller frees a stopped thread's objects at once: its sockets close, and
+                # the client of a server thread sees the connection end (TCS ``reset``).  Those
+                # held in a reference cycle (a caught exception's traceback holds frames) would
+                # wait for Python's cyclic collector, which runs only when allocations add up.
+                gc.collect()
             for hook in list(sim.thread_exit_hooks):
                 try:
                     hook(self)
