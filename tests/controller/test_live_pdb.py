@@ -56,3 +56,28 @@ def test_241_starts_power_without_waiting_and_213_homes_all(tmp_path: Path) -> N
     """))
     assert res.output.splitlines() == ["home with power off: -1046", "after 241: 8 0", "later: 20 -1",
                                        "homing: 28 9", "moved: 300 1"], res.output + res.log
+
+
+def test_dataid_601_is_the_system_speed() -> None:
+    """TCS's ``mspeed`` writes and reads DataID 601; a controller's 601 is the speed every motion
+    is scaled by, the same value as Controller.SystemSpeed (the stored value only boots it)."""
+    from gplrt.controller.services import Controller
+    from gplrt.lang.errors import GplException
+    from gplrt.sim import Simulation
+
+    sim = Simulation(robot="PF400SX", capture=True)
+
+    def body() -> None:
+        assert Controller.PDbNum(601) == Controller.SystemSpeed == 50.0  # the PF400SX boots at 50
+        Controller.set_PDbNum(601, 30)
+        assert Controller.SystemSpeed == 30.0 and sim.controller.system_speed == 30.0
+        Controller.SystemSpeed = 70
+        assert Controller.PDbNum(601) == 70.0
+        try:
+            Controller.set_PDbNum(601, 0)
+        except GplException as exc:
+            assert exc.ErrorCode == -707
+        else:
+            raise AssertionError("601 = 0 was accepted")
+
+    sim.call(body)

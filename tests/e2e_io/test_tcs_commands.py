@@ -308,7 +308,6 @@ BUG_CLASS_INIT = ("a top-level class's Shared Sub Init is never called at start-
                   "names stay empty (LoadFile: -519 at line 5; StoreFile writes 'As ' with no type)")
 BUG_CINT_TRAILING = ("CInt(\"20)\") raises -717 where a controller reads 20: GpoFile.ReadFile takes the "
                      "array bound of 'tcs_sta_loc_1(20)' so")
-BUG_SYSTEM_SPEED = "writing DataID 601 does not change the system speed that scales motions (it stays 50)"
 
 
 # ---- General commands
@@ -414,8 +413,7 @@ def _home(tcs: Tcs) -> None:
     assert tcs.arm.homed
 
 
-@case("mspeed", TCS, "General", "nothing", "the system speed (DataID 601) read and set",
-      bug=BUG_SYSTEM_SPEED)
+@case("mspeed", TCS, "General", "nothing", "the system speed (DataID 601) read and set")
 def _mspeed(tcs: Tcs) -> None:
     controller = tcs.cell.sim.controller
     before = controller.system_speed

@@ -23,6 +23,8 @@ are silent (docs/design/real-code.md has the ones where real code departs from t
          while power is on or coming up
 375      status bits: &H100000 while a robot has an asynchronous motion error not yet reported
          (TCS waits a tick for it when bits &H700000 are set)
+601      the system speed in % (``Controller.SystemSpeed``): the stored value is what the
+         controller boots with; reading gives the present speed, writing sets it (TCS ``mspeed``)
 3520     per robot: the trajectory-generator state, as ``Robot.TrajState(robot)``
 12304    per robot and axis: output torque in torque counts (±32768 = amplifier peak);
 12331    filtered feedforward torque (the gripper's spring compensation): see
@@ -84,6 +86,7 @@ def install(pdb: ParameterDatabase) -> None:
         234: LiveParameter("Power state", lambda u, u2: [float(_sim().controller.power_state)]),
         241: LiveParameter("Power request, do not wait", _power_requested, _request_power),
         375: LiveParameter("Controller status bits", _status_bits),
+        601: LiveParameter("System wide test speed in %", _system_speed, _set_system_speed),
         3520: LiveParameter("Trajectory mode", _traj_mode, units=robots),
         12304: LiveParameter("Compensator output torque, tcnt", _torques(output=True), units=robots),
         12331: LiveParameter("Filtered feedforward torque, tcnt", _torques(output=False), units=robots),
@@ -128,6 +131,16 @@ def _request_power(unit: int, unit2: int, values: list[Value]) -> None:
     from gplrt.controller.services import power_off, start_power_up
 
     (start_power_up if values[0] else power_off)(_sim())
+
+
+def _system_speed(unit: int, unit2: int) -> list[Value]:
+    return [float(_sim().controller.system_speed)]
+
+
+def _set_system_speed(unit: int, unit2: int, values: list[Value]) -> None:
+    from gplrt.controller.services import Controller
+
+    Controller.SystemSpeed = values[0]  # the same value, range and error (-707) as the property
 
 
 def _status_bits(unit: int, unit2: int) -> list[Value]:
