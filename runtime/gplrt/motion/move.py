@@ -15,7 +15,8 @@ Decisions [P] where the Dictionary gives only a name:
 * ``Rel(loc, prof)``: Cartesian ``loc`` — destination of the previous motion · loc (offset in the
   tool frame); Angles — axis-wise sum.
 * ``Approach`` of an Angles Location: its Cartesian pose (forward kinematics), then the clearance
-  rule of ``Location.approach_location``; ZClearance not set (1.0e32) raises -1033.
+  rule of ``Location.approach_location``; ZClearance not set (1.0e32) raises -794 *ZClearance
+  property not set*.
 * ``OneAxis(axis, position, relative, prof)``: a joint move of one axis (1-based); bad axis -1002.
 * ``Circle(loc1, loc2, prof)``: the full circle through the previous destination, loc1 and loc2,
   back to the start, orientation held.  ``Arc``: the arc from the previous destination through
@@ -48,6 +49,7 @@ from gplrt.lang.errors import (
     NO_ROBOT_ATTACHED,
     VALUE_INFINITE_OR_NAN,
     VALUE_OUT_OF_RANGE,
+    ZCLEARANCE_NOT_SET,
     GplException,
 )
 from gplrt.lang.arrays import GplArray
@@ -121,21 +123,23 @@ def _finite(value: Any, what: str) -> float:
     return v
 
 
-def _angles_of(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray:
+def _angles_of(robot: RobotState, loc: Location) -> np.ndarray:
     """Joint values of an Angles Location for ``robot``.
 
     An Angles Location holds "one axis position value for each degree-of-freedom of the robot"
     (D0:1958-1960), but ``loc.Angles(...)`` always stores 12 values (omitted ones 0) and one
     Location may serve robots of different axis counts.  Decision [P] (the manual is silent on
     values beyond the robot's axes): they do not belong to any degree of freedom of this robot and
-    are ignored, so ``l.Angles(250, 0, 90, 0, 69)`` moves a 5-axis PF400.  A Location with fewer
-    values than the robot has axes leaves the remaining axes at ``base`` (the previous destination).
+    are ignored, so ``l.Angles(250, 0, 90, 0, 69)`` moves a 5-axis PF400.  An axis the Location
+    holds no value for is 0, as ``loc.Angle(axis)`` reads it: a controller's Angles Location always
+    holds 12 values (a real TCS writes an untaught station as ``Angles(0, 0, ...)``), so a Location
+    made Angles without values moves to zeros -- or is refused there -- rather than nowhere.
     """
     vals = loc.axis_values()
     n = robot.axis_count
     if len(vals) >= n:
         return np.array(vals[:n], dtype=float)
-    q = base.copy()
+    q = np.zeros(n)
     q[: len(vals)] = vals
     return q
 
@@ -155,7 +159,7 @@ def _with_extra(robot: RobotState, q: np.ndarray) -> tuple[np.ndarray, np.ndarra
 def _cartesian(robot: RobotState, loc: Location, base: np.ndarray) -> np.ndarray:
     """Total pose (4×4 mm) of a Location; Angles Locations through forward kinematics."""
     if loc.Type == 1:
-        return robot.forward(_angles_of(robot, loc, base))
+        return robot.forward(_angles_of(robot, loc))
     return loc.matrix()
 
 
@@ -216,7 +220,7 @@ class _MoveClass:
                 else:
                     queue = robot.queue
                     dest = queue.history[-1].q_end if queue.history else queue.rest
-                    values = _angles_of(robot, loc, dest).tolist()
+                    values = _angles_of(robot, loc).tolist()
                 robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)
         elif isinstance(loc, Location) and loc._type != 1 and isinstance(Profile1, Profile):
             # a Cartesian Location: what the controller plans when the move is queued is the
@@ -235,7 +239,7 @@ class _MoveClass:
                 else:
                     robot.queue_pose(s.scheduler.clock.now(), P1, loc._config, Profile1, s.controller.system_speed)
         elif isinstance(loc, Location) and loc.Type == 1:
-            self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc, dest))
+            self._go(loc, Profile1, angles=lambda r, dest: _angles_of(r, loc))
         else:
             self._go(loc, Profile1, pose=lambda r, dest: _cartesian(r, loc, dest))
 
@@ -246,7 +250,7 @@ class _MoveClass:
         def pose(r: RobotState, dest: np.ndarray) -> np.ndarray:
             zc = float(loc.ZClearance)
             if zc >= NO_CLEARANCE:
-                raise GplException(INVALID_CARTESIAN, robot_num=r.number, detail="ZClearance is not set")
+                raise GplException(ZCLEARANCE_NOT_SET, robot_num=r.number)
             T = _cartesian(r, loc, dest).copy()
             if loc.ZWorld:
                 T[2, 3] = zc
@@ -261,9 +265,9 @@ class _MoveClass:
         loc = Location1
         # (the runtime's own fields, not the GPL properties: this is the hot path)
         if isinstance(loc, Location) and loc._type == 1 and isinstance(Profile1, Profile) and not Profile1._straight:
-            self._go(loc, Profile1, joints=lambda r, dest: dest + _angles_of(r, loc, np.zeros_like(dest)))
+            self._go(loc, Profile1, joints=lambda r, dest: dest + _angles_of(r, loc))
         elif isinstance(loc, Location) and loc.Type == 1:
-            self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest + _angles_of(r, loc, np.zeros_like(dest))))
+            self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest + _angles_of(r, loc)))
         else:
             self._go(loc, Profile1, pose=lambda r, dest: r.forward(dest) @ loc.matrix())
 
