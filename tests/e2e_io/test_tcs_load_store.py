@@ -8,11 +8,11 @@ fixed port 10100 in a network namespace of its own, ``gpltest.private_network``)
 byte, but for the date on its second line.  So the whole GpoFile reader and writer
 (``Class_gpofile.gpl``) behaves as on the controller.
 
-It needs two things the controller does: a class's ``Shared Sub Init`` runs at start-up
-(GpoFile's type tables, docs/design/real-code.md), and ``CInt``/``CDbl`` of text with trailing
-characters take the number it starts with -- ``CInt("20)")`` for the bound of
-``tcs_sta_flags_1(20)`` split at its parenthesis (``Class_gpofile.gpl:188-190``) and ``CDbl("180)")``
-for the last argument of ``.XYZ(...,180)`` -- where gplrt raises -717 *Invalid number format*.
+It needs two things the controller does (docs/design/real-code.md): a class's ``Shared Sub Init``
+runs at start-up (GpoFile's type tables), and ``CInt``/``CDbl`` of text with trailing characters
+take the number it starts with -- ``CInt("20)")`` for the bound of ``tcs_sta_flags_1(20)`` split at
+its parenthesis (``Class_gpofile.gpl:188-190``) and ``CDbl("180)")`` for the last argument of
+``.XYZ(...,180)``.  Without either, ``loadFile`` fails (-519, then -717).
 """
 
 from __future__ import annotations
@@ -20,8 +20,6 @@ from __future__ import annotations
 import socket
 from pathlib import Path
 from typing import Any
-
-import pytest
 
 from gpltest import copy_project, corpus_dir, private_network
 from gplrt.notebook import Cell
@@ -34,8 +32,6 @@ def _lines(data: bytes) -> list[bytes]:
     return data.split(b"\r\n")
 
 
-@pytest.mark.xfail(strict=True, reason="gplrt's CInt/CDbl reject text with trailing characters "
-                   "(CInt(\"20)\") is -717), which the controller reads as the number it starts with")
 def test_load_file_and_store_file_round_trip_the_real_tcs_file(tmp_path: Path, request: Any) -> None:
     corpus = corpus_dir()
     taught = (corpus / "docs" / "Tcs-taught-stations-2022.gpo").read_bytes()
