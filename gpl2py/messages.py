@@ -563,10 +563,11 @@ CONST_CYCLE = _error(
 
 GOTO_INTO_BLOCK = _error(
     "GPL3001",
-    "GoTo {name} jumps into a block from outside it; only jumps to the same or an enclosing block "
-    "(and from a Catch back into its Try) are supported",
-    "Jumps into an If, loop or Select body from outside are rejected; a jump into a For body would "
-    "leave its saved limit and step undefined (§10.7).",
+    "GoTo {name} jumps into a For loop from outside it; a For body is entered only through its "
+    "For line",
+    "A jump into a For body would leave the loop's saved limit and step undefined (§10.7); VB "
+    "rejects it too. Jumps into an If, ElseIf, Else, While, Do or Case body are accepted (the "
+    "statement is entered past its test), as are jumps out of any block.",
 )
 GOTO_ACROSS_TRY = _error(
     "GPL3002",
