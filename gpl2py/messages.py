@@ -571,8 +571,11 @@ GOTO_INTO_BLOCK = _error(
 )
 GOTO_ACROSS_TRY = _error(
     "GPL3002",
-    "GoTo {name} leaves or enters a Try block; only a Catch may jump back into its own Try",
-    "Branches into or out of Try, Catch and Finally blocks are illegal in GPL (§11.3).",
+    "GoTo {name} enters a Try, Catch or Finally block from outside it, or leaves a Finally block; "
+    "only a Catch may jump back into its own Try",
+    "Such a jump has no defined meaning (§11.3) and VB rejects it too. A jump out of a Try or Catch "
+    "block is accepted: the manual calls it illegal, but the vendor's TCS makes it and the "
+    "controller runs it (docs/design/real-code.md; the Finally runs on the way out).",
 )
 EXIT_TRY_IN_FINALLY = _error(
     "GPL3003",
