@@ -563,15 +563,19 @@ CONST_CYCLE = _error(
 
 GOTO_INTO_BLOCK = _error(
     "GPL3001",
-    "GoTo {name} jumps into a block from outside it; only jumps to the same or an enclosing block "
-    "(and from a Catch back into its Try) are supported",
-    "Jumps into an If, loop or Select body from outside are rejected; a jump into a For body would "
-    "leave its saved limit and step undefined (§10.7).",
+    "GoTo {name} jumps into a For loop from outside it; a For body is entered only through its "
+    "For line",
+    "A jump into a For body would leave the loop's saved limit and step undefined (§10.7); VB "
+    "rejects it too. Jumps into an If, ElseIf, Else, While, Do or Case body are accepted (the "
+    "statement is entered past its test), as are jumps out of any block.",
 )
 GOTO_ACROSS_TRY = _error(
     "GPL3002",
-    "GoTo {name} leaves or enters a Try block; only a Catch may jump back into its own Try",
-    "Branches into or out of Try, Catch and Finally blocks are illegal in GPL (§11.3).",
+    "GoTo {name} enters a Try, Catch or Finally block from outside it, or leaves a Finally block; "
+    "only a Catch may jump back into its own Try",
+    "Such a jump has no defined meaning (§11.3) and VB rejects it too. A jump out of a Try or Catch "
+    "block is accepted: the manual calls it illegal, but the vendor's TCS makes it and the "
+    "controller runs it (docs/design/real-code.md; the Finally runs on the way out).",
 )
 EXIT_TRY_IN_FINALLY = _error(
     "GPL3003",

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.context import ModuleContext
-from gpl2py.lower.emit import Writer
+from gpl2py.lower.emit import Line, Writer
 from gpl2py.lower.expressions import default_code
 from gpl2py.lower.names import py_ident, py_literal
 from gpl2py.lower.text import py_string
@@ -58,38 +58,40 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
         w.line(f"_gpl_members_ = {{{gpl_members(cls)}}}")
     for member in decl.members:
         if isinstance(member, A.VarDecl):
-            for d in member.declarators:
-                v = cls.members.get(d.name.lower())
-                if isinstance(v, VarSym) and v.decl is d and v.shared:
-                    w.gpl_line = member.span.line
-                    w.comments(member.leading_comments)
+            shared = [v for v in _declared(cls, member) if v.shared]
+            if shared:
+                w.gpl_line = member.span.line
+                w.comments(member.leading_comments)
+                mark = w.mark()
+                for v in shared:
                     folded = ctx.model.const_values.get(v, _UNFOLDED)
                     value = default_code(v.type) if folded is _UNFOLDED else py_literal(folded)
                     w.line(f"{py_ident(v.name)} = {value}")
+                w.trailing(member.trailing_comment, mark)
     for member in decl.members:
         if isinstance(member, A.DelegateDecl):
             d = cls.members.get(member.name.lower())
             if isinstance(d, DelegateSym):
+                w.gpl_line = member.span.line
+                w.comments(member.leading_comments)
+                mark = w.mark()
                 w.line(delegate_line(ctx, d))
+                w.trailing(member.trailing_comment, mark)
         elif isinstance(member, A.ClassDecl):
             inner = cls.members.get(member.name.lower())
             if isinstance(inner, ClassSym) and inner.decl is member:
                 w.blank()
                 w.extend(lower_class(ctx, inner, sink), extra_indent=w.level)
     # constructors and field initialisation
-    init_low = ProcLowerer(ctx, None, cls, sink)
-    field_lines = [f"self.{py_ident(f.name)} = {field_value(init_low, f)}" for f in instance_fields]
+    fields = _field_lines(ProcLowerer(ctx, None, cls, sink), cls, decl)
     if not cls.ctors:
-        if field_lines:
+        if fields.lines:
             w.blank()
             w.line("def __init__(self) -> None:")
-            w.indent()
-            for line in field_lines:
-                w.line(line)
-            w.dedent()
+            w.extend(fields, extra_indent=w.level + 1)
     elif len(cls.ctors) == 1:
         w.blank()
-        w.extend(_method(ctx, cls, cls.ctors[0], sink, field_lines), extra_indent=w.level)
+        w.extend(_method(ctx, cls, cls.ctors[0], sink, fields), extra_indent=w.level)
     else:
         w.blank()
         w.line("def __init__(self, *args) -> None:")
@@ -101,13 +103,10 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
         w.dedent()
         w.blank()
         w.line("def _init_fields(self) -> None:")
-        w.indent()
-        for line in field_lines or ["pass"]:
-            w.line(line)
-        w.dedent()
+        w.extend(fields if fields.lines else _pass(), extra_indent=w.level + 1)
         for c in cls.ctors:
             w.blank()
-            w.extend(_method(ctx, cls, c, sink, []), extra_indent=w.level)
+            w.extend(_method(ctx, cls, c, sink), extra_indent=w.level)
             names = ", ".join(py_ident(p.name) for p in c.params)
             w.blank()
             w.line("@classmethod")
@@ -123,17 +122,63 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
         proc = ctx.model.proc_of_decl.get(member) if isinstance(member, A.ProcDecl) else None
         if proc is not None and proc.kind != "New":  # (each overload is a declaration of its own)
             w.blank()
-            w.extend(_method(ctx, cls, proc, sink, []), extra_indent=w.level)
+            w.extend(_method(ctx, cls, proc, sink), extra_indent=w.level)
         elif isinstance(member, A.PropertyDecl) and isinstance(sym, PropSym) and sym.decl is member:
+            w.blank()
+            w.gpl_line = member.span.line
+            w.comments(member.leading_comments)  # the Property line's comments, above its accessors
+            if member.trailing_comment is not None:
+                w.comments([member.trailing_comment])
+            first = True
             for acc in (sym.getter, sym.setter):
                 if acc is not None:
-                    w.blank()
-                    w.extend(_method(ctx, cls, acc, sink, []), extra_indent=w.level)
+                    if not first:
+                        w.blank()
+                    first = False
+                    w.extend(_method(ctx, cls, acc, sink), extra_indent=w.level)
             if sym.getter is None and sym.setter is not None and not sym.shared:
                 name = py_ident(sym.name)
                 w.line(f"{name} = property(fset=_set_{name})  # write-only property")
+            w.comments(member.end_comments)
+            if member.end_comment is not None:
+                w.comments([member.end_comment])
     w.comments(decl.end_comments)
+    if decl.end_comment is not None:
+        w.comments([decl.end_comment])
     w.dedent()
+    return w
+
+
+def _declared(cls: ClassSym, member: A.VarDecl) -> list[VarSym]:
+    """The fields ``member`` declares (a declarator reported as a duplicate declares none)."""
+    out = []
+    for d in member.declarators:
+        v = cls.members.get(d.name.lower())
+        if isinstance(v, VarSym) and v.decl is d:
+            out.append(v)
+    return out
+
+
+def _field_lines(low: ProcLowerer, cls: ClassSym, decl: A.ClassDecl) -> Writer:
+    """``self.<field> = <value>`` for every instance field, in declaration order, each declaration
+    with its comments (the line's comment trails the first of its fields)."""
+    w = Writer()
+    for member in decl.members:
+        if isinstance(member, A.VarDecl):
+            fields = [v for v in _declared(cls, member) if not v.shared]
+            if fields:
+                w.gpl_line = member.span.line
+                w.comments(member.leading_comments)
+                mark = w.mark()
+                for v in fields:
+                    w.line(f"self.{py_ident(v.name)} = {field_value(low, v)}")
+                w.trailing(member.trailing_comment, mark)
+    return w
+
+
+def _pass() -> Writer:
+    w = Writer()
+    w.line("pass")
     return w
 
 
@@ -180,16 +225,16 @@ def _isinstance_test(ctx: ModuleContext, k: int, typ: t.GplType) -> str:
     return f"isinstance(args[{k}], {py})" if py else ""
 
 
-def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink, extra: list[str]) -> Writer:
+def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink,
+            fields: Writer | None = None) -> Writer:
     low = ProcLowerer(ctx, p, cls, sink)
     out = low.procedure(p, method=True)
-    if extra:
+    if fields is not None and fields.lines:
         # field initialisers run before the user's New (AMB-7): right after the def line
         for i, ln in enumerate(out.lines):
             if ln.text.startswith("def "):
-                from gpl2py.lower.emit import Line
-
-                out.lines[i + 1:i + 1] = [Line(ln.indent + 1, text, ln.gpl_line) for text in extra]
+                out.lines[i + 1:i + 1] = [Line(ln.indent + 1 + f.indent, f.text, f.gpl_line, f.comment)
+                                          for f in fields.lines]
                 break
     return out
 

@@ -64,7 +64,9 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             if isinstance(d, DelegateSym):
                 body.gpl_line = m.span.line
                 body.comments(m.leading_comments)
+                mark = body.mark()
                 body.line(delegate_line(ctx, d))
+                body.trailing(m.trailing_comment, mark)
         elif isinstance(m, A.VarDecl):
             body.gpl_line = m.span.line
             body.comments(m.leading_comments)
@@ -169,6 +171,8 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     out.line(f'"""{what}, transpiled by gpl2py from {escape(os.path.basename(source), "docstring")}."""')
     if decl is not None:
         out.comments(decl.leading_comments)
+        if decl.trailing_comment is not None:  # the comment on the 'Module Name' line
+            out.comments([decl.trailing_comment])
     imports = _import_lines(ctx)
     if imports:
         out.blank()
@@ -183,6 +187,8 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     out.extend(defs)
     if decl is not None:
         out.comments(decl.end_comments)
+        if decl.end_comment is not None:  # the comment on the 'End Module' line
+            out.comments([decl.end_comment])
     if reg_lines:
         out.blank(2)
         for line in reg_lines:

@@ -13,7 +13,7 @@ from collections.abc import Callable
 from gpl2py.lower.names import py_ident
 from gpl2py.lower.text import escape, py_string
 from gpl2py.semantics.check import Model
-from gpl2py.semantics.symbols import ModuleSym, ProcSym
+from gpl2py.semantics.symbols import ClassSym, ModuleSym, ProcSym
 
 
 def package_init(model: Model, project_name: str, start_text: str | None, modules: list[ModuleSym],
@@ -79,8 +79,15 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         lines.append(f"    {m.py_name}._reset()")
     for m in extra + modules:
         lines.append(f"    {m.py_name}._init()")
-    for m in modules:
-        if m.init_proc is not None:
+    for m in extra + modules:
+        # the Shared Sub Init of each class (real code relies on it: docs/design/real-code.md),
+        # before its module's Init, which may use the class
+        for c in _classes(m):
+            p = c.init_proc
+            if p is not None:
+                path = ".".join(py_ident(n) for n in c.path)
+                lines.append(f"    {m.py_name}.{path}.{proc_name(p)}()")
+        if m in modules and m.init_proc is not None:
             lines.append(f"    {m.py_name}.{proc_name(m.init_proc)}()")
     lines += [
         "",
@@ -113,6 +120,15 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "register_package(__file__)",
     ]
     return "\n".join(lines) + "\n"
+
+
+def _classes(m: ModuleSym) -> list[ClassSym]:
+    """The classes of module ``m`` and the classes nested in them, in declaration order."""
+    out: list[ClassSym] = []
+    for member in m.members.values():
+        if isinstance(member, ClassSym):
+            out.extend(member.classes())
+    return out
 
 
 _NO_START = ("GPL project {project} has no start procedure: Project.gpr names no ProjectStart and the "

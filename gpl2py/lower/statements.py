@@ -209,6 +209,7 @@ class ProcLowerer(ExprLowerer):
             ann = annotation(p.prop.type)
             ret = f" -> {ann}" if ann else ""
         name = self.ctx.names.proc_name(p)
+        out.comments(decl.leading_comments)  # above any decorator: they describe the whole def
         if p.kind == "New":
             name = "__init__" if len(p.owner.ctors) <= 1 else f"_new_{p.overload_index}"  # type: ignore[union-attr]
         if p.kind in ("Get", "Set") and p.prop is not None and p.prop.shared:
@@ -224,7 +225,6 @@ class ProcLowerer(ExprLowerer):
             out.line(f"@{name}.setter")
         elif method and p.shared:
             out.line("@staticmethod")
-        out.comments(decl.leading_comments)
         header = out.mark()
         out.line(f"def {name}({', '.join(params)}){ret}:")
         out.trailing(decl.trailing_comment, header)

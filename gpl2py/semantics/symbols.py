@@ -127,6 +127,22 @@ class ClassSym:
     def fields(self) -> list[VarSym]:
         return [m for m in self.members.values() if isinstance(m, VarSym)]
 
+    @property
+    def init_proc(self) -> ProcSym | None:
+        """The class's ``Shared Sub Init()``, which the controller runs at start-up like a module's
+        ``Init`` (real code: ``Class_gpofile.gpl:74``, "Init routine called automatically at
+        startup"; docs/design/real-code.md).  An instance ``Init`` needs an object: never run."""
+        return next((p for p in procedures(self.members.get("init"))
+                     if not p.params and p.shared and p.kind == "Sub"), None)
+
+    def classes(self) -> list[ClassSym]:
+        """This class and the classes nested in it, outer first, in declaration order."""
+        out = [self]
+        for m in self.members.values():
+            if isinstance(m, ClassSym):
+                out.extend(m.classes())
+        return out
+
 
 @dataclass(eq=False)
 class ModuleSym:

@@ -273,3 +273,49 @@ def test_is_nothing_on_a_stub_result_tests_the_value_it_returns(tmp_path: Path) 
     proc = gpl2py("run", str(proj), "--stubs", str(stubs), "--quiet")
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout == "0 nothing\n1 nothing\n2 something\n"
+
+
+# -- A class's Shared Sub Init runs at start-up ------------------------------------------------------
+
+
+def test_a_shared_init_of_a_class_runs_at_start_up_before_its_modules_init(tmp_path: Path) -> None:
+    """``Private Shared Sub Init()`` of a top-level class fills its tables ("Init routine called
+    automatically at startup", Class_gpofile.gpl:72-74; TCS reads every .gpo through them), and so
+    does one of a class nested in a module, before that module's Init, which may use the class.
+    An instance ``Sub Init`` is an ordinary method: nothing calls it without an object."""
+    files = {
+        "Main.gpl": """Module Main
+    Public Sub Init()
+        Console.WriteLine("module Init sees " & Inner.seen)
+    End Sub
+    Class Inner
+        Public Shared seen As String = "declared"
+        Private Shared Sub Init()
+            seen = "inner Init"
+        End Sub
+    End Class
+    Public Sub Main()
+        Dim t As New Table
+        Console.WriteLine(Table.Name(2) & " " & CStr(Table.Count) & " " & Inner.seen & " " & CStr(t.own))
+    End Sub
+End Module
+""",
+        "Table.gpl": """Public Class Table
+    Public Shared Count As Integer = 1
+    Public Shared Name(3) As String
+    Public own As Integer
+    Private Shared Sub Init()
+        Name(2) = "Double"
+        Count += 10
+    End Sub
+End Class
+Class Other
+    Public Sub Init()
+        Console.WriteLine("never")
+    End Sub
+End Class
+""",
+    }
+    result = run_gpl(tmp_path, files)
+    assert result.log == "", result.log
+    assert result.output == "module Init sees inner Init\nDouble 11 inner Init 0\n"

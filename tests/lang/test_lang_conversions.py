@@ -90,10 +90,25 @@ def test_string_to_number(text: str, expected: float) -> None:
     assert CDbl(text) == pytest.approx(float(expected), abs=0, rel=1e-15)
 
 
-@pytest.mark.parametrize("text", ["", "abc", "1.2.3", "inf", "nan", "1_000", "12abc", "--1", "&HG", "0x10", " "])
-def test_bad_string_is_717(text: str) -> None:
+@pytest.mark.parametrize("text", ["", "abc", "inf", "nan", "--1", "&HG", " ", "x1", ". 5", "e5"])
+def test_text_that_does_not_start_with_a_number_is_717(text: str) -> None:
     assert code_of(CDbl, text) == -717
     assert code_of(CInt, text) == -717
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [("20)", 20), ("180)", 180.0), ("-82.630104,", -82.630104), ("12abc", 12), ("1.2.3", 1.2),
+     ("1_000", 1), ("0x10", 0), ("1e", 1), ("2.5E+3 mm", 2500.0), ("&H1FZ", 31), (" 7 8", 7)],
+)
+def test_characters_after_the_number_are_ignored(text: str, expected: float) -> None:
+    """The controller reads the number a text starts with: TCS converts the bound of
+    ``Public tcs_sta_flags_1(20) As Integer`` as ``CInt("20)")`` and the last argument of
+    ``.XYZ(...,180)`` as ``CDbl("180)")`` when it loads a .gpo file (Class_gpofile.gpl:188-190),
+    and loads the files the real TCS writes (docs/design/real-code.md)."""
+    assert parse_number(text) == expected
+    assert CDbl(text) == pytest.approx(float(expected), abs=0, rel=1e-15)
+    assert CInt(text) == round(expected)
 
 
 def test_string_to_integer_rounds() -> None:

@@ -112,6 +112,45 @@ def test_comments_are_carried(tmp_path: Path) -> None:
     assert "if i > 2:  # header note" in text
 
 
+def test_comments_of_class_members_are_carried(tmp_path: Path) -> None:
+    """Comments on fields, Consts, delegates and properties of a class, and on the lines that open
+    and close a Module or a Class, are carried; a method's comments stand above its decorator."""
+    text = gen(tmp_path, "", decls="""    Class Box   ' header note
+        ' about count
+        Public count As Integer   ' count note
+        Public Shared total As Integer = 3   ' total note
+        Public Const LIMIT As Integer = 9   ' limit note
+        ' about the hook
+        Delegate Sub Hook(ByVal x As Integer)   ' hook note
+        ' about size
+        Public Property Size As Integer   ' size note
+            Get
+                Return count
+            End Get
+            ' before the end
+        End Property   ' end property note
+        ' about reset
+        Public Shared Sub Reset()
+            total = 0
+        End Sub
+    End Class   ' end class note""")
+    for line in ("    total = 0  # total note\n", "    LIMIT = 9  # limit note\n",
+                 '    # about the hook\n    Hook = delegate_type("Hook", 1)  # hook note\n',
+                 "    def __init__(self) -> None:\n        # about count\n        self.count = 0  # count note\n",
+                 "    # about size\n    # size note\n    @property\n    def Size(self) -> int:\n",
+                 "    # before the end\n    # end property note\n",
+                 "    # about reset\n    @staticmethod\n    def Reset() -> None:\n",
+                 "    # end class note\n"):
+        assert line in text, (line, text)
+    module = tmp_path / "Main.gpl"
+    module.write_text("Module Main   ' module note\n    Public Sub Main()\n    End Sub\nEnd Module   ' end note\n")
+    out = transpile(str(module), DiagnosticSink())
+    assert out is not None
+    py = out.files["main/main_mod.py"]
+    assert py.startswith('"""Module Main, transpiled by gpl2py from Main.gpl."""\n# module note\n'), py
+    assert "\n# end note\n" in py
+
+
 def test_goto_free_procedures_stay_structured(tmp_path: Path) -> None:
     body = main_body(gen(tmp_path, """        Dim i As Integer
         While i < 3

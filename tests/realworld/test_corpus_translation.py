@@ -10,7 +10,9 @@ and PEP 8 (99 columns), and the package imports.
 from __future__ import annotations
 
 import importlib
+import io
 import sys
+import tokenize
 from pathlib import Path
 
 import libcst
@@ -21,6 +23,9 @@ from pyflakes.api import check as pyflakes_check
 from pyflakes.reporter import Reporter
 
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.source import SourceFile
+from gpl2py.syntax.lexer import tokenize as gpl_tokenize
+from gpl2py.syntax.tokens import TokenKind
 from gpl2py.transpile import transpile, write_package
 
 # The warnings that are right on the PARobot project: its auto-centring module is protected (one
@@ -87,3 +92,33 @@ def test_the_package_imports(translated: tuple[str, DiagnosticSink, Path]) -> No
         assert callable(pkg.main) and callable(pkg.init)
     finally:
         sys.path.remove(str(folder.parent))
+
+
+def _words(text: str) -> str:
+    return " ".join(text.split())
+
+
+def test_every_gpl_comment_is_in_the_generated_package(translated: tuple[str, DiagnosticSink, Path]
+                                                        ) -> None:
+    """Comments survive translation: the text of each GPL comment and ``#Region`` line (as gpl2py's
+    lexer reads them) is in the Python comments of the package, whatever line breaks re-flowing
+    put into it.  Field comments (``Public RobNum As Integer ' The robot number``), the comment on
+    a ``Module`` or ``End Class`` line and those around a class's Consts were lost before."""
+    project, _, folder = translated
+    python = []
+    for path in sorted(folder.glob("*.py")):
+        for tok in tokenize.generate_tokens(io.StringIO(path.read_text()).readline):
+            if tok.type == tokenize.COMMENT:
+                python.append(tok.string.lstrip("#"))
+    python_text = _words(" ".join(python))
+    lost = []
+    for path in sorted((corpus_dir() / project).iterdir()):
+        if path.suffix.lower() not in (".gpl", ".gpo"):
+            continue
+        source = SourceFile(str(path), path.read_text(encoding="latin-1"))
+        for tok in gpl_tokenize(source, DiagnosticSink()):
+            if tok.kind is TokenKind.COMMENT or tok.kind is TokenKind.DIRECTIVE:
+                text = _words(tok.value if tok.kind is TokenKind.COMMENT else tok.text)
+                if text and text not in python_text:
+                    lost.append(f"{path.name}:{tok.span.start.line}: {text}")
+    assert not lost, f"{len(lost)} comments lost:\n" + "\n".join(lost[:20])

@@ -194,6 +194,12 @@ End Module
     # GPL2032: a single file runs its only Public Sub Main (no ProjectStart)
     # (line 10, a GoTo out of a Try, is accepted: real code does it, docs/design/real-code.md)
     assert got == [("GPL2032", "warning", 2), ("GPL3001", "error", 4), ("GPL3002", "error", 12)]
+    # the message names the For loop: jumps into If, While, Do and Case bodies are accepted
+    into_for = next(d for d in sink.sorted() if d.code == "GPL3001")
+    assert "into a For loop" in into_for.message, into_for.message
+    # and GPL3002 does not call the jump out of the Try (line 10, accepted) illegal
+    out_of_finally = next(d for d in sink.sorted() if d.code == "GPL3002")
+    assert "leaves a Finally block" in out_of_finally.message, out_of_finally.message
 
 
 def test_implicit_number_to_string_is_a_warning(tmp_path: Path) -> None:

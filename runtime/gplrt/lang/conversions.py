@@ -13,10 +13,13 @@ converted (spec gpl-language.md §4.2).  The rules implemented here:
 * **To Boolean**: 0 is False, anything else True (§4.2 rule 8); Strings are parsed as numbers, and
   "True"/"False" (any case) are accepted too (§14.1 recommendation).
 * **Boolean to number**: True is -1, False is 0 (§4.1, AMB-8).
-* **String to number** (§4.2 rule 6, recommendation): optional blanks, sign, decimal digits with an
-  optional point and exponent, or ``&H``/``&O`` literals (32-bit two's complement like the source
-  literals, AMB-36).  Anything else, including the empty string, is **-717 Invalid number format**
-  (the controller's text for exactly this fault).
+* **String to number** (§4.2 rule 6): optional blanks, sign, decimal digits with an optional
+  point and exponent, or ``&H``/``&O`` literals (32-bit two's complement like the source literals,
+  AMB-36) -- and **whatever follows the number is ignored**: the controller reads ``CInt("20)")``
+  as 20 and ``CDbl("180)")`` as 180, which TCS relies on to read every ``.gpo`` file
+  (``Class_gpofile.gpl:188-190``, docs/design/real-code.md).  Text that does not start with a
+  number, including the empty string, is **-717 Invalid number format** (the controller's text for
+  exactly this fault).
 * **Number to String** (CStr, ``&``, Console; AMB-22): integral values print without a decimal
   point; other Doubles print with at most 15 significant digits, trailing zeros dropped, switching
   to ``d.dddE+XX`` form when the decimal exponent is below -5 or at least 15 (the .NET "G15" rule
@@ -95,8 +98,9 @@ __all__ = [
 
 # -- helpers --------------------------------------------------------------------------------------
 
+# the number a text starts with; what follows it is not read (real code: module docstring)
 _NUMBER_RE: Final = re.compile(
-    r"[ \t\r\n]*([+-]?)[ \t]*(?:(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|&[hH]([0-9a-fA-F]+)|&[oO]([0-7]+))[ \t\r\n]*\Z"
+    r"[ \t\r\n]*([+-]?)[ \t]*(?:(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|&[hH]([0-9a-fA-F]+)|&[oO]([0-7]+))"
 )
 
 
@@ -104,8 +108,10 @@ def parse_number(text: str) -> float | int:
     """The number a String stands for when GPL expects a number (§4.2 rule 6).
 
     Decimal text gives a float (arithmetic is in Double); ``&H``/``&O`` text gives the 32-bit
-    two's complement int (``"&HFFFFFFFF"`` is -1, AMB-36).  Bad text raises -717; a number too
-    large for its type (``"1E400"`` for a Double, as ``"&H1FFFFFFFF"`` for 32 bits) -710.
+    two's complement int (``"&HFFFFFFFF"`` is -1, AMB-36).  Characters after the number are
+    ignored (``"20)"`` is 20, as on the controller); text that does not start with a number
+    raises -717; a number too large for its type (``"1E400"`` for a Double, as ``"&H1FFFFFFFF"``
+    for 32 bits) -710.
     """
     m = _NUMBER_RE.match(text)
     if m is None:
