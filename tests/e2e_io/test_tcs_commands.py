@@ -303,13 +303,6 @@ def case(command: str, guide: str, section: str, needs: str, checks: str, verdic
     return register
 
 
-#: Bugs in other parts of gpl2py that stop a case (reported to the lead, with GPL reproducers).
-BUG_CLASS_INIT = ("a top-level class's Shared Sub Init is never called at start-up, so GpoFile's type "
-                  "names stay empty (LoadFile: -519 at line 5; StoreFile writes 'As ' with no type)")
-BUG_CINT_TRAILING = ("CInt(\"20)\") raises -717 where a controller reads 20: GpoFile.ReadFile takes the "
-                     "array bound of 'tcs_sta_loc_1(20)' so")
-
-
 # ---- General commands
 
 @case("version", TCS, "General", "nothing", "the TCS version and every plug-in's, in order")
@@ -931,8 +924,7 @@ def _vresult_loc(tcs: Tcs) -> str:
 # ---- Load-Save plug-in (the guide's appendix)
 
 @case("LoadFile", TCS, "Load-Save", "a .gpo file",
-      "the taught stations and profiles of a real PF400 cell's Tcs.gpo; -508 for a missing file",
-      bug=f"{BUG_CLASS_INIT}; and {BUG_CINT_TRAILING}")
+      "the taught stations and profiles of a real PF400 cell's Tcs.gpo; -508 for a missing file")
 def _load_file(tcs: Tcs) -> None:
     tcs.expect("loadFile nothere", "-508 *File not found*, file: nothere.gpo")
     tcs.ok("loadFile /flash/data/taught.gpo")
@@ -943,7 +935,7 @@ def _load_file(tcs: Tcs) -> None:
 
 
 @case("StoreFile", TCS, "Load-Save", "nothing",
-      "writes the stations and profiles in the format a real controller's TCS wrote", bug=BUG_CLASS_INIT)
+      "writes the stations and profiles in the format a real controller's TCS wrote")
 def _store_file(tcs: Tcs) -> None:
     tcs.ok(f"locXyz 5 {nums(CART_C)}", "locZClearance 5 40", "locConfig 5 1", "speed 3 33")
     try:
