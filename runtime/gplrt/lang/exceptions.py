@@ -14,6 +14,7 @@ RecursionError                                   -755    Thread stack too small
 IndexError (a list used as an array)             -767    Invalid array index
 ``None(...)`` -- calling a Nothing delegate      -796    No delegate defined
 AttributeError/TypeError on ``None``             -757    Object not instantiated
+``raise None`` (``Throw ex`` with ex Nothing)    -757    Object not instantiated
 ValueError "math domain error" (Sqrt(-1) ...)    -707    Value out-of-range
 ValueError "could not convert string to float"   -717    Invalid number format
 ValueError "cannot convert float NaN ..."        -708    Value infinite or NAN
@@ -77,6 +78,8 @@ def gpl_code_for(exc: BaseException) -> int:
         if "not callable" in text:
             return NO_DELEGATE_DEFINED
         return OBJECT_NOT_INSTANTIATED
+    if isinstance(exc, TypeError) and "exceptions must derive from BaseException" in text:
+        return OBJECT_NOT_INSTANTIATED  # Throw of an Exception variable that is Nothing
     if isinstance(exc, ValueError):
         if "convert string to float" in text or "invalid literal" in text:
             return INVALID_NUMBER_FORMAT
