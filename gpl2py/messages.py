@@ -92,7 +92,7 @@ LEX_UNTERMINATED_STRING = _error(
 )
 LEX_LONG_STRING = _warning(
     "GPL1003",
-    "string literal is {length} characters long; GPL controllers accept at most 128",
+    "string literal is {length} characters long; the manual limits string literals to 128",
     "The manual limits literals (not String values) to 128 characters (spec AMB-35).",
 )
 LEX_NON_ASCII_STRING = _error(
