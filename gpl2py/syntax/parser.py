@@ -1271,6 +1271,8 @@ class Parser:
         return node
 
     def select_statement(self) -> A.Stmt | None:
+        if self.too_deep("blocks"):  # its Case blocks are parsed by block(), not body(): check here
+            return None
         start = self.next()  # Select
         if self.tok.kind is K.CASE:
             self.next()

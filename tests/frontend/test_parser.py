@@ -832,6 +832,24 @@ def test_deep_nesting_is_a_diagnostic_not_a_crash() -> None:
     assert [d.code for d in sink] == ["GPL1117"]  # classes and blocks count together
 
 
+def test_nested_select_has_the_block_depth_guard() -> None:
+    # Select parses its Case blocks without the guard every other block passes through: 1,000
+    # levels were internal error GPL9000 (RecursionError), 500 a message about an "expression"
+    opened = {"If": ("If a Then\n", "End If\n"), "Select": ("Select Case a\nCase 1\n", "End Select\n"),
+              "While": ("While a\n", "End While\n")}
+    for kind, (head, tail) in opened.items():
+        for depth in (150, 500, 1000):
+            text = "Module M\nSub A()\n" + head * depth + tail * depth + "End Sub\nEnd Module\n"
+            _, sink = parse_text(text)
+            assert [d.code for d in sink] == ["GPL1117"], (kind, depth, [d.header() for d in sink])
+            assert "blocks nested too deeply (more than 100 levels)" in sink.errors[0].message
+            # the 100th nested construct is refused (Module and Sub are two levels): an If or While
+            # at the first token of its body, a Select at its own header
+            lines = head.count("\n")
+            hundredth = 3 + 99 * lines
+            assert sink.errors[0].span.line == (hundredth if kind == "Select" else hundredth + 1), kind
+
+
 def test_dump_is_readable() -> None:
     unit, _ = parse_text("Module M\nSub A() ' hi\n    x = 1 + 2\nEnd Sub\nEnd Module\n")
     text = A.dump(unit)
