@@ -24,7 +24,7 @@ from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.context import ProjectNames
 from gpl2py.lower.module import lower_module
-from gpl2py.lower.names import snake_case
+from gpl2py.lower.names import package_name
 from gpl2py.lower.package import package_init, package_main
 from gpl2py.lower.sourcemap import sourcemap_json
 from gpl2py.lower.stubs import stub_files
@@ -132,7 +132,7 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
         sink.report(M.START_ASSUMED_MAIN, start.span, name=f"{start.module.name}.{start.name}")
     names = ProjectNames.build(model)
-    package = snake_case(project.name) if project.name else "gpl_project"
+    package = package_name(project.name)
     out = Output(package, project=project)
     smap: dict[str, tuple[str, list[int]]] = {}
     modules = list(model.project.module_list)
@@ -147,7 +147,7 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
         fname = f"{mod.py_name}.py"
         out.files[f"{package}/{fname}"] = text
         smap[fname] = (mod.path, gmap)
-    stub_texts, records = stub_files(model.stubs, names.stub_module_py, package, user) \
+    stub_texts, records = stub_files(model.stubs, names.stub_module_py, names.stub_attr_py, package, user) \
         if model.stubs is not None and model.stubs.stubs else ({}, [])
     out.files.update(stub_texts)
     stub_modules = sorted({Path(rel).stem for rel in stub_texts

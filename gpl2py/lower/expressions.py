@@ -105,6 +105,11 @@ class ExprLowerer:
         # from a non-negative start that the body never writes)
         self.nonneg: set[VarSym] = set()
         self.chain_temps = 0  # temporaries made for long operator chains (chain_temp)
+        # the Python locals of the procedure: a global of this module spelled the same (a class
+        # ``Station`` in ``Dim Station As New Station``) is reached as ``_this.Station``
+        self.local_py: frozenset[str] = frozenset(
+            py_ident(v.name) for v in proc.locals.values() if v.storage in ("local", "param")
+        ) if proc is not None else frozenset()
 
     # -- helpers -----------------------------------------------------------------------------------
 
@@ -146,7 +151,11 @@ class ExprLowerer:
             else:
                 parts.append(self.ctx.names.overload_py.get(p, p.name))  # one per overload
         parts.append(v.name)
-        return "_s_" + "_".join(parts)
+        return self.ctx.static_global(v, "_s_" + "_".join(parts))
+
+    def static_flag(self, v: VarSym) -> str:
+        """The module global that says Static ``v``'s initializer has run."""
+        return self.ctx.static_global(v, self.static_name(v) + "_done", role="done")
 
     def var_code(self, v: VarSym, receiver: A.Expr | None) -> Code:
         st = v.storage
@@ -165,9 +174,35 @@ class ExprLowerer:
             return self.module_var_ref(v), P_ATOM
         # field
         if v.shared:
-            return self.ctx.member_owner_ref(v) + py_ident(v.name), P_ATOM
+            return self.owner_ref(v) + py_ident(v.name), P_ATOM
         recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
         return f"{recv}.{py_ident(v.name)}", P_ATOM
+
+    def class_ref(self, cls: ClassSym | DelegateSym) -> str:
+        """How this procedure names a user class or delegate class (``ModuleContext.class_ref``,
+        through ``_this`` when a local hides the outermost name)."""
+        root: object = cls
+        while True:
+            outer = root.outer if isinstance(root, ClassSym) else getattr(root, "owner", None)
+            if not isinstance(outer, ClassSym):
+                break
+            root = outer
+        return self.unhidden(self.ctx.class_ref(cls), root)
+
+    def owner_ref(self, sym: VarSym | ProcSym | PropSym) -> str:
+        """The qualifier of a module-level or Shared member (``""``, ``"mod."``, ``"Cls."``)."""
+        if isinstance(sym.owner, ClassSym):
+            return self.class_ref(sym.owner) + "."
+        return self.ctx.member_owner_ref(sym)
+
+    def unhidden(self, ref: str, root: object) -> str:
+        """``ref``, a reference that starts with the Python name of ``root`` (a global of some
+        module), or ``_this.<ref>`` when ``root`` belongs to this module and a local of the
+        procedure has that Python name."""
+        if self.ctx.owner_module(root) is self.ctx.mod and py_ident(getattr(root, "name", "")) in self.local_py:
+            self.ctx.needs_this = True
+            return "_this." + ref
+        return ref
 
     def module_var_ref(self, v: VarSym) -> str:
         """A module variable; ``_this.name`` when a local of the procedure hides it (§6.4)."""
@@ -668,7 +703,7 @@ class ExprLowerer:
                         return f"{attr}(_this, {py_string(py_ident(v.name))})"
                     return f"{attr}({prefix[:-1]}, {py_string(py_ident(v.name))})"
                 if v.shared:
-                    return f"{attr}({self.ctx.member_owner_ref(v)[:-1]}, {py_string(py_ident(v.name))})"
+                    return f"{attr}({self.owner_ref(v)[:-1]}, {py_string(py_ident(v.name))})"
                 recv = "self" if i.receiver is None else self.val(i.receiver)
                 return f"{attr}({recv}, {py_string(py_ident(v.name))})"
             if i.kind == "index":
@@ -688,11 +723,13 @@ class ExprLowerer:
         if isinstance(p.owner, ClassSym) and not p.shared:
             recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
             return f"{recv}.{name}"
-        return self.ctx.member_owner_ref(p) + name
+        if isinstance(p.owner, ClassSym):
+            return self.owner_ref(p) + name
+        return self.unhidden(self.ctx.member_owner_ref(p) + name, p)
 
     def prop_ref(self, prop: PropSym, receiver: A.Expr | None) -> str:
         if prop.shared:
-            return f"{self.ctx.class_ref(prop.owner)}._get_{py_ident(prop.name)}()"
+            return f"{self.class_ref(prop.owner)}._get_{py_ident(prop.name)}()"
         recv = "self" if receiver is None else self.sub(receiver, P_ATOM)
         return f"{recv}.{py_ident(prop.name)}"
 
@@ -755,13 +792,13 @@ class ExprLowerer:
         target = i.sym
         args = e.args or []
         if isinstance(target, ClassSym):
-            ref = self.ctx.class_ref(target)
+            ref = self.class_ref(target)
             acode = self.args_code(args, i.params or [])
             if len(target.ctors) > 1 and isinstance(i.owner, ProcSym):
                 return f"{ref}._create_{i.owner.overload_index}({', '.join(acode)})", P_ATOM
             return f"{ref}({', '.join(acode)})", P_ATOM
         if isinstance(target, DelegateSym):
-            ref = self.ctx.class_ref(target)
+            ref = self.class_ref(target)
             if args and isinstance(args[0], A.AddressOf):
                 return f"{ref}({self.val(args[0])})", P_ATOM
             mod = self.ctx.mod.name

@@ -1,9 +1,20 @@
-"""Python names for GPL names (docs/design/lowering.md, "Names").
+"""Python names for GPL names (docs/design/lowering.md, "Names"; docs/security.md, "Names").
 
-GPL names keep their declared spelling.  A GPL name that is a Python keyword or builtin (or
-``self``, which methods use) gets a trailing underscore; a GPL name starting with ``_`` becomes
-``_u_...`` because every name gpl2py invents starts with ``_`` (``_result``, ``_g1``, ``_sel2``),
-so invented names can never collide with program names.
+The one place that decides what a GPL name becomes in Python, and which Python names GPL code may
+never take.  The scope tables that hand out names within one namespace (a package, a module's
+globals, a stub module) are in ``lower/context.py`` and use these rules.
+
+* :func:`py_ident` maps a GPL identifier to a Python one, **one-to-one**: GPL names keep their
+  declared spelling; one that Python or generated code uses bare (a keyword, a builtin, ``self``,
+  ``cls``, ``sys``) -- or is such a name followed by underscores -- gets one more trailing
+  underscore (``list`` -> ``list_``, ``list_`` -> ``list__``), so two GPL names never meet in one
+  Python name; a GPL name starting with ``_`` becomes ``_u...`` because every name gpl2py invents
+  starts with ``_`` (``_result``, ``_g1``, ``_sel2``), so invented names can never collide with
+  program names.
+* :data:`RUNTIME_IMPORTS` lists every name generated code imports from the runtime (and ``math``);
+  ``ModuleContext.helper`` refuses any other, so :data:`RUNTIME_NAMES`, the names a module or stub
+  file must not take, is complete by construction.
+* :func:`package_name` keeps a project's package from hiding a module the runtime imports.
 """
 
 from __future__ import annotations
@@ -11,17 +22,74 @@ from __future__ import annotations
 import builtins
 import keyword
 import re
+import sys
+from collections.abc import Iterable
 
 from gpl2py.lower.text import py_string
 
-_RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | frozenset(dir(builtins)) | {"self", "cls"}
+#: Names generated code uses bare besides the runtime's: Python's keywords and builtins, the method
+#: receivers, and ``sys`` (``_this = sys.modules[__name__]``).  A GPL name in this set gets ``_``.
+PYTHON_NAMES = (frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | frozenset(dir(builtins))
+                | {"self", "cls", "sys"})
+
+#: Every name a generated module imports, by module (``from <module> import <name>``).  Built-in
+#: classes and functions come from ``gplrt.builtins`` under their catalogue names
+#: (``gpl2py.semantics.catalogue``), which :func:`runtime_names` adds.
+RUNTIME_IMPORTS: dict[str, frozenset[str]] = {
+    "gplrt.lang.arrays": frozenset({"GplArray", "redim"}),
+    "gplrt.lang.byref": frozenset({"AttrRef", "Box", "ItemRef"}),
+    "gplrt.lang.conversions": frozenset({
+        "bool_num", "chk_double", "chk_int16", "chk_int32", "chk_uint8", "to_bool", "to_double",
+        "to_int16", "to_int32", "to_number", "to_single", "to_string", "to_string_single", "to_uint8",
+    }),
+    "gplrt.lang.delegates": frozenset({"delegate_type"}),
+    "gplrt.lang.exceptions": frozenset({"as_gpl_exception", "gpl_entry", "not_available"}),
+    "gplrt.lang.gpltypes": frozenset({"Ref"}),
+    "gplrt.lang.operators": frozenset({
+        "add", "and_", "div", "eq", "ge", "gt", "idiv", "le", "lt", "mod", "mul", "ne", "neg", "not_",
+        "or_", "power", "shl", "shr", "sub", "xor",
+    }),
+    "gplrt.lang.procedures": frozenset({"register_procedure", "use_procedures"}),
+    "gplrt.lang.sourcemap": frozenset({"register_package"}),
+    "gplrt.sim": frozenset({"Simulation", "current"}),
+    "gplrt.threads": frozenset({"checkpoint"}),
+    "math": frozenset({"atan", "atan2", "cos", "sin", "sqrt", "tan"}),
+}
+
+#: What a package's ``__init__.py`` defines besides its imports (lower/package.py), and the
+#: modules every package has: no GPL module file may be called like one of them.
+PACKAGE_NAMES = frozenset({"init", "main", "PROJECT", "__init__", "__main__"})
+
+#: File names Windows refuses whatever the extension: a module or package never gets one, so a
+#: translation can be copied to any controller PC.
+DEVICE_NAMES = frozenset({"con", "prn", "aux", "nul", *(f"com{i}" for i in range(1, 10)),
+                          *(f"lpt{i}" for i in range(1, 10))})
+
+#: Top-level modules a generated package must not hide when ``python -m <package>`` runs from the
+#: output folder (it is first on ``sys.path`` there): the standard library and the runtime's own.
+TOP_LEVEL_MODULES = frozenset(sys.stdlib_module_names) | {
+    "gplrt", "gpl2py", "numpy", "pinocchio", "pin", "ruckig", "matplotlib", "scipy", "hppfcl", "coal",
+    "eigenpy", "libcst", "pytest", "hypothesis", "pymodbus", "pyflakes", "pycodestyle",
+}
+
+
+def runtime_names(extra: Iterable[str] = ()) -> frozenset[str]:
+    """Every name generated code may import bare: :data:`RUNTIME_IMPORTS` plus ``extra`` (the
+    catalogue's built-in names, which the caller reads)."""
+    out: set[str] = set(extra)
+    for names in RUNTIME_IMPORTS.values():
+        out |= names
+    return frozenset(out)
+
+
+RUNTIME_NAMES = runtime_names()
 
 
 def py_ident(name: str) -> str:
-    """The Python identifier for a GPL identifier."""
+    """The Python identifier for a GPL identifier; distinct GPL names give distinct identifiers."""
     if name.startswith("_"):
         return "_u" + name
-    if name in _RESERVED:
+    if name.rstrip("_") in PYTHON_NAMES:
         return name + "_"
     return name
 
@@ -45,6 +113,25 @@ def _type_word(type_name: str) -> str:
     if "(" in word:
         word = word[: word.index("(")] + "Array"
     return re.sub(r"[^0-9A-Za-z]", "", word) or "Any"
+
+
+def module_base(name: str) -> str:
+    """The file name (without ``.py``) a GPL module prefers: snake_case, never a name of the
+    package's own (``init``, ``main``), a runtime import (``chk_int32``, ``current``), ``sys``
+    or a Windows device name.  The project's scope table (lower/context.py) makes it unique."""
+    base = snake_case(name)
+    if base.rstrip("_") in PACKAGE_NAMES | RUNTIME_NAMES | DEVICE_NAMES | {"sys"}:
+        base += "_mod"
+    return base
+
+
+def package_name(project_name: str) -> str:
+    """The package a project becomes: its name in snake_case (``gpl_project`` when it has none),
+    never the name of a standard or runtime module nor a Windows device name."""
+    base = snake_case(project_name) if project_name else "gpl_project"
+    if base.rstrip("_") in TOP_LEVEL_MODULES | DEVICE_NAMES:
+        base += "_gpl"
+    return base
 
 
 def snake_case(name: str) -> str:

@@ -129,7 +129,7 @@ class ProcLowerer(ExprLowerer):
         if k == "prop":
             prop: PropSym = i.sym  # type: ignore[assignment]
             if prop.shared:
-                self.w.line(f"{self.ctx.class_ref(prop.owner)}._set_{py_ident(prop.name)}({value})")
+                self.w.line(f"{self.class_ref(prop.owner)}._set_{py_ident(prop.name)}({value})")
             else:
                 self.w.line(f"{self.prop_ref(prop, i.receiver)} = {value}")
             return
@@ -381,13 +381,13 @@ class ProcLowerer(ExprLowerer):
             if value is None:
                 continue
             if v.storage == "static":
-                name = self.static_name(v)
-                self.ctx.statics.append((name + "_done", "False"))
-                self.globals.update({name, name + "_done"})
-                self.w.line(f"if not {name}_done:")
+                name, done = self.static_name(v), self.static_flag(v)
+                self.ctx.statics.append((done, "False"))
+                self.globals.update({name, done})
+                self.w.line(f"if not {done}:")
                 self.w.indent()
                 self.w.line(f"{name} = {value}")
-                self.w.line(f"{name}_done = True")
+                self.w.line(f"{done} = True")
                 self.w.dedent()
             else:
                 target = A.Name(d.span, d.name)

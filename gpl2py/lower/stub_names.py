@@ -20,11 +20,15 @@ def stub_module_name(stub: Stub, stub_module_py: dict[str, str]) -> str:
     return STUBS_MODULE
 
 
-def stub_attr(stub: Stub) -> str:
-    """The stub's attribute name in its module."""
+#: What every stub module defines besides its stubs (lower/stubs.py): no stub may take these.
+STUBS_MODULE_NAMES = frozenset({"not_available", "_VARIABLES", "_reset", "__getattr__", "__all__"})
+
+
+def stub_attr_base(stub: Stub) -> str:
+    """The name the stub prefers in its module (``ProjectNames`` makes it unique there)."""
     if stub.builtin is not None:
         return py_ident(f"{stub.builtin}_{stub.member}")
     return py_ident(stub.member)
 
 
-__all__ = ["STUBS_MODULE", "stub_attr", "stub_module_name"]
+__all__ = ["STUBS_MODULE", "STUBS_MODULE_NAMES", "stub_attr_base", "stub_module_name"]

@@ -11,16 +11,17 @@ in place of the stand-in.
 
 from __future__ import annotations
 
+from gpl2py.lower.stub_names import STUBS_MODULE, stub_module_name
 from gpl2py.lower.text import escape, py_string
-from gpl2py.lower.stub_names import STUBS_MODULE, stub_attr, stub_module_name
 from gpl2py.lower.user_stubs import UserFile, UserStubs
 from gpl2py.semantics.stubs import Stub, StubTable
 
 
-def stub_files(table: StubTable, stub_module_py: dict[str, str], package: str,
+def stub_files(table: StubTable, stub_module_py: dict[str, str], stub_attr_py: dict[Stub, str], package: str,
                user: UserStubs | None) -> tuple[dict[str, str], list[dict[str, object]]]:
     """The stub modules and user files (package-relative paths -> text) and the PROJECT["stubs"]
-    records (name, kind, provided)."""
+    records (name, kind, provided).  ``stub_module_py`` and ``stub_attr_py`` are the names
+    ``ProjectNames`` gave the stub modules and the stubs."""
     by_module: dict[str, list[Stub]] = {}
     for stub in table.ordered():
         by_module.setdefault(stub_module_name(stub, stub_module_py), []).append(stub)
@@ -28,7 +29,7 @@ def stub_files(table: StubTable, stub_module_py: dict[str, str], package: str,
     records: list[dict[str, object]] = []
     used_files: dict[str, UserFile] = {}
     for module, stubs in sorted(by_module.items()):
-        text, recs = _module_text(module, stubs, table, user, used_files)
+        text, recs = _module_text(module, stubs, stub_attr_py, user, used_files)
         files[f"{package}/{module}.py"] = text
         records.extend(recs)
     for name, uf in sorted(used_files.items()):
@@ -37,7 +38,7 @@ def stub_files(table: StubTable, stub_module_py: dict[str, str], package: str,
     return files, records
 
 
-def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStubs | None,
+def _module_text(module: str, stubs: list[Stub], attrs: dict[Stub, str], user: UserStubs | None,
                  used_files: dict[str, UserFile]) -> tuple[str, list[dict[str, object]]]:
     if module == STUBS_MODULE:
         doc = ("Stubs for names the program uses but gpl2py could not translate: names defined in\n"
@@ -66,7 +67,7 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
         return user is not None and user.find(stub) is not None
 
     for stub in stubs:
-        attr = stub_attr(stub)
+        attr = attrs[stub]
         found = user.find(stub) if user is not None else None
         records.append({"name": stub.name, "kind": stub.kind, "provided": found is not None,
                         "standin": found is not None and found[0].shipped})
@@ -104,8 +105,8 @@ def _module_text(module: str, stubs: list[Stub], table: StubTable, user: UserStu
         if shipped:
             lines.append("# gpl2py's own stand-ins (gpl2py/standins): " + ", ".join(sorted(shipped)))
         lines.extend(sorted(imports))
-    exported = sorted({stub_attr(st) for st in stubs if st.kind != "variable" or user_has(st)}
-                      | {f"set_{stub_attr(st)}" for st in stubs if st.builtin is not None and st.assigned})
+    exported = sorted({attrs[st] for st in stubs if st.kind != "variable" or user_has(st)}
+                      | {f"set_{attrs[st]}" for st in stubs if st.builtin is not None and st.assigned})
     lines += ["", "__all__ = [" + ", ".join(py_string(n) for n in exported) + "]"]
     lines.extend(defs)
     if variables:

@@ -1,0 +1,70 @@
+"""The naming rules (gpl2py/lower/names.py, docs/security.md "Names"): one-to-one, and the
+reserved-name table is what generated code really imports."""
+
+from __future__ import annotations
+
+import importlib
+import keyword
+
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from gpl2py.lower.context import Scope, builtin_names
+from gpl2py.lower.names import PYTHON_NAMES, RUNTIME_IMPORTS, module_base, package_name, py_ident
+
+# GPL identifiers: a letter or underscore, then letters, digits and underscores; hostile ones
+# are Python keywords, builtins and dunders with underscores added anywhere
+RESERVED_SAMPLE = sorted(PYTHON_NAMES)[:400]
+gpl_names = st.one_of(
+    st.from_regex(r"[A-Za-z_][A-Za-z0-9_]{0,12}", fullmatch=True),
+    st.tuples(st.sampled_from(RESERVED_SAMPLE), st.sampled_from(["", "_", "__", "___"]),
+              st.sampled_from(["", "_", "__"])).map(lambda t: t[2] + t[0] + t[1]),
+)
+
+
+@settings(max_examples=300, deadline=None, database=None)
+@given(st.lists(gpl_names, min_size=2, max_size=30, unique=True))
+def test_py_ident_is_one_to_one_and_never_reserved(names: list[str]) -> None:
+    out = [py_ident(n) for n in names]
+    assert len(set(out)) == len(out), list(zip(names, out))
+    for n, p in zip(names, out):
+        assert p.isidentifier() and not keyword.iskeyword(p) and p not in PYTHON_NAMES, (n, p)
+        assert p.startswith("_u") if n.startswith("_") else not p.startswith("_")
+
+
+def test_py_ident_keeps_ordinary_names() -> None:
+    assert [py_ident(n) for n in ["MoveToPick", "list", "list_", "list__", "Station", "_x", "sys", "Cmd_"]] \
+        == ["MoveToPick", "list_", "list__", "list___", "Station", "_u_x", "sys_", "Cmd_"]
+
+
+def test_every_runtime_import_exists_in_the_runtime() -> None:
+    # the table is what ModuleContext.helper allows: a name it lists must be importable, so the
+    # reserved names are exactly what generated code can import
+    for module, names in RUNTIME_IMPORTS.items():
+        mod = importlib.import_module(module)
+        missing = sorted(n for n in names if not hasattr(mod, n))
+        assert not missing, (module, missing)
+    builtins_mod = importlib.import_module("gplrt.builtins")
+    assert sorted(n for n in builtin_names() if not hasattr(builtins_mod, n)) == []
+
+
+def test_module_files_avoid_runtime_and_package_names() -> None:
+    assert module_base("ChkInt32") == "chk_int32_mod"
+    assert module_base("Current") == "current_mod"
+    assert module_base("Main") == "main_mod"
+    assert module_base("Con") == "con_mod"
+    assert module_base("Globals") == "globals_"  # a builtin: the trailing underscore as before
+    assert module_base("Station") == "station"
+
+
+def test_packages_avoid_standard_and_runtime_modules() -> None:
+    assert package_name("Numpy") == "numpy_gpl"
+    assert package_name("json") == "json_gpl"
+    assert package_name("gplrt") == "gplrt_gpl"
+    assert package_name("tcp_cmd_server") == "tcp_cmd_server"
+    assert package_name("") == "gpl_project"
+
+
+def test_scope_hands_out_each_name_once_in_claim_order() -> None:
+    scope = Scope({"a"})
+    assert [scope.claim(n) for n in ["a", "a", "b", "a_2", "b"]] == ["a_2", "a_3", "b", "a_2_2", "b_2"]
