@@ -45,6 +45,7 @@ RUNTIME_IMPORTS: dict[str, frozenset[str]] = {
     "gplrt.lang.delegates": frozenset({"delegate_type"}),
     "gplrt.lang.exceptions": frozenset({"as_gpl_exception", "gpl_entry", "not_available"}),
     "gplrt.lang.gpltypes": frozenset({"Ref"}),
+    "gplrt.lang.members": frozenset({"get_member", "set_member"}),
     "gplrt.lang.operators": frozenset({
         "add", "and_", "div", "eq", "ge", "gt", "idiv", "le", "lt", "mod", "mul", "ne", "neg", "not_",
         "or_", "power", "shl", "shr", "sub", "xor",
