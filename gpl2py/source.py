@@ -26,32 +26,78 @@ class Position:
         return f"{self.file}:{self.line}:{self.col}"
 
 
-@dataclass(frozen=True, slots=True)
 class Span:
-    """A half-open range ``[start, end)`` within one file."""
+    """A half-open range ``[start, end)`` within one file.
 
-    start: Position
+    Every token and AST node holds one, so it keeps its five fields flat rather than a
+    :class:`Position` plus two numbers: that saves a second object per node (about a fifth of
+    the memory of a syntax tree, docs/security.md "Input size").  It is immutable and compares and
+    hashes by value, like a frozen dataclass; ``start`` builds the :class:`Position` on demand.
+    """
+
+    __slots__ = ("file", "line", "col", "end_line", "end_col")
+
+    file: str
+    line: int
+    col: int
     end_line: int
     end_col: int
 
-    @property
-    def file(self) -> str:
-        return self.start.file
+    def __init__(self, start: Position, end_line: int, end_col: int) -> None:
+        _set_file(self, start.file)
+        _set_line(self, start.line)
+        _set_col(self, start.col)
+        _set_end_line(self, end_line)
+        _set_end_col(self, end_col)
 
     @property
-    def line(self) -> int:
-        return self.start.line
+    def start(self) -> Position:
+        return Position(self.file, self.line, self.col)
 
-    @property
-    def col(self) -> int:
-        return self.start.col
+    def __setattr__(self, name: str, value: object) -> None:
+        raise AttributeError(f"Span is immutable (cannot set {name!r})")
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Span):
+            return NotImplemented
+        return (self.file, self.line, self.col, self.end_line, self.end_col) == \
+            (other.file, other.line, other.col, other.end_line, other.end_col)
+
+    def __hash__(self) -> int:
+        return hash((self.file, self.line, self.col, self.end_line, self.end_col))
+
+    def __repr__(self) -> str:
+        return f"Span(start={self.start!r}, end_line={self.end_line}, end_col={self.end_col})"
 
     def __str__(self) -> str:
-        return str(self.start)
+        return f"{self.file}:{self.line}:{self.col}"
 
     def to(self, other: Span) -> Span:
         """The span from the start of ``self`` to the end of ``other``."""
-        return Span(self.start, other.end_line, other.end_col)
+        return make_span(self.file, self.line, self.col, other.end_line, other.end_col)
+
+    def __reduce__(self) -> tuple[object, tuple[str, int, int, int, int]]:  # pickle, copy
+        return make_span, (self.file, self.line, self.col, self.end_line, self.end_col)
+
+
+# The slot descriptors: make_span (the lexer's hottest path) fills them without __init__'s call.
+_new = object.__new__
+_set_file = Span.file.__set__  # type: ignore[attr-defined]
+_set_line = Span.line.__set__  # type: ignore[attr-defined]
+_set_col = Span.col.__set__  # type: ignore[attr-defined]
+_set_end_line = Span.end_line.__set__  # type: ignore[attr-defined]
+_set_end_col = Span.end_col.__set__  # type: ignore[attr-defined]
+
+
+def make_span(file: str, line: int, col: int, end_line: int, end_col: int) -> Span:
+    """``Span(Position(file, line, col), end_line, end_col)`` without building the Position."""
+    span = _new(Span)
+    _set_file(span, file)
+    _set_line(span, line)
+    _set_col(span, col)
+    _set_end_line(span, end_line)
+    _set_end_col(span, end_col)
+    return span
 
 
 @dataclass(slots=True)

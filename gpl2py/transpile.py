@@ -26,7 +26,7 @@ from gpl2py.lower.context import ProjectNames
 from gpl2py.lower.module import lower_module
 from gpl2py.lower.names import package_name
 from gpl2py.lower.package import package_init, package_main
-from gpl2py.lower.sourcemap import sourcemap_json
+from gpl2py.lower.sourcemap import runs_json, sourcemap_json
 from gpl2py.lower.stubs import stub_files
 from gpl2py.lower.user_stubs import (
     SHIPPED_PREFIX,
@@ -134,7 +134,7 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
     names = ProjectNames.build(model)
     package = package_name(project.name)
     out = Output(package, project=project)
-    smap: dict[str, tuple[str, list[int]]] = {}
+    smap: dict[str, tuple[str, str]] = {}
     modules = list(model.project.module_list)
     extra = []
     top = model.project.modules.get(TOP_MODULE.lower())
@@ -146,7 +146,7 @@ def _lower(project: Project, model: Model, sink: DiagnosticSink,
             progress("writing", i + 1, len(extra) + len(modules))
         fname = f"{mod.py_name}.py"
         out.files[f"{package}/{fname}"] = text
-        smap[fname] = (mod.path, gmap)
+        smap[fname] = (mod.path, runs_json(gmap))
     stub_texts, records = stub_files(model.stubs, names.stub_module_py, names.stub_attr_py, package, user) \
         if model.stubs is not None and model.stubs.stubs else ({}, [])
     out.files.update(stub_texts)

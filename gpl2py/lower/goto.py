@@ -90,6 +90,7 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
                 walk(child, info, r, s)
 
     walk(body, None, "body", None)
+    del walk  # the closure refers to itself: free it now, not at the next garbage collection
     if not gotos:
         return plan
     wanted: dict[BlockInfo, set[A.Stmt]] = {}

@@ -21,13 +21,22 @@ def runs(gmap: list[int]) -> list[list[int]]:
     return out
 
 
-def sourcemap_json(entries: dict[str, tuple[str, list[int]]]) -> str:
-    """``entries`` maps a module file name to (GPL source path, per-line GPL lines)."""
-    data = {
-        "version": 1,
-        "modules": {
-            name: {"source": os.path.basename(src), "runs": runs(gmap)}
-            for name, (src, gmap) in sorted(entries.items())
-        },
-    }
-    return json.dumps(data, sort_keys=True, separators=(",", ":")) + "\n"
+def runs_json(gmap: list[int]) -> str:
+    """``json.dumps(runs(gmap), separators=(",", ":"))`` without the list of runs: the pipeline
+    keeps this text per module instead of the per-line list (docs/security.md, "Input size")."""
+    out: list[str] = []
+    last = None
+    for i, g in enumerate(gmap):
+        if g != last:
+            out.append(f"[{i + 1},{g}]")
+            last = g
+    return "[" + ",".join(out) + "]"
+
+
+def sourcemap_json(entries: dict[str, tuple[str, str]]) -> str:
+    """``entries`` maps a module file name to (GPL source path, :func:`runs_json` of its lines).
+    The text is what ``json.dumps(..., sort_keys=True, separators=(",", ":"))`` gives."""
+    parts = []
+    for name, (src, run_text) in sorted(entries.items()):
+        parts.append(f'{json.dumps(name)}:{{"runs":{run_text},"source":{json.dumps(os.path.basename(src))}}}')
+    return '{"modules":{' + ",".join(parts) + '},"version":1}\n'

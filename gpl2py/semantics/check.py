@@ -53,7 +53,7 @@ class ParamInfo:
     optional: bool = False
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class Info:
     """The meaning of one expression node (see module docstring for ``kind``)."""
 
@@ -64,6 +64,11 @@ class Info:
     params: list[ParamInfo] | None = None
     receiver: A.Expr | None = None  # the object expression of a member access, if any
     static: bool = False  # a Shared member reached through a class or global class
+
+
+# One Info per literal type, shared by every literal (a third of all expressions in dense code;
+# nothing changes an Info of kind "literal"): docs/security.md, "Input size".
+_LITERAL = {typ: Info(typ, "literal") for typ in (t.INTEGER, t.DOUBLE, t.STRING, t.BOOLEAN)}
 
 
 @dataclass
@@ -181,6 +186,11 @@ class Checker:
         self.r = Resolver(project, catalogue, sink, self.stubs)
         self.model = Model(project, self.r, stubs=self.stubs)
         self.cat = catalogue
+        # Infos that only say "a variable" or "an operator's result of this type" are shared by
+        # every expression they describe (most expressions of dense code: docs/security.md,
+        # "Input size"); nothing changes an Info of these kinds once made
+        self._var_infos: dict[VarSym, Info] = {}
+        self._binary_infos: dict[t.GplType, Info] = {}
 
     # -- driver ----------------------------------------------------------------------------------
 
@@ -595,13 +605,13 @@ class Checker:
     def _expr(self, e: A.Expr, ctx: _Ctx, as_statement: bool = False, as_target: bool = False) -> Info:
         if isinstance(e, A.IntegerLiteral):
             typ = t.INTEGER if -(2**31) <= e.value < 2**31 else t.DOUBLE
-            return self._record(e, Info(typ, "literal"))
+            return self._record(e, _LITERAL[typ])
         if isinstance(e, A.RealLiteral):
-            return self._record(e, Info(t.DOUBLE, "literal"))
+            return self._record(e, _LITERAL[t.DOUBLE])
         if isinstance(e, A.StringLiteral):
-            return self._record(e, Info(t.STRING, "literal"))
+            return self._record(e, _LITERAL[t.STRING])
         if isinstance(e, A.BooleanLiteral):
-            return self._record(e, Info(t.BOOLEAN, "literal"))
+            return self._record(e, _LITERAL[t.BOOLEAN])
         if isinstance(e, A.NothingLiteral):
             return self._record(e, Info(t.NOTHING, "nothing"))
         if isinstance(e, A.MeExpr):
@@ -664,7 +674,11 @@ class Checker:
         info = Info(t.ERROR, "binary")
         for node in reversed(spine):
             rt = self._value(node.right, ctx)
-            info = self._record(node, Info(self._binary_type(node.op, lt, rt, node), "binary"))
+            typ = self._binary_type(node.op, lt, rt, node)
+            shared = self._binary_infos.get(typ)
+            if shared is None:
+                shared = self._binary_infos[typ] = Info(typ, "binary")
+            info = self._record(node, shared)
             lt = info.type
         return info
 
@@ -737,7 +751,12 @@ class Checker:
         if isinstance(s, VarSym):
             if not as_target:
                 s.read = True
-            return Info(s.type, "var", s, receiver=receiver)
+            if receiver is not None:
+                return Info(s.type, "var", s, receiver=receiver)
+            shared = self._var_infos.get(s)
+            if shared is None or shared.type is not s.type:
+                shared = self._var_infos[s] = Info(s.type, "var", s)
+            return shared
         if isinstance(s, ProcSym):
             if in_invoke:
                 return Info(s.result, "procref", s, receiver=receiver)

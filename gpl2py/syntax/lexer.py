@@ -42,12 +42,13 @@ from __future__ import annotations
 
 import gc
 import re
+from sys import intern
 from contextlib import contextmanager
 from typing import Iterator
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.source import Position, SourceFile, Span
+from gpl2py.source import SourceFile, Span, make_span
 from gpl2py.syntax.tokens import KEYWORDS, OPERATORS, Token, TokenKind
 
 _MASTER = re.compile(
@@ -75,28 +76,19 @@ _MAX_STRING = 128
 
 _K = TokenKind
 
-# Spans are built through the slot descriptors: the frozen dataclasses' generated __init__ goes
-# through object.__setattr__ per field and costs twice as much, on the lexer's hottest path.
+# Spans are built through the slot descriptors (gpl2py.source.make_span, inlined in the hottest
+# branches below): an __init__ call per token costs about twice as much.
 _new = object.__new__
-_set_file = Position.file.__set__  # type: ignore[attr-defined]
-_set_line = Position.line.__set__  # type: ignore[attr-defined]
-_set_col = Position.col.__set__  # type: ignore[attr-defined]
-_set_start = Span.start.__set__  # type: ignore[attr-defined]
+_set_file = Span.file.__set__  # type: ignore[attr-defined]
+_set_line = Span.line.__set__  # type: ignore[attr-defined]
+_set_col = Span.col.__set__  # type: ignore[attr-defined]
 _set_end_line = Span.end_line.__set__  # type: ignore[attr-defined]
 _set_end_col = Span.end_col.__set__  # type: ignore[attr-defined]
 
 
 def _span(path: str, line: int, col: int, end_col: int) -> Span:
     """``Span(Position(path, line, col), line, end_col)``, built fast (equal and hash-equal)."""
-    pos = _new(Position)
-    _set_file(pos, path)
-    _set_line(pos, line)
-    _set_col(pos, col)
-    span = _new(Span)
-    _set_start(span, pos)
-    _set_end_line(span, line)
-    _set_end_col(span, end_col)
-    return span
+    return make_span(path, line, col, line, end_col)
 
 
 def tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
@@ -105,8 +97,24 @@ def tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
     The result always ends with an ``EOF`` token, and every non-empty logical line ends with
     ``NEWLINE`` (also the last one, even without a final line break).
     """
+    toks: list[Token] = []
     with gc_paused():
-        return _tokenize(source, sink)
+        for chunk in token_chunks(source, sink):
+            toks.extend(chunk)
+    return toks
+
+
+#: Tokens per list :func:`token_chunks` hands out.  The parser holds one or two at a time, so a
+#: file's tokens never all live at once (they are about half of the memory a parse needs at its
+#: peak otherwise: docs/security.md, "Input size").
+CHUNK = 4096
+
+
+def token_chunks(source: SourceFile, sink: DiagnosticSink, chunk: int = CHUNK) -> Iterator[list[Token]]:
+    """The tokens of ``source`` as :func:`tokenize` gives them, in consecutive lists of about
+    ``chunk`` tokens (a list ends at a line break, so one logical line may make it longer).
+    Diagnostics are reported as the tokens are made."""
+    return _tokenize(source, sink, chunk)
 
 
 @contextmanager
@@ -127,7 +135,7 @@ def gc_paused() -> Iterator[None]:
             gc.enable()
 
 
-def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
+def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[list[Token]]:
     text = source.text
     path = source.path
     toks: list[Token] = []
@@ -135,7 +143,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
     kw = KEYWORDS.get
     new = _new
     set_file, set_line, set_col = _set_file, _set_line, _set_col
-    set_start, set_end_line, set_end_col = _set_start, _set_end_line, _set_end_col
+    set_end_line, set_end_col = _set_end_line, _set_end_col
     ops = OPERATORS
     IDENT = _K.IDENT
     NEWLINE = _K.NEWLINE
@@ -152,14 +160,12 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
     for m in _MASTER.finditer(text, line_start, stop):
         g = m.lastindex
         if g == 1:  # word
-            t = m.group(1)
+            t = intern(m.group(1))  # one string per name, however often it is used
             col = m.start(1) - line_start + 1
-            pos = new(Position)
-            set_file(pos, path)
-            set_line(pos, line)
-            set_col(pos, col)
             span = new(Span)
-            set_start(span, pos)
+            set_file(span, path)
+            set_line(span, line)
+            set_col(span, col)
             set_end_line(span, line)
             set_end_col(span, col + len(t))
             kind = kw(t.lower(), IDENT)
@@ -170,12 +176,10 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
         elif g == 4:  # operator / punctuation
             t = m.group(4)
             col = m.start(4) - line_start + 1
-            pos = new(Position)
-            set_file(pos, path)
-            set_line(pos, line)
-            set_col(pos, col)
             span = new(Span)
-            set_start(span, pos)
+            set_file(span, path)
+            set_line(span, line)
+            set_col(span, col)
             set_end_line(span, line)
             set_end_col(span, col + len(t))
             append(Token(ops[t], t, None, span))
@@ -190,6 +194,10 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
                 has_tokens = False
             line += 1
             line_start = m.end()
+            if len(toks) >= chunk:
+                yield toks
+                toks = []
+                append = toks.append
         elif g == 2:  # number
             start = m.start(g)
             t = m.group(g)
@@ -295,7 +303,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
         toks.extend(deferred)
         append(Token(NEWLINE, "", None, _span(path, line, col, col)))
     append(Token(_K.EOF, "", None, _span(path, line, col, col)))
-    return toks
+    yield toks
 
 
 def _show(chars: str) -> str:

@@ -44,9 +44,9 @@ import sys
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.messages import Message
-from gpl2py.source import SourceFile, Span
+from gpl2py.source import SourceFile, Span, make_span
 from gpl2py.syntax import ast as A
-from gpl2py.syntax.lexer import gc_paused, tokenize
+from gpl2py.syntax.lexer import gc_paused, token_chunks
 from gpl2py.syntax.tokens import COMPOUND_ASSIGN, KEYWORD_KINDS, Token, TokenKind
 
 K = TokenKind
@@ -242,7 +242,12 @@ class Parser:
     def __init__(self, source: SourceFile, sink: DiagnosticSink) -> None:
         self.source = source
         self.sink = sink
-        self.toks = tokenize(source, sink)
+        # The tokens are a window onto the lexer's output (token_chunks): the current token, the
+        # ones peeked at, and back to the last token that is not layout (for prev).  The
+        # window slides in next(), so the file's tokens never all live at once.
+        self._chunks = token_chunks(source, sink)
+        self.toks: list[Token] = next(self._chunks)
+        self.more = True  # the lexer has more chunks
         self.pos = 0
         self.last = len(self.toks) - 1
         self.tok: Token = self.toks[0]
@@ -257,10 +262,36 @@ class Parser:
     def next(self) -> Token:
         tok = self.tok
         pos = self.pos
-        if pos < self.last:
-            self.pos = pos = pos + 1
+        if pos < self.last or (self.more and self._slide()):
+            self.pos = pos = self.pos + 1
             self.tok = self.toks[pos]
         return tok
+
+    def _slide(self) -> bool:
+        """Move the window on by one chunk of tokens, keeping the current token and what
+        :attr:`prev` may look back at; ``False`` when the lexer has nothing left."""
+        chunk = next(self._chunks, None)
+        if chunk is None:
+            self.more = False
+            return False
+        toks = self.toks
+        keep = self.pos
+        while keep > 0 and toks[keep].kind in _LAYOUT:
+            keep -= 1
+        self.toks = toks[keep:] + chunk
+        self.pos -= keep
+        self.last = len(self.toks) - 1
+        return True
+
+    def _extend(self) -> bool:
+        """Add the lexer's next chunk to the window (for a look far ahead)."""
+        chunk = next(self._chunks, None)
+        if chunk is None:
+            self.more = False
+            return False
+        self.toks.extend(chunk)
+        self.last = len(self.toks) - 1
+        return True
 
     @property
     def prev(self) -> Token:
@@ -273,16 +304,16 @@ class Parser:
 
     def peek(self, offset: int = 1) -> Token:
         i = self.pos + offset
+        while i > self.last and self.more and self._extend():
+            pass
         return self.toks[i] if i <= self.last else self.toks[self.last]
 
     def span_from(self, start: Token | Span) -> Span:
         s = start.span if isinstance(start, Token) else start
         end = self.prev.span
-        if end.end_line < s.start.line or (
-            end.end_line == s.start.line and end.end_col < s.start.col
-        ):
+        if end.end_line < s.line or (end.end_line == s.line and end.end_col < s.col):
             return s
-        return Span(s.start, end.end_line, end.end_col)
+        return make_span(s.file, s.line, s.col, end.end_line, end.end_col)
 
     def error(self, message: Message, where: Token | Span, /, **args: object) -> None:
         """Report a line-local error: only the first one per logical line is reported."""
@@ -385,11 +416,10 @@ class Parser:
         if c == "END":
             return _END_KINDS.get(self.peek().kind)
         if c == "MOD":
-            i = self.pos + 1
-            toks = self.toks
-            while i < self.last and toks[i].kind in _MODIFIER_KINDS:
+            i = 1
+            while self.peek(i).kind in _MODIFIER_KINDS:
                 i += 1
-            return "<decl>" if toks[i].kind in _DECL_WORDS else None
+            return "<decl>" if self.peek(i).kind in _DECL_WORDS else None
         return c
 
     def is_open(self, kind: str) -> bool:

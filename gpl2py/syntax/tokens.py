@@ -179,11 +179,11 @@ class Token:
 
     @property
     def line(self) -> int:
-        return self.span.start.line
+        return self.span.line
 
     @property
     def col(self) -> int:
-        return self.span.start.col
+        return self.span.col
 
     def describe(self) -> str:
         """How a diagnostic names this token: ``'Then'``, ``end of line``, ``identifier 'foo'``."""
