@@ -36,7 +36,7 @@ PYTHON_NAMES = (frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | froz
 #: classes and functions come from ``gplrt.builtins`` under their catalogue names
 #: (``gpl2py.semantics.catalogue``), which :func:`runtime_names` adds.
 RUNTIME_IMPORTS: dict[str, frozenset[str]] = {
-    "gplrt.lang.arrays": frozenset({"GplArray", "redim"}),
+    "gplrt.lang.arrays": frozenset({"GplArray", "redim", "redim_preserve"}),
     "gplrt.lang.byref": frozenset({"AttrRef", "Box", "ItemRef"}),
     "gplrt.lang.conversions": frozenset({
         "bool_num", "chk_double", "chk_int16", "chk_int32", "chk_uint8", "to_bool", "to_double",
@@ -47,8 +47,8 @@ RUNTIME_IMPORTS: dict[str, frozenset[str]] = {
     "gplrt.lang.gpltypes": frozenset({"Ref"}),
     "gplrt.lang.members": frozenset({"get_member", "set_member"}),
     "gplrt.lang.operators": frozenset({
-        "add", "and_", "div", "eq", "ge", "gt", "idiv", "le", "lt", "mod", "mul", "ne", "neg", "not_",
-        "or_", "power", "shl", "shr", "sub", "xor",
+        "add", "and_", "div", "eq", "ge", "gt", "idiv", "is_nothing", "le", "lt", "mod", "mul", "ne",
+        "neg", "not_", "or_", "power", "shl", "shr", "sub", "xor",
     }),
     "gplrt.lang.procedures": frozenset({"register_procedure", "use_procedures"}),
     "gplrt.lang.sourcemap": frozenset({"register_package"}),
