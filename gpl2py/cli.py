@@ -34,7 +34,15 @@ from typing import NoReturn, TextIO
 from gpl2py import __version__
 from gpl2py import messages as msg
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
-from gpl2py.project import SOURCE_SUFFIXES, Project, load_project
+from gpl2py.project import (
+    DEFAULT_MAX_SOURCE_MB,
+    MAX_SOURCE_ENV,
+    PROJECT_FACTOR,
+    SOURCE_SUFFIXES,
+    Limits,
+    Project,
+    load_project,
+)
 from gpl2py.run import plural as _plural
 from gpl2py.source import SourceFile
 
@@ -114,7 +122,7 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     from gpl2py.semantics.check import analyze
 
     out = Outcome()
-    project = load_project(args.path, out.sink)
+    project = load_project(args.path, out.sink, limits_of(args))
     if project is None:
         return out
     _remember(out, project)
@@ -128,7 +136,7 @@ def _run_check(args: argparse.Namespace) -> Outcome:
         out.checked += 1
     analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
             None if incomplete else project.start, protected=bool(project.protected), strict=args.strict,
-            stub_provider=user.provider if user is not None else None)
+            stub_provider=user.provider if user is not None else None, start_span=project.start_span)
     return out
 
 
@@ -170,7 +178,12 @@ def _configure_transpile(parser: argparse.ArgumentParser) -> None:
 
 
 def add_stub_options(parser: argparse.ArgumentParser) -> None:
-    """--stubs and --strict (check, translate and run): see README "Porting your own project"."""
+    """--stubs, --strict and --max-source-mb (check, translate and run): see README "Porting
+    your own project" and docs/security.md."""
+    parser.add_argument("--max-source-mb", metavar="MB", type=_megabytes, default=None,
+                        help=f"read at most MB megabytes from one source file and {PROJECT_FACTOR} "
+                        f"times that from all of them (default: ${MAX_SOURCE_ENV}, else "
+                        f"{DEFAULT_MAX_SOURCE_MB})")
     parser.add_argument("--stubs", metavar="DIR", default=None,
                         help="folder of Python files implementing stubs for protected code or "
                         "missing built-in members (Module.Proc -> DIR/module.py, function Proc); "
@@ -178,6 +191,22 @@ def add_stub_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--strict", action="store_true",
                         help="report every stub (GPL3501, GPL3502) as an error: nothing is written "
                         "or run, exit status 1")
+
+
+def _megabytes(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not 0 < value < float("inf"):
+        raise argparse.ArgumentTypeError(f"must be a positive number: {text!r}")
+    return value
+
+
+def limits_of(args: argparse.Namespace) -> Limits | None:
+    """The input limits --max-source-mb asks for (``None``: the environment's or the defaults)."""
+    mb = getattr(args, "max_source_mb", None)
+    return Limits.of_mb(mb) if mb is not None else None
 
 
 def _run_transpile(args: argparse.Namespace) -> Outcome:
@@ -201,7 +230,8 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
     loaded: list[Project] = []
     try:
         output = transpile(args.path, out.sink, keep_going=args.keep_going, progress=bar,
-                           stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append)
+                           stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append,
+                           limits=limits_of(args))
     finally:
         bar.close()
     if output is None and loaded:

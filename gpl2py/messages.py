@@ -345,6 +345,35 @@ GPR_EMPTY_VALUE = _error(
     "",
 )
 
+SOURCE_NOT_REGULAR = _error(
+    "GPL1420",
+    "{path} is not a regular file ({what}); GPL sources are files",
+    "Only regular files are read: a device (/dev/zero never ends), a pipe (nothing may ever be "
+    "written to it) or a socket named as a source would make gpl2py wait or read forever "
+    "(docs/security.md).",
+)
+SOURCE_TOO_LARGE = _error(
+    "GPL1421",
+    "{path} is {size}, more than the {limit} gpl2py reads from one file",
+    "A real GPL source is far smaller (the TCS's largest is under 200 kB). The limit keeps a "
+    "hostile or mistaken input from taking minutes and gigabytes; raise it with --max-source-mb "
+    "or GPL2PY_MAX_SOURCE_MB (docs/security.md, \"Input size\").",
+)
+PROJECT_TOO_LARGE = _error(
+    "GPL1422",
+    "the project's sources pass {limit} with {path}; it and the files after it are not read",
+    "All sources of a project together may be four times the size of one file "
+    "(--max-source-mb, GPL2PY_MAX_SOURCE_MB).",
+)
+SOURCE_OUTSIDE_PROJECT = _error(
+    "GPL1423",
+    "{path} is a link to {target}, outside the project folder; sources must be inside it",
+    "A project names files in its own folder (ProjectSource names with '..' or an absolute path are "
+    "refused too): a link out of it could make gpl2py show the lines of any file on the machine "
+    "in its diagnostics or comments (docs/security.md).",
+)
+
+
 # --- semantic analysis (GPL2000-GPL2999) -------------------------------------------------------
 
 UNDECLARED_NAME = _error(

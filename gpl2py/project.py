@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import os
 import re
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -46,6 +47,37 @@ PROJECT_FILE = "Project.gpr"
 SOURCE_SUFFIXES = (".gpl", ".gpo")
 PROTECTED_SUFFIX = ".gpp"
 PROTECTED_MAGIC = b"'#Protected|"
+
+#: How much gpl2py reads from one file by default (Project.gpr included); all sources of a
+#: project together may be PROJECT_FACTOR times that (docs/security.md, "Input size").
+DEFAULT_MAX_SOURCE_MB = 8
+PROJECT_FACTOR = 4
+MAX_SOURCE_ENV = "GPL2PY_MAX_SOURCE_MB"
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The most bytes gpl2py reads from one file and from all of a project's sources."""
+
+    source: int = DEFAULT_MAX_SOURCE_MB * 2**20
+    project: int = PROJECT_FACTOR * DEFAULT_MAX_SOURCE_MB * 2**20
+
+    @classmethod
+    def of_mb(cls, mb: float) -> Limits:
+        size = max(1, int(mb * 2**20))
+        return cls(size, PROJECT_FACTOR * size)
+
+    @classmethod
+    def from_env(cls) -> Limits:
+        """The limits ``GPL2PY_MAX_SOURCE_MB`` sets (megabytes per file), else the defaults; a
+        value that is not a positive number is ignored."""
+        text = os.environ.get(MAX_SOURCE_ENV, "")
+        try:
+            mb = float(text)
+        except ValueError:
+            return cls()
+        return cls.of_mb(mb) if mb > 0 and mb == mb and mb != float("inf") else cls()
+
 
 _KNOWN_KEYS = {"projectname", "projectstart", "projectsource"}
 _KEY_VALUE = re.compile(r'^\s*([A-Za-z_][A-Za-z0-9_]*)\s*=\s*(?:"([^"]*)"|([^"\s].*?))?\s*$')
@@ -67,6 +99,9 @@ class Project:
     protected: list[Path] = field(default_factory=list)
     extra_keys: list[tuple[str, str]] = field(default_factory=list)
     project_file: SourceFile | None = None
+    start_span: Span | None = None  # the ProjectStart value in Project.gpr, for diagnostics
+    limits: Limits = field(default_factory=Limits)
+    bytes_read: int = 0  # of the sources, against limits.project
 
     def source(self, path: str) -> SourceFile | None:
         """The loaded file whose diagnostic path is ``path`` (Project.gpr included)."""
@@ -81,11 +116,13 @@ class Project:
         return head + self.sources
 
 
-def load_project(path: str | os.PathLike[str], sink: DiagnosticSink) -> Project | None:
+def load_project(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Limits | None = None) -> Project | None:
     """Load the project at ``path`` (folder, Project.gpr, or one .gpl/.gpo file); never raises.
 
     A library caller may hand over anything: a value that is no path at all (None, a number, bytes)
-    is GPL1401 naming it, not a TypeError from ``pathlib``."""
+    is GPL1401 naming it, not a TypeError from ``pathlib``.  ``limits`` (default: from the
+    environment, :meth:`Limits.from_env`) caps what is read."""
+    limits = limits if limits is not None else Limits.from_env()
     try:
         p = Path(path)
     except TypeError:
@@ -102,13 +139,15 @@ def load_project(path: str | os.PathLike[str], sink: DiagnosticSink) -> Project 
     if is_dir:
         gpr = _find_case_insensitive(p, PROJECT_FILE)
         if gpr is not None and gpr.is_file():
-            return _load_gpr(gpr, sink)
-        return _load_folder(p, sink)
+            if not _inside(p, gpr, str(gpr), None, sink):
+                return None
+            return _load_gpr(gpr, sink, limits)
+        return _load_folder(p, sink, limits)
     if p.name.lower() == PROJECT_FILE.lower():
-        return _load_gpr(p, sink)
+        return _load_gpr(p, sink, limits)
     suffix = p.suffix.lower()
     if suffix in SOURCE_SUFFIXES or suffix == PROTECTED_SUFFIX:
-        project = Project(name=p.stem, start=None, root=p.parent)
+        project = Project(name=p.stem, start=None, root=p.parent, limits=limits)
         _add_source(project, p, str(p), None, sink)
         return project
     sink.report(msg.NOT_A_PROJECT, None, path=str(p))
@@ -118,8 +157,8 @@ def load_project(path: str | os.PathLike[str], sink: DiagnosticSink) -> Project 
 # --- the three input kinds ----------------------------------------------------------------------
 
 
-def _load_folder(folder: Path, sink: DiagnosticSink) -> Project:
-    project = Project(name=_folder_name(folder), start=None, root=folder)
+def _load_folder(folder: Path, sink: DiagnosticSink, limits: Limits) -> Project:
+    project = Project(name=_folder_name(folder), start=None, root=folder, limits=limits)
     try:
         entries = sorted(folder.iterdir(), key=lambda e: (e.name.lower(), e.name))
     except OSError as exc:
@@ -127,22 +166,24 @@ def _load_folder(folder: Path, sink: DiagnosticSink) -> Project:
         return project
     candidates = [
         e for e in entries
-        if e.suffix.lower() in SOURCE_SUFFIXES + (PROTECTED_SUFFIX,) and e.is_file()
+        if e.suffix.lower() in SOURCE_SUFFIXES + (PROTECTED_SUFFIX,) and not e.is_dir()
     ]
     for entry in candidates:
-        _add_source(project, entry, str(entry), None, sink)
+        if _inside(folder, entry, str(entry), None, sink):
+            _add_source(project, entry, str(entry), None, sink)
     if not candidates:
         sink.report(msg.NO_SOURCES, None, path=str(folder))
     return project
 
 
-def _load_gpr(gpr: Path, sink: DiagnosticSink) -> Project | None:
+def _load_gpr(gpr: Path, sink: DiagnosticSink, limits: Limits) -> Project | None:
     folder = gpr.parent
-    text = _read_text(gpr, str(gpr), None, sink)
+    text = _read_text(gpr, str(gpr), None, sink, limits.source)
     if text is None:
         return None
     gpr_file = SourceFile(str(gpr), text)
-    project = Project(name=_folder_name(folder), start=None, root=folder, project_file=gpr_file)
+    project = Project(name=_folder_name(folder), start=None, root=folder, project_file=gpr_file,
+                      limits=limits)
     entries = _parse_gpr(gpr_file, sink)
 
     seen_scalar: dict[str, str] = {}
@@ -173,6 +214,7 @@ def _load_gpr(gpr: Path, sink: DiagnosticSink) -> Project | None:
                 project.name = entry.value
             else:
                 project.start = entry.value
+                project.start_span = entry.value_span
 
     whole_file = Span(Position(gpr_file.path, 1, 1), 1, 1)
     if "projectstart" not in seen_scalar:
@@ -202,22 +244,34 @@ def _add_listed_source(project: Project, entry: _GprEntry, sink: DiagnosticSink)
             )
             return
         current = found
-    _add_source(project, current, str(current), entry.value_span, sink)
+    if _inside(project.root, current, entry.value, entry.value_span, sink):
+        _add_source(project, current, str(current), entry.value_span, sink)
 
 
 def _add_source(
     project: Project, path: Path, shown: str, cause: Span | None, sink: DiagnosticSink
 ) -> None:
     """Read one source file into the project, or record it as protected, or report why not."""
+    where = cause or _file_start(shown)
     if path.suffix.lower() == PROTECTED_SUFFIX:
-        sink.report(msg.PROTECTED_SKIPPED, cause, name=shown)
+        sink.report(msg.PROTECTED_SKIPPED, where, name=shown)
         project.protected.append(path)
         return
-    data = _read_bytes(path, shown, cause, sink)
-    if data is None:
+    limits = project.limits
+    if project.bytes_read > limits.project:
+        return  # the total was passed at an earlier file (reported there)
+    room = limits.project - project.bytes_read
+    if room < limits.source:  # what is left of the project's total is the tighter limit
+        data = _read_bytes(path, shown, cause, sink, room, project_limit=limits.project)
+    else:
+        data = _read_bytes(path, shown, cause, sink, limits.source)
+    if data is TOO_LARGE and room < limits.source:
+        project.bytes_read = limits.project + 1  # no later file is read
+    if not isinstance(data, bytes):
         return
+    project.bytes_read += len(data)
     if data.startswith(PROTECTED_MAGIC):
-        sink.report(msg.PROTECTED_SKIPPED, cause, name=shown)
+        sink.report(msg.PROTECTED_SKIPPED, where, name=shown)
         project.protected.append(path)
         return
     text = _decode(data, shown, sink)
@@ -312,19 +366,103 @@ def _find_case_insensitive(
     return chosen
 
 
-def _read_bytes(path: Path, shown: str, cause: Span | None, sink: DiagnosticSink) -> bytes | None:
+def _inside(root: Path, path: Path, shown: str, cause: Span | None, sink: DiagnosticSink) -> bool:
+    """Whether ``path``, a file the project names, really lies in the project folder ``root``
+    (a link may point anywhere); reported when it does not."""
     try:
-        return path.read_bytes()
-    except IsADirectoryError:
-        sink.report(msg.CANNOT_READ, cause, path=shown, reason="it is a folder, not a file")
+        target = path.resolve()
+        inside = target.is_relative_to(root.resolve())
+    except (OSError, RuntimeError) as exc:  # a loop of links, a path the OS refuses
+        sink.report(msg.CANNOT_READ, cause or _file_start(str(path)), path=shown,
+                    reason=getattr(exc, "strerror", None) or str(exc))
+        return False
+    if not inside:
+        sink.report(msg.SOURCE_OUTSIDE_PROJECT, cause or _file_start(str(path)), path=shown, target=str(target))
+    return inside
+
+
+_KINDS = ((stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a pipe"),
+          (stat.S_ISSOCK, "a socket"))
+_OPEN_FLAGS = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_BINARY", 0)
+
+
+class _TooLarge:
+    """What :func:`_read_bytes` returns for a file over its limit (reported)."""
+
+
+TOO_LARGE = _TooLarge()
+
+
+def _read_bytes(path: Path, shown: str, cause: Span | None, sink: DiagnosticSink, limit: int,
+                project_limit: int | None = None) -> bytes | _TooLarge | None:
+    """The bytes of ``path`` if it is a regular file of at most ``limit`` bytes, else ``None``
+    (or :data:`TOO_LARGE`) with a diagnostic at ``cause`` (the Project.gpr entry) or at the
+    file itself.
+
+    ``project_limit`` is given when ``limit`` is what is left of the project's total, so that
+    is what a file too large is told.  The file is examined before it is opened and again once
+    open (it may have been swapped meanwhile), and opened without blocking: a pipe or a device
+    never makes gpl2py wait or read forever."""
+    where = cause or _file_start(shown)
+    try:
+        before = os.stat(path)
+        if not _regular(before, shown, where, sink):
+            return None
+        if before.st_size > limit:
+            _too_large(shown, where, sink, before.st_size, limit, project_limit)
+            return TOO_LARGE
+        fd = os.open(path, _OPEN_FLAGS)
+        try:
+            if not _regular(os.fstat(fd), shown, where, sink):
+                return None
+            chunks: list[bytes] = []
+            got = 0
+            while got <= limit:
+                piece = os.read(fd, min(1 << 20, limit + 1 - got))
+                if not piece:
+                    break
+                chunks.append(piece)
+                got += len(piece)
+        finally:
+            os.close(fd)
     except OSError as exc:
-        sink.report(msg.CANNOT_READ, cause, path=shown, reason=exc.strerror or str(exc))
-    return None
+        sink.report(msg.CANNOT_READ, where, path=shown, reason=exc.strerror or str(exc))
+        return None
+    if got > limit:  # it grew after it was examined
+        _too_large(shown, where, sink, got, limit, project_limit)
+        return TOO_LARGE
+    return b"".join(chunks)
 
 
-def _read_text(path: Path, shown: str, cause: Span | None, sink: DiagnosticSink) -> str | None:
-    data = _read_bytes(path, shown, cause, sink)
-    return None if data is None else _decode(data, shown, sink)
+def _regular(st: os.stat_result, shown: str, where: Span, sink: DiagnosticSink) -> bool:
+    if stat.S_ISREG(st.st_mode):
+        return True
+    if stat.S_ISDIR(st.st_mode):
+        sink.report(msg.CANNOT_READ, where, path=shown, reason="it is a folder, not a file")
+        return False
+    what = next((name for test, name in _KINDS if test(st.st_mode)), "not a file")
+    sink.report(msg.SOURCE_NOT_REGULAR, where, path=shown, what=what)
+    return False
+
+
+def _too_large(shown: str, where: Span, sink: DiagnosticSink, size: int, limit: int,
+               project_limit: int | None) -> None:
+    if project_limit is not None:
+        sink.report(msg.PROJECT_TOO_LARGE, where, path=shown, limit=_size_text(project_limit))
+    else:
+        sink.report(msg.SOURCE_TOO_LARGE, where, path=shown, size=_size_text(size), limit=_size_text(limit))
+
+
+def _size_text(size: int) -> str:
+    """``8.0 MB``, ``175.8 kB`` or ``900 bytes``."""
+    if size >= 2**20:
+        return f"{size / 2**20:.1f} MB"
+    return f"{size / 2**10:.1f} kB" if size >= 2**10 else f"{size} bytes"
+
+
+def _read_text(path: Path, shown: str, cause: Span | None, sink: DiagnosticSink, limit: int) -> str | None:
+    data = _read_bytes(path, shown, cause, sink, limit)
+    return _decode(data, shown, sink) if isinstance(data, bytes) else None
 
 
 _TEXT_CONTROLS = {0x09, 0x0A, 0x0C, 0x0D, 0x1A}  # tab, LF, FF, CR, DOS end-of-file

@@ -52,7 +52,7 @@ from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.progress import ProgressBar
-from gpl2py.project import Project, load_project
+from gpl2py.project import Limits, Project, load_project
 
 if TYPE_CHECKING:
     from gpl2py.cli import Outcome
@@ -105,7 +105,7 @@ def count_lines(project: Project) -> int:
 def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | None = None,
           keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None,
           stubs_dir: str | Path | None = None, strict: bool = False,
-          loaded: Callable[[Project], None] | None = None) -> Built | None:
+          loaded: Callable[[Project], None] | None = None, limits: Limits | None = None) -> Built | None:
     """Translate ``path`` into the cache (or reuse the entry); diagnostics go to ``sink``.
 
     Returns None when the project has errors (unless ``keep_going``) or the cache cannot be
@@ -116,7 +116,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
     """
     started = time.perf_counter()
     probe = DiagnosticSink()
-    project = load_project(path, probe)
+    project = load_project(path, probe, limits)
     if project is not None and loaded is not None:
         loaded(project)
     if project is None or probe.has_errors():
@@ -131,7 +131,8 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
     from gpl2py.transpile import transpile  # the whole pipeline: only on a cache miss
 
     local = DiagnosticSink()
-    output = transpile(path, local, keep_going=keep_going, progress=progress, stubs_dir=stubs_dir, strict=strict)
+    output = transpile(path, local, keep_going=keep_going, progress=progress, stubs_dir=stubs_dir, strict=strict,
+                       limits=limits)
     sink.extend(local)
     if output is None:
         return None
@@ -456,7 +457,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
     loaded: list[Project] = []
     try:
         built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
-                      stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append)
+                      stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append,
+                      limits=cli.limits_of(args))
     finally:
         bar.close()
     project = built.project if built is not None else (loaded[0] if loaded else None)

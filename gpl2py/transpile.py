@@ -35,7 +35,7 @@ from gpl2py.lower.user_stubs import (
     load_user_stubs,
     with_shipped_standins,
 )
-from gpl2py.project import Project, load_project
+from gpl2py.project import Limits, Project, load_project
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model, analyze
 from gpl2py.semantics.resolve import TOP_MODULE
@@ -61,12 +61,14 @@ DATA_FOLDER = "_project_files"
 
 def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
-              strict: bool = False, loaded: Callable[[Project], None] | None = None) -> Output | None:
+              strict: bool = False, loaded: Callable[[Project], None] | None = None,
+              limits: Limits | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.semantics.stubs``).
     ``loaded(project)`` is called once the project is loaded, so a caller can count its files even
-    when the translation fails.
+    when the translation fails.  ``limits``: how much input may be read (``project.Limits``;
+    default from the environment).
 
     The cyclic garbage collector is paused meanwhile: the pipeline allocates hundreds of thousands
     of small tree and symbol objects that all live to the end, and the full collections their
@@ -75,7 +77,7 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded)
+        return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits)
     except Exception as exc:  # a bug in gpl2py, in any phase: a diagnostic, never a traceback
         if os.environ.get("GPL2PY_TRACEBACK"):
             raise
@@ -88,8 +90,9 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
 
 def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
-               strict: bool = False, loaded: Callable[[Project], None] | None = None) -> Output | None:
-    project = load_project(path, sink)
+               strict: bool = False, loaded: Callable[[Project], None] | None = None,
+               limits: Limits | None = None) -> Output | None:
+    project = load_project(path, sink, limits)
     if project is None:
         return None
     if loaded is not None:
@@ -105,7 +108,8 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
             progress("parsing", i + 1, len(project.sources))
     # the semantic pass runs even after syntax errors, so every error is reported in one run
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
-                    strict=strict, stub_provider=user.provider if user is not None else None)
+                    strict=strict, stub_provider=user.provider if user is not None else None,
+                    start_span=project.start_span)
     if sink.has_errors() and not keep_going:
         return None
     output = _lower(project, model, sink, progress, user)

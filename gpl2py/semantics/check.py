@@ -40,6 +40,7 @@ from gpl2py.semantics.symbols import (
     procedures,
 )
 from gpl2py.semantics.symbols import Member as UserMember
+from gpl2py.source import Span
 from gpl2py.syntax import ast as A
 
 
@@ -194,7 +195,7 @@ class Checker:
 
     # -- driver ----------------------------------------------------------------------------------
 
-    def run(self, units: list[A.SourceUnit], start: str | None) -> Model:
+    def run(self, units: list[A.SourceUnit], start: str | None, start_span: Span | None = None) -> Model:
         col = Collector(self.r, self.sink)
         col.collect_units(units)
         col.resolve_pending()
@@ -204,7 +205,7 @@ class Checker:
             self._module(mod)
         self.model.const_values = fold_constants(project, self.model.info, self.sink)
         if start:
-            self._start(start)
+            self._start(start, start_span)
         else:
             self._assume_main()
         return self.model
@@ -217,7 +218,7 @@ class Checker:
         if len(subs) == 1:
             self.model.start = subs[0]  # the translation warns (GPL2032) when it writes the package
 
-    def _start(self, start: str) -> None:
+    def _start(self, start: str, span: Span | None) -> None:
         parts = start.split(".")
         proc: object = None
         declared = False  # some readable module declares the name (as anything)
@@ -236,10 +237,10 @@ class Checker:
         if not declared and self.stubs.protected:
             # not declared anywhere readable: in a project with protected files that is where it
             # lives, and saying so beats "not a Sub of this project" (the user sees the file)
-            self.sink.report(M.START_PROTECTED, None, name=start)
+            self.sink.report(M.START_PROTECTED, span, name=start)
             return
         if not isinstance(proc, ProcSym) or proc.params:
-            self.sink.report(M.START_NOT_FOUND, None, name=start)
+            self.sink.report(M.START_NOT_FOUND, span, name=start)
             return
         if not proc.public:
             self.sink.report(M.START_NOT_PUBLIC, proc.span, name=start)
@@ -1290,15 +1291,18 @@ def _text(e: A.Expr) -> str:
 
 def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogue,
             project_name: str = "", start: str | None = None, *, protected: bool = False,
-            strict: bool = False, stub_provider: Callable[[Stub], str | None] | None = None) -> Model:
+            strict: bool = False, stub_provider: Callable[[Stub], str | None] | None = None,
+            start_span: Span | None = None) -> Model:
     """Semantic analysis of a parsed project (units in ProjectSource order).
 
     ``protected``: the project has protected (.gpp) files, so unknown names become stubs
     (``gpl2py.semantics.stubs``); ``strict`` reports every stub as an error; ``stub_provider``
-    names the stand-in that implements a stub, for its warning."""
+    names the stand-in that implements a stub, for its warning.  ``start_span``: where ``start``
+    is written (the ProjectStart value in Project.gpr), where a start procedure that does not
+    exist is reported."""
     checker = Checker(ProjectSyms(project_name), catalogue, sink,
                       StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
-    return checker.run(units, start)
+    return checker.run(units, start, start_span)
 
 
 __all__ = ["analyze", "Model", "Info", "ParamInfo", "assignable", "child_blocks", "TOP_MODULE"]
