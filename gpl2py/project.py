@@ -53,6 +53,8 @@ PROTECTED_MAGIC = b"'#Protected|"
 DEFAULT_MAX_SOURCE_MB = 8
 PROJECT_FACTOR = 4
 MAX_SOURCE_ENV = "GPL2PY_MAX_SOURCE_MB"
+#: Project.gpr holds a few lines (the TCS's: 20); one of a megabyte names tens of thousands of files.
+MAX_PROJECT_FILE = 2**20
 
 
 @dataclass(frozen=True)
@@ -102,6 +104,7 @@ class Project:
     start_span: Span | None = None  # the ProjectStart value in Project.gpr, for diagnostics
     limits: Limits = field(default_factory=Limits)
     bytes_read: int = 0  # of the sources, against limits.project
+    listings: dict[Path, dict[str, list[Path]]] = field(default_factory=dict, repr=False)  # while loading
 
     def source(self, path: str) -> SourceFile | None:
         """The loaded file whose diagnostic path is ``path`` (Project.gpr included)."""
@@ -178,7 +181,7 @@ def _load_folder(folder: Path, sink: DiagnosticSink, limits: Limits) -> Project:
 
 def _load_gpr(gpr: Path, sink: DiagnosticSink, limits: Limits) -> Project | None:
     folder = gpr.parent
-    text = _read_text(gpr, str(gpr), None, sink, limits.source)
+    text = _read_text(gpr, str(gpr), None, sink, min(limits.source, MAX_PROJECT_FILE))
     if text is None:
         return None
     gpr_file = SourceFile(str(gpr), text)
@@ -221,6 +224,7 @@ def _load_gpr(gpr: Path, sink: DiagnosticSink, limits: Limits) -> Project | None
         sink.report(msg.GPR_NO_START, whole_file)
     if source_count == 0:
         sink.report(msg.GPR_NO_SOURCES, whole_file)
+    project.listings.clear()
     return project
 
 
@@ -237,7 +241,7 @@ def _add_listed_source(project: Project, entry: _GprEntry, sink: DiagnosticSink)
         return
     current = project.root
     for part in parts:
-        found = _find_case_insensitive(current, part, sink, entry.value_span)
+        found = _find_case_insensitive(current, part, sink, entry.value_span, project.listings)
         if found is None:
             sink.report(
                 msg.SOURCE_NOT_FOUND, entry.value_span, name=entry.value, folder=str(project.root)
@@ -344,14 +348,26 @@ def _parse_gpr(gpr: SourceFile, sink: DiagnosticSink) -> list[_GprEntry]:
 
 
 def _find_case_insensitive(
-    folder: Path, name: str, sink: DiagnosticSink | None = None, cause: Span | None = None
+    folder: Path, name: str, sink: DiagnosticSink | None = None, cause: Span | None = None,
+    listings: dict[Path, dict[str, list[Path]]] | None = None,
 ) -> Path | None:
-    """The entry of ``folder`` called ``name`` ignoring case, as the controller would find it."""
+    """The entry of ``folder`` called ``name`` ignoring case, as the controller would find it.
+
+    ``listings`` caches each folder's entries by lower-cased name for the loading of one
+    project: a Project.gpr with thousands of ProjectSource lines lists its folder once, not once
+    per line."""
     exact = folder / name
-    try:
-        matches = sorted(e for e in folder.iterdir() if e.name.lower() == name.lower())
-    except OSError:
-        return exact if exact.exists() else None
+    listing = listings.get(folder) if listings is not None else None
+    if listing is None:
+        try:
+            listing = {}
+            for e in folder.iterdir():
+                listing.setdefault(e.name.lower(), []).append(e)
+        except OSError:
+            return exact if exact.exists() else None
+        if listings is not None:
+            listings[folder] = listing
+    matches = sorted(listing.get(name.lower(), []))
     if not matches:
         return None
     chosen = exact if exact in matches else matches[0]

@@ -147,3 +147,27 @@ def test_a_bad_project_start_points_at_its_project_gpr_line(tmp_path: Path) -> N
     sink = DiagnosticSink()
     assert transpile(proj, sink) is None
     assert where(sink) == [("GPL2019", "Project.gpr", 3, 15)]
+
+
+def test_a_long_project_gpr_lists_its_folder_once(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # every ProjectSource line listed the folder again: 30,000 lines over 5,000 files took 94 s
+    names = [f"Missing{i}.gpl" for i in range(2_000)]
+    proj = project(tmp_path / "P", ["Main.gpl", *names])
+    for i in range(200):
+        (proj / f"other{i}.txt").write_text("")
+    listed: list[Path] = []
+    real_iterdir = Path.iterdir
+
+    def iterdir(self: Path):  # type: ignore[no-untyped-def]
+        listed.append(self)
+        return real_iterdir(self)
+
+    monkeypatch.setattr(Path, "iterdir", iterdir)
+    loaded, sink = load_bounded(proj)
+    assert loaded is not None and len(loaded.sources) == 1
+    assert [d.code for d in sink] == ["GPL1405"] * 2_000
+    assert len(listed) <= 2, len(listed)  # Project.gpr's lookup and the ProjectSource names
+    assert (proj / "Project.gpr").stat().st_size < 2**20
+    (proj / "Project.gpr").write_text("ProjectBegin\n" + "' comment\n" * 120_000 + "ProjectEnd\n")
+    _, sink = load_bounded(proj)  # 1.2 MB: a Project.gpr over a megabyte is refused
+    assert [(d.code, Path(d.span.file).name) for d in sink if d.span] == [("GPL1421", "Project.gpr")]
