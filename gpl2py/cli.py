@@ -113,6 +113,9 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     """Load the project, parse every source and run the semantic pass (names, types, calls: what a
     porting engineer wants to know), collecting all diagnostics in one run.  Nothing is written.
 
+    When those find no error, the translation's own checks run too (GoTo targets, nesting that
+    Python cannot compile: lowering, in memory), so a project ``check`` passes translates.
+
     Names that only protected (.gpp) files define are reported as stub warnings, as the
     translation would (GPL3501); ``--strict`` makes them errors.  ``--stubs DIR`` is read as
     ``translate`` and ``run`` read it, so a folder or file they would refuse (GPL3503) is
@@ -120,6 +123,8 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     from gpl2py.lower.user_stubs import load_user_stubs, with_shipped_standins
     from gpl2py.semantics.catalogue import load_catalogue
     from gpl2py.semantics.check import analyze
+    from gpl2py.syntax.lexer import gc_paused
+    from gpl2py.transpile import lower
 
     out = Outcome()
     project = load_project(args.path, out.sink, limits_of(args))
@@ -130,13 +135,17 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
         user = with_shipped_standins(user, out.sink)
     incomplete = out.sink.has_errors()  # a source could not be loaded: it may declare the start
-    units = []
-    for source in project.sources:
-        units.append(_parse(source, out.sink))
-        out.checked += 1
-    analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
-            None if incomplete else project.start, protected=bool(project.protected), strict=args.strict,
-            stub_provider=user.provider if user is not None else None, start_span=project.start_span)
+    with gc_paused():  # as in transpile(): the collector would re-scan the growing tree for nothing
+        units = []
+        for source in project.sources:
+            units.append(_parse(source, out.sink))
+            out.checked += 1
+        model = analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
+                        None if incomplete else project.start, protected=bool(project.protected),
+                        strict=args.strict, stub_provider=user.provider if user is not None else None,
+                        start_span=project.start_span)
+        if not out.sink.has_errors():
+            lower(project, model, out.sink, user=user)
     return out
 
 

@@ -624,6 +624,14 @@ NOT_SUPPORTED = _error(
     "{what} is not supported by the transpiler",
     "",
 )
+NESTED_TOO_DEEPLY = _error(
+    "GPL3007",
+    "this statement is nested too deeply for Python: {detail}",
+    "GPL allows deeper nesting than CPython compiles: at most 20 loop and try blocks around a "
+    "statement of one function (a For over a variable range is 2, a Catch 2, a Catch with a "
+    "Finally 3) and at most 99 levels of indentation (a method's body starts inside its classes). "
+    "Move the inner part into a Sub or Function of its own (docs/security.md, \"Nesting\").",
+)
 
 # --- stubs for missing code (GPL3500-GPL3999) --------------------------------------------------
 

@@ -112,7 +112,7 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
                     start_span=project.start_span)
     if sink.has_errors() and not keep_going:
         return None
-    output = _lower(project, model, sink, progress, user)
+    output = lower(project, model, sink, progress, user)
     if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
         return None
     output.data_files = _project_data(Path(path), project)
@@ -129,8 +129,10 @@ def _project_data(given: Path, project: Project) -> dict[str, bytes]:
     return {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
 
 
-def _lower(project: Project, model: Model, sink: DiagnosticSink,
-           progress: Progress | None = None, user: UserStubs | None = None) -> Output:
+def lower(project: Project, model: Model, sink: DiagnosticSink,
+          progress: Progress | None = None, user: UserStubs | None = None) -> Output:
+    """The generated files of an analysed project (``gpl2py check`` runs it for the lowering's
+    diagnostics and drops the files)."""
     start = model.start
     if project.start is None and start is not None and start.module is not None:
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)

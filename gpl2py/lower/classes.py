@@ -10,13 +10,14 @@ count for hand-written Python.
 
 from __future__ import annotations
 
+from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.context import ModuleContext
-from gpl2py.lower.emit import Line, Writer
+from gpl2py.lower.emit import MAX_INDENT, Line, Writer
 from gpl2py.lower.expressions import default_code
 from gpl2py.lower.names import py_ident, py_literal
 from gpl2py.lower.text import py_string
-from gpl2py.lower.statements import ProcLowerer
+from gpl2py.lower.statements import ProcLowerer, lower_procedure
 from gpl2py.semantics import types as t
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym, procedures
 from gpl2py.syntax import ast as A
@@ -44,6 +45,12 @@ def lower_class(ctx: ModuleContext, cls: ClassSym, sink: DiagnosticSink) -> Writ
     w = Writer()
     decl = cls.decl
     assert decl is not None
+    depth = len(cls.path)  # the class statement is indented depth - 1 levels, its methods' bodies depth + 1
+    if depth + 1 > MAX_INDENT:
+        sink.report(M.NESTED_TOO_DEEPLY, decl.span,
+                    detail=f"its methods would be indented {depth + 1} levels and Python allows {MAX_INDENT}")
+        w.line(f"{py_ident(cls.name)} = None  # nested too deeply for Python (reported)")
+        return w
     w.gpl_line = decl.span.line
     w.comments(decl.leading_comments)
     mark = w.mark()
@@ -227,8 +234,7 @@ def _isinstance_test(ctx: ModuleContext, k: int, typ: t.GplType) -> str:
 
 def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink,
             fields: Writer | None = None) -> Writer:
-    low = ProcLowerer(ctx, p, cls, sink)
-    out = low.procedure(p, method=True)
+    out = lower_procedure(ctx, p, cls, sink, method=True)
     if fields is not None and fields.lines:
         # field initialisers run before the user's New (AMB-7): right after the def line
         for i, ln in enumerate(out.lines):

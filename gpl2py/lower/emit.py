@@ -52,18 +52,57 @@ def comment_text(c: A.Comment) -> str:
     return "# " + text
 
 
+#: What CPython compiles (docs/security.md, "Nesting"): a line indented at most MAX_INDENT levels
+#: (its tokenizer stops at 100), and at most MAX_BLOCKS loops and ``try`` parts around any
+#: statement of one function (CO_MAXBLOCKS).  tests/lower/test_nesting_limits.py checks both
+#: against the running interpreter.
+MAX_INDENT = 99
+MAX_BLOCKS = 20
+
+#: The blocks CPython's compiler counts for the body of each construct the lowering emits: a loop
+#: body 1; a ``try`` body 1 (2 when the statement has both ``except`` and ``finally``); an
+#: ``except ... as`` handler 2 (its name is cleaned up; 3 inside a ``finally``); a ``finally``
+#: body 1.
+BLOCKS = {"loop": 1, "try": 1, "try+finally": 2, "except": 2, "except+finally": 3, "finally": 1}
+
+
 @dataclass
 class Writer:
-    """Accumulates lines at the current indentation."""
+    """Accumulates lines at the current indentation.
+
+    It also keeps the nesting Python will see: :attr:`blocks` (loops and ``try`` parts open
+    around the current line, as ``indent(blocks=...)`` declares them) and the deepest
+    indentation and block count reached (:attr:`peak_level`, :attr:`peak_blocks`), so the
+    lowering can refuse what CPython would not compile.  ``base`` is the indentation the text
+    will get when it is placed in its module (a method's body sits inside its classes)."""
 
     lines: list[Line] = field(default_factory=list)
     level: int = 0
     gpl_line: int = 0
+    base: int = 0
+    blocks: int = 0
+    peak_level: int = 0
+    peak_blocks: int = 0
+    _opened: list[int] = field(default_factory=list)
 
     def line(self, text: str, gpl_line: int | None = None) -> Line:
         ln = Line(self.level, text, self.gpl_line if gpl_line is None else gpl_line)
         self.lines.append(ln)
+        level = self.level
+        if text[:1] == " ":  # a line written with its own indentation ("    flag = False")
+            level += (len(text) - len(text.lstrip(" "))) // 4
+        if level > self.peak_level:
+            self.peak_level = level
         return ln
+
+    def deepest(self) -> tuple[int, int]:
+        """The deepest absolute indentation and block count reached so far."""
+        return self.base + self.peak_level, self.peak_blocks
+
+    def fits_python(self) -> bool:
+        """Whether everything written so far nests within what CPython compiles."""
+        level, blocks = self.deepest()
+        return level <= MAX_INDENT and blocks <= MAX_BLOCKS
 
     def comments(self, comments: list[A.Comment]) -> None:
         for c in comments:
@@ -79,11 +118,17 @@ class Writer:
                 return
         self.line(comment_text(c), c.span.line)
 
-    def indent(self) -> None:
+    def indent(self, blocks: int = 0) -> None:
+        """One level deeper; ``blocks``: the blocks CPython counts for this body (:data:`BLOCKS`)."""
         self.level += 1
+        self._opened.append(blocks)
+        self.blocks += blocks
+        if self.blocks > self.peak_blocks:
+            self.peak_blocks = self.blocks
 
     def dedent(self) -> None:
         self.level -= 1
+        self.blocks -= self._opened.pop() if self._opened else 0
 
     def mark(self) -> int:
         return len(self.lines)

@@ -17,7 +17,7 @@ from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import annotation, default_code
 from gpl2py.lower.names import py_ident, py_literal
 from gpl2py.lower.text import escape, py_string
-from gpl2py.lower.statements import ProcLowerer
+from gpl2py.lower.statements import ProcLowerer, lower_procedure
 from gpl2py.semantics.check import Model
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, VarSym
 from gpl2py.syntax import ast as A
@@ -96,7 +96,7 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
         elif isinstance(m, A.ProcDecl) and m in model.proc_of_decl:
             proc = model.proc_of_decl[m]  # (each overload of a name is a declaration of its own)
             defs.blank(2)
-            defs.extend(ProcLowerer(ctx, proc, None, sink).procedure(proc, method=False))
+            defs.extend(lower_procedure(ctx, proc, None, sink, method=False))
             procs.append(proc)
     # _init: module variables and Shared fields, textual order
     init = Writer()

@@ -11,9 +11,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.context import ModuleContext
-from gpl2py.lower.emit import Writer
+from gpl2py.lower.emit import BLOCKS, MAX_BLOCKS, MAX_INDENT, Writer
 from gpl2py.lower.expressions import (
     BYREF,
     CONV,
@@ -53,6 +54,25 @@ class Frame:
     block: A.Block | None = None
 
 
+def lower_procedure(ctx: ModuleContext, p: ProcSym, cls: ClassSym | None, sink: DiagnosticSink,
+                    method: bool) -> Writer:
+    """The ``def`` of procedure ``p`` (:meth:`ProcLowerer.procedure`).
+
+    A For over a variable range becomes two Python loops (checkpoint() every 1,024 iterations),
+    so ten nested ones reach CPython's 20 nested blocks.  When some statement nests too deeply,
+    the procedure is lowered again with every For as one loop (the general form, a checkpoint()
+    per iteration) before anything is reported: only what still does not fit is an error."""
+    first = DiagnosticSink()
+    low = ProcLowerer(ctx, p, cls, first)
+    out = low.procedure(p, method=method)
+    if not low.too_deep_seen:
+        sink.extend(first)
+        return out
+    again = ProcLowerer(ctx, p, cls, sink)
+    again.one_loop_fors = True
+    return again.procedure(p, method=method)
+
+
 class ProcLowerer(ExprLowerer):
     def __init__(self, ctx: ModuleContext, proc: ProcSym | None, cls: ClassSym | None,
                  sink: DiagnosticSink) -> None:
@@ -66,6 +86,10 @@ class ProcLowerer(ExprLowerer):
         self.plan: GotoPlan | None = None
         self.state_var: dict[A.Block, str] = {}
         self.entry_flag: dict[A.Stmt, str] = {}
+        # every For in the form that is one Python loop (lower_procedure), and whether a
+        # statement was nested too deeply for Python (too_deep)
+        self.one_loop_fors = False
+        self.too_deep_seen = False
         self._used_beyond_counters: set[str] | None = None
 
     def used_beyond_counters(self, v: VarSym) -> bool:
@@ -180,6 +204,7 @@ class ProcLowerer(ExprLowerer):
                 self.ctx.statics.append((self.static_name(v), default_code(v.type)))
         body = self.w
         body.level = 1
+        body.base = len(self.cls.path) if method and self.cls is not None else 0  # inside its classes
         start = body.mark()
         self.block(decl.body)
         if p.kind == "Function" and (p.labels or _falls_through(decl.body)):
@@ -298,7 +323,7 @@ class ProcLowerer(ExprLowerer):
                 segments.append([])
             segments[-1].append(s)
         self.w.line("while True:")
-        self.w.indent()
+        self.w.indent(BLOCKS["loop"])
         frame = Frame("dispatch", block=block)
         self.frames.append(frame)
         self.w.line(f"{self.rt(THREADS, 'checkpoint')}()")
@@ -359,13 +384,37 @@ class ProcLowerer(ExprLowerer):
     # -- statements -----------------------------------------------------------------------------------------
 
     def stmt(self, s: A.Stmt) -> None:
-        self.w.gpl_line = s.span.line
-        self.w.comments(s.leading_comments)
-        start = self.w.mark()
+        w = self.w
+        w.gpl_line = s.span.line
+        w.comments(s.leading_comments)
+        start = w.mark()
+        outer = (w.peak_level, w.peak_blocks)
+        w.peak_level, w.peak_blocks = w.level, w.blocks
+        fits = w.fits_python()  # else the statement around it is the one to blame
         method = getattr(self, "s_" + type(s).__name__, None)
         if method is not None:
             method(s)
-        self.w.trailing(s.trailing_comment, start)
+        if fits and not w.fits_python():
+            self.too_deep(s, start)
+        w.peak_level, w.peak_blocks = max(outer[0], w.peak_level), max(outer[1], w.peak_blocks)
+        w.trailing(s.trailing_comment, start)
+
+    def too_deep(self, s: A.Stmt, start: int) -> None:
+        """``s`` is the innermost statement whose Python would nest deeper than CPython compiles
+        (emit.MAX_INDENT, emit.MAX_BLOCKS): an error at it, and a ``pass`` in its place so that
+        --keep-going output still compiles."""
+        w = self.w
+        level, blocks = w.deepest()
+        if level > MAX_INDENT:
+            detail = f"its code would be indented {level} levels and Python allows {MAX_INDENT}"
+        else:
+            detail = (f"its code would be inside {blocks} loop and Try blocks of one procedure and Python "
+                      f"allows {MAX_BLOCKS}")
+        self.sink.report(M.NESTED_TOO_DEEPLY, s.span, detail=detail)
+        self.too_deep_seen = True
+        del w.lines[start:]
+        w.line("pass  # nested too deeply for Python (reported)")
+        w.peak_level, w.peak_blocks = w.level, w.blocks
 
     def s_Label(self, s: A.Label) -> None:
         self.w.line(f"# {s.name}:")
@@ -547,7 +596,7 @@ class ProcLowerer(ExprLowerer):
         self.w.dedent()
 
     def loop_body(self, body: A.Block, frame: Frame, tail: list[str] | None = None) -> None:
-        self.w.indent()
+        self.w.indent(BLOCKS["loop"])
         self.frames.append(frame)
         start = self.w.mark()
         self.block(body)
@@ -588,6 +637,8 @@ class ProcLowerer(ExprLowerer):
                 and self.type_of(s.start) in (t.INTEGER, t.SHORT, t.BYTE)
                 and self.type_of(s.end) in (t.INTEGER, t.SHORT, t.BYTE)
                 and not _writes_or_leaves(s.body, v.name.lower()))
+        if fast and self.one_loop_fors and not _few_literal_steps(s):
+            fast = False  # deeply nested code: the general form is one Python loop, not two
         if fast:
             assert isinstance(v, VarSym)
             name = self.local_name(v)
@@ -605,7 +656,7 @@ class ProcLowerer(ExprLowerer):
                 k = self.fresh("k")
                 edge = "min" if step_lit == 1 else "max"
                 self.w.line(f"for {k} in range({start}, {stop}, {_CHUNK * step_lit}):  # checkpoint() every {_CHUNK}")
-                self.w.indent()
+                self.w.indent(BLOCKS["loop"])
                 self.w.line(f"for {name} in range({k}, {edge}({k} + {_CHUNK * step_lit}, {stop}){tail}):")
             else:
                 self.w.line(f"for {name} in range({start}, {stop}{tail}):")
@@ -635,7 +686,7 @@ class ProcLowerer(ExprLowerer):
             test = f"({cur} <= {end} if {step} >= 0 else {cur} >= {end})"
         self.w.line(f"while {test}:")
         frame = Frame("For")
-        self.w.indent()
+        self.w.indent(BLOCKS["loop"])
         self.frames.append(frame)
         mark = self.w.mark()
         self.block(s.body)
@@ -670,7 +721,7 @@ class ProcLowerer(ExprLowerer):
             return
         tmp = self.fresh("item")
         self.w.line(f"for {tmp} in {self.val(s.collection)}:")
-        self.w.indent()
+        self.w.indent(BLOCKS["loop"])
         self.store(s.var, tmp)
         self.w.dedent()
         self.loop_body(s.body, Frame("For"))
@@ -687,7 +738,7 @@ class ProcLowerer(ExprLowerer):
         if _has_exit(s, "Select"):
             frame = Frame("Select")
             self.w.line("while True:")
-            self.w.indent()
+            self.w.indent(BLOCKS["loop"])
             self.frames.append(frame)
         first = True
         for c in s.cases:
@@ -743,29 +794,30 @@ class ProcLowerer(ExprLowerer):
         if s.catch is None and s.finally_ is None:  # the parser reported it: keep the body
             self.block(s.body)
             return
-        if not needs_frame:
+        if not needs_frame:  # one try statement: except and finally share it
+            both = s.catch is not None and s.finally_ is not None
             self.w.line("try:")
-            self.w.indent()
+            self.w.indent(BLOCKS["try+finally" if both else "try"])
             self.block(s.body)
             self.w.dedent()
-            self.catch(s)
+            self.catch(s, BLOCKS["except+finally" if both else "except"])
             self.finally_(s)
             return
         if s.finally_ is not None:
             self.w.line("try:")
-            self.w.indent()
+            self.w.indent(BLOCKS["try"])
         self.w.line("while True:")
-        self.w.indent()
+        self.w.indent(BLOCKS["loop"])
         frame = Frame("Try")
         self.frames.append(frame)
         if s.catch is None:
             self.block(s.body)
         else:
             self.w.line("try:")
-            self.w.indent()
+            self.w.indent(BLOCKS["try"])
             self.block(s.body)
             self.w.dedent()
-            self.catch(s)
+            self.catch(s, BLOCKS["except"])
         self.w.line("break")
         self.frames.pop()
         self.w.dedent()
@@ -782,12 +834,12 @@ class ProcLowerer(ExprLowerer):
         self.w.line(header)
         self.w.trailing(clause.trailing_comment, mark)
 
-    def catch(self, s: A.Try) -> None:
+    def catch(self, s: A.Try, blocks: int) -> None:
         c = s.catch
         if c is None:
             return
         self.clause_header(c, "except BaseException as _e:")
-        self.w.indent()
+        self.w.indent(blocks)
         exc = f"{self.rt(EXC, 'as_gpl_exception')}(_e)"
         ref = self.model.catch_var.get(c)
         if ref is not None and ref in self.model.info:
@@ -802,7 +854,7 @@ class ProcLowerer(ExprLowerer):
         if f is None:
             return
         self.clause_header(f, "finally:")
-        self.w.indent()
+        self.w.indent(BLOCKS["finally"])
         self.block(f.body)
         self.w.dedent()
         if s.end_comment is not None:
@@ -1136,6 +1188,13 @@ def _int_value_of(code: str) -> int | None:
         return int(code)
     except ValueError:
         return None
+
+
+def _few_literal_steps(s: A.For) -> bool:
+    """A For from one integer literal to another less than _CHUNK apart: its range loop needs no
+    chunks (ProcLowerer.s_For)."""
+    lo, hi = _int_literal(s.start), _int_literal(s.end)
+    return lo is not None and hi is not None and abs(hi - lo) < _CHUNK
 
 
 def _int_literal(e: A.Expr | None) -> int | None:

@@ -370,8 +370,9 @@ def test_check_reports_stub_warnings_and_strict_errors(tmp_path: Path, capsys: p
     (tmp_path / "Vendor.gpp").write_bytes(b"'#Protected|\x00\x01")
     code, _, err = run(capsys, "check", str(tmp_path))
     assert code == 0
-    assert sorted(m["code"] for m in headers(err)) == ["GPL1406", "GPL3501"]  # GPL1406 at Vendor.gpp:1:1
-    assert err.splitlines()[-1] == "checked 1 file: 0 errors, 2 warnings"
+    # GPL1406 at Vendor.gpp:1:1; GPL2032 (Sub Main assumed as the start) is what translate says too
+    assert sorted(m["code"] for m in headers(err)) == ["GPL1406", "GPL2032", "GPL3501"]
+    assert err.splitlines()[-1] == "checked 1 file: 0 errors, 3 warnings"
     code, _, err = run(capsys, "check", str(tmp_path), "--strict")
     assert code == 1 and err.splitlines()[-1] == "checked 1 file: 1 error, 1 warning"
 
