@@ -34,8 +34,11 @@ class Diagnostic:
         return self.span.start if self.span is not None else None
 
     def header(self) -> str:
-        where = f"{self.span.start}: " if self.span is not None else ""
-        return f"{where}{self.severity.value} {self.code}: {self.message}"
+        """``file:line:col: severity GPLnnnn: message`` on one line: a file name or a name quoted
+        in the message cannot break it (docs/security.md), their line breaks and other control
+        characters are shown as escapes."""
+        where = f"{one_line(self.span.file)}:{self.span.line}:{self.span.col}: " if self.span is not None else ""
+        return f"{where}{self.severity.value} {self.code}: {one_line(self.message)}"
 
     def render(self, source: SourceFile | None = None) -> str:
         """The header line, followed by the source line and a caret when the text is known."""
@@ -46,6 +49,8 @@ class Diagnostic:
         if not line:
             return text
         shown = line.expandtabs(1)  # tabs count as one column, as in Position
+        if not shown.isprintable():  # a control character (a form feed, a bidi override) shows as '?'
+            shown = "".join(ch if ch.isprintable() else "?" for ch in shown)
         col = max(self.span.col, 1)
         if self.span.end_line == self.span.line and self.span.end_col > col:
             width = self.span.end_col - col
@@ -64,6 +69,20 @@ class Diagnostic:
             "line": pos.line if pos else None,
             "column": pos.col if pos else None,
         }
+
+
+def one_line(text: str) -> str:
+    """``text`` with every character Python does not call printable -- line breaks, other
+    controls, bidirectional overrides, other separators than the space -- as ``\\xNN``,
+    ``\\uNNNN`` or ``\\UNNNNNNNN``, so that it shows as one line, in its order."""
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else _escape(ch) for ch in text)
+
+
+def _escape(ch: str) -> str:
+    o = ord(ch)
+    return f"\\x{o:02x}" if o < 256 else f"\\u{o:04x}" if o < 0x10000 else f"\\U{o:08x}"
 
 
 class DiagnosticSink:

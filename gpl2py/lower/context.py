@@ -82,7 +82,8 @@ class ProjectNames:
         names = cls()
         names.runtime = runtime_names(builtin_names())
         taken: set[str] = set()
-        for mod in model.project.module_list:
+        top = model.project.modules.get(TOP_MODULE.lower())  # top-level classes (AMB-1)
+        for mod in [*model.project.module_list, *([top] if top is not None else [])]:
             for m in mod.members.values():
                 taken.add(py_ident(m.name))
         for p in model.project.procs:
@@ -100,7 +101,6 @@ class ProjectNames:
         # imports from the runtime or one the package defines (docs/security.md, "Names")
         package = Scope(taken | set(names.runtime) | set(PACKAGE_NAMES) | {"sys"})
         mods = list(model.project.module_list)
-        top = model.project.modules.get(TOP_MODULE.lower())
         if top is not None:
             mods.append(top)
         for mod in mods:

@@ -744,7 +744,9 @@ class ExprLowerer:
                 # The subscript cannot be negative, so the element list itself does the upper-bound
                 # check (IndexError, which a Catch receives as -767): no Python-level call.
                 return f"{self.sub(e.target, P_ATOM)}._data[{self.val(arg)}]"
-        idx = ", ".join(self.val(x) for x in e.args)
+        # no subscript at all is an error already reported ('a(,)'): --keep-going output must
+        # still be Python, and a[()] fails at run time as the program would
+        idx = ", ".join(self.val(x) for x in e.args) or "()"
         return f"{self.sub(e.target, P_ATOM)}[{idx}]"
 
     def builtin_function(self, i: Info, args: list[A.Expr]) -> Code:

@@ -20,6 +20,7 @@ globals, a stub module) are in ``lower/context.py`` and use these rules.
 from __future__ import annotations
 
 import builtins
+import hashlib
 import keyword
 import re
 import sys
@@ -116,11 +117,16 @@ def _type_word(type_name: str) -> str:
     return re.sub(r"[^0-9A-Za-z]", "", word) or "Any"
 
 
+#: The longest module or package name made from input (file systems refuse names over 255 bytes,
+#: and snake_case makes a name longer); a longer one is cut and keeps a hash of the whole.
+MAX_FILE_NAME = 64
+
+
 def module_base(name: str) -> str:
     """The file name (without ``.py``) a GPL module prefers: snake_case, never a name of the
     package's own (``init``, ``main``), a runtime import (``chk_int32``, ``current``), ``sys``
     or a Windows device name.  The project's scope table (lower/context.py) makes it unique."""
-    base = snake_case(name)
+    base = _short(snake_case(name), name)
     if base.rstrip("_") in PACKAGE_NAMES | RUNTIME_NAMES | DEVICE_NAMES | {"sys"}:
         base += "_mod"
     return base
@@ -128,11 +134,21 @@ def module_base(name: str) -> str:
 
 def package_name(project_name: str) -> str:
     """The package a project becomes: its name in snake_case (``gpl_project`` when it has none),
-    never the name of a standard or runtime module nor a Windows device name."""
-    base = snake_case(project_name) if project_name else "gpl_project"
+    never the name of a standard or runtime module nor a Windows device name, at most
+    :data:`MAX_FILE_NAME` characters."""
+    base = _short(snake_case(project_name), project_name) if project_name else "gpl_project"
     if base.rstrip("_") in TOP_LEVEL_MODULES | DEVICE_NAMES:
         base += "_gpl"
     return base
+
+
+def _short(name: str, whole: str) -> str:
+    """``name`` cut to :data:`MAX_FILE_NAME` characters with a hash of ``whole`` at the end, so
+    that two long names stay two names."""
+    if len(name) <= MAX_FILE_NAME:
+        return name
+    digest = hashlib.sha1(whole.encode("utf-8", "surrogatepass")).hexdigest()[:8]
+    return f"{name[:MAX_FILE_NAME - 9].rstrip('_')}_{digest}"
 
 
 def snake_case(name: str) -> str:

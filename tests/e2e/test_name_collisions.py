@@ -196,3 +196,29 @@ def test_a_project_named_like_a_module_the_runtime_imports(tmp_path: Path, proje
     proc = subprocess.run([sys.executable, "-m", out.package], cwd=tmp_path / "built", capture_output=True,
                           text=True, timeout=120)
     assert (proc.returncode, proc.stdout) == (0, "ran\n"), proc.stderr[-2000:]
+
+
+def test_a_top_level_class_named_like_a_runtime_helper(tmp_path: Path) -> None:
+    # found by the corpus fuzz: a class outside any Module called gpl_entry replaced the helper its
+    # own module's registrations call (TypeError at import); top-level classes were not counted
+    # among the names GPL code uses
+    src = """Public Class gpl_entry
+    Public v As Integer
+    Public Shared Function Make(ByVal k As Integer) As gpl_entry
+        Dim g As New gpl_entry
+        g.v = k
+        Return g
+    End Function
+    Public Function Twice() As gpl_entry
+        Return Make(2 * v)
+    End Function
+End Class
+Module Main
+    Public Sub Main()
+        Dim g As New gpl_entry
+        g.v = 7
+        Console.WriteLine(CStr(g.Twice().v))
+    End Sub
+End Module
+"""
+    assert output_of(tmp_path, src) == "14\n"

@@ -1,29 +1,68 @@
-"""Fuzz the front end: no input may make ``tokenize`` or ``parse`` raise.
+"""Fuzz the front end and the whole pipeline (issue 12: untrusted GPL must never run host Python).
 
-Inputs are realistic GPL (the manual examples in ``examples/`` plus a dense module written for this
-test) mutated at two levels — word/operator pieces (delete, duplicate, swap, replace with a GPL
-keyword or operator) and characters (delete, duplicate, swap, insert random bytes/Unicode, insert
-the characters the lexer treats specially) — and purely random text over a GPL-flavoured alphabet.
+Two kinds of fuzzing live here.
 
-Each Hypothesis example checks several mutants; the three tests together feed well over 5,000
-inputs per run in a few seconds, and each asserts the number of inputs it actually fed.  Besides "no exception", every run checks that all diagnostics have
-a valid position and render, and that the token stream ends with EOF.
+**Lexer and parser** (``test_*_never_crash``): realistic GPL (the manual examples in ``examples/``
+plus a dense module written for this test) mutated at two levels -- word/operator pieces (delete,
+duplicate, swap, replace with a GPL keyword or operator) and characters (delete, duplicate, swap,
+insert random bytes/Unicode, insert the characters the lexer treats specially) -- and purely random
+text over a GPL-flavoured alphabet.  Each Hypothesis example checks several mutants; each test
+asserts the number of inputs it actually fed.  Besides "no exception", every run checks that all
+diagnostics have a valid position and render, and that the token stream ends with EOF.
+
+**The pipeline, seeded from real code** (``test_pipeline_fuzz_seeded_from_the_corpus``): the
+vendor's TCS (``../shared/corpus``, read in place) mutated by lines, tokens and bytes, with hostile
+names -- identifiers renamed consistently to Python keywords, builtins, runtime helpers, names
+gpl2py generates and dunders; hostile source file names, folder names, ProjectName and ProjectStart
+values -- in one-file, several-file, folder and whole-TCS projects.  Each input goes through
+``transpile`` in-process (``GPL2PY_TRACEBACK=1``, so a bug is an exception here rather than a
+GPL9000), some also through ``--keep-going`` and ``gpl2py check --json``.  The properties:
+
+* no exception (no traceback, no internal error GPL9000);
+* a translation without errors (what ``translate`` exits 0 with) writes modules that compile
+  and a source map that is JSON; ``--keep-going`` output compiles too;
+* nothing is written outside the batch's temporary folder (an audit hook sees every write);
+* every diagnostic is ``file:line:col: severity GPLnnnn: message`` (only the three about the
+  path itself, GPL1400-GPL1402, have no file to point at).
+
+At least 5,000 inputs per run (``GPL2PY_FUZZ_INPUTS`` for more); the seed is fixed so CI is
+repeatable (``GPL2PY_FUZZ_SEED`` to explore others; a failure names its seed and input number and
+keeps the failing project).  It runs in batches sharing one temporary folder each.
 """
 
 from __future__ import annotations
 
+import contextlib
+import importlib
+import io
+import itertools
+import json
+import keyword
+import os
+import random
 import re
+import shutil
+import sys
+import tempfile
+import warnings
 from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.names import RUNTIME_NAMES
+from gpl2py.run import import_package
 from gpl2py.source import SourceFile
 from gpl2py.syntax.lexer import tokenize
 from gpl2py.syntax.parser import parse
-from gpl2py.syntax.tokens import TokenKind
+from gpl2py.syntax.tokens import KEYWORDS, TokenKind
+from gpl2py.transpile import transpile, write_package
+from gpltest import corpus_dir
 
 EXAMPLES = Path(__file__).parent / "examples"
 
@@ -225,3 +264,482 @@ def test_character_mutations_never_crash() -> None:
 
 def test_random_text_never_crashes() -> None:
     assert fed(random_text) >= MIN_INPUTS_PER_TEST
+
+
+# ==================================================================================================
+# The whole pipeline, seeded from the corpus
+
+
+FUZZ_INPUTS = int(os.environ.get("GPL2PY_FUZZ_INPUTS", "5000"))
+FUZZ_SEED = os.environ.get("GPL2PY_FUZZ_SEED", "12")
+BATCH = 250  # inputs sharing one temporary folder (and one check that nothing was written outside it)
+
+#: Names the generated Python must never confuse with a GPL name: Python keywords that are not GPL
+#: keywords, builtins, names of the runtime and of what gpl2py generates, dunders, and the same
+#: with underscores added (list / list_ / list__ are three GPL names).
+HOSTILE_NAMES = sorted({
+    *(k for k in keyword.kwlist + keyword.softkwlist if k.isidentifier() and k.lower() not in KEYWORDS and k != "_"),
+    "print", "list", "str", "int", "len", "range", "open", "eval", "exec", "compile", "globals", "locals",
+    "object", "super", "property", "staticmethod", "classmethod", "isinstance", "float", "bool", "min", "max",
+    "chr", "BaseException", "type", "id", "input", "vars", "getattr", "setattr", "sys", "os", "math", "self",
+    "cls", "init", "main", "PROJECT", "_this", "_result", "_reset", "_init", "_e", "_g1", "_sel1", "_jump1",
+    "_enter1", "_k1", "_s_Main_x", "_stubs", "_session", "_VARIABLES", "set_x", "_u_x",
+    "__init__", "__class__", "__dict__", "__slots__", "__name__", "__file__", "__builtins__", "__import__",
+    "__getattr__", "__all__", "__path__", "__main__", "__globals__", "__reduce_ex__",
+    *sorted(RUNTIME_NAMES),
+    "ChkInt32", "ToInt32", "Current", "Checkpoint", "RegisterPackage", "UseProcedures", "GplEntry",
+    "GplArray", "Simulation", "Location", "CStr", "Sys", "Os", "Init", "Main", "Con", "Nul", "Numpy", "Gplrt",
+})
+HOSTILE_NAMES = [n for n in HOSTILE_NAMES if re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*|_+[A-Za-z0-9][A-Za-z0-9_]*", n)
+                 and n.lower() not in KEYWORDS]  # a GPL keyword would only make a syntax error
+#: File and folder names a project may carry (Linux allows all of these).
+HOSTILE_FILES = [
+    "Main", "sys", "os", "numpy", "gplrt", "__init__", "__main__", "_stubs", "_sourcemap", "con", "nul",
+    "a b", "x'y", 'x"y', "x\\y", "-rf", "..x", ".hidden", "é", "中文", "x" * 200, "a\nb", "a\tb", "$HOME",
+    "`id`", "$(id)", "x;y", "x%s", "{x}", "x\"\"\"y", "'''", "Print", "List_", "ChkInt32", "Current",
+]
+#: ProjectName / ProjectStart values.
+HOSTILE_VALUES = [
+    'x""";import os;os.system("id");"""', "'''", "\\N", "\\", "numpy", "gplrt", "sys", "__init__", "..",
+    "a/b", "../../x", "", "\u202e", "x" * 300, "Main.Main", "Main", "Nope", "print", "__import__('os')",
+    "a\x0bb", "a\x85b", "a\u2028b", "# comment", "{0}", "%s",
+]
+IDENT = re.compile(r"(?<![A-Za-z0-9_])[A-Za-z_][A-Za-z0-9_]*")
+DECLARED = re.compile(r"(?im)^[ \t]*(?:(?:public|private|shared|static|const|dim|byval|byref|optional)[ \t]+)*"
+                      r"(?:dim|const|sub|function|module|class|property|static)[ \t]+([A-Za-z_][A-Za-z0-9_]*)")
+# names declared on one line: parameters, and the names of a Dim list
+ONE_LINE_NAMES = re.compile(r"(?i)(?:\b(?:byval|byref|dim)[ \t]+|,[ \t]*)([A-Za-z_][A-Za-z0-9_]*)(?=[ \t]*(?:\(\))?[ \t]*(?:,|as\b))")
+SUB = re.compile(r"(?im)^[ \t]*public[ \t]+sub[ \t]+([A-Za-z_][A-Za-z0-9_]*)[ \t]*(?:\([ \t]*\))?[ \t]*(?:'.*)?$")
+PROCEDURE = re.compile(r"(?ims)^[ \t]*(?:public[ \t]+|private[ \t]+)?(?:shared[ \t]+)?(sub|function)[ \t].*?"
+                       r"^[ \t]*end[ \t]+\1\b[^\n]*\n")
+WRITE_EVENTS = {"os.mkdir", "os.rename", "os.replace", "os.remove", "os.rmdir", "os.symlink", "os.link",
+                "os.truncate", "os.chmod", "os.utime", "shutil.copyfile", "shutil.copymode", "shutil.move",
+                "shutil.rmtree"}
+WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
+PATH_CODES = {"GPL1400", "GPL1401", "GPL1402"}  # about the path given: nothing else to point at
+HEADER = re.compile(r"^(?P<file>.+):(?P<line>\d+):(?P<col>\d+): (error|warning|note) GPL\d{4}: \S")
+
+_watch: list[list[str]] = []  # while a batch runs: the paths written to (the audit hook's record)
+#: What importing a generated package must never do (audit events): run programs, open
+#: connections, load native code.
+FORBIDDEN = ("os.system", "os.exec", "os.posix_spawn", "os.spawn", "os.fork", "os.kill", "subprocess.",
+             "socket.", "ctypes.", "webbrowser.", "os.startfile")
+_forbidden: list[list[str]] = []  # while a generated package is imported: forbidden events seen
+
+
+# the argument positions of the folder descriptors a path of these events is relative to
+_DIR_FD = {"os.mkdir": {0: 2}, "os.remove": {0: 1}, "os.rmdir": {0: 1}, "os.rename": {0: 2, 1: 3},
+           "os.replace": {0: 2, 1: 3}, "os.symlink": {1: 2}, "os.link": {0: 2, 1: 3}, "os.chmod": {0: 2},
+           "os.utime": {0: 3}}
+
+
+def _audit(event: str, args: tuple[object, ...]) -> None:
+    if _forbidden and event.startswith(FORBIDDEN):
+        _forbidden[-1].append(f"{event}{args!r:.200}")
+    if not _watch:
+        return
+    if event == "open":
+        path, mode, flags = args
+        if isinstance(path, int) or path is None:
+            return
+        writes = any(c in mode for c in "wax+") if isinstance(mode, str) else bool(int(flags or 0) & WRITE_FLAGS)
+        if writes:
+            _watch[-1].append(os.path.abspath(os.fsdecode(path)))  # type: ignore[arg-type]
+    elif event in WRITE_EVENTS:
+        fds = _DIR_FD.get(event, {})
+        for i, a in enumerate(args[:2]):
+            if isinstance(a, (str, bytes, os.PathLike)):
+                path = os.fsdecode(a)
+                fd = args[fds[i]] if i in fds and fds[i] < len(args) else None
+                if isinstance(fd, int) and not os.path.isabs(path):  # relative to an open folder
+                    path = os.path.join(os.readlink(f"/proc/self/fd/{fd}"), path)
+                _watch[-1].append(os.path.abspath(path))
+
+
+sys.addaudithook(_audit)
+
+
+@dataclass
+class Seed:
+    """One corpus source file: its text, and the names it declares."""
+
+    name: str
+    text: str
+    declared: list[str]
+
+
+@dataclass
+class FuzzProject:
+    """One input: the files of a project folder (relative path -> bytes), and how to run it."""
+
+    folder: str
+    files: dict[str, bytes]
+    keep_going: bool = False
+    check_cli: bool = False
+    what: list[str] = field(default_factory=list)  # the mutations, for the failure message
+
+
+def corpus_seeds() -> tuple[list[Seed], list[Path]]:
+    """Every distinct corpus source, and the corpus projects (folders with Project.gpr)."""
+    root = corpus_dir()
+    seeds: dict[str, Seed] = {}
+    for path in sorted(root.rglob("*")):
+        if path.suffix.lower() in (".gpl", ".gpo") and path.is_file():
+            data = path.read_bytes()
+            if data.startswith(b"'#Protected|"):
+                continue
+            text = data.decode("utf-8", errors="replace") if _utf8(data) else data.decode("latin-1")
+            seeds.setdefault(text, Seed(path.name, text, sorted(set(DECLARED.findall(text)))))
+    projects = sorted(p.parent for p in root.rglob("Project.gpr"))
+    assert len(seeds) >= 14 and len(projects) >= 2, (len(seeds), projects)
+    return list(seeds.values()), projects
+
+
+def clean_seeds(seeds: list[Seed], root: Path) -> list[Seed]:
+    """The seeds that translate on their own without an error (more as gpl2py accepts more of
+    the corpus)."""
+    out = []
+    for i, seed in enumerate(seeds):
+        path = root / f"seed{i}.gpl"
+        path.write_text(seed.text, encoding="utf-8", errors="replace")
+        if transpile(path, DiagnosticSink()) is not None:
+            out.append(seed)
+    return out
+
+
+def _utf8(data: bytes) -> bool:
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return False
+    return True
+
+
+class Mutator:
+    """Mutations of real GPL by lines, tokens and bytes, and hostile renames."""
+
+    def __init__(self, rng: random.Random, seeds: list[Seed], clean: list[Seed]) -> None:
+        self.rng = rng
+        self.seeds = seeds
+        self.clean = clean or seeds
+        self.small = [s for s in seeds if s.text.count("\n") <= 700]
+        self.procedures = [m.group(0) for s in seeds for m in PROCEDURE.finditer(s.text)]
+
+    def source(self) -> tuple[str, list[str]]:
+        """A starting text: a corpus file that translates on its own (so that mutants reach the
+        lowering), another small one, or procedures of any file in a module."""
+        rng = self.rng
+        r = rng.random()
+        if r < 0.7:
+            seed = rng.choice(self.clean if r < 0.45 else self.small)
+            return seed.text, seed.declared
+        procs = rng.sample(self.procedures, k=min(len(self.procedures), rng.randint(1, 3)))
+        text = f"Module {rng.choice(['Fuzz', 'Cmd', 'Main', *HOSTILE_NAMES])}\n" + "".join(procs) + "End Module\n"
+        return text, sorted(set(DECLARED.findall(text)))
+
+    def mutate(self, text: str, declared: list[str], what: list[str]) -> str:
+        rng = self.rng
+        for _ in range(rng.choice([0, 1, 1, 2, 2, 3, 5])):
+            op = rng.choices(
+                ["rename", "rename_pair", "line_del", "line_dup", "line_swap", "line_donor", "token",
+                 "token_hostile", "byte_ins", "byte_del", "byte_flip", "literal", "deep"],
+                weights=[12, 6, 3, 2, 2, 2, 3, 3, 1, 1, 1, 1, 1])[0]
+            what.append(op)
+            text = getattr(self, "op_" + op)(text, declared)
+        return text
+
+    # -- names
+    def op_rename(self, text: str, declared: list[str]) -> str:
+        """Rename a declared name everywhere (any case) to a hostile one: the code stays valid."""
+        if not declared:
+            return text
+        old = self.rng.choice(declared)
+        new = self.hostile_name()
+        pattern = re.compile(rf"(?<![A-Za-z0-9_]){re.escape(old)}(?![A-Za-z0-9_])", re.IGNORECASE)
+        return pattern.sub(new, text)
+
+    def op_rename_pair(self, text: str, declared: list[str]) -> str:
+        """Rename two names to one hostile name with and without a trailing underscore (list /
+        list_): two GPL names that a careless mapping makes one Python name.  Half the time two
+        names declared on one line (parameters of one procedure, ``Dim a, b``)."""
+        together = [names for line in text.splitlines()
+                    if len(names := sorted(set(ONE_LINE_NAMES.findall(line)))) >= 2]
+        if together and self.rng.random() < 0.5:
+            declared = self.rng.choice(together)
+        if len(declared) < 2:
+            return self.op_rename(text, declared)
+        first, second = self.rng.sample(declared, 2)
+        base = self.rng.choice(HOSTILE_NAMES).rstrip("_") or "list"
+        for old, new in ((first, base), (second, base + "_")):
+            pattern = re.compile(rf"(?<![A-Za-z0-9_]){re.escape(old)}(?![A-Za-z0-9_])", re.IGNORECASE)
+            text = pattern.sub(new, text)
+        return text
+
+    def hostile_name(self) -> str:
+        rng = self.rng
+        name = rng.choice(HOSTILE_NAMES)
+        r = rng.random()
+        if r < 0.15:
+            name += "_" * rng.randint(1, 2)
+        elif r < 0.25:
+            name = name.upper() if rng.random() < 0.5 else name.capitalize()
+        return name
+
+    # -- lines
+    def op_line_del(self, text: str, declared: list[str]) -> str:
+        lines = text.splitlines(keepends=True)
+        if lines:
+            del lines[self.rng.randrange(len(lines))]
+        return "".join(lines)
+
+    def op_line_dup(self, text: str, declared: list[str]) -> str:
+        lines = text.splitlines(keepends=True)
+        if lines:
+            i = self.rng.randrange(len(lines))
+            lines.insert(i, lines[i])
+        return "".join(lines)
+
+    def op_line_swap(self, text: str, declared: list[str]) -> str:
+        lines = text.splitlines(keepends=True)
+        if len(lines) > 1:
+            i, j = self.rng.randrange(len(lines)), self.rng.randrange(len(lines))
+            lines[i], lines[j] = lines[j], lines[i]
+        return "".join(lines)
+
+    def op_line_donor(self, text: str, declared: list[str]) -> str:
+        donor = self.rng.choice(self.seeds).text.splitlines(keepends=True)
+        lines = text.splitlines(keepends=True)
+        if donor:
+            lines.insert(self.rng.randrange(len(lines) + 1), self.rng.choice(donor))
+        return "".join(lines)
+
+    # -- tokens
+    def op_token(self, text: str, declared: list[str]) -> str:
+        pieces = PIECE.findall(text)
+        if pieces:
+            i = self.rng.randrange(len(pieces))
+            pieces[i] = self.rng.choice(REPLACEMENTS)
+        return "".join(pieces)
+
+    def op_token_hostile(self, text: str, declared: list[str]) -> str:
+        matches = list(IDENT.finditer(text))
+        if not matches:
+            return text
+        m = self.rng.choice(matches)
+        return text[:m.start()] + self.hostile_name() + text[m.end():]
+
+    def op_literal(self, text: str, declared: list[str]) -> str:
+        """A string literal or comment carrying Python: it must stay text."""
+        lines = text.splitlines(keepends=True)
+        payload = self.rng.choice(['"x"";__import__(""os"").system(""id"")#"', "' \\\"\"\"; import os\n",
+                                   '" \\N{x} \\x00 """ \'\'\' "', "'\\u2028 hidden\\x0b line"])
+        lines.insert(self.rng.randrange(len(lines) + 1), payload + "\n")
+        return "".join(lines)
+
+    def op_deep(self, text: str, declared: list[str]) -> str:
+        """Deep nesting around one line (blocks or expressions)."""
+        lines = text.splitlines(keepends=True)
+        if not lines:
+            return text
+        i = self.rng.randrange(len(lines))
+        n = self.rng.choice([10, 19, 20, 21, 60, 99, 100, 160])
+        kind = self.rng.choice(["If x Then\n|End If\n", "While x\n|End While\n", "Try\n|Catch e\nEnd Try\n",
+                                "Select x\nCase 1\n|End Select\n", "Do\n|Loop\n", "For i = 1 To n\n|Next\n"])
+        head, tail = kind.split("|")
+        lines[i:i + 1] = [head * n, lines[i], tail * n]
+        return "".join(lines)
+
+    # -- bytes
+    def op_byte_ins(self, text: str, declared: list[str]) -> str:
+        data = bytearray(text.encode("latin-1", errors="replace"))
+        i = self.rng.randrange(len(data) + 1)
+        data[i:i] = bytes(self.rng.randrange(256) for _ in range(self.rng.randint(1, 4)))
+        return data.decode("latin-1")
+
+    def op_byte_del(self, text: str, declared: list[str]) -> str:
+        if not text:
+            return text
+        i = self.rng.randrange(len(text))
+        return text[:i] + text[i + self.rng.randint(1, 8):]
+
+    def op_byte_flip(self, text: str, declared: list[str]) -> str:
+        if not text:
+            return text
+        i = self.rng.randrange(len(text))
+        return text[:i] + chr(ord(text[i]) ^ (1 << self.rng.randrange(7))) + text[i + 1:]
+
+    # -- projects
+    def project(self, number: int, whole: list[Path]) -> FuzzProject:
+        rng = self.rng
+        what: list[str] = []
+        kind = rng.choices(["one", "several", "folder", "tcs"], weights=[70, 20, 8, 2])[0]
+        what.append(kind)
+        files: dict[str, bytes] = {}
+        names: list[str] = []
+        if kind == "tcs":
+            root = rng.choice(whole)
+            sources = [p for p in sorted(root.iterdir()) if p.suffix.lower() in (".gpl", ".gpo")]
+            victim = rng.choice(sources)
+            for p in sources:
+                text = p.read_bytes().decode("latin-1")
+                if p == victim:
+                    text = self.mutate(text, sorted(set(DECLARED.findall(text))), what)
+                files[p.name] = text.encode("latin-1", errors="replace")
+                names.append(p.name)
+        else:
+            for _ in range(1 if kind != "several" else rng.randint(2, 3)):
+                text, declared = self.source()
+                text = self.mutate(text, declared, what)
+                stem = rng.choice(HOSTILE_FILES) if rng.random() < 0.3 else f"Src{len(names)}"
+                name = f"{stem}.{rng.choice(['gpl', 'gpl', 'gpl', 'gpo', 'GPL'])}"
+                if name in files:
+                    name = f"Src{len(names)}.gpl"
+                files[name] = text.encode("utf-8" if rng.random() < 0.9 else "latin-1", errors="replace")
+                names.append(name)
+        if kind != "folder":
+            subs = [m.group(1) for data in files.values() for m in SUB.finditer(data.decode("latin-1"))]
+            files["Project.gpr"] = self.gpr(names, subs, what)
+        folder = rng.choice(HOSTILE_FILES) if rng.random() < 0.3 else f"P{number}"
+        return FuzzProject(folder.replace("\n", "_") if kind == "folder" else folder, files,
+                           keep_going=rng.random() < 0.5, check_cli=rng.random() < 0.1, what=what)
+
+    def gpr(self, names: list[str], subs: list[str], what: list[str]) -> bytes:
+        rng = self.rng
+        name = rng.choice(HOSTILE_VALUES) if rng.random() < 0.3 else "FuzzCell"
+        r = rng.random()
+        start = rng.choice(HOSTILE_VALUES) if r < 0.15 else rng.choice(subs) if subs and r < 0.8 else None
+        lines = ["ProjectBegin", f'ProjectName="{name}"', *([f'ProjectStart="{start}"'] if start is not None else [])]
+        lines += [f'ProjectSource="{n}"' if '"' not in n else f"ProjectSource={n}" for n in names]
+        lines.append("ProjectEnd")
+        text = "\r\n".join(lines) + "\r\n"
+        if rng.random() < 0.1:
+            what.append("gpr")
+            text = self.mutate(text, [], what)
+        return text.encode("utf-8", errors="replace")
+
+
+def check_diagnostics(sink: DiagnosticSink, project: Path) -> None:
+    """Every diagnostic is ``file:line:col: severity GPLnnnn: message`` about a file of the project."""
+    for d in sink:
+        assert d.code != "GPL9000", d.header()
+        if d.code in PATH_CODES:
+            continue
+        assert d.span is not None, f"no position: {d.header()}"
+        header = d.header()
+        assert header.isprintable(), header  # one line, whatever the names in it (one_line)
+        m = HEADER.match(header)
+        assert m is not None and d.span.line >= 1 and d.span.col >= 1, header
+        assert Path(d.span.file).resolve().is_relative_to(project.resolve()), header
+        d.render()
+
+
+def compile_py(text: str, name: str, strict: bool = True) -> None:
+    """compile(); ``strict``: its warnings ("is" with a literal, invalid escapes) are errors (the
+    output of a translation without errors; --keep-going output of an erroneous program may
+    compare with a literal where the program did)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error" if strict else "ignore")
+        compile(text, name, "exec", dont_inherit=True)
+
+
+def compile_all(files: dict[str, str], strict: bool = True) -> None:
+    for name, text in files.items():
+        if name.endswith(".py"):
+            compile_py(text, name, strict)
+        elif name.endswith(".json"):
+            json.loads(text)
+
+
+_imports = itertools.count()
+
+
+def import_generated(folder: Path) -> None:
+    """Import the package (module code runs: definitions, registrations) and forget it; it must
+    neither fail (two names in one __slots__, a helper hidden by a module) nor do anything of
+    FORBIDDEN."""
+    name = f"_fuzz_pkg_{next(_imports)}"
+    seen: list[str] = []
+    _forbidden.append(seen)
+    try:
+        package = import_package(folder, name)
+        for sub in sorted(folder.glob("*.py")):
+            if sub.stem not in ("__init__", "__main__"):
+                importlib.import_module(f"{name}.{sub.stem}")
+        del package
+    finally:
+        _forbidden.pop()
+        for mod in [m for m in sys.modules if m == name or m.startswith(name + ".")]:
+            del sys.modules[mod]
+    assert seen == [], seen
+
+
+def run_input(item: FuzzProject, root: Path) -> None:
+    """Write the project below ``root``, translate it in-process and check the properties."""
+    folder = root / item.folder
+    folder.mkdir()
+    for rel, data in item.files.items():
+        (folder / rel).write_bytes(data)
+    sink = DiagnosticSink()
+    out = transpile(folder, sink, keep_going=False)
+    check_diagnostics(sink, folder)
+    if out is not None:
+        assert not sink.has_errors()
+        compile_all(out.files)
+        written = root / "out"
+        assert write_package(out, written, sink), [d.header() for d in sink]
+        for py in written.rglob("*.py"):
+            compile_py(py.read_text(encoding="utf-8"), str(py))
+        import_generated(written / out.package)
+    elif item.keep_going:
+        sink = DiagnosticSink()
+        out = transpile(folder, sink, keep_going=True)
+        check_diagnostics(sink, folder)
+        if out is not None:
+            compile_all(out.files, strict=False)
+    if item.check_cli:
+        stdout, stderr = io.StringIO(), io.StringIO()
+        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
+            status = cli_main(["check", "--json", str(folder)])
+        assert status in (0, 1), stderr.getvalue()
+        for d in json.loads(stdout.getvalue())["diagnostics"]:
+            assert d["code"] != "GPL9000", d
+            assert d["code"] in PATH_CODES or (d["file"] and d["line"] >= 1 and d["column"] >= 1), d
+
+
+def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathFactory,
+                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    seeds, whole = corpus_seeds()
+    seed = random.randrange(2**32) if FUZZ_SEED == "random" else int(FUZZ_SEED)
+    rng = random.Random(seed)
+    mutator = Mutator(rng, seeds, clean_seeds(seeds, tmp_path_factory.mktemp("seeds")))
+    monkeypatch.setenv("GPL2PY_TRACEBACK", "1")  # a bug is an exception here, not a GPL9000
+    monkeypatch.delenv("GPL2PY_MAX_SOURCE_MB", raising=False)
+    fed = 0
+    translated = 0
+    while fed < FUZZ_INPUTS:
+        batch = tmp_path_factory.mktemp("fuzz")
+        written: list[str] = []
+        _watch.append(written)
+        try:
+            for _ in range(min(BATCH, FUZZ_INPUTS - fed)):
+                item = mutator.project(fed, whole)
+                root = batch / f"i{fed}"
+                root.mkdir()
+                try:
+                    run_input(item, root)
+                except BaseException as exc:
+                    kept = Path(tempfile.mkdtemp(prefix=f"gpl2py-fuzz-{seed}-{fed}-"))
+                    shutil.copytree(root, kept, dirs_exist_ok=True, symlinks=True)
+                    raise AssertionError(f"fuzz input {fed} (GPL2PY_FUZZ_SEED={seed}, mutations {item.what}) "
+                                         f"failed; the project is kept in {kept / item.folder!r}: "
+                                         f"{type(exc).__name__}: {exc}") from exc
+                translated += (root / "out").is_dir()
+                fed += 1
+                shutil.rmtree(root, ignore_errors=True)
+        finally:
+            _watch.pop()
+        outside = sorted({p for p in written if not Path(p).resolve().is_relative_to(batch.resolve())})
+        assert outside == [], f"written outside the temporary folder (seed {seed}): {outside[:10]}"
+    print(f"pipeline fuzz: {fed} inputs (seed {seed}), {translated} translated without errors")
+    assert fed >= 5000 or fed == FUZZ_INPUTS
+    assert translated > 0  # some inputs reached the end of the pipeline

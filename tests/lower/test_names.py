@@ -63,6 +63,8 @@ def test_packages_avoid_standard_and_runtime_modules() -> None:
     assert package_name("gplrt") == "gplrt_gpl"
     assert package_name("tcp_cmd_server") == "tcp_cmd_server"
     assert package_name("") == "gpl_project"
+    long_a, long_b = package_name("x" * 300), package_name("x" * 301)  # "File name too long" before
+    assert len(long_a) <= 64 and long_a.startswith("xxxx") and long_a != long_b
 
 
 def test_scope_hands_out_each_name_once_in_claim_order() -> None:
