@@ -171,3 +171,16 @@ def test_a_long_project_gpr_lists_its_folder_once(tmp_path: Path, monkeypatch: p
     (proj / "Project.gpr").write_text("ProjectBegin\n" + "' comment\n" * 120_000 + "ProjectEnd\n")
     _, sink = load_bounded(proj)  # 1.2 MB: a Project.gpr over a megabyte is refused
     assert [(d.code, Path(d.span.file).name) for d in sink if d.span] == [("GPL1421", "Project.gpr")]
+
+
+def test_a_file_name_cannot_break_a_diagnostic_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # a folder called "a\nb" split the diagnostic in two lines: a name can forge a line of output
+    folder = tmp_path / "a\nb: error GPL0000: forged\u202e"
+    folder.mkdir()
+    (folder / "Main.gpl").write_text("Module Main\n    Public Sub Main()\n        x = 1\n    End Sub\nEnd Module\n")
+    assert cli_main(["check", str(folder)]) == 1
+    err = capsys.readouterr().err
+    first = err.splitlines()[0]
+    assert first.endswith("Main.gpl:3:9: error GPL2001: 'x' is not declared"), first
+    assert "a\\x0ab: error GPL0000: forged\\u202e" in first
+    assert not any(line.startswith("b: error") for line in err.splitlines())
