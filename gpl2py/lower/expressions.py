@@ -195,11 +195,12 @@ class ExprLowerer:
             return self.class_ref(sym.owner) + "."
         return self.ctx.member_owner_ref(sym)
 
-    def unhidden(self, ref: str, root: object) -> str:
-        """``ref``, a reference that starts with the Python name of ``root`` (a global of some
-        module), or ``_this.<ref>`` when ``root`` belongs to this module and a local of the
-        procedure has that Python name."""
-        if self.ctx.owner_module(root) is self.ctx.mod and py_ident(getattr(root, "name", "")) in self.local_py:
+    def unhidden(self, ref: str, root: object, head: str | None = None) -> str:
+        """``ref``, a reference that starts with ``head``, the Python name of ``root`` (a global
+        of some module; by default ``py_ident`` of its name), or ``_this.<ref>`` when ``root``
+        belongs to this module and a local of the procedure has that Python name."""
+        head = py_ident(getattr(root, "name", "")) if head is None else head
+        if self.ctx.owner_module(root) is self.ctx.mod and head in self.local_py:
             self.ctx.needs_this = True
             return "_this." + ref
         return ref
@@ -725,7 +726,7 @@ class ExprLowerer:
             return f"{recv}.{name}"
         if isinstance(p.owner, ClassSym):
             return self.owner_ref(p) + name
-        return self.unhidden(self.ctx.member_owner_ref(p) + name, p)
+        return self.unhidden(self.ctx.member_owner_ref(p) + name, p, name)
 
     def prop_ref(self, prop: PropSym, receiver: A.Expr | None) -> str:
         if prop.shared:
