@@ -14,9 +14,10 @@ Output contract:
   product, e.g. ``"ast"``), nothing on stderr.  ``--quiet`` does not filter JSON: a program reading
   it can filter by ``severity`` itself.
 
-Exit status: 0 no errors (warnings allowed), 1 errors in the input (or an internal error, GPL9000),
-2 the command line itself is wrong (GPL9001/GPL9002).  No input produces a Python traceback: an
-unexpected exception becomes GPL9000 (set ``GPL2PY_TRACEBACK=1`` to see the traceback instead).
+Exit status: 0 no errors (warnings allowed), 1 errors in the input, 2 gpl2py could not do its job:
+the command line itself is wrong (GPL9001/GPL9002) or gpl2py failed internally (GPL9000), as ruff
+and mypy use 2.  No input produces a Python traceback: an unexpected exception becomes GPL9000 (set
+``GPL2PY_TRACEBACK=1`` to see the traceback instead).
 """
 
 from __future__ import annotations
@@ -48,13 +49,14 @@ from gpl2py.source import SourceFile
 
 EXIT_OK = 0
 EXIT_ERRORS = 1
-EXIT_USAGE = 2
+EXIT_USAGE = 2  # also an internal error (GPL9000): gpl2py, not the input, is at fault
 
 _EPILOG = """\
 exit status:
   0  no errors (warnings do not change the status)
-  1  errors in the GPL input, or an internal gpl2py error (GPL9000)
-  2  the command line is wrong (unknown command or option, missing argument)
+  1  errors in the GPL input
+  2  the command line is wrong (unknown command or option, missing argument),
+     or gpl2py failed internally (GPL9000: a bug in gpl2py, please report it)
   gpl2py run adds 3 (a GPL thread ended with an unhandled error), 4 (the program
   stalled) and 130 (Ctrl-C): see gpl2py run --help
 
@@ -480,9 +482,15 @@ def main(argv: list[str] | None = None) -> int:
         _emit(out, args.json, args.quiet, stdout, stderr)
     if out.exit_status is not None:
         return out.exit_status
-    if out.usage_error:
+    return status_of(out.sink, out.usage_error)
+
+
+def status_of(sink: DiagnosticSink, usage_error: bool = False) -> int:
+    """The exit status the diagnostics call for: 2 for a usage error or an internal error
+    (GPL9000, wherever in the pipeline it was caught), 1 for errors in the input, else 0."""
+    if usage_error or any(d.code == msg.INTERNAL_ERROR.code for d in sink):
         return EXIT_USAGE
-    return EXIT_ERRORS if out.sink.has_errors() else EXIT_OK
+    return EXIT_ERRORS if sink.has_errors() else EXIT_OK
 
 
 def _usage_failure(

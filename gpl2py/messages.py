@@ -663,7 +663,9 @@ STUBS_DIR_ERROR = _error(
 INTERNAL_ERROR = _error(
     "GPL9000",
     "internal error in gpl2py while processing this input: {detail}",
-    "A bug in gpl2py, never in your program. Please report it with the input that caused it.",
+    "A bug in gpl2py, never in your program. Please report it with the input that caused it. "
+    "Exit status 2, as for a wrong command line: gpl2py could not do its job (set "
+    "GPL2PY_TRACEBACK=1 to see the Python traceback).",
 )
 USAGE_ERROR = _error(
     "GPL9001",

@@ -15,8 +15,8 @@ Exit status of ``run`` (also in ``gpl2py run --help`` and docs/cli.md):
 
 ====  ==========================================================================================
 0     the program ended and no GPL thread ended with an unhandled error
-1     the project has errors (nothing ran), or gpl2py failed internally (GPL9000)
-2     the command line is wrong
+1     the project has errors (nothing ran)
+2     the command line is wrong, or gpl2py failed internally (GPL9000)
 3     the program ran, and at least one GPL thread ended with an unhandled error
 4     virtual clock only: the program stalled — every remaining thread waits for something
       that no thread, timer or I/O rule can ever provide (a controller would wait forever)
@@ -69,8 +69,8 @@ STOP_GRACE = 2.0  # real seconds the threads get to end after Ctrl-C
 RUN_EPILOG = """\
 exit status:
   0    the program ended; no GPL thread ended with an unhandled error
-  1    errors in the GPL input (nothing ran), or an internal gpl2py error (GPL9000)
-  2    the command line is wrong
+  1    errors in the GPL input (nothing ran)
+  2    the command line is wrong, or gpl2py failed internally (GPL9000)
   3    the program ran and a GPL thread ended with an unhandled error; each one is
        reported as "File.gpl:LINE: error CODE in thread NAME: MESSAGE"
   4    virtual clock: the program stalled (every thread waits for something that

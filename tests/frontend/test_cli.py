@@ -173,7 +173,8 @@ def test_missing_path_is_an_input_error(tmp_path: Path, capsys: pytest.CaptureFi
 def test_help_explains_commands_and_exit_codes(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, _ = run(capsys, "--help")
     assert code == 0
-    for text in ("check", "dump-ast", "exit status", "0  no errors", "1  errors", "2  the command line"):
+    for text in ("check", "dump-ast", "exit status", "0  no errors", "1  errors", "2  the command line",
+                 "internally (GPL9000"):
         assert text in out
     code, out, _ = run(capsys, "check", "--help")
     assert code == 0 and "Project.gpr" in out and "exit status" in out
@@ -251,11 +252,11 @@ def test_internal_error_becomes_gpl9000(monkeypatch: pytest.MonkeyPatch, tmp_pat
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
     monkeypatch.setattr(cli, "load_project", boom)
     code, out, err = run(capsys, "check", str(tmp_path))
-    assert code == 1
+    assert code == 2  # gpl2py failed, not the input: ruff's and mypy's status for a crash
     assert "error GPL9000: internal error in gpl2py while processing this input: RuntimeError: simulated bug" in err
     assert "Traceback" not in out + err
     code, out, _ = run(capsys, "check", "--json", str(tmp_path))
-    assert code == 1
+    assert code == 2
     assert [d["code"] for d in json.loads(out)["diagnostics"]] == ["GPL9000"]
 
 
@@ -268,7 +269,23 @@ def test_internal_error_in_the_parser_becomes_gpl9000(monkeypatch: pytest.Monkey
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
     monkeypatch.setattr(cli, "_parse", broken_parse)
     code, _, err = run(capsys, "check", str(tmp_path))
-    assert code == 1 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
+    assert code == 2 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
+
+
+def test_internal_error_caught_by_the_pipeline_exits_2(monkeypatch: pytest.MonkeyPatch, tmp_path: Path,
+                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    """transpile() turns a fault of any phase into GPL9000 itself (for library callers): the command
+    still exits 2, not 1 as for an error in the GPL input."""
+    import gpl2py.transpile as transpile
+
+    def broken_lower(*args: object, **kwargs: object) -> None:
+        raise KeyError("lowering bug")
+
+    (tmp_path / "Main.gpl").write_bytes(GOOD_MODULE)
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    monkeypatch.setattr(transpile, "lower", broken_lower)
+    code, _, err = run(capsys, str(tmp_path / "Main.gpl"), "-o", str(tmp_path / "out"))
+    assert code == 2 and "error GPL9000" in err and "KeyError" in err
 
 
 _PIECES = st.sampled_from([
