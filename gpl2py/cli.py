@@ -23,8 +23,10 @@ and mypy use 2.  No input produces a Python traceback: an unexpected exception b
 from __future__ import annotations
 
 import argparse
+import difflib
 import json
 import os
+import re
 import sys
 import textwrap
 from collections.abc import Callable, Sequence
@@ -230,13 +232,6 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
 
     out = Outcome()
     started = time.perf_counter()
-    if not Path(args.path).exists() and not any(ch in args.path for ch in "./\\"):
-        # `gpl2py frobnicate`: a mistyped command is more likely than a project called that
-        names = ", ".join(c.name for c in COMMANDS)
-        out.sink.report(msg.USAGE_ERROR, None,
-                        detail=f"{args.path!r} is neither a command ({names}) nor a project path")
-        out.usage_error = True
-        return out
     bar = ProgressBar(sys.stderr, wants_progress(sys.stderr, args.quiet, args.json))
     loaded: list[Project] = []
     try:
@@ -397,13 +392,50 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _route(argv: list[str]) -> list[str]:
-    """Insert the default command's name when the first argument is not a command (see module doc)."""
-    names = {c.name for c in COMMANDS}
+    """Insert the default command's name when the first argument is not a command (see module doc).
+
+    A first argument that is neither a command nor an existing path, and has no path separator or
+    dot, is taken for a mistyped command: ``gpl2py chek X`` says "did you mean 'check'?" instead
+    of translating a project called ``chek``."""
+    names = [c.name for c in COMMANDS]
     default = next((c for c in reversed(COMMANDS) if c.default), None)
     first = next((a for a in argv if not a.startswith("-")), None)
-    if default is not None and first is not None and first not in names:
-        return [default.name, *argv]
-    return argv
+    if default is None or first is None or first in names:
+        return argv
+    if not Path(first).exists() and not any(ch in first for ch in "./\\"):
+        close = difflib.get_close_matches(first, names, n=1, cutoff=0.6)
+        hint = f"; did you mean '{close[0]}'?" if close else f" (the commands: {', '.join(names)})"
+        raise UsageError(f"gpl2py: {first!r} is neither a command nor a project path{hint}")
+    return [default.name, *argv]
+
+
+def _did_you_mean(message: str, parser: argparse.ArgumentParser, command: str | None) -> str:
+    """argparse's message, with the option or choice the user probably meant appended."""
+    if "unrecognized arguments: " in message:
+        options = _option_strings(parser, command)
+        words = message.split("unrecognized arguments: ", 1)[1].split()
+        for word in words:
+            if word.startswith("--"):
+                close = difflib.get_close_matches(word.split("=", 1)[0], options, n=1, cutoff=0.6)
+                if close:
+                    return f"{message}; did you mean {close[0]}?"
+        return message
+    found = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+    if found:
+        choices = [c.strip().strip("'") for c in found.group(2).split(",")]
+        close = difflib.get_close_matches(found.group(1), choices, n=1, cutoff=0.6)
+        if close:
+            return f"{message}; did you mean {close[0]}?"
+    return message
+
+
+def _option_strings(parser: argparse.ArgumentParser, command: str | None) -> list[str]:
+    """The long options of ``command`` (and the ones every command takes)."""
+    parsers = [parser]
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction) and command in action.choices:
+            parsers.append(action.choices[command])
+    return sorted({o for p in parsers for a in p._actions for o in a.option_strings if o.startswith("--")})
 
 
 # --- output -------------------------------------------------------------------------------------
@@ -457,9 +489,13 @@ def main(argv: list[str] | None = None) -> int:
     stdout, stderr = sys.stdout, sys.stderr
     parser = build_parser()
     try:
-        args = parser.parse_args(_route(args_list))
+        routed = _route(args_list)
+        args = parser.parse_args(routed)
     except UsageError as exc:
-        return _usage_failure(str(exc), parser, _wants_json(args_list), stdout, stderr)
+        command_name = next((a for a in args_list if not a.startswith("-")), None)
+        detail = _did_you_mean(str(exc), parser, command_name if command_name in
+                               {c.name for c in COMMANDS} else "translate")
+        return _usage_failure(detail, parser, _wants_json(args_list), stdout, stderr)
     except SystemExit as exc:  # --help and --version print and "exit" successfully
         return exc.code if isinstance(exc.code, int) else EXIT_OK
     command: Command | None = getattr(args, "handler", None)

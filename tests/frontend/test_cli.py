@@ -363,6 +363,8 @@ def test_a_default_command_would_receive_a_bare_project_path(
 
     extra = cli.Command("transpile", "translate", "Translate a project.", configure, run_transpile, default=True)
     monkeypatch.setattr(cli, "COMMANDS", [*cli.COMMANDS, extra])
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "cell").mkdir()  # a bare word that is no path is taken for a mistyped command
     code, _, _ = run(capsys, "--json", "cell", "-o", "out")
     assert code == 0 and seen == {"project": "cell", "out": "out", "json": True}
     code, _, err = run(capsys, "check", str(tmp_path / "missing"))
@@ -403,3 +405,36 @@ def test_translate_counts_files_when_a_semantic_error_stops_it(tmp_path: Path,
     assert err.splitlines()[-1] == "checked 2 files: 1 error, 0 warnings"
     assert "    n = Undeclared + 1" in err  # the excerpt: the files are known to the printer
     assert not (tmp_path / "out").exists()
+
+
+# --- did you mean -------------------------------------------------------------------------------
+
+
+def test_a_mistyped_command_is_not_taken_for_a_project(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, err = run(capsys, "chek", str(SAMPLE))
+    assert code == 2 and out == ""
+    assert "error GPL9001: gpl2py: 'chek' is neither a command nor a project path; did you mean 'check'?" in err
+    code, _, err = run(capsys, "frobnicate")
+    assert code == 2 and "(the commands: check, " in err and "did you mean" not in err
+
+
+def test_an_existing_folder_with_a_command_like_name_is_a_project(
+        monkeypatch: pytest.MonkeyPatch, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "chek").mkdir()
+    (tmp_path / "chek" / "Main.gpl").write_bytes(GOOD_MODULE)
+    monkeypatch.chdir(tmp_path)
+    code, _, err = run(capsys, "chek", "-o", "out")
+    assert code == 0, err
+    assert (tmp_path / "out" / "chek" / "__init__.py").is_file()
+
+
+@pytest.mark.parametrize("argv, hint", [
+    (["check", "--stricct", str(SAMPLE)], "; did you mean --strict?"),
+    (["run", "--clock", "fats", str(SAMPLE)], "; did you mean fast?"),
+    (["run", "--robot", "pf40", str(SAMPLE)], "; did you mean PF400?"),
+])
+def test_a_mistyped_option_or_choice_gets_a_suggestion(argv: list[str], hint: str,
+                                                       capsys: pytest.CaptureFixture[str]) -> None:
+    code, _, err = run(capsys, *argv)
+    assert code == 2 and "error GPL9001" in err
+    assert err.rstrip().endswith(hint), err
