@@ -52,6 +52,7 @@ from gpl2py.source import SourceFile
 EXIT_OK = 0
 EXIT_ERRORS = 1
 EXIT_USAGE = 2  # also an internal error (GPL9000): gpl2py, not the input, is at fault
+EXIT_OUTPUT_CLOSED = 141  # 128 + SIGPIPE: the reader of our output went away (| head)
 
 _EPILOG = """\
 exit status:
@@ -59,6 +60,7 @@ exit status:
   1  errors in the GPL input
   2  the command line is wrong (unknown command or option, missing argument),
      or gpl2py failed internally (GPL9000: a bug in gpl2py, please report it)
+  141 the output was closed by its reader (gpl2py ... | head): gpl2py stopped quietly
   gpl2py run adds 3 (a GPL thread ended with an unhandled error), 4 (the program
   stalled) and 130 (Ctrl-C): see gpl2py run --help
 
@@ -485,6 +487,33 @@ def _wants_json(argv: Sequence[str]) -> bool:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the gpl2py command line; returns the exit status (see ``gpl2py --help``)."""
+    try:
+        status = _main(argv)
+    except BrokenPipeError:  # the reader of stdout or stderr went away (gpl2py ... | head)
+        return _output_closed()
+    if status == EXIT_OUTPUT_CLOSED:
+        return _output_closed()
+    return status
+
+
+def _output_closed() -> int:
+    """End quietly after a reader closed our output, as a program that SIGPIPE stops: no message,
+    no traceback, status 141.  The stream that cannot be written is pointed at /dev/null, so that
+    Python's own flush at exit has nowhere to fail ("Exception ignored ... BrokenPipeError")."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            try:
+                devnull = os.open(os.devnull, os.O_WRONLY)
+                os.dup2(devnull, stream.fileno())
+                os.close(devnull)
+            except (OSError, ValueError):
+                pass
+    return EXIT_OUTPUT_CLOSED
+
+
+def _main(argv: list[str] | None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     stdout, stderr = sys.stdout, sys.stderr
     parser = build_parser()
@@ -506,6 +535,8 @@ def main(argv: list[str] | None = None) -> int:
         )
     try:
         out = command.run(args)
+    except BrokenPipeError:
+        raise
     except KeyboardInterrupt:
         stderr.write("gpl2py: interrupted\n")
         return 130

@@ -21,7 +21,13 @@ Exit status of ``run`` (also in ``gpl2py run --help`` and docs/cli.md):
 4     virtual clock only: the program stalled — every remaining thread waits for something
       that no thread, timer or I/O rule can ever provide (a controller would wait forever)
 130   interrupted with Ctrl-C (SIGINT): every GPL thread was stopped first
+141   the output was closed by its reader (``gpl2py run X | head``): every GPL thread was stopped
+      and nothing more is printed, as a program that SIGPIPE stops
 ====  ==========================================================================================
+
+A closed output (decision): the console sink drops what the program writes after its reader went
+away (``gplrt.sim.ConsoleSink.closed``), so the GPL program never sees an error for it (it was
+error -201 at the user's line); :func:`_drive` notices and the run ends like a Ctrl-C, quietly.
 
 Ctrl-C (decision): the GPL threads are aborted the way ``Thread.Abort`` does it (at their next
 scheduling point), the command waits up to ``STOP_GRACE`` real seconds for them to end, then exits
@@ -64,6 +70,7 @@ EXIT_USAGE = 2
 EXIT_GPL_ERROR = 3
 EXIT_STALLED = 4
 EXIT_INTERRUPTED = 130
+EXIT_OUTPUT_CLOSED = 141  # 128 + SIGPIPE: what a shell reports for a program a closed pipe stopped
 STOP_GRACE = 2.0  # real seconds the threads get to end after Ctrl-C
 
 RUN_EPILOG = """\
@@ -76,6 +83,7 @@ exit status:
   4    virtual clock: the program stalled (every thread waits for something that
        can never happen; a real controller would wait forever)
   130  interrupted with Ctrl-C; every GPL thread was stopped first
+  141  the output was closed (gpl2py run ... | head): stopped quietly
 
 The translation is cached (see --cache-dir): a second run of unchanged sources
 starts at once. docs/cli.md has the details.
@@ -262,6 +270,7 @@ class RunReport:
     errors: list[dict[str, Any]] = field(default_factory=list)
     stalled: list[str] = field(default_factory=list)
     interrupted: bool = False
+    output_closed: bool = False  # the console's reader went away: nothing more is printed
     stopped: int = 0  # threads aborted after Ctrl-C
     still_alive: list[str] = field(default_factory=list)  # of those, still running after STOP_GRACE
     plot: str | None = None
@@ -350,13 +359,18 @@ def save_plot(sim: Any, path: str | Path, robot: int = 1) -> bool:
     return True
 
 
-def _drive(package: ModuleType, sim: Any) -> threading.Thread:
+class OutputClosed(Exception):
+    """The reader of the console output went away (:func:`_drive` stops the run)."""
+
+
+def _drive(package: ModuleType, sim: Any, closed: threading.Event | None = None) -> threading.Thread:
     """Run ``package.main(sim)`` on a helper thread; the calling (main) thread only waits for it.
 
     A KeyboardInterrupt can then only arrive in this function's ``join`` (see module docstring),
     never inside the scheduler.  An exception of ``main`` itself is re-raised here, so a fault of
     gpl2py still reaches the command's GPL9000 report.  Returns the helper, still running when
     interrupted (it ends once :func:`_stop_all` has stopped the GPL threads it waits for).
+    ``closed`` set (the console's reader went away) raises :class:`OutputClosed`.
     """
     failure: list[BaseException] = []
 
@@ -370,6 +384,8 @@ def _drive(package: ModuleType, sim: Any) -> threading.Thread:
     helper.start()
     while helper.is_alive():
         helper.join(0.1)
+        if closed is not None and closed.is_set():
+            raise OutputClosed
     if failure:
         raise failure[0]
     return helper
@@ -378,26 +394,32 @@ def _drive(package: ModuleType, sim: Any) -> threading.Thread:
 def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunReport:
     """Run the package's ``main(sim)``; Ctrl-C stops every GPL thread (status 130)."""
     started = time.perf_counter()
-    interrupted = False
+    interrupted = closed = False
     stopped: tuple[int, list[str]] = (0, [])
     try:
-        _drive(package, sim)
+        _drive(package, sim, getattr(sim.console, "closed", None))
     except KeyboardInterrupt:
         interrupted = True
         stopped = _stop_all(sim)
-    report = RunReport(EXIT_OK, sim.now(), time.perf_counter() - started, interrupted=interrupted)
+    except OutputClosed:
+        closed = True
+        stopped = _stop_all(sim)
+    report = RunReport(EXIT_OK, sim.now(), time.perf_counter() - started, interrupted=interrupted,
+                       output_closed=closed)
     report.stopped, report.still_alive = stopped
     report.errors = _unhandled_errors(sim)
-    if not interrupted:
+    if not interrupted and not closed:
         report.stalled = [c.name for c in list(sim.scheduler.live) if c.phase != "done"]
-    if interrupted:
+    if closed:
+        report.status = EXIT_OUTPUT_CLOSED
+    elif interrupted:
         report.status = EXIT_INTERRUPTED
     elif report.errors:
         report.status = EXIT_GPL_ERROR
     elif report.stalled:
         report.status = EXIT_STALLED
     report.plot_requested = bool(plot)
-    if plot and not interrupted:
+    if plot and not interrupted and not closed:
         try:
             if save_plot(sim, plot):
                 report.plot = str(plot)
@@ -510,6 +532,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
         stderr.write(note + "\n")
     report = execute(package, sim, plot=args.plot)
     out.exit_status = report.status
+    if report.output_closed:  # a closed pipe ends quietly: whatever is printed now is lost or noise
+        return out
     if report.plot_error is not None:  # the program's own status stands; the lost plot is said
         diag = out.sink.report(msg.OUTPUT_ERROR, None, path=str(args.plot), detail=report.plot_error)
         if not args.json:

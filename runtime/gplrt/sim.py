@@ -76,18 +76,27 @@ class ConsoleSink:
         self._out: TextIO = _io.StringIO() if capture else (stream or sys.stdout)
         self._log: TextIO = _io.StringIO() if capture else (log_stream or sys.stderr)
         self._lock = threading.Lock()
+        #: Set when a stream was closed by its reader (``gpl2py run | head``): the console output
+        #: is then dropped, never an error of the GPL program that wrote it, and ``gpl2py run``
+        #: ends the run quietly.
+        self.closed = threading.Event()
 
     def write(self, text: str) -> None:
-        with self._lock:
-            self._out.write(text)
-            if not self.capture:
-                self._out.flush()
+        self._put(self._out, text)
 
     def log(self, line: str) -> None:
+        self._put(self._log, line + "\n")
+
+    def _put(self, stream: TextIO, text: str) -> None:
         with self._lock:
-            self._log.write(line + "\n")
-            if not self.capture:
-                self._log.flush()
+            if self.closed.is_set():
+                return
+            try:
+                stream.write(text)
+                if not self.capture:
+                    stream.flush()
+            except (BrokenPipeError, ValueError):  # the reader went away / the stream was closed
+                self.closed.set()
 
     @property
     def output(self) -> str:
