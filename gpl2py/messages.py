@@ -643,7 +643,8 @@ STUB_PROTECTED = _warning(
     "name stays error GPL2001). Without an implementation the message says that a stub raising "
     "-204 is generated; the rest of the project runs. Supply a Python implementation with --stubs "
     "DIR (the message then names the file; gpl2py ships a few stand-ins of its own, used when "
-    "--stubs has none), or make this an error with --strict (same code, severity error).",
+    "--stubs has none), or make this an error with --strict (same code, severity error; the "
+    "message then says so).",
 )
 STUB_BUILTIN_MEMBER = _warning(
     "GPL3502",
@@ -652,6 +653,12 @@ STUB_BUILTIN_MEMBER = _warning(
     "Supply a Python implementation with --stubs DIR, or make this an error with --strict (same code, "
     "severity error).",
 )
+# The {consequence} of GPL3501 and GPL3502: what becomes of the stub, as it happens.
+STUB_RAISES = "a stub is generated that raises error -204 if the program uses it"
+STUB_IMPLEMENTED = "{provider} implements it"
+STUB_STRICT = "--strict makes every stub an error, so nothing is generated for it"
+STUB_IMPLEMENTED_STRICT = "{provider} implements it, but --strict makes every stub an error"
+
 STUBS_DIR_ERROR = _error(
     "GPL3503",
     "--stubs {path}: {detail}",

@@ -74,14 +74,15 @@ class StubTable:
     provider: Callable[[Stub], str | None] | None = None
 
     def _consequence(self, stub: Stub) -> str:
+        """What becomes of the stub, as the warning (or, with ``strict``, the error) says it."""
         found = self.provider(stub) if self.provider is not None else None
         if found is not None:
-            return f"{found} implements it"
-        return "a stub is generated that raises error -204 if the program uses it"
+            return (M.STUB_IMPLEMENTED_STRICT if self.strict else M.STUB_IMPLEMENTED).format(provider=found)
+        return M.STUB_STRICT if self.strict else M.STUB_RAISES
 
     def _report(self, message: M.Message, span: Span | None, **args: object) -> None:
         if self.strict:
-            text = message.format(**args) + " (--strict)"
+            text = message.format(**args)
             self.sink.add(Diagnostic(Severity.ERROR, message.code, text, span))
         else:
             self.sink.report(message, span, **args)

@@ -354,6 +354,24 @@ def test_check_takes_the_same_stub_options_as_translate_and_run(tmp_path: Path) 
     assert status == 1 and "error GPL3501: 'VendorLib.Grip'" in err
 
 
+def test_strict_stub_errors_say_what_happens(tmp_path: Path) -> None:
+    """With --strict, GPL3501 said "a stub is generated that raises error -204 ... (--strict)",
+    but --strict generates nothing: it refuses the project."""
+    proj = _project(tmp_path)
+    good = tmp_path / "good"
+    good.mkdir()
+    (good / "vendorlib.py").write_text("def Grip(w):\n    return w\n")
+    status, err = _check(str(proj), "--stubs", str(good), "--strict")
+    assert status == 1
+    lines = {line.split("error GPL3501: ")[1] for line in err.splitlines() if "error GPL3501" in line}
+    prefix = "is not declared in the readable sources; assuming the protected code defines it: "
+    assert (f"'VendorLib.Grip' {prefix}the --stubs file vendorlib.py implements it, but --strict makes "
+            "every stub an error") in lines, err
+    assert (f"'VendorLib.Release' {prefix}--strict makes every stub an error, so nothing is generated "
+            "for it") in lines, err
+    assert "-204" not in err
+
+
 def test_notebook_cell_loads_a_protected_project_with_user_stubs(tmp_path: Path) -> None:
     from gplrt.lang.errors import GplException
     from gplrt.notebook import Cell
