@@ -81,11 +81,13 @@ class Outcome:
     files: dict[str, SourceFile] = field(default_factory=dict)
     product: str | None = None  # printed on stdout in text mode, under "ast" etc. in JSON mode
     product_key: str = "output"
+    product_json: object = None  # the product in JSON mode, when it is not the text
     usage_error: bool = False
     checked: int = 0
     summary: str | None = None  # replaces the "checked N files: ..." line (transpile, run)
     summary_json: dict[str, object] | None = None  # replaces the JSON "summary" object
     emitted: bool = False  # the command printed everything itself (run)
+    counts: bool = True  # the command checks files: print the "checked N files" summary line
     exit_status: int | None = None  # overrides the status derived from the diagnostics (run)
 
 
@@ -176,6 +178,38 @@ def _run_dump_ast(args: argparse.Namespace) -> Outcome:
     unit = _parse(project.sources[0], out.sink)
     out.checked = 1
     out.product = dump(unit)
+    return out
+
+
+def _configure_explain(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("code", metavar="CODE",
+                        help="a diagnostic code (GPL2014), or the start of one (GPL20) to list a range")
+
+
+def _run_explain(args: argparse.Namespace) -> Outcome:
+    """Print a code's documentation from the installed package (``gpl2py.messages``, the source of
+    docs/diagnostics.md): its severity, message and notes; a prefix lists the codes it covers."""
+    out = Outcome(product_key="explain", counts=False)
+    code = args.code.strip().upper()
+    if code.isdigit():
+        code = f"GPL{code}"
+    found = [m for m in msg.all_messages() if m.code.startswith(code)] if re.fullmatch(r"GPL\d{0,4}", code) else []
+    if not found:
+        codes = [m.code for m in msg.all_messages()]
+        close = difflib.get_close_matches(code, codes, n=1, cutoff=0.6)
+        hint = f"; did you mean {close[0]}?" if close else " (codes are GPL followed by four digits: see gpl2py explain GPL)"
+        out.sink.report(msg.USAGE_ERROR, None, detail=f"gpl2py explain: no diagnostic code {args.code!r}{hint}")
+        out.usage_error = True
+        return out
+    if len(found) == 1 and found[0].code == code:
+        m = found[0]
+        notes = m.doc or "No notes: the message says it all."
+        out.product = f"{m.code} ({m.severity_name}): {m.template}\n\n" + textwrap.fill(notes, width=78)
+        out.product_json = {"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.doc}
+    else:
+        out.product = "\n".join(f"{m.code} ({m.severity_name}): {m.template}" for m in found)
+        out.product_json = [{"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.doc}
+                            for m in found]
     return out
 
 
@@ -293,6 +327,15 @@ COMMANDS: list[Command] = [
         "people working on gpl2py itself, or for finding out how a line was understood.",
         configure=_configure_dump_ast,
         run=_run_dump_ast,
+    ),
+    Command(
+        name="explain",
+        help="print the documentation of a diagnostic code (gpl2py explain GPL2014)",
+        description="Print what a diagnostic code means and what to do about it, from the installed "
+        "gpl2py (the text of docs/diagnostics.md). A prefix (GPL20, GPL3) lists the codes it "
+        "covers; GPL lists them all.",
+        configure=_configure_explain,
+        run=_run_explain,
     ),
     Command(
         name="translate",
@@ -448,7 +491,7 @@ def _emit(out: Outcome, as_json: bool, quiet: bool, stdout: TextIO, stderr: Text
     if as_json:
         doc: dict[str, object] = {"diagnostics": [d.to_json() for d in diags]}
         if out.product is not None:
-            doc[out.product_key] = out.product
+            doc[out.product_key] = out.product_json if out.product_json is not None else out.product
         doc["summary"] = out.summary_json if out.summary_json is not None else _counts(diags)
         stdout.write(json.dumps(doc, indent=2) + "\n")
         return
@@ -459,7 +502,9 @@ def _emit(out: Outcome, as_json: bool, quiet: bool, stdout: TextIO, stderr: Text
         stderr.write(d.render(source) + "\n")
     if out.product is not None:
         stdout.write(out.product.rstrip("\n") + "\n")
-    if not quiet and not out.usage_error and out.summary is not None:
+    if not out.counts:
+        pass
+    elif not quiet and not out.usage_error and out.summary is not None:
         stderr.write(out.summary + "\n")
     elif not quiet and not out.usage_error:
         counts = _counts(diags)

@@ -438,3 +438,31 @@ def test_a_mistyped_option_or_choice_gets_a_suggestion(argv: list[str], hint: st
     code, _, err = run(capsys, *argv)
     assert code == 2 and "error GPL9001" in err
     assert err.rstrip().endswith(hint), err
+
+
+# --- explain ------------------------------------------------------------------------------------
+
+
+def test_explain_prints_a_codes_documentation_from_the_installed_package(tmp_path: Path) -> None:
+    # from a folder without docs/: the text comes from gpl2py.messages, docs/diagnostics.md's source
+    done = subprocess.run([str(_script()), "explain", "GPL2014"], capture_output=True, text=True,
+                          timeout=60, cwd=tmp_path)
+    assert done.returncode == 0 and done.stderr == ""
+    m = messages.PARSE_EXPECTED_EXPRESSION.__class__  # the registry's Message type
+    [entry] = [x for x in messages.all_messages() if x.code == "GPL2014"]
+    assert isinstance(entry, m)
+    first, blank, *notes = done.stdout.splitlines()
+    assert first == f"GPL2014 (error): {entry.template}" and blank == ""
+    assert " ".join(notes) == entry.doc
+
+
+def test_explain_lists_a_range_and_suggests_a_code(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = run(capsys, "explain", "gpl35")
+    assert code == 0
+    assert [line.split(" ")[0] for line in out.splitlines()] == ["GPL3501", "GPL3502", "GPL3503"]
+    code, out, _ = run(capsys, "explain", "--json", "1101")
+    assert code == 0
+    assert json.loads(out)["explain"] == {"code": "GPL1101", "severity": "error",
+                                          "message": "expected an expression, found {found}", "notes": ""}
+    code, _, err = run(capsys, "explain", "GPL9O01")
+    assert code == 2 and "error GPL9001: gpl2py explain: no diagnostic code 'GPL9O01'; did you mean GPL9001?" in err
