@@ -5,14 +5,19 @@ function that runs it) in ``COMMANDS``.  The bare form ``gpl2py PROJECT -o OUT``
 :func:`_route`: when the first argument is not a known command, it is handed to the command marked
 ``default=True`` (``translate``).
 
-Output contract:
+Output contract (``--output-format``, ``gpl2py.formats``):
 
-* text mode: diagnostics (sorted by file, line, column, each with a caret excerpt) on **stderr**,
-  a one-line summary on stderr unless ``--quiet``; stdout carries only the command's product (the
-  AST dump), so it can be piped;
-* ``--json``: stdout is exactly one JSON object with a ``"diagnostics"`` list (plus the command's
-  product, e.g. ``"ast"``), nothing on stderr.  ``--quiet`` does not filter JSON: a program reading
-  it can filter by ``severity`` itself.
+* ``text``: diagnostics (sorted by file, line, column, each with a caret excerpt; coloured on a
+  terminal) on **stderr**, a one-line summary on stderr unless ``--quiet``; stdout carries only
+  the command's product (the AST dump), so it can be piped;
+* ``json`` (also ``--json``): stdout is exactly one JSON object with ``"schema_version"``, a
+  ``"diagnostics"`` list (plus the command's product, e.g. ``"ast"``), nothing on stderr.
+  ``--quiet`` does not filter JSON: a program reading it can filter by ``severity`` itself;
+* ``sarif``: stdout is one SARIF 2.1.0 log, nothing on stderr;
+* ``github``: stdout has one GitHub Actions annotation per diagnostic, the summary on stderr.
+
+Which diagnostics are reported at all is the sink's filter (``gpl2py.selection``: --select,
+--ignore, ``' gpl2py: ignore`` comments); defaults come from ``[tool.gpl2py]`` (``gpl2py.config``).
 
 Exit status: 0 no errors (warnings allowed), 1 errors in the input, 2 gpl2py could not do its job:
 the command line itself is wrong (GPL9001/GPL9002) or gpl2py failed internally (GPL9000), as ruff
@@ -36,7 +41,9 @@ from typing import NoReturn, TextIO
 
 from gpl2py import __version__
 from gpl2py import messages as msg
+from gpl2py.config import FILE_NAME, Config, ConfigError, discover
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.formats import FORMATS, github_annotations, json_document, sarif_log, wants_colour
 from gpl2py.project import (
     DEFAULT_MAX_SOURCE_MB,
     MAX_SOURCE_ENV,
@@ -47,6 +54,7 @@ from gpl2py.project import (
     load_project,
 )
 from gpl2py.run import plural as _plural
+from gpl2py.selection import Selection, parse_codes
 from gpl2py.source import SourceFile
 
 EXIT_OK = 0
@@ -73,6 +81,25 @@ class UsageError(Exception):
     """The command line is wrong; carries the message for GPL9001."""
 
 
+@dataclass(frozen=True)
+class Display:
+    """How a command prints: ``format`` (text, json, sarif, github), ``quiet``, ``colour`` (text
+    diagnostics on stderr)."""
+
+    format: str = "text"
+    quiet: bool = False
+    colour: bool = False
+
+    @property
+    def json(self) -> bool:
+        return self.format == "json"
+
+    @property
+    def text(self) -> bool:
+        """Human-readable diagnostics on stderr (text, and github's summary)."""
+        return self.format in ("text", "github")
+
+
 @dataclass
 class Outcome:
     """What a command produced: the diagnostics, the files they point into, and stdout content."""
@@ -87,8 +114,10 @@ class Outcome:
     summary: str | None = None  # replaces the "checked N files: ..." line (transpile, run)
     summary_json: dict[str, object] | None = None  # replaces the JSON "summary" object
     emitted: bool = False  # the command printed everything itself (run)
+    written: int = 0  # translate: packages written
     counts: bool = True  # the command checks files: print the "checked N files" summary line
     exit_status: int | None = None  # overrides the status derived from the diagnostics (run)
+    failed: bool = False  # gpl2py could not do its job (GPL9000): SARIF's executionSuccessful
 
 
 @dataclass(frozen=True)
@@ -109,15 +138,24 @@ class Command:
 
 def _configure_check(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        "path",
+        "paths",
         metavar="PATH",
-        help="a project folder (with or without Project.gpr), a Project.gpr file, "
-        "or a single .gpl/.gpo file",
+        nargs="*",
+        help="a project folder (with or without Project.gpr), a Project.gpr file, or a single "
+        ".gpl/.gpo file; several are checked one after the other (default: paths in [tool.gpl2py])",
     )
-    add_stub_options(parser)
+    add_project_options(parser)
 
 
 def _run_check(args: argparse.Namespace) -> Outcome:
+    """Check every project named, collecting all diagnostics in one run (:func:`check_project`)."""
+    out = Outcome(sink=new_sink(args))
+    for path in args.paths:
+        check_project(path, args, out)
+    return out
+
+
+def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
     """Load the project, parse every source and run the semantic pass (names, types, calls: what a
     porting engineer wants to know), collecting all diagnostics in one run.  Nothing is written.
 
@@ -127,34 +165,46 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     Names that only protected (.gpp) files define are reported as stub warnings, as the
     translation would (GPL3501); ``--strict`` makes them errors.  ``--stubs DIR`` is read as
     ``translate`` and ``run`` read it, so a folder or file they would refuse (GPL3503) is
-    reported here too: the three commands take the same stub options."""
+    reported here too: the three commands take the same stub options.  The project's own
+    diagnostics decide (a sink of its own), so the errors of another project checked in the same
+    call change nothing here."""
     from gpl2py.lower.user_stubs import load_user_stubs, with_shipped_standins
     from gpl2py.semantics.catalogue import load_catalogue
     from gpl2py.semantics.check import analyze
     from gpl2py.syntax.lexer import gc_paused
     from gpl2py.transpile import lower
 
-    out = Outcome()
-    project = load_project(args.path, out.sink, limits_of(args))
-    if project is None:
-        return out
-    _remember(out, project)
-    user = load_user_stubs(args.stubs, out.sink) if args.stubs is not None else None
-    if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
-        user = with_shipped_standins(user, out.sink)
-    incomplete = out.sink.has_errors()  # a source could not be loaded: it may declare the start
-    with gc_paused():  # as in transpile(): the collector would re-scan the growing tree for nothing
-        units = []
-        for source in project.sources:
-            units.append(_parse(source, out.sink))
-            out.checked += 1
-        model = analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
-                        None if incomplete else project.start, protected=bool(project.protected),
-                        strict=args.strict, stub_provider=user.provider if user is not None else None,
-                        start_span=project.start_span)
-        if not out.sink.has_errors():
-            lower(project, model, out.sink, user=user)
-    return out
+    sink = out.sink.child()
+    try:
+        project = load_project(path, sink, limits_of(args))
+        if project is None:
+            return
+        _remember(out, project)
+        watch_sources(project, sink)
+        user = load_user_stubs(args.stubs, sink) if args.stubs is not None else None
+        if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
+            user = with_shipped_standins(user, sink)
+        incomplete = sink.has_errors()  # a source could not be loaded: it may declare the start
+        with gc_paused():  # as in transpile(): the collector would re-scan the growing tree for nothing
+            units = []
+            for source in project.sources:
+                units.append(_parse(source, sink))
+                out.checked += 1
+            model = analyze(units, sink, load_catalogue(), project.name,  # type: ignore[arg-type]
+                            None if incomplete else project.start, protected=bool(project.protected),
+                            strict=args.strict, stub_provider=user.provider if user is not None else None,
+                            start_span=project.start_span)
+            if not sink.has_errors():
+                lower(project, model, sink, user=user)
+    finally:
+        out.sink.extend(sink)
+
+
+def watch_sources(project: Project, sink: DiagnosticSink) -> None:
+    """Hand the project's sources to the sink's filter, for their ``gpl2py: ignore`` comments
+    (before they are parsed, so the parser's diagnostics are filtered too)."""
+    if sink.filter is not None:
+        sink.filter.add_sources(project.sources, sink)
 
 
 def _configure_dump_ast(parser: argparse.ArgumentParser) -> None:
@@ -215,20 +265,24 @@ def _run_explain(args: argparse.Namespace) -> Outcome:
 
 def _configure_transpile(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
-        "path",
+        "paths",
         metavar="PROJECT",
-        help="a project folder (with or without Project.gpr), a Project.gpr file, or one .gpl file",
+        nargs="*",
+        help="a project folder (with or without Project.gpr), a Project.gpr file, or one .gpl file; "
+        "several are translated one after the other (default: paths in [tool.gpl2py])",
     )
     parser.add_argument("-o", "--output", metavar="OUT", default=".",
                         help="folder that receives the package OUT/<project_name>/ (default: .)")
     parser.add_argument("--keep-going", action="store_true",
                         help="write the package even when there are errors (exit status stays 1)")
-    add_stub_options(parser)
+    add_project_options(parser)
 
 
-def add_stub_options(parser: argparse.ArgumentParser) -> None:
-    """--stubs, --strict and --max-source-mb (check, translate and run): see README "Porting
-    your own project" and docs/security.md."""
+def add_project_options(parser: argparse.ArgumentParser) -> None:
+    """The options of every command that reads a project (check, translate, run): stubs,
+    strictness, input limits, the diagnostics selection and the configuration file.  Each one
+    that ``[tool.gpl2py]`` can set defaults to None here, so that :func:`_settle` can tell
+    "not given" from a value."""
     parser.add_argument("--max-source-mb", metavar="MB", type=_megabytes, default=None,
                         help=f"read at most MB megabytes from one source file and {PROJECT_FACTOR} "
                         f"times that from all of them (default: ${MAX_SOURCE_ENV}, else "
@@ -237,9 +291,24 @@ def add_stub_options(parser: argparse.ArgumentParser) -> None:
                         help="folder of Python files implementing stubs for protected code or "
                         "missing built-in members (Module.Proc -> DIR/module.py, function Proc); "
                         "translate and run copy them into the package")
-    parser.add_argument("--strict", action="store_true",
+    parser.add_argument("--strict", action=argparse.BooleanOptionalAction, default=None,
                         help="report every stub (GPL3501, GPL3502) as an error: nothing is written "
-                        "or run, exit status 1")
+                        "or run, exit status 1 (--no-strict: not even when [tool.gpl2py] says so)")
+    parser.add_argument("--select", metavar="CODES", action="append", default=None,
+                        help="report only these codes or prefixes (GPL2014, GPL20; comma-separated "
+                        "or repeated); the more specific of --select and --ignore wins")
+    parser.add_argument("--ignore", metavar="CODES", action="append", default=None,
+                        help="do not report these codes or prefixes; an ignored error no longer "
+                        "stops the translation (see also ' gpl2py: ignore[CODE] comments)")
+    parser.add_argument("--config", metavar="FILE", default=None,
+                        help="read [tool.gpl2py] from this pyproject.toml (default: the first one "
+                        "with that table in the current folder or above)")
+    parser.add_argument("--no-config", action="store_true",
+                        help="read no configuration file")
+
+
+#: Kept for callers of the old name (gpl2py.run).
+add_stub_options = add_project_options
 
 
 def _megabytes(text: str) -> float:
@@ -258,38 +327,69 @@ def limits_of(args: argparse.Namespace) -> Limits | None:
     return Limits.of_mb(mb) if mb is not None else None
 
 
+def new_sink(args: argparse.Namespace) -> DiagnosticSink:
+    """The command's sink, filtered by its selection (:func:`_settle` made it)."""
+    return DiagnosticSink(getattr(args, "selection", None))
+
+
 def _run_transpile(args: argparse.Namespace) -> Outcome:
-    """Transpile a project into an importable Python package; nothing is written on errors."""
+    """Transpile each project into an importable Python package; nothing of a project with errors
+    is written (unless --keep-going), the others are.  Two projects that would make the same
+    package are an output error for the second."""
     import time
 
     from gpl2py.progress import ProgressBar, wants_progress
-    from gpl2py.run import count_lines, transpile_summary
+    from gpl2py.run import count_lines
     from gpl2py.transpile import transpile, write_package
 
-    out = Outcome()
+    out = Outcome(sink=new_sink(args))
     started = time.perf_counter()
-    bar = ProgressBar(sys.stderr, wants_progress(sys.stderr, args.quiet, args.json))
-    loaded: list[Project] = []
-    try:
-        output = transpile(args.path, out.sink, keep_going=args.keep_going, progress=bar,
-                           stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append,
-                           limits=limits_of(args))
-    finally:
-        bar.close()
-    if output is None and loaded:
-        # errors: nothing written, but the summary counts the files that were checked
-        _remember(out, loaded[0])
-        out.checked = len(loaded[0].sources)
-    if output is not None and output.project is not None:
-        _remember(out, output.project)
-        out.checked = len(output.project.sources)
-        write_package(output, args.output, out.sink)
-        lines = count_lines(output.project)
+    written: dict[str, str] = {}  # package -> the path it came from
+    lines = 0
+    for path in args.paths:
+        sink = out.sink.child()
+        bar = ProgressBar(sys.stderr, wants_progress(sys.stderr, args.quiet, not args.display.text))
+        loaded: list[Project] = []
+
+        def on_load(project: Project, sink: DiagnosticSink = sink, loaded: list[Project] = loaded) -> None:
+            loaded.append(project)
+            watch_sources(project, sink)
+
+        try:
+            output = transpile(path, sink, keep_going=args.keep_going, progress=bar,
+                               stubs_dir=args.stubs, strict=args.strict, loaded=on_load,
+                               limits=limits_of(args))
+        finally:
+            bar.close()
+        if loaded:
+            _remember(out, loaded[0])  # diagnostics show their source lines, also on errors
+            out.checked += len(loaded[0].sources)
+        if output is not None and output.project is not None:
+            if output.package in written:
+                sink.report(msg.OUTPUT_ERROR, None, path=str(Path(args.output) / output.package),
+                            detail=f"{written[output.package]} is translated to this package already")
+            elif write_package(output, args.output, sink):
+                written[output.package] = path
+                lines += count_lines(output.project)
+        if any(d.code == msg.INTERNAL_ERROR.code for d in sink):
+            out.failed = True
+        out.sink.extend(sink)
+    out.written = len(written)
+    if written:
         seconds = time.perf_counter() - started
-        out.summary = transpile_summary(out.checked, lines, out.sink, seconds, False)
+        out.summary = _transpile_summary(out, lines, seconds, len(args.paths))
         out.summary_json = {**_counts(out.sink.sorted()), "files": out.checked, "lines": lines,
-                            "seconds": round(seconds, 3)}
+                            "seconds": round(seconds, 3), "projects": len(args.paths), "written": len(written)}
     return out
+
+
+def _transpile_summary(out: Outcome, lines: int, seconds: float, projects: int) -> str:
+    from gpl2py.run import transpile_summary
+
+    text = transpile_summary(out.checked, lines, out.sink, seconds, False)
+    if projects > 1:  # "transpiled 2 of 3 projects, 9 files (...)": which were written
+        text = text.replace("transpiled ", f"transpiled {out.written} of {projects} projects, ", 1)
+    return text
 
 
 def _configure_run(parser: argparse.ArgumentParser) -> None:
@@ -384,25 +484,45 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _output_options(parser: argparse.ArgumentParser, top: bool) -> None:
-    """--json/--quiet, accepted before or after the command name.
+    """--output-format (--json), --quiet and --color, accepted before or after the command name.
 
     Subcommand copies default to SUPPRESS so that they do not overwrite a value given before the
     command name.
     """
-    default: object = False if top else argparse.SUPPRESS
+    parser.add_argument(
+        "--output-format",
+        choices=FORMATS,
+        default=None if top else argparse.SUPPRESS,
+        help="text (default): diagnostics with their source lines on stderr; json: one JSON "
+        "object on stdout; sarif: a SARIF 2.1.0 log on stdout (code scanning); github: GitHub "
+        "Actions annotations on stdout",
+    )
     parser.add_argument(
         "--json",
-        action="store_true",
-        default=default,
-        help="print diagnostics as one JSON object on stdout (for editors and scripts)",
+        dest="output_format",
+        action="store_const",
+        const="json",
+        default=argparse.SUPPRESS,
+        help="the same as --output-format json",
     )
     parser.add_argument(
         "-q",
         "--quiet",
         action="store_true",
-        default=default,
+        default=False if top else argparse.SUPPRESS,
         help="print errors only: no warnings and no summary line",
     )
+    parser.add_argument(
+        "--color",
+        choices=("auto", "always", "never"),
+        default="auto" if top else argparse.SUPPRESS,
+        help="colour the diagnostics: auto (default) on a terminal, unless $NO_COLOR is set "
+        "(or $FORCE_COLOR asks for it elsewhere)",
+    )
+
+
+#: Options before the command name that take a value (``_route`` skips the value).
+_VALUE_OPTIONS = ("--output-format", "--color")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -444,7 +564,7 @@ def _route(argv: list[str]) -> list[str]:
     of translating a project called ``chek``."""
     names = [c.name for c in COMMANDS]
     default = next((c for c in reversed(COMMANDS) if c.default), None)
-    first = next((a for a in argv if not a.startswith("-")), None)
+    first = _first_word(argv)
     if default is None or first is None or first in names:
         return argv
     if not Path(first).exists() and not any(ch in first for ch in "./\\"):
@@ -452,6 +572,19 @@ def _route(argv: list[str]) -> list[str]:
         hint = f"; did you mean '{close[0]}'?" if close else f" (the commands: {', '.join(names)})"
         raise UsageError(f"gpl2py: {first!r} is neither a command nor a project path{hint}")
     return [default.name, *argv]
+
+
+def _first_word(argv: Sequence[str]) -> str | None:
+    """The first argument that is neither an option nor the value of one before it."""
+    skip = False
+    for arg in argv:
+        if skip:
+            skip = False
+        elif arg in _VALUE_OPTIONS:
+            skip = True
+        elif not arg.startswith("-"):
+            return arg
+    return None
 
 
 def _did_you_mean(message: str, parser: argparse.ArgumentParser, command: str | None) -> str:
@@ -486,27 +619,34 @@ def _option_strings(parser: argparse.ArgumentParser, command: str | None) -> lis
 # --- output -------------------------------------------------------------------------------------
 
 
-def _emit(out: Outcome, as_json: bool, quiet: bool, stdout: TextIO, stderr: TextIO) -> None:
+def _emit(out: Outcome, display: Display, stdout: TextIO, stderr: TextIO) -> None:
+    """Print the outcome as ``display`` says (module docstring, "Output contract")."""
     diags = out.sink.sorted()
-    if as_json:
-        doc: dict[str, object] = {"diagnostics": [d.to_json() for d in diags]}
+    if display.format == "json":
+        extra: dict[str, object] = {}
         if out.product is not None:
-            doc[out.product_key] = out.product_json if out.product_json is not None else out.product
-        doc["summary"] = out.summary_json if out.summary_json is not None else _counts(diags)
+            extra[out.product_key] = out.product_json if out.product_json is not None else out.product
+        doc = json_document(diags, out.summary_json if out.summary_json is not None else _counts(diags), **extra)
         stdout.write(json.dumps(doc, indent=2) + "\n")
         return
-    for d in diags:
-        if quiet and d.severity is not Severity.ERROR:
-            continue
-        source = out.files.get(d.span.file) if d.span is not None else None
-        stderr.write(d.render(source) + "\n")
+    if display.format == "sarif":
+        failed = out.failed or any(d.code == msg.INTERNAL_ERROR.code for d in diags) or out.usage_error
+        stdout.write(json.dumps(sarif_log(diags, succeeded=not failed), indent=2) + "\n")
+        return
+    shown = [d for d in diags if not display.quiet or d.severity is Severity.ERROR]
+    if display.format == "github":
+        stdout.write(github_annotations(shown))
+    else:
+        for d in shown:
+            source = out.files.get(d.span.file) if d.span is not None else None
+            stderr.write(d.render(source, display.colour) + "\n")
     if out.product is not None:
         stdout.write(out.product.rstrip("\n") + "\n")
-    if not out.counts:
-        pass
-    elif not quiet and not out.usage_error and out.summary is not None:
+    if not out.counts or display.quiet or out.usage_error:
+        return
+    if out.summary is not None:
         stderr.write(out.summary + "\n")
-    elif not quiet and not out.usage_error:
+    else:
         counts = _counts(diags)
         files = "file" if out.checked == 1 else "files"
         stderr.write(
@@ -522,9 +662,17 @@ def _counts(diags: Sequence[Diagnostic]) -> dict[str, int]:
     }
 
 
-def _wants_json(argv: Sequence[str]) -> bool:
-    """Whether --json was asked for, even on a command line too broken for argparse."""
-    return "--json" in argv
+def _wanted_format(argv: Sequence[str]) -> str:
+    """The output format asked for, even on a command line too broken for argparse."""
+    found = "text"
+    for i, arg in enumerate(argv):
+        if arg == "--json":
+            found = "json"
+        elif arg == "--output-format" and i + 1 < len(argv) and argv[i + 1] in FORMATS:
+            found = argv[i + 1]
+        elif arg.startswith("--output-format=") and arg.split("=", 1)[1] in FORMATS:
+            found = arg.split("=", 1)[1]
+    return found
 
 
 # --- entry point --------------------------------------------------------------------------------
@@ -562,22 +710,30 @@ def _main(argv: list[str] | None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     stdout, stderr = sys.stdout, sys.stderr
     parser = build_parser()
+    fallback = Display(_wanted_format(args_list), False, wants_colour(stderr))
     try:
         routed = _route(args_list)
         args = parser.parse_args(routed)
     except UsageError as exc:
-        command_name = next((a for a in args_list if not a.startswith("-")), None)
+        command_name = _first_word(args_list)
         detail = _did_you_mean(str(exc), parser, command_name if command_name in
                                {c.name for c in COMMANDS} else "translate")
-        return _usage_failure(detail, parser, _wants_json(args_list), stdout, stderr)
+        return _usage_failure(detail, parser, fallback, stdout, stderr)
     except SystemExit as exc:  # --help and --version print and "exit" successfully
         return exc.code if isinstance(exc.code, int) else EXIT_OK
     command: Command | None = getattr(args, "handler", None)
     if command is None:
         names = ", ".join(c.name for c in COMMANDS)
-        return _usage_failure(
-            f"gpl2py: missing COMMAND (one of: {names})", parser, args.json, stdout, stderr
-        )
+        return _usage_failure(f"gpl2py: missing COMMAND (one of: {names})", parser, fallback, stdout, stderr)
+    try:
+        _settle(args, command)
+    except UsageError as exc:
+        return _usage_failure(str(exc), parser, args.display, stdout, stderr, usage_line=False)
+    except ConfigError as exc:
+        out = Outcome(usage_error=True)
+        out.sink.report(msg.CONFIG_ERROR, None, path=str(exc.path), detail=exc.detail)
+        _emit(out, args.display, stdout, stderr)
+        return EXIT_USAGE
     try:
         out = command.run(args)
     except BrokenPipeError:
@@ -588,10 +744,10 @@ def _main(argv: list[str] | None) -> int:
     except Exception as exc:  # noqa: BLE001 - the promise is: never a traceback
         if os.environ.get("GPL2PY_TRACEBACK"):
             raise
-        out = Outcome()
+        out = Outcome(failed=True)
         out.sink.report(msg.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
     if not out.emitted:
-        _emit(out, args.json, args.quiet, stdout, stderr)
+        _emit(out, args.display, stdout, stderr)
     if out.exit_status is not None:
         return out.exit_status
     return status_of(out.sink, out.usage_error)
@@ -605,14 +761,92 @@ def status_of(sink: DiagnosticSink, usage_error: bool = False) -> int:
     return EXIT_ERRORS if sink.has_errors() else EXIT_OK
 
 
-def _usage_failure(
-    detail: str, parser: argparse.ArgumentParser, as_json: bool, stdout: TextIO, stderr: TextIO
-) -> int:
+def _settle(args: argparse.Namespace, command: Command) -> None:
+    """Complete the parsed command line: the display, then -- for the commands that read a
+    project -- the ``[tool.gpl2py]`` defaults for what the command line left out, the paths, and
+    the diagnostics selection.  Raises UsageError or ConfigError."""
+    fmt = getattr(args, "output_format", None) or "text"
+    args.display = Display(fmt, bool(args.quiet), fmt == "text" and wants_colour(sys.stderr, args.color))
+    args.json = fmt == "json"
+    unsupported = (command.name in ("dump-ast", "explain") and fmt in ("sarif", "github")) or \
+        (command.name == "run" and fmt == "sarif")
+    if unsupported:  # say so in text: the format asked for is the one that cannot be written
+        args.display = Display("text", False, wants_colour(sys.stderr, args.color))
+    if command.name in ("dump-ast", "explain") and fmt in ("sarif", "github"):
+        raise UsageError(f"gpl2py {command.name}: --output-format {fmt} is for diagnostics of a "
+                         "project (check, translate, run); use text or json")
+    if command.name == "run" and fmt == "sarif":
+        raise UsageError("gpl2py run: --output-format sarif describes diagnostics, not a run; use "
+                         "gpl2py check --output-format sarif, or run with text, json or github")
+    if not hasattr(args, "no_config"):
+        return  # dump-ast, explain: no project options
+    config = discover(args.config, args.no_config)
+    args.config_path = str(config.path) if config.path is not None else None
+    _apply_config(args, config, command)
+    try:
+        select = parse_codes(args.select, "--select") if args.select is not None else None
+        ignore = parse_codes(args.ignore, "--ignore") if args.ignore is not None else ()
+    except ValueError as exc:
+        raise UsageError(f"gpl2py {command.name}: {exc}") from None
+    args.selection = Selection(select, ignore)  # also without options: the gpl2py: ignore comments
+
+
+def _apply_config(args: argparse.Namespace, config: Config, command: Command) -> None:
+    """Fill what the command line left out from ``config``, then the built-in defaults."""
+    if hasattr(args, "paths") and not args.paths:
+        if not config.paths:
+            raise UsageError(f"gpl2py {command.name}: the following arguments are required: "
+                             f"{'PATH' if command.name == 'check' else 'PROJECT'} (or paths in "
+                             "[tool.gpl2py] of pyproject.toml)")
+        args.paths = [_shown(p) for p in config.paths]
+    if args.stubs is None and config.stubs is not None:
+        args.stubs = _shown(config.stubs)
+    if args.strict is None:
+        args.strict = bool(config.strict)
+    if args.max_source_mb is None:
+        args.max_source_mb = config.max_source_mb
+    if args.select is None and config.select is not None:
+        args.select = list(config.select)
+        _check_codes(args.select, "select", config)
+    if args.ignore is None and config.ignore is not None:
+        args.ignore = list(config.ignore)
+        _check_codes(args.ignore, "ignore", config)
+    if command.name == "run":
+        if args.clock is None:
+            args.clock = config.clock or "virtual"
+        if args.robot is None:
+            robot = (config.robot or "PF400SX").upper()
+            from gplrt.controller.pdb import model_names
+
+            if robot not in model_names():
+                raise ConfigError(config.path or Path(FILE_NAME), f"[tool.gpl2py] robot = {config.robot!r}: "
+                                  f"not a robot model; one of {', '.join(model_names())}")
+            args.robot = robot
+
+
+def _check_codes(values: list[str], key: str, config: Config) -> None:
+    try:
+        parse_codes(values, key)
+    except ValueError as exc:
+        raise ConfigError(config.path or Path(FILE_NAME), f"[tool.gpl2py] {exc}") from None
+
+
+def _shown(path: str) -> str:
+    """A path from the configuration as diagnostics should show it: relative to the current folder
+    when it is below it (editors and CI annotations resolve it there)."""
+    try:
+        return str(Path(path).relative_to(Path.cwd().absolute()))
+    except ValueError:
+        return path
+
+
+def _usage_failure(detail: str, parser: argparse.ArgumentParser, display: Display, stdout: TextIO,
+                   stderr: TextIO, usage_line: bool = True) -> int:
     out = Outcome(usage_error=True)
     out.sink.report(msg.USAGE_ERROR, None, detail=detail)
-    if not as_json:
+    if display.format == "text" and usage_line:
         stderr.write(parser.format_usage())
-    _emit(out, as_json, False, stdout, stderr)
+    _emit(out, display, stdout, stderr)
     return EXIT_USAGE
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import enum
 import json
 from dataclasses import dataclass
-from typing import Iterable, Iterator
+from typing import Iterable, Iterator, Protocol, Sequence
 
 from gpl2py.messages import Message
 from gpl2py.source import Position, SourceFile, Span
@@ -33,16 +33,21 @@ class Diagnostic:
     def position(self) -> Position | None:
         return self.span.start if self.span is not None else None
 
-    def header(self) -> str:
+    def header(self, colour: bool = False) -> str:
         """``file:line:col: severity GPLnnnn: message`` on one line: a file name or a name quoted
         in the message cannot break it (docs/security.md), their line breaks and other control
-        characters are shown as escapes."""
-        where = f"{one_line(self.span.file)}:{self.span.line}:{self.span.col}: " if self.span is not None else ""
-        return f"{where}{self.severity.value} {self.code}: {one_line(self.message)}"
+        characters are shown as escapes.  ``colour``: the position bold, the severity and code in
+        its colour (ANSI escapes, added around the escaped text)."""
+        where = f"{one_line(self.span.file)}:{self.span.line}:{self.span.col}:" if self.span is not None else ""
+        what = f"{self.severity.value} {self.code}"
+        if colour:
+            where = f"{_BOLD}{where}{_RESET}" if where else ""
+            what = f"{_COLOURS[self.severity]}{what}{_RESET}"
+        return f"{where} {what}: {one_line(self.message)}" if where else f"{what}: {one_line(self.message)}"
 
-    def render(self, source: SourceFile | None = None) -> str:
+    def render(self, source: SourceFile | None = None, colour: bool = False) -> str:
         """The header line, followed by the source line and a caret when the text is known."""
-        text = self.header()
+        text = self.header(colour)
         if source is None or self.span is None:
             return text
         line = source.line_text(self.span.line)
@@ -57,7 +62,10 @@ class Diagnostic:
         else:
             width = 1
         width = max(1, min(width, len(shown) - col + 1))
-        return f"{text}\n    {shown}\n    {' ' * (col - 1)}{'^' * width}"
+        caret = "^" * width
+        if colour:
+            caret = f"{_COLOURS[self.severity]}{caret}{_RESET}"
+        return f"{text}\n    {shown}\n    {' ' * (col - 1)}{caret}"
 
     def to_json(self) -> dict[str, object]:
         pos = self.span.start if self.span else None
@@ -69,6 +77,10 @@ class Diagnostic:
             "line": pos.line if pos else None,
             "column": pos.col if pos else None,
         }
+
+
+_BOLD, _RESET = "\x1b[1m", "\x1b[0m"
+_COLOURS = {Severity.ERROR: "\x1b[1;31m", Severity.WARNING: "\x1b[1;33m", Severity.NOTE: "\x1b[1;36m"}
 
 
 def one_line(text: str) -> str:
@@ -85,23 +97,47 @@ def _escape(ch: str) -> str:
     return f"\\x{o:02x}" if o < 256 else f"\\u{o:04x}" if o < 0x10000 else f"\\U{o:08x}"
 
 
-class DiagnosticSink:
-    """Collects diagnostics in the order they are reported."""
+class DiagnosticFilter(Protocol):
+    """What a sink keeps (``gpl2py.selection.Selection``: --select, --ignore, ``gpl2py: ignore``)."""
 
-    def __init__(self) -> None:
+    def __call__(self, diag: Diagnostic) -> bool: ...
+
+    def fingerprint(self) -> list[object]: ...
+
+    def add_sources(self, sources: Sequence[SourceFile], sink: DiagnosticSink) -> None: ...
+
+
+class DiagnosticSink:
+    """Collects diagnostics in the order they are reported.
+
+    With a ``filter`` (``gpl2py.selection.Selection``), a diagnostic it does not keep is dropped
+    as it arrives, so every later question (errors? how many warnings?) sees the filtered set.
+    """
+
+    def __init__(self, filter: DiagnosticFilter | None = None) -> None:
         self._items: list[Diagnostic] = []
+        self.filter = filter
+
+    def child(self) -> DiagnosticSink:
+        """An empty sink with the same filter (a pipeline stage that decides on its own errors)."""
+        return DiagnosticSink(self.filter)
 
     def report(self, message: Message, span: Span | None, **args: object) -> Diagnostic:
         """Report ``message`` (a registry entry) formatted with ``args`` at ``span``."""
         diag = Diagnostic(message.severity, message.code, message.format(**args), span)
-        self._items.append(diag)
+        if self.filter is None or self.filter(diag):
+            self._items.append(diag)
         return diag
 
     def add(self, diag: Diagnostic) -> None:
-        self._items.append(diag)
+        if self.filter is None or self.filter(diag):
+            self._items.append(diag)
 
     def extend(self, diags: Iterable[Diagnostic]) -> None:
-        self._items.extend(diags)
+        if self.filter is None:
+            self._items.extend(diags)
+        else:
+            self._items.extend(d for d in diags if self.filter(d))
 
     def __iter__(self) -> Iterator[Diagnostic]:
         return iter(self._items)

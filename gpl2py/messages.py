@@ -686,6 +686,19 @@ DUMP_AST_NEEDS_FILE = _error(
     "To check a whole project use gpl2py check. Exit status 2.",
 )
 
+CONFIG_ERROR = _error(
+    "GPL9003",
+    "{path}: {detail}",
+    "The [tool.gpl2py] table of pyproject.toml is wrong: not valid TOML, an unknown key, or a value "
+    "of the wrong type (docs/cli.md, \"Configuration\"). Exit status 2, as for the command line.",
+)
+BAD_SUPPRESSION = _warning(
+    "GPL9004",
+    "'{code}' in a gpl2py: ignore comment suppresses nothing: {problem}",
+    "A ' gpl2py: ignore[...] comment names codes (GPL2014) or their prefixes (GPL20), separated by "
+    "commas; ' gpl2py: ignore without brackets suppresses every diagnostic of its line.",
+)
+
 
 def markdown() -> str:
     """The text of docs/diagnostics.md."""

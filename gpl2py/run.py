@@ -56,12 +56,13 @@ from typing import TYPE_CHECKING, Any, Callable, TextIO
 
 from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.formats import github_annotation, github_annotations, json_document
 from gpl2py.progress import ProgressBar
 from gpl2py.project import Limits, Project, load_project
 
 if TYPE_CHECKING:
-    from gpl2py.cli import Outcome
+    from gpl2py.cli import Display, Outcome
     from gpl2py.transpile import Progress
 
 EXIT_OK = 0
@@ -123,22 +124,25 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
     translation then fails (the summary says "checked 3 files: 1 error", not "checked 0 files").
     """
     started = time.perf_counter()
-    probe = DiagnosticSink()
+    probe = sink.child()  # the caller's filter (--select, --ignore) decides what stops the build
     project = load_project(path, probe, limits)
+    if project is not None and sink.filter is not None:
+        sink.filter.add_sources(project.sources, sink)  # its gpl2py: ignore comments
     if project is not None and loaded is not None:
         loaded(project)
     if project is None or probe.has_errors():
         sink.extend(probe)
         return None
     cache = Cache(cache_dir)
-    key = cache_key(project, {"keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir)})
+    key = cache_key(project, {"keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir),
+                              "selection": sink.filter.fingerprint() if sink.filter is not None else None})
     entry = None if rebuild else cache.lookup(key)
     if entry is not None:
         sink.extend(entry.diagnostics)
         return Built(entry, project, True, entry.files, entry.lines, time.perf_counter() - started)
     from gpl2py.transpile import transpile  # the whole pipeline: only on a cache miss
 
-    local = DiagnosticSink()
+    local = sink.child()
     output = transpile(path, local, keep_going=keep_going, progress=progress, stubs_dir=stubs_dir, strict=strict,
                        limits=limits)
     sink.extend(local)
@@ -212,11 +216,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("path", metavar="PROJECT",
                         help="a project folder (with or without Project.gpr), a Project.gpr file, "
                         "or one .gpl file")
-    parser.add_argument("--robot", default="PF400SX", type=str.upper, choices=robots, metavar="MODEL",
-                        help="robot model of the simulated controller (default: PF400SX); one of: "
+    parser.add_argument("--robot", default=None, type=str.upper, choices=robots, metavar="MODEL",
+                        help="robot model of the simulated controller (default: robot in "
+                        "[tool.gpl2py], else PF400SX); one of: "
                         + ", ".join(robots))
-    parser.add_argument("--clock", choices=("virtual", "fast", "real"), default="virtual",
-                        help="virtual (default): waits and motions take no wall time and every run "
+    parser.add_argument("--clock", choices=("virtual", "fast", "real"), default=None,
+                        help="virtual (the default, unless clock in [tool.gpl2py]): waits and motions take no wall time and every run "
                         "is identical, but keep to real time while a socket is open; fast: virtual, "
                         "and a client that waits for a motion, homing or power-up does not wait "
                         "for it in wall time (see docs/design/clock.md); real: controller time "
@@ -474,8 +479,9 @@ def run_command(args: argparse.Namespace) -> Outcome:
     from gpl2py.progress import wants_progress
 
     stdout, stderr = sys.stdout, sys.stderr
-    out = cli.Outcome(emitted=True)
-    bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, args.json))
+    display: cli.Display = args.display
+    out = cli.Outcome(sink=cli.new_sink(args), emitted=True)
+    bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, not display.text))
     loaded: list[Project] = []
     try:
         built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
@@ -500,13 +506,13 @@ def run_command(args: argparse.Namespace) -> Outcome:
         out.emitted, out.usage_error = False, True
         return out
     if not args.json:
-        cli._emit(out, False, args.quiet, stdout, stderr)
+        cli._emit(out, display, stdout, stderr)
 
     problem = _plot_problem(args.plot) if args.plot else None
     problem = problem or (_flash_problem(args.flash) if args.flash else None)
     problem = problem or (_listen_problem(args.listen) if args.listen is not None else None)
     if problem is not None:
-        return _usage_after_emit(out, problem, args.json, stderr)
+        return _usage_after_emit(out, problem, display, stdout, stderr)
 
     from gplrt.sim import ConsoleSink, Simulation
 
@@ -526,7 +532,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
             except Exception as exc:  # the user's setup code, not gpl2py: say where, keep it short
                 problem = f"--setup {args.setup}: setup(sim) raised {type(exc).__name__}: {exc}"
         if problem is not None:
-            return _usage_after_emit(out, problem, args.json, stderr)
+            return _usage_after_emit(out, problem, display, stdout, stderr)
     note = stubs_note(package)
     if note and not args.json and not args.quiet:
         stderr.write(note + "\n")
@@ -537,21 +543,21 @@ def run_command(args: argparse.Namespace) -> Outcome:
     if report.plot_error is not None:  # the program's own status stands; the lost plot is said
         diag = out.sink.report(msg.OUTPUT_ERROR, None, path=str(args.plot), detail=report.plot_error)
         if not args.json:
-            stderr.write(diag.render() + "\n")
+            _say(diag, display, stdout, stderr)
     for e in report.errors:
         if e["file"]:
             e["file"] = _shown_path(built.project, e["file"])
     if args.json:
-        doc = {
-            "diagnostics": [d.to_json() for d in out.sink.sorted()],
-            "summary": summary_json(built, out.sink),
-            "run": {**report.to_json(), "console": console.output, "log": console.log_text},
-        }
+        doc = json_document(out.sink.sorted(), summary_json(built, out.sink),
+                            run={**report.to_json(), "console": console.output, "log": console.log_text})
         stdout.write(json.dumps(doc, indent=2) + "\n")
         return out
     for e in report.errors:
         where = f"{e['file']}:{e['line']}: " if e["file"] else ""
-        stderr.write(f"{where}error {e['code']} in thread {e['thread']}: {e['message']}\n")
+        text = f"error {e['code']} in thread {e['thread']}: {e['message']}"
+        stderr.write(f"{where}{text}\n")
+        if display.format == "github":
+            stdout.write(github_annotation(Severity.ERROR, text, e["file"], e["line"], f"GPL error {e['code']}"))
     if report.interrupted:
         text = f"gpl2py: interrupted; stopped {plural(report.stopped, 'GPL thread')}"
         if report.still_alive:
@@ -597,16 +603,24 @@ def _shown_path(project: Project, name: str) -> str:
     return name
 
 
-def _usage_after_emit(out: Outcome, detail: str, as_json: bool, stderr: TextIO) -> Outcome:
+def _usage_after_emit(out: Outcome, detail: str, display: Display, stdout: TextIO, stderr: TextIO) -> Outcome:
     """A command-line problem found after the translation's diagnostics were printed (text mode):
     print only the new error; in JSON mode nothing was printed yet, so the CLI prints it all."""
     diag = out.sink.report(msg.USAGE_ERROR, None, detail=detail)
-    if as_json:
+    if display.json:
         out.emitted, out.usage_error = False, True
     else:
-        stderr.write(diag.render() + "\n")
+        _say(diag, display, stdout, stderr)
         out.exit_status = EXIT_USAGE
     return out
+
+
+def _say(diag: Diagnostic, display: Display, stdout: TextIO, stderr: TextIO) -> None:
+    """One diagnostic found after the others were printed, in the display's format."""
+    if display.format == "github":
+        stdout.write(github_annotations([diag]))
+    else:
+        stderr.write(diag.render(None, display.colour) + "\n")
 
 
 def transpile_summary(files: int, lines: int, sink: DiagnosticSink, seconds: float, cached: bool) -> str:

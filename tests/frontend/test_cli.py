@@ -145,7 +145,7 @@ def test_quiet_prints_errors_only(tmp_path: Path, capsys: pytest.CaptureFixture[
         [],
         ["frobnicate", "x"],
         ["check"],
-        ["check", "a", "b"],
+        ["run", "a", "b"],  # run takes one project (check and translate take several)
         ["check", "--no-such-option", "x"],
         ["--json"],
     ],
