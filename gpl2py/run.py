@@ -437,6 +437,9 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
 def _plot_problem(path: str) -> str | None:
     """Why ``--plot path`` cannot be saved, checked before the program runs (a typo in the image
     type must not cost a whole run); None when matplotlib can write that type."""
+    missing = missing_extra("matplotlib", "plot", "--plot")
+    if missing is not None:
+        return missing
     kind = Path(path).suffix.lstrip(".").lower()
     if not kind:
         return None  # matplotlib saves it as PNG, adding ".png"
@@ -446,6 +449,19 @@ def _plot_problem(path: str) -> str | None:
     if kind in kinds:
         return None
     return f"--plot {path}: cannot save a .{kind} image; the image types are: {', '.join(sorted(kinds))}"
+
+
+def missing_extra(module: str, extra: str, needed_by: str) -> str | None:
+    """One line naming the extra to install when ``module`` (an optional dependency) cannot be
+    imported, or None: ``--plot needs matplotlib, which is not installed: pip install
+    'gpl2py[plot]'`` rather than an internal error with an ImportError in it."""
+    try:
+        importlib.import_module(module)
+    except ImportError as exc:
+        why = "which is not installed" if isinstance(exc, ModuleNotFoundError) and exc.name == module \
+            else f"which does not import ({exc})"
+        return f"{needed_by} needs {module}, {why}: pip install 'gpl2py[{extra}]'"
+    return None
 
 
 def _flash_problem(path: str) -> str | None:

@@ -523,3 +523,16 @@ def test_a_server_run_ends_cleanly_with_nothing_but_its_own_output(tmp_path: Pat
     assert len(lines) == 2, err
     assert lines[0].startswith("transpiled 5 files (") and lines[0].endswith(": 0 errors, 0 warnings")
     assert lines[1].startswith("program ended after ") and lines[1].endswith(": 0 unhandled errors")
+
+
+def test_plot_without_matplotlib_names_the_extra(tmp_path: Path) -> None:
+    """--plot without matplotlib (an optional dependency) was internal error GPL9000 with an
+    ImportError in it; it is one line naming the extra to install, status 2, before the run."""
+    fake = tmp_path / "no_matplotlib" / "matplotlib"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text("raise ModuleNotFoundError(\"No module named 'matplotlib'\", name='matplotlib')\n")
+    proj = Path(write_project(tmp_path, {"Main.gpl": TICKER}, name="NoPlot"))
+    r = gpl2py("run", str(proj), "--plot", str(tmp_path / "cell.png"), "--quiet",
+               env={"PYTHONPATH": str(fake.parent)})
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr == "error GPL9001: --plot needs matplotlib, which is not installed: pip install 'gpl2py[plot]'\n"
