@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from gpl2py import __version__
 from gpl2py.lower.names import py_ident
 from gpl2py.lower.text import escape, py_string
 from gpl2py.semantics.check import Model
@@ -36,7 +37,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     start = model.start
     has_start = start is not None and start.module is not None
     lines = [
-        f'"""GPL project {escape(project_name, "docstring")}, transpiled by gpl2py.',
+        f'"""GPL project {escape(project_name, "docstring")}, transpiled by gpl2py {escape(__version__, "docstring")}.',
         "",
         "Importing this package starts nothing.  ``main()`` runs the project (ProjectStart) on a simulated",
         "controller; ``init()`` initialises the modules (variables in ProjectSource order, then each",
@@ -56,6 +57,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     lines += [
         "PROJECT = {",
         f"    \"name\": {py_string(project_name)},",
+        f"    \"gpl2py\": {py_string(__version__)},  # the gpl2py that made this package",
         f"    \"start\": {py_string(start_text) if start_text else start_name},",
         *_modules_lines([py_string(m.name) for m in modules]),
         *_stub_lines(stubs or []),
