@@ -40,10 +40,13 @@ def test_readme_starts_with_the_demo_and_test_commands() -> None:
 
 
 def test_ci_runs_exactly_the_readme_test_command() -> None:
+    """CI runs the README's test command, after the dependency floors' check (scripts/floors.sh),
+    which the README names too."""
     readme_test = _commands(_blocks("bash")[0])[1]
     ci = [line for line in _commands((REPO / ".ci/run").read_text())
           if not line.startswith(("set ", "cd "))]
-    assert ci == [readme_test]
+    assert ci == ["bash scripts/floors.sh", readme_test]
+    assert "bash scripts/floors.sh" in README
 
 
 def _sandbox(tmp_path: Path) -> tuple[Path, dict[str, str]]:

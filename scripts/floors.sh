@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs gpl2py with the lowest versions of its dependencies that pyproject.toml allows (its
+# floors), in a virtual environment of its own, and runs a smoke test: the floors must really
+# install together and work.  .ci/run calls it after the test suite.  The environment is
+# .venv-floors (or $GPL2PY_FLOORS_VENV), made afresh each time.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+VENV="${GPL2PY_FLOORS_VENV:-$ROOT/.venv-floors}"
+PY="${PYTHON:-python3}"
+started=$SECONDS
+"$PY" -m venv --clear "$VENV"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot > "$VENV/floors.txt"
+# Not editable: the wheel a user would get, with its package data.
+"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot]"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot
+
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+cd "$WORK"  # away from the checkout: the installed package, not the source tree, is imported
+export GPL2PY_CACHE_DIR="$WORK/cache" MPLBACKEND=Agg
+G="$VENV/bin/gpl2py"
+"$G" --version
+"$G" check "$ROOT/samples/tcp_command_server"
+"$G" run "$ROOT/samples/pick_and_place" --setup "$ROOT/samples/notebook/cell_io.py" \
+    --plot "$WORK/cell.png" --quiet > "$WORK/console.txt"
+grep -q "cell done: 8 parts placed" "$WORK/console.txt"
+head -c 4 "$WORK/cell.png" | grep -q PNG
+"$G" "$ROOT/samples/pick_and_place" -o "$WORK/out" --quiet
+(cd "$WORK/out" && "$VENV/bin/python" -m pick_and_place > "$WORK/plain.txt" || test $? -eq 1)
+grep -q "palletising cell" "$WORK/plain.txt"
+echo "floors: smoke test passed in $((SECONDS - started)) s"
