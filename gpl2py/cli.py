@@ -414,9 +414,10 @@ COMMANDS: list[Command] = [
     Command(
         name="check",
         help="load a project and report every diagnostic, without translating",
-        description="Load a GPL project (or one file), parse and analyse every source file (names, "
-        "types, calls) and print all diagnostics, sorted by file and line, each with the "
-        "offending source line. Nothing is written.",
+        description="Load GPL projects (or single files), parse and analyse every source file (names, "
+        "types, calls, and what the translation checks) and print all diagnostics, sorted by file "
+        "and line, each with the offending source line. Nothing is written. Without PATH, the "
+        "paths of [tool.gpl2py] in pyproject.toml.",
         configure=_configure_check,
         run=_run_check,
     ),
@@ -521,8 +522,10 @@ def _output_options(parser: argparse.ArgumentParser, top: bool) -> None:
     )
 
 
-#: Options before the command name that take a value (``_route`` skips the value).
-_VALUE_OPTIONS = ("--output-format", "--color")
+#: Options that take a value, before the command name or before the project of the bare
+#: ``gpl2py [options] PROJECT`` form: ``_route`` skips their value when it looks for the command.
+_VALUE_OPTIONS = ("--output-format", "--color", "-o", "--output", "--stubs", "--select", "--ignore",
+                  "--config", "--max-source-mb")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -437,3 +437,12 @@ def test_pre_commit_hook_checks_the_configured_projects(tmp_path: Path) -> None:
     config(tmp_path, 'paths = ["cells/a"]\nignore = ["GPL20"]\n')
     done = subprocess.run([str(script), *entry[1:]], cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
+
+
+def test_options_with_values_before_the_project_of_the_bare_form(tmp_path: Path,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    """`gpl2py --ignore GPL20 -o out cell`: the values are not taken for a mistyped command."""
+    write(tmp_path / "cell")
+    status, _, err = run(capsys, "--ignore", "GPL20", "-o", "out", "cell")
+    assert status == 0, err
+    assert (tmp_path / "out" / "cell" / "__init__.py").is_file()
