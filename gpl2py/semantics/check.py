@@ -76,7 +76,7 @@ _LITERAL = {typ: Info(typ, "literal") for typ in (t.INTEGER, t.DOUBLE, t.STRING,
 class InfoTable:
     """``Model.info``: the :class:`Info` of each expression node, read and written as a mapping.
 
-    Each node keeps its Info in its own slot (``Node._info``): a dict with an entry for every
+    Each expression keeps its Info in its own slot (``Expr._info``): a dict with an entry for every
     expression of a project took 3-5 bytes per byte of dense source, the slot one (docs/security.md,
     "Input size").  So a tree is analysed by one Model at a time.  :meth:`values` and
     :meth:`items` walk the trees given to :meth:`add_tree` (the parsed files) and the nodes given
@@ -88,40 +88,41 @@ class InfoTable:
 
     def __init__(self) -> None:
         self._trees: list[A.Node] = []
-        self._nodes: list[A.Node] = []
+        self._nodes: list[A.Expr] = []
 
     def add_tree(self, tree: A.Node) -> None:
         self._trees.append(tree)
 
-    def add_node(self, node: A.Node) -> None:
+    def add_node(self, node: A.Expr) -> None:
         """A node made by the semantic pass: its children, if any, belong to a tree already."""
         self._nodes.append(node)
 
-    def __getitem__(self, node: A.Node) -> Info:
+    def __getitem__(self, node: A.Expr) -> Info:
         info = node._info
         if info is None:
             raise KeyError(node)
         return info  # type: ignore[return-value]
 
-    def get(self, node: A.Node, default: Info | None = None) -> Info | None:
+    def get(self, node: A.Expr, default: Info | None = None) -> Info | None:
         info = node._info
         return default if info is None else info  # type: ignore[return-value]
 
-    def __setitem__(self, node: A.Node, info: Info) -> None:
+    def __setitem__(self, node: A.Expr, info: Info) -> None:
         node._info = info
 
-    def __contains__(self, node: A.Node) -> bool:
+    def __contains__(self, node: A.Expr) -> bool:
         return node._info is not None
 
-    def items(self) -> Iterator[tuple[A.Node, Info]]:
-        for node in self._nodes:
-            if node._info is not None:
-                yield node, node._info  # type: ignore[misc]
+    def items(self) -> Iterator[tuple[A.Expr, Info]]:
+        for expr in self._nodes:
+            if expr._info is not None:
+                yield expr, expr._info  # type: ignore[misc]
         stack = list(self._trees)
         while stack:  # (a loop, not recursion: an operator chain is as deep as it is long)
             node = stack.pop()
-            if node._info is not None:
-                yield node, node._info  # type: ignore[misc]
+            info = getattr(node, "_info", None)  # (only expressions have one)
+            if info is not None:
+                yield node, info
             stack.extend(node.children())
 
     def values(self) -> Iterator[Info]:
@@ -672,7 +673,7 @@ class Checker:
 
     # -- expressions ------------------------------------------------------------------------------------
 
-    def _record(self, e: A.Node, info: Info) -> Info:
+    def _record(self, e: A.Expr, info: Info) -> Info:
         self.model.info[e] = info
         return info
 

@@ -62,9 +62,6 @@ class Node:
     _col: int = field(init=False, repr=False)
     _end_line: int = field(init=False, repr=False)
     _end_col: int = field(init=False, repr=False)
-    #: What the node means, filled in by the semantic pass (``semantics.check.InfoTable``, read
-    #: as ``Model.info[node]``): a slot is an eighth of the memory a dict entry per node takes
-    _info: object = field(default=None, init=False, repr=False)
     _children: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self, span: Span) -> None:
@@ -99,6 +96,10 @@ Node.span = property(_get_span, Node.__post_init__, doc="Where the node is in it
 @dataclass(slots=True, eq=False)
 class Expr(Node):
     """Base of expressions."""
+
+    #: What the expression means, filled in by the semantic pass (``semantics.check.InfoTable``,
+    #: read as ``Model.info[expr]``): a slot is an eighth of the memory of a dict entry per node
+    _info: object = field(default=None, init=False, repr=False)
 
 
 @dataclass(slots=True, eq=False)
