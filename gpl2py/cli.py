@@ -145,7 +145,7 @@ def _run_check(args: argparse.Namespace) -> Outcome:
                         strict=args.strict, stub_provider=user.provider if user is not None else None,
                         start_span=project.start_span)
         if not out.sink.has_errors():
-            lower(project, model, out.sink, user=user)
+            lower(project, model, out.sink, user=user, keep_modules=False)
     return out
 
 
