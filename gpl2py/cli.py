@@ -195,7 +195,7 @@ def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
                             strict=args.strict, stub_provider=user.provider if user is not None else None,
                             start_span=project.start_span)
             if not sink.has_errors():
-                lower(project, model, sink, user=user)
+                lower(project, model, sink, user=user, keep_modules=False)
     finally:
         out.sink.extend(sink)
 

@@ -130,9 +130,11 @@ def _project_data(given: Path, project: Project) -> dict[str, bytes]:
 
 
 def lower(project: Project, model: Model, sink: DiagnosticSink,
-          progress: Progress | None = None, user: UserStubs | None = None) -> Output:
-    """The generated files of an analysed project (``gpl2py check`` runs it for the lowering's
-    diagnostics and drops the files)."""
+          progress: Progress | None = None, user: UserStubs | None = None, *,
+          keep_modules: bool = True) -> Output:
+    """The generated files of an analysed project.  ``gpl2py check`` runs it for the lowering's
+    diagnostics only, with ``keep_modules=False``: each module's text is dropped as soon as it is
+    made (with the whole analysis alive, holding every module's text was a tenth of the memory)."""
     start = model.start
     if project.start is None and start is not None and start.module is not None:
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
@@ -150,9 +152,11 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
         text, gmap = lower_module(model, names, mod, sink)
         if progress is not None:
             progress("writing", i + 1, len(extra) + len(modules))
-        fname = f"{mod.py_name}.py"
-        out.files[f"{package}/{fname}"] = text
-        smap[fname] = (mod.path, runs_json(gmap))
+        if keep_modules:
+            fname = f"{mod.py_name}.py"
+            out.files[f"{package}/{fname}"] = text
+            smap[fname] = (mod.path, runs_json(gmap))
+        del text, gmap
     stub_texts, records = stub_files(model.stubs, names.stub_module_py, names.stub_attr_py, package, user) \
         if model.stubs is not None and model.stubs.stubs else ({}, [])
     out.files.update(stub_texts)

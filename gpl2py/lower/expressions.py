@@ -9,6 +9,7 @@ where GPL differs from Python (``\\``, ``Mod``, ``^``, string/number ``+``, Bool
 from __future__ import annotations
 
 import struct
+from collections.abc import Sequence
 
 from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.names import py_float, py_ident
@@ -671,7 +672,7 @@ class ExprLowerer:
 
     # -- calls and members -------------------------------------------------------------------------------
 
-    def args_code(self, args: list[A.Expr], params: list[ParamInfo]) -> list[str]:
+    def args_code(self, args: list[A.Expr], params: Sequence[ParamInfo]) -> list[str]:
         out: list[str] = []
         for i, a in enumerate(args):
             p = params[i] if i < len(params) else None

@@ -1252,19 +1252,23 @@ def _writes_or_leaves(body: A.Block, name: str, exits: bool = True) -> bool:
 def _has_exit(s: A.Stmt, kind: str) -> bool:
     """Whether an ``Exit <kind>`` inside ``s`` belongs to ``s`` (not to a nested construct of the
     same kind)."""
-    def scan(block: A.Block) -> bool:
-        for st in block.statements:
-            if isinstance(st, A.Exit) and st.kind == kind:
-                return True
-            if kind == "Select" and isinstance(st, A.Select):
-                continue
-            if kind == "Try" and isinstance(st, A.Try):
-                continue
-            if any(scan(b) for b in child_blocks(st)):
-                return True
-        return False
+    return any(_exits(b, kind) for b in child_blocks(s))
 
-    return any(scan(b) for b in child_blocks(s))
+
+def _exits(block: A.Block, kind: str) -> bool:
+    """:func:`_has_exit` for one block.  (A module function: a closure calling itself is a
+    reference cycle, which stays in memory until the next garbage collection, and the pipeline
+    runs with the collector paused.)"""
+    for st in block.statements:
+        if isinstance(st, A.Exit) and st.kind == kind:
+            return True
+        if kind == "Select" and isinstance(st, A.Select):
+            continue
+        if kind == "Try" and isinstance(st, A.Try):
+            continue
+        if any(_exits(b, kind) for b in child_blocks(st)):
+            return True
+    return False
 
 
 __all__ = ["ProcLowerer", "Frame"]

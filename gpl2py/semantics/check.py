@@ -10,8 +10,9 @@ reports every independent mistake.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
+from sys import intern
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
@@ -62,7 +63,7 @@ class Info:
     kind: str
     sym: object = None
     owner: object = None  # BuiltinClass for built-in members; ClassSym/ModuleSym for user members
-    params: list[ParamInfo] | None = None
+    params: tuple[ParamInfo, ...] | None = None  # shared by every Info of one parameter list
     receiver: A.Expr | None = None  # the object expression of a member access, if any
     static: bool = False  # a Shared member reached through a class or global class
 
@@ -72,13 +73,69 @@ class Info:
 _LITERAL = {typ: Info(typ, "literal") for typ in (t.INTEGER, t.DOUBLE, t.STRING, t.BOOLEAN)}
 
 
+class InfoTable:
+    """``Model.info``: the :class:`Info` of each expression node, read and written as a mapping.
+
+    Each expression keeps its Info in its own slot (``Expr._info``): a dict with an entry for every
+    expression of a project took 3-5 bytes per byte of dense source, the slot one (docs/security.md,
+    "Input size").  So a tree is analysed by one Model at a time.  :meth:`values` and
+    :meth:`items` walk the trees given to :meth:`add_tree` (the parsed files) and the nodes given
+    to :meth:`add_node` (those the semantic pass makes around parts of a tree), in no particular
+    order; nodes the lowering adds are not walked.
+    """
+
+    __slots__ = ("_trees", "_nodes")
+
+    def __init__(self) -> None:
+        self._trees: list[A.Node] = []
+        self._nodes: list[A.Expr] = []
+
+    def add_tree(self, tree: A.Node) -> None:
+        self._trees.append(tree)
+
+    def add_node(self, node: A.Expr) -> None:
+        """A node made by the semantic pass: its children, if any, belong to a tree already."""
+        self._nodes.append(node)
+
+    def __getitem__(self, node: A.Expr) -> Info:
+        info = node._info
+        if info is None:
+            raise KeyError(node)
+        return info  # type: ignore[return-value]
+
+    def get(self, node: A.Expr, default: Info | None = None) -> Info | None:
+        info = node._info
+        return default if info is None else info  # type: ignore[return-value]
+
+    def __setitem__(self, node: A.Expr, info: Info) -> None:
+        node._info = info
+
+    def __contains__(self, node: A.Expr) -> bool:
+        return node._info is not None
+
+    def items(self) -> Iterator[tuple[A.Expr, Info]]:
+        for expr in self._nodes:
+            if expr._info is not None:
+                yield expr, expr._info  # type: ignore[misc]
+        stack = list(self._trees)
+        while stack:  # (a loop, not recursion: an operator chain is as deep as it is long)
+            node = stack.pop()
+            info = getattr(node, "_info", None)  # (only expressions have one)
+            if info is not None:
+                yield node, info
+            stack.extend(node.children())
+
+    def values(self) -> Iterator[Info]:
+        return (info for _, info in self.items())
+
+
 @dataclass
 class Model:
     """The result of semantic analysis."""
 
     project: ProjectSyms
     resolver: Resolver
-    info: dict[A.Node, Info] = field(default_factory=dict)
+    info: InfoTable = field(default_factory=InfoTable)
     # Statement-level facts the lowering needs.
     proc_of_decl: dict[A.Node, ProcSym] = field(default_factory=dict)
     class_of_decl: dict[A.Node, ClassSym] = field(default_factory=dict)
@@ -99,9 +156,9 @@ class Model:
         return i.type if i is not None else t.ERROR
 
 
-def _pinfo(params: Iterable[VarSym | Param]) -> list[ParamInfo]:
+def _pinfo(params: Iterable[VarSym | Param]) -> tuple[ParamInfo, ...]:
     """The passing facts of a user procedure's parameters or a built-in member's."""
-    return [ParamInfo(p.name, p.type, p.byref, p.optional) for p in params]
+    return tuple(ParamInfo(p.name, p.type, p.byref, p.optional) for p in params)
 
 
 def assignable(src: t.GplType, dst: t.GplType) -> bool:
@@ -192,10 +249,25 @@ class Checker:
         # "Input size"); nothing changes an Info of these kinds once made
         self._var_infos: dict[VarSym, Info] = {}
         self._binary_infos: dict[t.GplType, Info] = {}
+        # the ParamInfos of each parameter list, made once (``_params``)
+        self._param_infos: dict[tuple[int, int], tuple[Sequence[VarSym | Param], tuple[ParamInfo, ...]]] = {}
+
+    def _params(self, params: Sequence[VarSym | Param], stop: int | None = None) -> tuple[ParamInfo, ...]:
+        """The passing facts of ``params[:stop]``, made once per parameter list and shared by
+        every call that passes it (one tuple per call was a twentieth of the analysis of dense
+        code: docs/security.md, "Input size").  The lists are the procedures' and the catalogue's
+        own, complete before checking starts; the table keeps each alive, so its id stays its own."""
+        key = (id(params), len(params) if stop is None else stop)
+        hit = self._param_infos.get(key)
+        if hit is None:
+            hit = self._param_infos[key] = (params, _pinfo(params[:stop]))
+        return hit[1]
 
     # -- driver ----------------------------------------------------------------------------------
 
     def run(self, units: list[A.SourceUnit], start: str | None, start_span: Span | None = None) -> Model:
+        for unit in units:
+            self.model.info.add_tree(unit)
         col = Collector(self.r, self.sink)
         col.collect_units(units)
         col.resolve_pending()
@@ -287,6 +359,7 @@ class Checker:
                 self.sink.report(M.TYPE_MISMATCH, d.initializer.span, src="initializer", dst="an array")
         if d.new:
             n = A.New(d.span, d.type or A.TypeRef(d.span, "?"), d.new_args)
+            self.model.info.add_node(n)
             self._expr(n, ctx)
             self.model.decl_new[d] = n  # the declarator's As New, as an expression to lower
         if d.initializer is not None and not d.bounds:
@@ -325,8 +398,8 @@ class Checker:
                     typ = self.r.resolve_type(d.type, ctx.module, ctx.cls)
                     if d.bounds is not None and typ is not t.ERROR:
                         typ = t.ArrayType(typ, len(d.bounds))
-                    v = VarSym(d.name, d.span, typ, storage, owner=p, const=s.is_const, decl=d)
-                    key = d.name.lower()
+                    v = VarSym(d.name, d, typ, storage, owner=p, const=s.is_const, decl=d)
+                    key = intern(d.name.lower())  # (one string per name, not one per local)
                     here = _LocalDecl(v, s.keyword, chain)
                     if key in p.locals:
                         prev = p.locals[key]
@@ -350,7 +423,7 @@ class Checker:
                 key = s.catch.variable.lower()
                 if key not in p.locals:
                     typ = self.r.resolve_type(s.catch.type, ctx.module, ctx.cls)
-                    p.locals[key] = VarSym(s.catch.variable, s.catch.span, typ, "local", owner=p)
+                    p.locals[key] = VarSym(s.catch.variable, s.catch, typ, "local", owner=p)
 
     @staticmethod
     def _redeclares(here: _LocalDecl, earlier: list[_LocalDecl]) -> bool:
@@ -478,6 +551,7 @@ class Checker:
         if not c.variable:
             return
         ref = A.Name(c.span, c.variable)
+        self.model.info.add_node(ref)
         vt = self._target(ref, ctx)
         if vt is not t.ERROR and not (isinstance(vt, t.ClassType) and vt.key == "exception"):
             self.sink.report(M.TYPE_MISMATCH, c.span, src="Exception", dst=f"the {vt} variable {c.variable}")
@@ -599,7 +673,7 @@ class Checker:
 
     # -- expressions ------------------------------------------------------------------------------------
 
-    def _record(self, e: A.Node, info: Info) -> Info:
+    def _record(self, e: A.Expr, info: Info) -> Info:
         self.model.info[e] = info
         return info
 
@@ -744,7 +818,7 @@ class Checker:
             if sum(1 for p in s.params if not p.optional) > 0:
                 self.sink.report(M.WRONG_ARG_COUNT, span, name=s.name,  # type: ignore[arg-type]
                                  expected=len(s.params), given=0)
-            return Info(s.result, "bfunc", s, params=_pinfo(s.params))
+            return Info(s.result, "bfunc", s, params=self._params(s.params))
         if k == "builtin_constant":
             assert isinstance(s, BuiltinConstant)
             return Info(s.type, "bconst", s)
@@ -907,7 +981,7 @@ class Checker:
         if bm.kind == "property":
             return Info(bm.result, kind, bm, owner=b, receiver=receiver, static=static)
         form = bm.call_form(0) if not in_invoke else None
-        info = Info(bm.result, kind, bm, owner=b, params=_pinfo(form if form is not None else bm.params),
+        info = Info(bm.result, kind, bm, owner=b, params=self._params(form if form is not None else bm.params),
                     receiver=receiver, static=static)
         if not in_invoke and form is None:
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
@@ -922,8 +996,8 @@ class Checker:
             if not _unparsed(args):
                 self.sink.report(M.WRONG_ARG_COUNT, span, name=m.name,  # type: ignore[arg-type]
                                  expected=_count_text(m.set_min_args, m.set_max_args), given=len(args))
-            return Info(t.ERROR, ci.kind, m, owner=ci.owner, params=[], receiver=ci.receiver, static=ci.static)
-        return Info(form[-1].type, ci.kind, m, owner=ci.owner, params=_pinfo(form[:-1]), receiver=ci.receiver,
+            return Info(t.ERROR, ci.kind, m, owner=ci.owner, params=(), receiver=ci.receiver, static=ci.static)
+        return Info(form[-1].type, ci.kind, m, owner=ci.owner, params=self._params(form, len(form) - 1), receiver=ci.receiver,
                     static=ci.static)
 
     def _stub_use(self, stub: Stub, as_statement: bool, as_target: bool) -> Info:
@@ -952,7 +1026,7 @@ class Checker:
         if not (p.min_args <= len(args) <= len(p.params)) and not _unparsed(args):
             self.sink.report(M.WRONG_ARG_COUNT, span, name=p.name,  # type: ignore[arg-type]
                              expected=_count_text(p.min_args, len(p.params)), given=len(args))
-        return Info(p.result, "call", p, params=_pinfo(p.params), receiver=receiver)
+        return Info(p.result, "call", p, params=self._params(p.params), receiver=receiver)
 
     # -- calls, indexing, New, AddressOf -----------------------------------------------------------------
 
@@ -1009,7 +1083,7 @@ class Checker:
             chosen = self._choose_overload(ci.sym, e.args, infos, e.span, ctx, ci.static)
             if chosen is None:
                 return Info(t.ERROR, "error")
-            info = Info(chosen.result, "call", chosen, params=_pinfo(chosen.params), receiver=ci.receiver)
+            info = Info(chosen.result, "call", chosen, params=self._params(chosen.params), receiver=ci.receiver)
             self._args(e.args, info.params or [], ctx, infos)
             return info
         if k == "procref":
@@ -1019,13 +1093,13 @@ class Checker:
             return info
         if k == "bfuncref":
             f: BuiltinFunction = ci.sym  # type: ignore[assignment]
-            params = _pinfo(f.params)
+            params = self._params(f.params)
             self._check_count(f.name, params, e.args, e.span)
             self._args(e.args, params, ctx)
             return Info(f.result, "bfunc", f, params=params)
         if k in ("bmember", "vmember") and isinstance(ci.sym, Member) and ci.sym.kind == "method":
             form = ci.sym.call_form(len(e.args))  # the overload called with that many arguments
-            params = _pinfo(form) if form is not None else ci.params or []
+            params = self._params(form) if form is not None else ci.params or ()
             if form is None and not _unparsed(e.args):
                 self.sink.report(M.WRONG_ARG_COUNT, e.span, name=ci.sym.name,
                                  expected=_count_text(ci.sym.min_args, ci.sym.max_args), given=len(e.args))
@@ -1041,7 +1115,7 @@ class Checker:
             return Info(typ.element, "index")
         d = self.r.delegate_of(typ)
         if d is not None:
-            params = _pinfo(d.params)
+            params = self._params(d.params)
             self._check_count(d.name, params, e.args, e.span)
             self._args(e.args, params, ctx)
             return Info(d.result, "delegate_call", d, params=params)
@@ -1051,13 +1125,13 @@ class Checker:
             self._expr(a, ctx)
         return Info(t.ERROR, "error")
 
-    def _check_count(self, name: str, params: list[ParamInfo], args: list[A.Expr], span: object) -> None:
+    def _check_count(self, name: str, params: Sequence[ParamInfo], args: list[A.Expr], span: object) -> None:
         lo = sum(1 for p in params if not p.optional)
         if not (lo <= len(args) <= len(params)) and not _unparsed(args):
             self.sink.report(M.WRONG_ARG_COUNT, span, name=name,  # type: ignore[arg-type]
                              expected=_count_text(lo, len(params)), given=len(args))
 
-    def _args(self, args: list[A.Expr], params: list[ParamInfo], ctx: _Ctx,
+    def _args(self, args: list[A.Expr], params: Sequence[ParamInfo], ctx: _Ctx,
               infos: list[Info] | None = None) -> None:
         """Check each argument against its parameter.  ``infos``: the arguments were already
         typed (to choose an overload), so they are checked without being typed again."""
@@ -1136,7 +1210,7 @@ class Checker:
                     info = self.model.info[a]
                     if not self._mark_byref(a, info, ParamInfo(prm.name, prm.type, True)):
                         self.model.byref_temps.add(a)
-            return Info(typ, "new", cls, owner=ctor, params=_pinfo(ctor.params))
+            return Info(typ, "new", cls, owner=ctor, params=self._params(ctor.params))
         d = self.r.delegate_of(typ)
         if d is not None:
             if len(args) != 1:
@@ -1155,7 +1229,7 @@ class Checker:
         if b.is_global:  # Move, Controller, ...: one per controller, never created
             self.sink.report(M.NEW_OF_GLOBAL_CLASS, e.span, cls=b.name)
             return Info(t.ERROR, "error")
-        params = _pinfo(b.constructor or ())
+        params = self._params(b.constructor or ())
         if b.constructor is not None and params:
             self._check_count(b.name, params, args, e.span)
         self._args(args, params, ctx)
@@ -1305,4 +1379,4 @@ def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogu
     return checker.run(units, start, start_span)
 
 
-__all__ = ["analyze", "Model", "Info", "ParamInfo", "assignable", "child_blocks", "TOP_MODULE"]
+__all__ = ["analyze", "Model", "Info", "InfoTable", "ParamInfo", "assignable", "child_blocks", "TOP_MODULE"]

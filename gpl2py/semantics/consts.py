@@ -53,8 +53,8 @@ class _NotConstant(Exception):
 class ConstFolder:
     """Computes the value of every foldable module and class Const of a project."""
 
-    def __init__(self, info: dict[A.Node, Any], sink: DiagnosticSink) -> None:
-        self.info = info  # check.Model.info: what each name in an initializer refers to
+    def __init__(self, info: Any, sink: DiagnosticSink) -> None:
+        self.info = info  # check.Model.info (an InfoTable): what each name in an initializer refers to
         self.sink = sink
         self.values: dict[VarSym, object] = {}
         self._unfoldable: set[VarSym] = set()
@@ -152,7 +152,7 @@ def project_consts(project: ProjectSyms) -> list[VarSym]:
     return out
 
 
-def fold_constants(project: ProjectSyms, info: dict[A.Node, Any], sink: DiagnosticSink) -> dict[VarSym, object]:
+def fold_constants(project: ProjectSyms, info: Any, sink: DiagnosticSink) -> dict[VarSym, object]:
     """The value of every module and class Const that translation can compute (module doc)."""
     return ConstFolder(info, sink).fold(project_consts(project))
 

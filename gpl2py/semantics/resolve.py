@@ -304,7 +304,7 @@ class Collector:
                 for d in m.declarators:
                     if not d.name:
                         continue
-                    v = VarSym(d.name, d.span, t.ERROR, "field" if cls is not None else "module",
+                    v = VarSym(d.name, d, t.ERROR, "field" if cls is not None else "module",
                                owner=cls or mod, public=public, shared=shared, const=m.is_const, decl=d)
                     if self._declare(table, d.name, v, d.span, scope):
                         self.pending_types.append((v, d.type, mod, cls, len(d.bounds) if d.bounds is not None else 0))
@@ -325,7 +325,7 @@ class Collector:
                     params: list[VarSym] = []
                     if acc.kind == "Set":
                         pname = acc.param.name if acc.param is not None else "value"
-                        pv = VarSym(pname, acc.param.span if acc.param else acc.span, t.ERROR, "param")
+                        pv = VarSym(pname, acc.param or acc, t.ERROR, "param")
                         params.append(pv)
                         self.pending_types.append(
                             (pv, acc.param.type if acc.param is not None and acc.param.type else m.type, mod, cls, 0))
@@ -362,7 +362,7 @@ class Collector:
         self._members(mod, cls, decl.members)
 
     def _param(self, p: A.Param, mod: ModuleSym, cls: ClassSym | None) -> VarSym:
-        v = VarSym(p.name, p.span, t.ERROR, "param", byref=p.by_ref, optional=p.optional, default=p.default)
+        v = VarSym(p.name, p, t.ERROR, "param", byref=p.by_ref, optional=p.optional, default=p.default)
         self.pending_types.append((v, p.type, mod, cls, p.array_rank))
         return v
 

@@ -16,17 +16,19 @@ from gpl2py.source import Span
 from gpl2py.syntax import ast as A
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class VarSym:
     """A variable: local, Static local, parameter, module variable, class field or Const.
 
     ``storage`` is one of ``local``, ``static``, ``param``, ``module``, ``field``.
     ``boxed`` is set by the checker when a local is passed to a ByRef parameter: the lowering then
     keeps it in a cell for the whole procedure, which makes ByRef true aliasing (§9.3).
+    ``declared_at`` is the declaring node (or a span): :attr:`span` reads the node's span when
+    asked, so a project's variables do not keep a Span object each (docs/security.md, "Input size").
     """
 
     name: str
-    span: Span | None
+    declared_at: A.Node | Span | None
     type: t.GplType
     storage: str
     owner: object = None
@@ -40,6 +42,11 @@ class VarSym:
     boxed: bool = False
     assigned: bool = False
     read: bool = False
+
+    @property
+    def span(self) -> Span | None:
+        at = self.declared_at
+        return at.span if isinstance(at, A.Node) else at
 
 
 @dataclass(eq=False)

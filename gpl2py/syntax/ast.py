@@ -22,15 +22,17 @@ first line).  A :class:`Block` keeps ``header_comment`` (the comment on the line
 as ``Else ' why``) and ``end_comments`` (comments after its last statement, before ``End If`` /
 ``Next`` / ``Case`` ...).  Block statements keep the comment on their closing line in ``end_comment``.
 Containers (:class:`SourceUnit`, :class:`ModuleDecl`, :class:`ClassDecl`) keep their trailing
-comments in ``end_comments``.
+comments in ``end_comments``.  Comment sequences are tuples: most statements have none, and every
+one of them then shares the empty tuple instead of holding an empty list of its own (an eighth of
+the syntax tree of dense code: docs/security.md, "Input size").
 """
 
 from __future__ import annotations
 
-from dataclasses import KW_ONLY, MISSING, dataclass, field, fields
+from dataclasses import KW_ONLY, MISSING, InitVar, dataclass, field, fields
 from typing import Any, ClassVar, Iterator
 
-from gpl2py.source import Span
+from gpl2py.source import Span, make_span
 
 
 @dataclass(slots=True, frozen=True)
@@ -48,8 +50,26 @@ class Comment:
 
 @dataclass(slots=True, eq=False)
 class Node:
-    span: Span
+    """Base of every node.  A node is built with its :class:`~gpl2py.source.Span` and gives it back
+    as ``node.span`` (assignable, like a field), but it keeps the span's five numbers in its own
+    slots rather than a reference to a Span object: every node has a position of its own, and a
+    separate object for it cost a third of the memory of a syntax tree (docs/security.md, "Input
+    size").  ``node.span`` builds an equal Span on each read."""
+
+    span: InitVar[Span]
+    _file: str = field(init=False, repr=False)
+    _line: int = field(init=False, repr=False)
+    _col: int = field(init=False, repr=False)
+    _end_line: int = field(init=False, repr=False)
+    _end_col: int = field(init=False, repr=False)
     _children: ClassVar[tuple[str, ...]] = ()
+
+    def __post_init__(self, span: Span) -> None:
+        self._file = span.file
+        self._line = span.line
+        self._col = span.col
+        self._end_line = span.end_line
+        self._end_col = span.end_col
 
     def children(self) -> Iterator[Node]:
         """The child nodes, in source order (lists are flattened, ``None`` skipped)."""
@@ -65,9 +85,21 @@ class Node:
                 yield value
 
 
+def _get_span(node: Node) -> Span:
+    return make_span(node._file, node._line, node._col, node._end_line, node._end_col)
+
+
+# (set after the class is made: in the class body the property would be read as the InitVar's default)
+Node.span = property(_get_span, Node.__post_init__, doc="Where the node is in its source file.")  # type: ignore[assignment]
+
+
 @dataclass(slots=True, eq=False)
 class Expr(Node):
     """Base of expressions."""
+
+    #: What the expression means, filled in by the semantic pass (``semantics.check.InfoTable``,
+    #: read as ``Model.info[expr]``): a slot is an eighth of the memory of a dict entry per node
+    _info: object = field(default=None, init=False, repr=False)
 
 
 @dataclass(slots=True, eq=False)
@@ -75,7 +107,7 @@ class Stmt(Node):
     """Base of statements and declarations: anything that occupies a line and can carry comments."""
 
     _: KW_ONLY
-    leading_comments: list[Comment] = field(default_factory=list)
+    leading_comments: tuple[Comment, ...] = ()
     trailing_comment: Comment | None = None
 
 
@@ -205,7 +237,7 @@ class Block(Node):
 
     statements: list[Stmt]
     header_comment: Comment | None = None
-    end_comments: list[Comment] = field(default_factory=list)
+    end_comments: tuple[Comment, ...] = ()
     _children: ClassVar[tuple[str, ...]] = ("statements",)
 
 
@@ -351,7 +383,7 @@ class Select(Stmt):
     subject: Expr
     cases: list[CaseClause]
     end_comment: Comment | None = None
-    end_comments: list[Comment] = field(default_factory=list)
+    end_comments: tuple[Comment, ...] = ()
     _children: ClassVar[tuple[str, ...]] = ("subject", "cases")
 
 
@@ -508,7 +540,7 @@ class PropertyDecl(Stmt):
     getter: Accessor | None
     setter: Accessor | None
     end_comment: Comment | None = None
-    end_comments: list[Comment] = field(default_factory=list)
+    end_comments: tuple[Comment, ...] = ()
     _children: ClassVar[tuple[str, ...]] = ("type", "getter", "setter")
 
 
@@ -528,7 +560,7 @@ class ClassDecl(Stmt):
     modifiers: list[str]
     members: list[Stmt]
     end_comment: Comment | None = None
-    end_comments: list[Comment] = field(default_factory=list)
+    end_comments: tuple[Comment, ...] = ()
     _children: ClassVar[tuple[str, ...]] = ("members",)
 
 
@@ -537,7 +569,7 @@ class ModuleDecl(Stmt):
     name: str
     members: list[Stmt]
     end_comment: Comment | None = None
-    end_comments: list[Comment] = field(default_factory=list)
+    end_comments: tuple[Comment, ...] = ()
     _children: ClassVar[tuple[str, ...]] = ("members",)
 
 
@@ -548,7 +580,7 @@ class SourceUnit(Node):
 
     path: str
     members: list[Stmt]
-    end_comments: list[Comment] = field(default_factory=list)
+    end_comments: tuple[Comment, ...] = ()
     _children: ClassVar[tuple[str, ...]] = ("members",)
 
 
@@ -601,7 +633,7 @@ class NodeTransformer(NodeVisitor):
 
 
 _DUMP_SKIP = frozenset(
-    {"span", "leading_comments", "trailing_comment", "end_comment", "end_comments", "header_comment"}
+    {"_file", "_line", "_col", "_end_line", "_end_col", "_info", "leading_comments", "trailing_comment", "end_comment", "end_comments", "header_comment"}
 )
 
 

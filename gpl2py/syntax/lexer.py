@@ -200,7 +200,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 append = toks.append
         elif g == 2:  # number
             start = m.start(g)
-            t = m.group(g)
+            t = intern(m.group(g))  # a literal keeps its text: one string per spelling, like names
             col = start - line_start + 1
             span = _span(path, line, col, col + len(t))
             if "." in t or "e" in t or "E" in t:

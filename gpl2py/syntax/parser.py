@@ -350,8 +350,11 @@ class Parser:
 
     # ---------------------------------------------------------------------------- line handling
 
-    def comments(self) -> list[A.Comment]:
+    def comments(self) -> tuple[A.Comment, ...]:
         """Full-line comments and '#' lines at the current position (consumed)."""
+        k = self.tok.kind
+        if k is not K.COMMENT and k is not K.DIRECTIVE:
+            return ()
         out: list[A.Comment] = []
         while True:
             tok = self.tok
@@ -362,7 +365,7 @@ class Parser:
                 if self.tok.kind is K.NEWLINE:
                     self.next()
             else:
-                return out
+                return tuple(out)
 
     def end_of_line(self, node: A.Stmt | None) -> A.Comment | None:
         """Finish a logical line: attach its comment to ``node`` and consume the ``NEWLINE``.
@@ -461,12 +464,12 @@ class Parser:
         """Statements up to (not including) a line that closes an open construct, or EOF."""
         start = self.tok
         stmts: list[A.Stmt] = []
-        pending: list[A.Comment] = []
+        pending: tuple[A.Comment, ...] = ()
         while True:
             comments = self.comments()
             if pending:
                 comments = pending + comments
-                pending = []
+                pending = ()
             k = self.tok.kind
             if k is K.EOF:
                 break
@@ -481,7 +484,7 @@ class Parser:
             self.statement(stmts)
             if len(stmts) > n:
                 if comments:
-                    stmts[n].leading_comments[:0] = comments
+                    stmts[n].leading_comments = comments + stmts[n].leading_comments
             elif comments:
                 pending = comments
         return A.Block(self.span_from(start) if stmts else start.span, stmts, end_comments=comments)
@@ -575,7 +578,7 @@ class Parser:
                     continue
             member = self.member("file")
             if member is not None:
-                member.leading_comments[:0] = comments
+                member.leading_comments = comments + member.leading_comments
                 members.append(member)
         return A.SourceUnit(self.span_from(start), self.source.path, members, end_comments=comments)
 
@@ -613,7 +616,7 @@ class Parser:
                     break
                 member = self.member(container)
                 if member is not None:
-                    member.leading_comments[:0] = comments
+                    member.leading_comments = comments + member.leading_comments
                     out.append(member)
             node.end_comments = comments  # type: ignore[attr-defined]
         finally:
@@ -950,7 +953,7 @@ class Parser:
                 k = tok.kind
                 if k is K.GET or k is K.SET:
                     acc = self.accessor()
-                    acc.leading_comments[:0] = comments
+                    acc.leading_comments = comments + acc.leading_comments
                     if k is K.GET:
                         if node.getter is not None:
                             self.sink.report(M.PARSE_EXPECTED, tok.span, expected="one Get block", found="a second 'Get'")
@@ -1322,8 +1325,8 @@ class Parser:
                 if seen_else:
                     self.sink.report(M.PARSE_EXPECTED, case_tok.span, expected="'End Select' after the 'Case Else' block", found="'Case'")
                 seen_else = seen_else or clause.is_else
-                clause.leading_comments[:0] = pending
-                pending = []
+                clause.leading_comments = pending + clause.leading_comments
+                pending = ()
                 node.cases.append(clause)
             node.end_comments = pending
         finally:

@@ -55,9 +55,14 @@ def _read_regular(file: SandboxPath) -> bytes | None:
     """The file's bytes, or None: a link, several hard links, not regular, too big, unreadable."""
     try:
         with file.open("r") as stream:
-            if os.fstat(stream.fileno()).st_size > MAX_FILE_BYTES:
+            size = os.fstat(stream.fileno()).st_size
+            if size > MAX_FILE_BYTES:
                 return None
-            data = stream.read(MAX_FILE_BYTES + 1)
+            # read(n) allocates n bytes first: ask for the size the file has, then (if it grew
+            # meanwhile) for the rest up to the limit, not for the limit every time
+            data = stream.read(size + 1)
+            if len(data) > size:
+                data += stream.read(MAX_FILE_BYTES + 1 - len(data))
     except (OSError, GplException):
         return None
     return data if len(data) <= MAX_FILE_BYTES else None
