@@ -15,7 +15,7 @@ ratios.  Target: ratio <= 4.
 Both run with compiled bytecode cached, as an installed package and the standard library are (pip
 compiles them at install): the environment's ``PYTHONDONTWRITEBYTECODE`` is dropped and
 ``PYTHONPYCACHEPREFIX`` points both commands at one fresh cache folder, which the untimed first
-runs fill.  Without a cache every start would compile gpl2py from source, which no installed
+runs fill.  ``PYTHONPATH`` makes the command run this checkout's gpl2py and gplrt.  Without a cache every start would compile gpl2py from source, which no installed
 gpl2py does.
 
 ``--importtime`` prints the slowest imports of one ``gpl2py check`` (``python -X importtime``) and
@@ -53,6 +53,9 @@ main()
 HEAVY = ("numpy", "pinocchio", "coal", "ruckig")
 
 
+ROOT = Path(__file__).resolve().parents[1]
+
+
 def gpl2py_command() -> list[str]:
     """The installed ``gpl2py`` script beside this interpreter, else ``python -m gpl2py``."""
     script = Path(sys.executable).with_name("gpl2py")
@@ -63,6 +66,8 @@ def environment(cache: Path) -> dict[str, str]:
     """This environment with bytecode cached in ``cache`` (see the module docstring)."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
     env["PYTHONPYCACHEPREFIX"] = str(cache)
+    # gpl2py and gplrt of this checkout, whichever one the interpreter has installed
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), str(ROOT / "runtime")])
     return env
 
 

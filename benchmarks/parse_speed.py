@@ -38,7 +38,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT), str(ROOT / "runtime")]  # this checkout's gpl2py and gplrt
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
