@@ -35,7 +35,7 @@ from gpl2py.lower.user_stubs import (
     load_user_stubs,
     with_shipped_standins,
 )
-from gpl2py.project import Limits, Project, load_project
+from gpl2py.project import Limits, Project, load_project, read_data_files
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model, analyze
 from gpl2py.semantics.resolve import TOP_MODULE
@@ -121,12 +121,10 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
 
 def _project_data(given: Path, project: Project) -> dict[str, bytes]:
     """The files the controller's project folder holds: every regular file of a project folder
-    (read without following links: ``gplrt.io.project_files``); for one source file, that file."""
-    from gplrt.io.project_files import read_project_files
-
+    (read without following links: ``project.read_data_files``); for one source file, that file."""
     if given.is_dir() or given.name.lower() == "project.gpr":
-        return read_project_files(project.root)
-    return {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
+        return read_data_files(project.root)
+    return {k: v for k, v in read_data_files(given.parent).items() if k == given.name}
 
 
 def lower(project: Project, model: Model, sink: DiagnosticSink,
