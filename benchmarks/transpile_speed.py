@@ -19,8 +19,11 @@ For each size, in turns, ``--runs`` times (after one untimed run of each):
 * **check**: ``gpl2py check PROJECT`` through :func:`gpl2py.cli.main`, in this process (load, parse,
   analysis and the lowering's checks; nothing written).
 
-Both pipelines pause the cyclic garbage collector themselves, so ``compile()`` runs with it off too
-(the same collector state on both sides).  Printed per size: the medians with their spread (wall
+Every run starts as a fresh process would, with the cyclic garbage collector on (after a
+collection, so that one run's garbage is not the next one's cost); each side then does what it
+does: the pipelines pause the collector while they build their trees and switch it back on at the
+end, where the first collection walks what they allocated -- a cost of the pipeline, so it is
+inside the time; ``compile()`` builds its tree outside Python's heap and pays no collection.  Printed per size: the medians with their spread (wall
 time), the median ratio ``transpile / compile()`` (targets: <= 8 at 100k and 300k lines), and the
 per-line CPU time of translate and check with its ratio to the smallest size (target: <= 1.2 at
 300k lines against 10k).  CPU time, not wall time, for the growth: the machine is shared, and what
@@ -38,6 +41,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import cProfile
+import gc
 import io
 import pstats
 import random
@@ -216,15 +220,19 @@ def measure(lines: int, runs: int, profile: bool, libcst: bool) -> dict[str, obj
         check(proj)
         wall: dict[str, list[float]] = {"translate": [], "compile": [], "check": []}
         cpu: dict[str, list[float]] = {"translate": [], "check": []}
-        with collector(False):  # the state both pipelines run in (see the module docstring)
+        def sample(name: str, fn: Callable[[], object]) -> None:
+            gc.collect()  # the previous sample's garbage is not this sample's cost
+            t0, c0 = time.perf_counter(), time.process_time()
+            fn()
+            wall[name].append(time.perf_counter() - t0)
+            if name in cpu:
+                cpu[name].append(time.process_time() - c0)
+
+        with collector(True):  # a fresh process's state (see the module docstring)
             for _ in range(runs):
-                t0 = time.process_time()
-                wall["translate"].append(timed(lambda: translate(proj)))
-                cpu["translate"].append(time.process_time() - t0)
-                wall["compile"].append(timed(lambda: compile_all(py)))
-                t0 = time.process_time()
-                wall["check"].append(timed(lambda: check(proj)))
-                cpu["check"].append(time.process_time() - t0)
+                sample("translate", lambda: translate(proj))
+                sample("compile", lambda: compile_all(py))
+                sample("check", lambda: check(proj))
         if libcst:
             _libcst_costs(py, statistics.median(wall["compile"]))
     ratios = [a / b for a, b in zip(wall["translate"], wall["compile"])]

@@ -120,33 +120,38 @@ def _run_check(args: argparse.Namespace) -> Outcome:
     translation would (GPL3501); ``--strict`` makes them errors.  ``--stubs DIR`` is read as
     ``translate`` and ``run`` read it, so a folder or file they would refuse (GPL3503) is
     reported here too: the three commands take the same stub options."""
+    from gpl2py.transpile import collector_paused
+
+    out = Outcome()
+    with collector_paused():  # translate's policy, from loading on (gpl2py.transpile)
+        _check(args, out)  # its locals (trees, model) go before the collector comes back
+    return out
+
+
+def _check(args: argparse.Namespace, out: Outcome) -> None:
     from gpl2py.lower.user_stubs import load_user_stubs, with_shipped_standins
     from gpl2py.semantics.catalogue import load_catalogue
     from gpl2py.semantics.check import analyze
-    from gpl2py.syntax.lexer import gc_paused
     from gpl2py.transpile import lower
 
-    out = Outcome()
     project = load_project(args.path, out.sink, limits_of(args))
     if project is None:
-        return out
+        return
     _remember(out, project)
     user = load_user_stubs(args.stubs, out.sink) if args.stubs is not None else None
     if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
         user = with_shipped_standins(user, out.sink)
     incomplete = out.sink.has_errors()  # a source could not be loaded: it may declare the start
-    with gc_paused():  # as in transpile(): the collector would re-scan the growing tree for nothing
-        units = []
-        for source in project.sources:
-            units.append(_parse(source, out.sink))
-            out.checked += 1
-        model = analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
-                        None if incomplete else project.start, protected=bool(project.protected),
-                        strict=args.strict, stub_provider=user.provider if user is not None else None,
-                        start_span=project.start_span)
-        if not out.sink.has_errors():
-            lower(project, model, out.sink, user=user)
-    return out
+    units = []
+    for source in project.sources:
+        units.append(_parse(source, out.sink))
+        out.checked += 1
+    model = analyze(units, out.sink, load_catalogue(), project.name,  # type: ignore[arg-type]
+                    None if incomplete else project.start, protected=bool(project.protected),
+                    strict=args.strict, stub_provider=user.provider if user is not None else None,
+                    start_span=project.start_span)
+    if not out.sink.has_errors():
+        lower(project, model, out.sink, user=user)
 
 
 def _configure_dump_ast(parser: argparse.ArgumentParser) -> None:
