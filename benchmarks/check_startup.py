@@ -3,20 +3,21 @@ Python file, both as fresh processes.
 
 Run::
 
-    python benchmarks/check_startup.py [--runs 21] [--importtime]
+    python benchmarks/check_startup.py [--runs 21] [--importtime] [--no-bytecode-cache]
 
 This is what a porting engineer pays per save: a new process that starts the interpreter, imports
 gpl2py, loads the built-in catalogue, and checks one small file.  The baseline is the same for
 Python: a new interpreter that byte-compiles one small file.  Interpreter start-up is in both.  The
-two commands run in turns (after one untimed run of each, which also fills ``__pycache__``), and
-the medians of their wall times are printed with the spread, then the median of the per-turn
-ratios.  Target: ratio <= 4.
+two commands run in turns (after two untimed runs of each), and the medians of their wall times
+are printed with the spread, then the median of the per-turn ratios.  Target: ratio <= 4.
 
 Both run with compiled bytecode cached, as an installed package and the standard library are (pip
 compiles them at install): the environment's ``PYTHONDONTWRITEBYTECODE`` is dropped and
 ``PYTHONPYCACHEPREFIX`` points both commands at one fresh cache folder, which the untimed first
-runs fill.  ``PYTHONPATH`` makes the command run this checkout's gpl2py and gplrt.  Without a cache every start would compile gpl2py from source, which no installed
-gpl2py does.
+runs fill.  Without a cache every start would compile gpl2py from source, which no installed
+gpl2py does.  ``PYTHONPATH`` makes the command run this checkout's gpl2py and gplrt.
+``--no-bytecode-cache`` sets ``PYTHONDONTWRITEBYTECODE=1`` for both instead: every start then
+compiles whatever has no bytecode cached beside its source (all of gpl2py in a fresh checkout).
 
 ``--importtime`` prints the slowest imports of one ``gpl2py check`` (``python -X importtime``) and
 whether it imported numpy, pinocchio, coal or ruckig.
@@ -62,10 +63,13 @@ def gpl2py_command() -> list[str]:
     return [str(script)] if script.exists() else [sys.executable, "-m", "gpl2py"]
 
 
-def environment(cache: Path) -> dict[str, str]:
-    """This environment with bytecode cached in ``cache`` (see the module docstring)."""
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-    env["PYTHONPYCACHEPREFIX"] = str(cache)
+def environment(cache: Path, bytecode: bool) -> dict[str, str]:
+    """This environment with bytecode cached in ``cache``, or never written (module docstring)."""
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONDONTWRITEBYTECODE", "PYTHONPYCACHEPREFIX")}
+    if bytecode:
+        env["PYTHONPYCACHEPREFIX"] = str(cache)
+    else:
+        env["PYTHONDONTWRITEBYTECODE"] = "1"
     # gpl2py and gplrt of this checkout, whichever one the interpreter has installed
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT), str(ROOT / "runtime")])
     return env
@@ -102,6 +106,7 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=21)
     ap.add_argument("--importtime", action="store_true")
+    ap.add_argument("--no-bytecode-cache", action="store_true", help="both commands without cached bytecode")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         gpl_file = Path(tmp) / "Hello.gpl"
@@ -110,8 +115,8 @@ def main() -> int:
         py_file.write_text(PY)
         check = gpl2py_command() + ["check", str(gpl_file)]
         compile_ = [sys.executable, "-m", "py_compile", str(py_file)]
-        env = environment(Path(tmp) / "pycache")
-        for _ in range(2):  # fills the bytecode cache of both
+        env = environment(Path(tmp) / "pycache", not args.no_bytecode_cache)
+        for _ in range(2):  # fills the bytecode cache of both (if there is one)
             wall(check, env)
             wall(compile_, env)
         ta: list[float] = []
@@ -123,6 +128,7 @@ def main() -> int:
         print(f"gpl2py check, 5-line GPL file:         {pair.a.text()}")
         print(f"python -m py_compile, 5-line Python:   {pair.b.text()}")
         print(f"ratio check / py_compile:              {pair.ratio_text()} (target <= 4)")
+        print("bytecode:", "never written (PYTHONDONTWRITEBYTECODE=1)" if args.no_bytecode_cache else "cached")
         if args.importtime:
             importtime(check, env)
     return 0
