@@ -168,10 +168,16 @@ def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
     reported here too: the three commands take the same stub options.  The project's own
     diagnostics decide (a sink of its own), so the errors of another project checked in the same
     call change nothing here."""
+    from gpl2py.transpile import collector_paused
+
+    with collector_paused():  # translate's policy, from loading on (gpl2py.transpile)
+        _check(path, args, out)  # its locals (trees, model) go before the collector comes back
+
+
+def _check(path: str, args: argparse.Namespace, out: Outcome) -> None:
     from gpl2py.lower.user_stubs import load_user_stubs, with_shipped_standins
     from gpl2py.semantics.catalogue import load_catalogue
     from gpl2py.semantics.check import analyze
-    from gpl2py.syntax.lexer import gc_paused
     from gpl2py.transpile import lower
 
     sink = out.sink.child()
@@ -185,17 +191,16 @@ def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
         if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
             user = with_shipped_standins(user, sink)
         incomplete = sink.has_errors()  # a source could not be loaded: it may declare the start
-        with gc_paused():  # as in transpile(): the collector would re-scan the growing tree for nothing
-            units = []
-            for source in project.sources:
-                units.append(_parse(source, sink))
-                out.checked += 1
-            model = analyze(units, sink, load_catalogue(), project.name,  # type: ignore[arg-type]
-                            None if incomplete else project.start, protected=bool(project.protected),
-                            strict=args.strict, stub_provider=user.provider if user is not None else None,
-                            start_span=project.start_span)
-            if not sink.has_errors():
-                lower(project, model, sink, user=user, keep_modules=False)
+        units = []
+        for source in project.sources:
+            units.append(_parse(source, sink))
+            out.checked += 1
+        model = analyze(units, sink, load_catalogue(), project.name,  # type: ignore[arg-type]
+                        None if incomplete else project.start, protected=bool(project.protected),
+                        strict=args.strict, stub_provider=user.provider if user is not None else None,
+                        start_span=project.start_span)
+        if not sink.has_errors():
+            lower(project, model, sink, user=user, keep_modules=False)
     finally:
         out.sink.extend(sink)
 

@@ -528,5 +528,65 @@ def _byte_span(shown: str, data: bytes, offset: int) -> Span:
     return Span(Position(shown, line, col), line, col + 1)
 
 
+# --- the project's own files ----------------------------------------------------------------------
+
+#: A controller file name is at most this long and never starts with ``.``; a project folder is
+#: no place for files over DATA_FILE_MAX_BYTES.  The runtime installs by the same rules
+#: (``gplrt.io.flashroot.MAX_NAME``, ``gplrt.io.project_files.MAX_FILE_BYTES``).
+CONTROLLER_MAX_NAME = 43
+DATA_FILE_MAX_BYTES = 16 * 2**20
+_DATA_DIR_FLAGS = os.O_RDONLY | os.O_DIRECTORY | getattr(os, "O_CLOEXEC", 0)
+_DATA_FILE_FLAGS = os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0) \
+    | getattr(os, "O_CLOEXEC", 0)
+
+
+def read_data_files(folder: str | os.PathLike[str]) -> dict[str, bytes]:
+    """The files a controller's project folder holds once ``folder`` is downloaded, by name:
+    every regular file directly in it with one hard link, a name the controller accepts and at
+    most :data:`DATA_FILE_MAX_BYTES` bytes, each read through the folder's descriptor without
+    following a link (checked before the open and again on the open file).  Links, hard-linked
+    files (their data may be a file outside), folders, FIFOs and devices are skipped.
+
+    These are the files ``gplrt.io.project_files.read_project_files`` installs at run time; this
+    copy keeps the translation from importing the runtime's I/O stack, and
+    ``tests/frontend/test_project_data_files.py`` holds the two to the same answer."""
+    try:
+        dir_fd = os.open(folder, _DATA_DIR_FLAGS)
+    except OSError:
+        return {}
+    try:
+        with os.scandir(dir_fd) as found:
+            names = sorted(e.name for e in found if e.is_file(follow_symlinks=False))
+        out: dict[str, bytes] = {}
+        for name in names:
+            if name.startswith(".") or len(name) > CONTROLLER_MAX_NAME:
+                continue
+            data = _read_data_file(dir_fd, name)
+            if data is not None:
+                out[name] = data
+        return out
+    finally:
+        os.close(dir_fd)
+
+
+def _read_data_file(dir_fd: int, name: str) -> bytes | None:
+    def acceptable(st: os.stat_result) -> bool:
+        return stat.S_ISREG(st.st_mode) and st.st_nlink == 1 and st.st_size <= DATA_FILE_MAX_BYTES
+
+    try:
+        before = os.stat(name, dir_fd=dir_fd, follow_symlinks=False)
+        if not acceptable(before):
+            return None
+        fd = os.open(name, _DATA_FILE_FLAGS, dir_fd=dir_fd)
+        with os.fdopen(fd, "rb") as stream:
+            after = os.fstat(fd)
+            if not acceptable(after) or (after.st_dev, after.st_ino) != (before.st_dev, before.st_ino):
+                return None  # swapped between the check and the open
+            data = stream.read(DATA_FILE_MAX_BYTES + 1)
+    except OSError:
+        return None
+    return data if len(data) <= DATA_FILE_MAX_BYTES else None
+
+
 def _folder_name(folder: Path) -> str:
     return folder.resolve().name or str(folder)

@@ -16,7 +16,8 @@ from __future__ import annotations
 import gc
 import os
 import shutil
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -35,7 +36,7 @@ from gpl2py.lower.user_stubs import (
     load_user_stubs,
     with_shipped_standins,
 )
-from gpl2py.project import Limits, Project, load_project
+from gpl2py.project import Limits, Project, load_project, read_data_files
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model, analyze
 from gpl2py.semantics.resolve import TOP_MODULE
@@ -70,19 +71,33 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     when the translation fails.  ``limits``: how much input may be read (``project.Limits``;
     default from the environment).
 
-    The cyclic garbage collector is paused meanwhile: the pipeline allocates hundreds of thousands
-    of small tree and symbol objects that all live to the end, and the full collections their
-    allocation triggers cost more than the semantic pass itself (benchmarks/transpile_speed.py).
+    The cyclic garbage collector is paused meanwhile (:func:`collector_paused`).
     """
+    with collector_paused():
+        try:
+            return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits)
+        except Exception as exc:  # a bug in gpl2py, in any phase: a diagnostic, never a traceback
+            if os.environ.get("GPL2PY_TRACEBACK"):
+                raise
+            sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+            return None
+
+
+@contextmanager
+def collector_paused() -> Iterator[None]:
+    """The collector policy of a translation and of ``gpl2py check``: the cyclic garbage
+    collector is off from loading the project to the end of lowering, and back on (if it was)
+    once the pipeline's locals -- sources, trees, symbols, the model -- are out of scope.
+
+    The pipeline allocates millions of small token, tree and symbol objects that all live to the
+    end; with the collector on, their allocation triggers collections that walk everything built
+    so far, again and again, which cost more than the semantic pass itself.  Reference counting
+    frees what can be freed meanwhile; the first collection after the pause walks what is left
+    once (benchmarks/transpile_speed.py times it as part of the pipeline)."""
     enabled = gc.isenabled()
     gc.disable()
     try:
-        return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits)
-    except Exception as exc:  # a bug in gpl2py, in any phase: a diagnostic, never a traceback
-        if os.environ.get("GPL2PY_TRACEBACK"):
-            raise
-        sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
-        return None
+        yield
     finally:
         if enabled:
             gc.enable()
@@ -121,12 +136,10 @@ def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: b
 
 def _project_data(given: Path, project: Project) -> dict[str, bytes]:
     """The files the controller's project folder holds: every regular file of a project folder
-    (read without following links: ``gplrt.io.project_files``); for one source file, that file."""
-    from gplrt.io.project_files import read_project_files
-
+    (read without following links: ``project.read_data_files``); for one source file, that file."""
     if given.is_dir() or given.name.lower() == "project.gpr":
-        return read_project_files(project.root)
-    return {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
+        return read_data_files(project.root)
+    return {k: v for k, v in read_data_files(given.parent).items() if k == given.name}
 
 
 def lower(project: Project, model: Model, sink: DiagnosticSink,

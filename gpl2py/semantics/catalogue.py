@@ -1,22 +1,15 @@
-"""The built-in classes, functions and constants, read from the runtime's own catalogue.
+"""The built-in classes, functions and constants GPL programs name without declaring them.
 
-The transpiler keeps no list of its own: it introspects ``gplrt.builtins`` (the tables and the
-Python classes they name) and turns type hints into :mod:`gpl2py.semantics.types`.  The
-conventions it relies on are written down in ``runtime/gplrt/CATALOGUE.md``:
-
-* GPL members are the attributes whose name starts with an upper-case letter;
-* properties are ``property`` objects (settable when they have a setter);
-* an assignable member with arguments ``M(args)`` has a companion method ``set_M(args, value)``;
-  a property may have one too (``Controller.PowerEnabled(timeout) = True`` beside
-  ``Controller.PowerEnabled = True``);
-* a member with several forms (``Vision.Result()`` / ``Result(tool, index)``, ``Robot.Tool = loc``
-  / ``Robot.Tool(robot) = loc``) declares each with ``typing.overload``; otherwise its Python
-  signature is its one GPL signature, and ``*args`` is refused (it would hide the real arity);
-* Shared members are staticmethods/classmethods; global classes are exported as one instance;
-* a ByRef parameter is annotated ``Ref[T]``;
-* a member the simulated controller does not implement is marked by
-  ``gplrt.lang.exceptions.not_simulated``: it keeps its real signature, so calls are checked here,
-  and raises -204 when it runs (``Member.simulated`` is False).
+The runtime is the source of truth: ``gplrt.builtins`` lists them and its Python classes carry
+their GPL signatures, following the conventions of ``runtime/gplrt/CATALOGUE.md`` (GPL members
+start with an upper-case letter; properties, ``set_`` companions, ``typing.overload`` forms,
+``Ref[T]`` ByRef parameters, ``do_`` statement forms, ``@not_simulated`` ...).  Reading them means
+importing the runtime, and with it numpy, Pinocchio and Ruckig, which is most of a second: too
+much for ``gpl2py check`` in an editor's loop.  So :mod:`gpl2py.semantics.catalogue_gen` reads
+the runtime once, when it changes, and writes what it found to the data module
+:data:`DATA_MODULE` (plain literals, committed with the package); this module only reads that
+data.  ``tests/semantics/test_catalogue_data.py`` fails when the data module and a fresh reading
+of the runtime differ, naming the command that regenerates it (:data:`REGENERATE`).
 
 Lookups are case-insensitive; every entry keeps the runtime's canonical spelling, which the
 lowering uses in generated code.
@@ -26,29 +19,9 @@ from __future__ import annotations
 
 import functools
 import importlib
-import inspect
-import typing
 from dataclasses import dataclass, field
-from types import ModuleType
-from typing import Any, Callable
 
 from gpl2py.semantics import types as t
-
-_PRIMITIVE_BY_NEWTYPE_NAME = {
-    "Boolean": t.BOOLEAN,
-    "Byte": t.BYTE,
-    "Short": t.SHORT,
-    "Integer": t.INTEGER,
-    "Single": t.SINGLE,
-    "Double": t.DOUBLE,
-    "String": t.STRING,
-}
-_PRIMITIVE_BY_PYTHON_TYPE: dict[object, t.GplType] = {
-    bool: t.BOOLEAN,
-    int: t.INTEGER,
-    float: t.DOUBLE,
-    str: t.STRING,
-}
 
 
 @dataclass(frozen=True)
@@ -148,6 +121,9 @@ class BuiltinFunction:
     python_name: str
     params: tuple[Param, ...]
     result: t.GplType
+    #: the runtime module that defines it (``gplrt.lang.conversions``): translation-time constant
+    #: folding imports the function from there, not the whole runtime (semantics/consts.py)
+    module: str = "gplrt.builtins"
 
 
 @dataclass(frozen=True)
@@ -182,198 +158,102 @@ class Catalogue:
         return self.type_members.get(typ.name.lower())
 
 
-class _TypeMapper:
-    """Turns runtime annotations into static GPL types."""
-
-    def __init__(self, class_names: dict[type, str]) -> None:
-        self._class_names = class_names
-
-    def convert(self, annotation: Any) -> tuple[t.GplType, bool]:
-        """Returns (type, byref)."""
-        if annotation is None or annotation is type(None) or annotation is inspect.Parameter.empty:
-            return t.VOID, False
-        if annotation is Any or annotation is object:
-            # "any value, the runtime converts" (CInt's value, Format, Console.Write): not the
-            # error type, which would silence diagnostics about the argument
-            return t.ANY, False
-        origin = typing.get_origin(annotation)
-        if origin is not None:
-            args = [a for a in typing.get_args(annotation) if a is not type(None)]
-            if getattr(origin, "__name__", "") == "Ref" and args:
-                inner, _ = self.convert(args[0])
-                return inner, True
-            if origin in (typing.Union, getattr(__import__("types"), "UnionType", None)) and len(args) == 1:
-                return self.convert(args[0])
-            if (origin is list or getattr(origin, "__name__", "") == "GplArray") and args:
-                inner, _ = self.convert(args[0])  # a GPL array of T (list[T] in plain Python code)
-                return t.ArrayType(inner), False
-            return t.ERROR, False
-        supertype = getattr(annotation, "__supertype__", None)
-        if supertype is not None:  # a NewType from gplrt.lang.gpltypes
-            prim = _PRIMITIVE_BY_NEWTYPE_NAME.get(annotation.__name__)
-            if prim is not None:
-                return prim, False
-            return t.ERROR, False
-        if annotation in _PRIMITIVE_BY_PYTHON_TYPE:
-            return _PRIMITIVE_BY_PYTHON_TYPE[annotation], False
-        if isinstance(annotation, type) and annotation in self._class_names:
-            return t.ClassType.of(self._class_names[annotation], builtin=True), False
-        return t.ERROR, False
+DATA_MODULE = "gpl2py.semantics.builtins_data"
+#: The command that rewrites :data:`DATA_MODULE` from the installed runtime.
+REGENERATE = "python -m gpl2py.semantics.catalogue_gen"
 
 
-def _hints(func: Callable[..., Any]) -> dict[str, Any]:
-    try:
-        return typing.get_type_hints(func, include_extras=True)
-    except Exception:  # unresolved forward references: fall back to raw annotations
-        return dict(getattr(func, "__annotations__", {}))
+class CatalogueDataError(RuntimeError):
+    """The catalogue's data module is missing or unreadable (regenerate it: :data:`REGENERATE`)."""
 
 
-class CatalogueError(TypeError):
-    """The runtime declares a GPL member the catalogue cannot read (a bug in the runtime)."""
+_SPECIAL_TYPES: dict[str, t.GplType] = {"-": t.VOID, "*": t.ANY, "!": t.ERROR}
 
 
-def _params(func: Callable[..., Any], mapper: _TypeMapper, skip_first: bool) -> tuple[Param, ...]:
-    hints = _hints(func)
-    out: list[Param] = []
-    sig = inspect.signature(func)
-    for i, (name, p) in enumerate(sig.parameters.items()):
-        if skip_first and i == 0:
-            continue
-        if p.kind is p.VAR_POSITIONAL:
-            raise CatalogueError(f"{func.__qualname__} takes *{name}: declare its GPL forms with "
-                                 "typing.overload (runtime/gplrt/CATALOGUE.md)")
-        if p.kind in (p.VAR_KEYWORD, p.KEYWORD_ONLY):
-            continue
-        typ, byref = mapper.convert(hints.get(name, inspect.Parameter.empty))
-        optional = p.default is not inspect.Parameter.empty
-        out.append(Param(name, typ, byref, optional, p.default if optional else None))
-    return tuple(out)
+def type_code(typ: t.GplType) -> str:
+    """The data module's spelling of a static type: a primitive's name (``Integer``), a built-in
+    class's name after ``C:`` (``C:Location``), an array after ``A:`` (``A:Integer``, one rank),
+    ``-`` no value, ``*`` any value, ``!`` an annotation the runtime got wrong."""
+    if isinstance(typ, t.PrimitiveType):
+        return typ.name
+    if isinstance(typ, t.ClassType) and typ.builtin:
+        return "C:" + typ.declared_name
+    if isinstance(typ, t.ArrayType) and typ.rank == 1:
+        return "A:" + type_code(typ.element)
+    for code, special in _SPECIAL_TYPES.items():
+        if typ is special:
+            return code
+    raise CatalogueDataError(f"the catalogue cannot hold the type {typ!r}")
 
 
-def _result(func: Callable[..., Any], mapper: _TypeMapper) -> t.GplType:
-    hints = _hints(func)
-    if "return" not in hints:
-        return t.VOID
-    typ, _ = mapper.convert(hints["return"])
-    return typ
+class _Decoder:
+    """Data module rows -> catalogue objects; equal rows give the same (shared) objects."""
+
+    def __init__(self) -> None:
+        self._types: dict[str, t.GplType] = dict(_SPECIAL_TYPES)
+        self._forms: dict[tuple[object, ...], Form] = {}
+
+    def type(self, code: str) -> t.GplType:
+        typ = self._types.get(code)
+        if typ is None:
+            if code.startswith("C:"):
+                typ = t.ClassType.of(code[2:], builtin=True)
+            elif code.startswith("A:"):
+                typ = t.ArrayType(self.type(code[2:]))
+            else:
+                prim = t.lookup_primitive(code)
+                if prim is None:
+                    raise CatalogueDataError(f"unknown type {code!r} in {DATA_MODULE}")
+                typ = prim
+            self._types[code] = typ
+        return typ
+
+    def form(self, rows: tuple[tuple[object, ...], ...]) -> Form:
+        """``((name, type, byref, optional, default), ...)`` -> parameters."""
+        form = self._forms.get(rows)
+        if form is None:
+            form = tuple(Param(name, self.type(code), byref, optional, default)  # type: ignore[arg-type]
+                         for name, code, byref, optional, default in rows)
+            self._forms[rows] = form
+        return form
+
+    def member(self, name: str, row: tuple[object, ...]) -> Member:
+        kind, shared, result, forms, set_forms, simulated, action = row
+        calls = tuple(self.form(f) for f in forms)  # type: ignore[union-attr]
+        sets = tuple(self.form(f) for f in set_forms)  # type: ignore[union-attr]
+        return Member(name, kind, shared, max(calls, key=len), self.type(result),  # type: ignore[arg-type]
+                      settable=bool(sets), overloads=calls if len(calls) > 1 else (), set_forms=sets,
+                      simulated=simulated, action=action)  # type: ignore[arg-type]
+
+    def cls(self, name: str, row: tuple[object, ...]) -> BuiltinClass:
+        python_name, is_global, ctor, members = row
+        return BuiltinClass(name, python_name, is_global,  # type: ignore[arg-type]
+                            None if ctor is None else self.form(ctor),  # type: ignore[arg-type]
+                            {m.lower(): self.member(m, r) for m, r in members})  # type: ignore[union-attr]
 
 
-def _forms(func: Callable[..., Any], mapper: _TypeMapper, skip_first: bool) -> tuple[Form, ...]:
-    """Every GPL form of a runtime function: its ``typing.overload`` declarations, if it has any,
-    else its own signature."""
-    overloads = typing.get_overloads(func)
-    if overloads:
-        return tuple(_params(o, mapper, skip_first) for o in overloads)
-    return (_params(func, mapper, skip_first),)
-
-
-def _set_forms(cls: type, name: str, prop: property | None, mapper: _TypeMapper,
-               skip_first: bool) -> tuple[Form, ...]:
-    """The assignment forms of member ``name``: the property's setter (``X.M = v``) and the forms
-    of the ``set_<name>`` companion (``X.M(args) = v``), each ending with the value."""
-    forms: list[Form] = []
-    if prop is not None and prop.fset is not None:
-        forms.append((Param("value", _result(prop.fget, mapper) if prop.fget else t.ERROR),))
-    raw = inspect.getattr_static(cls, f"set_{name}", None)
-    if raw is not None:
-        func = raw.__func__ if isinstance(raw, (staticmethod, classmethod)) else raw
-        skip = skip_first if inspect.isfunction(raw) else isinstance(raw, classmethod)
-        forms.extend(f for f in _forms(func, mapper, skip) if f)
-    return tuple(forms)
-
-
-def _simulated(func: Callable[..., Any]) -> bool:
-    return not getattr(func, "__gpl_not_simulated__", False)
-
-
-def _members(cls: type, mapper: _TypeMapper, *, all_shared: bool, value_type: bool) -> dict[str, Member]:
-    members: dict[str, Member] = {}
-    for klass in reversed(cls.__mro__):
-        if klass is object or klass is BaseException or klass is Exception:
-            continue
-        for name, raw in vars(klass).items():
-            if not name[:1].isupper():
-                continue
-            if isinstance(raw, property):
-                result = _result(raw.fget, mapper) if raw.fget else t.VOID
-                set_forms = _set_forms(cls, name, raw, mapper, skip_first=True)
-                members[name.lower()] = Member(
-                    name, "property", all_shared, (), result, settable=bool(set_forms),
-                    set_forms=set_forms, simulated=raw.fget is None or _simulated(raw.fget),
-                )
-            elif isinstance(raw, (staticmethod, classmethod)) or inspect.isfunction(raw):
-                if inspect.isfunction(raw):  # an instance method: ``self`` is not a GPL parameter
-                    func, shared_here, skip = raw, all_shared, True
-                else:
-                    func = raw.__func__
-                    # A classmethod's first parameter is the class; a value type's staticmethods
-                    # take the value itself first, except the type's Shared members (String.Compare).
-                    shared_here = not value_type or name in getattr(cls, "shared_members", ())
-                    skip = isinstance(raw, classmethod) or not shared_here
-                forms = _forms(func, mapper, skip_first=skip)
-                set_forms = _set_forms(cls, name, None, mapper, skip_first=True)
-                action = f"do_{name}" if callable(getattr(cls, f"do_{name}", None)) else None
-                members[name.lower()] = Member(
-                    name,
-                    "method",
-                    shared_here,
-                    max(forms, key=len),
-                    _result(func, mapper),
-                    settable=bool(set_forms),
-                    overloads=forms if len(forms) > 1 else (),
-                    set_forms=set_forms,
-                    simulated=_simulated(func),
-                    action=action,
-                )
-    return members
-
-
-def build_catalogue(module: ModuleType) -> Catalogue:
-    """Read the tables of ``module`` (normally ``gplrt.builtins``) into a :class:`Catalogue`."""
-    classes: dict[str, str] = getattr(module, "CLASSES", {})
-    globals_: dict[str, str] = getattr(module, "GLOBAL_CLASSES", {})
-    functions: dict[str, str] = getattr(module, "FUNCTIONS", {})
-    constants: dict[str, str] = getattr(module, "CONSTANTS", {})
-    type_members: dict[str, str] = getattr(module, "TYPE_MEMBERS", {})
-
-    class_names: dict[type, str] = {}
-    for gpl_name, py_name in classes.items():
-        class_names[getattr(module, py_name)] = gpl_name
-    for gpl_name, py_name in globals_.items():
-        class_names[type(getattr(module, py_name))] = gpl_name
-    mapper = _TypeMapper(class_names)
-
+def catalogue_from_data(data: dict[str, object]) -> Catalogue:
+    """The catalogue the rows of the data module describe (``catalogue_gen.catalogue_data``)."""
+    d = _Decoder()
     cat = Catalogue()
-    for gpl_name, py_name in classes.items():
-        cls = getattr(module, py_name)
-        init = cls.__dict__.get("__init__")
-        ctor = _params(init, mapper, skip_first=True) if init is not None else ()
-        cat.classes[gpl_name.lower()] = BuiltinClass(
-            gpl_name, py_name, False, ctor, _members(cls, mapper, all_shared=False, value_type=False)
-        )
-    for gpl_name, py_name in globals_.items():
-        cls = type(getattr(module, py_name))
-        cat.classes[gpl_name.lower()] = BuiltinClass(
-            gpl_name, py_name, True, None, _members(cls, mapper, all_shared=True, value_type=False)
-        )
-    for gpl_name, py_name in functions.items():
-        func = getattr(module, py_name)
-        cat.functions[gpl_name.lower()] = BuiltinFunction(
-            gpl_name, py_name, _params(func, mapper, skip_first=False), _result(func, mapper)
-        )
-    for gpl_name, py_name in constants.items():
-        value = getattr(module, py_name)
-        typ = _PRIMITIVE_BY_PYTHON_TYPE.get(type(value), t.ERROR)
-        cat.constants[gpl_name.lower()] = BuiltinConstant(gpl_name, py_name, typ, value)
-    for type_name, py_name in type_members.items():
-        cls = getattr(module, py_name)
-        cat.type_members[type_name.lower()] = BuiltinClass(
-            type_name, py_name, False, None, _members(cls, mapper, all_shared=False, value_type=True)
-        )
+    for name, row in data["classes"]:  # type: ignore[attr-defined]
+        cat.classes[name.lower()] = d.cls(name, row)
+    for name, (python_name, module, params, result) in data["functions"]:  # type: ignore[attr-defined]
+        cat.functions[name.lower()] = BuiltinFunction(name, python_name, d.form(params), d.type(result), module)
+    for name, (python_name, code, value) in data["constants"]:  # type: ignore[attr-defined]
+        cat.constants[name.lower()] = BuiltinConstant(name, python_name, d.type(code), value)
+    for name, row in data["type_members"]:  # type: ignore[attr-defined]
+        cat.type_members[name.lower()] = d.cls(name, row)
     return cat
 
 
 @functools.lru_cache(maxsize=1)
 def load_catalogue() -> Catalogue:
-    """The catalogue of the installed runtime (read once per process)."""
-    return build_catalogue(importlib.import_module("gplrt.builtins"))
+    """The catalogue of the runtime this gpl2py ships with, read from :data:`DATA_MODULE` once
+    per process (importing the runtime itself would cost about a second: numpy, Pinocchio ...)."""
+    try:
+        data = importlib.import_module(DATA_MODULE).CATALOGUE
+        return catalogue_from_data(data)
+    except (ImportError, AttributeError, KeyError, TypeError, ValueError) as exc:
+        raise CatalogueDataError(f"cannot read the built-in catalogue {DATA_MODULE} ({exc}); "
+                                 f"regenerate it with: {REGENERATE}") from exc

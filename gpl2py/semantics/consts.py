@@ -13,6 +13,11 @@ Values are computed with the runtime's own operators and conversions (``gplrt.la
 functions the generated code would call, so a folded value is exactly the one the program would
 compute; an expression that raises (overflow, division by zero) is left to raise at run time.
 A chain of Consts that leads back to its start is GPL2042.
+
+Those runtime modules are GPL's language semantics alone (no simulator: no numpy, Pinocchio or
+Ruckig), and they are imported only when a project has a Const to fold; a pure built-in function
+is imported from the module that defines it (``BuiltinFunction.module``), never through
+``gplrt.builtins``, which would import the whole simulator.
 """
 
 from __future__ import annotations
@@ -21,10 +26,6 @@ import importlib
 from collections.abc import Callable
 from typing import Any
 
-from gplrt.lang import conversions as conv
-from gplrt.lang import operators as ops
-from gplrt.lang.errors import GplException
-
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
@@ -32,15 +33,13 @@ from gpl2py.semantics.catalogue import BuiltinConstant, BuiltinFunction
 from gpl2py.semantics.symbols import ProjectSyms, VarSym
 from gpl2py.syntax import ast as A
 
-_BINARY: dict[str, Callable[[Any, Any], Any]] = {
-    "+": ops.add, "-": ops.sub, "*": ops.mul, "/": ops.div, "\\": ops.idiv, "Mod": ops.mod,
-    "^": ops.power, "<<": ops.shl, ">>": ops.shr, "&": ops.concat,
-    "=": ops.eq, "<>": ops.ne, "<": ops.lt, ">": ops.gt, "<=": ops.le, ">=": ops.ge,
-    "And": ops.and_, "Or": ops.or_, "Xor": ops.xor,
-    "AndAlso": lambda a, b: conv.to_bool(a) and conv.to_bool(b),
-    "OrElse": lambda a, b: conv.to_bool(a) or conv.to_bool(b),
+#: GPL's binary operators in the runtime's ``gplrt.lang.operators`` (functions named there)
+_BINARY_NAMES = {
+    "+": "add", "-": "sub", "*": "mul", "/": "div", "\\": "idiv", "Mod": "mod", "^": "power",
+    "<<": "shl", ">>": "shr", "&": "concat", "=": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le",
+    ">=": "ge", "And": "and_", "Or": "or_", "Xor": "xor",
 }
-_UNARY: dict[str, Callable[[Any], Any]] = {"-": ops.neg, "+": conv.to_number, "Not": ops.not_}
+_UNARY_OPS = ("-", "+", "Not")
 # Built-in functions whose result depends on their arguments alone (no controller state)
 PURE_FUNCTIONS = frozenset({"CBool", "CByte", "CShort", "CInt", "CSng", "CDbl", "CStr", "Chr", "Asc",
                             "Hex", "Fix", "Int", "Len"})
@@ -48,6 +47,24 @@ PURE_FUNCTIONS = frozenset({"CBool", "CByte", "CShort", "CInt", "CSng", "CDbl", 
 
 class _NotConstant(Exception):
     """The expression needs the running program (a variable, a call, ...)."""
+
+
+class _Semantics:
+    """The runtime's operators and conversions (module docstring), imported on first use."""
+
+    def __init__(self) -> None:
+        conv = importlib.import_module("gplrt.lang.conversions")
+        ops = importlib.import_module("gplrt.lang.operators")
+        self.error: type[Exception] = importlib.import_module("gplrt.lang.errors").GplException
+        self.convert: Callable[[Any, str], Any] = conv.convert
+        self.binary: dict[str, Callable[[Any, Any], Any]] = {
+            op: getattr(ops, name) for op, name in _BINARY_NAMES.items()}
+        self.binary["AndAlso"] = lambda a, b: conv.to_bool(a) and conv.to_bool(b)
+        self.binary["OrElse"] = lambda a, b: conv.to_bool(a) or conv.to_bool(b)
+        self.unary: dict[str, Callable[[Any], Any]] = {"-": ops.neg, "+": conv.to_number, "Not": ops.not_}
+
+
+_BINARY_OPS = frozenset(_BINARY_NAMES) | {"AndAlso", "OrElse"}
 
 
 class ConstFolder:
@@ -59,6 +76,20 @@ class ConstFolder:
         self.values: dict[VarSym, object] = {}
         self._unfoldable: set[VarSym] = set()
         self._stack: list[VarSym] = []
+        self._rt: _Semantics | None = None
+
+    @property
+    def rt(self) -> _Semantics:
+        if self._rt is None:
+            self._rt = _Semantics()
+        return self._rt
+
+    def _failures(self) -> tuple[type[Exception], ...]:
+        """What folding an initializer may raise: it needs the program, or the runtime's operators
+        refuse the values (the program will raise the same at run time).  A GPL error can only
+        come from the runtime once it is imported, so a Const that is not foldable never imports it."""
+        failures: tuple[type[Exception], ...] = (_NotConstant, ArithmeticError, ValueError, TypeError)
+        return failures + (self._rt.error,) if self._rt is not None else failures
 
     def fold(self, consts: list[VarSym]) -> dict[VarSym, object]:
         for v in consts:
@@ -81,8 +112,8 @@ class ConstFolder:
             raise _NotConstant
         self._stack.append(v)
         try:
-            value = conv.convert(self._value(d.initializer), v.type.name)
-        except (_NotConstant, GplException, ArithmeticError, ValueError, TypeError):
+            value = self.rt.convert(self._value(d.initializer), v.type.name)
+        except self._failures():
             self._unfoldable.add(v)
             raise _NotConstant from None
         finally:
@@ -102,9 +133,9 @@ class ConstFolder:
     def _value(self, e: A.Expr) -> object:
         if isinstance(e, (A.IntegerLiteral, A.RealLiteral, A.StringLiteral, A.BooleanLiteral)):
             return e.value
-        if isinstance(e, A.Unary) and e.op in _UNARY:
-            return _UNARY[e.op](self._value(e.operand))
-        if isinstance(e, A.Binary) and e.op in _BINARY:
+        if isinstance(e, A.Unary) and e.op in _UNARY_OPS:
+            return self.rt.unary[e.op](self._value(e.operand))
+        if isinstance(e, A.Binary) and e.op in _BINARY_OPS:
             return self._binary(e)
         info = self.info.get(e)
         if info is not None and info.kind == "var" and isinstance(info.sym, VarSym) and info.sym.const \
@@ -115,26 +146,27 @@ class ConstFolder:
         if info is not None and info.kind == "bfunc" and isinstance(info.sym, BuiltinFunction) \
                 and info.sym.name in PURE_FUNCTIONS and isinstance(e, A.Invoke):
             args = [self._value(a) for a in e.args]
-            return _builtin(info.sym.python_name)(*args)
+            return _builtin(info.sym)(*args)
         raise _NotConstant
 
     def _binary(self, e: A.Binary) -> object:
         """A left-leaning chain without recursing on its spine (real code has long ones)."""
         spine = [e]
         left = e.left
-        while isinstance(left, A.Binary) and left.op in _BINARY:
+        while isinstance(left, A.Binary) and left.op in _BINARY_OPS:
             spine.append(left)
             left = left.left
         value = self._value(left)
+        binary = self.rt.binary
         for node in reversed(spine):
-            value = _BINARY[node.op](value, self._value(node.right))
+            value = binary[node.op](value, self._value(node.right))
         return value
 
 
-def _builtin(python_name: str) -> Callable[..., Any]:
-    """A function of ``gplrt.builtins``, imported when first needed (the catalogue has loaded the
-    module by then; importing it up front would cost every import of the checker 0.2 s)."""
-    return getattr(importlib.import_module("gplrt.builtins"), python_name)  # type: ignore[no-any-return]
+def _builtin(func: BuiltinFunction) -> Callable[..., Any]:
+    """The runtime's implementation of a pure built-in function, from the module that defines it
+    (``gplrt.lang.conversions`` ...: the catalogue records it), not from ``gplrt.builtins``."""
+    return getattr(importlib.import_module(func.module), func.python_name)  # type: ignore[no-any-return]
 
 
 def _qualified(v: VarSym) -> str:

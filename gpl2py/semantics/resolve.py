@@ -8,7 +8,8 @@ mean here?" with the lookup order of §6.4:
 1. procedure locals, parameters and the function-name result variable;
 2. members of the enclosing class and its enclosing classes;
 3. the enclosing module's members;
-4. Public members of all other modules, if unique (ambiguity is an error);
+4. Public members of all other modules, if unique (ambiguity is an error), from an index of the
+   project's Public names built once (``ProjectSyms.public_members``);
 5. modules and top-level classes by name, then built-in classes, functions and constants.
 """
 
@@ -229,6 +230,7 @@ class Collector:
                     mod = ModuleSym(member.name, member.span, unit.path, member, order=len(project.module_list))
                     project.modules[key] = mod
                     project.module_list.append(mod)
+                    project.names_changed()
                     self._members(mod, None, member.members)
                 elif isinstance(member, A.ClassDecl):
                     if top is None:
@@ -250,6 +252,7 @@ class Collector:
             self.sink.report(M.DUPLICATE_DECLARATION, span, name=name, scope=scope, line=line)  # type: ignore[arg-type]
             return False
         table[key] = sym
+        self.r.project.names_changed()  # (a table no lookup indexes: harmless)
         return True
 
     def _overload(self, table: dict[str, Member], p: ProcSym) -> bool:
@@ -262,6 +265,7 @@ class Collector:
         if isinstance(prev, ProcSym) and prev.kind in ("Sub", "Function"):
             group = OverloadSet(prev.name, prev.span, prev.owner, [prev])
             table[p.name.lower()] = group
+            self.r.project.names_changed()
             self.overload_sets.append((table, group))
         elif isinstance(prev, OverloadSet):
             group = prev
@@ -289,6 +293,7 @@ class Collector:
             if len(kept) == 1:  # nothing left to choose from: a plain procedure again
                 kept[0].overload_index = 0
                 table[group.name.lower()] = kept[0]
+                self.r.project.names_changed()
 
     def _members(self, mod: ModuleSym, cls: ClassSym | None, members: list[A.Stmt]) -> None:
         table = cls.members if cls is not None else mod.members

@@ -235,28 +235,46 @@ class ProjectSyms:
 
     # the synthetic module holding top-level classes (resolve.TOP_MODULE), if any
     top: ModuleSym | None = None
+    # every name public_members() answers for, built on first use (see there)
+    _public: dict[str, tuple[PublicName, ...]] | None = field(default=None, repr=False)
 
-    def public_members(self, name: str) -> list[PublicName]:
+    def public_members(self, name: str) -> tuple[PublicName, ...]:
         """Every Public ``name`` that may be used unqualified (the "unambiguous Public name"
         rule, §6.4): Public members of all modules and, as real code uses them, top-level
         classes and the Public Shared or Const members of top-level classes (a top-level class
-        is reachable like a module: ``Station.LoadFile``, ``STA_FL_PAL``)."""
-        key = name.lower()
-        out = []
+        is reachable like a module: ``Station.LoadFile``, ``STA_FL_PAL``).  Modules come in
+        project order, then the top-level classes.
+
+        Every name that is not local, not a member of the enclosing class or module and not a
+        module asks here (``Console``, ``CInt`` and every other built-in too), so the answer
+        comes from an index of all Public names, built once: scanning every module per lookup
+        made a project's analysis grow with the square of its number of modules.  Whoever
+        changes a member table after the first lookup calls :meth:`names_changed`."""
+        index = self._public
+        if index is None:
+            index = self._public = self._index_public()
+        return index.get(name.lower(), ())
+
+    def names_changed(self) -> None:
+        """A module's or top-level class's member table changed: index again on next use."""
+        self._public = None
+
+    def _index_public(self) -> dict[str, tuple[PublicName, ...]]:
+        index: dict[str, list[PublicName]] = {}
         for mod in self.module_list:
-            m = mod.members.get(key)
-            if m is not None and getattr(m, "public", False):
-                out.append(PublicName(mod.name, mod, m))
+            for key, m in mod.members.items():
+                if getattr(m, "public", False):
+                    index.setdefault(key, []).append(PublicName(mod.name, mod, m))
         top = self.top
         if top is not None:
-            cls = top.members.get(key)
-            if isinstance(cls, ClassSym):
-                out.append(PublicName(cls.name, top, cls))
+            for key, cls in top.members.items():
+                if isinstance(cls, ClassSym):
+                    index.setdefault(key, []).append(PublicName(cls.name, top, cls))
             for c in top.members.values():
                 if not isinstance(c, ClassSym) or not c.public:
                     continue
-                m = c.members.get(key)
-                if m is not None and not isinstance(m, ClassSym) and getattr(m, "public", False) \
-                        and (getattr(m, "shared", False) or getattr(m, "const", False)):
-                    out.append(PublicName(c.name, top, m))
-        return out
+                for key, m in c.members.items():
+                    if not isinstance(m, ClassSym) and getattr(m, "public", False) \
+                            and (getattr(m, "shared", False) or getattr(m, "const", False)):
+                        index.setdefault(key, []).append(PublicName(c.name, top, m))
+        return {key: tuple(found) for key, found in index.items()}

@@ -5,7 +5,7 @@ from __future__ import annotations
 import types
 
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import build_catalogue
+from gpl2py.semantics.catalogue_gen import build_catalogue
 from gplrt.geometry import Location, RefFrame
 from gplrt.motion.profile import Profile
 

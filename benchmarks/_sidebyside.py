@@ -1,0 +1,89 @@
+"""Side-by-side timing for the benchmarks: both sides in turns, medians and their spread.
+
+Every benchmark compares gpl2py (or generated code) with a Python baseline in one run.  The machine
+is shared, so one side must never get the quiet moments and the other the busy ones: the two are
+run in turns (A, B, A, B, ...), each sample after the same warm-up and under the same garbage
+collector state, and what is reported is the median of the samples with their spread (lowest and
+highest), never the best run.  The ratio is the median of the per-turn ratios, with its spread too.
+"""
+
+from __future__ import annotations
+
+import gc
+import statistics
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+
+@dataclass
+class Samples:
+    """Seconds per run of one side."""
+
+    values: list[float]
+
+    @property
+    def median(self) -> float:
+        return statistics.median(self.values)
+
+    def text(self, unit: float = 1e-3, name: str = "ms") -> str:
+        lo, hi = min(self.values), max(self.values)
+        return f"{self.median / unit:9.1f} {name} (spread {lo / unit:.1f}-{hi / unit:.1f})"
+
+
+@dataclass
+class Pair:
+    """Two sides measured in turns; ``ratios[i] = a[i] / b[i]``."""
+
+    a: Samples
+    b: Samples
+
+    @property
+    def ratios(self) -> list[float]:
+        return [x / y for x, y in zip(self.a.values, self.b.values)]
+
+    @property
+    def ratio(self) -> float:
+        return statistics.median(self.ratios)
+
+    def ratio_text(self) -> str:
+        r = self.ratios
+        return f"{self.ratio:.2f}x (spread {min(r):.2f}-{max(r):.2f}, {len(r)} runs each)"
+
+
+@contextmanager
+def collector(enabled: bool) -> Iterator[None]:
+    """Run the block with the cyclic garbage collector on or off, restoring the previous state."""
+    was = gc.isenabled()
+    (gc.enable if enabled else gc.disable)()
+    try:
+        yield
+    finally:
+        (gc.enable if was else gc.disable)()
+
+
+def timed(fn: Callable[[], object], clock: Callable[[], float] = time.perf_counter) -> float:
+    gc.collect()  # the previous sample's garbage is not this sample's cost
+    t0 = clock()
+    fn()
+    return clock() - t0
+
+
+def side_by_side(a: Callable[[], object], b: Callable[[], object], runs: int, *, warmup: int = 1,
+                 gc_enabled: bool = True, clock: Callable[[], float] = time.perf_counter) -> Pair:
+    """``runs`` samples of each, in turns, after ``warmup`` untimed runs of each, both under the
+    same collector state (``gc_enabled``)."""
+    with collector(gc_enabled):
+        for _ in range(warmup):
+            a()
+            b()
+        ta: list[float] = []
+        tb: list[float] = []
+        for _ in range(runs):
+            ta.append(timed(a, clock))
+            tb.append(timed(b, clock))
+    return Pair(Samples(ta), Samples(tb))
+
+
+__all__ = ["Samples", "Pair", "collector", "timed", "side_by_side"]
