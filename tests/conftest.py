@@ -1,10 +1,10 @@
 """Fixtures shared by every test package.
 
-The runtime has process-wide state a test can change: the active simulation, the Console sink it
-installs, the controller's flash root, where servers may listen (``gplrt.io.sockets``), the kinematics
-provider behind ``Location.Here`` and the table of conveyor belts RefFrames register.
-``_isolate_runtime_state`` starts each test with no active simulation and puts everything back
-afterwards, so that no test depends on which tests ran before it.
+The runtime has process-wide state a test can change: the active session (``gplrt.session``), the
+Console sink the simulator installs, the kinematics provider behind ``Location.Here`` and the
+table of conveyor belts RefFrames register.  Everything else (flash root, network, robots, ...)
+belongs to a session.  ``_isolate_runtime_state`` starts each test with no active session and puts
+everything back afterwards, so that no test depends on which tests ran before it.
 """
 
 from __future__ import annotations
@@ -19,27 +19,21 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from gplrt.geometry import kinematics_provider, refframe
-from gplrt.io import flashroot, sockets
 from gplrt.lang.console import get_console_sink, set_console_sink
-from gplrt.sim import Simulation, _state, set_current
+from gplrt.session import active_session, set_active_session
+from gplrt.sim import Simulation
 
 
 @pytest.fixture(autouse=True)
 def _isolate_runtime_state() -> Iterator[None]:
     sink = get_console_sink()
-    sim = _state.sim
-    flash = flashroot._current
-    working = flashroot._working_folder
-    network = (sockets._config.listen, sockets._config.connect_timeout)
+    session = active_session()
     provider = kinematics_provider._provider
     conveyors = dict(refframe._conveyors)
-    set_current(None)
+    set_active_session(None)
     yield
     set_console_sink(sink)
-    set_current(sim)
-    flashroot._current = flash
-    flashroot._working_folder = working
-    sockets._config.listen, sockets._config.connect_timeout = network
+    set_active_session(session)
     kinematics_provider._provider = provider
     refframe._conveyors.clear()
     refframe._conveyors.update(conveyors)

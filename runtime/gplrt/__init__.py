@@ -6,6 +6,8 @@ It owns GPL's language semantics (``gplrt.lang``), the geometry of Location/RefF
 Python alike.  See ``gplrt/CATALOGUE.md`` for how built-in GPL classes are declared.
 """
 
+# Loads the conversions first: they install the Integer conversion GplException's members use.
+from gplrt.lang import conversions as _conversions  # noqa: F401
 from gplrt.lang.errors import GplException
 
 __all__ = ["GplException"]

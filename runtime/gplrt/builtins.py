@@ -17,7 +17,8 @@ Each table maps the GPL spelling to the Python name exported by this module:
 The language tables come from ``gplrt.lang.catalogue`` (one place per package); classes of the other
 packages are listed here by hand because each package exports exactly one Python class per GPL
 class.  Importing ``gplrt.motion.robot_class`` also installs the robot kinematics behind
-``Location.Here`` and ``KineSol``.
+``Location.Here`` and ``KineSol``.  ``gplrt.sim`` is imported too: hand-written Python that uses
+these names without making a ``Simulation`` gets the default session (``gplrt.session``).
 """
 
 from __future__ import annotations
@@ -65,6 +66,7 @@ from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.threads import Thread
+from gplrt import sim as _sim  # noqa: F401 - registers the default session
 
 CLASSES: dict[str, str] = {
     "Exception": "GplException",

@@ -53,8 +53,18 @@ from gplrt.lang.errors import (
     UNDEFINED_SYMBOL,
     GplException,
 )
-from gplrt.lang.procedures import choose_overload
-from gplrt.sim import ConsoleSink, Simulation, StopReport
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.run import build, import_built, install_project_files
+from gplrt.controller.console import ConsoleSink
+from gplrt.controller.pdb import default_database
+from gplrt.controller.signals import IoMap
+from gplrt.geometry.transforms import matrix_to_xyzypr
+from gplrt.io.sockets import listen_address
+from gplrt.lang.procedures import ProcedureEntry, choose_overload, registered_procedures
+from gplrt.motion.plot import plot_joints, plot_path_xy
+from gplrt.motion.trace import Trace
+from gplrt.sim import Simulation, StopReport
+from gplrt.threads.thread import Thread
 
 __all__ = ["Cell", "RobotPose", "ProjectError", "Serving", "save_motion_plot"]
 
@@ -129,8 +139,7 @@ class Serving:
 
     def wait_listening(self, ports: Iterable[int], timeout: float = 30.0) -> None:
         """Block until the program listens on every port of ``ports`` (see :meth:`Cell.serve`)."""
-        from gplrt.io.sockets import listening_ports
-
+        listening_ports = self.cell.sim.network.listening_ports
         wanted = set(ports)
         end = time.monotonic() + timeout
         while not wanted <= listening_ports():
@@ -177,7 +186,7 @@ class Cell:
         clock: Literal["virtual", "fast", "real"] = "virtual",
         speed: float = 1.0,
         flash: str | Path | None = None,
-        io: Any = None,
+        io: IoMap | None = None,
         echo: bool = True,
         cache_dir: str | Path | None = None,
         rebuild: bool = False,
@@ -196,18 +205,11 @@ class Cell:
         only, whatever address the GPL code binds.  Raises :class:`ProjectError` when the project
         has errors, ValueError for a ``listen`` that is not an address of this computer.
         """
-        from gplrt.controller.pdb import default_database
-        from gplrt.io.sockets import listen_address
-
         default_database(robot)  # an unknown model fails here, with -221 and the known names
         if listen is not None:
             listen_address(listen)  # before the translation: a typo fails at once
         if stubs is not None and not isinstance(stubs, (str, os.PathLike)):
             raise TypeError(f"stubs is the folder of Python stubs (a str or Path), not {stubs!r}")
-
-        from gpl2py.diagnostics import DiagnosticSink
-        from gpl2py.run import build, import_built
-
         sink = DiagnosticSink()
         built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild, stubs_dir=stubs)
         files = {f.path: f for f in built.project.files()} if built is not None else {}
@@ -217,8 +219,6 @@ class Cell:
         package = import_built(built)
         sim = Simulation(clock=clock, speed=speed, io=io, console=_EchoConsole(echo), flash_root=flash,
                          project=built.project.name, robot=robot, listen=listen)
-        from gpl2py.run import install_project_files
-
         install_project_files(sim, project, built.project)  # where the controller has them
         return cls(package, sim, rendered, Path(project))
 
@@ -239,7 +239,7 @@ class Cell:
         self.init()
         return self.sim.call(func, *args, timeout=timeout)
 
-    def start(self, procedure: str, *args: Any, name: str = "") -> Any:
+    def start(self, procedure: str, *args: Any, name: str = "") -> Thread:
         """Start a Public procedure as a background GPL thread (e.g. a server); returns the Thread."""
         func = self.procedure(procedure, len(args))
         self.init()
@@ -324,7 +324,7 @@ class Cell:
     # -- I/O ------------------------------------------------------------------------------------------
 
     @property
-    def io(self) -> Any:
+    def io(self) -> IoMap:
         """The session's ``gplrt.controller.signals.IoMap``: rules (``when_output``), trace, ..."""
         return self.sim.io
 
@@ -362,10 +362,7 @@ class Cell:
 
     def where(self, robot: int = 1) -> RobotPose:
         """Where ``robot`` is now (``Robot.WhereAngles`` and ``Robot.Where`` in one)."""
-        from gplrt.geometry.transforms import matrix_to_xyzypr
-        from gplrt.motion.registry import robot_of
-
-        state = robot_of(self.sim, robot)
+        state = self.sim.robot(int(robot))
         now = self.sim.now()
         q = np.asarray(state.joints_at(now), dtype=float)
         matrix = cart = None
@@ -374,7 +371,7 @@ class Cell:
             cart = tuple(float(v) for v in matrix_to_xyzypr(matrix))
         return RobotPose(now, tuple(float(v) for v in q), cart, matrix)  # type: ignore[arg-type]
 
-    def trace(self, robot: int = 1, dt: float | None = None) -> Any:
+    def trace(self, robot: int = 1, dt: float | None = None) -> Trace:
         """The sampled motion so far (``gplrt.motion.trace.Trace``: times, joints, xyz).
 
         ``dt`` defaults to the servo period for short runs and to 1/``PLOT_SAMPLES`` of the run
@@ -386,14 +383,10 @@ class Cell:
 
     def plot_joints(self, robot: int = 1, ax: Any = None) -> Any:
         """Every joint against controller time; returns the matplotlib Figure."""
-        from gplrt.motion.plot import plot_joints
-
         return plot_joints(self.trace(robot), ax)
 
     def plot_path(self, robot: int = 1, ax: Any = None) -> Any:
         """The tool-tip path seen from above (X-Y, mm); returns the matplotlib Figure."""
-        from gplrt.motion.plot import plot_path_xy
-
         return plot_path_xy(self.trace(robot), ax)
 
     def save_plot(self, path: str | Path, robot: int = 1) -> Path:
@@ -405,15 +398,13 @@ class Cell:
                 f"t={self.sim.now():.3f}s>")
 
 
-def _procedures_of(package: ModuleType) -> list[Any]:
+def _procedures_of(package: ModuleType) -> list[ProcedureEntry]:
     """The registry entries of ``package``'s procedures.
 
     Each generated package registers into its own registry (``gplrt.lang.procedures``), and its
     ``init()`` binds that registry to the Cell's simulation, so two Cells of projects with the same
     module names never see each other's procedures, not even for threads started by name.
     """
-    from gplrt.lang.procedures import registered_procedures
-
     return registered_procedures(package.__name__)
 
 
@@ -423,9 +414,7 @@ def save_motion_plot(sim: Simulation, path: str | Path, robot: int = 1) -> Path:
     Used by ``Cell.save_plot`` and ``gpl2py run --plot``.  Works without a display (the figure is
     drawn off-screen and closed, so a long batch run does not accumulate figures).
     """
-    from matplotlib.figure import Figure
-
-    from gplrt.motion.plot import plot_joints, plot_path_xy
+    from matplotlib.figure import Figure  # an optional dependency (the "plot" extra)
 
     # A plot needs no more than a few thousand samples; the trace's default (the 4 ms servo
     # period) would sample an hour-long run 900 000 times.

@@ -53,7 +53,6 @@ from gpltest import (
 )
 from gplrt.controller.services import POWER_ON_STATES
 from gplrt.geometry import kinematics_provider, refframe
-from gplrt.io import flashroot
 from gplrt.lang.console import get_console_sink, set_console_sink
 from gplrt.lang.conversions import CStr
 from gplrt.lang.error_codes import ERROR_MESSAGES
@@ -1338,7 +1337,7 @@ def tcs(request: Any, elsewhere: PrivateRun | None, tmp_path_factory: pytest.Tem
     flash = root / f"controller-{model}"
     (flash / "flash" / "data").mkdir(parents=True, exist_ok=True)
     shutil.copy(corpus / "docs" / TAUGHT, flash / "flash" / "data" / "taught.gpo")
-    saved = (get_console_sink(), flashroot._current, kinematics_provider._provider, dict(refframe._conveyors))
+    saved = (get_console_sink(), kinematics_provider._provider, dict(refframe._conveyors))
     try:
         cell = Cell.load(project, robot=model, clock="fast", echo=False, cache_dir=root / "cache", flash=flash)
         with cell.serve(ports=[ROBOT_PORT, STATUS_PORT], timeout=60.0) as serving:
@@ -1351,10 +1350,9 @@ def tcs(request: Any, elsewhere: PrivateRun | None, tmp_path_factory: pytest.Tem
         assert "unhandled" not in cell.log, cell.log
     finally:
         set_console_sink(saved[0])
-        flashroot._current = saved[1]
-        kinematics_provider._provider = saved[2]
+        kinematics_provider._provider = saved[1]
         refframe._conveyors.clear()
-        refframe._conveyors.update(saved[3])
+        refframe._conveyors.update(saved[2])
 
 
 @pytest.mark.parametrize(

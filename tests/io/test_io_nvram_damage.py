@@ -25,8 +25,9 @@ from gplrt.sim import Simulation
 
 @pytest.fixture
 def sim(flash: FlashRoot) -> Iterator[Simulation]:
-    """A session whose error log the test reads (the flash root stays the test's own)."""
-    with Simulation(capture=True) as session:
+    """A session whose error log the test reads, on the test's own flash root (a session's disks
+    are its own: ``Simulation(flash_root=...)``)."""
+    with Simulation(capture=True, flash_root=flash.root) as session:
         yield session
 
 

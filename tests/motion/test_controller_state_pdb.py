@@ -20,6 +20,7 @@ from gplrt.controller.services import Controller
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import GplException
 from gplrt.motion import registry
+from gplrt.session import current_session
 from gplrt.motion.limits import RobotLimits
 from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
@@ -47,7 +48,7 @@ def ready() -> None:
 def move_duration(prof: Profile, goal: Location = GOAL) -> float:
     """Queue one joint move from rest and return its planned duration (settling included)."""
     Move.Loc(goal, prof)
-    seg = registry.sim().robots[1].queue.last
+    seg = current_session().robots[1].queue.last
     duration = float(seg.end - seg.t0)
     Move.WaitForEOM()
     return duration

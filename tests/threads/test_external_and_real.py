@@ -1,4 +1,4 @@
-"""Outside-world waits under the virtual scheduler, the real clock, and the clock entry points."""
+"""Outside-world waits under the virtual scheduler, the real clock, and the scheduler's waits."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import threading
 import time
 import types
 
-from gplrt.controller import clock
 from gplrt.controller.services import Controller
+from gplrt.session import current_session
 from gplrt.sim import Simulation
 from gplrt.threads import Thread, WaitQueue, checkpoint, external_wait
 
@@ -97,25 +97,31 @@ def test_real_mode_events_join_abort_and_errors() -> None:
     assert [e.code for e in sim.controller.error_log] == [-201]
 
 
-def test_clock_entry_points_for_the_motion_work(vsim: Simulation) -> None:
-    """sleep_until, wait/notify_all with a deadline, call_at — what WaitForEOM builds on."""
+def test_scheduler_waits_for_the_motion_work(vsim: Simulation) -> None:
+    """sleep_until, wait/notify_all with a deadline, call_at — what WaitForEOM builds on, on the
+    calling thread's session (``current_session()``)."""
     q = WaitQueue("eom")
     m = types.SimpleNamespace(log=[], done=False)
 
+    def now() -> float:
+        return current_session().now()
+
     def mover() -> None:
-        clock.call_at(1.5, lambda: m.log.append(("callback", clock.now())))
-        clock.sleep_until(2.0)  # the planned end of a motion
+        sched = current_session().scheduler
+        sched.call_at(1.5, lambda: m.log.append(("callback", now())))
+        sched.sleep_until(2.0)  # the planned end of a motion
         m.done = True
-        clock.notify_all(q)
-        m.log.append(("moved", clock.now()))
+        sched.notify_all(q)
+        m.log.append(("moved", now()))
 
     def waiter() -> None:
-        deadline = clock.now() + 0.5
+        sched = current_session().scheduler
+        deadline = now() + 0.5
         while not m.done:
-            if not clock.wait(q, deadline):
-                m.log.append(("timeout", clock.now()))
-                deadline = clock.now() + 5.0
-        m.log.append(("woken", clock.now()))
+            if not sched.wait(q, deadline):
+                m.log.append(("timeout", now()))
+                deadline = now() + 5.0
+        m.log.append(("woken", now()))
 
     def main() -> None:
         a = Thread(mover, 0, "Mover")
@@ -124,8 +130,8 @@ def test_clock_entry_points_for_the_motion_work(vsim: Simulation) -> None:
         b.Start()
         a.Join()
         b.Join()
-        clock.sleep(0.25)
-        m.log.append(("end", clock.now()))
+        current_session().scheduler.sleep(0.25)
+        m.log.append(("end", now()))
 
     vsim.run_main(main)
     assert m.log == [("timeout", 0.5), ("callback", 1.5), ("moved", 2.0), ("woken", 2.0), ("end", 2.25)]
@@ -133,7 +139,7 @@ def test_clock_entry_points_for_the_motion_work(vsim: Simulation) -> None:
 
 def test_thread_exit_hooks_run_on_the_ending_thread(vsim: Simulation) -> None:
     ended: list[tuple[str, float]] = []
-    vsim.thread_exit_hooks.append(lambda t: ended.append((t.Name, clock.now())))
+    vsim.thread_exit_hooks.append(lambda t: ended.append((t.Name, current_session().now())))
 
     def child() -> None:
         Thread.Sleep(300)
@@ -150,7 +156,7 @@ def test_notebook_helpers_start_run_for_and_as_gpl_thread(vsim: Simulation) -> N
 
     def heartbeat() -> None:
         while True:
-            beats.append(clock.now())
+            beats.append(current_session().now())
             Thread.Sleep(1000)
 
     t = vsim.start(heartbeat, name="Heartbeat")
@@ -159,7 +165,7 @@ def test_notebook_helpers_start_run_for_and_as_gpl_thread(vsim: Simulation) -> N
     with vsim.as_gpl_thread():
         me = Thread.CurrentThread()
         Thread.Sleep(1000)
-        assert clock.now() == 4.5 and beats[-1] == 4.0
+        assert current_session().now() == 4.5 and beats[-1] == 4.0
         assert me.Name != "Heartbeat"
     t.Abort()
     assert t.ThreadState == 0

@@ -210,7 +210,7 @@ def test_sleeping_threads_wake_at_each_of_their_deadlines_on_the_way() -> None:
         listener.Stop()
 
     def main() -> None:
-        Thread(idle_port_poller, _sim=sim).Start()
+        Thread(idle_port_poller, _session=sim).Start()
         server.serve()
 
     client = Client(server, ["prepare", "move", "wait"])
@@ -246,7 +246,7 @@ def test_a_receive_time_out_stays_in_wall_time() -> None:
         sock = listener.AcceptSocket()
         listener.Stop()
         prepare()
-        reader = Thread(receiver, _sim=sim, _args=(sock,))
+        reader = Thread(receiver, _session=sim, _args=(sock,))
         reader.Start()
         Move.Delay(MOTION)
         Move.WaitForEOM()

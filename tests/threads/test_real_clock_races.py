@@ -221,7 +221,7 @@ def test_two_simultaneous_starts_of_one_thread_name_start_one_thread() -> None:
         gate.wait(GUARD)
 
     def start_one() -> None:
-        t = Thread(worker, 0, "station", _sim=sim)
+        t = Thread(worker, 0, "station", _session=sim)
         barrier.wait(GUARD)
         try:
             t.Start()

@@ -9,22 +9,17 @@ Two time sources, one vocabulary (seconds as ``float``, counted from the simulat
 * :class:`RealClock` — wall-clock time (``time.monotonic``) scaled by ``speed``: ``speed=2`` makes a
   ``Thread.Sleep(1000)`` last half a real second.  For servers talking to real clients.
 
-Who runs while someone waits is the scheduler's job (``gplrt.threads.scheduler``): a clock only
-tells the time and, for the virtual clock, is moved forward.  The functions at the bottom of this
-module (:func:`now`, :func:`sleep`, :func:`sleep_until`, :func:`wait`, :func:`notify_all`,
-:func:`call_at`) are the entry points the rest of the runtime uses — e.g. the motion work's
-``Move.WaitForEOM`` calls ``clock.sleep_until(segment_end_time)`` — and they act on the active
-simulation (``gplrt.sim.current()``), from a GPL thread or from any other Python thread.
+Who runs while someone waits is the scheduler's job (``gplrt.threads.scheduler``: ``sleep``,
+``sleep_until``, ``wait``, ``notify_all``, ``call_at``): a clock only tells the time and, for the
+virtual clock, is moved forward.  A session's clock is ``session.scheduler.clock``
+(``gplrt.session``).
 """
 
 from __future__ import annotations
 
 import math
 import time
-from typing import TYPE_CHECKING, Callable, Protocol
-
-if TYPE_CHECKING:
-    from gplrt.threads.scheduler import WaitQueue
+from typing import Protocol
 
 
 class Clock(Protocol):
@@ -111,51 +106,3 @@ def quantise(t: float) -> float:
     The tiny bias stops ``3600.0 * 8000`` computed as ``28799999.999…`` from losing a whole tick.
     """
     return math.floor(t * 8000.0 + 1e-6) / 8000.0
-
-
-# ---- the entry points used by the rest of the runtime ------------------------------------------
-
-
-def _scheduler():  # type: ignore[no-untyped-def]
-    from gplrt.sim import current
-
-    return current().scheduler
-
-
-def now() -> float:
-    """Current controller time (seconds since the simulated boot) of the active simulation."""
-    return _scheduler().clock.now()
-
-
-def sleep(dt: float) -> None:
-    """Block the calling thread for ``dt`` seconds of controller time (``dt <= 0`` yields)."""
-    _scheduler().sleep(dt)
-
-
-def sleep_until(t: float) -> None:
-    """Block the calling thread until controller time ``t`` (returns at once if already past)."""
-    _scheduler().sleep_until(t)
-
-
-def wait(queue: WaitQueue, deadline: float | None = None, until: Callable[[], object] | None = None) -> bool:
-    """Block on ``queue`` until :func:`notify_all` or the controller-time ``deadline``.
-
-    Returns True when notified, False on timeout.  Use it in a predicate loop, passing the
-    predicate as ``until`` too, so that a notification between the test and the wait is not lost
-    under the real clock::
-
-        while not ready():
-            if not clock.wait(q, deadline, until=ready):
-                break
-    """
-    return _scheduler().wait(queue, deadline, until)
-
-
-def notify_all(queue: WaitQueue) -> None:
-    """Wake every thread blocked on ``queue`` (they re-check their condition)."""
-    _scheduler().notify_all(queue)
-
-
-def call_at(t: float, callback: Callable[[], None]) -> None:
-    """Run ``callback`` (short, non-blocking) when controller time reaches ``t``."""
-    _scheduler().call_at(t, callback)

@@ -33,17 +33,25 @@ are silent (docs/design/real-code.md has the ones where real code departs from t
 14002    per robot: 1 releases the brake of axis 14500, 0 sets it; reads that axis's state
 =======  =====================================================================================
 
-The callbacks find the session through ``gplrt.motion.registry.sim()`` (the calling GPL thread's
-own), so one database may serve several sessions, as the notebook's does.
+The callbacks act on the calling code's session (``gplrt.session.current_session()``: the calling
+GPL thread's own), so one database may serve several sessions, as the notebook's does.  The
+session's composer installs them when it boots its database (``gplrt.sim``); this module sits above
+the controller and motion modules whose state they read.
 """
 
 from __future__ import annotations
 
 import datetime as _dt
-from typing import Any
+from collections.abc import Callable
 
 from gplrt.controller.pdb import LiveParameter, ParameterDatabase, Value
+from gplrt.controller.services import Controller, power_off, start_power_up
+from gplrt.controller.state import POWER_COMING_UP_STATES, POWER_ON_STATES
 from gplrt.lang.errors import INVALID_ARGUMENT, INVALID_AXIS, GplException
+from gplrt.motion.robot import RobotState
+from gplrt.motion.robot_class import start_homing_all, traj_state
+from gplrt.motion.servo import axis_torques
+from gplrt.session import current_session
 
 #: GPL 4.2J2 (data/robots/README.md): what 103-106 report.
 GPL_VERSION_TEXT = "GPL 4.2J2, Mar  6 2020, Release"
@@ -55,13 +63,10 @@ DATE_FORMAT = "%m-%d-%Y %H:%M:%S"
 _EPOCH_1988 = _dt.datetime(1988, 1, 1)
 
 
-def _sim() -> Any:
-    from gplrt.motion import registry
-
-    return registry.sim()
+Reader = Callable[[int, int], list[Value]]
 
 
-def _const(*values: Value) -> Any:
+def _const(*values: Value) -> Reader:
     return lambda unit, unit2: list(values)
 
 
@@ -83,7 +88,7 @@ def install(pdb: ParameterDatabase) -> None:
         113: LiveParameter("Number of configured robots", robot_count),
         121: LiveParameter("Date and time", _date, _set_date, is_string=True),
         213: LiveParameter("Home all robots", _const(0.0), _home_all),
-        234: LiveParameter("Power state", lambda u, u2: [float(_sim().controller.power_state)]),
+        234: LiveParameter("Power state", lambda u, u2: [float(current_session().controller.power_state)]),
         241: LiveParameter("Power request, do not wait", _power_requested, _request_power),
         375: LiveParameter("Controller status bits", _status_bits),
         601: LiveParameter("System wide test speed in %", _system_speed, _set_system_speed),
@@ -99,7 +104,7 @@ def install(pdb: ParameterDatabase) -> None:
 
 
 def _date(unit: int, unit2: int) -> list[Value]:
-    sim = _sim()
+    sim = current_session()
     seconds = sim.controller.time_of_day_origin + sim.now()
     return [(_EPOCH_1988 + _dt.timedelta(seconds=int(seconds))).strftime(DATE_FORMAT)]
 
@@ -109,42 +114,34 @@ def _set_date(unit: int, unit2: int, values: list[Value]) -> None:
         when = _dt.datetime.strptime(str(values[0]).strip(), DATE_FORMAT)
     except ValueError:
         raise GplException(INVALID_ARGUMENT, detail=f"date {values[0]!r} is not MM-DD-YYYY HH:MM:SS") from None
-    sim = _sim()
+    sim = current_session()
     sim.controller.time_of_day_origin = (when - _EPOCH_1988).total_seconds() - sim.now()
 
 
 def _home_all(unit: int, unit2: int, values: list[Value]) -> None:
     if values[0]:
-        from gplrt.motion.robot_class import start_homing_all
-
-        start_homing_all(_sim())
+        start_homing_all(current_session())
 
 
 def _power_requested(unit: int, unit2: int) -> list[Value]:
-    from gplrt.controller.services import POWER_COMING_UP_STATES, POWER_ON_STATES
-
-    state = _sim().controller.power_state
+    state = current_session().controller.power_state
     return [1.0 if state in POWER_ON_STATES or state in POWER_COMING_UP_STATES else 0.0]
 
 
 def _request_power(unit: int, unit2: int, values: list[Value]) -> None:
-    from gplrt.controller.services import power_off, start_power_up
-
-    (start_power_up if values[0] else power_off)(_sim())
+    (start_power_up if values[0] else power_off)(current_session())
 
 
 def _system_speed(unit: int, unit2: int) -> list[Value]:
-    return [float(_sim().controller.system_speed)]
+    return [float(current_session().controller.system_speed)]
 
 
 def _set_system_speed(unit: int, unit2: int, values: list[Value]) -> None:
-    from gplrt.controller.services import Controller
-
     Controller.SystemSpeed = values[0]  # the same value, range and error (-707) as the property
 
 
 def _status_bits(unit: int, unit2: int) -> list[Value]:
-    sim = _sim()
+    sim = current_session()
     pending = any(r.async_error or r.queue.fault is not None for r in sim.robots.values())
     return [float(STATUS_ASYNC_ERROR if pending else 0)]
 
@@ -152,25 +149,18 @@ def _status_bits(unit: int, unit2: int) -> list[Value]:
 # -- per robot ----------------------------------------------------------------------------------
 
 
-def _robot(unit: int) -> Any:
-    from gplrt.motion import registry
-
-    s = _sim()
-    return registry.robot_of(s, unit)
+def _robot(unit: int) -> RobotState:
+    return current_session().robot(int(unit))
 
 
 def _traj_mode(unit: int, unit2: int) -> list[Value]:
-    from gplrt.motion.robot_class import traj_state
-
     return [float(traj_state(_robot(unit)))]
 
 
-def _torques(output: bool) -> Any:
+def _torques(output: bool) -> Reader:
     def read(unit: int, unit2: int) -> list[Value]:
-        from gplrt.motion import registry
-        from gplrt.motion.servo import axis_torques
-
-        pid, feedforward = axis_torques(_robot(unit), registry.now())
+        s = current_session()
+        pid, feedforward = axis_torques(s, s.robot(int(unit)), s.now())
         return [float(f + p) if output else float(f) for p, f in zip(pid, feedforward)]
 
     return read

@@ -1,7 +1,7 @@
 """GPL's global ``Controller`` class: its non-motion members (gpl-classes §9, gpl-dictionary §6).
 
-State lives in ``Simulation.controller`` (:class:`gplrt.sim.ControllerState`) so that the motion
-work reads the same power state, system speed and E-stop flag.  Decisions where the manuals are
+State lives in the session's ``controller`` (:class:`gplrt.controller.state.ControllerState`, one per
+session) so that the motion work reads the same power state, system speed and E-stop flag.  Decisions where the manuals are
 silent:
 
 * ``Timer(select)`` — ``select`` 1: seconds since boot (the active clock); 0 (default): seconds
@@ -14,7 +14,7 @@ silent:
   and returns when power is on — the next statement (typically a homing) can rely on it.  It
   raises -1046 *Power not enabled* while a soft E-stop is set.  ``False`` drops to 7 at once.
   ``PowerEnabled`` reads True in every "on" state of gpl-dictionary §13.3.
-* The controller has one power sequencer (:class:`PowerSequence`, one per session), and a
+* The controller has one power sequencer (``ControllerState.power_sequence``), and a
   power-up is the controller's, not a thread's: its PowerState steps are clock callbacks
   (``scheduler.call_at``), and the threads that asked for it only wait.  A ``PowerEnabled =
   True`` while a power-up runs *joins* it (as concurrent ``Robot.Home`` calls share one homing)
@@ -26,7 +26,7 @@ silent:
   is off (7) and every thread waiting for that power-up raises — -1600 *Power off requested* for
   a power-off request (listed for PowerEnabled in gpl-dictionary.md), -1046 for a soft E-stop.
   A ``True`` after that starts a fresh power-up.  The power-off and each power-up step are one
-  locked step each (``PowerSequence.lock``), so a power-off can never be overtaken by a step of
+  locked step each (``PowerSequence.lock``, ``gplrt.controller.state``), so a power-off can never be overtaken by a step of
   the power-up it ended (the real clock runs them on different threads).
 * ``PDb`` writes of the motion DataIDs that need power off (``NEEDS_POWER_OFF``) raise -1522
   *Cannot write value when power on* while power is on or coming up.
@@ -45,7 +45,7 @@ silent:
 * ``ShowDialog(buttons, prompt, ByRef button)`` — answered by ``ControllerState.dialog_answers``
   (scripted, 1-based button positions, consumed in order) or ``ControllerState.dialog_handler``;
   with neither, it raises -204 *Not implemented* naming the prompt, rather than hanging.
-* ``PDb``/``PDbNum`` — served by ``Simulation.pdb`` (a
+* ``PDb``/``PDbNum`` — served by the session's database (``Session.database()``, a
   ``gplrt.controller.pdb.ParameterDatabase``: ``pdb_text``/``set_pdb_text``/``pdb_num``/
   ``set_pdb_num``); a session without one loads its robot model's shipped database on first use.
 * ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not simulated (``@not_simulated``): -204
@@ -54,11 +54,10 @@ silent:
 
 from __future__ import annotations
 
-import threading
-from dataclasses import dataclass, field
 from typing import Any, overload
 
 from gplrt.controller import clock as _clock
+from gplrt.controller.pdb import ParameterDatabase
 from gplrt.lang.conversions import to_bool, to_double, to_int32, to_string
 from gplrt.lang.exceptions import not_simulated
 from gplrt.lang.errors import (
@@ -72,16 +71,26 @@ from gplrt.lang.errors import (
     GplException,
     error_text,
 )
+from gplrt.controller.state import (
+    POWER_COMING_UP_STATES,
+    POWER_ENABLING_AMPS,
+    POWER_ENABLING_SERVOS,
+    POWER_OFF_WAITING,
+    POWER_ON_STATES,
+    POWER_READY,
+    LogEntry,
+    PowerSequence,
+    PowerUp,
+)
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
-from gplrt.threads.scheduler import WaitQueue, controller_wait
+from gplrt.motion import registry
+from gplrt.session import Session, current_session
+from gplrt.threads.scheduler import controller_wait, current_ctx, external_wait
 
-POWER_OFF_WAITING = 7
-POWER_ENABLING_AMPS = 8
-POWER_ENABLING_SERVOS = 10
-POWER_READY = 20
-POWER_ON_STATES = frozenset({9, 11, 12, *range(20, 32)})
-#: "Coming up" states (gpl-dictionary §13.3): amplifiers/servos being enabled, safety diagnostics.
-POWER_COMING_UP_STATES = frozenset({POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS, 16})
+__all__ = [
+    "Controller", "NEEDS_POWER_OFF", "POWER_COMING_UP_STATES", "POWER_ENABLING_AMPS", "POWER_ENABLING_SERVOS",
+    "POWER_OFF_WAITING", "POWER_ON_STATES", "POWER_READY", "power_off", "start_power_up",
+]
 
 #: Motion DataIDs whose write needs high power off (-1522), decided [P] since neither the GPL
 #: manual nor robot-models.md says which parameters the controller locks: the 100 % reference
@@ -94,45 +103,7 @@ POWER_COMING_UP_STATES = frozenset({POWER_ENABLING_AMPS, POWER_ENABLING_SERVOS, 
 NEEDS_POWER_OFF: frozenset[int] = frozenset({2700, 2701, 2702, 2703})
 
 
-@dataclass(eq=False)
-class PowerUp:
-    """One power-up in progress: the requesters who asked for it wait until ``outcome`` is set
-    (0: power came on; else the code they raise — -1600 power off requested, -1046 E-stop)."""
-
-    outcome: int | None = None
-    ends_at: float = 0.0  # controller time the power-up reaches POWER_READY, unless interrupted
-
-
-@dataclass(eq=False)
-class PowerSequence:
-    """The controller's one high-power sequencer (see the module docstring).
-
-    ``current`` is the power-up in progress, if any.  Every change of it, and every PowerState
-    step it makes, happens under ``lock``: a power-off request and a power-up step are never
-    interleaved (on the real clock either may run on any thread)."""
-
-    lock: threading.Lock = field(default_factory=threading.Lock)
-    current: PowerUp | None = None
-    done: WaitQueue = field(default_factory=lambda: WaitQueue("power-up"))
-
-
-def power_sequence(sim: Any) -> PowerSequence:
-    """The session's power sequencer, created on first use (kept on the Simulation)."""
-    seq = sim.__dict__.get("_power_sequence")
-    if seq is None:
-        seq = sim.__dict__.setdefault("_power_sequence", PowerSequence())
-    return seq  # type: ignore[no-any-return]
-
-
-def _sim() -> Any:
-    from gplrt.sim import current
-
-    return current()
-
-
 def _thread_name() -> str:
-    from gplrt.threads.scheduler import current_ctx
-
     ctx = current_ctx()
     return ctx.name if ctx is not None else "<external>"
 
@@ -143,7 +114,7 @@ class _ControllerClass:
     # -- time ------------------------------------------------------------------------------------
 
     def Timer(self, select: Integer = 0) -> Double:  # type: ignore[assignment]
-        sim = _sim()
+        sim = current_session()
         t = sim.scheduler.clock.now()
         if to_int32(select) == 0:
             t += sim.controller.time_of_day_origin
@@ -151,17 +122,17 @@ class _ControllerClass:
 
     @property
     def Tick(self) -> Double:
-        return _sim().controller.tick  # type: ignore[no-any-return]
+        return current_session().controller.tick  # type: ignore[return-value]
 
     def SleepTick(self, ticks: Integer = 1) -> None:  # type: ignore[assignment]
-        sim = _sim()
+        sim = current_session()
         sim.scheduler.sleep(max(0, to_int32(ticks)) * sim.controller.tick)
 
     # -- power and speed -------------------------------------------------------------------------
 
     @property
     def PowerEnabled(self) -> Boolean:
-        return _sim().controller.power_state in POWER_ON_STATES  # type: ignore[return-value]
+        return current_session().controller.power_state in POWER_ON_STATES  # type: ignore[return-value]
 
     @PowerEnabled.setter
     def PowerEnabled(self, value: Boolean) -> None:
@@ -172,7 +143,7 @@ class _ControllerClass:
         seconds (0 or less: as long as it takes, like ``PowerEnabled = True``) for power to come
         on, else -1025 *Timeout enabling power* (TCS 3.0C1 ``hp 1 t``; docs/design/real-code.md).
         ``False`` turns power off at once whatever the timeout."""
-        sim = _sim()
+        sim = current_session()
         if not to_bool(value):  # (text "False" is False, as CBool has it)
             power_off(sim)
             return
@@ -180,15 +151,15 @@ class _ControllerClass:
         _power_up(sim, timeout=wait if wait > 0 else None)
 
     def PowerState(self, mode: Integer = 0) -> Integer:  # type: ignore[assignment]
-        return _sim().controller.power_state  # type: ignore[no-any-return]
+        return current_session().controller.power_state  # type: ignore[return-value]
 
     @property
     def SoftEStop(self) -> Boolean:
-        return _sim().controller.soft_estop  # type: ignore[no-any-return]
+        return current_session().controller.soft_estop  # type: ignore[return-value]
 
     @SoftEStop.setter
     def SoftEStop(self, value: Boolean) -> None:
-        sim = _sim()
+        sim = current_session()
         state = sim.controller
         state.soft_estop = to_bool(value)
         if state.soft_estop:
@@ -198,41 +169,37 @@ class _ControllerClass:
     @property
     def SystemSpeed(self) -> Double:
         """The speed all motions are scaled by (%); boots at the database's DataID 601."""
-        from gplrt.motion import registry
-
-        s = _sim()
-        registry.pdb_of(s)  # the boot value comes from the parameter database
-        return s.controller.system_speed  # type: ignore[no-any-return]
+        s = current_session()
+        s.database()  # the boot value comes from the parameter database
+        return s.controller.system_speed  # type: ignore[return-value]
 
     @SystemSpeed.setter
     def SystemSpeed(self, value: Double) -> None:
         v = to_double(value)
         if not 0.0 < v <= 100.0:  # (NaN fails this too)
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"SystemSpeed {v}")
-        state = _sim().controller
+        state = current_session().controller
         state.system_speed = v
         state.system_speed_set = True
 
     @property
     def RecordButton(self) -> Boolean:
-        return _sim().controller.record_button  # type: ignore[no-any-return]
+        return current_session().controller.record_button  # type: ignore[return-value]
 
     @RecordButton.setter
     def RecordButton(self, value: Boolean) -> None:
-        _sim().controller.record_button = to_bool(value)
+        current_session().controller.record_button = to_bool(value)
 
     # -- messages and logs -----------------------------------------------------------------------
 
     def SystemMessage(self, message: String) -> None:
-        from gplrt.sim import LogEntry
-
-        sim = _sim()
+        sim = current_session()
         entry = LogEntry(sim.now(), _thread_name(), str(message))
         sim.controller.system_messages.append(entry)
         sim.console.log(f"[{entry.time:.6f}] SystemMessage: {entry.text}")
 
     def ErrorLog(self, entry: Integer = 1) -> String:  # type: ignore[assignment]
-        log = _sim().controller.error_log
+        log = current_session().controller.error_log
         i = to_int32(entry)
         if not 1 <= i <= len(log):
             return ""  # type: ignore[return-value]
@@ -240,12 +207,10 @@ class _ControllerClass:
         return f"{e.code} {error_text(e.code)} ({e.thread})"  # type: ignore[return-value]
 
     def set_ErrorLog(self, entry: Integer, value: String) -> None:
-        _sim().controller.error_log.clear()
+        current_session().controller.error_log.clear()
 
     def ShowDialog(self, buttons: String, prompt: String, button: Ref[Integer]) -> None:
-        from gplrt.threads.scheduler import external_wait
-
-        state = _sim().controller
+        state = current_session().controller
         labels = [b.strip() for b in str(buttons).split(",")]
         if state.dialog_answers:
             choice = state.dialog_answers.pop(0)
@@ -277,7 +242,7 @@ class _ControllerClass:
     # -- parameter database ------------------------------------------------------------------------
 
     def PDb(self, data_id: Integer, unit: Integer = 1, unit2: Integer = 1, array_index: Integer = 0) -> String:  # type: ignore[assignment]
-        return _pdb().pdb_text(*_ints(data_id, unit, unit2, array_index))  # type: ignore[no-any-return]
+        return _pdb().pdb_text(*_ints(data_id, unit, unit2, array_index))  # type: ignore[return-value]
 
     @overload
     def set_PDb(self, data_id: Integer, value: String) -> None: ...
@@ -329,22 +294,22 @@ class _ControllerClass:
         _pdb().set_pdb_num(rest[-1], data_id, unit, unit2, index, key)  # converts by GPL's rules
 
 
-def start_power_up(sim: Any) -> None:
+def start_power_up(sim: Session) -> None:
     """Start a power-up (or let the one in progress go on) and return at once: DataID 241."""
     _power_up(sim, wait=False)
 
 
-def power_off(sim: Any) -> None:
+def power_off(sim: Session) -> None:
     """``PowerEnabled = False``: high power off now, motion stops (module docstring)."""
     _power_off(sim, POWER_OFF_REQUESTED)
     _power_dropped(sim)
 
 
-def _power_up(sim: Any, *, wait: bool = True, timeout: float | None = None) -> None:
+def _power_up(sim: Session, *, wait: bool = True, timeout: float | None = None) -> None:
     """``PowerEnabled = True``: start a power-up or join the one in progress, and (``wait``) wait
     for it, at most ``timeout`` controller seconds when given (-1025 after that; module docstring)."""
     state = sim.controller
-    seq = power_sequence(sim)
+    seq = state.power_sequence
     with seq.lock:
         if state.power_state in POWER_ON_STATES:
             return
@@ -374,7 +339,7 @@ def _power_up(sim: Any, *, wait: bool = True, timeout: float | None = None) -> N
         raise GplException(power_up.outcome, detail="the power-up was interrupted")
 
 
-def _power_step(sim: Any, seq: PowerSequence, power_up: PowerUp, phase: int) -> None:
+def _power_step(sim: Session, seq: PowerSequence, power_up: PowerUp, phase: int) -> None:
     """A timer callback of ``power_up``: PowerState moves to ``phase``; at ``POWER_READY`` the
     power-up ends and its requesters return.  A power-up that was ended meanwhile (power off,
     E-stop) is no longer ``seq.current`` and its steps do nothing."""
@@ -384,15 +349,15 @@ def _power_step(sim: Any, seq: PowerSequence, power_up: PowerUp, phase: int) -> 
         sim.controller.power_state = phase
         if phase != POWER_READY:
             return
-        _power_ready(sim)
+        registry.refresh_power_state(sim)  # 21 instead of 20 when a robot is already attached
         power_up.outcome, seq.current = 0, None
     sim.scheduler.notify_all(seq.done)
 
 
-def _power_off(sim: Any, code: int) -> None:
+def _power_off(sim: Session, code: int) -> None:
     """A power-off request or soft E-stop: PowerState 7, and the power-up in progress (if any)
     ends now — its requesters raise ``code``.  One step under ``seq.lock`` (see PowerSequence)."""
-    seq = power_sequence(sim)
+    seq = sim.controller.power_sequence
     with seq.lock:
         sim.controller.power_state = POWER_OFF_WAITING
         power_up, seq.current = seq.current, None
@@ -402,25 +367,16 @@ def _power_off(sim: Any, code: int) -> None:
         sim.scheduler.notify_all(seq.done)
 
 
-def _power_dropped(sim: Any, code: int = POWER_NOT_ENABLED) -> None:
+def _power_dropped(sim: Session, code: int = POWER_NOT_ENABLED) -> None:
     """Motion stops when high power goes off (gplrt.motion.registry.power_dropped)."""
-    from gplrt.motion.registry import power_dropped
-
-    power_dropped(sim, code)
-
-
-def _power_ready(sim: Any) -> None:
-    """PowerState 21 instead of 20 when a robot is already attached (gplrt.motion.registry)."""
-    from gplrt.motion.registry import refresh_power_state
-
-    refresh_power_state(sim)
+    registry.power_dropped(sim, code)
 
 
 def _check_power_for_write(data_id: int) -> int:
     """-1522 *Cannot write value when power on* for a ``NEEDS_POWER_OFF`` DataID while high
     power is on or coming up (module docstring); returns ``data_id``."""
     if data_id in NEEDS_POWER_OFF:
-        state = _sim().controller.power_state
+        state = current_session().controller.power_state
         if state in POWER_ON_STATES or state in POWER_COMING_UP_STATES:
             raise GplException(CANT_WRITE_WHEN_POWER_ON, detail=f"DataID {data_id} can change only with power off")
     return data_id
@@ -437,17 +393,14 @@ def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tu
     return merged[0], merged[1], merged[2], merged[3]
 
 
-def _pdb() -> Any:
-    """The session's parameter database (``gplrt.controller.pdb.ParameterDatabase``).
+def _pdb() -> ParameterDatabase:
+    """The session's parameter database (``Session.database()``).
 
     A real controller always has its database, and vendor code (TCS) reads it at start-up, before
     any motion: a session without one gets its robot model's shipped database here, exactly as the
-    first motion would load it (``gplrt.motion.registry.pdb_of``), so reads never depend on whether
-    a robot has moved yet.
+    first motion would load it, so reads never depend on whether a robot has moved yet.
     """
-    from gplrt.motion.registry import pdb_of
-
-    return pdb_of(_sim())
+    return current_session().database()
 
 
 Controller = _ControllerClass()

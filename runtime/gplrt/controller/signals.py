@@ -42,8 +42,9 @@ from __future__ import annotations
 import threading
 from collections import deque
 from dataclasses import dataclass, field
-from typing import Any, Callable, overload
+from typing import TYPE_CHECKING, Any, Callable, overload
 
+from gplrt.geometry.location import Location as _Location
 from gplrt.lang.errors import (
     INVALID_SIGNAL_NUMBER,
     KINEMATICS_NOT_INSTALLED,
@@ -56,14 +57,20 @@ from gplrt.lang.errors import (
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.exceptions import not_available
 from gplrt.lang.gpltypes import Boolean, Double, Integer
+from gplrt.session import current_session
+from gplrt.threads.thread import Thread
+
+if TYPE_CHECKING:
+    from gplrt.session import Session
 
 LATCH_QUEUE_SIZE = 128
 
-#: Device-input providers (module docstring): ``provider(sim, signal) -> bool | None``.
-_input_providers: list[Callable[[Any, int], bool | None]] = []
+#: Device-input providers (module docstring): ``provider(session, signal) -> bool | None``.
+InputProvider = Callable[["Session", int], "bool | None"]
+_input_providers: list[InputProvider] = []
 
 
-def add_input_provider(provider: Callable[[Any, int], bool | None]) -> None:
+def add_input_provider(provider: InputProvider) -> None:
     """Let ``provider`` answer digital inputs outside the I/O map (module docstring)."""
     if provider not in _input_providers:
         _input_providers.append(provider)
@@ -127,14 +134,14 @@ class IoMap:
         self._listeners: list[Callable[[SignalChange], None]] = []
         self.trace: list[SignalChange] = []
         self._lock = threading.RLock()
-        self._sim: Any = None
+        self._sim: Session | None = None
         self._latch_inputs: dict[int, list[tuple[int, bool]]] = {}
         self.latch_queues: dict[int, deque[Latch]] = {}
         self.latch_overrun: set[int] = set()
-        self.latch_events: dict[int, tuple[Any, int]] = {}  # robot -> (GPL Thread, event mask)
+        self.latch_events: dict[int, tuple[Thread, int]] = {}  # robot -> (GPL Thread, event mask)
 
-    def bind(self, sim: Any) -> None:
-        """Attach to the simulation whose clock times the trace and the rules."""
+    def bind(self, sim: Session) -> None:
+        """Attach to the session whose clock times the trace and the rules."""
         self._sim = sim
 
     def _now(self) -> float:
@@ -189,7 +196,7 @@ class IoMap:
     def _device_input(self, signal: int, error: GplException) -> bool:
         """The state of a device input (module docstring); re-raises ``error`` when no provider
         knows ``signal``."""
-        if error.ErrorCode == UNDEFINED_SIGNAL_NUMBER:
+        if error.ErrorCode == UNDEFINED_SIGNAL_NUMBER and self._sim is not None:
             for provider in list(_input_providers):
                 state = provider(self._sim, abs(int(signal)))
                 if state is not None:
@@ -218,7 +225,7 @@ class IoMap:
 
     def schedule_input(self, signal: int, value: bool, at: float) -> None:
         """Drive digital input ``signal`` to ``value`` at controller time ``at``."""
-        self._sim.scheduler.call_at(at, lambda: self.set_input(signal, value))
+        self._session().scheduler.call_at(at, lambda: self.set_input(signal, value))
 
     def when(self, signal: int, value: bool = True) -> Rule:
         """A rule triggered each time digital ``signal`` changes to ``value``."""
@@ -261,7 +268,7 @@ class IoMap:
                                _pose=pose))
             target = self.latch_events.get(robot)
             if target is not None:
-                target[0].SendEvent(target[1])
+                target[0].SendEvent(target[1])  # type: ignore[arg-type]
 
     def on_change(self, listener: Callable[[SignalChange], None]) -> None:
         """Call ``listener`` (short, non-blocking) for every change, e.g. latch emulation or plots."""
@@ -276,6 +283,12 @@ class IoMap:
         return self._digital.get(abs(int(signal)), False)
 
     # -- internals ---------------------------------------------------------------------------------
+
+    def _session(self) -> Session:
+        """The session this map is bound to (rules and scheduled inputs run on its clock)."""
+        if self._sim is None:
+            raise RuntimeError("this IoMap belongs to no session yet (Simulation(io=...) binds it)")
+        return self._sim
 
     def _change_digital(self, n: int, value: bool, source: str) -> None:
         with self._lock:
@@ -295,7 +308,7 @@ class IoMap:
                 if after <= 0:
                     action()
                 else:
-                    self._sim.scheduler.call_at(change.time + after, action)
+                    self._session().scheduler.call_at(change.time + after, action)
 
     def _change_analog(self, n: int, value: float, source: str) -> None:
         with self._lock:
@@ -374,8 +387,6 @@ class Latch:
     @staticmethod
     def set_ThreadEvent(robot: Integer, value: Integer) -> None:
         """``Latch.ThreadEvent(robot) = n``: send event ``n`` to the calling thread on each latch."""
-        from gplrt.threads.thread import Thread
-
         io = Latch._io()
         n = int(value)
         if n == 0:
@@ -399,18 +410,16 @@ class Latch:
 
     def Location(self, type: Integer = 1) -> Any:  # noqa: A002 - GPL's argument name
         """The latched position: type 1 Angles, type 0 Cartesian (see the class docstring)."""
-        from gplrt.geometry.location import Location
-
         kind = int(type)
         if kind == 1:
-            return Location.from_angles(self._angles[:12])
+            return _Location.from_angles(self._angles[:12])
         if kind != 0:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"latch Location type {kind} (0 Cartesian, 1 Angles)")
         if self._pose is None:
             raise GplException(KINEMATICS_NOT_INSTALLED, robot_num=self._robot,
                                detail=f"robot {self._robot} has no kinematics for a Cartesian latch position")
         matrix, config = self._pose
-        loc = Location.from_matrix(matrix)
+        loc = _Location.from_matrix(matrix)
         loc.Config = config
         return loc
 
@@ -439,9 +448,7 @@ class _SignalClass:
 
     @staticmethod
     def _io() -> IoMap:
-        from gplrt.sim import current
-
-        return current().io  # type: ignore[no-any-return]
+        return current_session().io
 
     def DIO(self, signal: Integer, count: Integer = Integer(1)) -> Boolean:
         """One digital signal.  ``Signal.DIO(signal, count)`` is the Dictionary's form (several

@@ -43,6 +43,7 @@ from gplrt.lang.errors import (CONVEYOR_MUST_BE_BASE, FRAME_UNDEFINED_DATA, FRAM
                                UNDEFINED_ROBOT, GplException)
 from gplrt.lang.exceptions import not_available
 from gplrt.lang.gpltypes import Double, Integer, String
+from gplrt.session import current_session
 
 BASIC = 0
 PALLET = 1
@@ -82,9 +83,7 @@ class Conveyor:
     def _now(self) -> float:
         if self.clock is not None:
             return self.clock()
-        from gplrt.controller.clock import now  # the controller imports geometry: import on use
-
-        return now()
+        return current_session().now()
 
     def count(self) -> float:
         """The encoder count now."""

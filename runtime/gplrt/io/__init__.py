@@ -11,8 +11,10 @@ GPL classes (members in GPL spelling, see ``gplrt/CATALOGUE.md``):
 * serial     -- ``/dev/comN`` back ends for the stream classes (loop-back, pseudo-terminal)
 * vision     -- ``Vision``, ``VisResult`` with a pluggable simulated vision server
 
-Simulator hooks: ``set_flash_root``, ``configure_network``, ``configure_serial``,
-``set_vision_server``, and ``_blocking.set_blocking_hook`` (every wait on the outside world).
+A session's disks and network are its own (``Session.files``, ``Session.network``:
+``gplrt.session``); ``set_flash_root`` and ``configure_network`` change the current session's.
+Serial ports and the vision server are devices of the process: ``configure_serial``,
+``set_vision_server``.  Every wait on the outside world runs in ``_blocking``'s hook.
 """
 
 from gplrt.io.files import File, StreamReader, StreamWriter

@@ -1,9 +1,7 @@
 """Arrays handed back to GPL code through ByRef parameters (Modbus reads, GetFiles, ...).
 
-Generated code represents GPL arrays as ``gplrt.lang.arrays.GplArray`` (docs/design/lowering.md),
-written in parallel with this package.  This module is the single place that builds one, so the
-I/O classes do not depend on its constructor: it uses ``GplArray.from_list`` when that exists and
-falls back to a plain ``list`` (indexable from 0 like a GPL array) otherwise.
+Generated code represents GPL arrays as ``gplrt.lang.arrays.GplArray`` (docs/design/lowering.md);
+this module is the single place the I/O classes build one.
 """
 
 from __future__ import annotations
@@ -11,16 +9,13 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import Any
 
+from gplrt.lang.arrays import GplArray
+
 
 def make_array(values: Iterable[Any], element_type: object = None) -> Any:
-    """A one-dimensional GPL array of ``element_type`` holding ``values`` (index 0 = first)."""
-    items = list(values)
-    try:
-        from gplrt.lang.arrays import GplArray  # type: ignore[import-not-found]
-    except ImportError:
-        return items
-    factory = getattr(GplArray, "from_list", None)
-    return factory(items, element_type) if factory is not None else items
+    """A one-dimensional GPL array of ``element_type`` holding ``values`` (index 0 = first): a
+    ``GplArray``, typed Any because the members that return one declare GPL array types."""
+    return GplArray.from_list(values, element_type)
 
 
 def to_list(values: Any) -> list[Any]:

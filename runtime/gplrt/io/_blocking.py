@@ -1,18 +1,19 @@
 """The one place where a GPL thread waits on the outside world.
 
 Every blocking wait in ``gplrt.io`` (socket accept/receive/connect/send, a Modbus transaction, a
-serial read) runs through :func:`blocking_call`.  Why one helper: the GPL scheduler (``gplrt.threads``,
-written separately) may run GPL threads one at a time, or advance a *virtual* clock when every thread
-waits.  A thread blocked on a real socket must release the scheduler so other GPL threads keep
-running, and must not count as "waiting on virtual time".  Hooking that in one function is enough:
+serial read) runs through :func:`blocking_call`.  Why one helper: the GPL scheduler
+(``gplrt.threads.scheduler``) may run GPL threads one at a time, or advance a *virtual* clock when
+every thread waits.  A thread blocked on a real socket must release the scheduler so other GPL
+threads keep running, and must not count as "waiting on virtual time": the hook every wait runs in
+is the scheduler's :func:`~gplrt.threads.scheduler.external_wait` (harmless outside GPL threads).
+A test may put its own in its place:
 
     from gplrt.io import _blocking
-    _blocking.set_blocking_hook(my_hook)
+    previous = _blocking.set_blocking_hook(my_hook)
 
 ``my_hook(timeout)`` must return a context manager; it is entered just before the wait and exited
 right after it (also when the wait raises).  ``timeout`` is the real-time bound in seconds the
 operation will wait at most, or ``None`` for "no bound" (e.g. ``AcceptSocket`` with no timeout).
-The default hook does nothing.
 
 Timeouts themselves stay real: sockets talk to real peers, so their deadlines are wall-clock
 deadlines, enforced by the operation ``fn`` (socket timeouts), not by this helper.
@@ -34,21 +35,28 @@ import time
 from collections.abc import Callable
 from typing import ContextManager, TypeVar
 
+from gplrt.threads.scheduler import abort_point, external_wait, hold_real_time
+
 T = TypeVar("T")
 
 BlockingHook = Callable[[float | None], ContextManager[object]]
+
+
+def _scheduler_hook(timeout: float | None) -> ContextManager[object]:
+    """The calling GPL thread waits on the outside world (``external_wait``)."""
+    return external_wait()
 
 
 def _no_hook(timeout: float | None) -> ContextManager[object]:
     return contextlib.nullcontext()
 
 
-_hook: BlockingHook = _no_hook
+_hook: BlockingHook = _scheduler_hook
 
 
 def set_blocking_hook(hook: BlockingHook | None) -> BlockingHook:
-    """Install the scheduler's hook (``None``: the no-op default); returns the hook it replaced,
-    so that a test can put the simulator's back (``gplrt.sim`` installs one on import)."""
+    """Put ``hook`` in place of the scheduler's (``None``: a no-op); returns the hook it replaced,
+    so that a test can put the scheduler's back."""
     global _hook
     previous, _hook = _hook, (hook if hook is not None else _no_hook)
     return previous
@@ -72,8 +80,6 @@ def wait_ready(ready: Callable[[float], bool], timeout: float | None,
     ``Thread.Abort`` of the calling GPL thread unwinds it, and ``check()`` may raise (a socket
     closed by another thread).
     """
-    from gplrt.threads.scheduler import abort_point
-
     deadline = None if timeout is None else time.monotonic() + max(0.0, timeout)
     while True:
         abort_point()
@@ -105,13 +111,15 @@ def _no_open_hook() -> Release:
     return _no_release
 
 
-_open_hook: OpenHook = _no_open_hook
+_open_hook: OpenHook = hold_real_time  # the scheduler paces virtual time while it is open
 
 
-def set_open_hook(hook: OpenHook | None) -> None:
-    """Install the scheduler's open-connection hook (``None`` restores the no-op default)."""
+def set_open_hook(hook: OpenHook | None) -> OpenHook:
+    """Put ``hook`` in place of the scheduler's ``hold_real_time`` (``None``: a no-op); returns
+    the hook it replaced."""
     global _open_hook
-    _open_hook = hook if hook is not None else _no_open_hook
+    previous, _open_hook = _open_hook, (hook if hook is not None else _no_open_hook)
+    return previous
 
 
 def opened() -> Release:

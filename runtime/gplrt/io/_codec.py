@@ -7,6 +7,7 @@ is an ``Invalid argument`` (-202) rather than a silent substitution.
 
 from __future__ import annotations
 
+from gplrt.lang.conversions import CStr
 from gplrt.lang.errors import INVALID_ARGUMENT, GplException
 
 
@@ -26,23 +27,7 @@ def from_bytes(data: bytes) -> str:
 
 
 def as_text(value: object) -> str:
-    """The text ``Write``/``Send`` output for a String or a number.
-
-    Uses the language runtime's ``CStr`` when it is available so numbers print exactly as
-    ``CStr`` would; otherwise a local equivalent (integral Doubles print without ``.0``).
-    """
+    """The text ``Write``/``Send`` output for a String or a number: what ``CStr`` gives."""
     if isinstance(value, str):
         return value
-    try:  # the conversions module is written in parallel; prefer it once it exists
-        from gplrt.lang.conversions import CStr  # type: ignore[import-not-found]
-    except ImportError:
-        CStr = None
-    if CStr is not None:
-        return str(CStr(value))
-    if isinstance(value, bool):
-        return "True" if value else "False"
-    if isinstance(value, float):
-        if value.is_integer() and abs(value) < 1e15:
-            return str(int(value))
-        return format(value, ".15g")
-    return str(value)
+    return str(CStr(value))

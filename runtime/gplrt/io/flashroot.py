@@ -12,10 +12,11 @@ The simulated controller's disks live under one host folder, :attr:`FlashRoot.ro
 Device names are matched case-insensitively (``/ROMDISK`` and ``/romdisk``); file and folder names
 are case-sensitive, as on the controller (D0:3620-3624).
 
-A relative name (``Tcs.gpo``) is relative to the running project's folder, as on a controller:
-``/flash/projects/<project>/`` once the project's files are installed there
-(``gplrt.io.project_files``, :func:`set_working_folder`); without a running project it is
--301 as before.
+Each session has its own disks (:class:`Disks`, ``Session.files``): its flash root, and the folder
+its relative names resolve in.  A relative name (``Tcs.gpo``) is relative to the running project's
+folder, as on a controller: ``/flash/projects/<project>/`` once the project's files are installed
+there (``gplrt.io.project_files``, :meth:`Disks.set_working_folder`); without a running project it
+is -301.
 
 Refusals, each with the controller code that fits best (the manual names none for this case):
 
@@ -38,7 +39,6 @@ project's own files into ``/flash/projects/<project>/`` (``gplrt.io.project_file
 
 from __future__ import annotations
 
-import atexit
 import tempfile
 import threading
 from dataclasses import dataclass, field
@@ -52,6 +52,7 @@ from gplrt.lang.errors import (
     UNDEFINED_DEVICE,
     GplException,
 )
+from gplrt.session import current_session
 
 
 MAX_NAME = 43
@@ -104,14 +105,15 @@ class FlashRoot:
         removed, its target untouched), then an empty folder is made."""
         self.box.path("ROMDISK").recreate_folder()
 
-    def resolve(self, path: str) -> ControllerPath:
-        """Check ``path`` and map it onto the sandbox (or onto a serial device)."""
+    def resolve(self, path: str, working_folder: str | None = None) -> ControllerPath:
+        """Check ``path`` and map it onto the sandbox (or onto a serial device); a relative
+        ``path`` is relative to the controller folder ``working_folder`` (None: -301)."""
         if not isinstance(path, str):
             raise GplException(INVALID_FILE_NAME, detail=f"path {path!r} is not a String")
         if len(path) > MAX_PATH:
             raise GplException(PATH_TOO_LONG, detail=f"{len(path)} characters: {path[:40]}...")
         if not path.startswith("/"):
-            working = _working_folder
+            working = working_folder
             if working is None or path == "":
                 raise GplException(UNDEFINED_DEVICE, detail=f"{path!r}: a path starts with /device")
             path = f"{working}/{path}"
@@ -147,45 +149,76 @@ def _check_name(name: str, path: str) -> None:
         raise GplException(INVALID_FILE_NAME, detail=f"{path!r}: name {name!r} has a non-printable character")
 
 
-_lock = threading.Lock()
-_current: FlashRoot | None = None
-#: The running project's folder (a controller path), for relative names; None: no project.
-_working_folder: str | None = None
+class Disks:
+    """One session's disks (``Session.files``): its flash root and the folder relative names
+    resolve in.
+
+    ``root_folder`` is the host folder standing in for the controller's disks; without one, a
+    temporary folder is made on first use and removed with the session (or at exit).  Every file
+    operation of the session's program maps its paths here (:func:`resolve`).
+    """
+
+    def __init__(self, root_folder: Path | str | None = None) -> None:
+        self.root_folder = Path(root_folder) if root_folder is not None else None
+        #: The running project's folder (a controller path) relative names resolve in; None: no
+        #: project, relative names are -301.
+        self.working_folder: str | None = None
+        self._flash: FlashRoot | None = None
+        self._temporary: tempfile.TemporaryDirectory[str] | None = None
+        self._lock = threading.Lock()
+
+    def root(self) -> FlashRoot:
+        """The flash root, made on first use."""
+        with self._lock:
+            if self._flash is None:
+                if self.root_folder is None:
+                    self._temporary = tempfile.TemporaryDirectory(prefix="gplrt-flash-")
+                    self.root_folder = Path(self._temporary.name)
+                self._flash = FlashRoot(self.root_folder)
+            return self._flash
+
+    def set_root(self, root: Path | str, *, clear_romdisk: bool = True) -> FlashRoot:
+        """Use ``root`` as the disks from now on; ``clear_romdisk``: the RAM disk starts empty, as
+        when a controller starts."""
+        flash = FlashRoot(Path(root))
+        if clear_romdisk:
+            flash.clear_romdisk()
+        with self._lock:
+            self.root_folder, self._flash = flash.root, flash
+        return flash
+
+    def set_working_folder(self, folder: str | None) -> None:
+        """Resolve relative names against the controller folder ``folder`` (None: refuse them)."""
+        self.working_folder = folder.rstrip("/") if folder else None
+
+    def resolve(self, path: str) -> ControllerPath:
+        """Check and map a controller path onto these disks."""
+        return self.root().resolve(path, self.working_folder)
+
+
+# -- the calling code's session (gplrt.session) ------------------------------------------------------
 
 
 def set_working_folder(folder: str | None) -> None:
-    """Resolve relative names against the controller folder ``folder`` (None: refuse them)."""
-    global _working_folder
-    _working_folder = folder.rstrip("/") if folder else None
+    """Resolve the current session's relative names against ``folder`` (None: refuse them)."""
+    current_session().files.set_working_folder(folder)
 
 
 def get_working_folder() -> str | None:
-    return _working_folder
-_session_dir: tempfile.TemporaryDirectory[str] | None = None
+    return current_session().files.working_folder
 
 
 def set_flash_root(root: Path | str, *, clear_romdisk: bool = True) -> FlashRoot:
-    """Use ``root`` as the controller's disks from now on (the simulator calls this at start)."""
-    global _current
-    flash = FlashRoot(Path(root))
-    if clear_romdisk:
-        flash.clear_romdisk()
-    with _lock:
-        _current = flash
-    return flash
+    """Use ``root`` as the current session's disks from now on (``Simulation(flash_root=...)``
+    chooses it when the session is made)."""
+    return current_session().files.set_root(root, clear_romdisk=clear_romdisk)
 
 
 def get_flash_root() -> FlashRoot:
-    """The configured root; by default a temporary folder that lives as long as the process."""
-    global _current, _session_dir
-    with _lock:
-        if _current is None:
-            _session_dir = tempfile.TemporaryDirectory(prefix="gplrt-flash-")
-            atexit.register(_session_dir.cleanup)
-            _current = FlashRoot(Path(_session_dir.name))
-        return _current
+    """The current session's flash root (by default a temporary folder that lives with it)."""
+    return current_session().files.root()
 
 
 def resolve(path: str) -> ControllerPath:
-    """Check and map a controller path against the current root."""
-    return get_flash_root().resolve(path)
+    """Check and map a controller path against the current session's disks."""
+    return current_session().files.resolve(path)

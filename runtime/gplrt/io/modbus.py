@@ -38,7 +38,7 @@ from typing import Any
 from gplrt.io._arrays import make_array, to_list
 from gplrt.io._blocking import blocking_call, wait_ready
 from gplrt.io._codec import from_bytes
-from gplrt.io.sockets import IPEndPoint, _config, _ready, _seconds
+from gplrt.io.sockets import IPEndPoint, _ready, _seconds, network_config
 from gplrt.lang.errors import (
     CONNECTION_CLOSED,
     CONNECTION_REFUSED,
@@ -189,7 +189,7 @@ class Modbus:
     def _connect(self) -> _socket.socket:
         if self._sock is not None:
             return self._sock
-        timeout = self._timeout() or _config.connect_timeout
+        timeout = self._timeout() or network_config().connect_timeout
         where = f"{self._address[0]}:{self._address[1]}"
         try:
             sock = blocking_call(lambda: _socket.create_connection(self._address, timeout), timeout)

@@ -34,6 +34,8 @@ from gplrt.lang.errors import (
     VALUE_OUT_OF_RANGE,
     GplException,
 )
+from gplrt.session import current_session
+from gplrt.threads.scheduler import current_ctx
 
 
 MAGIC = b"GPLNV"
@@ -168,17 +170,14 @@ def _report_lost_record(host: SandboxPath, length: int, present: int) -> None:
     -519 *Invalid file format* is the code: the manual names none for this (it only promises that
     complete records survive), and -519 is what the rest of this module raises for a damaged file.
     The reading or writing program itself gets its complete records and no exception, as after a
-    power failure on a controller.  Imported on use: the simulation imports the I/O layer.
+    power failure on a controller.
     """
-    from gplrt.sim import current
-    from gplrt.threads.scheduler import current_ctx
-
     ctx = current_ctx()
     text = (
         f"NVRAM {host.name}: last record cut off ({present} of {length} bytes), "
         "lost as a write interrupted by a power failure; the complete records are kept"
     )
-    current().report(ctx.name if ctx is not None else "<external>", text, INVALID_FILE_FORMAT)
+    current_session().report(ctx.name if ctx is not None else "<external>", text, INVALID_FILE_FORMAT)
 
 
 def open_for_write(host: SandboxPath, switches: NvramSwitches, append: bool) -> NvramFile:

@@ -4,7 +4,7 @@ On a controller a project lives in its folder ``/flash/projects/<project>/``: it
 ``Project.gpr`` and whatever data files came with it (TCS's ``Tcs.gpo``), and a relative file name
 in the program (``New StreamReader("Tcs.gpo")``) is relative to that folder.
 :func:`install_project` puts a project folder's files there and makes that folder the one
-relative names resolve against (``gplrt.io.flashroot.set_working_folder``).  ``gpl2py run``,
+relative names resolve against (``gplrt.io.flashroot.Disks.set_working_folder``).  ``gpl2py run``,
 ``Cell.load`` and ``python -m <package>`` call it before the project starts.
 
 The project folder is untrusted input, read and written under the rules of the flash sandbox
@@ -26,6 +26,7 @@ from pathlib import Path
 from gplrt.io import flashroot
 from gplrt.io.sandbox import Kind, Sandbox, SandboxPath
 from gplrt.lang.errors import GplException
+from gplrt.session import current_session
 
 #: Files larger than this are not installed (a project folder is no place for bulk data).
 MAX_FILE_BYTES = 16 * 1024 * 1024
@@ -75,29 +76,33 @@ def project_folder(name: str) -> str | None:
     return f"{PROJECTS}/{name}"
 
 
-def install_project(files: dict[str, bytes], name: str) -> str | None:
-    """Write ``files`` into the project folder of ``name`` on the current flash root and make it
-    the working folder; returns the folder, or None when ``name`` cannot be a controller folder."""
+def install_project(files: dict[str, bytes], name: str, disks: flashroot.Disks | None = None) -> str | None:
+    """Write ``files`` into the project folder of ``name`` on ``disks`` (default: the current
+    session's) and make it their working folder; returns the folder, or None when ``name``
+    cannot be a controller folder."""
+    if disks is None:
+        disks = current_session().files
     folder = project_folder(name)
     if folder is None:
         return None
     try:
-        base = flashroot.resolve(folder)
+        base = disks.resolve(folder)
         assert base.file is not None
         base.file.mkdir()
     except (OSError, GplException):
         return None  # a link or a file in the way (-208 / not a folder): nothing is written
     for file, data in sorted(files.items()):
         try:
-            target = flashroot.resolve(f"{folder}/{file}")
+            target = disks.resolve(f"{folder}/{file}")
             assert target.file is not None
             target.file.replace(data)
         except (OSError, GplException):
             continue  # a name the controller refuses, a folder in the way
-    flashroot.set_working_folder(folder)
+    disks.set_working_folder(folder)
     return folder
 
 
-def install_project_folder(folder: str | os.PathLike[str], name: str) -> str | None:
+def install_project_folder(folder: str | os.PathLike[str], name: str,
+                           disks: flashroot.Disks | None = None) -> str | None:
     """:func:`install_project` of the files of a host project folder."""
-    return install_project(read_project_files(folder), name)
+    return install_project(read_project_files(folder), name, disks)

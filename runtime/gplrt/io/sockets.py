@@ -60,7 +60,7 @@ import termios
 import threading
 import time
 import weakref
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from gplrt.io import _blocking
@@ -82,6 +82,7 @@ from gplrt.lang.errors import (
 )
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
+from gplrt.session import current_session
 
 
 LOOPBACK = "127.0.0.1"
@@ -90,30 +91,46 @@ ANY = "0.0.0.0"
 
 @dataclass
 class NetworkConfig:
-    """Where simulated servers may listen (module docstring) and how long a connect waits."""
+    """One session's network (``Session.network``): where its servers may listen (module
+    docstring), how long a connect waits, and the listeners its program has started."""
 
     listen: str = LOOPBACK  # the user's opt-in: an address of this computer, or ANY
     connect_timeout: float | None = 30.0  # seconds; a real controller's TCP gives up eventually
+    #: Every TcpListener the session's program started (``listening_ports``).
+    listeners: weakref.WeakSet[TcpListener] = field(default_factory=weakref.WeakSet, repr=False, compare=False)
 
+    def listening_ports(self) -> set[int]:
+        """The TCP ports the session's program listens on now (``Start`` until ``Stop``).
 
-_config = NetworkConfig()
+        For a Python client that must not connect before its server listens (``Cell.serve``): a
+        probing connection would be a client of its own — TCS serves one connection per port and
+        stops listening while it has it.
+        """
+        ports = set()
+        for listener in list(self.listeners):
+            sock = listener._sock
+            try:
+                if sock is not None:
+                    ports.add(int(sock.getsockname()[1]))
+            except OSError:  # stopped meanwhile
+                pass
+        return ports
 
 
 def configure_network(listen: str | None = None, connect_timeout: float | None = -1.0) -> NetworkConfig:
-    """Change the network switches; ``listen`` is checked by :func:`listen_address`.
-
-    A :class:`gplrt.sim.Simulation` sets ``listen`` to its own (loopback unless given) whenever it
-    becomes the active session, so one Cell's opt-in never carries over to another."""
+    """Change the current session's network switches; ``listen`` is checked by
+    :func:`listen_address` (``Simulation(listen=...)`` sets it when the session is made)."""
+    config = current_session().network
     if listen is not None:
-        _config.listen = listen_address(listen)
+        config.listen = listen_address(listen)
     if connect_timeout is None or connect_timeout >= 0:
-        _config.connect_timeout = connect_timeout
-    return _config
+        config.connect_timeout = connect_timeout
+    return config
 
 
 def network_config() -> NetworkConfig:
-    """The switches in force (the active Simulation set ``listen``)."""
-    return _config
+    """The current session's network switches."""
+    return current_session().network
 
 
 def listen_address(text: str) -> str:
@@ -143,9 +160,10 @@ def _bind_address(requested: str) -> str:
     """Where a bind the program asked for at ``requested`` ("" = any) really goes (module doc)."""
     if _is_loopback(requested):
         return requested
-    if _config.listen == ANY:
+    listen = current_session().network.listen
+    if listen == ANY:
         return requested or ANY
-    return _config.listen
+    return listen
 
 
 def _os_error(exc: OSError, what: str) -> GplException:
@@ -371,7 +389,7 @@ class Socket:
         if remote_endpoint is None:
             raise GplException(OBJECT_NOT_INSTANTIATED, detail="Connect needs an IPEndPoint")
         address = remote_endpoint._remote()
-        timeout = _config.connect_timeout
+        timeout = current_session().network.connect_timeout
 
         def connect() -> None:
             # Non-blocking connect, then wait in slices for the outcome, so Thread.Abort and Close
@@ -547,7 +565,7 @@ def _bind(sock: _socket.socket, endpoint: IPEndPoint) -> tuple[str, int]:
     try:
         sock.bind(address)
     except OSError as exc:
-        fallback = LOOPBACK if _is_loopback(address[0]) else _config.listen
+        fallback = LOOPBACK if _is_loopback(address[0]) else current_session().network.listen
         if exc.errno != errno.EADDRNOTAVAIL or address[0] == fallback:
             raise
         address = (fallback, address[1])  # the controller's own IP, which this PC does not have
@@ -563,8 +581,9 @@ def _bind_for_sending(sock: _socket.socket, destination: tuple[str, int]) -> Non
     if _is_loopback(destination[0]):
         sock.bind((LOOPBACK, 0))
         return
-    if _config.listen not in (LOOPBACK, ANY):
-        sock.bind((_config.listen, 0))  # the one interface the user opened
+    listen = current_session().network.listen
+    if listen not in (LOOPBACK, ANY):
+        sock.bind((listen, 0))  # the one interface the user opened
         return
     route = _socket.socket(_socket.AF_INET, _socket.SOCK_DGRAM)
     try:
@@ -632,7 +651,7 @@ class TcpListener:
         self._sock = sock
         self._release = _blocking.opened()  # paces virtual time while listening
         self._freed = weakref.finalize(self, _free_later, sock, self._release)
-        _listeners.add(self)
+        current_session().network.listeners.add(self)
 
     def _listening(self) -> _socket.socket:
         if self._sock is None:
@@ -688,26 +707,10 @@ class TcpListener:
         self.Stop()
 
 
-#: Every TcpListener started in this process (see :func:`listening_ports`).
-_listeners: weakref.WeakSet[TcpListener] = weakref.WeakSet()
-
-
 def listening_ports() -> set[int]:
-    """The TCP ports the GPL programs of this process listen on now (``Start`` until ``Stop``).
-
-    For a Python client that must not connect before its server listens (``Cell.serve``): a
-    probing connection would be a client of its own — TCS serves one connection per port and
-    stops listening while it has it.
-    """
-    ports = set()
-    for listener in list(_listeners):
-        sock = listener._sock
-        try:
-            if sock is not None:
-                ports.add(int(sock.getsockname()[1]))
-        except OSError:  # stopped meanwhile
-            pass
-    return ports
+    """The TCP ports the current session's program listens on now
+    (:meth:`NetworkConfig.listening_ports`)."""
+    return current_session().network.listening_ports()
 
 
 class UdpClient:

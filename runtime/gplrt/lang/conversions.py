@@ -51,6 +51,7 @@ import struct
 from collections.abc import Callable
 from typing import Any, Final
 
+from gplrt.lang import errors as _errors
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
     INVALID_ARGUMENT,
@@ -213,6 +214,11 @@ def to_int32(x: Any) -> int:
         if _INT32_MIN <= x <= _INT32_MAX:
             return x
     raise GplException(ARITHMETIC_OVERFLOW, detail=f"{x} does not fit an Integer")
+
+
+#: GplException converts the member values hand-written Python gives it (``ex.Qualifier = "3"``)
+#: with this, the one Integer conversion (``gplrt.lang.errors.integer_conversion``).
+_errors.integer_conversion = to_int32
 
 
 def to_int16(x: Any) -> int:

@@ -13,7 +13,10 @@ it is appended after `` - `` so that Python tracebacks say what went wrong.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from gplrt.lang.error_codes import ERROR_MESSAGES
+from gplrt.lang.sourcemap import locate
 
 # The one table of names for the codes the runtime raises: every module imports its codes from
 # here (one name per code; names follow the controller's message texts in error_codes.py).
@@ -142,18 +145,26 @@ def error_text(code: int) -> str:
     return ERROR_MESSAGES.get(code, f"Error {code}")
 
 
+def _not_installed(value: object) -> int:
+    raise RuntimeError("gplrt.lang.conversions is not loaded (gplrt/__init__.py loads it)")
+
+
+#: GPL's Integer conversion (``gplrt.lang.conversions.to_int32``), which converting a member value
+#: needs.  The conversions raise GplException with this module's codes, so they sit above it and
+#: install their Integer conversion here when they load; ``gplrt/__init__.py`` loads them with the
+#: package, so it is in place before any GplException exists.
+integer_conversion: Callable[[object], int] = _not_installed
+
+
 def _integer(value: object) -> int:
     """GPL's Integer conversion of a member value (``ex.Qualifier = "3"``, ``= 1.5``, ``= True``).
 
     Python's ``int()`` would truncate 1.5 and raise a bare ValueError for "abc" or NaN; the shared
     conversion rounds half away from zero and raises the controller's codes (-717, -710).
-    Imported on use: ``conversions`` itself imports this module for its codes.
     """
     if type(value) is int:
         return value
-    from gplrt.lang.conversions import to_int32
-
-    return to_int32(value)
+    return integer_conversion(value)
 
 
 class GplException(Exception):
@@ -272,9 +283,7 @@ class GplException(Exception):
             text += f" - {self.detail}"
         location = self.gpl_location
         if location is None and self.__traceback__ is not None:
-            from gplrt.lang.sourcemap import locate  # transpiled frames name their GPL line
-
-            location = locate(self)
+            location = locate(self)  # transpiled frames name their GPL line
         if location:
             text += f" (at {location})"
         return f"GPL error {self._code}: {text}"

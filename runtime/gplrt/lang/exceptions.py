@@ -54,6 +54,7 @@ from gplrt.lang.errors import (
     VALUE_OUT_OF_RANGE,
     GplException,
 )
+from gplrt.lang.sourcemap import locate
 
 
 __all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available", "not_simulated"]
@@ -126,8 +127,6 @@ def gpl_entry(func: Callable[..., Any]) -> Callable[..., Any]:
             raise
         except Exception as exc:
             gex = as_gpl_exception(exc)
-            from gplrt.lang.sourcemap import locate
-
             gex.gpl_location = locate(exc)
             raise gex from exc
 

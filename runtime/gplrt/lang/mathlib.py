@@ -34,6 +34,7 @@ from typing import Any
 from gplrt.lang.conversions import to_double
 from gplrt.lang.errors import ARITHMETIC_OVERFLOW, VALUE_INFINITE_OR_NAN, VALUE_OUT_OF_RANGE, GplException
 from gplrt.lang.gpltypes import Double
+from gplrt.lang.operators import power
 
 __all__ = ["Math", "Fix", "Int", "Rnd", "rnd_seed"]
 
@@ -165,8 +166,6 @@ class _Math:
     @staticmethod
     def Pow(base: Double, exponent: Double) -> Double:
         """Same rules as the ``^`` operator (negative base needs an integral power)."""
-        from gplrt.lang.operators import power
-
         return power(base, exponent)  # type: ignore[return-value]
 
     @staticmethod

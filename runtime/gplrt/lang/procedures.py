@@ -35,10 +35,11 @@ caller checks its parameters (threads and delegates raise -741 themselves).
 may both have a ``Main.Worker``; with one process-wide table, a thread started by name would find
 the project loaded last.  So generated code registers into its package's own
 :class:`ProcedureRegistry` (``register_procedure(..., package=__package__)``), the package's
-``init()`` binds that registry to the simulation it initialises (``use_procedures(sim, package)``),
-and ``find_procedure`` looks names up in the registry of the running simulation
-(``gplrt.sim.current()``, the simulation of the calling GPL thread), falling back to the default,
-process-wide registry that hand-written Python registers into (no ``package``).  Direct calls
+``init()`` makes that registry the session's (``use_procedures(sim, package)``: it becomes
+``Session.procedures``), and ``find_procedure`` looks names up in the registry of the calling
+code's session (``gplrt.session.current_session()``, the session of the calling GPL thread),
+falling back to the default, process-wide registry that hand-written Python registers into (no
+``package``), which is also the registry of a session no package has initialised.  Direct calls
 between procedures never touch a registry, so this costs nothing per call; a lookup by name costs
 one dictionary access more.
 """
@@ -48,10 +49,9 @@ from __future__ import annotations
 import inspect
 import math
 import threading
-import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from gplrt.lang.errors import (
     AMBIGUOUS_PUBLIC_REFERENCE,
@@ -60,12 +60,17 @@ from gplrt.lang.errors import (
     UNDEFINED_SYMBOL,
     GplException,
 )
+from gplrt.session import current_session
+
+if TYPE_CHECKING:
+    from gplrt.session import Session
 
 
 __all__ = [
     "ProcedureEntry",
     "ProcedureRegistry",
     "registry_for",
+    "default_registry",
     "use_procedures",
     "register_procedure",
     "find_procedure",
@@ -202,8 +207,6 @@ def _arity(func: Callable[..., Any]) -> tuple[int, float]:
 _default = ProcedureRegistry()
 _packages: dict[str, ProcedureRegistry] = {}
 _packages_lock = threading.Lock()
-# simulation -> the registry of the project it runs (weak: a finished simulation is forgotten)
-_by_sim: weakref.WeakKeyDictionary[Any, ProcedureRegistry] = weakref.WeakKeyDictionary()
 
 
 def registry_for(package: str | None) -> ProcedureRegistry:
@@ -218,17 +221,15 @@ def registry_for(package: str | None) -> ProcedureRegistry:
     return reg
 
 
-def use_procedures(sim: Any, package: str) -> None:
+def default_registry() -> ProcedureRegistry:
+    """The process-wide registry of hand-written Python (a new session's, until a package's
+    ``init()`` gives it its own)."""
+    return _default
+
+
+def use_procedures(sim: Session, package: str) -> None:
     """Make ``package``'s registry the one that names resolve in for ``sim`` (its ``init()``)."""
-    _by_sim[sim] = registry_for(package)
-
-
-def _active() -> ProcedureRegistry:
-    if not _by_sim:  # no generated package initialised yet: hand-written Python only
-        return _default
-    from gplrt.sim import current
-
-    return _by_sim.get(current(), _default)
+    sim.procedures = registry_for(package)
 
 
 def register_procedure(
@@ -256,7 +257,7 @@ def registered_procedures(package: str | None = None) -> list[ProcedureEntry]:
 
 def find_procedure_entry(name: str, module: str | None = None, nargs: int | None = None) -> ProcedureEntry:
     """Like ``find_procedure`` but returns the registry entry (name, access, qualifier)."""
-    active = _active()
+    active = current_session().procedures
     if active is _default:
         return _default.find(name, module, nargs)
     try:

@@ -60,21 +60,22 @@ from gplrt.motion import registry, special
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot import QUEUE_DEPTH, RobotState
 from gplrt.motion.straight import ArcPath, LinePath
-from gplrt.threads.scheduler import controller_wait, current_ctx
+from gplrt.session import Session, current_session
+from gplrt.threads.scheduler import ThreadKey, controller_wait, current_ctx
 
 NO_CLEARANCE = 1.0e32
 #: The longest Move.Delay, in seconds (see ``Delay``).
 MAX_DELAY = (2**31 - 1) / 1000.0
 
 
-def _attached(s: Any, key: Any = None) -> RobotState:
+def _attached(s: Session, key: ThreadKey | None = None) -> RobotState:
     robot = registry.attached_robot(s, registry.thread_key() if key is None else key)
     if robot is None:
         raise GplException(NO_ROBOT_ATTACHED, detail="this thread has no robot attached (Robot.Attached)")
-    return robot  # type: ignore[no-any-return]
+    return robot
 
 
-def _ready(s: Any, key: Any = None) -> RobotState:
+def _ready(s: Session, key: ThreadKey | None = None) -> RobotState:
     """The attached robot, checked for motion, once the queue has room (waits on the clock).
     ``key``: the calling thread's ``registry.thread_key()`` when the caller has it already."""
     if key is None:
@@ -94,7 +95,7 @@ def _ready(s: Any, key: Any = None) -> RobotState:
     return robot
 
 
-def _special_ready(s: Any) -> RobotState:
+def _special_ready(s: Session) -> RobotState:
     """The attached robot, checked as for a motion, once its queued motions have ended: a
     special mode starts from rest (``gplrt.motion.special``)."""
     robot = _ready(s)
@@ -177,7 +178,7 @@ class _MoveClass:
         reach their values."""
         _need(loc, Location, "Location")
         _need(prof, Profile, "Profile")
-        s = registry.sim()
+        s = current_session()
         robot = _ready(s)
         t = s.scheduler.clock.now()
         speed = s.controller.system_speed
@@ -208,9 +209,14 @@ class _MoveClass:
         loc = Location1
         # (the runtime's own fields, not the GPL properties: this is the hot path)
         if isinstance(loc, Location) and loc._type == 1 and isinstance(Profile1, Profile) and not Profile1._straight:
-            # the commonest move of all, kept short (benchmarks/motion_speed.py measures it)
+            # the commonest move of all, kept short (benchmarks/motion_speed.py measures it):
+            # current_session() and registry.thread_key() in one look at the calling thread
             ctx = current_ctx()
-            s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
+            s: Session | None
+            if ctx is not None and (s := ctx.sched.session) is not None:
+                key: ThreadKey = ctx
+            else:
+                s, key = current_session(), registry.thread_key()
             robot = _ready(s, key)
             vals = loc._angles  # Python floats (Location.from_angles / Angles store them so)
             n = robot._axis_count
@@ -227,7 +233,10 @@ class _MoveClass:
             # destination's joints and the profile — of the joints, or of a straight line's path
             # (kept short for the same benchmark); Move.Extra values take the general way
             ctx = current_ctx()
-            s, key = (ctx.sched.sim, ctx) if ctx is not None else (registry.sim(), registry.thread_key())
+            if ctx is not None and (s := ctx.sched.session) is not None:
+                key = ctx
+            else:
+                s, key = current_session(), registry.thread_key()
             robot = _ready(s, key)
             P1 = loc.total_pose()
             with robot.lock:
@@ -274,7 +283,7 @@ class _MoveClass:
     def OneAxis(self, Axis: Integer, Position: Double, RelativeFlag: Boolean, Profile1: Profile) -> None:
         """Move one axis (1-based) to ``Position`` (or by it, when ``RelativeFlag``)."""
         _need(Profile1, Profile, "Profile")
-        s = registry.sim()
+        s = current_session()
         robot = _ready(s)
         axis = to_int32(Axis)
         position = _finite(Position, "Move.OneAxis position")
@@ -297,7 +306,7 @@ class _MoveClass:
         _need(loc1, Location, "Location1")
         _need(loc2, Location, "Location2")
         _need(prof, Profile, "Profile")
-        s = registry.sim()
+        s = current_session()
         robot = _ready(s)
         with robot.lock:
             dest = robot.queue.final_joints()
@@ -318,7 +327,7 @@ class _MoveClass:
         seconds = _finite(Seconds, "Move.Delay seconds")
         if seconds > MAX_DELAY:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"Move.Delay {seconds} s (at most {MAX_DELAY} s)")
-        s = registry.sim()
+        s = current_session()
         robot = _ready(s)
         with robot.lock:
             robot.queue_delay(s.scheduler.clock.now(), seconds)
@@ -326,7 +335,7 @@ class _MoveClass:
     def Extra(self, Axis1: Double, Axis2: Double | None = None, Axis3: Double | None = None,
               Axis4: Double | None = None) -> None:  # type: ignore[assignment]
         """Positions of the extra axes for the next motion to a Cartesian Location."""
-        robot = _attached(registry.sim())
+        robot = _attached(current_session())
         n_extra = int(np.count_nonzero(robot.extra_mask))
         vals = [_finite(v, f"Move.Extra axis {i}") for i, v in enumerate((Axis1, Axis2, Axis3, Axis4), 1)
                 if v is not None]
@@ -334,7 +343,7 @@ class _MoveClass:
 
     def WaitForEOM(self) -> None:
         """Wait until the attached robot's queued motions have ended (and settled)."""
-        s = registry.sim()
+        s = current_session()
         robot = _attached(s)
         sched = s.scheduler
         while robot.special is not None:  # a special mode has no end of motion until it stops
@@ -356,37 +365,37 @@ class _MoveClass:
 
     def StopSpecialModes(self) -> None:
         """End jog or torque mode where the robot is (nothing to do in position mode)."""
-        s = registry.sim()
+        s = current_session()
         special.stop_special_modes(s, _attached(s))
 
     def StartJogMode(self) -> None:
         """Enter jog mode, holding where the queued motions end."""
-        s = registry.sim()
+        s = current_session()
         robot = _special_ready(s)
         special.start_jog_mode(s, robot)
 
     def SetJogCommand(self, JogMode: Integer, JogAxis: Integer, JogSpeed: Double) -> None:
         """Jog mode 0 (hold), 1 (joint ``JogAxis`` at ``JogSpeed`` %) or 4 (free ``JogAxis``)."""
-        s = registry.sim()
+        s = current_session()
         special.set_jog_command(s, _attached(s), to_int32(JogMode), to_int32(JogAxis),
                                 _finite(JogSpeed, "Move.SetJogCommand speed"))
 
     def StartTorqueCntrl(self, MotorMask: Integer, AdcMask: Integer, Torques: GplArray[Double]) -> None:
         """Torque control of the axes in ``MotorMask`` with ``Torques`` (% of peak, per axis)."""
-        s = registry.sim()
+        s = current_session()
         _need(Torques, GplArray, "Torques array")
         special.start_torque_mode(s, _special_ready(s), to_int32(MotorMask), to_int32(AdcMask), Torques)
 
     def SetTorques(self, Torques: GplArray[Double]) -> None:
         """New torques for the axes in torque mode."""
-        s = registry.sim()
+        s = current_session()
         _need(Torques, GplArray, "Torques array")
         special.set_torques(s, _attached(s), Torques)
 
     def Trigger(self, Mode: Integer, TriggerPt: Double, Target: Any, EventMask: Integer = 0) -> None:  # type: ignore[assignment]
         """At ``TriggerPt`` % of the next motion, send ``EventMask`` to the Thread ``Target`` (or
         turn on output ``Target``).  The four-argument form is the one real code uses."""
-        s = registry.sim()
+        s = current_session()
         robot = _attached(s)
         target = Target if hasattr(Target, "SendEvent") else to_int32(Target)
         special.arm_trigger(robot, to_int32(Mode), _finite(TriggerPt, "Move.Trigger point"), target,
@@ -394,7 +403,7 @@ class _MoveClass:
 
     def ForceOverlap(self, Mode: Integer, Criterion: Double) -> None:
         """Overlap the next joint motion with the running one by ``Criterion`` % of its duration."""
-        s = registry.sim()
+        s = current_session()
         robot = _attached(s)
         if to_int32(Mode) != 0:
             raise GplException(INCONSISTENT_TRIGGER_MODE, robot_num=robot.number,

@@ -1,7 +1,7 @@
 """Per-robot state of the simulated controller: homed, attached, Tool/Base, and the motion queue.
 
-A :class:`RobotState` lives in ``Simulation.robots[n]`` (filled on first use by
-:func:`gplrt.motion.registry.robot_of`).  ``Move.*`` calls end up in :meth:`RobotState.queue_joint`,
+A :class:`RobotState` lives in ``Session.robots[n]`` (built on first use by ``Session.robot``,
+:func:`gplrt.motion.registry.build_robot`).  ``Move.*`` calls end up in :meth:`RobotState.queue_joint`,
 :meth:`queue_path` or :meth:`queue_delay`, which plan a segment at once and append it with an
 absolute start time; the call returns as soon as the segment is queued (as on the controller).
 
@@ -42,7 +42,6 @@ import math
 import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
@@ -56,7 +55,7 @@ from gplrt.lang.errors import (
     GplException,
 )
 from gplrt.motion.kinematics import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY, RobotModel
-from gplrt.motion.limits import RobotLimits, Vec, jerk_of
+from gplrt.motion.limits import AxisLimits, RobotLimits, Vec, jerk_of
 from gplrt.motion.planner import Plan, plan_axes, plan_scalar, plan_stop
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import (
@@ -71,7 +70,11 @@ from gplrt.motion.queue import (
     profile_values,
 )
 from gplrt.motion.path_run import PathRun, path_limits
+from gplrt.motion.servo import ServoGripper
+from gplrt.motion.special import OverlapSegment, SpecialMode, Trigger, fire_triggers
 from gplrt.motion.straight import Path
+from gplrt.session import current_session
+from gplrt.threads.scheduler import ThreadKey, WaitQueue
 
 QUEUE_DEPTH = 8
 #: Homing duration (s) [P]: PF400 axes have absolute encoders and do not move; the gripper homes.
@@ -150,7 +153,7 @@ class RobotState:
     queue: MotionQueue
     homed: bool = False
     homing: int = 0  # homings of this robot in progress (TrajState 9)
-    owner: Any = None  # key of the thread that has it attached (None = free)
+    owner: ThreadKey | None = None  # the thread that has it attached (None = free)
     last_profile: tuple[object, ...] | None = None  # queue.profile_values of the last motion
     pending_extra: list[float] = field(default_factory=list)
     async_error: int = 0
@@ -158,23 +161,24 @@ class RobotState:
     custom: dict[int, float] = field(default_factory=dict)
     rapid_decel_until: float = -math.inf
     lock: threading.RLock = field(default_factory=threading.RLock)
-    eom_waiters: Any = None  # a scheduler WaitQueue, set by the registry
+    #: Threads waiting for the end of its motion (``Move.WaitForEOM``)
+    eom_waiters: WaitQueue = field(default_factory=lambda: WaitQueue("end of motion"))
     _bounds: tuple[list[float], list[float]] | None = None
     #: (end joints, Tool, Base, tool pose) of the last Cartesian destination (``pose_of``)
     _known_pose: tuple[Vec, np.ndarray, np.ndarray, Pose] | None = None
     #: The path motions' kinematics for the present Tool and Base (``QueuedFrames``)
     _frames: QueuedFrames | None = None
     #: The servo gripper (``gplrt.motion.servo``), None for a robot without one
-    gripper: Any = None
+    gripper: ServoGripper | None = None
     #: Motor counts per mm or degree of each joint (DataID 2300; ``Robot.JointToMotor``)
     motor_scale: list[float] = field(default_factory=list)
     #: Brake control (DataIDs 14500/14002): the chosen axis, and the axes whose brake is released
     brake_axis: int = 0
     brakes_released: set[int] = field(default_factory=set)
     #: The special trajectory mode in force (jog, torque: ``gplrt.motion.special``), or None
-    special: Any = None
+    special: SpecialMode | None = None
     #: ``Move.Trigger`` actions armed for the next motion (``gplrt.motion.special``)
-    pending_triggers: list[Any] = field(default_factory=list)
+    pending_triggers: list[Trigger] = field(default_factory=list)
     #: ``Move.ForceOverlap`` percentage for the next motion, or None
     pending_overlap: float | None = None
 
@@ -260,9 +264,7 @@ class RobotState:
 
     def latch_angles(self) -> list[float]:
         """Present joints (used by the latch emulation in controller/signals.py)."""
-        from gplrt.motion.registry import now
-
-        return [float(v) for v in self.joints_at(now())]
+        return [float(v) for v in self.joints_at(current_session().now())]
 
     def latch_pose(self, angles: tuple[float, ...]) -> tuple[np.ndarray, int] | None:
         """Tool pose (4×4 mm) and Config bits of latched joints; None without kinematics."""
@@ -279,16 +281,14 @@ class RobotState:
 
     # -- checks --------------------------------------------------------------------------------
 
-    def check_can_move(self, key: Any, power_on: bool) -> None:
+    def check_can_move(self, key: ThreadKey, power_on: bool) -> None:
         """The controller's motion preconditions (gpl-classes §7): attached, power, homed."""
         if self.owner is None or self.owner is not key:
             raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
                                detail=f"robot {self.number} is not attached to this thread")
         if self.queue.paths_pending:  # the path motions' cycles up to now (path_run)
-            from gplrt.motion.registry import now
-
             with self.lock:
-                self.queue.advance(now())
+                self.queue.advance(current_session().now())
         if self.async_error or self.queue.fault is not None:
             self.raise_async_error()
         if not power_on:
@@ -432,12 +432,10 @@ class RobotState:
         return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
                                          "joint", plan), prof)
 
-    def _queue_overlapped(self, now: float, values: list[float], lim: Any, prof: Profile) -> Segment:
+    def _queue_overlapped(self, now: float, values: list[float], lim: AxisLimits, prof: Profile) -> Segment:
         """A joint motion that ``Move.ForceOverlap`` overlaps with the running one
         (``gplrt.motion.special``): planned from rest at its target, started when it has the
         overlap percentage of its duration left, and superimposed on it until it ends."""
-        from gplrt.motion.special import OverlapSegment
-
         prev = self.queue.history[-1]
         pct, self.pending_overlap = float(self.pending_overlap or 0.0), None
         prev_end = prev.motion_end
@@ -642,10 +640,8 @@ class RobotState:
         if isinstance(seg, PathSegment):
             queue.paths_pending = True
         if self.pending_triggers:  # Move.Trigger armed for this motion
-            from gplrt.motion import registry, special
-
             triggers, self.pending_triggers = self.pending_triggers, []
-            special.fire_triggers(registry.sim(), seg, triggers)
+            fire_triggers(current_session(), seg, triggers)
         return seg
 
     # -- stopping ------------------------------------------------------------------------------

@@ -67,6 +67,7 @@ from gplrt.motion import registry, servo  # noqa: F401 - servo provides the grip
 from gplrt.motion.profile import Profile
 from gplrt.motion.queue import BlendedPathSegment, DwellSegment, profile_from_values
 from gplrt.motion.robot import HOMING_TIME, RobotState
+from gplrt.session import Session, current_session
 from gplrt.threads.scheduler import controller_wait
 
 #: ``Robot.TrajState`` codes (module docstring).
@@ -75,22 +76,25 @@ TRAJ_TORQUE, TRAJ_HOMING, TRAJ_JOG, TRAJ_NULLING = 8, 9, 10, 15
 
 
 def _robot(n: int = 0) -> RobotState:
-    s = registry.sim()
-    n = to_int32(n) or registry.selected(s)
-    return registry.robot_of(s, n)  # type: ignore[no-any-return]
+    s = current_session()
+    return s.robot(to_int32(n) or registry.selected(s))
+
+
+def _now() -> float:
+    return current_session().now()
 
 
 def _check_not_moving(robot: RobotState) -> None:
     """-1008 when ``robot`` still has motion to run at the controller clock's now (see the
     module docstring: a GPL detach of a moving robot is refused, the thread-end release is not)."""
-    if registry.robot_moving(robot, registry.now()):
+    if registry.robot_moving(robot, _now()):
         raise GplException(CANT_DETACH_MOVING_ROBOT, robot_num=robot.number,
                            detail=f"robot {robot.number} is still moving (Move.WaitForEOM first)")
 
 
 def _source(robot: RobotState) -> np.ndarray:
     """Joints at the start of the last queued motion, or the present ones before any motion."""
-    now = registry.now()
+    now = _now()
     robot.run_cycles(now)  # a stop by now has dropped the motions after it
     q = robot.source_joints()
     return q if q is not None else robot.joints_at(now)
@@ -121,12 +125,12 @@ class _RobotClass:
 
     @property
     def Attached(self) -> Integer:
-        robot = registry.attached_robot(registry.sim(), registry.thread_key())
+        robot = registry.attached_robot(current_session(), registry.thread_key())
         return (robot.number if robot is not None else 0)  # type: ignore[return-value]
 
     @Attached.setter
     def Attached(self, value: Integer) -> None:
-        s = registry.sim()
+        s = current_session()
         key = registry.thread_key()
         n = to_int32(value)
         mine = registry.attached_robot(s, key)
@@ -137,7 +141,7 @@ class _RobotClass:
                     mine.owner = None
             registry.refresh_power_state(s)
             return
-        robot = registry.robot_of(s, n)
+        robot = s.robot(n)
         # The test of the owner and its setting are one step: under the real clock two threads
         # attaching a free robot at once would otherwise both get it.  (Only the thread that
         # owns ``mine`` takes its lock inside this one, so the nesting cannot deadlock.)
@@ -155,13 +159,13 @@ class _RobotClass:
 
     @property
     def Selected(self) -> Integer:
-        return registry.selected(registry.sim())  # type: ignore[return-value]
+        return registry.selected(current_session())  # type: ignore[return-value]
 
     @Selected.setter
     def Selected(self, value: Integer) -> None:
-        s = registry.sim()
+        s = current_session()
         n = to_int32(value)
-        registry.robot_of(s, n)  # -1001 for a robot that does not exist
+        s.robot(n)  # -1001 for a robot that does not exist
         mine = registry.attached_robot(s, registry.thread_key())
         if mine is not None and mine.number != n:
             return  # Selected is forced equal to Attached while attached (attached.htm)
@@ -171,7 +175,7 @@ class _RobotClass:
 
     def Home(self) -> None:
         """Home the attached robot (takes HOMING_TIME of controller time)."""
-        s = registry.sim()
+        s = current_session()
         robot = registry.attached_robot(s, registry.thread_key())
         if robot is None:
             raise GplException(NO_ROBOT_ATTACHED, detail="Robot.Home needs an attached robot")
@@ -179,10 +183,10 @@ class _RobotClass:
 
     def HomeAll(self) -> None:
         """Home every robot of the controller."""
-        s = registry.sim()
-        self._home(s, [registry.robot_of(s, n) for n in registry.robot_numbers(s)])
+        s = current_session()
+        self._home(s, [s.robot(n) for n in registry.robot_numbers(s)])
 
-    def _home(self, s: Any, robots: list[RobotState]) -> None:
+    def _home(self, s: Session, robots: list[RobotState]) -> None:
         """Home ``robots``: the controller shows PowerState 28 (homing) for ``HOMING_TIME``.
 
         Threads of a multi-robot cell may home their robots at the same time.  The controller's
@@ -206,21 +210,21 @@ class _RobotClass:
     def Where(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Present Cartesian pose (Base and Tool included; Config = present configuration)."""
         robot = _robot(Robot)
-        return _cart(robot, robot.joints_at(registry.now()))
+        return _cart(robot, robot.joints_at(_now()))
 
     def WhereAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         robot = _robot(Robot)
-        return _angles(robot.joints_at(registry.now()))
+        return _angles(robot.joints_at(_now()))
 
     def Dest(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Final destination of the last queued motion."""
         robot = _robot(Robot)
-        robot.run_cycles(registry.now())  # a line stopped mid-way by now ends where it stopped
+        robot.run_cycles(_now())  # a line stopped mid-way by now ends where it stopped
         return _cart(robot, robot.queue.final_joints())
 
     def DestAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         robot = _robot(Robot)
-        robot.run_cycles(registry.now())
+        robot.run_cycles(_now())
         return _angles(robot.queue.final_joints())
 
     def Source(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
@@ -234,7 +238,7 @@ class _RobotClass:
     def SpeedAngles(self, Robot: Integer = 0) -> Location:  # type: ignore[assignment]
         """Present speed of every axis (mm/s or deg/s) as an Angles Location."""
         robot = _robot(Robot)
-        return _angles(robot.state_at(registry.now())[1])
+        return _angles(robot.state_at(_now())[1])
 
     def LastProfile(self, Robot: Integer = 0) -> Profile | None:  # type: ignore[assignment]
         robot = _robot(Robot)
@@ -247,7 +251,7 @@ class _RobotClass:
 
     def RapidDecel(self, Robot: Integer = 0) -> Boolean:  # type: ignore[assignment]
         """True while a rapid deceleration is in progress."""
-        return (registry.now() < _robot(Robot).rapid_decel_until)  # type: ignore[return-value]
+        return (_now() < _robot(Robot).rapid_decel_until)  # type: ignore[return-value]
 
     @overload
     def set_RapidDecel(self, value: Boolean) -> None: ...
@@ -264,9 +268,9 @@ class _RobotClass:
         """``Robot.RapidDecel(robot)`` as a statement: the same as assigning True.  The vendor's
         TCS stops a robot this way (its ``halt`` command, Cmd.gpl:1841); docs/design/real-code.md."""
         robot = _robot(Robot)
-        s = registry.sim()
+        s = current_session()
         with robot.lock:
-            robot.rapid_decel(registry.now())
+            robot.rapid_decel(_now())
         s.scheduler.notify_all(robot.eom_waiters)
 
     # -- offsets -------------------------------------------------------------------------------
@@ -377,7 +381,7 @@ def _scale_into(robot: RobotState, source: Any, target: Any, *, to_motor: bool) 
 
 def traj_state(robot: RobotState) -> int:
     """``Robot.TrajState`` and DataID 3520 (see the module docstring for the codes)."""
-    t = registry.now()
+    t = _now()
     if robot.special is not None:
         return robot.special.traj_state
     if robot.homing:
@@ -385,7 +389,7 @@ def traj_state(robot: RobotState) -> int:
     robot.run_cycles(t)  # a path motion stopped mid-way by now is no longer executing
     seg = robot.queue.segment_at(t)
     if seg is None:
-        return TRAJ_IDLE if registry.power_on(registry.sim()) else TRAJ_HALTED
+        return TRAJ_IDLE if registry.power_on(current_session()) else TRAJ_HALTED
     if isinstance(seg, DwellSegment):
         return TRAJ_CONSTANT
     if t >= seg.motion_end:
@@ -405,7 +409,7 @@ def traj_state(robot: RobotState) -> int:
     return TRAJ_CONSTANT
 
 
-def _begin_homing(s: Any, robots: list[RobotState]) -> None:
+def _begin_homing(s: Session, robots: list[RobotState]) -> None:
     """PowerState 28 while the first of overlapping homings runs (see ``Robot._home``)."""
     state = s.controller
     joining = state.homings > 0 and state.power_state == registry.POWER_HOMING
@@ -419,7 +423,7 @@ def _begin_homing(s: Any, robots: list[RobotState]) -> None:
         robot.homing += 1
 
 
-def _end_homing(s: Any, robots: list[RobotState], ok: bool) -> None:
+def _end_homing(s: Session, robots: list[RobotState], ok: bool) -> None:
     state = s.controller
     state.homings -= 1
     for robot in robots:
@@ -432,10 +436,10 @@ def _end_homing(s: Any, robots: list[RobotState], ok: bool) -> None:
             robot.homed = True
 
 
-def start_homing_all(s: Any) -> None:
+def start_homing_all(s: Session) -> None:
     """Home every robot as the controller's own action (DataID 213): PowerState 28 for
     ``HOMING_TIME`` on the controller clock, and the caller does not wait."""
-    robots = [registry.robot_of(s, n) for n in registry.robot_numbers(s)]
+    robots = [s.robot(n) for n in registry.robot_numbers(s)]
     _begin_homing(s, robots)
 
     def done() -> None:
@@ -449,14 +453,14 @@ class SimulatedKinematics:
 
     def forward(self, angles: Location) -> Location:
         robot = _robot(0)
-        q = robot.joints_at(registry.now())
+        q = robot.joints_at(_now())
         vals = angles.axis_values()
         q[: min(len(vals), len(q))] = vals[: len(q)]
         return _cart(robot, q)
 
     def inverse(self, loc: Location, config: int, current: Location | None) -> Location:
         robot = _robot(0)
-        ref = robot.joints_at(registry.now())
+        ref = robot.joints_at(_now())
         if current is not None:
             vals = current.axis_values()
             ref[: min(len(vals), len(ref))] = vals[: len(ref)]

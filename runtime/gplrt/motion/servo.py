@@ -39,11 +39,18 @@ Axes in torque mode (``gplrt.motion.special``) report their commanded torque as 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from gplrt.controller.pdb import ParameterDatabase
 from gplrt.controller.signals import add_input_provider
+from gplrt.controller.state import POWER_ON_STATES
+from gplrt.motion.kinematics import RobotModel
+
+if TYPE_CHECKING:
+    from gplrt.motion.robot import RobotState
+    from gplrt.session import Session
 
 #: mm between the gripper's minimum soft limit and its mechanical closed stop (module docstring).
 CLOSED_STOP_MARGIN = 4.0
@@ -77,14 +84,12 @@ class ServoGripper:
         return position <= self.closed_stop + EOT_RANGE
 
 
-def gripper_of(sim: Any, robot: int = 1) -> ServoGripper | None:
+def gripper_of(sim: Session, robot: int = 1) -> ServoGripper | None:
     """Robot ``robot``'s servo gripper (None when it has none): where a setup sets ``plate_width``."""
-    from gplrt.motion import registry
-
-    return registry.robot_of(sim, robot).gripper  # type: ignore[no-any-return]
+    return sim.robot(int(robot)).gripper
 
 
-def make_gripper(model: Any) -> ServoGripper | None:
+def make_gripper(model: RobotModel) -> ServoGripper | None:
     """The servo gripper of a robot model: its joint whose role is ``gripper``, if any."""
     for i, joint in enumerate(model.joints):
         if joint.role == "gripper":
@@ -92,7 +97,7 @@ def make_gripper(model: Any) -> ServoGripper | None:
     return None
 
 
-def joint_to_motor_scale(pdb: Any, robot: int, axis_count: int) -> list[float]:
+def joint_to_motor_scale(pdb: ParameterDatabase, robot: int, axis_count: int) -> list[float]:
     """Motor counts per mm or degree of each joint (DataID 2300, robot-models.md §2.6): element 1
     is J1, elements 2-10 a 3×3 matrix for J2-J4 whose diagonal (2, 6, 10) applies here, 11 J5,
     12 J6; a robot with fewer values (the XYZTheta layout) has one per axis."""
@@ -106,25 +111,23 @@ def joint_to_motor_scale(pdb: Any, robot: int, axis_count: int) -> list[float]:
     return scale[:axis_count]
 
 
-def _num(pdb: Any, data_id: int, robot: int, axis: int) -> float:
+def _num(pdb: ParameterDatabase, data_id: int, robot: int, axis: int) -> float:
     return float(pdb.get_num(data_id, robot, 1, axis + 1, default=0.0))
 
 
-def axis_torques(robot: Any, t: float) -> tuple[list[float], list[float]]:
-    """(PID output, feedforward) in torque counts for every axis of ``robot`` at time ``t``."""
-    from gplrt.motion import registry
-
-    s = registry.sim()
+def axis_torques(s: Session, robot: RobotState, t: float) -> tuple[list[float], list[float]]:
+    """(PID output, feedforward) in torque counts for every axis of ``robot`` of session ``s`` at
+    time ``t``."""
     n = robot.axis_count
     pid, ff = [0.0] * n, [0.0] * n
-    if not registry.power_on(s):
+    if s.controller.power_state not in POWER_ON_STATES:
         return pid, ff
     for axis, torque in robot.commanded_torques().items():
         pid[axis] = torque
     gripper = robot.gripper
     if gripper is None or gripper.axis in robot.commanded_torques():
         return pid, ff
-    pdb = registry.pdb_of(s)
+    pdb = s.database()
     i = gripper.axis
     commanded = float(robot.queue.joints_at(t)[i])
     scale = robot.motor_scale[i]
@@ -141,18 +144,16 @@ def axis_torques(robot: Any, t: float) -> tuple[list[float], list[float]]:
     return pid, ff
 
 
-def eot_input(sim: Any, signal: int) -> bool | None:
+def eot_input(sim: Session, signal: int) -> bool | None:
     """The end-of-travel input ``signal`` of a robot's gripper (on while the fingers are fully
     closed), or None when ``signal`` is not such an input."""
-    if signal != EOT_INPUT or sim is None:
+    if signal != EOT_INPUT:
         return None
-    from gplrt.motion import registry
-
-    gripper = gripper_of(sim, 1)
+    robot = sim.robot(1)
+    gripper = robot.gripper
     if gripper is None:
         return None
-    robot = registry.robot_of(sim, 1)
-    return gripper.fully_closed(float(robot.joints_at(registry.now())[gripper.axis]))
+    return gripper.fully_closed(float(robot.joints_at(sim.now())[gripper.axis]))
 
 
 add_input_provider(eot_input)

@@ -40,9 +40,10 @@ TCS and PARobot, shows how they are used):
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -54,8 +55,16 @@ from gplrt.lang.errors import (
     TORQUE_MODE_INCORRECT,
     GplException,
 )
+from gplrt.lang.arrays import GplArray
+from gplrt.lang.conversions import to_double
 from gplrt.motion.limits import Vec
 from gplrt.motion.queue import JointSegment, PathSegment, Segment
+from gplrt.motion.servo import PEAK_TCNT
+
+if TYPE_CHECKING:
+    from gplrt.motion.robot import RobotState
+    from gplrt.session import Session
+    from gplrt.threads.thread import Thread
 
 JOG_STOP, JOG_JOINT, JOG_WORLD, JOG_TOOL, JOG_FREE = 0, 1, 2, 3, 4
 TRAJ_TORQUE, TRAJ_JOG = 8, 10
@@ -112,7 +121,7 @@ class OverlapSegment(JointSegment):
 # -- special modes --------------------------------------------------------------------------
 
 
-def _start_mode(s: Any, robot: Any, mode: SpecialMode) -> None:
+def _start_mode(s: Session, robot: RobotState, mode: SpecialMode) -> None:
     now = s.scheduler.clock.now()
     with robot.lock:
         q = robot.joints_at(now)
@@ -121,7 +130,7 @@ def _start_mode(s: Any, robot: Any, mode: SpecialMode) -> None:
         _queue_manual(robot, now, q, mode.velocity)
 
 
-def _queue_manual(robot: Any, now: float, q: Vec, velocity: np.ndarray) -> None:
+def _queue_manual(robot: RobotState, now: float, q: Vec, velocity: np.ndarray) -> None:
     model = robot.model
     lower = np.array([j.lower for j in model.joints], dtype=float)
     upper = np.array([j.upper for j in model.joints], dtype=float)
@@ -130,22 +139,23 @@ def _queue_manual(robot: Any, now: float, q: Vec, velocity: np.ndarray) -> None:
     robot.queue.append(seg)
 
 
-def _replan(s: Any, robot: Any) -> None:
+def _replan(s: Session, robot: RobotState) -> None:
     """The special mode's velocities changed: the manual motion goes on from where it is now."""
     now = s.scheduler.clock.now()
     with robot.lock:
         q = robot.queue.joints_at(now)
         robot.queue.cut_at(now, q)
+        assert robot.special is not None  # (a special mode is on: its velocities changed)
         _queue_manual(robot, now, q, robot.special.velocity)
 
 
-def start_jog_mode(s: Any, robot: Any) -> None:
+def start_jog_mode(s: Session, robot: RobotState) -> None:
     if robot.special is not None and robot.special.kind == "jog":
         return
     _start_mode(s, robot, SpecialMode("jog", TRAJ_JOG, np.zeros(robot.axis_count)))
 
 
-def set_jog_command(s: Any, robot: Any, mode: int, axis: int, speed: float) -> None:
+def set_jog_command(s: Session, robot: RobotState, mode: int, axis: int, speed: float) -> None:
     special = robot.special
     if special is None or special.kind != "jog":
         raise GplException(INVALID_ARGUMENT, robot_num=robot.number,
@@ -171,18 +181,14 @@ def set_jog_command(s: Any, robot: Any, mode: int, axis: int, speed: float) -> N
     _replan(s, robot)
 
 
-def _jog_percent(s: Any, robot: Any) -> float:
-    from gplrt.motion import registry
-
-    return float(registry.pdb_of(s).get_num(_JOG_SPEED_PCT, robot.number, default=3.0))
+def _jog_percent(s: Session, robot: RobotState) -> float:
+    return float(s.database().get_num(_JOG_SPEED_PCT, robot.number, default=3.0))
 
 
-def push(sim: Any, robot_number: int, joints: dict[int, float]) -> None:
+def push(sim: Session, robot_number: int, joints: dict[int, float]) -> None:
     """Move free-mode joints by hand (a notebook's or setup's stand-in for the operator):
     ``joints`` maps axis numbers (1-based) to positions; -202 for an axis that is not free."""
-    from gplrt.motion import registry
-
-    robot = registry.robot_of(sim, robot_number)
+    robot = sim.robot(int(robot_number))
     special = robot.special
     for axis in joints:
         if special is None or special.kind != "jog" or axis - 1 not in special.free:
@@ -194,10 +200,11 @@ def push(sim: Any, robot_number: int, joints: dict[int, float]) -> None:
             q[axis - 1] = float(value)
         robot.check_joint_limits(q)
         robot.queue.cut_at(now, robot.queue.joints_at(now))
+        assert special is not None  # (checked above: the axes are free)
         _queue_manual(robot, now, q, special.velocity)
 
 
-def start_torque_mode(s: Any, robot: Any, motor_mask: int, adc_mask: int, torques: Any) -> None:
+def start_torque_mode(s: Session, robot: RobotState, motor_mask: int, adc_mask: int, torques: GplArray) -> None:
     if adc_mask:
         raise GplException(NOT_IMPLEMENTED, robot_num=robot.number,
                            detail="Move.StartTorqueCntrl: analog-input torque is not simulated")
@@ -209,10 +216,7 @@ def start_torque_mode(s: Any, robot: Any, motor_mask: int, adc_mask: int, torque
     set_torques(s, robot, torques)
 
 
-def set_torques(s: Any, robot: Any, torques: Any) -> None:
-    from gplrt.lang.conversions import to_double
-    from gplrt.motion.servo import PEAK_TCNT
-
+def set_torques(s: Session, robot: RobotState, torques: GplArray) -> None:
     special = robot.special
     if special is None or special.kind != "torque":
         raise GplException(TORQUE_MODE_INCORRECT, robot_num=robot.number, detail="the robot is not in torque mode")
@@ -226,7 +230,7 @@ def set_torques(s: Any, robot: Any, torques: Any) -> None:
     _replan(s, robot)
 
 
-def stop_special_modes(s: Any, robot: Any) -> None:
+def stop_special_modes(s: Session, robot: RobotState) -> None:
     if robot.special is None:
         return
     now = s.scheduler.clock.now()
@@ -244,31 +248,31 @@ class Trigger:
     """A ``Move.Trigger`` armed for the next motion (module docstring)."""
 
     percent: float
-    target: Any  # a GPL Thread, or a signal number
+    target: Thread | int  # a GPL Thread, or a signal number
     event_mask: int
 
 
-def arm_trigger(robot: Any, mode: int, percent: float, target: Any, event_mask: int) -> None:
+def arm_trigger(robot: RobotState, mode: int, percent: float, target: Thread | int, event_mask: int) -> None:
     if mode != 0:
         raise GplException(INCONSISTENT_TRIGGER_MODE, robot_num=robot.number,
                            detail=f"Move.Trigger mode {mode}: only mode 0 (percent of the motion) is simulated")
     robot.pending_triggers.append(Trigger(max(0.0, min(100.0, percent)), target, event_mask))
 
 
-def fire_triggers(s: Any, seg: Segment, triggers: list[Trigger]) -> None:
+def fire_triggers(s: Session, seg: Segment, triggers: list[Trigger]) -> None:
     """Schedule ``triggers`` on the motion ``seg`` just queued (module docstring)."""
     for trig in triggers:
         t = _time_at(seg, trig.percent / 100.0)
-        s.scheduler.call_at(t, lambda trig=trig, t=t: _fire(s, seg, trig, t))
+        s.scheduler.call_at(t, functools.partial(_fire, s, seg, trig, t))
 
 
-def _fire(s: Any, seg: Segment, trig: Trigger, t: float) -> None:
+def _fire(s: Session, seg: Segment, trig: Trigger, t: float) -> None:
     if seg.cut is not None and seg.cut < t - 1e-9 and seg.kind != "overlap":
         return  # stopped (or cut) before the point: nothing fires
     if isinstance(trig.target, int):
         s.io.write_dio(trig.target, True)
     else:
-        trig.target.SendEvent(trig.event_mask)
+        trig.target.SendEvent(trig.event_mask)  # type: ignore[arg-type]
 
 
 def _time_at(seg: Segment, fraction: float) -> float:

@@ -1,6 +1,6 @@
 """The sampled motion of a robot: times, joints and tool positions as numpy arrays.
 
-``trace(sim, robot)`` samples every segment the robot was ever given, from the start of the
+``trace(session, robot)`` samples every segment the robot was ever given, from the start of the
 first to the end of the last, every ``dt`` seconds (default: the trajectory-generator period,
 DataID 600, 4 ms on a PF400), and always includes the exact end, so the last row is the final
 target.  Robots without kinematics give ``xyz`` filled with NaN.
@@ -12,11 +12,15 @@ found there would reach the program before it happened (path_run).
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
+
+if TYPE_CHECKING:
+    from gplrt.session import Session
 
 DEFAULT_DT = 0.004
 
@@ -30,22 +34,21 @@ class Trace:
     xyz: NDArray[np.float64]
     names: tuple[str, ...]
 
-    def __iter__(self):  # type: ignore[no-untyped-def]
+    def __iter__(self) -> Iterator[NDArray[np.float64]]:
         """``times, joints, xyz = sim.trace(1)``."""
         return iter((self.times, self.joints, self.xyz))
 
 
-def _default_dt(sim: Any, robot_number: int) -> float:
+def _default_dt(sim: Session, robot_number: int) -> float:
     pdb = sim.pdb
     if pdb is not None and pdb.has(600, 1):
         return float(pdb.get_num(600, 1))
     return DEFAULT_DT
 
 
-def trace(sim: Any, robot: int = 1, dt: float | None = None) -> Trace:
-    from gplrt.motion.registry import robot_of
-
-    state = robot_of(sim, robot)
+def trace(sim: Session, robot: int = 1, dt: float | None = None) -> Trace:
+    """The sampled motion of robot ``robot`` of ``sim`` so far (module docstring)."""
+    state = sim.robot(int(robot))
     step = float(dt) if dt is not None else _default_dt(sim, robot)
     hist = state.queue.history
     n = state.axis_count

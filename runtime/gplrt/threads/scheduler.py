@@ -68,10 +68,16 @@ import time
 from collections import deque
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterator
+from typing import TYPE_CHECKING, Callable, Iterator, TypeAlias
 
 from gplrt.controller.clock import RealClock, VirtualClock, to_ns
+# current_ctx and bind_current: the rest of the runtime imports them from here
+from gplrt.thread_binding import _tls, bind_current, current_ctx  # noqa: F401
 from gplrt.threads.pacer import RealTimer, TimerHandle
+
+if TYPE_CHECKING:
+    from gplrt.session import Session
+    from gplrt.threads.thread import Thread
 
 
 class ThreadAbort(BaseException):
@@ -105,7 +111,7 @@ class ThreadCtx:
     abort_requested: bool = False
     suspend_requested: bool = False
     saved_budget: int | None = None
-    owner: Any = None  # the GPL Thread object, if any
+    owner: Thread | None = None  # the GPL Thread object, if any
     # While the thread waits for the controller (controller_wait): when that work ends, in ns.
     busy_until: int | None = None
     resume_q: "WaitQueue" = field(default_factory=lambda: WaitQueue("resume"))
@@ -117,28 +123,17 @@ class ThreadCtx:
         self.budget = 0
 
 
+#: Who holds a robot or has one Selected: the GPL thread's record, or the Python thread for code
+#: the scheduler does not run (a notebook).
+ThreadKey: TypeAlias = "ThreadCtx | threading.Thread"
+
+
 class WaitQueue:
     """Threads blocked until someone calls ``notify_all`` (a condition variable without a lock)."""
 
     def __init__(self, label: str = "") -> None:
         self.label = label
         self.waiters: list[tuple[ThreadCtx, int]] = []
-
-
-class _Local(threading.local):
-    ctx: ThreadCtx | None = None
-
-
-_tls = _Local()
-
-
-def current_ctx() -> ThreadCtx | None:
-    """The calling Python thread's scheduler record, or None for a thread unknown to the scheduler."""
-    return _tls.ctx
-
-
-def bind_current(ctx: ThreadCtx | None) -> None:
-    _tls.ctx = ctx
 
 
 def checkpoint() -> None:
@@ -241,9 +236,11 @@ def _no_release() -> None:
 class Scheduler:
     """Common surface of both schedulers (see the module docstring for the policies)."""
 
-    clock: Any
+    clock: VirtualClock | RealClock
     slice_checkpoints: int
-    sim: Any = None  # the owning gplrt.sim.Simulation
+    #: The session this scheduler runs (set when the session is composed; None for a scheduler
+    #: used on its own, as the scheduler's tests do).
+    session: Session | None = None
 
     def __init__(self) -> None:
         self._lock = threading.RLock()
@@ -259,7 +256,7 @@ class Scheduler:
 
     # -- thread lifecycle --------------------------------------------------------------------------
 
-    def new_ctx(self, name: str, owner: Any = None) -> ThreadCtx:
+    def new_ctx(self, name: str, owner: Thread | None = None) -> ThreadCtx:
         return ThreadCtx(name=name, sched=self, budget=self.slice_checkpoints, owner=owner)
 
     def spawn(self, ctx: ThreadCtx, body: Callable[[], None]) -> threading.Thread:
@@ -497,7 +494,7 @@ class VirtualScheduler(Scheduler):
         run_ahead: bool = False,
     ) -> None:
         super().__init__()
-        self.clock = clock if clock is not None else VirtualClock()
+        self.clock: VirtualClock = clock if clock is not None else VirtualClock()
         # FAST mode: controller waits are not paced to real time (module docstring).
         self.run_ahead = run_ahead
         self.slice_checkpoints = slice_checkpoints
@@ -790,7 +787,7 @@ class RealScheduler(Scheduler):
 
     def __init__(self, clock: RealClock | None = None, slice_checkpoints: int = 1000) -> None:
         super().__init__()
-        self.clock = clock if clock is not None else RealClock()
+        self.clock: RealClock = clock if clock is not None else RealClock()
         self.slice_checkpoints = slice_checkpoints
 
     def _make_ready(self, ctx: ThreadCtx) -> None:

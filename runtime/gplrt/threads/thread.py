@@ -70,6 +70,8 @@ from gplrt.lang.errors import (
 )
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
+from gplrt.lang.procedures import find_procedure, registered_procedures
+from gplrt.session import Session, current_session
 from gplrt.threads.scheduler import ThreadAbort, ThreadCtx, WaitQueue, current_ctx
 
 MAX_EVENT_MASK = 0xFFFF
@@ -91,8 +93,6 @@ class ThreadStateValue(IntEnum):
 
 def _resolve(procedure: str, module: str | None, given: int = 0) -> Callable[..., Any]:
     """Find ``"Proc"`` or ``"Module.Proc"`` in the generated-code registry, as seen from ``module``."""
-    from gplrt.lang.procedures import find_procedure
-
     proc = find_procedure(procedure, module, given)  # an overloaded name: the one taking no arguments
     if proc is None:
         raise GplException(UNDEFINED_SYMBOL, detail=f"procedure {procedure!r}")
@@ -127,8 +127,6 @@ def _calling_module(frame: FrameType | None) -> str | None:
     """
     if frame is None:
         return None
-    from gplrt.lang.procedures import registered_procedures
-
     name = frame.f_globals.get("__name__")
     package = frame.f_globals.get("__package__")
     if not name or not package:
@@ -161,14 +159,13 @@ class Thread:
         Argument: Double = 0.0,  # type: ignore[assignment]
         Name: String = "",  # type: ignore[assignment]
         *,
-        _sim: Any = None,
+        _session: Session | None = None,
         _args: tuple[Any, ...] = (),
         _propagate: bool = False,
         _module: str | None = None,
     ) -> None:
-        from gplrt.sim import current
-
-        self._sim = _sim if _sim is not None else current()
+        #: The session the thread runs in: the creating code's, unless given.
+        self._session = _session if _session is not None else current_session()
         self._target: Callable[..., Any] | None
         if StartProcedure is None:
             self._target, self._start_name = None, ""
@@ -208,7 +205,7 @@ class Thread:
 
     @property
     def Project(self) -> String:
-        return str(self._sim.project)  # type: ignore[return-value]
+        return str(self._session.project)  # type: ignore[return-value]
 
     @property
     def StartProcedure(self) -> String:
@@ -234,26 +231,26 @@ class Thread:
             raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail=f"thread {self._name}")
         if self._target is None:
             raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail="the calling thread cannot be started")
-        sim = self._sim
+        session = self._session
         # Checks and claim under the scheduler lock: under the real clock two threads starting
         # the same name (or the same Thread object) at once must not both pass the checks.
-        with sim.scheduler._lock:
+        with session.scheduler._lock:
             if self._active:
                 raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail=f"thread {self._name}")
-            active = [t for t in sim.threads if t._active]
+            active = [t for t in session.threads if t._active]
             if any(t._name.lower() == self._name.lower() for t in active):
                 raise GplException(THREAD_ALREADY_EXISTS, detail=f"thread {self._name}")
-            if len(active) >= sim.max_threads:
-                raise GplException(TOO_MANY, detail=f"more than {sim.max_threads} threads")
+            if len(active) >= session.max_threads:
+                raise GplException(TOO_MANY, detail=f"more than {session.max_threads} threads")
             self._events = 0
             self._failed = False
             self._error = None
             self._result = None
             self._active = True
-            if self not in sim.threads:
-                sim.threads.append(self)
-            self._ctx = sim.scheduler.new_ctx(self._name, owner=self)
-        sim.scheduler.spawn(self._ctx, self._body)
+            if self not in session.threads:
+                session.threads.append(self)
+            self._ctx = session.scheduler.new_ctx(self._name, owner=self)
+        session.scheduler.spawn(self._ctx, self._body)
 
     def Join(self, timeout: Integer = -1) -> Boolean:  # type: ignore[assignment]
         """Wait for the thread to end; ``timeout`` in ms (<0 forever, 0 poll). True if it ended."""
@@ -261,7 +258,7 @@ class Thread:
             return True  # type: ignore[return-value]
         if self._ctx is not None and self._ctx is current_ctx():
             raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail="a thread cannot join itself")
-        sched = self._sim.scheduler
+        sched = self._session.scheduler
         timeout = to_int32(timeout)
         deadline = None if timeout < 0 else sched.clock.now() + timeout / 1000.0
         if timeout == 0:
@@ -274,7 +271,7 @@ class Thread:
     def Abort(self) -> None:
         if not self._active or self._ctx is None:
             return
-        sched = self._sim.scheduler
+        sched = self._session.scheduler
         if self._ctx is current_ctx():
             raise ThreadAbort()
         sched.request_abort(self._ctx)
@@ -283,18 +280,18 @@ class Thread:
     def Suspend(self) -> None:
         if not self._active or self._ctx is None:
             return
-        sched = self._sim.scheduler
+        sched = self._session.scheduler
         sched.request_suspend(self._ctx)
         if self._ctx is current_ctx():
             sched._service_requests(self._ctx)
 
     def Resume(self) -> None:
         if self._active and self._ctx is not None:
-            self._sim.scheduler.request_resume(self._ctx)
+            self._session.scheduler.request_resume(self._ctx)
 
     def SendEvent(self, event_mask: Integer) -> None:
         mask = _check_mask(event_mask)
-        sched = self._sim.scheduler
+        sched = self._session.scheduler
         with sched._lock:
             self._events |= mask
         sched.notify_all(self._event_q)
@@ -308,10 +305,8 @@ class Thread:
             return ctx.owner
         # A Python thread the scheduler does not run (notebook, pytest): one stand-in object per
         # Python thread and session, so its events persist between calls.
-        from gplrt.sim import current
-
         me = _foreign.thread
-        if me is None or me._sim is not current():
+        if me is None or me._session is not current_session():
             me = Thread(None, 0.0, threading.current_thread().name)  # type: ignore[arg-type]
             _foreign.thread = me
         return me
@@ -319,9 +314,7 @@ class Thread:
     @staticmethod
     def Sleep(milliseconds: Integer) -> None:
         """Suspend the calling thread; ``Sleep(0)`` (or negative) just yields."""
-        from gplrt.sim import current
-
-        current().scheduler.sleep(max(0, to_int32(milliseconds)) / 1000.0)
+        current_session().scheduler.sleep(max(0, to_int32(milliseconds)) / 1000.0)
 
     @staticmethod
     def WaitEvent(event_mask: Integer, time_out: Integer) -> Integer:
@@ -330,7 +323,7 @@ class Thread:
         time_out = to_int32(time_out)
         if time_out > MAX_WAIT_MS:
             raise GplException(VALUE_OUT_OF_RANGE, detail=f"WaitEvent timeout {time_out} ms")
-        sched = me._sim.scheduler
+        sched = me._session.scheduler
         if mask == 0:
             return me._events  # type: ignore[return-value]
         if time_out != 0:
@@ -379,10 +372,10 @@ class Thread:
     def _body(self) -> None:
         ctx = self._ctx
         assert ctx is not None and self._target is not None
-        sim = self._sim
+        session = self._session
         aborted = False
         try:
-            sim.scheduler._service_requests(ctx)  # aborted/suspended before it first ran
+            session.scheduler._service_requests(ctx)  # aborted/suspended before it first ran
             self._result = self._target(*self._args)
         except ThreadAbort:
             aborted = True
@@ -397,15 +390,15 @@ class Thread:
                 # held in a reference cycle (a caught exception's traceback holds frames) would
                 # wait for Python's cyclic collector, which runs only when allocations add up.
                 gc.collect()
-            for hook in list(sim.thread_exit_hooks):
+            for hook in list(session.thread_exit_hooks):
                 try:
                     hook(self)
                 except Exception as exc:  # noqa: BLE001 - a hook must not kill the scheduler
-                    sim.report(self._name, f"thread exit hook failed: {exc!r}")
-            with sim.scheduler._lock:
+                    session.report(self._name, f"thread exit hook failed: {exc!r}")
+            with session.scheduler._lock:
                 self._active = False
-            sim.scheduler.notify_all(self._join_q)
-            sim.scheduler.finish(ctx)
+            session.scheduler.notify_all(self._join_q)
+            session.scheduler.finish(ctx)
 
     def _fail(self, exc: BaseException, code: int, text: str) -> None:
         if self._propagate:
@@ -413,7 +406,7 @@ class Thread:
             return
         self._failed = True
         self._error = exc
-        self._sim.report(self._name, f"unhandled error: {text}", code)
+        self._session.report(self._name, f"unhandled error: {text}", code)
 
     def __repr__(self) -> str:
         return f"<GPL Thread {self._name!r} state={self.ThreadState}>"
