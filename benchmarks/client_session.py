@@ -36,7 +36,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 
 REPO = Path(__file__).resolve().parents[1]
 POSES = [(300.0, 10.0, 90.0, -100.0, 90.0), (250.0, -20.0, 110.0, -80.0, 90.0)]

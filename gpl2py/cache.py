@@ -1,4 +1,4 @@
-"""The transpile cache behind ``gpl2py run`` and ``gplrt.notebook.Cell.load``.
+"""The transpile cache behind ``gpl2py run`` and ``gpl2py.notebook.Cell.load``.
 
 Running a project should not re-translate it when nothing changed, so translations are kept in a
 cache folder, one entry per *key*:

@@ -7,19 +7,12 @@ reports every problem.  The codes and their wording live in :mod:`gpl2py.message
 
 from __future__ import annotations
 
-import enum
 import json
 from dataclasses import dataclass
 from typing import Iterable, Iterator, Protocol, Sequence
 
-from gpl2py.messages import Message
+from gpl2py.messages import Message, Severity  # Severity is defined with the messages that carry one
 from gpl2py.source import Position, SourceFile, Span
-
-
-class Severity(enum.Enum):
-    ERROR = "error"
-    WARNING = "warning"
-    NOTE = "note"
 
 
 @dataclass(frozen=True, slots=True)

@@ -14,13 +14,19 @@ the two in step.  Templates use ``str.format`` fields.
 
 from __future__ import annotations
 
+import enum
 import re
 import sys
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from gpl2py.diagnostics import Severity
+
+class Severity(enum.Enum):
+    """How bad a diagnostic is (``gpl2py.diagnostics`` re-exports it): defined here, below the
+    diagnostics, so that the two modules do not import each other."""
+
+    ERROR = "error"
+    WARNING = "warning"
+    NOTE = "note"
 
 _REGISTRY: dict[str, Message] = {}
 
@@ -40,8 +46,6 @@ class Message:
 
     @property
     def severity(self) -> Severity:
-        from gpl2py.diagnostics import Severity
-
         return Severity(self.severity_name)
 
     def format(self, **args: object) -> str:

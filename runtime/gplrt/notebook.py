@@ -1,100 +1,78 @@
-"""The notebook API: one object for "translate my GPL project, run bits of it, look at the robot".
+"""The runtime half of the notebook: what a notebook shows of a running session.
 
-::
+The notebook API itself is ``gpl2py.notebook.Cell`` (``from gpl2py.notebook import Cell``): it
+translates a project, so it belongs to gpl2py, and gplrt never imports gpl2py (issue 13: the
+runtime runs without the transpiler).  What is pure runtime lives here, for ``Cell`` and for
+anyone who drives a ``gplrt.sim.Simulation`` by hand:
 
-    from gplrt.notebook import Cell
+* :class:`RobotPose` and :func:`robot_pose` -- where a robot is, with a short repr and a table;
+* :func:`save_motion_plot` -- joints and tool path in one image (also ``gpl2py run --plot``);
+* :func:`io_state` and :func:`variables` -- the I/O and the module variables as tables
+  (``gplrt.display.Table``);
+* :class:`GplError` -- a GPL error that reached the notebook, reported by its GPL file, line and
+  source text first; :func:`show_gpl_errors_in_ipython` makes IPython print every GPL error so;
+* :func:`drive` -- runs a call into the session on a helper thread and shows progress when it
+  takes more than a few seconds of wall time;
+* :class:`EchoConsole` -- a console sink that keeps the program's output and prints it as it comes.
 
-    cell = Cell.load("samples/pick_and_place", robot="PF400SX", clock="virtual")
-    cell.io.when_output(2, True).set_input(10001, True, after=0.2)   # a scripted conveyor
-    cell.init()                                   # module variables and each module's Init
-    cell.call("Gripper.Open")                     # any Public procedure, with arguments
-    cell.set_input(10002, True)                   # drive an input
-    cell.output(1)                                # read an output -> bool
-    cell.run_main()                               # or run ProjectStart, as `gpl2py run` does
-    cell.where()                                  # robot 1 now: joints, X Y Z yaw pitch roll
-    cell.plot_joints(); cell.plot_path()          # matplotlib figures of the motion so far
-    cell.save_plot("cell.png")
-
-Design: :class:`Cell` is thin.  Everything it does is one call into ``gplrt.sim.Simulation``
-(``cell.sim``), the session's ``IoMap`` (``cell.io``), the motion trace and plot helpers, or the
-generated package (``cell.package``) — reach for those directly for anything not covered here.
-Loading goes through the same translation cache as ``gpl2py run`` (``gpl2py.run.build``), so
-re-running a notebook cell does not re-translate unchanged sources; the package is imported under
-a private name, so loading two projects (or one twice) never mixes their module state.
-
-Console output is kept (``cell.console``) and, with ``echo=True`` (default), also printed as it
-happens, so a notebook shows it under the cell that produced it.
-
-Procedures are looked up by their GPL names, case-insensitively, among *this* project's procedures
-(``"Module.Proc"``, or ``"Proc"`` when exactly one Public procedure has that name).  Only Public
-procedures can be called, as from another GPL module (§12): a Private one raises -729 with a hint.
+``from gplrt.notebook import Cell`` raises an ImportError that names ``gpl2py.notebook``.
 """
 
 from __future__ import annotations
 
-import os
+import ast
+import html
 import sys
 import threading
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from types import ModuleType
-from typing import Any, Literal
+from types import ModuleType, TracebackType
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
-from gplrt.lang.errors import (
-    AMBIGUOUS_PUBLIC_REFERENCE,
-    INVALID_ARGUMENT,
-    NO_MODULE_DEFINED,
-    NOTHING_VALUE,
-    UNDEFINED_SYMBOL,
-    GplException,
-)
-from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.run import build, import_built, install_project_files
 from gplrt.controller.console import ConsoleSink
-from gplrt.controller.pdb import default_database
 from gplrt.controller.signals import IoMap
+from gplrt.display import Table, fixed, html_table, short
 from gplrt.geometry.transforms import matrix_to_xyzypr
-from gplrt.io.sockets import listen_address
-from gplrt.lang.procedures import ProcedureEntry, choose_overload, registered_procedures
+from gplrt.lang.errors import INTERNAL_ERROR, GplException
+from gplrt.lang.sourcemap import GplFrame, format_gpl_report, gpl_traceback
 from gplrt.motion.plot import plot_joints, plot_path_xy
-from gplrt.motion.trace import Trace
-from gplrt.sim import Simulation, StopReport
-from gplrt.threads.thread import Thread
+from gplrt.session import Session
 
-__all__ = ["Cell", "RobotPose", "ProjectError", "Serving", "save_motion_plot"]
+__all__ = ["RobotPose", "robot_pose", "save_motion_plot", "io_state", "variables", "GplError", "EchoConsole",
+           "show_gpl_errors_in_ipython", "drive", "PLOT_SAMPLES", "PROGRESS_AFTER"]
 
 PLOT_SAMPLES = 3000  # samples per plotted trace at most (see save_motion_plot)
+PROGRESS_AFTER = 3.0  # wall seconds a run takes before it shows its progress
+PROGRESS_EVERY = 1.0  # wall seconds between two progress updates
+
+#: What moved to gpl2py.notebook (the loader translates, so it is the transpiler's).
+_MOVED = ("Cell", "ProjectError", "Serving", "TranslationWarning")
+
+T = TypeVar("T")
 
 
-class ProjectError(Exception):
-    """The project could not be translated; ``str()`` lists the diagnostics (file:line:col ...)."""
+def __getattr__(name: str) -> Any:
+    if name in _MOVED:
+        raise ImportError(f"gplrt.notebook.{name} is now gpl2py.notebook.{name}: "
+                          f"from gpl2py.notebook import {name} (the runtime does not translate)")
+    raise AttributeError(f"module 'gplrt.notebook' has no attribute {name!r}")
 
 
-class _EchoConsole(ConsoleSink):
-    """Captures like ``ConsoleSink(capture=True)`` and also prints program output as it comes."""
-
-    def __init__(self, echo: bool) -> None:
-        super().__init__(capture=True)
-        self.echo = echo
-
-    def write(self, text: str) -> None:
-        super().write(text)
-        if self.echo:
-            sys.stdout.write(text)
-            sys.stdout.flush()
+# -- where a robot is ------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class RobotPose:
     """Where a robot is at controller time ``time``: joints (mm/deg) and the tool pose.
 
     ``cartesian`` is GPL's (X, Y, Z, Yaw, Pitch, Roll) in mm and degrees, Base and Tool included
-    (what ``Robot.Where`` reports); None for a robot without kinematics.
+    (what ``Robot.Where`` reports); None for a robot without kinematics.  ``matrix`` is the same
+    pose as a 4x4 homogeneous matrix (never shown by the reprs).
     """
 
     time: float
@@ -106,309 +84,33 @@ class RobotPose:
     def xyz(self) -> tuple[float, float, float] | None:
         return None if self.cartesian is None else self.cartesian[:3]
 
-
-def _name(value: Any, what: str) -> str:
-    """``value`` if it is a String; a GPL name looked up by the notebook must be one.
-
-    Nothing is -782 and any other value -202, as for a GPL member given the wrong argument, so a
-    notebook typo (``cell.get(None)``) reads like every other runtime error, not AttributeError.
-    """
-    if type(value) is str:
-        return value
-    code = NOTHING_VALUE if value is None else INVALID_ARGUMENT
-    raise GplException(code, detail=f"{what} must be a String, not {value!r}")
-
-
-class Serving:
-    """A project's ProjectStart running in the background (:meth:`Cell.serve`)."""
-
-    POLL = 0.01  # real seconds between looks at the listening ports
-
-    def __init__(self, cell: Cell) -> None:
-        self.cell = cell
-        self.status: int | None = None  # run_main's result once the program has ended
-        self._thread = threading.Thread(target=self._run, name=f"gplrt-serve:{cell.sim.project}", daemon=True)
-        self._thread.start()
-
-    def _run(self) -> None:
-        self.status = self.cell.run_main()
-
-    @property
-    def running(self) -> bool:
-        return self._thread.is_alive()
-
-    def wait_listening(self, ports: Iterable[int], timeout: float = 30.0) -> None:
-        """Block until the program listens on every port of ``ports`` (see :meth:`Cell.serve`)."""
-        listening_ports = self.cell.sim.network.listening_ports
-        wanted = set(ports)
-        end = time.monotonic() + timeout
-        while not wanted <= listening_ports():
-            if not self.running:
-                raise RuntimeError(f"the program ended (status {self.status}) before listening on "
-                                   f"{sorted(wanted - listening_ports())}:\n{self.cell.log}")
-            if time.monotonic() > end:
-                raise TimeoutError(f"ports {sorted(wanted - listening_ports())} not listening after "
-                                   f"{timeout} s:\n{self.cell.log}")
-            time.sleep(self.POLL)
-
-    def stop(self, grace: float = 5.0) -> StopReport:
-        """Abort every GPL thread (``Simulation.stop``) and wait for ProjectStart's runner."""
-        report = self.cell.sim.stop(grace)
-        self._thread.join(grace)
-        return report
-
-    def __enter__(self) -> Serving:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.stop()
-
-
-class Cell:
-    """A transpiled GPL project on its own simulated controller (see module docstring)."""
-
-    def __init__(self, package: ModuleType, sim: Simulation, diagnostics: list[str] | None = None,
-                 source: Path | None = None) -> None:
-        self.package = package
-        self.sim = sim
-        self._procedures = _procedures_of(package)
-        self.diagnostics = diagnostics or []  # warnings of the translation, rendered
-        self.source = source
-
-    # -- making one ----------------------------------------------------------------------------------
-
-    @classmethod
-    def load(
-        cls,
-        project: str | Path,
-        *,
-        robot: str = "PF400SX",
-        clock: Literal["virtual", "fast", "real"] = "virtual",
-        speed: float = 1.0,
-        flash: str | Path | None = None,
-        io: IoMap | None = None,
-        echo: bool = True,
-        cache_dir: str | Path | None = None,
-        rebuild: bool = False,
-        stubs: str | Path | None = None,
-        listen: str | None = None,
-    ) -> Cell:
-        """Translate ``project`` (through the cache), import it and make its Simulation.
-
-        ``robot`` is any name of ``gplrt.controller.pdb.model_names()``; ``flash`` is the folder
-        that holds the controller's disks (``flash/`` in it is ``/flash``); ``io`` an ``IoMap``
-        prepared beforehand (or use ``cell.io`` afterwards); ``stubs`` the folder of Python
-        implementations for protected code, as ``gpl2py run --stubs DIR`` takes it (the same
-        project is ported in a notebook and on the command line with the same stubs).  ``listen``
-        opens the program's servers to the network as ``gpl2py run --listen`` does (an address of
-        this computer, or ``"0.0.0.0"`` for every interface); by default they listen on loopback
-        only, whatever address the GPL code binds.  Raises :class:`ProjectError` when the project
-        has errors, ValueError for a ``listen`` that is not an address of this computer.
-        """
-        default_database(robot)  # an unknown model fails here, with -221 and the known names
-        if listen is not None:
-            listen_address(listen)  # before the translation: a typo fails at once
-        if stubs is not None and not isinstance(stubs, (str, os.PathLike)):
-            raise TypeError(f"stubs is the folder of Python stubs (a str or Path), not {stubs!r}")
-        sink = DiagnosticSink()
-        built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild, stubs_dir=stubs)
-        files = {f.path: f for f in built.project.files()} if built is not None else {}
-        rendered = [d.render(files.get(d.span.file) if d.span else None) for d in sink.sorted()]
-        if built is None:
-            raise ProjectError(f"{project} could not be translated:\n" + "\n".join(rendered))
-        package = import_built(built)
-        sim = Simulation(clock=clock, speed=speed, io=io, console=_EchoConsole(echo), flash_root=flash,
-                         project=built.project.name, robot=robot, listen=listen)
-        install_project_files(sim, project, built.project)  # where the controller has them
-        return cls(package, sim, rendered, Path(project))
-
-    # -- running GPL code ------------------------------------------------------------------------------
-
-    def init(self) -> None:
-        """Initialise the modules (variables in ProjectSource order, then each ``Init``), once."""
-        self.sim.call(self.package.init)
-
-    def call(self, procedure: str, *args: Any, timeout: float | None = None) -> Any:
-        """Call a Public procedure by GPL name on a GPL thread; returns what a Function returns.
-
-        Initialises the project first if that has not happened.  A GPL error the procedure does
-        not handle is raised here as ``GplException`` (with ``ErrorCode``); ``timeout`` is in real
-        seconds (``gplrt.sim.SimulationStalled`` when exceeded or when the program deadlocks).
-        """
-        func = self.procedure(procedure, len(args))
-        self.init()
-        return self.sim.call(func, *args, timeout=timeout)
-
-    def start(self, procedure: str, *args: Any, name: str = "") -> Thread:
-        """Start a Public procedure as a background GPL thread (e.g. a server); returns the Thread."""
-        func = self.procedure(procedure, len(args))
-        self.init()
-        return self.sim.start(func, *args, name=name or procedure.rpartition(".")[2])
-
-    def run_main(self) -> int:
-        """Run ProjectStart as ``gpl2py run`` does; 0, or 1 if a thread ended with an unhandled error.
-
-        Returns when every GPL thread has ended (or, virtual clock, when the program stalled).
-        """
-        return int(self.package.main(self.sim))
-
-    def serve(self, ports: Iterable[int] = (), timeout: float = 30.0) -> Serving:
-        """Run ProjectStart in the background, for a server that Python clients talk to.
-
-        Returns once the program listens on every TCP port of ``ports`` (a client may connect
-        then) as a :class:`Serving` handle; use it in a ``with`` block, or call ``stop()``, to
-        end the program.  Why not ``start``: ``serve`` drives the session as ``run_main`` does,
-        so controller time moves while the notebook or test talks to the server instead of
-        freezing between calls.  Raises ``TimeoutError`` (naming the ports still closed and the
-        program's log) if the ports do not open within ``timeout`` real seconds, or
-        ``RuntimeError`` if the program ends before they do.
-        """
-        serving = Serving(self)
-        try:
-            serving.wait_listening(ports, timeout)
-        except BaseException:
-            serving.stop()
-            raise
-        return serving
-
-    def run_for(self, seconds: float) -> None:
-        """Let the GPL threads run for ``seconds`` of controller time (virtual: takes no wall time)."""
-        self.sim.run_for(seconds)
-
-    def procedure(self, name: str, nargs: int | None = None) -> Any:
-        """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``;
-        ``nargs`` (how many arguments it will get) chooses among overloads of the name."""
-        mine = self._procedures
-        want = _name(name, "procedure name").strip().lower()
-        if "." in want:
-            found = [e for e in mine if e.qualified_name.lower() == want]
-        else:
-            found = [e for e in mine if e.name.lower() == want]
-        public = [e for e in found if e.public]
-        if public and len({e.qualified_name.lower() for e in public}) == 1:
-            return choose_overload(public, nargs, name).func  # one procedure, or its overloads
-        if len(public) > 1:
-            names = ", ".join(sorted(e.qualified_name for e in public))
-            raise GplException(AMBIGUOUS_PUBLIC_REFERENCE, detail=f"{name!r} could be {names}: say which module")
-        hint = ""
-        if found:
-            hint = f" ({', '.join(e.qualified_name for e in found)} is Private)"
-        known = ", ".join(sorted(e.qualified_name for e in mine if e.public))
-        raise GplException(UNDEFINED_SYMBOL, detail=f"no Public procedure {name!r}{hint}; known: {known}")
-
-    # -- GPL variables -------------------------------------------------------------------------------
-
-    def module(self, name: str) -> ModuleType:
-        """The generated Python module of GPL module ``name`` (case-insensitive)."""
-        want = _name(name, "module name").strip().lower()
-        prefix = self.package.__name__ + "."
-        for value in vars(self.package).values():
-            if isinstance(value, ModuleType) and value.__name__.startswith(prefix):
-                doc = (value.__doc__ or "").split(",", 1)[0]  # "Module Cell, transpiled by gpl2py ..."
-                if doc.lower() == f"module {want}":
-                    return value
-        raise GplException(NO_MODULE_DEFINED, detail=f"no module {name!r} in this project")
-
-    def get(self, variable: str) -> Any:
-        """The value of a module variable, ``"Module.name"`` (case-insensitive)."""
-        module, _, name = _name(variable, "variable name").rpartition(".")
-        if not module:
-            raise GplException(NO_MODULE_DEFINED, detail=f"say which module: 'Module.{variable}'")
-        mod = self.module(module)
-        want = name.lower()
-        for attr, value in vars(mod).items():
-            if attr.lower() in (want, want + "_") and not isinstance(value, ModuleType) and not callable(value):
-                return value
-        raise GplException(UNDEFINED_SYMBOL, detail=f"no variable {variable!r}")
-
-    # -- I/O ------------------------------------------------------------------------------------------
-
-    @property
-    def io(self) -> IoMap:
-        """The session's ``gplrt.controller.signals.IoMap``: rules (``when_output``), trace, ..."""
-        return self.sim.io
-
-    def set_input(self, signal: int, value: bool = True) -> None:
-        """Drive digital input (10001-10064) or soft signal (20001-...) ``signal``."""
-        self.sim.io.set_input(signal, value)
-
-    def set_analog_input(self, channel: int, value: float) -> None:
-        self.sim.io.set_analog_input(channel, value)
-
-    def output(self, signal: int) -> bool:
-        """The state of digital signal ``signal`` (an output the program writes, or any other)."""
-        return bool(self.sim.io.value(signal))
-
-    def outputs_written(self) -> list[tuple[float, int, bool]]:
-        """(controller time, signal, value) of every digital change the program made, in order."""
-        return [(c.time, c.signal, c.value) for c in self.sim.io.output_trace()]
-
-    # -- what happened ---------------------------------------------------------------------------------
-
-    @property
-    def console(self) -> str:
-        """Everything the program wrote with ``Console.Write``/``WriteLine`` so far."""
-        return self.sim.console.output
-
-    @property
-    def log(self) -> str:
-        """Controller reports (unhandled thread errors, stalls) so far."""
-        return self.sim.console.log_text
-
-    @property
-    def time(self) -> float:
-        """Controller time in seconds."""
-        return self.sim.now()
-
-    def where(self, robot: int = 1) -> RobotPose:
-        """Where ``robot`` is now (``Robot.WhereAngles`` and ``Robot.Where`` in one)."""
-        state = self.sim.robot(int(robot))
-        now = self.sim.now()
-        q = np.asarray(state.joints_at(now), dtype=float)
-        matrix = cart = None
-        if state.model.has_kinematics:
-            matrix = np.asarray(state.forward(q), dtype=float)
-            cart = tuple(float(v) for v in matrix_to_xyzypr(matrix))
-        return RobotPose(now, tuple(float(v) for v in q), cart, matrix)  # type: ignore[arg-type]
-
-    def trace(self, robot: int = 1, dt: float | None = None) -> Trace:
-        """The sampled motion so far (``gplrt.motion.trace.Trace``: times, joints, xyz).
-
-        ``dt`` defaults to the servo period for short runs and to 1/``PLOT_SAMPLES`` of the run
-        for long ones, so a plot of an hour of cell time stays quick.
-        """
-        if dt is None:
-            dt = max(0.004, self.sim.now() / PLOT_SAMPLES)
-        return self.sim.trace(robot, dt)
-
-    def plot_joints(self, robot: int = 1, ax: Any = None) -> Any:
-        """Every joint against controller time; returns the matplotlib Figure."""
-        return plot_joints(self.trace(robot), ax)
-
-    def plot_path(self, robot: int = 1, ax: Any = None) -> Any:
-        """The tool-tip path seen from above (X-Y, mm); returns the matplotlib Figure."""
-        return plot_path_xy(self.trace(robot), ax)
-
-    def save_plot(self, path: str | Path, robot: int = 1) -> Path:
-        """Joints and path side by side in one image file (PNG, SVG, PDF by extension)."""
-        return save_motion_plot(self.sim, path, robot)
-
     def __repr__(self) -> str:
-        return (f"<Cell {self.sim.project!r} robot={self.sim.robot_model} clock={self.sim.mode} "
-                f"t={self.sim.now():.3f}s>")
+        joints = ", ".join(fixed(j) for j in self.joints)
+        cart = "" if self.cartesian is None else f", XYZ({', '.join(fixed(v) for v in self.cartesian)})"
+        return f"RobotPose(t={fixed(self.time)} s, joints=({joints}){cart})"
+
+    def _repr_html_(self) -> str:
+        names = tuple(f"J{i + 1}" for i in range(len(self.joints)))
+        out = html_table(names, [tuple(fixed(j) for j in self.joints)], f"robot at t = {fixed(self.time)} s: joints")
+        if self.cartesian is not None:
+            out += html_table(("X", "Y", "Z", "Yaw", "Pitch", "Roll"), [tuple(fixed(v) for v in self.cartesian)],
+                              "tool (mm, deg)")
+        return out
 
 
-def _procedures_of(package: ModuleType) -> list[ProcedureEntry]:
-    """The registry entries of ``package``'s procedures.
+def robot_pose(sim: Session, robot: int = 1) -> RobotPose:
+    """Where ``robot`` of ``sim`` is now (``Robot.WhereAngles`` and ``Robot.Where`` in one)."""
+    state = sim.robot(int(robot))
+    now = sim.now()
+    q = np.asarray(state.joints_at(now), dtype=float)
+    matrix = cart = None
+    if state.model.has_kinematics:
+        matrix = np.asarray(state.forward(q), dtype=float)
+        cart = tuple(float(v) for v in matrix_to_xyzypr(matrix))
+    return RobotPose(now, tuple(float(v) for v in q), cart, matrix)  # type: ignore[arg-type]
 
-    Each generated package registers into its own registry (``gplrt.lang.procedures``), and its
-    ``init()`` binds that registry to the Cell's simulation, so two Cells of projects with the same
-    module names never see each other's procedures, not even for threads started by name.
-    """
-    return registered_procedures(package.__name__)
 
-
-def save_motion_plot(sim: Simulation, path: str | Path, robot: int = 1) -> Path:
+def save_motion_plot(sim: Session, path: str | Path, robot: int = 1) -> Path:
     """Robot ``robot``'s joints against time and its tool path from above, side by side, in one file.
 
     Used by ``Cell.save_plot`` and ``gpl2py run --plot``.  Works without a display (the figure is
@@ -430,3 +132,259 @@ def save_motion_plot(sim: Simulation, path: str | Path, robot: int = 1) -> Path:
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=100)
     return out
+
+
+# -- tables ----------------------------------------------------------------------------------------
+
+
+def _signal_kind(io: IoMap, kind: str, n: int) -> str:
+    m = io.map
+    if kind == "AIO":
+        return "analog input" if n in m.analog_inputs else "analog output"
+    if n in m.digital_inputs:
+        return "digital input"
+    return "soft signal" if n in m.soft_signals else "digital output"
+
+
+def io_state(io: IoMap) -> Table:
+    """Every signal that is on or was ever changed: its kind, value, changes and the last one.
+
+    A signal nobody touched is off (analog: 0) and is not listed.  ``by`` is ``program`` for a
+    change the GPL program made and ``outside`` for an input driven from the notebook or a rule.
+    """
+    last: dict[tuple[str, int], tuple[float, str, int]] = {}
+    for change in io.trace:
+        key = (change.kind, change.signal)
+        count = last.get(key, (0.0, "", 0))[2]
+        last[key] = (change.time, "program" if change.source == "gpl" else "outside", count + 1)
+    digital, analog = io.snapshot()
+    values: dict[tuple[str, int], Any] = {("DIO", n): v for n, v in digital.items()}
+    values.update({("AIO", n): v for n, v in analog.items()})
+    rows = []
+    for kind, n in sorted(set(values) | set(last), key=lambda k: (k[0] != "DIO", k[1])):
+        value = values.get((kind, n), False if kind == "DIO" else 0.0)
+        when, by, count = last.get((kind, n), (None, "", 0))
+        shown = ("on" if value else "off") if kind == "DIO" else short(value)
+        rows.append((n, _signal_kind(io, kind, n), shown, count, "" if when is None else fixed(when), by))
+    return Table(("signal", "kind", "value", "changes", "last change (s)", "by"), rows, "I/O state")
+
+
+def _gpl_type(value: Any) -> str:
+    """The GPL type a person recognises for a variable's value."""
+    names = {bool: "Boolean", int: "Integer", float: "Double", str: "String"}
+    if value is None:
+        return "Nothing"
+    return names.get(type(value), type(value).__name__)
+
+
+def _declared_names(module: ModuleType) -> list[str]:
+    """The names a generated module assigns at its top level: its GPL variables and constants, in
+    the order the module declares them (what it imports, such as ``Console``, is not one)."""
+    try:
+        with open(str(module.__file__), encoding="utf-8") as f:
+            tree = ast.parse(f.read())
+    except (OSError, SyntaxError, TypeError):
+        return []
+    names: list[str] = []
+    for node in tree.body:
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
+        names.extend(t.id for t in targets if isinstance(t, ast.Name) and not t.id.startswith("_"))
+    return list(dict.fromkeys(names))
+
+
+def variables(modules: Iterable[tuple[str, ModuleType]]) -> Table:
+    """The module-level variables and constants of generated modules, given as (GPL name, module):
+    module, name, GPL type and value (numbers rounded, objects by their short repr)."""
+    rows = []
+    for module_name, module in modules:
+        for name in _declared_names(module):
+            if hasattr(module, name):
+                value = getattr(module, name)
+                rows.append((module_name, name.removesuffix("_"), _gpl_type(value), short(value)))
+    return Table(("module", "name", "type", "value"), rows, "module variables")
+
+
+# -- errors ------------------------------------------------------------------------------------------
+
+
+class GplError(GplException):
+    """A GPL error the notebook's call did not handle, told in GPL terms.
+
+    ``str(err)`` starts with ``File.gpl:42: error -709 in thread Main: *Division by 0*``, then
+    the GPL line itself, then the GPL frames it came through (runtime and scheduler frames left
+    out).  It is a ``GplException`` with the same ``ErrorCode``, ``Message()`` and robot data, so
+    ``except GplException`` still catches it; ``error`` is the exception the program raised (its
+    Python traceback has every frame) and ``frames`` the GPL frames (``gplrt.lang.sourcemap``).
+    A Python exception in generated code (a fault of gpl2py or of a stub) is error -201.
+    """
+
+    def __init__(self, error: BaseException, thread: str = "") -> None:
+        if isinstance(error, GplException):
+            super().__init__(error.ErrorCode, error.Qualifier, detail=error.detail, subject=error.subject)
+            self._robot_error, self._robot_num, self._axis = error._robot_error, error._robot_num, error._axis
+        else:
+            super().__init__(INTERNAL_ERROR, detail=f"Python error {type(error).__name__}: {error}")
+        self.error = error
+        self.thread = thread
+        self.others: list[str] = []  # headlines of further threads that ended unhandled (run_main)
+        self.frames: list[GplFrame] = gpl_traceback(error)
+        self.gpl_location = self.frames[-1].location if self.frames else getattr(error, "gpl_location", None)
+
+    @property
+    def source_line(self) -> str:
+        """The GPL line that raised it (``""`` when unknown)."""
+        return self.frames[-1].text if self.frames else ""
+
+    def headline(self) -> str:
+        where = f"{self.gpl_location}: " if self.gpl_location else ""
+        thread = f" in thread {self.thread}" if self.thread else ""
+        text = self.Message() + (f" - {self.detail}" if self.detail else "")
+        return f"{where}error {self.ErrorCode}{thread}: {text}"
+
+    def __str__(self) -> str:
+        text = format_gpl_report(self.error, self.headline(), self.frames)
+        if self.others:
+            text += "\nalso ended with an unhandled error:\n" + "\n".join(f"  {h}" for h in self.others)
+        return text
+
+    def _repr_html_(self) -> str:
+        return f"<pre>{html.escape(str(self))}</pre>"
+
+
+def _show_gpl_error(shell: Any, etype: type[BaseException], value: BaseException, tb: TracebackType | None,
+                    tb_offset: int | None = None) -> None:
+    """IPython's handler for GplException: the GPL report, not the runtime's frames.
+
+    An error raised by the notebook API is already a :class:`GplError`; a GplException that came
+    straight out of generated code (a procedure called as a Python function) is reported as one.
+    One that passed through no GPL code (a notebook typo) keeps IPython's usual traceback.
+    """
+    error = value if isinstance(value, GplError) else GplError(value)
+    if not error.frames and not isinstance(value, GplError):
+        shell.showtraceback((etype, value, tb), tb_offset=tb_offset)
+        return
+    lines = str(error).splitlines()
+    shell._showtraceback(etype, error.headline(), [f"{type(value).__name__}: {lines[0]}", *lines[1:]])
+
+
+def show_gpl_errors_in_ipython() -> bool:
+    """In IPython (Jupyter, VS Code), report every GplException by its GPL frames; False elsewhere.
+
+    IPython does not use ``sys.excepthook`` (where ``gplrt.lang.sourcemap`` installs the same
+    idea for scripts), so the notebook loader calls this.  Calling it again changes nothing.
+    """
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None  # type: ignore[attr-defined]
+    if shell is None:
+        return False
+    if GplException not in getattr(shell, "custom_exceptions", ()):
+        shell.set_custom_exc((GplException,), _show_gpl_error)
+    return True
+
+
+# -- running with progress -------------------------------------------------------------------------
+
+
+class EchoConsole(ConsoleSink):
+    """Captures like ``ConsoleSink(capture=True)`` and also prints program output as it comes."""
+
+    def __init__(self, echo: bool) -> None:
+        super().__init__(capture=True)
+        self.echo = echo
+
+    def write(self, text: str) -> None:
+        super().write(text)
+        if self.echo:
+            sys.stdout.write(text)
+            sys.stdout.flush()
+
+
+class _Progress:
+    """One line that says how far a long run is: in place under a notebook cell (an HTML display
+    updated by id, no widgets), else a line on stderr each time it changes."""
+
+    def __init__(self, sim: Session) -> None:
+        self.sim = sim
+        self.handle: Any = None
+        self.shown = False
+
+    def text(self, wall: float, done: bool = False) -> str:
+        threads = sum(1 for c in list(self.sim.scheduler.live) if c.phase != "done")
+        state = "done" if done else f"running, {threads} GPL thread{'s' if threads != 1 else ''}"
+        return f"{state}: {fixed(self.sim.now(), 1)} s of controller time in {fixed(wall, 1)} s wall"
+
+    def show(self, wall: float, done: bool = False) -> None:
+        line = self.text(wall, done)
+        if not self.shown:
+            self.shown = True
+            self.handle = _display_handle(line)
+        if self.handle is not None:
+            self.handle.update(_Html(f"<code>{html.escape(line)}</code>"))
+        else:
+            sys.stderr.write(line + "\n")
+            sys.stderr.flush()
+
+
+class _Html:
+    def __init__(self, text: str) -> None:
+        self.text = text
+
+    def _repr_html_(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        return html.unescape(self.text.removeprefix("<code>").removesuffix("</code>"))
+
+
+def _display_handle(line: str) -> Any:
+    """An updatable display under the running notebook cell, or None outside a kernel."""
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None  # type: ignore[attr-defined]
+    if shell is None or not hasattr(shell, "kernel"):
+        return None
+    from IPython.display import display
+
+    return display(_Html(f"<code>{html.escape(line)}</code>"), display_id=True)
+
+
+def drive(sim: Session, call: Callable[..., T], *args: Any, progress_after: float = PROGRESS_AFTER,
+          **kwargs: Any) -> T:
+    """``call(*args, **kwargs)`` on a helper thread while this one waits, showing progress once the
+    call has taken ``progress_after`` wall seconds; its result or exception is this function's.
+
+    Why a helper thread: the caller (the notebook's main thread) stays free to report progress,
+    and Ctrl-C (a kernel interrupt) lands here, never inside the scheduler: every GPL thread of
+    ``sim`` is then stopped (``Simulation.stop``) before KeyboardInterrupt goes on.
+    """
+    result: list[Any] = []
+    failure: list[BaseException] = []
+
+    def target() -> None:
+        try:
+            result.append(call(*args, **kwargs))
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller below
+            failure.append(exc)
+
+    helper = threading.Thread(target=target, name="gplrt-notebook", daemon=True)
+    started = time.monotonic()
+    progress = _Progress(sim)
+    next_update = started + progress_after
+    helper.start()
+    try:
+        while helper.is_alive():
+            helper.join(0.05)
+            now = time.monotonic()
+            if now >= next_update and helper.is_alive():
+                progress.show(now - started)
+                next_update = now + PROGRESS_EVERY
+    except KeyboardInterrupt:
+        stop = getattr(sim, "stop", None)
+        if stop is not None:
+            stop()
+        helper.join(1.0)
+        raise
+    if progress.shown:
+        progress.show(time.monotonic() - started, done=True)
+    if failure:
+        raise failure[0]
+    return result[0]

@@ -3,7 +3,7 @@
 #
 # A cell-marked script (`# %%`): VS Code, PyCharm and JupyterLab (jupytext) run it cell by cell
 # like a notebook; `python samples/notebook/pick_and_place.py` runs it top to bottom.  It uses
-# `gplrt.notebook.Cell` to translate `samples/pick_and_place` (through the same cache as
+# `gpl2py.notebook.Cell` to translate `samples/pick_and_place` (through the same cache as
 # `gpl2py run`), call single GPL procedures, drive inputs, read outputs and the robot's pose, run
 # the whole cell and save a plot of the motion.
 #
@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 
 from gplrt.lang.errors import GplException
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 
 
 def _here() -> Path:

@@ -1,4 +1,5 @@
-"""gplrt's modules import one another in one direction only (issue 14, item 1).
+"""gplrt's modules import one another in one direction only (issue 14, item 1), and gplrt and gpl2py
+import each other in one direction only (issue 13, item 2).
 
 The graph is built from the import statements of every module of ``runtime/gplrt`` (``ast``), all
 of them, including imports inside functions:
@@ -9,13 +10,14 @@ of them, including imports inside functions:
   ``gplrt.threads.scheduler`` from outside ``gplrt.threads`` is also an edge to ``gplrt.threads``
   (a module inside a package is loaded after its package, so that edge is not drawn for it);
 * an import under ``if TYPE_CHECKING:`` is not an edge: it names types for annotations and never
-  runs (``from __future__ import annotations`` keeps the annotations unevaluated).
+  runs (``from __future__ import annotations`` keeps the annotations unevaluated);
+* ``importlib.import_module("a.b")`` with a constant name is an import too.
 
 Rules checked: the graph has no cycle; no gplrt module imports gplrt inside a function (with an
 acyclic graph there is no reason to, and such an import is how a cycle hides); gplrt imports
-nothing from gpl2py, except ``gplrt.notebook``, which translates projects with ``gpl2py.run``
-(that straddling module is the subject of another issue; it must still not close a cycle inside
-gplrt, which the first rule checks for it too).
+nothing from gpl2py, not even the notebook's runtime half (the loader that translates is
+``gpl2py.notebook``); gpl2py's own graph has no cycle either; and gpl2py imports gplrt only
+where it runs programs or shares GPL's semantics with the runtime (:data:`GPL2PY_USES_GPLRT`).
 """
 
 from __future__ import annotations
@@ -24,11 +26,19 @@ import ast
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import gpl2py
 import gplrt
 
 RUNTIME = Path(gplrt.__file__).resolve().parent
-#: The one module allowed to import gpl2py (see the module docstring).
-STRADDLES_GPL2PY = "gplrt.notebook"
+TRANSPILER = Path(gpl2py.__file__).resolve().parent
+#: The gpl2py modules that may import gplrt, and why (issue 13, item 2: "only where it runs programs").
+GPL2PY_USES_GPLRT = {
+    "gpl2py.run": "runs a translated program on a Simulation",
+    "gpl2py.notebook": "the notebook loader: translates, then runs on a Simulation",
+    "gpl2py.cli": "run's configuration: checks [tool.gpl2py] robot against the runtime's models",
+    "gpl2py.cache": "the cache key includes the runtime's files (a translation is made for them)",
+    "gpl2py.semantics.consts": "folds a Const with gplrt.lang's own operators, as the program would",
+}
 
 
 @dataclass
@@ -37,8 +47,8 @@ class Graph:
     edges: dict[str, set[str]] = field(default_factory=dict)
     #: (module, line, imported name) of every import inside a function
     in_functions: list[tuple[str, int, str]] = field(default_factory=list)
-    #: (module, line, imported name) of every import of gpl2py
-    gpl2py: list[tuple[str, int, str]] = field(default_factory=list)
+    #: (module, line, imported name) of every import of the other package (``build_graph``'s ``other``)
+    foreign: list[tuple[str, int, str]] = field(default_factory=list)
 
 
 def _module_names(root: Path, package: str) -> dict[str, Path]:
@@ -56,8 +66,21 @@ def _is_type_checking(test: ast.expr) -> bool:
         isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
 
 
-def build_graph(root: Path, package: str) -> Graph:
-    """The import graph of the package ``package`` whose folder is ``root`` (module docstring)."""
+def _imported_by_call(node: ast.AST) -> str | None:
+    """``"a.b"`` for ``importlib.import_module("a.b")`` (or ``import_module("a.b")``), else None."""
+    if not isinstance(node, ast.Call) or not node.args:
+        return None
+    func = node.func
+    name = func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
+    first = node.args[0]
+    if name == "import_module" and isinstance(first, ast.Constant) and isinstance(first.value, str):
+        return first.value
+    return None
+
+
+def build_graph(root: Path, package: str, other: str = "gpl2py") -> Graph:
+    """The import graph of the package ``package`` whose folder is ``root`` (module docstring);
+    imports of the package ``other`` are listed in ``foreign``."""
     graph = Graph(_module_names(root, package))
     modules = graph.modules
 
@@ -73,11 +96,14 @@ def build_graph(root: Path, package: str) -> Graph:
         def visit(node: ast.AST, in_function: bool) -> None:
             for child in ast.iter_child_nodes(node):
                 if isinstance(child, ast.If) and _is_type_checking(child.test):
-                    for other in child.orelse:
-                        visit(other, in_function)
+                    for branch in child.orelse:
+                        visit(branch, in_function)
                     continue
                 names: list[str] = []
-                if isinstance(child, ast.Import):
+                called = _imported_by_call(child)
+                if called is not None:
+                    names = [called]
+                elif isinstance(child, ast.Import):
                     names = [alias.name for alias in child.names]
                 elif isinstance(child, ast.ImportFrom):
                     if child.level:
@@ -88,13 +114,13 @@ def build_graph(root: Path, package: str) -> Graph:
                     names = [f"{source}.{alias.name}" if f"{source}.{alias.name}" in modules else source
                              for alias in child.names]
                 for name in names:
-                    if name.split(".")[0] == "gpl2py":
-                        graph.gpl2py.append((module, child.lineno, name))
+                    if name.split(".")[0] == other:
+                        graph.foreign.append((module, getattr(child, "lineno", 0), name))
                     hit = target(name) if name.split(".")[0] == package else None
                     if hit is not None:
                         found.add(hit)
                         if in_function:
-                            graph.in_functions.append((module, child.lineno, name))
+                            graph.in_functions.append((module, getattr(child, "lineno", 0), name))
                 visit(child, in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)))
 
         visit(ast.parse(path.read_text(encoding="utf-8"), str(path)), False)
@@ -151,11 +177,26 @@ def test_no_gplrt_module_imports_gplrt_inside_a_function() -> None:
                                                for m, line, name in graph.in_functions)
 
 
-def test_gplrt_imports_nothing_from_gpl2py_but_the_notebook() -> None:
+def test_gplrt_imports_nothing_from_gpl2py() -> None:
     graph = build_graph(RUNTIME, "gplrt")
-    assert {m for m, _, _ in graph.gpl2py} == {STRADDLES_GPL2PY}  # the notebook does: see above
-    others = [f"{m}:{line}: imports {name}" for m, line, name in graph.gpl2py if m != STRADDLES_GPL2PY]
-    assert others == [], "\n".join(others)
+    assert "gplrt.notebook" in graph.modules  # the notebook's runtime half was read too
+    found = [f"{m}:{line}: imports {name}" for m, line, name in graph.foreign]
+    assert found == [], "\n".join(found)
+
+
+def test_gpl2py_imports_form_no_cycle() -> None:
+    graph = build_graph(TRANSPILER, "gpl2py", other="gplrt")
+    assert len(graph.modules) > 30 and "gpl2py.run" in graph.edges["gpl2py.notebook"]
+    cycle = find_cycle(graph.edges)
+    assert cycle is None, "import cycle: " + " -> ".join(cycle or [])
+
+
+def test_gpl2py_imports_gplrt_only_where_it_runs_programs() -> None:
+    graph = build_graph(TRANSPILER, "gpl2py", other="gplrt")
+    users = {m for m, _, _ in graph.foreign}
+    assert "gpl2py.notebook" in users and "gpl2py.semantics.consts" in users  # (import_module calls too)
+    unexpected = [f"{m}:{line}: imports {name}" for m, line, name in graph.foreign if m not in GPL2PY_USES_GPLRT]
+    assert unexpected == [], "\n".join(unexpected)
 
 
 def _package(root: Path, files: dict[str, str]) -> Path:
@@ -187,6 +228,13 @@ def test_the_graph_sees_a_cycle_hidden_in_a_function(tmp_path: Path) -> None:
     })
     cycle = find_cycle(build_graph(through_init, "pkg").edges)
     assert cycle is not None and "pkg.sub" in cycle and "pkg.base" in cycle
+
+    by_name = _package(tmp_path / "d", {
+        "__init__.py": "",
+        "low.py": "import importlib\nhigh = importlib.import_module('pkg.high')\n",
+        "high.py": "from pkg import low\n",
+    })
+    assert find_cycle(build_graph(by_name, "pkg").edges) is not None
 
     typing_only = _package(tmp_path / "c", {
         "__init__.py": "",

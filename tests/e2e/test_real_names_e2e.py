@@ -229,7 +229,7 @@ End Module
 
 
 def test_a_notebook_calls_the_overload_its_arguments_fit(tmp_path: Path) -> None:
-    from gplrt.notebook import Cell
+    from gpl2py.notebook import Cell
     from gpltest import code_of, write_project
 
     proj = write_project(tmp_path, {"Main.gpl": """Module Main

@@ -24,7 +24,7 @@ import pytest
 
 from gpltest import PRIVATE_NETWORK, copy_project, corpus_dir, private_network
 from gplrt.controller.services import POWER_ON_STATES
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 
 ROBOT_PORT, STATUS_PORT = 10100, 10000  # Startup.gpl: Robot1Port, Status1Port
 READ_BACK = 5e-4  # TCS replies with three decimals (Functions.gpl sFormat(value, 3))

@@ -63,7 +63,7 @@ import gplrt.motion.robot_class  # noqa: F401
 from gplrt.motion.registry import robot_of
 from gplrt.motion.servo import gripper_of
 from gplrt.motion.special import push
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 
 ROBOT_PORT, STATUS_PORT = 10100, 10000  # Startup.gpl: Robot1Port, Status1Port
 TIMEOUT = 30.0  # real seconds for any one reply (bounds a hang; nothing asserts a duration)

@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from gpltest import copy_project, corpus_dir, private_network
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 
 ROBOT_PORT = 10100  # Startup.gpl: Robot1Port
 PROJECT_FOLDER = "flash/projects/Tcp_cmd_server_pa"  # ProjectName of the PARobot Project.gpr

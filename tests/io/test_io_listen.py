@@ -195,7 +195,7 @@ def test_gpl2py_run_listens_on_the_lan_only_with_listen(tmp_path: Path, opt_in: 
 
 
 def test_cell_load_refuses_a_bad_listen_address_before_translating(tmp_path: Path) -> None:
-    from gplrt.notebook import Cell
+    from gpl2py.notebook import Cell
 
     with pytest.raises(ValueError, match="not an address of this computer"):
         Cell.load(tmp_path / "no such project", listen=FOREIGN)  # the address fails first

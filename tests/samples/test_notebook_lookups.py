@@ -1,4 +1,4 @@
-"""gplrt.notebook's name lookups on a shipped sample: a bad name is a GPL error with the
+"""gpl2py.notebook's name lookups on a shipped sample: a bad name is a GPL error with the
 controller's code, whatever the notebook user typed (docs/notebook.md)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from typing import Any
 
 import pytest
 
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 from gpltest import SAMPLES, code_of
 
 

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from gpltest import SAMPLES, LineClient, copy_project, free_port, hand_rotation, module_src, write_project
-from gplrt.notebook import Cell
+from gpl2py.notebook import Cell
 
 PICK = (300.0, 150.0, 120.0, 90.0)  # x, y, z, yaw (Globals.gpo)
 PLACE = (350.0, -150.0, 125.5, -60.0)

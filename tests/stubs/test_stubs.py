@@ -374,7 +374,7 @@ def test_strict_stub_errors_say_what_happens(tmp_path: Path) -> None:
 
 def test_notebook_cell_loads_a_protected_project_with_user_stubs(tmp_path: Path) -> None:
     from gplrt.lang.errors import GplException
-    from gplrt.notebook import Cell
+    from gpl2py.notebook import Cell
 
     stubs = tmp_path / "s"
     stubs.mkdir()

@@ -1,4 +1,4 @@
-"""gplrt.notebook.Cell: load through the cache, call procedures, I/O, robot state, plots."""
+"""gpl2py.notebook.Cell: load through the cache, call procedures, I/O, robot state, plots."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from gplrt.lang.errors import GplException
-from gplrt.notebook import Cell, ProjectError
+from gpl2py.notebook import Cell, ProjectError
 from gpltest import module_src, write_project
 
 STATION = module_src("""\

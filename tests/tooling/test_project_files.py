@@ -67,7 +67,7 @@ def test_python_m_installs_the_files_written_with_the_package(tmp_path: Path) ->
 
 
 def test_notebook_cell_load_installs_the_files(tmp_path: Path) -> None:
-    from gplrt.notebook import Cell
+    from gpl2py.notebook import Cell
 
     cell = Cell.load(_project(tmp_path), cache_dir=tmp_path / "cache")
     cell.run_main()

@@ -278,6 +278,11 @@ class IoMap:
         """Changes written by the program."""
         return [c for c in self.trace if c.source == "gpl"]
 
+    def snapshot(self) -> tuple[dict[int, bool], dict[int, float]]:
+        """Copies of every digital and every analog value set so far (a signal never set is off, 0)."""
+        with self._lock:
+            return dict(self._digital), dict(self._analog)
+
     def value(self, signal: int) -> bool:
         """Current state of a digital signal, whatever its kind (no GPL access rules)."""
         return self._digital.get(abs(int(signal)), False)

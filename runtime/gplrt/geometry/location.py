@@ -58,6 +58,7 @@ from numpy.typing import NDArray
 from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import boolean, finite, finite_pose, in_range, text, to_integer, valid_pose, wrong_object
 from gplrt.geometry.kinematics_provider import get_kinematics_provider
+from gplrt.display import fixed, html_table
 from gplrt.geometry.transforms import IDENTITY, Pose, pose_mul, wrap_angle
 from gplrt.lang.errors import (
     ARITHMETIC_OVERFLOW,
@@ -204,13 +205,32 @@ class Location:
         self._pose = tf.pose_from_xyzypr(p[9], p[10], p[11], yaw, pitch, roll)
         self._ypr = (wrap_angle(yaw), wrap_angle(pitch), wrap_angle(roll))
 
-    def __repr__(self) -> str:
+    # -- how it shows (gplrt.display: for reading, mm and degrees to 3 decimals) -------------------
+
+    def _display_values(self) -> tuple[tuple[str, ...], tuple[float, ...]]:
+        """Column names and values: X Y Z Yaw Pitch Roll (PosWrtRef), or the axes of Angles."""
         if self._type == ANGLES:
-            return f"Location(Angles{self._angles})"
-        x, y, z = self._pose[9:]
-        yaw, pitch, roll = self._euler()
+            return tuple(f"axis {i + 1}" for i in range(len(self._angles))), self._angles
+        return ("X", "Y", "Z", "Yaw", "Pitch", "Roll"), (*self._pose[9:], *self._euler())
+
+    def __repr__(self) -> str:
+        _, values = self._display_values()
+        form = "Angles" if self._type == ANGLES else "XYZ"
         frame = ", RefFrame" if self._ref is not None else ""
-        return f"Location(XYZ({x:.15g}, {y:.15g}, {z:.15g}, {yaw:.15g}, {pitch:.15g}, {roll:.15g}){frame})"
+        return f"Location({form}({', '.join(fixed(v) for v in values)}){frame})"
+
+    def _repr_html_(self) -> str:
+        names, values = self._display_values()
+        extra = [("Config", f"&H{self._config:X}")] if self._config else []
+        if self._zclear < NO_CLEARANCE:
+            extra.append(("ZClearance", f"{fixed(self._zclear)} ({'world Z' if self._zworld else 'tool Z'})"))
+        if self._ref is not None:
+            extra.append(("RefFrame", "yes: X..Roll are relative to it"))
+        if self._text:
+            extra.append(("Text", self._text))
+        kind = "Angles" if self._type == ANGLES else "Cartesian"
+        table = html_table(names, [tuple(fixed(v) for v in values)], f"Location ({kind})")
+        return table + (html_table(("", ""), extra) if extra else "")
 
     # -- properties: type and bookkeeping ------------------------------------------------------
 

@@ -34,6 +34,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from gplrt.display import fixed, html_table
 from gplrt.geometry import location as _location_module
 from gplrt.geometry import transforms as tf
 from gplrt.geometry._checks import finite, finite_pose, in_range, not_nothing, text, to_integer, wrong_object
@@ -208,6 +209,32 @@ class RefFrame:
         twin.__dict__.update(self.__dict__)
         twin._max, twin._pitch, twin._index = list(self._max), list(self._pitch), list(self._index)
         return twin
+
+    # -- how it shows (gplrt.display; for reading, never evaluates a conveyor's belt) ---------------
+
+    _KINDS = {BASIC: "basic", PALLET: "pallet", CONVEYOR: "conveyor"}
+
+    def _display_items(self) -> list[tuple[str, str]]:
+        """What a person checks: the kind, the Loc (X..Roll), a pallet's cells, a conveyor's robot."""
+        loc = self._loc
+        items = [("Type", f"{self._type} ({self._KINDS.get(self._type, '?')})"),
+                 ("Loc", "Nothing" if loc is None else repr(loc).removeprefix("Location("
+                                                                             ).removesuffix(")"))]
+        if self._type == PALLET:
+            items.append(("PalletIndex/Max", ", ".join(f"{i}/{m}" for i, m in zip(self._index, self._max))))
+            items.append(("PalletPitch", ", ".join(fixed(p) for p in self._pitch)))
+            items.append(("PalletOrder", str(self._order)))
+        elif self._type == CONVEYOR:
+            items.append(("ConveyorRobot", str(self._conveyor_robot)))
+        if self._text:
+            items.append(("Text", repr(self._text)))
+        return items
+
+    def __repr__(self) -> str:
+        return "RefFrame(" + ", ".join(f"{name}={value}" for name, value in self._display_items()) + ")"
+
+    def _repr_html_(self) -> str:
+        return html_table(("", ""), self._display_items(), "RefFrame")
 
     # -- pallet members --------------------------------------------------------------------------
 

@@ -13,7 +13,11 @@ reported are frames translated:
   script that imports a generated package and calls a Public procedure sees the GPL file and line
   of every frame, not only the generated Python lines.  Other exceptions print as before (the hook
   chains to the one it replaced).  IPython/Jupyter does not use ``sys.excepthook``; there,
-  ``format_gpl_traceback(exc)`` on a caught exception gives the same text.
+  ``format_gpl_traceback(exc)`` on a caught exception gives the same text, and the notebook
+  registers its own hook (``gplrt.notebook``);
+* ``register_source_text(init_file, texts)`` -- the GPL text of a package's sources, given by
+  whoever has it (the notebook loader); ``gpl_traceback(exc)`` then gives each GPL frame with its
+  source line, and ``format_gpl_report(exc)`` the report that shows them first.
 """
 
 from __future__ import annotations
@@ -24,17 +28,20 @@ import os
 import sys
 import threading
 import traceback
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from types import TracebackType
 
 __all__ = ["register_package", "register_module_map", "locate", "gpl_frames", "format_gpl_traceback", "gpl_line_of",
-           "install_excepthook"]
+           "install_excepthook", "register_source_text", "GplFrame", "gpl_traceback", "format_gpl_report"]
 
 ExceptHook = Callable[[type[BaseException], BaseException, TracebackType | None], object]
 
 _lock = threading.Lock()
 # absolute path of a generated .py -> (GPL file, python line starts, GPL lines)
 _maps: dict[str, tuple[str, list[int], list[int]]] = {}
+# generated package folder -> {GPL file name: its lines}, for reports only (register_source_text)
+_texts: dict[str, dict[str, list[str]]] = {}
 
 
 def register_module_map(py_file: str, gpl_file: str, runs: list[list[int]]) -> None:
@@ -128,3 +135,64 @@ def install_excepthook() -> None:
 
     hook.__gpl_sourcemap__ = True  # type: ignore[attr-defined]
     sys.excepthook = hook
+
+
+def register_source_text(init_file: str, texts: Mapping[str, str]) -> None:
+    """Remember the GPL text of the package whose ``__init__.py`` is ``init_file``: ``texts`` maps
+    each source's file name (as the source map names it, ``Cell.gpl``) to its text.
+
+    A generated package does not carry its GPL sources; whoever loaded it from them (the notebook
+    loader) hands them here so that an error report can quote the failing GPL line."""
+    folder = os.path.normcase(os.path.dirname(os.path.abspath(init_file)))
+    with _lock:
+        _texts[folder] = {name: text.splitlines() for name, text in texts.items()}
+
+
+@dataclass(frozen=True)
+class GplFrame:
+    """One frame of transpiled code, in GPL terms: file, line, procedure and the GPL source line
+    (``""`` when the text was not registered)."""
+
+    file: str
+    line: int
+    procedure: str
+    text: str
+
+    @property
+    def location(self) -> str:
+        return f"{self.file}:{self.line}"
+
+
+def _source_line(py_file: str, gpl_file: str, line: int) -> str:
+    lines = _texts.get(os.path.dirname(os.path.normcase(os.path.abspath(py_file))), {}).get(gpl_file)
+    if lines is None or not 0 < line <= len(lines):
+        return ""
+    return lines[line - 1].strip()
+
+
+def gpl_traceback(exc: BaseException) -> list[GplFrame]:
+    """The transpiled frames ``exc`` passed through, outermost first; runtime frames are left out."""
+    frames = []
+    for py_file, _, func, gpl in gpl_frames(exc.__traceback__):
+        if gpl is not None:
+            frames.append(GplFrame(gpl[0], gpl[1], func, _source_line(py_file, gpl[0], gpl[1])))
+    return frames
+
+
+def format_gpl_report(exc: BaseException, headline: str, frames: list[GplFrame] | None = None) -> str:
+    """``headline`` (which names the error), then the failing GPL line, then the GPL traceback.
+
+    ``File.gpl:42: error -709 in thread Main: *Division by 0*`` reads like ``gpl2py run``'s report;
+    the runtime and scheduler frames in between are not shown (``format_gpl_traceback`` has them).
+    """
+    frames = gpl_traceback(exc) if frames is None else frames
+    lines = [headline]
+    if frames and frames[-1].text:
+        lines.append(f"    {frames[-1].text}")
+    if len(frames) > 1:
+        lines.append("GPL traceback (most recent call last):")
+        for frame in frames:
+            lines.append(f"  {frame.location}, in {frame.procedure}")
+            if frame.text:
+                lines.append(f"    {frame.text}")
+    return "\n".join(lines)

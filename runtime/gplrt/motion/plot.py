@@ -2,13 +2,19 @@
 
 Both functions draw into a given ``Axes`` (or a new figure) and return the figure, so a notebook
 shows it and a test can ``fig.savefig(path)``.  matplotlib is imported only when a plot is made.
+
+Each plot shows once (decision): a new figure is made through pyplot, so that in Jupyter importing
+pyplot sets up the inline display of figures, and is closed at once, so pyplot does not draw it
+again at the end of the cell; the notebook shows the returned figure, once.  Closing only detaches
+it from pyplot: ``savefig`` and further drawing work as before.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from gplrt.motion.trace import Trace
+if TYPE_CHECKING:
+    from gplrt.motion.trace import Trace
 
 
 def _axes(ax: Any) -> tuple[Any, Any]:
@@ -17,6 +23,7 @@ def _axes(ax: Any) -> tuple[Any, Any]:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(8, 4.5))
+    plt.close(fig)  # shown once: by the notebook, as the returned figure (module docstring)
     return fig, ax
 
 

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 
+from gplrt.display import html_table, short
 from gplrt.lang.conversions import to_bool, to_double, to_string
 from gplrt.lang.errors import VALUE_INFINITE_OR_NAN, VALUE_TOO_SMALL, GplException
 from gplrt.lang.gpltypes import Boolean, Double, String
@@ -190,9 +191,15 @@ class Profile:
         """True when the motion should blend into the next one (InRange < 0)."""
         return self._inrange < 0.0
 
+    def _display_items(self) -> list[tuple[str, object]]:
+        return [("Speed", self._speed), ("Speed2", self._speed2), ("Accel", self._accel), ("Decel", self._decel),
+                ("AccelRamp", self._accel_ramp), ("DecelRamp", self._decel_ramp), ("Straight", self._straight),
+                ("InRange", self._inrange)]
+
     def __repr__(self) -> str:
-        return (
-            f"Profile(Speed={self._speed:g}, Speed2={self._speed2:g}, Accel={self._accel:g}, "
-            f"Decel={self._decel:g}, AccelRamp={self._accel_ramp:g}, DecelRamp={self._decel_ramp:g}, "
-            f"Straight={self._straight}, InRange={self._inrange:g})"
-        )
+        return "Profile(" + ", ".join(f"{name}={short(value)}" for name, value in self._display_items()) + ")"
+
+    def _repr_html_(self) -> str:
+        items = self._display_items()
+        caption = f"Profile {self._text!r}" if self._text else "Profile"
+        return html_table([name for name, _ in items], [tuple(short(v) for _, v in items)], caption)

@@ -19,6 +19,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from gplrt.display import Table, figure_html, fixed
+from gplrt.motion.plot import plot_joints
+
 if TYPE_CHECKING:
     from gplrt.session import Session
 
@@ -37,6 +40,36 @@ class Trace:
     def __iter__(self) -> Iterator[NDArray[np.float64]]:
         """``times, joints, xyz = sim.trace(1)``."""
         return iter((self.times, self.joints, self.xyz))
+
+    # -- how it shows (gplrt.display): a summary, never the arrays ----------------------------------
+
+    def _span(self) -> str:
+        if not len(self.times):
+            return "empty"
+        return f"{fixed(self.times[0])}-{fixed(self.times[-1])} s"
+
+    def __repr__(self) -> str:
+        return f"Trace({len(self.names)} axes ({', '.join(self.names)}), {len(self.times)} samples, {self._span()})"
+
+    def summary(self) -> Table:
+        """Per axis: where it started and ended and the range it covered (mm or degrees)."""
+        rows = []
+        for i, name in enumerate(self.names):
+            column = self.joints[:, i]
+            rows.append((name, fixed(column[0]), fixed(column[-1]), fixed(column.min()), fixed(column.max())))
+        return Table(("axis", "start", "end", "min", "max"), rows,
+                     f"trace: {len(self.times)} samples, {self._span()}")
+
+    def _repr_html_(self) -> str:
+        """The summary table and, when matplotlib is installed, the joints against time."""
+        table = self.summary()._repr_html_()
+        try:
+            from matplotlib.figure import Figure
+        except ImportError:
+            return table
+        figure = Figure(figsize=(7, 3.2))
+        plot_joints(self, figure.subplots())
+        return table + figure_html(figure)
 
 
 def _default_dt(sim: Session, robot_number: int) -> float:
