@@ -58,11 +58,11 @@ from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
 from gpl2py.formats import github_annotation, github_annotations, json_document
+from gpl2py.outcome import Display, Outcome, add_project_options, emit, limits_of, new_sink, plural, remember
 from gpl2py.progress import ProgressBar
 from gpl2py.project import Limits, Project, load_project
 
 if TYPE_CHECKING:
-    from gpl2py.cli import Display, Outcome
     from gpl2py.transpile import Progress
 
 EXIT_OK = 0
@@ -248,9 +248,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "$XDG_CACHE_HOME/gpl2py or ~/.cache/gpl2py)")
     parser.add_argument("--rebuild", action="store_true",
                         help="translate again even when the cache has this project")
-    from gpl2py.cli import add_stub_options
-
-    add_stub_options(parser)
+    add_project_options(parser)
 
 
 def _positive_float(text: str) -> float:
@@ -491,23 +489,22 @@ def _listen_problem(address: str) -> str | None:
 
 def run_command(args: argparse.Namespace) -> Outcome:
     """The ``run`` command (``gpl2py.cli`` calls it); prints everything itself."""
-    from gpl2py import cli
     from gpl2py.progress import wants_progress
 
     stdout, stderr = sys.stdout, sys.stderr
-    display: cli.Display = args.display
-    out = cli.Outcome(sink=cli.new_sink(args), emitted=True)
+    display: Display = args.display
+    out = Outcome(sink=new_sink(args), emitted=True)
     bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, not display.text))
     loaded: list[Project] = []
     try:
         built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
                       stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append,
-                      limits=cli.limits_of(args))
+                      limits=limits_of(args))
     finally:
         bar.close()
     project = built.project if built is not None else (loaded[0] if loaded else None)
     if project is not None:
-        cli._remember(out, project)  # diagnostics show their source lines, also on errors
+        remember(out, project)  # diagnostics show their source lines, also on errors
         out.checked = len(project.sources)
     if built is not None:
         out.checked = built.files
@@ -522,7 +519,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
         out.emitted, out.usage_error = False, True
         return out
     if not args.json:
-        cli._emit(out, display, stdout, stderr)
+        emit(out, display, stdout, stderr)
 
     problem = _plot_problem(args.plot) if args.plot else None
     problem = problem or (_flash_problem(args.flash) if args.flash else None)
@@ -661,9 +658,3 @@ def run_summary(report: RunReport, clock: str) -> str:
     elif report.plot_requested:
         text += "; no plot: robot 1 was never used"
     return text
-
-
-def plural(n: int, word: str) -> str:
-    """``n word`` or ``n words``: the one plural rule of every summary line (cli and run)."""
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
-
