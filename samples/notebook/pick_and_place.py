@@ -5,7 +5,8 @@
 # like a notebook; `python samples/notebook/pick_and_place.py` runs it top to bottom.  It uses
 # `gpl2py.notebook.Cell` to translate `samples/pick_and_place` (through the same cache as
 # `gpl2py run`), call single GPL procedures, drive inputs, read outputs and the robot's pose, run
-# the whole cell and save a plot of the motion.
+# the whole cell, and show the motion, the variables and the I/O.  In Jupyter, a cell that ends
+# with a pose, a frame, a table or a plot shows it (a table, a figure).
 #
 # The plot goes to `$GPL2PY_NOTEBOOK_OUT` (default `build/notebook/`).
 
@@ -14,8 +15,8 @@ import os
 import sys
 from pathlib import Path
 
-from gplrt.lang.errors import GplException
 from gpl2py.notebook import Cell
+from gplrt.lang.errors import GplException
 
 
 def _here() -> Path:
@@ -44,17 +45,26 @@ cell.init()  # module variables, then each module's Init (GPO.Init teaches the p
 print(cell)
 print("parts placed so far:", cell.get("Cell.placed"))
 print("robot 1 joints at start:", [round(j, 3) for j in cell.where().joints])
+cell.where()  # in Jupyter: the joints and the tool pose as a table
+
+# %% [markdown]
+# The taught pallet frame, as the GPL module `GPO` holds it:
+
+# %%
+cell.module("GPO").pallet
 
 # %% [markdown]
 # ## The gripper by hand
 # Nothing answers the gripper yet, so `Gripper.Grip(True)` raises the cell's own error code
-# after its 2 s timeout.  Then we play the jaw sensor ourselves.
+# after its 2 s timeout: a `GplError` whose text starts with the GPL file, line and source line.
+# Then we play the jaw sensor ourselves.
 
 # %%
 try:
     cell.call("Gripper.Grip", True)
 except GplException as exc:
     print(f"Grip(True) without a sensor: error {exc.ErrorCode} after {cell.time:.2f} s")
+    print(exc)
 print("close output (DIO 1):", cell.output(DOUT_CLOSE))
 
 cell.set_input(DIN_CLOSED, True)  # the sensor reports the jaws closed
@@ -84,7 +94,26 @@ print(f"robot 1 ends at X {x:.3f} Y {y:.3f} Z {z:.3f} mm, yaw {yaw:.3f} pitch {p
 print("gripper commands:", sum(1 for _, signal, _ in cell.outputs_written() if signal == DOUT_CLOSE))
 
 # %% [markdown]
+# ## What the program left: its variables and the I/O
+
+# %%
+cell.variables()
+
+# %%
+cell.io_state()
+
+# %% [markdown]
 # ## Plot the motion
+# Each plot call shows its figure once; `cell.trace()` shows a summary and the joints.
+
+# %%
+cell.plot_joints()
+
+# %%
+cell.plot_path()
+
+# %%
+cell.trace()
 
 # %%
 png = cell.save_plot(OUT / "pick_and_place.png")
