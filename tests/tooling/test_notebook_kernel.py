@@ -23,7 +23,10 @@ nbclient = pytest.importorskip("nbclient")
 
 SAMPLE = REPO / "samples/notebook/pick_and_place.py"
 GRIPPER = REPO / "samples/pick_and_place/Gripper.gpl"
-#: Appended to the sample: a fresh Cell whose gripper nothing answers, called without a Try.
+#: Appended to the sample: a call that takes long enough in wall time to show its progress (the
+#: threshold is lowered: a real run would take seconds), then a fresh Cell whose gripper nothing
+#: answers, called without a Try.
+SLOW = "import time\nfrom gplrt.notebook import drive\ndrive(cell.sim, time.sleep, 0.3, progress_after=0.0)"
 FAILING = 'broken = Cell.load(HERE.parent / "pick_and_place", echo=False)\nbroken.call("Gripper.Grip", True)'
 
 
@@ -45,6 +48,7 @@ def executed(tmp_path_factory: pytest.TempPathFactory) -> Any:
     out = tmp_path_factory.mktemp("nb")
     book = nbformat.v4.new_notebook()
     book.cells = cells_of(SAMPLE.read_text(encoding="utf-8"))
+    book.cells.append(nbformat.v4.new_code_cell(SLOW))
     book.cells.append(nbformat.v4.new_code_cell(FAILING, metadata={"tags": ["raises-exception"]}))
     client = nbclient.NotebookClient(book, timeout=120, kernel_name="python3",
                                      resources={"metadata": {"path": str(SAMPLE.parent)}})
@@ -111,6 +115,14 @@ def test_a_failing_cell_shows_the_gpl_line(executed: Any) -> None:
     assert shown.splitlines()[0].startswith(f"GplError: Gripper.gpl:{throw}: error -3100")
     assert lines[throw - 1].strip() in shown  # the GPL source line itself
     assert "scheduler" not in shown and "gplrt" not in shown and len(error.traceback) < 10
+
+
+def test_progress_is_one_line_updated_in_place(executed: Any) -> None:
+    slow = executed.cells[-2]
+    shown = [o for o in slow.outputs if "text/html" in o.get("data", {})]
+    assert len(shown) == 1, slow.outputs  # one display, updated by its id (no widgets)
+    assert shown[0]["data"]["text/html"].startswith("<code>done: ")
+    assert not any(o.get("name") == "stderr" for o in slow.outputs)
 
 
 def test_the_sample_ran_to_its_end_in_the_kernel(executed: Any) -> None:
