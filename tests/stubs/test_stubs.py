@@ -374,13 +374,15 @@ def test_strict_stub_errors_say_what_happens(tmp_path: Path) -> None:
 
 def test_notebook_cell_loads_a_protected_project_with_user_stubs(tmp_path: Path) -> None:
     from gplrt.lang.errors import GplException
-    from gpl2py.notebook import Cell
+    from gpl2py.notebook import Cell, TranslationWarning
 
     stubs = tmp_path / "s"
     stubs.mkdir()
     (stubs / "vendorlib.py").write_text("def Grip(width):\n    return width * 10\n")
     proj = _project(tmp_path / "p")
-    cell = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache", stubs=stubs)
+    with pytest.warns(TranslationWarning) as shown:  # the notebook shows each stub's GPL3501
+        cell = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache", stubs=stubs)
+    assert any("GPL3501: 'VendorLib.Release'" in str(w.message) for w in shown)
     provided = {s["name"]: s["provided"] for s in cell.package.PROJECT["stubs"]}
     assert provided["VendorLib.Grip"] and not provided["VendorLib.Release"]
     cell.init()
@@ -391,7 +393,9 @@ def test_notebook_cell_loads_a_protected_project_with_user_stubs(tmp_path: Path)
     with pytest.raises(GplException) as info:
         cell.call("Main.Start")
     assert info.value.ErrorCode == -204 and "VendorLib.Release" in str(info.value)
-    plain = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache")  # no --stubs: its own entry
+    with pytest.warns(TranslationWarning) as shown:
+        plain = Cell.load(proj, echo=False, cache_dir=tmp_path / "cache")  # no --stubs: its own entry
+    assert any("GPL3501: 'VendorLib.Grip'" in str(w.message) for w in shown)
     assert not any(s["provided"] for s in plain.package.PROJECT["stubs"])
 
 
