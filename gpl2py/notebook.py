@@ -251,8 +251,12 @@ class Cell:
         deadlocks).  A call longer than a few seconds of wall time shows its progress.
         """
         func = self.procedure(procedure, len(args))
-        self.init()
-        return self._drive(self.sim.call, func, *args, timeout=timeout)
+        return self._drive(self._init_and_call, func, args, timeout)
+
+    def _init_and_call(self, func: Any, args: tuple[Any, ...], timeout: float | None) -> Any:
+        """``init()`` if needed, then the call: one trip through :meth:`_drive` for both."""
+        self.sim.call(self.package.init)
+        return self.sim.call(func, *args, timeout=timeout)
 
     def start(self, procedure: str, *args: Any, name: str = "") -> Thread:
         """Start a Public procedure as a background GPL thread (e.g. a server); returns the Thread."""
