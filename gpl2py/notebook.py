@@ -229,11 +229,11 @@ class Cell:
         except GplError:
             raise
         except GplException as exc:
-            raise GplError(exc) from None
+            raise GplError(exc, package_folder=self._folder) from None
         except Exception as exc:
             if not gpl_traceback(exc):
                 raise  # not from GPL code: a fault of the session itself (SimulationStalled, ...)
-            raise GplError(exc) from None
+            raise GplError(exc, package_folder=self._folder) from None
 
     def init(self) -> None:
         """Initialise the modules (variables in ProjectSource order, then each ``Init``), once.
@@ -272,14 +272,25 @@ class Cell:
         Returns when every GPL thread has ended (or, virtual clock, when the program stalled).  A
         run longer than a few seconds of wall time shows its progress.
         """
-        status = self._drive(self._main_status)
-        failed = [t for t in list(self.sim.threads) if t.unhandled_error is not None]
-        if status and failed:
+        before = {id(t) for t in self._failed_threads()}  # an earlier run's errors are not this one's
+        logged = len(self.sim.controller.error_log)
+        self._drive(self._main_status)
+        failed = [t for t in self._failed_threads() if id(t) not in before]
+        if failed:
             first, *others = failed
-            error = GplError(first.unhandled_error, first.Name)  # type: ignore[arg-type]
-            error.others = [GplError(t.unhandled_error, t.Name).headline() for t in others]  # type: ignore[arg-type]
+            error = GplError(first.unhandled_error, first.Name, self._folder)  # type: ignore[arg-type]
+            error.others = [GplError(t.unhandled_error, t.Name, self._folder).headline()  # type: ignore[arg-type]
+                            for t in others]
             raise error
-        return status
+        return 1 if len(self.sim.controller.error_log) > logged else 0
+
+    @property
+    def _folder(self) -> str:
+        """The generated package's folder (its GPL text is registered under it)."""
+        return str(Path(str(self.package.__file__)).parent)
+
+    def _failed_threads(self) -> list[Thread]:
+        return [t for t in list(self.sim.threads) if t.unhandled_error is not None]
 
     def _main_status(self) -> int:
         """ProjectStart's run: 0, or 1 if a thread ended with an unhandled error (``main(sim)``)."""

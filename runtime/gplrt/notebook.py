@@ -39,7 +39,7 @@ from gplrt.controller.signals import IoMap
 from gplrt.display import Table, fixed, html_table, short
 from gplrt.geometry.transforms import matrix_to_xyzypr
 from gplrt.lang.errors import INTERNAL_ERROR, GplException
-from gplrt.lang.sourcemap import GplFrame, format_gpl_report, gpl_traceback
+from gplrt.lang.sourcemap import GplFrame, format_gpl_report, gpl_source_line, gpl_traceback
 from gplrt.motion.plot import plot_joints, plot_path_xy
 from gplrt.session import Session
 
@@ -218,7 +218,7 @@ class GplError(GplException):
     A Python exception in generated code (a fault of gpl2py or of a stub) is error -201.
     """
 
-    def __init__(self, error: BaseException, thread: str = "") -> None:
+    def __init__(self, error: BaseException, thread: str = "", package_folder: str | None = None) -> None:
         if isinstance(error, GplException):
             super().__init__(error.ErrorCode, error.Qualifier, detail=error.detail, subject=error.subject)
             self._robot_error, self._robot_num, self._axis = error._robot_error, error._robot_num, error._axis
@@ -229,6 +229,13 @@ class GplError(GplException):
         self.others: list[str] = []  # headlines of further threads that ended unhandled (run_main)
         self.frames: list[GplFrame] = gpl_traceback(error)
         self.gpl_location = self.frames[-1].location if self.frames else getattr(error, "gpl_location", None)
+        if not self.frames and self.gpl_location and package_folder is not None:
+            # The runtime turned a Python error (in a stub, say) into this one where it caught it:
+            # the traceback lost the GPL frame, the location it recorded did not.
+            file, _, line = self.gpl_location.rpartition(":")
+            if line.isdigit():
+                text = gpl_source_line(file, int(line), package_folder)
+                self.frames = [GplFrame(file, int(line), "", text)]
 
     @property
     def source_line(self) -> str:

@@ -23,6 +23,7 @@ LINES = [
     "    Public count As Integer",
     "    Public label As String",
     "    Public home As Location",
+    "    Public divisor As Integer",
     "",
     "    Public Function Divide(ByVal a As Integer, ByVal b As Integer) As Integer",
     "        count += 1",
@@ -37,7 +38,7 @@ LINES = [
     "",
     "    Public Sub Crash()",
     "        Dim n As Integer",
-    "        n = Divide(1, 0)",
+    "        n = Divide(1, divisor)",
     "    End Sub",
     "",
     "    Public Sub Main()",
@@ -53,6 +54,7 @@ LINES = [
 ]
 DIVISION = LINES.index("        r = a \\ b  ' the division") + 1
 CALL = LINES.index("        Return Inner(a, b)") + 1
+CRASH = LINES.index("        n = Divide(1, divisor)") + 1
 
 
 @pytest.fixture
@@ -83,8 +85,13 @@ def test_run_main_raises_the_first_thread_that_ended_unhandled(cell: Cell) -> No
     err = info.value
     assert err.ErrorCode == -709 and err.thread == "crasher"
     assert str(err).startswith(f"Plant.gpl:{DIVISION}: error -709 in thread crasher: *Division by 0*")
-    assert "Plant.gpl:19, in Crash" in str(err) and "n = Divide(1, 0)" in str(err)
+    assert f"Plant.gpl:{CRASH}, in Crash" in str(err) and "n = Divide(1, divisor)" in str(err)
     assert cell.console == "main ends\n"
+    with pytest.raises(GplError) as again:  # a second run fails again, with its own thread
+        cell.run_main()
+    assert again.value.error is not err.error and again.value.thread == "crasher"
+    cell.module("Plant").divisor = 1  # now the thread ends cleanly: an earlier error is not this run's
+    assert cell.run_main() == 0
 
 
 def test_translation_warnings_are_python_warnings(tmp_path: Path) -> None:
@@ -151,7 +158,7 @@ def test_variables_and_io_state_are_tables(cell: Cell) -> None:
     variables = cell.variables()
     assert isinstance(variables, Table) and variables.columns == ("module", "name", "type", "value")
     assert variables.rows == [("Plant", "count", "Integer", "1"), ("Plant", "label", "String", "''"),
-                              ("Plant", "home", "Nothing", "None")]
+                              ("Plant", "home", "Nothing", "None"), ("Plant", "divisor", "Integer", "0")]
     assert "<td>Plant</td><td>count</td><td>Integer</td><td>1</td>" in variables._repr_html_()
     assert repr(variables).splitlines()[:4][-1].split() == ["Plant", "count", "Integer", "1"]  # title, head, rule
     io = cell.io_state()
@@ -188,3 +195,21 @@ def test_a_long_call_shows_its_progress(cell: Cell, capsys: pytest.CaptureFixtur
 def test_the_loader_is_gpl2py_and_the_old_import_says_where_it_went() -> None:
     with pytest.raises(ImportError, match=r"from gpl2py\.notebook import Cell"):
         from gplrt.notebook import Cell as Old  # noqa: F401
+
+
+def test_a_python_error_in_a_stub_is_reported_at_the_gpl_line_that_called_it(tmp_path: Path) -> None:
+    proj = tmp_path / "Vendor"
+    proj.mkdir()
+    (proj / "VendorLib.gpp").write_bytes(b"'#Protected|\x01\x02 vendor binary")
+    (proj / "Main.gpl").write_text("Module Main\n    Public Function Width() As Double\n"
+                                   "        Return VendorLib.Grip(3)\n    End Function\nEnd Module\n")
+    stubs = tmp_path / "stubs"
+    stubs.mkdir()
+    (stubs / "vendorlib.py").write_text("def Grip(width):\n    return {}[width]\n")
+    with pytest.warns(TranslationWarning):  # GPL1406 (the .gpp is skipped) and GPL3501
+        cell = Cell.load(proj, echo=False, stubs=stubs, cache_dir=tmp_path / "cache")
+    with pytest.raises(GplError) as info:
+        cell.call("Main.Width")
+    assert info.value.ErrorCode == -201  # the runtime made the KeyError a GPL error
+    assert str(info.value).startswith("Main.gpl:3: error -201: *")
+    assert "KeyError: 3" in str(info.value) and "Return VendorLib.Grip(3)" in str(info.value)

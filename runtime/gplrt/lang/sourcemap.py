@@ -33,7 +33,8 @@ from dataclasses import dataclass
 from types import TracebackType
 
 __all__ = ["register_package", "register_module_map", "locate", "gpl_frames", "format_gpl_traceback", "gpl_line_of",
-           "install_excepthook", "register_source_text", "GplFrame", "gpl_traceback", "format_gpl_report"]
+           "install_excepthook", "register_source_text", "GplFrame", "gpl_traceback", "format_gpl_report",
+           "gpl_source_line"]
 
 ExceptHook = Callable[[type[BaseException], BaseException, TracebackType | None], object]
 
@@ -164,7 +165,13 @@ class GplFrame:
 
 
 def _source_line(py_file: str, gpl_file: str, line: int) -> str:
-    lines = _texts.get(os.path.dirname(os.path.normcase(os.path.abspath(py_file))), {}).get(gpl_file)
+    return gpl_source_line(gpl_file, line, os.path.dirname(py_file))
+
+
+def gpl_source_line(gpl_file: str, line: int, package_folder: str) -> str:
+    """Line ``line`` of ``gpl_file`` of the package in ``package_folder``, stripped; ``""`` when
+    its text was not registered (:func:`register_source_text`)."""
+    lines = _texts.get(os.path.normcase(os.path.abspath(package_folder)), {}).get(gpl_file)
     if lines is None or not 0 < line <= len(lines):
         return ""
     return lines[line - 1].strip()
