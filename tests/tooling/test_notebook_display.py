@@ -213,3 +213,37 @@ def test_a_python_error_in_a_stub_is_reported_at_the_gpl_line_that_called_it(tmp
     assert info.value.ErrorCode == -201  # the runtime made the KeyError a GPL error
     assert str(info.value).startswith("Main.gpl:3: error -201: *")
     assert "KeyError: 3" in str(info.value) and "Return VendorLib.Grip(3)" in str(info.value)
+
+
+class _Shell:
+    """What IPython's handler is given: records what it was asked to show."""
+
+    def __init__(self) -> None:
+        self.shown: list[tuple[str, str, list[str]]] = []
+        self.fallback = 0
+
+    def _showtraceback(self, etype: type, evalue: str, stb: list[str]) -> None:
+        self.shown.append((etype.__name__, evalue, stb))
+
+    def showtraceback(self, *args: object, **kwargs: object) -> None:
+        self.fallback += 1
+
+
+def test_ipython_shows_a_gpl_exception_from_generated_code_by_its_gpl_frames(cell: Cell) -> None:
+    from gplrt.notebook import _show_gpl_error
+
+    cell.init()
+    shell = _Shell()
+    try:
+        cell.module("Plant").Divide(1, 0)  # the generated function itself, not through call()
+    except GplException as exc:
+        _show_gpl_error(shell, type(exc), exc, exc.__traceback__)
+    name, evalue, stb = shell.shown[0]
+    assert name == "GplException" and evalue.startswith(f"Plant.gpl:{DIVISION}: error -709")
+    assert stb[0].startswith(f"GplException: Plant.gpl:{DIVISION}: error -709") and "r = a \\ b" in stb[1]
+    assert not any("gplrt" in line or "site-packages" in line for line in stb)
+    try:
+        cell.get("Nowhere.x")  # a notebook typo passes through no GPL code: IPython's own traceback
+    except GplException as exc:
+        _show_gpl_error(shell, type(exc), exc, exc.__traceback__)
+    assert shell.fallback == 1 and len(shell.shown) == 1
