@@ -316,8 +316,9 @@ class Cell:
         return serving
 
     def run_for(self, seconds: float) -> None:
-        """Let the GPL threads run for ``seconds`` of controller time (virtual: takes no wall time)."""
-        self.sim.run_for(seconds)
+        """Let the GPL threads run for ``seconds`` of controller time (virtual: takes no wall time;
+        real clock: a run longer than a few seconds shows its progress)."""
+        self._drive(self.sim.run_for, seconds)
 
     def procedure(self, name: str, nargs: int | None = None) -> Any:
         """The Python function of this project's procedure ``"Module.Proc"`` or ``"Proc"``;
