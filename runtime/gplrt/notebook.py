@@ -279,13 +279,18 @@ def show_gpl_errors_in_ipython() -> bool:
 
     IPython does not use ``sys.excepthook`` (where ``gplrt.lang.sourcemap`` installs the same
     idea for scripts), so the notebook loader calls this.  Calling it again changes nothing.
+    IPython keeps one such handler: one the user set already is left alone (False).
     """
     ipython = sys.modules.get("IPython")
     shell = ipython.get_ipython() if ipython is not None else None  # type: ignore[attr-defined]
     if shell is None:
         return False
-    if GplException not in getattr(shell, "custom_exceptions", ()):
-        shell.set_custom_exc((GplException,), _show_gpl_error)
+    handled = tuple(getattr(shell, "custom_exceptions", ()))
+    if handled == (GplException,):
+        return True
+    if handled:
+        return False
+    shell.set_custom_exc((GplException,), _show_gpl_error)
     return True
 
 
