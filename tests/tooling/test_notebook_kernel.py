@@ -14,12 +14,11 @@ import re
 from pathlib import Path
 from typing import Any
 
+import nbclient  # the test extra installs both (pyproject.toml): never skipped for want of them
+import nbformat
 import pytest
 
 from gpltest import REPO
-
-nbformat = pytest.importorskip("nbformat")
-nbclient = pytest.importorskip("nbclient")
 
 SAMPLE = REPO / "samples/notebook/pick_and_place.py"
 GRIPPER = REPO / "samples/pick_and_place/Gripper.gpl"
