@@ -469,4 +469,3 @@ def _procedures_of(package: ModuleType) -> list[ProcedureEntry]:
     module names never see each other's procedures, not even for threads started by name.
     """
     return registered_procedures(package.__name__)
-

@@ -187,7 +187,12 @@ def _declared_names(module: ModuleType) -> list[str]:
         return []
     names: list[str] = []
     for node in tree.body:
-        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
+        if isinstance(node, ast.Assign):
+            targets = node.targets
+        elif isinstance(node, ast.AnnAssign):
+            targets = [node.target]
+        else:
+            continue
         names.extend(t.id for t in targets if isinstance(t, ast.Name) and not t.id.startswith("_"))
     return list(dict.fromkeys(names))
 
