@@ -639,6 +639,8 @@ class RobotState:
         queue._starts.append(seg.t0)
         if isinstance(seg, PathSegment):
             queue.paths_pending = True
+        if len(queue.history) > queue.trim_at:
+            queue.trim()
         if self.pending_triggers:  # Move.Trigger armed for this motion
             triggers, self.pending_triggers = self.pending_triggers, []
             fire_triggers(current_session(), seg, triggers)
