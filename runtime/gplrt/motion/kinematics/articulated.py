@@ -249,8 +249,11 @@ class Articulated6Model(RobotModel):
                                                          self.q_pin(seed))
         if err > 1e-9:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail=f"numeric IK did not converge ({err:.2e})")
-        q = self.q_gpl(q_pin)
+        # Python floats for the turn choice: numpy scalars cost several times more per operation
+        q = self.q_gpl(q_pin).tolist()
+        now = current.tolist()
         single = bool(bits & GPL_SINGLE)
+        unwind = self._unwind
         for i in range(6):
-            q[i] = self._unwind(i, q[i], current, single=single)
-        return q
+            q[i] = unwind(i, q[i], now, single)
+        return np.array(q)

@@ -122,7 +122,8 @@ class Pf400Model(RobotModel):
         """``RobotModel.inverse_pose`` with the plain case in one method (see ``_plain_inverse``)."""
         if current_joints is None:
             current_joints = self.ready_joints()
-        current = current_joints if type(current_joints) is list else list(current_joints)
+        current = (current_joints if type(current_joints) is list else current_joints.tolist()
+                   if type(current_joints) is np.ndarray else list(current_joints))
         q = self._plain_inverse(pose, config_bits, current, check)
         return q if q is not None else super().inverse_pose(pose, config_bits, current, check)
 
