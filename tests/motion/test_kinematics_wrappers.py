@@ -106,3 +106,26 @@ def test_matrix_to_pose_takes_what_it_took() -> None:
         with pytest.raises(GplException) as info:
             matrix_to_pose(bad)  # type: ignore[arg-type]
         assert info.value.ErrorCode == -202
+
+
+def test_the_gantry_closed_form_is_the_general_steps_to_the_bit() -> None:
+    """``GantryModel._plain_inverse`` (the usual case in one method) gives what the general steps
+    give, bit for bit on the axes it solves, and leaves them what it does not handle."""
+    model = build_model(default_database("GANTRY4"))
+    solved = [model._i[r] for r in ("x", "y", "z", "theta")]
+    for q in _samples(model, 300, seed=11):
+        pose = matrix_to_pose(model.forward(q))
+        seed = [v + 1.0 for v in q]
+        plain = model._plain_inverse(pose, 0, seed, True)
+        general = model._general_inverse(pose, 0, seed, True)
+        assert plain is not None
+        assert [plain[k] for k in solved] == [general[k] for k in solved]
+        assert plain == pytest.approx(general, abs=1e-12)
+    q = _samples(model, 1)[0]
+    T = model.forward(q)
+    x = model._i["x"]
+    T[0, 3] = model.upper_limits[x] + 10.0  # beyond X's soft limit: the general steps' -1012
+    assert model._plain_inverse(matrix_to_pose(T), 0, q, True) is None
+    with pytest.raises(GplException) as info:
+        model.inverse(T, 0, q)
+    assert info.value.ErrorCode == -1012 and info.value.Axis == x + 1

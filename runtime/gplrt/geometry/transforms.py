@@ -203,6 +203,9 @@ def matrix_to_pose(m: NDArray[np.float64]) -> Pose:
     here from Python callers (``Location.from_matrix``), who get GPL codes, not ValueError.
     One ``tolist`` and an unpacking: the inverse kinematics converts every target with it.
     """
+    if type(m) is np.ndarray and m.shape == (4, 4) and m.dtype is _FLOAT64:  # (the usual case)
+        (r11, r12, r13, x), (r21, r22, r23, y), (r31, r32, r33, z), _ = m.tolist()
+        return (r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z)
     if type(m) is not np.ndarray or m.dtype is not _FLOAT64:
         try:
             m = np.asarray(m, dtype=float)

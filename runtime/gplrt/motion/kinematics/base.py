@@ -58,6 +58,7 @@ from gplrt.motion.kinematics.units import Matrix
 
 #: FLT_MAX as written in .pac files: "no limit".
 _FLT_MAX = 3.4e38
+_FLOAT64 = np.dtype(np.float64)
 
 
 class JointKind(Enum):
@@ -296,6 +297,14 @@ class RobotModel:
 
         ``check=False`` skips the final soft-limit check (-1012): for reading a planned path
         between the samples its limits were checked at."""
+        if type(T) is np.ndarray and T.shape == (4, 4) and T.dtype is _FLOAT64 and type(current_joints) is list:
+            # the usual call, straight to the model's closed form (``matrix_to_pose``'s first case)
+            (r11, r12, r13, x), (r21, r22, r23, y), (r31, r32, r33, z), _ = T.tolist()
+            pose = (r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z)
+            if math.isfinite(sum(pose)):  # (else the general steps' -202)
+                q = self._plain_inverse(pose, config_bits, current_joints, check)
+                if q is not None:
+                    return q
         pose = matrix_to_pose(T)  # -202 for what is not a numeric matrix
         if (T.shape if type(T) is np.ndarray else np.shape(T)) != (4, 4):
             raise GplException(INVALID_ARGUMENT, detail="target must be a finite 4x4 homogeneous transform")
@@ -308,7 +317,32 @@ class RobotModel:
 
         Why a second entry point: a Location is a pose tuple, and a straight ``Move.Loc`` solves
         its destination when it is queued — on the hot path ``benchmarks/motion_speed.py`` times.
-        Converting to a matrix and back costs more than a closed-form solution itself."""
+        Converting to a matrix and back costs more than a closed-form solution itself.
+
+        The model's ``_plain_inverse`` answers first; what it leaves (None) takes the general
+        steps, which check everything and raise the controller's codes."""
+        if current_joints is None:
+            current: list[float] = self.ready_joints()
+        else:
+            current = (current_joints if type(current_joints) is list else current_joints.tolist()
+                       if type(current_joints) is np.ndarray else list(current_joints))
+        q = self._plain_inverse(pose, config_bits, current, check) if math.isfinite(sum(pose)) else None
+        return q if q is not None else self._general_inverse(pose, config_bits, current, check)
+
+    def _plain_inverse(self, pose: Pose, bits: int, current: list[float], check: bool) -> list[float] | None:
+        """The model's closed form for the case nearly every call is, in one method, or None for
+        the general steps (``_general_inverse``).  Its answer must be theirs, to the bit.  ``pose``
+        is finite (the callers check: the general steps refuse the rest with -202).
+
+        Why: ``inverse`` runs for every Cartesian ``Move`` and every cycle of a straight line, and
+        the general steps' calls cost more than a closed-form solution (``benchmarks/
+        kinematics_speed.py`` holds the wrappers to 3x the bare closed form).  Models without a
+        closed form (the articulated arm's numeric refinement) keep this default."""
+        return None
+
+    def _general_inverse(self, pose: Pose, config_bits: int, current: list[float], check: bool) -> list[float]:
+        """``inverse_pose`` step by step: the checks (-1036, -202), Base and Tool, the model's
+        ``_solve_pose`` in SI, the soft limits (-1012)."""
         if self.pin_model is None:
             raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
         if not math.isfinite(sum(pose)):
@@ -324,7 +358,6 @@ class RobotModel:
                 tx, ty, tz = shift
                 pose = (r11, r12, r13, r21, r22, r23, r31, r32, r33, r11 * tx + r12 * ty + r13 * tz + x,
                         r21 * tx + r22 * ty + r23 * tz + y, r31 * tx + r32 * ty + r33 * tz + z)
-        current = self.ready_joints() if current_joints is None else current_joints
         mm = units.MM_PER_M
         q = self._solve_pose(pose[:9], (pose[9] / mm, pose[10] / mm, pose[11] / mm), int(config_bits),
                              self._to_si_list(current))
