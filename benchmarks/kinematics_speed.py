@@ -4,7 +4,9 @@ Run: ``.venv/bin/python benchmarks/kinematics_speed.py [N] [RUNS]``.  For each d
 it times ``model.forward(joints)`` and ``model.inverse(T, config, current)`` over the same ``N``
 random poses as a *yardstick* that does the same computation with nothing around it, measured side
 by side in one run (``_sidebyside``: the two in turns after a warm-up, ``RUNS`` >= 5 samples each,
-medians with their spread, the ratio as the median of the per-turn ratios).  Target (issue 14
+medians with their spread, the ratio as the median of the per-turn ratios; defaults N = 500,
+RUNS = 21).  Times are the process's CPU time (``time.process_time``): on a shared machine a
+sample that loses the processor to another program would otherwise count that program's time.  Target (issue 14
 item 5): every wrapper <= 3x its yardstick.
 
 The yardsticks:
@@ -30,6 +32,7 @@ from __future__ import annotations
 
 import math
 import sys
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -53,6 +56,9 @@ from gplrt.motion.kinematics import (  # noqa: E402
 
 MODELS = ("PF400SX", "PF400SXL", "PF3400SX", "GANTRY4", "ARM6")
 TARGET = 3.0
+#: CPU time of this process: the machine is shared, and a sample of a few milliseconds that loses
+#: the processor to another program would otherwise count the other program's time.
+CLOCK = time.process_time
 Joints = list[float]
 
 
@@ -167,7 +173,7 @@ def _line(name: str, what: str, pair: Pair, n: int) -> str:
             f"{pair.ratio_text()}{flag}")
 
 
-def main(n: int = 2000, runs: int = 7) -> None:
+def main(n: int = 500, runs: int = 21) -> None:
     rng = np.random.default_rng(0)
     print(f"{n} calls per sample, {runs} samples per side, in turns after a warm-up; target <= {TARGET:g}x")
     print(f"{'model':<10} {'call':<8} {'wrapper per call':>36}  {'yardstick per call':>36}  ratio")
@@ -183,14 +189,14 @@ def main(n: int = 2000, runs: int = 7) -> None:
         bare_fwd = _forward_yardstick(model, qs)
         flanges = bare_fwd()
         _same([fwd(q) for q in qs], [model.base @ units_mm(F) @ model.tool for F in flanges], rotary[:0], f"{name} forward")
-        pair = side_by_side(lambda: [fwd(q) for q in qs], bare_fwd, runs, warmup=2)
+        pair = side_by_side(lambda: [fwd(q) for q in qs], bare_fwd, runs, warmup=2, clock=CLOCK)
         print(_line(name, "forward", pair, n))
 
         inv = model.inverse
         jobs = list(zip(Ts, configs, qs, strict=True))
         bare_inv = _inverse_yardstick(model, Ts, configs, qs)
         _same([inv(T, c, q) for T, c, q in jobs], bare_inv(), rotary, f"{name} inverse")
-        pair = side_by_side(lambda: [inv(T, c, q) for T, c, q in jobs], bare_inv, runs, warmup=2)
+        pair = side_by_side(lambda: [inv(T, c, q) for T, c, q in jobs], bare_inv, runs, warmup=2, clock=CLOCK)
         print(_line(name, "inverse", pair, n))
 
 
