@@ -390,7 +390,7 @@ class RobotModel:
         """Configuration bits of a joint vector (mm/deg)."""
         if self.pin_model is None:
             return 0
-        return self._config(self._to_si(joints))
+        return self._config(self._to_si_list(joints))  # (Python floats: ``_config`` does scalar math)
 
     def check_limits(self, joints: Sequence[float]) -> None:
         """-1012 *Joint out-of-range* (with ``Axis``) for the first axis outside its soft limits."""
@@ -422,7 +422,7 @@ class RobotModel:
         """Flange target (SI) → GPL-ordered SI joints."""
         raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
 
-    def _config(self, q: np.ndarray) -> int:
+    def _config(self, q: Sequence[float]) -> int:
         return 0
 
     def _unwind(self, i: int, angle: float, current: np.ndarray, single: bool = False) -> float:

@@ -329,8 +329,8 @@ class Pf400Model(RobotModel):
             return None
         return si_to_units(q, self._linear)
 
-    def _config(self, q: np.ndarray) -> int:
-        return GPL_RIGHTY if q[self._i["elbow"]] % TWO_PI < math.pi else GPL_LEFTY
+    def _config(self, q: Sequence[float]) -> int:
+        return GPL_RIGHTY if q[self._elbow] % TWO_PI < math.pi else GPL_LEFTY
 
 
 def _unwrap_from(raw: np.ndarray, start: np.ndarray) -> np.ndarray | None:
