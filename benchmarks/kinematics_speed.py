@@ -78,12 +78,10 @@ def _forward_yardstick(model: RobotModel, qs: list[Joints]) -> Callable[[], obje
 def _pf400_bare(model: Pf400Model) -> Callable[[np.ndarray, bool, Joints], Joints]:
     """The PF400's closed form with nothing around it (module docstring)."""
     l1, l2 = model.l1, model.l2
-    tool_inv = model._tool_inv
     assert model._tool_inv_shift is not None and model._base_is_identity  # (the default tools are offsets)
     tx, ty, tz = model._tool_inv_shift
     i_z, i_sh, i_el, i_wr, i_rail = model._z, model._shoulder, model._elbow, model._wrist, model._rail
     dx, dy, dz = model.rail_direction_list
-    del tool_inv
     atan2, acos, sin, cos, degrees = math.atan2, math.acos, math.sin, math.cos, math.degrees
     two_pi = 2.0 * math.pi
 
@@ -156,10 +154,11 @@ def _inverse_yardstick(model: RobotModel, Ts: list[np.ndarray], configs: list[in
     return bare
 
 
-def _same(a: list[Joints] | list[np.ndarray], b: list[Joints] | list[np.ndarray], rotary: np.ndarray, what: str) -> None:
-    """The wrapper and its yardstick agree (rotary axes modulo a turn): the two compute the same."""
+def _same(a: list[Joints] | list[np.ndarray], b: list[Joints] | list[np.ndarray], what: str,
+          rotary: np.ndarray | None = None) -> None:
+    """The wrapper and its yardstick agree (``rotary`` axes modulo a turn): the two compute the same."""
     d = np.array(a, dtype=float) - np.array(b, dtype=float)
-    if d.ndim == 2 and rotary.any():
+    if rotary is not None:
         d[:, rotary] = (d[:, rotary] + 180.0) % 360.0 - 180.0
     worst = float(np.abs(d).max())
     if not worst <= 1e-9:
@@ -188,14 +187,14 @@ def main(n: int = 500, runs: int = 21) -> None:
         fwd = model.forward
         bare_fwd = _forward_yardstick(model, qs)
         flanges = bare_fwd()
-        _same([fwd(q) for q in qs], [model.base @ units_mm(F) @ model.tool for F in flanges], rotary[:0], f"{name} forward")
+        _same([fwd(q) for q in qs], [model.base @ units_mm(F) @ model.tool for F in flanges], f"{name} forward")
         pair = side_by_side(lambda: [fwd(q) for q in qs], bare_fwd, runs, warmup=2, clock=CLOCK)
         print(_line(name, "forward", pair, n))
 
         inv = model.inverse
         jobs = list(zip(Ts, configs, qs, strict=True))
         bare_inv = _inverse_yardstick(model, Ts, configs, qs)
-        _same([inv(T, c, q) for T, c, q in jobs], bare_inv(), rotary, f"{name} inverse")
+        _same([inv(T, c, q) for T, c, q in jobs], bare_inv(), f"{name} inverse", rotary)
         pair = side_by_side(lambda: [inv(T, c, q) for T, c, q in jobs], bare_inv, runs, warmup=2, clock=CLOCK)
         print(_line(name, "inverse", pair, n))
 

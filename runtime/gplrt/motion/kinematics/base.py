@@ -238,9 +238,9 @@ class RobotModel:
         """4×4 (mm) of ``frame`` of the millimetre model at ``joints`` (mm/deg), checked: -1036
         without kinematics, -202 for a wrong length or a value that is not finite.
 
-        One list step, one ``np.array`` (``units.configuration_of``) and the two Pinocchio calls: ``forward``
-        runs for every ``Where`` and trace sample, and ``benchmarks/kinematics_speed.py`` holds it
-        to 3x the bare Pinocchio call (each further Python call costs a tenth of that)."""
+        One list step, one ``np.array`` (``units.configuration_of``) and the two Pinocchio calls:
+        ``forward`` runs for every ``Where`` and trace sample, and ``benchmarks/kinematics_speed.py``
+        holds it to 3x the bare Pinocchio call (each further Python call costs a tenth of that)."""
         values = joints if type(joints) is list else joints.tolist() if type(joints) is np.ndarray else list(joints)
         if len(values) != self._fk_axes or not math.isfinite(sum(values)):  # (a finite sum: every value finite)
             self._refuse_joints(values)
@@ -261,18 +261,9 @@ class RobotModel:
             raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(values)} values given")
         raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {values}")
 
-    def _to_si(self, joints: Sequence[float]) -> np.ndarray:
-        if len(joints) != self.axis_count:
-            raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
-        q = units.joints_to_q(joints, self._linear)
-        # A finite sum proves every value finite (cheap on the caller's list); the full check
-        # only when it is not.
-        if not math.isfinite(sum(joints)) and not np.all(np.isfinite(q)):
-            raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {list(joints)}")
-        return q
-
     def _to_si_list(self, joints: Sequence[float]) -> list[float]:
-        """``_to_si`` as a list of Python floats (the scalar solvers' form)."""
+        """GPL joints (mm/deg) → SI (m/rad) as Python floats (the scalar solvers' form), checked:
+        -202 for a wrong length or a value that is not finite."""
         values = joints if type(joints) is list else joints.tolist() if type(joints) is np.ndarray else list(joints)
         if len(values) != len(self._linear):
             raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(values)} values given")

@@ -64,7 +64,8 @@ class GantryModel(RobotModel):
         self._build_pin_model()
         #: ``check_limits``'s bounds of the four axes (lower, upper, ...) and of the others
         self._plain_bounds = tuple(b for k in self._plain_axes or () for b in self._joint_bounds[k])
-        self._plain_others = [(k, *self._joint_bounds[k]) for k in range(len(roles)) if k not in (self._plain_axes or ())]
+        solved = self._plain_axes or ()
+        self._plain_others = [(k, *self._joint_bounds[k]) for k in range(len(roles)) if k not in solved]
 
     def _build_pin_model(self) -> None:
         if not any(role in self._i for role in ("x", "y", "z", "theta")):

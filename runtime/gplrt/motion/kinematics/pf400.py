@@ -348,7 +348,7 @@ def _unwrap_from(raw: np.ndarray, start: np.ndarray) -> np.ndarray | None:
 
 
 def units_to_si(q: np.ndarray, linear: list[bool]) -> np.ndarray:
-    """N×n joints in GPL units (mm, deg) → SI (m, rad), column by column as ``units.joints_to_q``."""
+    """N×n joints in GPL units (mm, deg) → SI (m, rad), column by column as ``units.joints_to_si_list``."""
     lin = np.array(linear)
     return np.where(lin, q / units.MM_PER_M, np.radians(q))
 

@@ -22,13 +22,8 @@ MM_PER_M = 1000.0
 Matrix = NDArray[np.float64]
 
 
-def joints_to_q(joints: Sequence[float], linear: Sequence[bool]) -> NDArray[np.float64]:
-    """GPL joint values (mm for linear axes, degrees for rotary) → SI vector (m, rad)."""
-    return np.array([j / MM_PER_M if lin else math.radians(j) for j, lin in zip(joints, linear, strict=True)])
-
-
 def joints_to_si_list(joints: Sequence[float], linear: Sequence[bool]) -> list[float]:
-    """``joints_to_q`` as a list of Python floats (for the scalar closed-form solvers)."""
+    """GPL joint values (mm for linear axes, degrees for rotary) → SI (m, rad), as Python floats."""
     radians = math.radians
     return [j / MM_PER_M if lin else radians(j) for j, lin in zip(joints, linear)]
 
