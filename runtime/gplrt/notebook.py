@@ -151,6 +151,7 @@ def io_state(io: IoMap) -> Table:
 
     A signal nobody touched is off (analog: 0) and is not listed.  ``by`` is ``program`` for a
     change the GPL program made and ``outside`` for an input driven from the notebook or a rule.
+    ``changes`` counts what ``io.trace`` still holds (it keeps a window: ``io.trace_window``).
     """
     last: dict[tuple[str, int], tuple[float, str, int]] = {}
     for change in io.trace:
