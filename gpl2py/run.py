@@ -56,7 +56,7 @@ from typing import TYPE_CHECKING, Any, Callable, TextIO
 
 from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
-from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, plural
 from gpl2py.formats import github_annotation, github_annotations, json_document
 from gpl2py.progress import ProgressBar
 from gpl2py.project import Limits, Project, load_project
@@ -663,7 +663,4 @@ def run_summary(report: RunReport, clock: str) -> str:
     return text
 
 
-def plural(n: int, word: str) -> str:
-    """``n word`` or ``n words``: the one plural rule of every summary line (cli and run)."""
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
