@@ -65,11 +65,7 @@ class Node:
     _children: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self, span: Span) -> None:
-        self._file = span.file
-        self._line = span.line
-        self._col = span.col
-        self._end_line = span.end_line
-        self._end_col = span.end_col
+        self._file, self._line, self._col, self._end_line, self._end_col = span
 
     def children(self) -> Iterator[Node]:
         """The child nodes, in source order (lists are flattened, ``None`` skipped)."""
@@ -86,7 +82,20 @@ class Node:
 
 
 def _get_span(node: Node) -> Span:
-    return make_span(node._file, node._line, node._col, node._end_line, node._end_col)
+    return _new_tuple(Span, (node._file, node._line, node._col, node._end_line, node._end_col))
+
+
+_new_tuple = tuple.__new__  # (a Span is a tuple: gpl2py.source.make_span without its call)
+
+
+def span_between(first: Node, last: Node) -> Span:
+    """``first.span.to(last.span)`` without building the two spans (the parser's hot path)."""
+    return _new_tuple(Span, (first._file, first._line, first._col, last._end_line, last._end_col))
+
+
+def span_to(first: Node, last: Span) -> Span:
+    """``first.span.to(last)`` without building the first span (the parser's hot path)."""
+    return _new_tuple(Span, (first._file, first._line, first._col, last[3], last[4]))
 
 
 # (set after the class is made: in the class body the property would be read as the InitVar's default)
