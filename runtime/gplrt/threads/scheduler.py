@@ -181,29 +181,39 @@ def external_wait() -> Iterator[None]:
         ctx.sched._leave_external(ctx)
 
 
-@contextmanager
-def controller_wait(end: float) -> Iterator[None]:
-    """Mark the calling GPL thread as waiting for the controller until controller time ``end``.
+class controller_wait:  # noqa: N801 - used as a function, like contextlib's
+    """Mark the calling GPL thread as waiting for the controller until controller time ``end``
+    (``with controller_wait(end): ...``).
 
     The runtime wraps the waits whose end the controller, not the program or the outside world,
     decides — the end of the queued motions, homing, a power-up — so that the FAST scheduler may
     jump time to ``end`` even while sockets are open (see the module docstring).  Every other
     scheduler ignores the mark; so does a thread unknown to the scheduler.  An ``end`` beyond the
     clock's range (an infinite wait) marks nothing: there is no motion end to jump to.
+
+    A class rather than a ``@contextmanager`` generator: every ``WaitForEOM`` that waits enters
+    one, and a generator costs several times as much to enter and leave.
     """
-    ctx = _tls.ctx
-    try:
-        end_ns = to_ns(end)
-    except (OverflowError, ValueError):
-        end_ns = None
-    if ctx is None or end_ns is None:
-        yield
-        return
-    previous, ctx.busy_until = ctx.busy_until, end_ns
-    try:
-        yield
-    finally:
-        ctx.busy_until = previous
+
+    __slots__ = ("ctx", "end_ns", "previous")
+
+    def __init__(self, end: float) -> None:
+        self.ctx = _tls.ctx
+        try:
+            self.end_ns: int | None = to_ns(end)
+        except (OverflowError, ValueError):
+            self.end_ns = None
+        self.previous: int | None = None
+
+    def __enter__(self) -> None:
+        ctx = self.ctx
+        if ctx is not None and self.end_ns is not None:
+            self.previous, ctx.busy_until = ctx.busy_until, self.end_ns
+
+    def __exit__(self, *exc: object) -> None:
+        ctx = self.ctx
+        if ctx is not None and self.end_ns is not None:
+            ctx.busy_until = self.previous
 
 
 def hold_real_time() -> Callable[[], None]:
@@ -335,15 +345,21 @@ class Scheduler:
     def sleep(self, dt: float) -> None:
         if dt <= 0:
             self.yield_now()
-        else:
+        elif _tls.ctx is not None:
+            self.sleep_until(self.clock.now() + dt)
+        else:  # the time is read once the caller holds the token
             with self.adopted():
                 self.sleep_until(self.clock.now() + dt)
 
     def sleep_until(self, t: float) -> None:
-        with self.adopted() as ctx:
-            ctx.waiting_on = "sleep"
-            while not self.clock.reached(t):
-                self.wait(None, t)
+        ctx = _tls.ctx
+        if ctx is None:  # (a GPL thread skips ``adopted``'s generator: every Sleep passes here)
+            with self.adopted():
+                self.sleep_until(t)
+            return
+        ctx.waiting_on = "sleep"
+        while not self.clock.reached(t):
+            self.wait(None, t)
 
     def wait(
         self,
@@ -360,11 +376,14 @@ class Scheduler:
         wake: without ``until`` such a wakeup is lost (a ``Join`` of a thread that ends at that
         moment would wait forever).
         """
-        with self.adopted() as ctx:
-            self._service_requests(ctx)
-            notified = self._block(ctx, queue, deadline, until)
-            self._service_requests(ctx)
-            return notified
+        ctx = _tls.ctx
+        if ctx is None:  # (a GPL thread skips ``adopted``'s generator: every wait passes here)
+            with self.adopted():
+                return self.wait(queue, deadline, until)
+        self._service_requests(ctx)
+        notified = self._block(ctx, queue, deadline, until)
+        self._service_requests(ctx)
+        return notified
 
     def notify_all(self, queue: WaitQueue) -> None:
         with self._lock:
@@ -552,11 +571,14 @@ class VirtualScheduler(Scheduler):
             self._idle_real = None
             self._fire_due()
 
-    def _dispatch(self) -> None:
+    def _dispatch(self, caller: ThreadCtx | None = None) -> bool:
         """Give the token to the next runnable thread, jumping time forward if nobody is runnable.
 
         Timer callbacks fired from here may make threads ready; ``_in_dispatch`` stops them from
-        dispatching recursively.
+        dispatching recursively.  Returns True when the token went to ``caller`` — the thread
+        that has just parked itself and is dispatching on its way out: its own wait is over
+        already (nobody else could run before it), so it is not signalled through its ``go``
+        event and keeps running without waiting for it (``_block``'s fast path).
         """
         self._in_dispatch = True
         try:
@@ -567,13 +589,16 @@ class VirtualScheduler(Scheduler):
                 # With no GPL thread alive, or nobody outside driving the run, time stands still.
                 if nd is None or not self.live or self.drivers == 0 or (self._paced() and not self._may_run_ahead(nd)):
                     self._go_idle(nd)
-                    return
+                    return False
                 self.clock.advance_to_ns(nd)
                 self._fire_due()
             nxt = self._ready.popleft()
             nxt.phase = Phase.RUNNING
             self._running = nxt
+            if nxt is caller:
+                return True
             nxt.go.set()
+            return False
         finally:
             self._in_dispatch = False
 
@@ -636,10 +661,11 @@ class VirtualScheduler(Scheduler):
             self.clock.advance_to_ns(deadline)
             self._dispatch()
 
-    def _switch_away(self, ctx: ThreadCtx) -> None:
-        """``ctx`` (the token holder, lock held) has parked itself: pass the token, then wait."""
+    def _switch_away(self, ctx: ThreadCtx) -> bool:
+        """``ctx`` (the token holder, lock held) has parked itself: pass the token on.  True when
+        it came straight back to ``ctx`` (see ``_dispatch``): ``ctx`` must not wait for it."""
         self._running = None
-        self._dispatch()
+        return self._dispatch(ctx)
 
     def _await_token(self, ctx: ThreadCtx) -> None:
         ctx.go.wait()
@@ -669,7 +695,12 @@ class VirtualScheduler(Scheduler):
                 queue.waiters.append((ctx, ctx.wait_id))
             if deadline is not None:
                 heapq.heappush(self._timers, (to_ns(deadline), next(self._seq), ctx, ctx.wait_id, None))
-            self._switch_away(ctx)
+            if self._switch_away(ctx):
+                # Fast path: nobody else could run before this wait ended (one GPL thread, as a
+                # rule): time has moved on and the token is back, without a thread switch.
+                if queue is not None:
+                    queue.waiters = [w for w in queue.waiters if w[0] is not ctx]
+                return not ctx.timed_out
         self._await_token(ctx)
         if queue is not None:
             with self._lock:
@@ -711,7 +742,8 @@ class VirtualScheduler(Scheduler):
                 return
             ctx.phase = Phase.READY
             self._ready.append(ctx)
-            self._switch_away(ctx)
+            if self._switch_away(ctx):
+                return
         self._await_token(ctx)
 
     def _checkpoint_slow(self, ctx: ThreadCtx) -> None:
