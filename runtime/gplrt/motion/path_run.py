@@ -51,8 +51,9 @@ CYCLE = 0.016
 END_GAP = CYCLE / 4
 #: Relative tolerance on the over-speed check (finite differences over one cycle).
 OVER_SPEED_TOLERANCE = 1e-6
-#: Cycles solved per batch (``RobotModel.inverse_path``) when the state is read far ahead.
-BATCH = 64
+#: Cycles solved per batch (``RobotModel.inverse_path``) when the state is read far ahead
+#: (8 s of motion: a line is solved in one batch as a rule; a longer one in a few).
+BATCH = 512
 
 
 @dataclass(frozen=True)
@@ -161,7 +162,9 @@ class PathRun:
         k1 = int(math.floor(min(t, end) / CYCLE + 1e-9))
         # a cycle closer than END_GAP to the end is left to the end itself: a sliver of an interval
         # there turns rounding into speeds and accelerations (``_check_rates``)
-        times = [k * CYCLE for k in range(k0, k1 + 1) if k * CYCLE < end - END_GAP]
+        times = (np.arange(k0, k1 + 1) * CYCLE).tolist()  # k · CYCLE, as Python floats multiply
+        while times and times[-1] >= end - END_GAP:
+            times.pop()
         if t >= end - 1e-12:
             times.append(end)
         i = 0
@@ -180,8 +183,7 @@ class PathRun:
         to the first that fails; then the joint speeds of all the cycles are checked at once.
         The first cycle that fails either way stops the motion at the one before it — the same
         cycle a check of each cycle in turn would stop at."""
-        plan_at = self.plan.at
-        us = [min(1.0, max(0.0, plan_at(tk)[0][0])) for tk in times]
+        us = np.clip(self.plan.sample(np.array(times))[0][:, 0], 0.0, 1.0).tolist()
         last_is_end = times[-1] >= self.plan.duration
         inner = us[:-1] if last_is_end else us
         prev = self.qs[-1]
