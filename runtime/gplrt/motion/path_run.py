@@ -35,13 +35,14 @@ from __future__ import annotations
 
 import bisect
 import math
+import operator
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from gplrt.lang.errors import AXIS_OVER_SPEED, SOFT_ENVELOPE_ERROR, GplException
-from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
+from gplrt.motion.limits import MIN_RAMP, LineLimits, Vec
 from gplrt.motion.planner import Plan
 from gplrt.motion.straight import Path, PathIK, PathJoints
 
@@ -67,30 +68,27 @@ class Fault:
     error: GplException
 
 
-def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
-                decel_ramp: float) -> tuple[float, float, float, float]:
+def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, lim: LineLimits) -> tuple[float, float, float, float]:
     """(u̇_max, ü_max accel, ü_max decel, jerk) of the 1-D plan: the Cartesian limits over the
     path's length and turn, and the joints' chord (see the module docstring).
 
     Each bound is ``limit / extent`` (u runs 0 → 1 over the extent) and the smallest wins;
     written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it."""
     inf = math.inf
-    vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
-    extents = [path.length, path.turn, *(abs(b - a) for a, b in zip(q0.tolist(), q1.tolist()))]
-    v_lims = [cart.linear_velocity, cart.rotation_velocity, *vel]
-    a_lims = [cart.linear_accel, cart.rotation_accel, *accel]
-    d_lims = [cart.linear_decel, cart.rotation_decel, *decel]
     v = acc = dec = inf
-    for extent, lv, la, ld in zip(extents, v_lims, a_lims, d_lims):
+    vel, accel, decel = lim.velocity, lim.accel, lim.decel
+    # the extents: the path's length and turn, then each joint's chord |q1 − q0|
+    for i, extent in enumerate((path.length, path.turn, *map(abs, map(operator.sub, q1.tolist(), q0.tolist())))):
         if extent > 1e-12:
-            if lv / extent < v:
-                v = lv / extent
-            if la / extent < acc:
-                acc = la / extent
-            if ld / extent < dec:
-                dec = ld / extent
+            if vel[i] / extent < v:
+                v = vel[i] / extent
+            if accel[i] / extent < acc:
+                acc = accel[i] / extent
+            if decel[i] / extent < dec:
+                dec = decel[i] / extent
     if v == inf:  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
+    accel_ramp, decel_ramp = lim.accel_ramp, lim.decel_ramp
     ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else inf
     jd = dec / decel_ramp if decel_ramp >= MIN_RAMP else inf
     return v, acc, dec, ja if ja < jd else jd

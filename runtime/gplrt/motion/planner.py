@@ -243,8 +243,7 @@ def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: f
     """One-DOF trajectory of a path parameter from (s0, v0, a0) to s1 at rest (s1 ≥ s0).
 
     A straight ``Move.Loc`` plans one of these when it is queued: the start (0 → 1 from rest,
-    as a rule) repeats, and so do the limits of a Profile, so only what changed is handed to
-    Ruckig."""
+    as a rule) repeats, so it is handed to Ruckig only when it changes."""
     otg, inp, given = _cache.solvers.get(1) or _solver(1)
     if given.get("mode") is not _SCALAR:
         given.clear()
@@ -260,13 +259,12 @@ def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: f
         inp.current_acceleration = [a0]
         inp.target_position = [s1]
         given["start"] = start
-    limits = (vmax, amax, dmax, jerk)
-    if given.get("limits") != limits:
-        inp.max_velocity = [vmax]
-        inp.max_acceleration = [amax]
-        inp.min_acceleration = [-dmax]
-        inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
-        given["limits"] = limits
+    # (the limits are set every time: they follow each line's length and chord, so a memo of
+    # them would cost more than it saves)
+    inp.max_velocity = [vmax]
+    inp.max_acceleration = [amax]
+    inp.min_acceleration = [-dmax]
+    inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
     return _calculate(otg, inp, given, 1, "path move")
 
 

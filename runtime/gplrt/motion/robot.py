@@ -481,8 +481,12 @@ class RobotState:
         runs (``path_run.PathRun``, ``MotionQueue.advance``).  ``benchmarks/motion_speed.py``
         times this against a bare Ruckig call, so it keeps to Python floats where it can."""
         self._check_stopped()
-        blend_from = self._blend_source(now)
-        if blend_from is not None:
+        history = self.queue.history
+        if not history:  # (``_blend_source`` and ``_start``'s commonest cases first)
+            blend_from, t0, q0 = None, now, self.queue.rest
+        elif history[-1].end <= now + CLOCK_RESOLUTION:  # idle: at rest where the last motion left it
+            blend_from, t0, q0 = None, now, history[-1].q_end
+        elif (blend_from := self._blend_source(now)) is not None:
             t0, q0 = blend_from.end, blend_from.q_end  # the line starts at the via point
         else:
             t0, q0, _, _ = self._start(now, can_blend=False)
@@ -503,17 +507,15 @@ class RobotState:
             if (model.config_of(q1.tolist()) ^ model.config_of(angles_end.tolist())) & _BRANCH_BITS:
                 raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
                                    detail="a straight-line motion cannot reach these angles' arm configuration")
-        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.joint_limits(prof, system_speed),
-                                        self.limits.path_limits(prof, system_speed), prof._accel_ramp,
-                                        prof._decel_ramp)
+        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.line_limits(prof, system_speed))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
 
         frames, model = self._frames, self.model
         if frames is None or frames.tool is not model.tool or frames.base is not model.base:
             frames = self._frames = QueuedFrames(model)
-        limits = self.limits
-        pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, limits.max_joint_speed,
-                     limits.max_joint_accel, ik_path=frames.ik_path)
+        max_speed, max_accel = self.limits.hard_limits()
+        pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, max_speed, max_accel,
+                     ik_path=frames.ik_path)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than
             # its duration before that motion's end (a shorter overlap), never before now.
@@ -585,14 +587,14 @@ class RobotState:
             start = prev_end - span * 0.5 ** k
             ts = np.linspace(start, prev_end, BLEND_CHECK_SAMPLES)
             v_prev, a_prev = prev.rates(ts)
-            pva = [plan.at(float(t) - start) for t in ts]
-            u_line, ud_line, udd_line = (np.array([x[i][0] for x in pva]) for i in range(3))
+            u, ud, udd = plan.sample(ts - start)
+            u_line, ud_line, udd_line = u[:, 0], ud[:, 0], udd[:, 0]
             v_line, a_line = pj.rates(u_line, ud_line, udd_line)
             if not (np.all(np.abs(v_prev) + np.abs(v_line) <= v_lim) and np.all(np.abs(a_prev) + np.abs(a_line) <= a_lim)):
                 continue
             if prev_path is not None:
                 assert isinstance(prev, PathSegment)
-                ud_prev = np.abs([prev.parameter(float(t))[1] for t in ts])
+                ud_prev = np.abs(prev.parameters(ts)[1])
                 ud_line = np.abs(ud_line)
                 if (np.any(prev_path.length * ud_prev + pj.path.length * ud_line > lin_lim * (1.0 + 1e-9))
                         or np.any(prev_path.turn * ud_prev + pj.path.turn * ud_line > rot_lim * (1.0 + 1e-9))):
