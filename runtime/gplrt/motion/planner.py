@@ -94,29 +94,28 @@ class Plan:
         if pieces is _AT_TIME:  # a profile with a brake or accel pre-phase: Ruckig itself
             states = [self.traj.at_time(float(x)) for x in t]
             return tuple(np.array([st[i] for st in states]).reshape(len(t), -1) for i in range(3))  # type: ignore[return-value]
-        ends, p0, v0, a0, j = pieces
-        dof = len(ends)
-        P = np.empty((len(t), dof))
-        V = np.empty((len(t), dof))
-        A = np.empty((len(t), dof))
-        for d in range(dof):
-            # upper_bound over the cumulative phase ends; past the last one, the final state
-            # with no jerk (Ruckig's "t_diff >= t_sum.back()" case)
-            k = np.searchsorted(ends[d], t, side="right")
-            dt = t - np.where(k > 0, ends[d][np.maximum(k - 1, 0)], 0.0)
-            pk, vk, ak, jk = p0[d][k], v0[d][k], a0[d][k], j[d][k]
-            P[:, d] = pk + dt * (vk + dt * (ak / 2.0 + dt * jk / 6.0))
-            V[:, d] = vk + dt * (ak + dt * jk / 2.0)
-            A[:, d] = ak + dt * jk
+        starts, ends, p0, v0, a0, j = pieces
+        T = t[:, None]
+        # upper_bound over each DOF's cumulative phase ends (N×dof); past the last one, the final
+        # state with no jerk (Ruckig's "t_diff >= t_sum.back()" case); phase 0 starts at 0.0,
+        # and t − 0.0 is t, as Ruckig leaves it
+        k = (T[:, :, None] >= ends[None, :, :]).sum(axis=2)
+        rows = np.arange(len(ends))[None, :]
+        dt = T - starts[rows, k]
+        pk, vk, ak, jk = p0[rows, k], v0[rows, k], a0[rows, k], j[rows, k]
+        P = pk + dt * (vk + dt * (ak / 2.0 + dt * jk / 6.0))
+        V = vk + dt * (ak + dt * jk / 2.0)
+        A = ak + dt * jk
         end = t >= self.duration  # Ruckig's "time >= duration": the final state itself
         if end.any():
-            P[end], V[end], A[end] = (np.array([x[d][-1] for d in range(dof)]) for x in (p0, v0, a0))
+            P[end], V[end], A[end] = p0[:, -1], v0[:, -1], a0[:, -1]
         return P, V, A
 
 
-#: (cumulative phase ends, start positions, velocities, accelerations, jerks) per DOF
-_Pieces = tuple[list[np.ndarray], list[np.ndarray], list[np.ndarray], list[np.ndarray], list[np.ndarray]]
-_AT_TIME: _Pieces = ([], [], [], [], [])
+#: (phase starts, phase ends, start positions, velocities, accelerations, jerks): dof×8 arrays
+#: (ends dof×7) for ``Plan.sample``
+_Pieces = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+_AT_TIME: _Pieces = (np.empty(0),) * 6
 
 
 def _pieces(traj: Trajectory) -> _Pieces:
@@ -125,17 +124,15 @@ def _pieces(traj: Trajectory) -> _Pieces:
     sections = traj.profiles
     if len(sections) != 1:
         return _AT_TIME
-    out: _Pieces = ([], [], [], [], [])
-    for prof in sections[0]:
+    profiles = sections[0]
+    for prof in profiles:
         if prof.brake.duration > 0.0 or prof.accel.duration > 0.0:
             return _AT_TIME
-        ends = np.cumsum(prof.t)  # Ruckig's t_sum: the same running sum
-        out[0].append(ends)
-        out[1].append(np.array(prof.p))
-        out[2].append(np.array(prof.v))
-        out[3].append(np.array(prof.a))
-        out[4].append(np.append(prof.j, 0.0))  # past the end: no jerk
-    return out
+    ends = np.cumsum([prof.t for prof in profiles], axis=1)  # Ruckig's t_sum: the same running sums
+    starts = np.concatenate((np.zeros((len(profiles), 1)), ends), axis=1)
+    jerk = np.concatenate(([prof.j for prof in profiles], np.zeros((len(profiles), 1))), axis=1)  # past the end: none
+    return (starts, ends, np.array([prof.p for prof in profiles]), np.array([prof.v for prof in profiles]),
+            np.array([prof.a for prof in profiles]), jerk)
 
 
 #: Ruckig occasionally fails on inputs that sit exactly on a profile boundary (for instance a
