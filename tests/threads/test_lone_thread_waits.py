@@ -8,6 +8,8 @@ times, the same interleaving when another thread does wake first.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import pytest
 
 from gplrt.controller.services import Controller
@@ -35,10 +37,11 @@ def token_waits(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     return waits
 
 
-def _moves_and_sleeps(log: list[tuple[str, float]]) -> None:
+def _moves_and_sleeps(log: list[tuple[str, float]], ready: Callable[[], None] = lambda: None) -> None:
     Robot.Attached = 1
     Controller.PowerEnabled = True
     Robot.Home()
+    ready()
     prof = Profile()
     for k in range(10):
         Move.Loc(Location.from_angles((300.0 + 20.0 * k, 10.0, 90.0, -100.0, 100.0)), prof)
@@ -84,3 +87,50 @@ def test_another_thread_that_wakes_first_still_runs_first(token_waits: list[str]
     assert sim.console.output.split("\n")[:7] == [
         "main 0.020", "tick 0.030", "main 0.040", "tick 0.060", "main 0.060", "main 0.080", "tick 0.090"]
     assert "Ticker" in token_waits  # the two threads did hand the token over
+
+
+def test_lone_waits_skip_the_wait_machinery(monkeypatch: pytest.MonkeyPatch) -> None:
+    """With nothing else to happen first, WaitForEOM and Sleep just move time on: they never
+    park the thread (``_block``), register a timer or touch a wait queue."""
+    blocks: list[str] = []
+    block = VirtualScheduler._block
+
+    def counted(self: VirtualScheduler, ctx: object, *args: object, **kwargs: object) -> bool:
+        blocks.append(getattr(ctx, "waiting_on", ""))
+        return block(self, ctx, *args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(VirtualScheduler, "_block", counted)
+    sim = Simulation(capture=True)
+    log: list[tuple[str, float]] = []
+    sim.run_main(lambda: _moves_and_sleeps(log, blocks.clear))  # (the power-up waits for its timers)
+    assert sim.console.log_text == ""
+    assert len(log) == 21
+    assert blocks == []
+
+
+def test_a_timer_due_during_a_lone_wait_fires_at_its_time() -> None:
+    """An I/O rule's delayed action (a scheduler timer) that falls inside a WaitForEOM or a
+    Sleep fires at its own time, not when the wait ends."""
+    sim = Simulation(capture=True)
+    fired: list[float] = []
+    ends: list[float] = []
+
+    def main() -> None:
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home()
+        sched = sim.scheduler
+        t0 = sched.clock.now()
+        sched.call_at(t0 + 0.25, lambda: fired.append(sched.clock.now() - t0))
+        Move.Loc(Location.from_angles((900.0, 60.0, 150.0, 30.0, 100.0)), Profile())
+        end = sim.robots[1].queue.end_time
+        Move.WaitForEOM()
+        ends.append(sched.clock.now() - end)
+        sched.call_at(sched.clock.now() + 0.004, lambda: fired.append(sched.clock.now() - t0))
+        Thread.Sleep(10)
+
+    sim.run_main(main)
+    assert sim.console.log_text == ""
+    assert fired[0] == pytest.approx(0.25, abs=1e-9)
+    assert len(fired) == 2 and fired[1] < fired[0] + 10.0
+    assert ends[0] == pytest.approx(0.0, abs=1e-9)

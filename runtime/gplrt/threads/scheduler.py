@@ -359,7 +359,16 @@ class Scheduler:
             return
         ctx.waiting_on = "sleep"
         while not self.clock.reached(t):
-            self.wait(None, t)
+            if not self.run_alone_until(t):
+                self.wait(None, t)
+
+    def run_alone_until(self, t: float) -> bool:
+        """The fast path of a wait for controller time ``t`` by the calling GPL thread: when
+        nothing can happen before ``t`` but the caller's own wake-up, move time to ``t`` and
+        return True; otherwise False, and the caller waits the ordinary way.
+
+        Only the virtual scheduler has one (a real clock's time passes by itself)."""
+        return False
 
     def wait(
         self,
@@ -706,6 +715,34 @@ class VirtualScheduler(Scheduler):
             with self._lock:
                 queue.waiters = [w for w in queue.waiters if w[0] is not ctx]
         return not ctx.timed_out
+
+    def run_alone_until(self, t: float) -> bool:
+        """See :meth:`Scheduler.run_alone_until`.
+
+        "Nothing can happen before ``t``": the caller holds the token, no other thread is
+        runnable, no deadline or timer callback (an I/O rule) falls at or before ``t``, time may
+        jump (someone drives the run, no connection to the outside world paces it), and no
+        Suspend/Abort is pending for the caller.  Then the ordinary wait — register, dispatch,
+        jump to ``t``, wake the caller, hand it the token — would end with nothing but time
+        moved to ``t``, and that is all this does: no wait-queue entry, no timer, no Event.  A
+        ``WaitForEOM`` or ``Thread.Sleep`` of a one-thread program takes it.  The lock is still
+        taken, once: threads the scheduler does not run (a notebook's ``call_at``, the real-time
+        pacer) change the timers under it."""
+        ctx = _tls.ctx
+        try:
+            t_ns = to_ns(t)
+        except (OverflowError, ValueError):
+            return False
+        with self._lock:
+            if (ctx is None or self._running is not ctx or self._ready or self.drivers == 0 or self._paced()
+                    or self._idle_real is not None or ctx.abort_requested or ctx.suspend_requested
+                    or ctx.saved_budget is not None):
+                return False
+            deadline = self._next_deadline()
+            if deadline is not None and deadline <= t_ns:
+                return False
+            self.clock.advance_to_ns(t_ns)
+            return True
 
     def _wake(self, ctx: ThreadCtx, timed_out: bool) -> None:
         ctx.wait_id += 1  # invalidates the other half of the wait (timer or queue entry)
