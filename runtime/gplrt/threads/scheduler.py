@@ -15,7 +15,11 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   back of the queue.  The remaining slice is kept across sleeps, as on the controller (D0 §17.2).
   Charging compute time is what lets ``While Controller.Timer < t0 + 1 : End While`` terminate.
 * When no thread is runnable, time jumps to the earliest deadline; ties wake in the order the
-  waits began.  Jumps happen only while someone outside drives the run (``run_main``, ``call``,
+  waits began.  A wait that nothing can overtake costs no thread switch: ``run_alone_until``
+  moves time straight to its end when no other thread, deadline or timer callback comes first
+  (``WaitForEOM`` and ``Thread.Sleep`` of a one-thread program), and a dispatch that picks the
+  very thread that has just parked itself hands the token back without its ``Event``.  Either
+  way the order of events is the one the ordinary wait gives.  Jumps happen only while someone outside drives the run (``run_main``, ``call``,
   ``run_for``, a blocking call from a notebook): between calls, a notebook's background threads
   freeze instead of racing virtual time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
 * A thread in :func:`external_wait` (socket accept/receive, an operator dialog) is neither
