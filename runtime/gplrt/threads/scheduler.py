@@ -19,9 +19,10 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   moves time straight to its end when no other thread, deadline or timer callback comes first
   (``WaitForEOM`` and ``Thread.Sleep`` of a one-thread program), and a dispatch that picks the
   very thread that has just parked itself hands the token back without its ``Event``.  Either
-  way the order of events is the one the ordinary wait gives.  Jumps happen only while someone outside drives the run (``run_main``, ``call``,
-  ``run_for``, a blocking call from a notebook): between calls, a notebook's background threads
-  freeze instead of racing virtual time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
+  way the order of events is the one the ordinary wait gives.  Jumps happen only while someone
+  outside drives the run (``run_main``, ``call``, ``run_for``, a blocking call from a
+  notebook): between calls, a notebook's background threads freeze instead of racing virtual
+  time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
 * A thread in :func:`external_wait` (socket accept/receive, an operator dialog) is neither
   runnable nor a virtual waiter.  While one exists and nobody is runnable, virtual time advances
   no faster than real time: a real-time timer (the scheduler's one timer thread, see
