@@ -2,7 +2,7 @@
 
 Run::
 
-    python benchmarks/runtime_speed.py [--n 200000] [--runs 7] [--show]
+    python benchmarks/runtime_speed.py [--n 200000] [--runs 7] [--show] [--cpu]
 
 Each kernel is written once in GPL (transpiled here, in the same process, with the real pipeline)
 and once as the Python a programmer would write for the same algorithm.  Both run in this process
@@ -26,6 +26,7 @@ import importlib
 import math
 import sys
 import tempfile
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -327,6 +328,9 @@ def main() -> int:
     ap.add_argument("--n", type=int, default=200_000)
     ap.add_argument("--runs", type=int, default=7)
     ap.add_argument("--show", action="store_true")
+    ap.add_argument("--cpu", action="store_true",
+                    help="time with the process's CPU time instead of the wall clock: steadier on a "
+                    "machine shared with other work (both sides alike)")
     args = ap.parse_args()
     if args.runs < 5:
         ap.error("--runs must be at least 5 (a median of fewer says little on a shared machine)")
@@ -341,7 +345,8 @@ def main() -> int:
             gpl_func = getattr(mod, gpl_name)
             results: dict[str, object] = {}
             pair = side_by_side(lambda: results.__setitem__("gpl", gpl_func(n)),
-                                lambda: results.__setitem__("py", py_func(n)), args.runs)
+                                lambda: results.__setitem__("py", py_func(n)), args.runs,
+                                clock=time.process_time if args.cpu else time.perf_counter)
             r_gpl, r_py = results["gpl"], results["py"]
             if isinstance(r_py, float):
                 assert math.isclose(r_gpl, r_py, rel_tol=1e-12), (label, r_gpl, r_py)  # type: ignore[arg-type]

@@ -91,7 +91,9 @@ class Command:
     configure: Callable[[argparse.ArgumentParser], None]
     run: Callable[[argparse.Namespace], Outcome]
     default: bool = False  # receives the arguments when the first one is not a command name
-    epilog: str | None = None  # replaces the common exit-status text in --help
+    #: replaces the common exit-status text in --help; a function, so that a command's module is
+    #: imported only when its parser is built
+    epilog: Callable[[], str] | None = None
 
 
 # --- commands -----------------------------------------------------------------------------------
@@ -370,7 +372,7 @@ COMMANDS: list[Command] = [
         "--setup samples/notebook/cell_io.py --plot cell.png",
         configure=_configure_run,
         run=_run_run,
-        epilog=_run_epilog(),
+        epilog=_run_epilog,
     ),
 ]
 
@@ -435,7 +437,14 @@ _VALUE_OPTIONS = ("--output-format", "--color", "-o", "--output", "--stubs", "--
                   "--config", "--max-source-mb")
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(only: str | None = "") -> argparse.ArgumentParser:
+    """The whole command line's parser; with ``only``, one whose subcommands other than ``only``
+    are names without arguments (``None``: none has any), enough to parse a command line routed to
+    ``only`` (:func:`_route`) and to print the top-level help.  Why: building every subcommand
+    costs a fifth of ``gpl2py check``'s start-up, ``run``'s alone imports the robot catalogue for
+    ``--robot``'s choices (benchmarks/check_startup.py)."""
+    import textwrap
+
     parser = _Parser(
         prog="gpl2py",
         description=textwrap.fill(
@@ -453,11 +462,14 @@ def build_parser() -> argparse.ArgumentParser:
     _output_options(parser, top=True)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for command in COMMANDS:
+        if only != "" and command.name != only:
+            sub.add_parser(command.name, help=command.help)
+            continue
         child = sub.add_parser(
             command.name,
             help=command.help,
             description=textwrap.fill(command.description, width=78),
-            epilog=command.epilog or _EPILOG,
+            epilog=command.epilog() if command.epilog is not None else _EPILOG,
             formatter_class=argparse.RawDescriptionHelpFormatter,
         )
         _output_options(child, top=False)
@@ -576,12 +588,14 @@ def _output_closed() -> int:
 def _main(argv: list[str] | None) -> int:
     args_list = list(sys.argv[1:] if argv is None else argv)
     stdout, stderr = sys.stdout, sys.stderr
-    parser = build_parser()
     fallback = Display(_wanted_format(args_list), False, wants_colour(stderr))
+    parser: argparse.ArgumentParser | None = None
     try:
         routed = _route(args_list)
+        parser = build_parser(only=_first_word(routed))
         args = parser.parse_args(routed)
     except UsageError as exc:
+        parser = parser or build_parser()
         command_name = _first_word(args_list)
         detail = _did_you_mean(str(exc), parser, command_name if command_name in
                                {c.name for c in COMMANDS} else "translate")

@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -84,6 +83,8 @@ def find(start: Path) -> Path | None:
             continue
         if "gpl2py" not in text:
             continue  # another tool's file: not even parsed
+        import tomllib  # (here: a command run where no file mentions gpl2py never imports it)
+
         try:
             data = tomllib.loads(text)
         except tomllib.TOMLDecodeError as exc:
@@ -95,6 +96,8 @@ def find(start: Path) -> Path | None:
 
 def load(path: Path) -> Config:
     """The ``[tool.gpl2py]`` table of ``path`` (an empty Config when the file has none)."""
+    import tomllib
+
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except OSError as exc:

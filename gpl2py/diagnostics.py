@@ -76,6 +76,11 @@ _BOLD, _RESET = "\x1b[1m", "\x1b[0m"
 _COLOURS = {Severity.ERROR: "\x1b[1;31m", Severity.WARNING: "\x1b[1;33m", Severity.NOTE: "\x1b[1;36m"}
 
 
+def plural(n: int, word: str) -> str:
+    """``n word`` or ``n words``: the one plural rule of every summary line (cli and run)."""
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
 def one_line(text: str) -> str:
     """``text`` with every character Python does not call printable -- line breaks, other
     controls, bidirectional overrides, other separators than the space -- as ``\\xNN``,

@@ -17,15 +17,10 @@ from dataclasses import dataclass, field
 from typing import TextIO
 
 from gpl2py import messages as msg
-from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, plural
 from gpl2py.formats import github_annotations, json_document, sarif_log
 from gpl2py.project import DEFAULT_MAX_SOURCE_MB, MAX_SOURCE_ENV, PROJECT_FACTOR, Limits, Project
 from gpl2py.source import SourceFile
-
-
-def plural(n: int, word: str) -> str:
-    """``n word`` or ``n words``: the one plural rule of every summary line (cli and run)."""
-    return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
 @dataclass(frozen=True)

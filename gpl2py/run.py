@@ -56,9 +56,9 @@ from typing import TYPE_CHECKING, Any, Callable, TextIO
 
 from gpl2py import messages as msg
 from gpl2py.cache import Cache, Entry, cache_key
-from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, plural
 from gpl2py.formats import github_annotation, github_annotations, json_document
-from gpl2py.outcome import Display, Outcome, add_project_options, emit, limits_of, new_sink, plural, remember
+from gpl2py.outcome import Display, Outcome, add_project_options, emit, limits_of, new_sink, remember
 from gpl2py.progress import ProgressBar
 from gpl2py.project import Limits, Project, load_project
 

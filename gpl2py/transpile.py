@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import gc
 import os
-import shutil
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -198,6 +197,8 @@ def write_package(output: Output, out_dir: str | os.PathLike[str], sink: Diagnos
             target.write_text(text, encoding="utf-8", newline="\n")
         data = pkg / DATA_FOLDER
         if data.is_dir():
+            import shutil  # (here: only writing needs it, check does not)
+
             shutil.rmtree(data)
         if output.data_files:
             data.mkdir()

@@ -627,6 +627,12 @@ class ExprLowerer:
                 # truncation toward zero (§4.4) without a call: floor division on the magnitude
                 return f"{lc[0]} // {lit} if {lc[0]} >= 0 else -(-{lc[0]} // {lit})", P_IF
             return f"int({paren(lc, P_MUL)} / {lit})", P_ATOM
+        if op == "Mod" and ints and lit is not None and lit > 0 and lc[1] == P_ATOM:
+            # the remainder has the dividend's sign (§4.4): Python's % on the magnitude, no call
+            if lc[0] in {self.local_name(v) for v in self.nonneg}:
+                return f"{lc[0]} % {lit}", P_MUL  # a counter that cannot be negative here
+            if lc[0].isidentifier():
+                return f"{lc[0]} % {lit} if {lc[0]} >= 0 else -(-{lc[0]} % {lit})", P_IF
         if op == ">>" and ints and lit is not None and 0 <= lit <= 31 and lc[1] == P_ATOM:
             return f"{lc[0]} >> {lit}", P_SHIFT  # an Integer variable: Python's shift is arithmetic
         if op in ("\\", "Mod", "^", "<<", ">>"):
@@ -757,6 +763,10 @@ class ExprLowerer:
             return f"chr({self.sub(args[0], P_BAND + 1)} & 255)", P_ATOM  # low 8 bits (AMB-23)
         if f.name == "CStr" and len(args) == 1 and self.type_of(args[0]) is t.SINGLE:
             return self.call(self.rt(CONV, "to_string_single"), self.val(args[0]))
+        if f.name == "CStr" and len(args) == 1 and self.type_of(args[0]) in _INTS:
+            return f"str({self.val(args[0])})", P_ATOM  # an integer's digits (to_string's rule)
+        if f.name == "Len" and len(args) == 1 and self.type_of(args[0]) is t.STRING:
+            return f"len({self.val(args[0])})", P_ATOM  # a String is never None (Nothing is "")
         return self.call(self.ctx.builtin(f.python_name), *self.args_code(args, i.params or []))
 
     def builtin_member(self, i: Info, e: A.Expr, args: list[A.Expr] | None, statement: bool = False) -> Code:

@@ -20,7 +20,6 @@ globals, a stub module) are in ``lower/context.py`` and use these rules.
 from __future__ import annotations
 
 import builtins
-import hashlib
 import keyword
 import re
 import sys
@@ -147,6 +146,8 @@ def _short(name: str, whole: str) -> str:
     that two long names stay two names."""
     if len(name) <= MAX_FILE_NAME:
         return name
+    import hashlib  # (here: rarely needed, and 2 ms of check's start-up)
+
     digest = hashlib.sha1(whole.encode("utf-8", "surrogatepass")).hexdigest()[:8]
     return f"{name[:MAX_FILE_NAME - 9].rstrip('_')}_{digest}"
 

@@ -462,7 +462,7 @@ class ProcLowerer(ExprLowerer):
             value = self.conv(s.value, tt)[0]
             if tt is t.DOUBLE and _may_overflow_double(s.value, self):
                 value = self.double_checked(value)
-            self.store(s.target, self.checked(s.target, value))
+            self.store(s.target, self.checked(s.target, value, s.value))
             return
         target = s.target
         if isinstance(target, A.Invoke) and self.info(target).kind == "index":
@@ -486,7 +486,7 @@ class ProcLowerer(ExprLowerer):
             code = self.double_checked(code)
         if code == value[0] and self.augmented(target, code):
             return
-        self.store(target, self.checked(target, code))
+        self.store(target, self.checked(target, code, A.Binary(s.span, s.op[:-1], target, s.value)))
 
     def augmented(self, target: A.Expr, code: str) -> bool:
         """Emit ``x += v`` / ``x -= v`` / ``x *= v`` when the GPL was a compound assignment and the
@@ -520,22 +520,60 @@ class ProcLowerer(ExprLowerer):
         self.w.line(f"    {self.rt(CONV, 'chk_double')}({tmp})")
         return tmp
 
-    def checked(self, target: A.Expr, value: str) -> str:
-        """For an Integer stored through a ByRef cell, check the range inline before the store (no
-        call on the fast path: cell accesses are already the costly part of ByRef code)."""
-        chk = self.ctx.alias("chk_int32") + "("
-        i = self.info(target)
-        if not (value.startswith(chk) and value.endswith(")") and i.kind == "var"):
+    def checked(self, target: A.Expr, value: str, source: A.Expr | None = None) -> str:
+        """For an Integer stored into a variable or field, check the range inline before the store:
+        no call on the usual path (a call costs about three times the store, runtime_speed).
+        ``source`` is the GPL expression stored: a sum or difference of two Integer variables or
+        literals one of which cannot be negative can leave the range on one side only, and is
+        tested on that side."""
+        inner = _sole_argument(value, self.ctx.alias("chk_int32"))
+        if inner is None or self.info(target).kind != "var":
             return value
-        v: VarSym = i.sym  # type: ignore[assignment]
-        if not ((v.storage == "param" and v.byref) or v.boxed):
-            return value
-        inner = value[len(chk):-1]
+        return self.int_checked(inner, source)
+
+    def int_checked(self, inner: str, source: A.Expr | None) -> str:
+        """``inner`` (an int expression) range-checked inline for an Integer store, one line:
+        ``chk_int32(_v1) if (_v1 := inner) > 2147483647 else _v1`` (the value is stored only
+        after the test, as chk_int32(inner) would; see checked).
+
+        A test of one end compares with that end.  A test of both ends compares with
+        ±(2**30 - 1) and calls ``chk_int32`` (the exact test) only beyond: CPython 3.11 compares
+        two ints below 2**30 in its fast path, larger ones in the general one, which costs as much
+        as the rest of a ``total = total + i`` (benchmarks/runtime_speed.py)."""
+        chk = self.ctx.alias("chk_int32")
         tmp = self.fresh("v")
-        self.w.line(f"{tmp} = {inner}")
-        self.w.line(f"if {tmp} > 2147483647 or {tmp} < -2147483648:")
-        self.w.line(f"    {chk}{tmp})  # raises -710 Arithmetic overflow")
-        return tmp
+        upper, lower = self.overflow_sides(source)
+        if upper and lower:
+            test = f"(({tmp} := {inner}) > 1073741823 or {tmp} < -1073741823)"
+        else:
+            test = f"({tmp} := {inner}) {'> 2147483647' if upper else '< -2147483648'}"
+        return f"{chk}({tmp}) if {test} else {tmp}"
+
+    def overflow_sides(self, e: A.Expr | None) -> tuple[bool, bool]:
+        """Whether the Integer value of ``e`` can pass the upper and the lower end of the range:
+        ``a + b`` of two Integers of which one is not negative cannot pass the lower end, and
+        ``a - b`` with ``b`` not negative cannot pass the upper one.  Only for variables and
+        literals, whose values are in the range (every store is checked); an operation inside
+        the expression is not (``v * 2 + 1``: ``v * 2`` may be far below it)."""
+        if not (isinstance(e, A.Binary) and e.op in ("+", "-")
+                and all(isinstance(x, (A.Name, A.IntegerLiteral)) and self.type_of(x) in _INT_TYPES
+                        for x in (e.left, e.right))):
+            return True, True
+        if e.op == "+" and (self.nonnegative(e.left) or self.nonnegative(e.right)):
+            return True, False
+        if e.op == "-" and self.nonnegative(e.right):
+            return False, True
+        return True, True
+
+    def nonnegative(self, e: A.Expr) -> bool:
+        """``e`` cannot be negative: a literal, a Byte, or a For counter counting up from zero or
+        more (``nonneg``)."""
+        if isinstance(e, A.IntegerLiteral):
+            return e.value >= 0
+        if self.type_of(e) is t.BYTE:
+            return True
+        i = self.model.info.get(e)
+        return i is not None and i.kind == "var" and i.sym in self.nonneg
 
     def hoist_index(self, e: A.Invoke) -> A.Invoke:
         """Evaluate an element's array and subscripts once for ``a(i) += x`` (§10.1)."""
@@ -899,7 +937,11 @@ class ProcLowerer(ExprLowerer):
             self.w.line("return")
             return
         if p.kind == "Function":
-            self.w.line(f"return {self.conv(s.value, p.result)[0]}")
+            value = self.conv(s.value, p.result)[0]
+            inner = _sole_argument(value, self.ctx.alias("chk_int32"))
+            if inner is not None:  # (inline, as for a store: checked)
+                value = self.int_checked(inner, s.value)
+            self.w.line(f"return {value}")
         elif p.kind == "Get" and p.prop is not None:
             self.w.line(f"return {self.conv(s.value, p.prop.type)[0]}")
         else:
@@ -1181,6 +1223,35 @@ def _binary_result(op: str, lt: t.GplType, rt: t.GplType) -> t.GplType:
     if lt.is_integral and rt.is_integral:
         return t.INTEGER
     return t.DOUBLE
+
+
+_INT_TYPES = (t.BYTE, t.SHORT, t.INTEGER)
+
+
+def _sole_argument(code: str, function: str) -> str | None:
+    """The argument text when ``code`` is exactly one call ``function(argument)`` (the whole of
+    it: ``f(a) + f(b)`` is not), else None.  Parentheses inside string literals do not count."""
+    head = function + "("
+    if not (code.startswith(head) and code.endswith(")")):
+        return None
+    depth, quote, i, end = 1, "", len(head), len(code) - 1
+    while i < end:
+        c = code[i]
+        if quote:
+            if c == "\\":
+                i += 1
+            elif c == quote:
+                quote = ""
+        elif c in "'\"":
+            quote = c
+        elif c == "(":
+            depth += 1
+        elif c == ")":
+            depth -= 1
+            if depth == 0:
+                return None  # the call closes before the end
+        i += 1
+    return code[len(head):end] if depth == 1 and not quote else None
 
 
 def _int_value_of(code: str) -> int | None:

@@ -29,7 +29,7 @@ the syntax tree of dense code: docs/security.md, "Input size").
 
 from __future__ import annotations
 
-from dataclasses import KW_ONLY, MISSING, InitVar, dataclass, field, fields
+from dataclasses import KW_ONLY, MISSING, Field, InitVar, dataclass, field, fields
 from typing import Any, ClassVar, Iterator
 
 from gpl2py.source import Span, make_span
@@ -48,7 +48,7 @@ class Comment:
 # base classes
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Node:
     """Base of every node.  A node is built with its :class:`~gpl2py.source.Span` and gives it back
     as ``node.span`` (assignable, like a field), but it keeps the span's five numbers in its own
@@ -65,11 +65,7 @@ class Node:
     _children: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self, span: Span) -> None:
-        self._file = span.file
-        self._line = span.line
-        self._col = span.col
-        self._end_line = span.end_line
-        self._end_col = span.end_col
+        self._file, self._line, self._col, self._end_line, self._end_col = span
 
     def children(self) -> Iterator[Node]:
         """The child nodes, in source order (lists are flattened, ``None`` skipped)."""
@@ -86,14 +82,27 @@ class Node:
 
 
 def _get_span(node: Node) -> Span:
-    return make_span(node._file, node._line, node._col, node._end_line, node._end_col)
+    return _new_tuple(Span, (node._file, node._line, node._col, node._end_line, node._end_col))
+
+
+_new_tuple = tuple.__new__  # (a Span is a tuple: gpl2py.source.make_span without its call)
+
+
+def span_between(first: Node, last: Node) -> Span:
+    """``first.span.to(last.span)`` without building the two spans (the parser's hot path)."""
+    return _new_tuple(Span, (first._file, first._line, first._col, last._end_line, last._end_col))
+
+
+def span_to(first: Node, last: Span) -> Span:
+    """``first.span.to(last)`` without building the first span (the parser's hot path)."""
+    return _new_tuple(Span, (first._file, first._line, first._col, last[3], last[4]))
 
 
 # (set after the class is made: in the class body the property would be read as the InitVar's default)
 Node.span = property(_get_span, Node.__post_init__, doc="Where the node is in its source file.")  # type: ignore[assignment]
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Expr(Node):
     """Base of expressions."""
 
@@ -102,7 +111,7 @@ class Expr(Node):
     _info: object = field(default=None, init=False, repr=False)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Stmt(Node):
     """Base of statements and declarations: anything that occupies a line and can carry comments."""
 
@@ -115,12 +124,12 @@ class Stmt(Node):
 # expressions
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Name(Expr):
     name: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class IntegerLiteral(Expr):
     """Decimal, ``&H`` or ``&O`` literal. ``value`` is already 32-bit two's complement for hex/octal."""
 
@@ -128,35 +137,35 @@ class IntegerLiteral(Expr):
     text: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class RealLiteral(Expr):
     value: float
     text: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class StringLiteral(Expr):
     """``value`` is decoded (``""`` -> ``"``)."""
 
     value: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class BooleanLiteral(Expr):
     value: bool
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class NothingLiteral(Expr):
     pass
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class MeExpr(Expr):
     pass
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class MemberAccess(Expr):
     """``target.name``; may also be a zero-argument call (``Move.WaitForEOM``), semantics decides."""
 
@@ -165,7 +174,7 @@ class MemberAccess(Expr):
     _children: ClassVar[tuple[str, ...]] = ("target",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Invoke(Expr):
     """``target(args)``: call, array index, indexed property or delegate invocation (semantics decides)."""
 
@@ -174,7 +183,7 @@ class Invoke(Expr):
     _children: ClassVar[tuple[str, ...]] = ("target", "args")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Unary(Expr):
     """``-x``, ``+x`` or ``Not x``."""
 
@@ -183,7 +192,7 @@ class Unary(Expr):
     _children: ClassVar[tuple[str, ...]] = ("operand",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Binary(Expr):
     """``left op right``; ``op`` is one of ``^ * / \\ Mod + - & << >> = <> < > <= >= Is And AndAlso
     Or OrElse Xor``."""
@@ -194,7 +203,7 @@ class Binary(Expr):
     _children: ClassVar[tuple[str, ...]] = ("left", "right")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class TypeRef(Node):
     """A type name as written: ``Integer``, ``Location``, ``MyMod.My_class``."""
 
@@ -205,7 +214,7 @@ class TypeRef(Node):
         return self.name.split(".")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class New(Expr):
     """``New T`` or ``New T(args)``; ``args`` is ``None`` when no parentheses were written."""
 
@@ -214,7 +223,7 @@ class New(Expr):
     _children: ClassVar[tuple[str, ...]] = ("type", "args")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class AddressOf(Expr):
     """``AddressOf f`` or ``AddressOf obj.f``; ``target`` is a :class:`Name` or :class:`MemberAccess`."""
 
@@ -222,7 +231,7 @@ class AddressOf(Expr):
     _children: ClassVar[tuple[str, ...]] = ("target",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ErrorExpr(Expr):
     """Stands in for an expression that failed to parse (a diagnostic was reported)."""
 
@@ -231,7 +240,7 @@ class ErrorExpr(Expr):
 # blocks and statements
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Block(Node):
     """A statement list (procedure body, loop body, If branch ...)."""
 
@@ -241,7 +250,7 @@ class Block(Node):
     _children: ClassVar[tuple[str, ...]] = ("statements",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Label(Stmt):
     """``name:`` or ``100:`` at the start of a line; a statement on the same line follows it in the
     enclosing block."""
@@ -249,7 +258,7 @@ class Label(Stmt):
     name: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Assign(Stmt):
     """``target op value`` where ``op`` is ``=`` or a compound operator (``+=``, ``<<=``, ``&=`` ...)."""
 
@@ -259,7 +268,7 @@ class Assign(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("target", "value")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class CallStmt(Stmt):
     """A procedure/method call used as a statement: ``Foo(1)``, ``Move.WaitForEOM``, ``Call Foo(1)``.
 
@@ -271,14 +280,14 @@ class CallStmt(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("expr",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ElseIfClause(Stmt):
     condition: Expr
     body: Block
     _children: ClassVar[tuple[str, ...]] = ("condition", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class If(Stmt):
     """Block or single-line If.  A single-line If has one statement in ``then_body`` (and maybe in
     ``else_body``) and ``single_line=True``."""
@@ -292,7 +301,7 @@ class If(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("condition", "then_body", "elseifs", "else_body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class For(Stmt):
     """``For var = start To end [Step step] ... Next [next_var]``; ``var`` may be an array element or
     a field (any postfix expression)."""
@@ -307,7 +316,7 @@ class For(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("var", "start", "end", "step", "body", "next_var")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ForEach(Stmt):
     """``For Each var In collection ... Next``."""
 
@@ -319,7 +328,7 @@ class ForEach(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("var", "collection", "body", "next_var")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class While(Stmt):
     condition: Expr
     body: Block
@@ -327,7 +336,7 @@ class While(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("condition", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class DoLoop(Stmt):
     """All ``Do``/``Loop`` forms.  ``condition`` is ``None`` for the plain infinite loop;
     ``test_at_top`` says where it is tested; ``until`` is True for ``Until`` (loop while it is False)."""
@@ -340,7 +349,7 @@ class DoLoop(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("condition", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class CaseValue(Node):
     """``Case 3`` / ``Case "red"``."""
 
@@ -348,7 +357,7 @@ class CaseValue(Node):
     _children: ClassVar[tuple[str, ...]] = ("value",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class CaseRange(Node):
     """``Case 1 To 5`` (VB form; not documented for GPL, accepted)."""
 
@@ -357,7 +366,7 @@ class CaseRange(Node):
     _children: ClassVar[tuple[str, ...]] = ("low", "high")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class CaseIs(Node):
     """``Case Is > 5`` (VB form; not documented for GPL, accepted). ``op`` is a comparison."""
 
@@ -366,7 +375,7 @@ class CaseIs(Node):
     _children: ClassVar[tuple[str, ...]] = ("value",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class CaseClause(Stmt):
     """``Case a, b To c, Is > d`` and its block; ``items`` is empty for ``Case Else``."""
 
@@ -376,7 +385,7 @@ class CaseClause(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("items", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Select(Stmt):
     """``Select [Case] subject``; ``cases`` in order, the ``Case Else`` clause (if any) last."""
 
@@ -387,25 +396,25 @@ class Select(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("subject", "cases")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class GoTo(Stmt):
     label: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Exit(Stmt):
     """``Exit Sub|Function|Property|For|Do|While|Select|Try``; ``kind`` in canonical case."""
 
     kind: str
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Return(Stmt):
     value: Expr | None
     _children: ClassVar[tuple[str, ...]] = ("value",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Throw(Stmt):
     """``Throw exc``; ``value`` is ``None`` for a bare ``Throw`` (rethrow, not documented for GPL)."""
 
@@ -413,7 +422,7 @@ class Throw(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("value",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class CatchClause(Stmt):
     """``Catch ex`` (GPL: a predeclared variable) or ``Catch ex As Exception`` (extension: ``type``)."""
 
@@ -423,13 +432,13 @@ class CatchClause(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("type", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class FinallyClause(Stmt):
     body: Block
     _children: ClassVar[tuple[str, ...]] = ("body",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Try(Stmt):
     body: Block
     catch: CatchClause | None
@@ -438,7 +447,7 @@ class Try(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("body", "catch", "finally_")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ReDim(Stmt):
     """``ReDim target(bounds)``; ``preserve``: ``ReDim Preserve``, which keeps the elements that fit."""
 
@@ -452,7 +461,7 @@ class ReDim(Stmt):
 # declarations
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class VarDeclarator(Node):
     """One declared name.
 
@@ -471,7 +480,7 @@ class VarDeclarator(Node):
     _children: ClassVar[tuple[str, ...]] = ("bounds", "type", "new_args", "initializer")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class VarDecl(Stmt):
     """``Dim``/``Static``/``Const`` or modifier-only (``Public x As Integer``) declarations.
 
@@ -489,7 +498,7 @@ class VarDecl(Stmt):
         return self.keyword == "Const"
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Param(Node):
     """``[Optional] [ByVal|ByRef] name[()] As T [= default]``.
 
@@ -506,7 +515,7 @@ class Param(Node):
     _children: ClassVar[tuple[str, ...]] = ("type", "default")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ProcDecl(Stmt):
     """``Sub`` or ``Function`` (``kind``); a constructor is a Sub named ``New``."""
 
@@ -520,7 +529,7 @@ class ProcDecl(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("params", "return_type", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class Accessor(Stmt):
     """A property's ``Get`` or ``Set`` block; ``param`` is the Set parameter (``None`` if omitted:
     then it is implicitly ``value``)."""
@@ -532,7 +541,7 @@ class Accessor(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("param", "body")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class PropertyDecl(Stmt):
     name: str
     modifiers: list[str]
@@ -544,7 +553,7 @@ class PropertyDecl(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("type", "getter", "setter")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class DelegateDecl(Stmt):
     kind: str
     name: str
@@ -554,7 +563,7 @@ class DelegateDecl(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("params", "return_type")
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ClassDecl(Stmt):
     name: str
     modifiers: list[str]
@@ -564,7 +573,7 @@ class ClassDecl(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("members",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class ModuleDecl(Stmt):
     name: str
     members: list[Stmt]
@@ -573,7 +582,7 @@ class ModuleDecl(Stmt):
     _children: ClassVar[tuple[str, ...]] = ("members",)
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, init=False)
 class SourceUnit(Node):
     """One parsed file: its modules (and top-level classes, AMB-1).  Members that were misplaced at
     the top level (reported) are kept too, so later errors can still be found."""
@@ -586,6 +595,68 @@ class SourceUnit(Node):
 
 # --------------------------------------------------------------------------------------------------
 # visitors and dump
+
+
+def _install_inits(root: type[Node]) -> None:
+    """Give ``root`` and every node class below it an ``__init__`` with the signature the
+    dataclass would write (span first, then the fields, keyword-only ones after ``*``), which
+    unpacks the span into the five position slots itself.
+
+    Why not the dataclass's: it calls ``__post_init__`` for the span, a second Python call per
+    node, and a parse makes one node per two tokens; and it compiles one function per class at
+    import, where this compiles them all in one go (``gpl2py check``'s start-up).  The classes
+    are dataclasses with ``init=False``; ``fields()``, ``repr`` and ``dump`` are unchanged.
+    """
+    classes = [root]
+    for cls in classes:  # (a slots dataclass replaces its class: skip the replaced ones)
+        classes.extend(c for c in cls.__subclasses__() if globals().get(c.__name__) is c)
+    namespace: dict[str, object] = {"_FACTORY": _FACTORY}
+    source: list[str] = []
+    for i, cls in enumerate(classes):
+        params, keywords, body = ["self", "span"], [], []
+        for f in fields(cls):  # (without the span, an InitVar, and ClassVars)
+            if f.name in _POSITION:
+                continue  # unpacking the span sets them
+            default = _default_name(f, i, namespace)
+            if not f.init:
+                if default is not None:
+                    body.append(f"self.{f.name} = {default}" + ("()" if f.default is MISSING else ""))
+                continue
+            if f.default_factory is not MISSING:  # type: ignore[misc]
+                param = f"{f.name}=_FACTORY"
+                body.append(f"self.{f.name} = {default}() if {f.name} is _FACTORY else {f.name}")
+            else:
+                param = f.name if default is None else f"{f.name}={default}"
+                body.append(f"self.{f.name} = {f.name}")
+            (keywords if f.kw_only else params).append(param)
+        signature = ", ".join(params + (["*"] + keywords if keywords else []))
+        source.append(f"def _init_{i}({signature}):\n"
+                      f"    self._file, self._line, self._col, self._end_line, self._end_col = span\n"
+                      + "".join(f"    {line}\n" for line in body))
+    exec("".join(source), namespace)  # noqa: S102 - source built above from the field tables only
+    for i, cls in enumerate(classes):
+        init = namespace[f"_init_{i}"]
+        init.__qualname__ = f"{cls.__qualname__}.__init__"  # type: ignore[attr-defined]
+        init.__module__ = cls.__module__  # type: ignore[attr-defined]
+        cls.__init__ = init  # type: ignore[misc]
+
+
+_POSITION = ("_file", "_line", "_col", "_end_line", "_end_col")
+_FACTORY = object()  # "no argument": the field's default_factory makes its value
+
+
+def _default_name(f: Field[Any], i: int, namespace: dict[str, object]) -> str | None:
+    """The name under which the generated ``__init__`` of class ``i`` finds ``f``'s default (or
+    default factory); ``None`` when it has neither."""
+    value = f.default if f.default is not MISSING else f.default_factory  # type: ignore[misc]
+    if value is MISSING:
+        return None
+    name = f"_d_{i}_{f.name}"
+    namespace[name] = value
+    return name
+
+
+_install_inits(Node)
 
 
 class NodeVisitor:

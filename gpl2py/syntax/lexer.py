@@ -48,7 +48,7 @@ from typing import Iterator
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.source import SourceFile, Span, make_span
+from gpl2py.source import SourceFile, Span
 from gpl2py.syntax.tokens import KEYWORDS, OPERATORS, Token, TokenKind
 
 _MASTER = re.compile(
@@ -76,19 +76,14 @@ _MAX_STRING = 128
 
 _K = TokenKind
 
-# Spans are built through the slot descriptors (gpl2py.source.make_span, inlined in the hottest
-# branches below): an __init__ call per token costs about twice as much.
-_new = object.__new__
-_set_file = Span.file.__set__  # type: ignore[attr-defined]
-_set_line = Span.line.__set__  # type: ignore[attr-defined]
-_set_col = Span.col.__set__  # type: ignore[attr-defined]
-_set_end_line = Span.end_line.__set__  # type: ignore[attr-defined]
-_set_end_col = Span.end_col.__set__  # type: ignore[attr-defined]
+# A Span is a tuple: the hottest branches below build it with one C call (gpl2py.source.make_span,
+# inlined), where a function call per token would cost as much again.
+_new = tuple.__new__
 
 
 def _span(path: str, line: int, col: int, end_col: int) -> Span:
     """``Span(Position(path, line, col), line, end_col)``, built fast (equal and hash-equal)."""
-    return make_span(path, line, col, line, end_col)
+    return _new(Span, (path, line, col, line, end_col))
 
 
 def tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
@@ -142,8 +137,11 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
     append = toks.append
     kw = KEYWORDS.get
     new = _new
-    set_file, set_line, set_col = _set_file, _set_line, _set_col
-    set_end_line, set_end_col = _set_end_line, _set_end_col
+    SPAN = Span
+    # spelling -> (interned spelling, kind): one probe per word instead of intern, lower and a
+    # keyword probe (a file uses a few hundred words thousands of times)
+    words: dict[str, tuple[str, TokenKind]] = {}
+    words_get = words.get
     ops = OPERATORS
     IDENT = _K.IDENT
     NEWLINE = _K.NEWLINE
@@ -160,15 +158,14 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
     for m in _MASTER.finditer(text, line_start, stop):
         g = m.lastindex
         if g == 1:  # word
-            t = intern(m.group(1))  # one string per name, however often it is used
+            t = m.group(1)
+            seen = words_get(t)
+            if seen is None:
+                t = intern(t)  # one string per name, however often it is used
+                seen = words[t] = (t, kw(t.lower(), IDENT))
+            t, kind = seen
             col = m.start(1) - line_start + 1
-            span = new(Span)
-            set_file(span, path)
-            set_line(span, line)
-            set_col(span, col)
-            set_end_line(span, line)
-            set_end_col(span, col + len(t))
-            kind = kw(t.lower(), IDENT)
+            span = new(SPAN, (path, line, col, line, col + len(t)))
             if kind is IDENT and len(t) > _MAX_NAME:
                 sink.report(M.LEX_LONG_IDENTIFIER, span, name=t[:20], length=len(t))
             append(Token(kind, t, None, span))
@@ -176,12 +173,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         elif g == 4:  # operator / punctuation
             t = m.group(4)
             col = m.start(4) - line_start + 1
-            span = new(Span)
-            set_file(span, path)
-            set_line(span, line)
-            set_col(span, col)
-            set_end_line(span, line)
-            set_end_col(span, col + len(t))
+            span = new(SPAN, (path, line, col, line, col + len(t)))
             append(Token(ops[t], t, None, span))
             has_tokens = True
         elif g == 5:  # line break
@@ -190,7 +182,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 if deferred:
                     toks.extend(deferred)
                     deferred.clear()
-                append(Token(NEWLINE, "", None, _span(path, line, col, col)))
+                append(Token(NEWLINE, "", None, new(SPAN, (path, line, col, line, col))))
                 has_tokens = False
             line += 1
             line_start = m.end()

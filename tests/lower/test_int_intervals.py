@@ -31,7 +31,7 @@ def test_unbounded_expressions_keep_their_check(tmp_path: Path) -> None:
         acc = acc * 75 + i
         s = (i And &H7FFF) + 1
         Console.WriteLine(acc + s)"""))
-    assert "acc = chk_int32(acc * 75 + i)" in body
+    assert "acc = chk_int32(_v1) if ((_v1 := acc * 75 + i) > 1073741823 or _v1 < -1073741823) else _v1" in body
     assert "s = chk_int16((i & 0x7FFF) + 1)" in body
 
 

@@ -28,12 +28,12 @@ def test_a_dim_in_a_block_defaults_at_entry_and_stores_where_it_stands(tmp_path:
         Next n"""))
     lines = [ln.strip() for ln in body.splitlines()]
     # defaults once, at procedure entry, before anything reads them
-    entry = lines.index("Console.WriteLine(CStr(t))")
+    entry = lines.index("Console.WriteLine(str(t))")
     assert {"t = 0", "torques = None", "loc = None", "kept = 0"} <= set(lines[:entry])
     # each execution of the Dim stores again, in the block; a Dim with nothing to store writes nothing
     inside = lines[lines.index("if n == 2:"):]
     assert inside[1:4] == ["t = chk_int32(n * 10)", 'torques = GplArray("Double", 12)', "loc = Location()"]
-    assert inside[4] == "kept = chk_int32(kept + t)"
+    assert inside[4] == "kept = chk_int32(_v1) if ((_v1 := kept + t) > 1073741823 or _v1 < -1073741823) else _v1"
 
 
 def test_a_repeated_dim_in_a_sibling_block_stores_the_same_variable(tmp_path: Path) -> None:
