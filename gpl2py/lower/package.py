@@ -20,11 +20,13 @@ from gpl2py.semantics.symbols import ClassSym, ModuleSym, ProcSym
 def package_init(model: Model, project_name: str, start_text: str | None, modules: list[ModuleSym],
                  extra: list[ModuleSym], stubs: list[dict[str, object]] | None = None,
                  stub_modules: list[str] | None = None,
-                 proc_name: Callable[[ProcSym], str] | None = None) -> str:
+                 proc_name: Callable[[ProcSym], str] | None = None,
+                 entries: dict[str, frozenset[str]] | None = None) -> str:
     """``stubs``: the PROJECT["stubs"] records (name, kind, provided by the user); ``stub_modules``:
     the generated stub modules, reset with the others for a new session; ``proc_name``: the
     Python name of a procedure (``ProjectNames.proc_name``: an overloaded Init or start
-    procedure has a name of its own)."""
+    procedure has a name of its own); ``entries``: which of ``_reset``/``_init`` each module
+    (by Python name) defines (``lower_module``; by default both)."""
     if proc_name is None:
         def proc_name(p: ProcSym) -> str:
             return py_ident(p.name)
@@ -54,6 +56,12 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         text = f"from . import {names}"
         lines.extend([text, ""] if len(text) <= 99 else ["from . import (", *(
             f"    {n}," for n in names.split(", ")), ")", ""])
+        # every module is imported for the procedures it registers (Thread("Proc"), delegates by
+        # name), also one that init() has nothing to call in: the package's public names say so
+        exported = [py_string(n) for n in ["PROJECT", *sorted([m.py_name for m in all_mods] + stub_modules),
+                                          "init", "main"]]
+        text = f"__all__ = [{', '.join(exported)}]"
+        lines.extend([text, ""] if len(text) <= 99 else ["__all__ = [", *(f"    {n}," for n in exported), "]", ""])
     lines += [
         "PROJECT = {",
         f"    \"name\": {py_string(project_name)},",
@@ -77,10 +85,11 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     ]
     for name in stub_modules:
         lines.append(f"    {name}._reset()")
-    for m in extra + modules:
-        lines.append(f"    {m.py_name}._reset()")
-    for m in extra + modules:
-        lines.append(f"    {m.py_name}._init()")
+    def defines(m: ModuleSym, entry: str) -> bool:
+        return entries is None or entry in entries.get(m.py_name, ())
+
+    lines += [f"    {m.py_name}._reset()" for m in extra + modules if defines(m, "_reset")]
+    lines += [f"    {m.py_name}._init()" for m in extra + modules if defines(m, "_init")]
     for m in extra + modules:
         # the Shared Sub Init of each class (real code relies on it: docs/design/real-code.md),
         # before its module's Init, which may use the class
