@@ -197,11 +197,16 @@ class ModuleContext:
 
     def module_prefix(self, mod: ModuleSym | None) -> str:
         """``""`` for this module, else ``"sibling."`` (and the sibling is imported)."""
+        name = self.module_ref(mod)
+        return "" if name is None else name + "."
+
+    def module_ref(self, mod: ModuleSym | None) -> str | None:
+        """None for this module, else the name of the sibling module (imported)."""
         if mod is None or mod is self.mod:
-            return ""
+            return None
         name = self.names.module_py[mod]
         self.siblings.add(name)
-        return name + "."
+        return name
 
     def stub_ref(self, stub: Stub) -> str:
         """How this module names a stub: ``vendor_lib.Proc`` or ``_stubs.Foo`` (imported)."""

@@ -825,13 +825,13 @@ class ExprLowerer:
                     self.ctx.needs_this = True
                     return f"{attr}(_this, {py_string(self.static_name(v))})"
                 if v.storage == "module":
-                    prefix = self.ctx.module_prefix(self.ctx.owner_module(v))
-                    if not prefix:
+                    module = self.ctx.module_ref(self.ctx.owner_module(v))
+                    if module is None:
                         self.ctx.needs_this = True
                         return f"{attr}(_this, {py_string(py_ident(v.name))})"
-                    return f"{attr}({prefix[:-1]}, {py_string(py_ident(v.name))})"
-                if v.shared:
-                    return f"{attr}({self.owner_ref(v)[:-1]}, {py_string(py_ident(v.name))})"
+                    return f"{attr}({module}, {py_string(py_ident(v.name))})"
+                if v.shared and isinstance(v.owner, ClassSym):
+                    return f"{attr}({self.class_ref(v.owner)}, {py_string(py_ident(v.name))})"
                 recv = "self" if i.receiver is None else self.val(i.receiver)
                 return f"{attr}({recv}, {py_string(py_ident(v.name))})"
             if isinstance(i, IndexInfo):

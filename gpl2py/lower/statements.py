@@ -259,7 +259,7 @@ class ProcLowerer(ExprLowerer):
             out.line(f"@{name}.setter")
         elif method and p.shared:
             out.line("@staticmethod")
-        header = out.mark()
+        header = out.def_at = out.mark()
         out.line(f"def {name}({', '.join(params)}){ret}:")
         out.trailing(decl.trailing_comment, header)
         out.indent()
@@ -267,7 +267,7 @@ class ProcLowerer(ExprLowerer):
         for line in prologue:
             out.line(line)
         out.extend(body, extra_indent=0)
-        if not prologue and all(ln.text.startswith("#") for ln in body.lines[start:]):
+        if not prologue and body.only_comments(start):
             out.line("pass")
         if decl.end_comment is not None:
             out.comments([decl.end_comment])
