@@ -35,7 +35,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     if model.start is not None and model.start.module is not None:
         start_name = py_string(f"{model.start.module.name}.{model.start.name}")
     stub_modules = sorted(stub_modules or [])
-    names = ", ".join(sorted([m.py_name for m in all_mods] + stub_modules))
+    imported = sorted([m.py_name for m in all_mods] + stub_modules)
     start = model.start
     has_start = start is not None and start.module is not None
     lines = [
@@ -53,13 +53,11 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "",
     ]
     if all_mods or stub_modules:
-        text = f"from . import {names}"
-        lines.extend([text, ""] if len(text) <= 99 else ["from . import (", *(
-            f"    {n}," for n in names.split(", ")), ")", ""])
+        text = f"from . import {', '.join(imported)}"
+        lines.extend([text, ""] if len(text) <= 99 else ["from . import (", *(f"    {n}," for n in imported), ")", ""])
         # every module is imported for the procedures it registers (Thread("Proc"), delegates by
         # name), also one that init() has nothing to call in: the package's public names say so
-        exported = [py_string(n) for n in ["PROJECT", *sorted([m.py_name for m in all_mods] + stub_modules),
-                                          "init", "main"]]
+        exported = [py_string(n) for n in ["PROJECT", *imported, "init", "main"]]
         text = f"__all__ = [{', '.join(exported)}]"
         lines.extend([text, ""] if len(text) <= 99 else ["__all__ = [", *(f"    {n}," for n in exported), "]", ""])
     lines += [
