@@ -582,7 +582,11 @@ def _read_data_file(dir_fd: int, name: str) -> bytes | None:
             after = os.fstat(fd)
             if not acceptable(after) or (after.st_dev, after.st_ino) != (before.st_dev, before.st_ino):
                 return None  # swapped between the check and the open
-            data = stream.read(DATA_FILE_MAX_BYTES + 1)
+            # read(n) allocates n bytes first: ask for the size the file has, then (if it grew
+            # meanwhile) for the rest up to the limit, not for the limit every time
+            data = stream.read(after.st_size + 1)
+            if len(data) > after.st_size:
+                data += stream.read(DATA_FILE_MAX_BYTES + 1 - len(data))
     except OSError:
         return None
     return data if len(data) <= DATA_FILE_MAX_BYTES else None
