@@ -1,0 +1,153 @@
+"""Generated code a person keeps (issue 13, item 5), checked by what the programs do.
+
+Each test runs a transpiled program and checks its output (the behaviour a user sees), then the
+shape of the Python that gave it: Exit Try without loop-and-flag scaffolding, a ByRef Integer
+store on one line that still raises -710, modules without empty ``_reset``/``_init``, and
+``paced_range`` (the runtime's range with a checkpoint every 1024 iterations).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from gpl2py.lower.statements import PACE as LOWERING_PACE
+from gplrt.threads import scheduler
+from gplrt.threads.scheduler import PACE, paced_range
+from gpltest import run_gpl
+
+EXIT_TRY = """Module Main
+    Public Sub Main()
+        Dim i, j, n As Integer
+        Dim e As Exception
+        Try
+            For i = 1 To 5
+                j = 0
+                While j < 10
+                    j += 1
+                    n += 1
+                    If i = 2 And j = 3 Then Exit Try
+                End While
+            Next
+            Console.WriteLine("not reached")
+        Catch e
+            Console.WriteLine("no error expected")
+        Finally
+            Console.WriteLine("finally " & CStr(n))
+        End Try
+        Console.WriteLine("after " & CStr(i) & " " & CStr(j))
+        Try
+            Throw New Exception(-1, "boom")
+        Catch e
+            Do
+                n += 1
+                If n > 20 Then Exit Try
+            Loop
+            Console.WriteLine("not reached either")
+        Finally
+            Console.WriteLine("finally again " & CStr(n))
+        End Try
+        Console.WriteLine("done")
+    End Sub
+End Module
+"""
+
+
+def test_exit_try_from_nested_loops_and_from_a_catch(tmp_path: Path) -> None:
+    r = run_gpl(tmp_path, EXIT_TRY)
+    assert r.status == 0, r.log
+    assert r.output == "finally 13\nafter 2 3\nfinally again 21\ndone\n"
+    code = r.files[f"{r.package.__name__}/main_mod.py"]
+    assert code.count("raise ExitTry") == 2 and code.count("except ExitTry:") == 2
+    assert "_jump" not in code and "while True:" in code  # (the Do loop's own)
+    assert code.count("while True:") == 1
+
+
+BYREF = """Module Main
+    Sub Bump(ByRef count As Integer)
+        count += 1
+    End Sub
+    Public Sub Main()
+        Dim n As Integer
+        Dim e As Exception
+        n = 2147483646
+        Bump(n)
+        Console.WriteLine(CStr(n))
+        Try
+            Bump(n)
+        Catch e
+            Console.WriteLine("error " & CStr(e.ErrorCode) & ", n still " & CStr(n))
+        End Try
+    End Sub
+End Module
+"""
+
+
+def test_a_byref_integer_increment_is_one_line_and_still_overflows(tmp_path: Path) -> None:
+    r = run_gpl(tmp_path, BYREF)
+    assert r.output == "2147483647\nerror -710, n still 2147483647\n", r.log
+    code = r.files[f"{r.package.__name__}/main_mod.py"]
+    assert "    count.value = chk_int32(count.value + 1)\n" in code
+    assert "2147483647 or" not in code
+
+
+MODULES = {
+    "Main.gpl": """Module Main
+    Public Sub Main()
+        Console.WriteLine(Names.Greeting() & " " & CStr(Counter.total))
+    End Sub
+End Module
+""",
+    "Names.gpl": """Module Names
+    Public Function Greeting() As String
+        Return "hello"
+    End Function
+End Module
+""",
+    "Counter.gpl": """Module Counter
+    Public total As Integer = 3
+    Public spare As Integer
+End Module
+""",
+}
+
+
+def test_modules_without_variables_have_no_empty_reset_or_init(tmp_path: Path) -> None:
+    r = run_gpl(tmp_path, MODULES)
+    assert r.output == "hello 3\n", r.log
+    pkg = r.package.__name__
+    for module in ("main_mod", "names"):
+        assert "def _reset" not in r.files[f"{pkg}/{module}.py"]
+        assert "def _init" not in r.files[f"{pkg}/{module}.py"]
+    counter = r.files[f"{pkg}/counter.py"]
+    assert "def _reset" in counter and "def _init" in counter
+    init_body = counter.split("def _init")[1].split("\n\n\n")[0]
+    assert "total = 3" in init_body and "spare" not in init_body  # no initializer: nothing to run
+    init = r.files[f"{pkg}/__init__.py"]
+    assert "counter._reset()" in init and "counter._init()" in init
+    assert "names._reset()" not in init and "names._init()" not in init
+
+
+@pytest.mark.parametrize("args", [(0, 0), (0, 1), (1, 1025), (0, 1024), (0, 1025), (5, 5000), (3000, -7, -1),
+                                  (10, 0, -1), (-2048, 2049)])
+def test_paced_range_gives_the_values_of_range(args: tuple[int, ...]) -> None:
+    assert list(paced_range(*args)) == list(range(*args))
+
+
+def test_paced_range_checkpoints_between_slices_only(monkeypatch: pytest.MonkeyPatch) -> None:
+    calls: list[int] = []
+    seen: list[int] = []
+    monkeypatch.setattr(scheduler, "checkpoint", lambda: calls.append(len(seen)))
+    for i in paced_range(0, 3 * PACE + 5):
+        seen.append(i)
+    assert calls == [PACE, 2 * PACE, 3 * PACE]  # before each slice but the first
+    calls.clear()
+    seen.clear()
+    for i in paced_range(0, PACE):
+        seen.append(i)
+    assert calls == [] and isinstance(paced_range(0, PACE), range)  # a short loop is a plain range
+
+
+def test_the_lowering_and_the_runtime_agree_on_the_pace() -> None:
+    assert LOWERING_PACE == PACE
