@@ -57,10 +57,13 @@ class GotoPlan:
     retry_tries: set[A.Try] = field(default_factory=set)
     # statement entered from outside -> the block of it that the jump enters
     entered: dict[A.Stmt, A.Block] = field(default_factory=dict)
+    # Try bodies whose only target is their first statement, reached by retry jumps only: each
+    # attempt starts at the top, so the body needs no dispatch loop (the retry loop is enough)
+    straight: set[A.Block] = field(default_factory=set)
 
     def dispatch(self, block: A.Block) -> BlockInfo | None:
         info = self.blocks.get(block)
-        return info if info is not None and info.targets else None
+        return info if info is not None and info.targets and block not in self.straight else None
 
     def segment(self, info: BlockInfo, stmt: A.Stmt) -> int:
         """Segment number of ``stmt`` in ``info``'s dispatch loop (segment 0 precedes the first)."""
@@ -146,6 +149,11 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
         plan.jumps[g] = Jump(g, common, states, entries)
     for info, stmts in wanted.items():
         info.targets = [s for s in info.block.statements if s in stmts]
+    for info in wanted:
+        top = info.block.statements[0] if info.block.statements else None
+        if info.targets == [top] and all(j.retry_try is not None for j in plan.jumps.values()
+                                         if any(b is info for b, _ in j.states)):
+            plan.straight.add(info.block)
     return plan
 
 

@@ -202,7 +202,7 @@ class ProcLowerer(ExprLowerer):
         assert decl is not None
         self.plan = plan_gotos(decl.body, self.sink)
         for info in self.plan.blocks.values():
-            if info.targets:
+            if self.plan.dispatch(info.block) is not None:
                 self.state_var[info.block] = self.fresh("g")
         for stmt in self.plan.entered:
             flag = self.fresh("enter")
@@ -794,7 +794,7 @@ class ProcLowerer(ExprLowerer):
     def s_Try(self, s: A.Try) -> None:
         assert self.plan is not None
         retry = s in self.plan.retry_tries
-        if retry:
+        if retry and s.body in self.state_var:
             self.w.line(f"{self.state_var[s.body]} = 0")
         if s.catch is None and s.finally_ is None:  # the parser reported it: keep the body
             self.block(s.body)
@@ -898,7 +898,12 @@ class ProcLowerer(ExprLowerer):
         if j is None:
             self.w.line(f"pass  # GoTo {s.label}: not lowered (reported)")
             return
-        pre = [f"{self.state_var[b.block]} = {self.plan.segment(b, st)}" for b, st in j.states]
+        pre = [f"{self.state_var[b.block]} = {self.plan.segment(b, st)}" for b, st in j.states
+               if b.block in self.state_var]
+        if j.retry_try is not None and j.retry_try.body not in self.state_var:
+            # the attempt starts at the top of the Try body, which has no dispatch loop (and so no
+            # checkpoint of its own): the retry loop's back-edge is a scheduling point
+            pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
         pre += [f"{self.entry_flag[st]} = True" for st in j.entries]
         if j.retry_try is not None:
             frame = next(f for f in reversed(self.frames) if f.kind == "Try")

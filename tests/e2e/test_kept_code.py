@@ -38,7 +38,7 @@ EXIT_TRY = """Module Main
         End Try
         Console.WriteLine("after " & CStr(i) & " " & CStr(j))
         Try
-            Throw New Exception(-1, "boom")
+            Throw New Exception
         Catch e
             Do
                 n += 1
@@ -151,3 +151,33 @@ def test_paced_range_checkpoints_between_slices_only(monkeypatch: pytest.MonkeyP
 
 def test_the_lowering_and_the_runtime_agree_on_the_pace() -> None:
     assert LOWERING_PACE == PACE
+
+
+RETRY = """Module Main
+    Public Sub Main()
+        Dim tries As Integer
+        Dim e As Exception
+        Try
+retry:
+            tries += 1
+            If tries < 3 Then
+                e = New Exception
+                e.ErrorCode = -153
+                Throw e
+            End If
+            Console.WriteLine("done after " & CStr(tries))
+        Catch e
+            Console.WriteLine("retry after " & CStr(e.ErrorCode))
+            GoTo retry
+        End Try
+    End Sub
+End Module
+"""
+
+
+def test_a_retry_from_the_top_of_a_try_is_a_plain_loop(tmp_path: Path) -> None:
+    r = run_gpl(tmp_path, RETRY)
+    assert r.output == "retry after -153\nretry after -153\ndone after 3\n", r.log
+    code = r.files[f"{r.package.__name__}/main_mod.py"]
+    assert "_g1" not in code and code.count("while True:") == 1  # no dispatch loop in the Try body
+    assert "            checkpoint()\n            continue\n" in code  # the retry is a scheduling point
