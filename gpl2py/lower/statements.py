@@ -678,10 +678,11 @@ class ProcLowerer(ExprLowerer):
         final = self.read_past_loops(v)
         lo, hi = _int_literal(s.start), _int_literal(s.end)
         if final:  # the bounds are used again after the loop: evaluated once, into temporaries
-            start, end = self.once(s.start, s.body), (self.once(s.end, s.body), P_ATOM)
+            start, end = self.once(s.start, s.body), self.once(s.end, s.body)
+            stop = str(hi + step) if hi is not None else f"{end} {'+' if step > 0 else '-'} 1"
         else:  # range() evaluates each once, in order, as For does (§10.3)
-            start, end = self.val(s.start), self.expr(s.end)
-        stop = str(hi + step) if hi is not None else self.range_stop(s.end, end, step, final)
+            start = self.val(s.start)
+            stop = str(hi + step) if hi is not None else self.range_stop(s.end, step)
         tail = ", -1" if step == -1 else ""
         few = lo is not None and hi is not None and abs(hi - lo) < PACE
         loop = "range" if few else self.rt(THREADS, "paced_range")
@@ -694,16 +695,16 @@ class ProcLowerer(ExprLowerer):
             edge = "max" if step == 1 else "min"
             self.w.line(f"{name} = {edge}({start}, {stop})  # the first value past the end (§10.3)")
 
-    def range_stop(self, e: A.Expr, code: Code, step: int, kept: bool) -> str:
-        """The stop of ``range`` for a For ending at ``e`` (lowered to ``code``): ``n`` for
-        ``To n - 1`` (``For i = 0 To count - 1`` is ``range(0, count)``), else ``end + 1``."""
+    def range_stop(self, e: A.Expr, step: int) -> str:
+        """The stop of ``range`` for a For ending at ``e``: ``n`` for ``To n - 1`` (``For i = 0 To
+        count - 1`` is ``range(0, count)``), else ``end + 1`` (``end - 1`` stepping down)."""
         back = "-" if step > 0 else "+"
-        if not kept and isinstance(e, A.Binary) and e.op == back and isinstance(e.right, A.IntegerLiteral) \
-                and self.type_of(e.left) in (t.INTEGER, t.SHORT, t.BYTE):
+        if isinstance(e, A.Binary) and e.op == back and isinstance(e.right, A.IntegerLiteral) \
+                and 1 <= e.right.value < 2**31 and self.type_of(e.left) in (t.INTEGER, t.SHORT, t.BYTE):
             k = e.right.value - 1
             left = self.expr(e.left)
             return left[0] if k == 0 else f"{paren(left, P_ADD)} {back} {k}"
-        return f"{paren(code, P_ADD)} {'+' if step > 0 else '-'} 1"
+        return f"{paren(self.expr(e), P_ADD)} {'+' if step > 0 else '-'} 1"
 
     def once(self, e: A.Expr, body: A.Block, force: bool = False) -> str:
         """A For bound: evaluated once (§10.3) -- a temporary unless it is a literal or a local the
