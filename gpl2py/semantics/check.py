@@ -19,14 +19,7 @@ from sys import intern
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import (
-    BuiltinClass,
-    BuiltinConstant,
-    BuiltinFunction,
-    Catalogue,
-    Member,
-    Param,
-)
+from gpl2py.semantics.catalogue import BuiltinClass, Catalogue, Member, Param
 from gpl2py.semantics.consts import fold_constants
 from gpl2py.semantics.info import (
     CALLS,
@@ -65,7 +58,19 @@ from gpl2py.semantics.info import (
     VarInfo,
 )
 from gpl2py.semantics.overloads import best_overloads, signature_text
-from gpl2py.semantics.resolve import TOP_MODULE, Collector, Found, Resolver, visible
+from gpl2py.semantics.resolve import (
+    TOP_MODULE,
+    Collector,
+    Found,
+    FoundBuiltinClass,
+    FoundBuiltinConstant,
+    FoundBuiltinFunction,
+    FoundMember,
+    FoundModule,
+    FoundResult,
+    Resolver,
+    visible,
+)
 from gpl2py.semantics.stubs import Stub, StubTable
 from gpl2py.semantics.symbols import (
     ClassSym,
@@ -817,29 +822,27 @@ class Checker:
                     as_statement: bool, as_target: bool, in_invoke: bool = False,
                     static: bool = False) -> Info:
         """``static``: a member reached through its class's name, so only Shared overloads count."""
-        k = found.kind
-        s = found.sym
-        if k == "result":
-            assert isinstance(s, ProcSym)
+        if isinstance(found, FoundResult):
+            s = found.sym
             if as_statement:
                 return self._proc_call_info(s, [], span, ctx, None)
             s.uses_result = True
             return ResultInfo(s.result, s)
-        if k == "module":
-            return ModuleInfo(t.VOID, s)
-        if k == "builtin_class":
-            assert isinstance(s, BuiltinClass)
-            return BuiltinClassInfo(s.type if not s.is_global else t.VOID, s)
-        if k == "builtin_function":
-            assert isinstance(s, BuiltinFunction)
-            if sum(1 for p in s.params if not p.optional) > 0:
-                self.sink.report(M.WRONG_ARG_COUNT, span, name=s.name,  # type: ignore[arg-type]
-                                 expected=len(s.params), given=0)
-            return BuiltinFunctionInfo(s.result, s, self._params(s.params))
-        if k == "builtin_constant":
-            assert isinstance(s, BuiltinConstant)
-            return BuiltinConstInfo(s.type, s)
+        if isinstance(found, FoundModule):
+            return ModuleInfo(t.VOID, found.sym)
+        if isinstance(found, FoundBuiltinClass):
+            b = found.sym
+            return BuiltinClassInfo(b.type if not b.is_global else t.VOID, b)
+        if isinstance(found, FoundBuiltinFunction):
+            f = found.sym
+            if sum(1 for p in f.params if not p.optional) > 0:
+                self.sink.report(M.WRONG_ARG_COUNT, span, name=f.name,  # type: ignore[arg-type]
+                                 expected=len(f.params), given=0)
+            return BuiltinFunctionInfo(f.result, f, self._params(f.params))
+        if isinstance(found, FoundBuiltinConstant):
+            return BuiltinConstInfo(found.sym.type, found.sym)
         # user member
+        s = found.sym
         if isinstance(s, VarSym):
             if not as_target:
                 s.read = True
@@ -916,7 +919,7 @@ class Checker:
             m = self._visible_member(mod.members, f"module {mod.name}", mod.name, e, ctx)
             if m is None:
                 return ErrorInfo(t.ERROR)
-            return self._found_info(Found("member", m, mod), e.name, e.span, ctx, None,
+            return self._found_info(FoundMember(m, mod), e.name, e.span, ctx, None,
                                     as_statement, as_target, in_invoke)
         if isinstance(tinfo, ClassInfo) and isinstance(tinfo.sym, ClassSym):
             cls: ClassSym = tinfo.sym
@@ -927,7 +930,7 @@ class Checker:
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name} (Shared members)",
                                  member=e.name)
                 return ErrorInfo(t.ERROR)
-            return self._found_info(Found("member", m, cls.module), e.name, e.span, ctx, None,
+            return self._found_info(FoundMember(m, cls.module), e.name, e.span, ctx, None,
                                     as_statement, as_target, in_invoke, static=True)
         if isinstance(tinfo, BuiltinClassInfo):
             b = tinfo.sym
@@ -950,7 +953,7 @@ class Checker:
                                      hidden=(ClassSym, DelegateSym))
             if m is None:
                 return ErrorInfo(t.ERROR)
-            return self._found_info(Found("member", m, ucls.module), e.name, e.span, ctx, e.target,
+            return self._found_info(FoundMember(m, ucls.module), e.name, e.span, ctx, e.target,
                                     as_statement, as_target, in_invoke)
         if isinstance(typ, t.ArrayType):
             b = self.cat.type_members.get("array")
@@ -1058,15 +1061,13 @@ class Checker:
             if isinstance(found, str):
                 self.sink.report(M.AMBIGUOUS_NAME, e.span, name=e.name, where=found)
                 return self._record(e, ErrorInfo(t.ERROR))
-            if found.kind == "result":  # a Function calling itself -- or another overload of its name
-                assert isinstance(found.sym, ProcSym)
+            if isinstance(found, FoundResult):  # a Function calling itself -- or another overload of its name
                 callee = _overloads_of(found.sym)
                 return self._record(e, ProcRefInfo(callee.result, callee))
             if isinstance(found.sym, (ProcSym, OverloadSet)):
                 return self._record(e, ProcRefInfo(found.sym.result, found.sym))
-            if found.kind == "builtin_function":
-                f: BuiltinFunction = found.sym  # type: ignore[assignment]
-                return self._record(e, BuiltinFunctionRefInfo(f.result, f))
+            if isinstance(found, FoundBuiltinFunction):
+                return self._record(e, BuiltinFunctionRefInfo(found.sym.result, found.sym))
             return self._record(e, self._found_info(found, e.name, e.span, ctx, None, False, False))
         if isinstance(e, A.MemberAccess):
             return self._record(e, self._member(e, ctx, False, False, in_invoke=True))
