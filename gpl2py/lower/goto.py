@@ -60,10 +60,16 @@ class GotoPlan:
     # Try bodies whose only target is their first statement, reached by retry jumps only: each
     # attempt starts at the top, so the body needs no dispatch loop (the retry loop is enough)
     straight: set[A.Block] = field(default_factory=set)
+    # loop bodies whose only targets are labels at their end, reached from inside the body: a jump
+    # there ends the iteration, a ``continue`` of the loop (While, Do tested at the top or not at
+    # all, For Each: loops whose Python form has no step after the body but a checkpoint)
+    tails: set[A.Block] = field(default_factory=set)
 
     def dispatch(self, block: A.Block) -> BlockInfo | None:
         info = self.blocks.get(block)
-        return info if info is not None and info.targets and block not in self.straight else None
+        if info is None or not info.targets or block in self.straight or block in self.tails:
+            return None
+        return info
 
     def segment(self, info: BlockInfo, stmt: A.Stmt) -> int:
         """Segment number of ``stmt`` in ``info``'s dispatch loop (segment 0 precedes the first)."""
@@ -154,7 +160,26 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
         if info.targets == [top] and all(j.retry_try is not None for j in plan.jumps.values()
                                          if any(b is info for b, _ in j.states)):
             plan.straight.add(info.block)
+        elif _ends_iteration(info, plan):
+            plan.tails.add(info.block)
     return plan
+
+
+def _ends_iteration(info: BlockInfo, plan: GotoPlan) -> bool:
+    """Whether ``info``'s targets are all labels at the end of a loop body that only jumps from
+    within the body reach: a jump there is a ``continue`` of the loop."""
+    owner = info.owner
+    if info.role != "loop" or owner is None or owner in plan.entered:
+        return False
+    if not (isinstance(owner, (A.While, A.ForEach))
+            or (isinstance(owner, A.DoLoop) and (owner.condition is None or owner.test_at_top))):
+        return False
+    stmts = info.block.statements
+    first = stmts.index(info.targets[0]) if info.targets[0] in stmts else -1
+    if first < 0 or not all(isinstance(s, A.Label) for s in stmts[first:]):
+        return False
+    return all(j.restart is info and j.retry_try is None for j in plan.jumps.values()
+               if any(b is info for b, _ in j.states))
 
 
 def _chain(b: BlockInfo | None) -> list[BlockInfo]:

@@ -611,19 +611,19 @@ class ProcLowerer(ExprLowerer):
 
     def s_While(self, s: A.While) -> None:
         self.w.line(f"while {self.entered_cond(s, s.body, self.cond(s.condition))}:")
-        self.loop_body(s.body, Frame("While"), [f"{self.rt(THREADS, 'checkpoint')}()"])
+        self.loop_body(s.body, Frame("While", block=s.body), [f"{self.rt(THREADS, 'checkpoint')}()"])
 
     def s_DoLoop(self, s: A.DoLoop) -> None:
         cp = f"{self.rt(THREADS, 'checkpoint')}()"
         if s.condition is None:
             self.w.line("while True:")
-            self.loop_body(s.body, Frame("Do"), [cp])
+            self.loop_body(s.body, Frame("Do", block=s.body), [cp])
             return
         c = self.cond(s.condition)
         if s.test_at_top:
             test: Code = (f"not {paren(c, P_NOT)}", P_NOT) if s.until else c
             self.w.line(f"while {self.entered_cond(s, s.body, test)}:")
-            self.loop_body(s.body, Frame("Do"), [cp])
+            self.loop_body(s.body, Frame("Do", block=s.body), [cp])
             return
         exit_test = c[0] if s.until else f"not {paren(c, P_NOT)}"
         self.w.line("while True:")
@@ -724,14 +724,14 @@ class ProcLowerer(ExprLowerer):
         v = vi.sym if isinstance(vi, VarInfo) else None
         if isinstance(v, VarSym) and v.storage in ("local", "param") and not v.boxed and not v.byref:
             self.w.line(f"for {self.local_name(v)} in {self.val(s.collection)}:")
-            self.loop_body(s.body, Frame("For"))
+            self.loop_body(s.body, Frame("For", block=s.body))
             return
         tmp = self.fresh("item")
         self.w.line(f"for {tmp} in {self.val(s.collection)}:")
         self.w.indent(BLOCKS["loop"])
         self.store(s.var, tmp)
         self.w.dedent()
-        self.loop_body(s.body, Frame("For"))
+        self.loop_body(s.body, Frame("For", block=s.body))
 
     def s_Select(self, s: A.Select) -> None:
         st = self.type_of(s.subject)
@@ -906,7 +906,13 @@ class ProcLowerer(ExprLowerer):
             # checkpoint of its own): the retry loop's back-edge is a scheduling point
             pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
         pre += [f"{self.entry_flag[st]} = True" for st in j.entries]
-        if j.retry_try is not None:
+        if j.restart.block in self.plan.tails:
+            # to the labels that end a loop body: the next iteration, through the loop's
+            # scheduling point (which its own back-edge would have been)
+            frame = next(f for f in reversed(self.frames) if f.block is j.restart.block)
+            if not isinstance(j.restart.owner, A.ForEach):
+                pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
+        elif j.retry_try is not None:
             frame = next(f for f in reversed(self.frames) if f.kind == "Try")
         else:
             frame = next(f for f in reversed(self.frames) if f.kind == "dispatch" and f.block is j.restart.block)

@@ -181,3 +181,35 @@ def test_a_retry_from_the_top_of_a_try_is_a_plain_loop(tmp_path: Path) -> None:
     code = r.files[f"{r.package.__name__}/main_mod.py"]
     assert "_g1" not in code and code.count("while True:") == 1  # no dispatch loop in the Try body
     assert "            checkpoint()\n            continue\n" in code  # the retry is a scheduling point
+
+
+NEXT_ITEM = """Module Main
+    Public Sub Main()
+        Dim i, total As Integer
+        Dim words(5) As String
+        words(1) = "a"
+        words(3) = "'comment"
+        words(4) = "b"
+        i = -1
+        Do
+            i += 1
+            If i > 5 Then Exit Do
+            If words(i).Length = 0 Then GoTo next_word
+            If words(i).Substring(0, 1) = "'" Then GoTo next_word
+            total += 1
+            Console.WriteLine(words(i))
+next_word:
+        Loop
+        Console.WriteLine(CStr(total))
+    End Sub
+End Module
+"""
+
+
+def test_a_goto_to_the_end_of_a_loop_body_is_continue(tmp_path: Path) -> None:
+    r = run_gpl(tmp_path, NEXT_ITEM)
+    assert r.output == "a\nb\n2\n", r.log
+    code = r.files[f"{r.package.__name__}/main_mod.py"]
+    assert "_g1" not in code and code.count("while True:") == 1  # no dispatch loop in the body
+    assert code.count("checkpoint()\n            continue\n") == 2
+    assert "# next_word:" in code
