@@ -98,15 +98,16 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
                 lines.append(f"    {m.py_name}.{path}.{proc_name(p)}()")
         if m in modules and m.init_proc is not None:
             lines.append(f"    {m.py_name}.{proc_name(m.init_proc)}()")
+    # without a start procedure there is no Simulation import to annotate with
+    sim_type = "Simulation | None" if has_start else "object"
     lines += [
         "",
         "",
-        "def main(sim: Simulation | None = None) -> int:",
+        f"def main(sim: {sim_type} = None) -> int:",
         '    """Run ProjectStart on the main GPL thread; 1 if any thread ended with an unhandled error."""',
     ]
     if not has_start:
         # no start procedure: say so before any thread starts (``python -m`` prints it, status 1)
-        lines[lines.index("def main(sim: Simulation | None = None) -> int:")] = "def main(sim: object = None) -> int:"
         lines.append(f"    raise SystemExit({py_string(_NO_START.format(project=project_name))})")
     else:
         assert start is not None and start.module is not None
