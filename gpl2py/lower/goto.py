@@ -64,10 +64,17 @@ class GotoPlan:
     # there ends the iteration, a ``continue`` of the loop (While, Do tested at the top or not at
     # all, For Each: loops whose Python form has no step after the body but a checkpoint)
     tails: set[A.Block] = field(default_factory=set)
+    # labels at the end of the procedure's body, followed by nothing but labels and at most one
+    # Return or Exit Sub/Function/Property -> that statement (None: the end of the procedure); a
+    # jump there is that statement itself (``GoTo _exit`` is ``return``), so the body needs no
+    # dispatch loop
+    exits: dict[A.Label, A.Stmt | None] = field(default_factory=dict)
+    exit_blocks: set[A.Block] = field(default_factory=set)
 
     def dispatch(self, block: A.Block) -> BlockInfo | None:
         info = self.blocks.get(block)
-        if info is None or not info.targets or block in self.straight or block in self.tails:
+        if info is None or not info.targets or block in self.straight or block in self.tails \
+                or block in self.exit_blocks:
             return None
         return info
 
@@ -162,7 +169,35 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
             plan.straight.add(info.block)
         elif _ends_iteration(info, plan):
             plan.tails.add(info.block)
+        elif _exit_tail(info, plan):
+            plan.exit_blocks.add(info.block)
     return plan
+
+
+def _exit_tail(info: BlockInfo, plan: GotoPlan) -> bool:
+    """Whether every target of ``info``, the procedure's body, is a label of its exit tail (the
+    statements from the first target on are labels, then at most one Return or Exit of the
+    procedure), reached by jumps that enter nothing on the way: each jump is then the tail's
+    statement (recorded in ``plan.exits``)."""
+    if info.parent is not None:
+        return False
+    stmts = info.block.statements
+    first = next((k for k, s in enumerate(stmts) if s is info.targets[0]), -1)
+    if first < 0:
+        return False
+    tail = stmts[first:]
+    last = tail[-1]
+    end: A.Stmt | None = None
+    if isinstance(last, A.Return) or (isinstance(last, A.Exit) and last.kind in ("Sub", "Function", "Property")):
+        end, tail = last, tail[:-1]
+    if not all(isinstance(s, A.Label) for s in tail):
+        return False
+    if not all(j.retry_try is None and j.restart is info and len(j.states) == 1
+               for j in plan.jumps.values() if any(b is info for b, _ in j.states)):
+        return False
+    for s in tail:
+        plan.exits[s] = end  # type: ignore[index]
+    return True
 
 
 def _ends_iteration(info: BlockInfo, plan: GotoPlan) -> bool:

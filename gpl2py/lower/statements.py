@@ -899,6 +899,10 @@ class ProcLowerer(ExprLowerer):
         if j is None:
             self.w.line(f"pass  # GoTo {s.label}: not lowered (reported)")
             return
+        label = j.states[-1][1]
+        if isinstance(label, A.Label) and label in self.plan.exits:
+            self.exit_tail(self.plan.exits[label])  # GoTo _exit: the statement the label leads to
+            return
         pre = [f"{self.state_var[b.block]} = {self.plan.segment(b, st)}" for b, st in j.states
                if b.block in self.state_var]
         if j.retry_try is not None and j.retry_try.body not in self.state_var:
@@ -917,6 +921,20 @@ class ProcLowerer(ExprLowerer):
         else:
             frame = next(f for f in reversed(self.frames) if f.kind == "dispatch" and f.block is j.restart.block)
         self.jump(frame, "continue", pre)
+
+    def exit_tail(self, end: A.Stmt | None) -> None:
+        """What a jump to the procedure's exit labels does: their Return or Exit, else what the
+        end of the procedure does (``gpl2py.lower.goto``, ``GotoPlan.exits``)."""
+        p = self.proc
+        assert p is not None
+        if isinstance(end, A.Return):
+            self.s_Return(end)
+        elif isinstance(end, A.Exit):
+            self.s_Exit(end)
+        elif p.kind == "Function":
+            self.w.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
+        else:
+            self.w.line("return")
 
     def s_Exit(self, s: A.Exit) -> None:
         p = self.proc

@@ -213,3 +213,39 @@ def test_a_goto_to_the_end_of_a_loop_body_is_continue(tmp_path: Path) -> None:
     assert "_g1" not in code and code.count("while True:") == 1  # no dispatch loop in the body
     assert code.count("checkpoint()\n            continue\n") == 2
     assert "# next_word:" in code
+
+
+EXIT_LABEL = """Module Main
+    Function Check(ByVal n As Integer) As Integer
+        Dim ret As Integer
+        Dim i As Integer
+        ret = -1
+        If n < 0 Then GoTo _exit
+        For i = 1 To n
+            If i = 7 Then GoTo _exit
+        Next
+        ret = n
+_exit:
+        Return ret
+    End Function
+    Sub Report(ByVal n As Integer)
+        If n = 0 Then GoTo done
+        Console.WriteLine("n " & CStr(n))
+done:
+    End Sub
+    Public Sub Main()
+        Console.WriteLine(CStr(Check(-3)) & " " & CStr(Check(9)) & " " & CStr(Check(4)))
+        Report(0)
+        Report(2)
+    End Sub
+End Module
+"""
+
+
+def test_a_goto_to_the_exit_label_is_the_exit_itself(tmp_path: Path) -> None:
+    r = run_gpl(tmp_path, EXIT_LABEL)
+    assert r.output == "-1 -1 4\nn 2\n", r.log
+    code = r.files[f"{r.package.__name__}/main_mod.py"]
+    assert "_g1" not in code and "while True" not in code and "_jump" not in code
+    assert code.count("return ret\n") == 3  # the two jumps and the label's own Return
+    assert "# _exit:" in code and "# done:" in code
