@@ -243,6 +243,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plot", metavar="FILE.png", default=None,
                         help="after the run, save robot 1's joints against time and its tool path "
                         "(seen from above) to this image")
+    parser.add_argument("--history", type=_history, default=DEFAULT_HISTORY, metavar="N|all",
+                        help=f"how many motions each robot keeps for the plot (default {DEFAULT_HISTORY}: memory "
+                        "stays bounded however long the run); all: every motion and every signal change")
     parser.add_argument("--cache-dir", metavar="DIR", default=None,
                         help="where translations are cached (default: $GPL2PY_CACHE_DIR, else "
                         "$XDG_CACHE_HOME/gpl2py or ~/.cache/gpl2py)")
@@ -251,6 +254,24 @@ def configure(parser: argparse.ArgumentParser) -> None:
     from gpl2py.cli import add_stub_options
 
     add_stub_options(parser)
+
+
+#: ``--history``'s default: the motions each robot keeps (gplrt.motion.queue.DEFAULT_HISTORY; the
+#: transpiler does not import the runtime to print its help, and a test checks the two agree).
+DEFAULT_HISTORY = 1000
+
+
+def _history(text: str) -> int | None:
+    """``--history N|all``: a whole number >= 1, or None for ``all``."""
+    if text.strip().lower() == "all":
+        return None
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number or 'all': {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
+    return value
 
 
 def _positive_float(text: str) -> float:
@@ -281,6 +302,7 @@ class RunReport:
     plot: str | None = None
     plot_requested: bool = False
     plot_error: str | None = None  # why the requested plot could not be written
+    plot_note: str = ""  # what the plot leaves out (motions older than the history's window)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -291,6 +313,7 @@ class RunReport:
             "interrupted": self.interrupted,
             "stopped_threads": self.stopped,
             "plot": self.plot,
+            "plot_note": self.plot_note,
         }
 
 
@@ -428,6 +451,10 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunRep
         try:
             if save_plot(sim, plot):
                 report.plot = str(plot)
+                dropped = sim.robots[1].queue.dropped
+                if dropped:  # the plot shows the history's window: say what it leaves out
+                    report.plot_note = (f"the last {sim.history} motions; {dropped} earlier ones dropped "
+                                        "(--history all keeps them)")
         except OSError as exc:
             report.plot_error = exc.strerror or str(exc)
     sim.close(0.0)  # everything is known: release the robots (Simulation.close says why)
@@ -534,7 +561,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
 
     console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
-                     project=project.name if project else "", robot=args.robot, listen=args.listen)
+                     project=project.name if project else "", robot=args.robot, listen=args.listen,
+                     history=args.history, **({"signal_history": None} if args.history is None else {}))
     install_project_files(sim, args.path, project)
     if args.setup:
         try:
@@ -658,6 +686,8 @@ def run_summary(report: RunReport, clock: str) -> str:
         text += f"; stalled, threads still waiting: {', '.join(report.stalled)}"
     if report.plot:
         text += f"; plot saved to {report.plot}"
+        if report.plot_note:
+            text += f" ({report.plot_note})"
     elif report.plot_requested:
         text += "; no plot: robot 1 was never used"
     return text

@@ -57,12 +57,14 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import build, import_built, install_project_files
 from gplrt.controller.console import ConsoleSink
 from gplrt.controller.pdb import default_database
-from gplrt.controller.signals import IoMap
+from gplrt.controller.signals import DEFAULT_SIGNAL_HISTORY, IoMap
 from gplrt.geometry.transforms import matrix_to_xyzypr
 from gplrt.io.sockets import listen_address
 from gplrt.lang.procedures import ProcedureEntry, choose_overload, registered_procedures
 from gplrt.motion.plot import plot_joints, plot_path_xy
+from gplrt.motion.queue import DEFAULT_HISTORY
 from gplrt.motion.trace import Trace
+from gplrt.session import check_window
 from gplrt.sim import Simulation, StopReport
 from gplrt.threads.thread import Thread
 
@@ -192,6 +194,8 @@ class Cell:
         rebuild: bool = False,
         stubs: str | Path | None = None,
         listen: str | None = None,
+        history: int | None = DEFAULT_HISTORY,
+        signal_history: int | None = DEFAULT_SIGNAL_HISTORY,
     ) -> Cell:
         """Translate ``project`` (through the cache), import it and make its Simulation.
 
@@ -202,12 +206,17 @@ class Cell:
         project is ported in a notebook and on the command line with the same stubs).  ``listen``
         opens the program's servers to the network as ``gpl2py run --listen`` does (an address of
         this computer, or ``"0.0.0.0"`` for every interface); by default they listen on loopback
-        only, whatever address the GPL code binds.  Raises :class:`ProjectError` when the project
-        has errors, ValueError for a ``listen`` that is not an address of this computer.
+        only, whatever address the GPL code binds.  ``history`` and ``signal_history`` are how
+        many motions per robot and signal changes the session keeps for ``trace``, the plots and
+        ``io.trace`` (None: the whole run; by default a bounded window, docs/notebook.md).  Raises
+        :class:`ProjectError` when the project has errors, ValueError for a ``listen`` that is not
+        an address of this computer or a history that is not a whole number >= 1 or None.
         """
         default_database(robot)  # an unknown model fails here, with -221 and the known names
         if listen is not None:
             listen_address(listen)  # before the translation: a typo fails at once
+        check_window(history, "motions")
+        check_window(signal_history, "signal changes")
         if stubs is not None and not isinstance(stubs, (str, os.PathLike)):
             raise TypeError(f"stubs is the folder of Python stubs (a str or Path), not {stubs!r}")
         sink = DiagnosticSink()
@@ -218,7 +227,8 @@ class Cell:
             raise ProjectError(f"{project} could not be translated:\n" + "\n".join(rendered))
         package = import_built(built)
         sim = Simulation(clock=clock, speed=speed, io=io, console=_EchoConsole(echo), flash_root=flash,
-                         project=built.project.name, robot=robot, listen=listen)
+                         project=built.project.name, robot=robot, listen=listen, history=history,
+                         signal_history=signal_history)
         install_project_files(sim, project, built.project)  # where the controller has them
         return cls(package, sim, rendered, Path(project))
 

@@ -22,11 +22,15 @@ A :class:`Session` holds everything a running GPL program reads and changes, eac
                     String delegates: ``gplrt.lang.procedures.ProcedureRegistry``)
 ``console``         program output and controller reports (``gplrt.controller.console.ConsoleSink``)
 ``threads``         every GPL ``Thread`` started in it, and the hooks run as each one ends
+``history``         how many motions each robot's history keeps (None: all; :attr:`history`)
 ==================  ===========================================================================
 
 What happened in a session is kept by its parts: the motion each robot was given (its queue's
 history, which ``Simulation.trace`` samples), every signal change (``io.trace``), the error log
-and system messages (``controller``), the console text (``console``).
+and system messages (``controller``), the console text (``console``).  The motion history and the
+signal trace keep a bounded window of the most recent entries (``history``, ``io.trace_window``),
+so that a long run's memory does not grow with its length; what was dropped is counted
+(``queue.dropped``, ``io.trace_dropped``, ``Trace.dropped``).
 
 :func:`current_session` is how the runtime finds the session: code on a GPL thread gets the
 session of that thread's scheduler, any other Python thread (a notebook, a test) the *active*
@@ -60,7 +64,9 @@ if TYPE_CHECKING:
     from gplrt.threads.scheduler import Scheduler, ThreadKey
     from gplrt.threads.thread import Thread
 
-__all__ = ["Session", "current_session", "active_session", "set_active_session", "set_default_factory"]
+__all__ = [
+    "Session", "check_window", "current_session", "active_session", "set_active_session", "set_default_factory",
+]
 
 
 class Session:
@@ -84,6 +90,7 @@ class Session:
         robot_model: str,
         project: str = "",
         max_threads: int = 32,
+        history: int | None = None,
     ) -> None:
         self.scheduler = scheduler
         self.controller = controller
@@ -99,12 +106,28 @@ class Session:
         self.selected: dict[ThreadKey, int] = {}
         self.project = project
         self.max_threads = max_threads
+        self._history = check_window(history, "motions")
         #: Every GPL Thread started in this session.
         self.threads: list[Thread] = []
         #: Called with each GPL Thread as it ends, on that thread (robots are released there).
         self.thread_exit_hooks: list[Callable[[Thread], None]] = []
         self._booted: ParameterDatabase | None = None
         scheduler.session = self
+
+    # -- what the session keeps ----------------------------------------------------------------
+
+    @property
+    def history(self) -> int | None:
+        """How many motions each robot's history keeps (``gplrt.motion.queue``; None: every one).
+        Setting it applies to the robots built already and to those built later."""
+        return self._history
+
+    @history.setter
+    def history(self, window: int | None) -> None:
+        window = check_window(window, "motions")
+        for robot in self.robots.values():
+            robot.queue.set_window(window)
+        self._history = window
 
     # -- the parts made on first use ---------------------------------------------------------------
 
@@ -143,6 +166,14 @@ class Session:
         """Record a controller-level error: the error log, and the console's log channel."""
         entry = self.controller.log_error(self.now(), thread_name, text, code)
         self.console.log(f"[{entry.time:.6f}] thread {thread_name}: {text}")
+
+
+def check_window(window: int | None, what: str) -> int | None:
+    """``window`` if it is a history window (a whole number >= 1 of ``what``, or None for all),
+    else a ValueError that says so: a Python caller's mistake gets Python's error at once."""
+    if window is not None and (isinstance(window, bool) or not isinstance(window, int) or window < 1):
+        raise ValueError(f"a history window is a whole number of {what} >= 1, or None for all, not {window!r}")
+    return window
 
 
 # -- finding the session ----------------------------------------------------------------------------

@@ -17,6 +17,10 @@ out.project`` makes a :class:`Simulation` (or lets :func:`current` make a defaul
   parameter database is loaded into ``pdb`` on first use unless ``pdb`` was set), the robots
   (``robots``: ``gplrt.motion.robot.RobotState`` per robot number, built on first use) and the
   parameter database (``pdb``; ``Controller.PDb`` reads it);
+* how much of the past it keeps (``history``: the motions each robot's history keeps, default
+  ``gplrt.motion.queue.DEFAULT_HISTORY``; ``signal_history``: the signal changes of ``io.trace``,
+  default ``gplrt.controller.signals.DEFAULT_SIGNAL_HISTORY``; None keeps everything, for a notebook
+  that wants the whole run);
 * ``trace(robot)``: the sampled motion of a robot (``gplrt.motion.trace``).
 
 Two Simulations in one process are independent: each has its own clock, controller, robots,
@@ -44,7 +48,7 @@ from gplrt.controller import live_pdb
 from gplrt.controller.clock import RealClock, VirtualClock
 from gplrt.controller.console import ConsoleSink
 from gplrt.controller.pdb import ParameterDatabase, default_database
-from gplrt.controller.signals import IoMap
+from gplrt.controller.signals import DEFAULT_SIGNAL_HISTORY, IoMap
 from gplrt.controller.state import ControllerState, LogEntry
 from gplrt.io.flashroot import Disks
 from gplrt.io.project_files import install_project, read_project_files
@@ -52,11 +56,13 @@ from gplrt.io.sockets import LOOPBACK, NetworkConfig, listen_address
 from gplrt.lang.console import get_console_sink, set_console_sink
 from gplrt.lang.procedures import default_registry
 from gplrt.motion import registry
+from gplrt.motion.queue import DEFAULT_HISTORY
 from gplrt.motion.robot import RobotState
 from gplrt.motion.trace import Trace, trace
 from gplrt.session import (
     Session,
     active_session,
+    check_window,
     current_session,
     session_of_caller,
     set_active_session,
@@ -118,9 +124,13 @@ class Simulation(Session):
         slice_checkpoints: int = 1000,
         robot: str = "PF400SX",
         listen: str | None = None,
+        history: int | None = DEFAULT_HISTORY,
+        signal_history: int | None = DEFAULT_SIGNAL_HISTORY,
     ) -> None:
         # Checked first, before anything starts: a typo must not expose or break a run halfway.
         network = NetworkConfig(listen=listen_address(listen) if listen is not None else LOOPBACK)
+        check_window(history, "motions")
+        check_window(signal_history, "signal changes")
         scheduler: Scheduler
         if clock in CLOCKS[:2]:
             scheduler = VirtualScheduler(VirtualClock(), slice_checkpoints=slice_checkpoints,
@@ -140,8 +150,11 @@ class Simulation(Session):
             robot_model=robot,  # its shipped database is loaded into ``pdb`` on first use
             project=project,
             max_threads=max_threads,
+            history=history,
         )
         self.mode = clock
+        if io is None or signal_history != DEFAULT_SIGNAL_HISTORY:  # (a given IoMap keeps its own unless asked)
+            self.io.trace_window = signal_history
         self.io.bind(self)
         self.flash_root = Path(flash_root) if flash_root is not None else None
         self.thread_exit_hooks.append(registry.release_on_exit)  # a thread's robots are freed as it ends

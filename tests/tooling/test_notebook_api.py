@@ -120,6 +120,30 @@ def test_plots_of_the_motion(cell: Cell, tmp_path: Path) -> None:
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_history_is_chosen_at_load_and_the_plots_say_what_they_leave_out(tmp_path: Path) -> None:
+    proj = write_project(tmp_path, {"Station.gpl": STATION}, start="Station.Main", name="Station")
+    short = Cell.load(proj, history=1, signal_history=1, echo=False)
+    assert short.sim.history == 1 and short.sim.io.trace_window == 1
+    everything = Cell.load(proj, history=None, signal_history=None, echo=False)
+    assert everything.sim.history is None and everything.sim.io.trace_window is None
+    for cell in (short, everything):
+        for _ in range(20):  # (a window is trimmed a batch at a time: at least 17 motions past 1)
+            cell.start("Station.Cycle")
+            cell.set_input(10005, True)
+            cell.run_for(5.0)
+            cell.set_input(10005, False)
+    assert [v for _, s, v in everything.outputs_written() if s == 3] == [True, False] * 20
+    assert len(short.outputs_written()) < 40 and short.sim.io.trace_dropped > 0
+    tr, full = short.trace(), everything.trace()
+    assert full.complete
+    assert not tr.complete and tr.times[0] > full.times[0]  # the window starts later...
+    assert np.allclose(tr.xyz[-1], full.xyz[-1], atol=1e-9)  # ...and ends where the robot is
+    texts = [t.get_text() for ax in short.plot_joints().axes for t in ax.texts]
+    assert any("earlier motions dropped" in t for t in texts), texts
+    with pytest.raises(ValueError, match="history window"):
+        Cell.load(proj, history=0, echo=False)
+
+
 def test_robot_model_and_clock_are_chosen_at_load(tmp_path: Path) -> None:
     proj = write_project(tmp_path, {"Station.gpl": STATION}, start="Station.Main", name="Station")
     arm = Cell.load(proj, robot="ARM6", clock="real", speed=50, echo=False)

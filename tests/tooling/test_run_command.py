@@ -536,3 +536,47 @@ def test_plot_without_matplotlib_names_the_extra(tmp_path: Path) -> None:
                env={"PYTHONPATH": str(fake.parent)})
     assert r.returncode == 2 and r.stdout == ""
     assert r.stderr == "error GPL9001: --plot needs matplotlib, which is not installed: pip install 'gpl2py[plot]'\n"
+
+
+SHUTTLE = module_src("""\
+    Public Sub Main()
+        Dim prof As New Profile
+        Dim a As New Location
+        Dim b As New Location
+        Dim i As Integer
+        a.Angles(300, 10, 90, -100, 100)
+        b.Angles(250, 0, 100, -90, 100)
+        Controller.PowerEnabled = True
+        Robot.Attached = 1
+        Robot.Home
+        For i = 1 To 60
+            If i Mod 2 = 0 Then
+                Move.Loc(a, prof)
+            Else
+                Move.Loc(b, prof)
+            End If
+        Next
+        Move.WaitForEOM
+        Console.WriteLine("done")
+    End Sub""")
+
+
+def test_history_option_bounds_what_the_plot_shows_and_says_so(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("matplotlib")
+    from gpl2py.run import DEFAULT_HISTORY
+    from gplrt.motion.queue import DEFAULT_HISTORY as RUNTIME_DEFAULT
+
+    assert DEFAULT_HISTORY == RUNTIME_DEFAULT  # the help's figure is the runtime's
+    proj = write_project(tmp_path, {"Main.gpl": SHUTTLE})
+    png = tmp_path / "cell.png"
+    r = in_process(capsys, "run", str(proj), "--history", "10", "--plot", str(png))
+    assert r.returncode == 0 and r.stdout == "done\n", r.stderr
+    assert f"plot saved to {png} (the last 10 motions; " in r.stderr
+    assert "earlier ones dropped (--history all keeps them)" in r.stderr
+    r = in_process(capsys, "run", str(proj), "--history", "all", "--plot", str(png))
+    assert r.returncode == 0 and f"plot saved to {png}" in r.stderr, r.stderr
+    assert "dropped" not in r.stderr
+    for bad in ("0", "many"):
+        r = in_process(capsys, "run", str(proj), "--history", bad)
+        assert r.returncode == 2 and r.stdout == "" and "--history" in r.stderr, r.stderr

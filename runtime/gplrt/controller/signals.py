@@ -34,7 +34,10 @@ controller clock::
     io.when_output(1, True).set_input(10001, True, after=2.0)
 
 means "input 10001 goes high 2 s after output 1 goes high".  Every change of any signal is
-recorded in :attr:`IoMap.trace` as a time-stamped :class:`SignalChange`.
+recorded in :attr:`IoMap.trace` as a time-stamped :class:`SignalChange`; the trace keeps the last
+``trace_window`` changes (default :data:`DEFAULT_SIGNAL_HISTORY`, None: every one), dropping the
+oldest in batches so that a long run's memory does not grow with it, and counts what it dropped
+in ``trace_dropped``.  Listeners (:meth:`IoMap.on_change`) see every change regardless.
 """
 
 from __future__ import annotations
@@ -57,7 +60,7 @@ from gplrt.lang.errors import (
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.exceptions import not_available
 from gplrt.lang.gpltypes import Boolean, Double, Integer
-from gplrt.session import current_session
+from gplrt.session import check_window, current_session
 from gplrt.threads.thread import Thread
 
 if TYPE_CHECKING:
@@ -123,16 +126,24 @@ class Rule:
         return self
 
 
+#: Signal changes the I/O trace keeps by default (a change is about 200 bytes: 2 MB at most).
+DEFAULT_SIGNAL_HISTORY = 10_000
+
+
 class IoMap:
     """The simulated I/O: current values, the rules that drive inputs, and the change trace."""
 
-    def __init__(self, signal_map: SignalMap | None = None) -> None:
+    def __init__(self, signal_map: SignalMap | None = None, trace_window: int | None = DEFAULT_SIGNAL_HISTORY) -> None:
         self.map = signal_map if signal_map is not None else SignalMap()
         self._digital: dict[int, bool] = {}
         self._analog: dict[int, float] = {}
         self._rules: list[Rule] = []
         self._listeners: list[Callable[[SignalChange], None]] = []
+        #: The most recent signal changes, oldest first (at least ``trace_window`` of them).
         self.trace: list[SignalChange] = []
+        #: Changes dropped from the front of ``trace`` so far.
+        self.trace_dropped = 0
+        self.trace_window = trace_window
         self._lock = threading.RLock()
         self._sim: Session | None = None
         self._latch_inputs: dict[int, list[tuple[int, bool]]] = {}
@@ -274,6 +285,26 @@ class IoMap:
         """Call ``listener`` (short, non-blocking) for every change, e.g. latch emulation or plots."""
         self._listeners.append(listener)
 
+    @property
+    def trace_window(self) -> int | None:
+        """How many signal changes ``trace`` keeps (None: every one).  The trace is trimmed a
+        batch of a quarter window at a time, so that dropping costs O(1) per change."""
+        return self._trace_window
+
+    @trace_window.setter
+    def trace_window(self, window: int | None) -> None:
+        self._trace_window = check_window(window, "signal changes")
+        self._trim_at = float("inf") if window is None else window + max(16, window // 4)
+
+    def _record(self, change: SignalChange) -> None:
+        """Append ``change`` to the trace, dropping the oldest beyond the window (lock held)."""
+        trace = self.trace
+        trace.append(change)
+        if len(trace) > self._trim_at:
+            k = len(trace) - (self._trace_window or 0)
+            del trace[:k]
+            self.trace_dropped += k
+
     def output_trace(self) -> list[SignalChange]:
         """Changes written by the program."""
         return [c for c in self.trace if c.source == "gpl"]
@@ -297,7 +328,7 @@ class IoMap:
             if old == value:
                 return
             change = SignalChange(self._now(), "DIO", n, value, source)
-            self.trace.append(change)
+            self._record(change)
             rules = [r for r in self._rules if r.signal == n and r.value == value]
         if n in self._latch_inputs:
             self._latch(change)
@@ -317,7 +348,7 @@ class IoMap:
             if old == value:
                 return
             change = SignalChange(self._now(), "AIO", n, value, source)
-            self.trace.append(change)
+            self._record(change)
         self._notify(change)
 
     def _notify(self, change: SignalChange) -> None:

@@ -50,6 +50,8 @@ Pose: TypeAlias = tuple[float, float, float, float, float, float, float, float, 
 SINGULAR_EPS = 1e-9
 _SNAP = 1e-11
 
+_FLOAT64 = np.dtype(np.float64)
+
 IDENTITY: Pose = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0)
 
 _EXACT_QUARTER: dict[int, tuple[float, float]] = {0: (0.0, 1.0), 1: (1.0, 0.0), 2: (0.0, -1.0), 3: (-1.0, 0.0)}
@@ -199,19 +201,21 @@ def matrix_to_pose(m: NDArray[np.float64]) -> Pose:
 
     Anything else (another shape, non-numeric entries) is -202 *Invalid argument*: it reaches
     here from Python callers (``Location.from_matrix``), who get GPL codes, not ValueError.
+    One ``tolist`` and an unpacking: the inverse kinematics converts every target with it.
     """
-    try:
-        a = np.asarray(m, dtype=float)
-    except (TypeError, ValueError):
-        raise GplException(INVALID_ARGUMENT, detail=f"not a numeric matrix: {type(m).__name__}") from None
-    if a.shape not in ((4, 4), (3, 4)):
-        raise GplException(INVALID_ARGUMENT, detail=f"expected a (4, 4) matrix, got shape {a.shape}")
-    r = a[:3, :3].ravel().tolist()
-    t = a[:3, 3].tolist()
-    return tuple(r + t)  # type: ignore[return-value]
-
-
-# -- public numpy API ----------------------------------------------------------------------------
+    if type(m) is np.ndarray and m.shape == (4, 4) and m.dtype is _FLOAT64:  # (the usual case)
+        (r11, r12, r13, x), (r21, r22, r23, y), (r31, r32, r33, z), _ = m.tolist()
+        return (r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z)
+    if type(m) is not np.ndarray or m.dtype is not _FLOAT64:
+        try:
+            m = np.asarray(m, dtype=float)
+        except (TypeError, ValueError):
+            raise GplException(INVALID_ARGUMENT, detail=f"not a numeric matrix: {type(m).__name__}") from None
+    shape = m.shape
+    if shape != (4, 4) and shape != (3, 4):
+        raise GplException(INVALID_ARGUMENT, detail=f"expected a (4, 4) matrix, got shape {shape}")
+    (r11, r12, r13, x), (r21, r22, r23, y), (r31, r32, r33, z) = m.tolist()[:3]
+    return (r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z)
 
 
 def xyzypr_to_matrix(x: float, y: float, z: float, yaw: float, pitch: float, roll: float) -> NDArray[np.float64]:

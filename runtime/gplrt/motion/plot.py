@@ -29,7 +29,16 @@ def plot_joints(tr: Trace, ax: Any = None) -> Any:
     ax.set_ylabel("joint (mm or deg)")
     ax.legend(loc="best", fontsize="small")
     ax.grid(True, alpha=0.3)
+    _note_dropped(tr, ax)
     return fig
+
+
+def _note_dropped(tr: Trace, ax: Any) -> None:
+    """Say on the plot when the trace does not start at the robot's first motion (``Trace.note``)."""
+    if tr.dropped:
+        ax.text(0.01, 0.99, f"earlier motions dropped: {tr.dropped} before t = {tr.times[0]:.3f} s "
+                f"(history keeps {tr.window})", transform=ax.transAxes, va="top", ha="left",
+                fontsize="small", color="firebrick")
 
 
 def plot_path_xy(tr: Trace, ax: Any = None) -> Any:
@@ -43,4 +52,5 @@ def plot_path_xy(tr: Trace, ax: Any = None) -> Any:
     ax.set_aspect("equal", adjustable="datalim")
     ax.legend(loc="best", fontsize="small")
     ax.grid(True, alpha=0.3)
+    _note_dropped(tr, ax)
     return fig

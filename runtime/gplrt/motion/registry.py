@@ -84,7 +84,8 @@ def build_robot(s: Session, n: int) -> RobotState:
     gripper = make_gripper(model)
     if gripper is not None:  # the fingers rest closed, on their stop (not beyond it)
         rest[gripper.axis] = max(rest[gripper.axis], gripper.closed_stop)
-    robot = RobotState(n, model, limits, model.tool.copy(), model.base.copy(), MotionQueue(rest),
+    robot = RobotState(n, model, limits, model.tool.copy(), model.base.copy(),
+                       MotionQueue(rest, window=s.history, clock=s.scheduler.clock.now),
                        eom_waiters=WaitQueue(f"robot {n} end of motion"), gripper=gripper,
                        motor_scale=joint_to_motor_scale(pdb, n, model.axis_count))
     s.robots[n] = robot

@@ -138,7 +138,7 @@ class QueuedFrames:
         return self.model.inverse_path(self._now(Ts), seeds)
 
     def forward(self, q: Vec) -> np.ndarray:
-        return self.base @ self.model.flange([float(v) for v in q]) @ self.tool
+        return self.base @ self.model.flange(q) @ self.tool
 
 
 @dataclass(eq=False)
@@ -273,7 +273,7 @@ class RobotState:
         return self.model.forward(angles), self.model.config_of(angles)
 
     def forward(self, joints: Vec) -> np.ndarray:
-        return self.model.forward([float(v) for v in joints])
+        return self.model.forward(joints)  # (an array, a list or a tuple: the model takes each)
 
     def inverse(self, T: np.ndarray, config: int, current: Vec, check: bool = True) -> Vec:
         seed = current.tolist() if type(current) is np.ndarray else [float(v) for v in current]
@@ -639,6 +639,8 @@ class RobotState:
         queue._starts.append(seg.t0)
         if isinstance(seg, PathSegment):
             queue.paths_pending = True
+        if len(queue.history) > queue.trim_at:
+            queue.trim()
         if self.pending_triggers:  # Move.Trigger armed for this motion
             triggers, self.pending_triggers = self.pending_triggers, []
             fire_triggers(current_session(), seg, triggers)

@@ -102,7 +102,7 @@ def _source(robot: RobotState) -> np.ndarray:
 
 def _cart(robot: RobotState, q: np.ndarray) -> Location:
     loc = Location.from_matrix(robot.forward(q))
-    loc.Config = robot.model.config_of([float(v) for v in q])
+    loc.Config = robot.model.config_of(q)
     return loc
 
 

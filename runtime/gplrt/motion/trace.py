@@ -8,6 +8,11 @@ target.  Robots without kinematics give ``xyz`` filled with NaN.
 A trace is what the robot has done: taken while motions still run, it ends at the controller's
 present time.  Reading further would run a straight line's cycles ahead of the clock, and a stop
 found there would reach the program before it happened (path_run).
+
+A trace covers what the robot's history still holds: the last ``Simulation(history=N)`` motions
+(``gplrt.motion.queue``).  When older ones were dropped the trace starts at the first motion kept,
+and says so: ``dropped`` counts the motions before it and ``note`` is a sentence for a plot or a
+report (``plot.py`` writes it on the figure).
 """
 
 from __future__ import annotations
@@ -25,18 +30,40 @@ if TYPE_CHECKING:
 DEFAULT_DT = 0.004
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class Trace:
-    """``times`` (N,), ``joints`` (N, axes) in mm/deg, ``xyz`` (N, 3) tool-tip mm, ``names`` of the axes."""
+    """``times`` (N,), ``joints`` (N, axes) in mm/deg, ``xyz`` (N, 3) tool-tip mm, ``names`` of the
+    axes; ``dropped``: the motions before ``times[0]`` the history no longer holds, of a history
+    that keeps ``window`` motions (None: every one)."""
 
     times: NDArray[np.float64]
     joints: NDArray[np.float64]
     xyz: NDArray[np.float64]
     names: tuple[str, ...]
+    dropped: int = 0
+    window: int | None = None
 
     def __iter__(self) -> Iterator[NDArray[np.float64]]:
         """``times, joints, xyz = sim.trace(1)``."""
         return iter((self.times, self.joints, self.xyz))
+
+    @property
+    def complete(self) -> bool:
+        """True when the trace starts at the robot's first motion (nothing was dropped)."""
+        return self.dropped == 0
+
+    @property
+    def note(self) -> str:
+        """"" for a complete trace, else what is missing and how to keep it."""
+        if not self.dropped:
+            return ""
+        return (f"motions before t = {self.times[0]:.3f} s dropped ({self.dropped} of them; the history keeps "
+                f"the last {self.window}): Simulation(history=None) or gpl2py run --history all keeps every one")
+
+    def __repr__(self) -> str:
+        span = f"t = {self.times[0]:.3f}-{self.times[-1]:.3f} s" if len(self.times) else "empty"
+        text = f"<Trace {len(self.times)} samples of {', '.join(self.names)}, {span}>"
+        return f"{text[:-1]}; {self.note}>" if self.dropped else text
 
 
 def _default_dt(sim: Session, robot_number: int) -> float:
@@ -73,4 +100,5 @@ def trace(sim: Session, robot: int = 1, dt: float | None = None) -> Trace:
     if state.model.has_kinematics:
         for i in range(len(times)):
             xyz[i] = state.forward(q[i])[:3, 3]
-    return Trace(times, q, xyz, tuple(state.model.joint_names))
+    queue = state.queue
+    return Trace(times, q, xyz, tuple(state.model.joint_names), queue.dropped, queue.window)

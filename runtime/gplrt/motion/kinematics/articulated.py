@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 
 import numpy as np
 import pinocchio as pin
@@ -140,7 +141,7 @@ class Articulated6Model(RobotModel):
 
     # -- configuration --------------------------------------------------------------------------
 
-    def _branches(self, q: np.ndarray) -> tuple[bool, bool, bool]:
+    def _branches(self, q: Sequence[float]) -> tuple[bool, bool, bool]:
         """(righty, above, noflip) of SI joints."""
         phi = q[2] + self.gamma
         x_wrist = self.a1 + self.a2 * math.sin(q[1]) + self.l3 * math.sin(q[1] + phi)
@@ -148,7 +149,7 @@ class Articulated6Model(RobotModel):
         above = (math.sin(phi) >= 0.0) == righty
         return righty, above, wrap_pi(q[4]) >= 0.0
 
-    def _config(self, q: np.ndarray) -> int:
+    def _config(self, q: Sequence[float]) -> int:
         righty, above, noflip = self._branches(q)
         return ((GPL_RIGHTY if righty else GPL_LEFTY) | (GPL_ABOVE if above else GPL_BELOW)
                 | (GPL_NOFLIP if noflip else GPL_FLIP))
@@ -249,8 +250,11 @@ class Articulated6Model(RobotModel):
                                                          self.q_pin(seed))
         if err > 1e-9:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot, detail=f"numeric IK did not converge ({err:.2e})")
-        q = self.q_gpl(q_pin)
+        # Python floats for the turn choice: numpy scalars cost several times more per operation
+        q = self.q_gpl(q_pin).tolist()
+        now = current.tolist()
         single = bool(bits & GPL_SINGLE)
+        unwind = self._unwind
         for i in range(6):
-            q[i] = self._unwind(i, q[i], current, single=single)
-        return q
+            q[i] = unwind(i, q[i], now, single)
+        return np.array(q)

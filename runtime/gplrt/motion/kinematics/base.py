@@ -25,7 +25,10 @@ axes; poses are 4×4 homogeneous transforms with translation in mm):
 Internally everything is SI (m, rad) and conversions happen only in ``units.py``.  The forward
 kinematics always goes through the Pinocchio model (``pin_model``), which is built from the
 parameter database like a controller builds its kinematic module; closed-form solvers are used
-for the inverse where the geometry allows.
+for the inverse where the geometry allows.  ``forward`` and ``flange`` run on a copy of it in
+millimetres with a frame at the tool tip (``units.model_in_mm``, ``_finish_pin_model``): they are
+called for every ``Where`` and trace sample, and cost at most 3x the bare Pinocchio call
+(``benchmarks/kinematics_speed.py``).
 """
 
 from __future__ import annotations
@@ -35,6 +38,7 @@ import threading
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from enum import Enum
+from typing import NoReturn
 
 import numpy as np
 import pinocchio as pin
@@ -54,6 +58,7 @@ from gplrt.motion.kinematics.units import Matrix
 
 #: FLT_MAX as written in .pac files: "no limit".
 _FLT_MAX = 3.4e38
+_FLOAT64 = np.dtype(np.float64)
 
 
 class JointKind(Enum):
@@ -102,6 +107,9 @@ class RobotModel:
         self.pin_model: pin.Model | None = None
         self.pin_data: pin.Data | None = None
         self.flange_frame: int = -1
+        self._tool_frame: int = -1  # the tool tip's frame (``_finish_pin_model``)
+        #: Axes ``_pose`` accepts: none until the model has kinematics (``_refuse_joints`` says why).
+        self._fk_axes = -1
         # pin q index of each GPL axis (GPL axis order differs from tree order, e.g. the rail).
         self._q_index: list[int] = []
         #: The soft limits in GPL units with the slack ``check_limits`` allows, per axis.
@@ -123,7 +131,12 @@ class RobotModel:
 
     @tool.setter
     def tool(self, value: Matrix) -> None:
-        self._tool, self._tool_inv, self._tool_is_identity = _frozen_with_inverse(value)
+        tool, tool_inv, is_identity = _frozen_with_inverse(value)
+        if getattr(self, "pin_model", None) is not None:
+            with self._fk_lock:  # (a forward on another thread reads the tool frame)
+                self._tool = tool
+                self._fk_model.frames[self._tool_frame].placement = self._tool_placement_mm()
+        self._tool, self._tool_inv, self._tool_is_identity = tool, tool_inv, is_identity
         self._tool_inv_pose = matrix_to_pose(self._tool_inv)
         #: Tool⁻¹'s translation when it has no rotation (``inverse_pose``'s shortcut), else None
         self._tool_inv_shift = (tuple(self._tool_inv_pose[9:])
@@ -167,14 +180,37 @@ class RobotModel:
     # -- Pinocchio plumbing ---------------------------------------------------------------------
 
     def _finish_pin_model(self, model: pin.Model, gpl_joint_ids: Sequence[int], flange_frame: int) -> None:
-        """Record the built model; ``gpl_joint_ids[i]`` is the pin joint id of GPL axis i."""
+        """Record the built model; ``gpl_joint_ids[i]`` is the pin joint id of GPL axis i.
+
+        Also builds what ``forward`` and ``flange`` use: a copy of the model in millimetres
+        (``units.model_in_mm``) with a frame at the tool tip (the flange frame times Tool, moved
+        when Tool is assigned), so that ``Flange · Tool`` in mm comes straight out of Pinocchio,
+        and the order and factors that turn a GPL joint vector into its configuration."""
         self.pin_model = model
         self.pin_data = model.createData()
         self.flange_frame = flange_frame
         self._q_index = [model.joints[jid].idx_q for jid in gpl_joint_ids]
+        if model.nq != len(self._q_index) or sorted(self._q_index) != list(range(model.nq)):
+            raise ValueError(f"{self.name}: every GPL axis must be one configuration value of the model")
         # The soft limits from the PDb (16077/16078), not any URDF's, bound the model (spec §3 step 4).
         model.lowerPositionLimit = self.q_pin(self._lower_si)
         model.upperPositionLimit = self.q_pin(self._upper_si)
+
+        mm = self._fk_model = units.model_in_mm(model)
+        flange = mm.frames[flange_frame]
+        self._flange_placement_mm = flange.placement.copy()
+        self._tool_frame = mm.addFrame(pin.Frame("tool", flange.parentJoint, self._tool_placement_mm(),
+                                                 pin.FrameType.OP_FRAME))
+        self._fk_data = mm.createData()
+        self._fk_lock = threading.Lock()  # (its own pin.Data: forward never waits for an IK)
+        # Pinocchio's configuration holds the GPL axes in tree order: position p is GPL axis order[p].
+        order = sorted(range(len(self._q_index)), key=self._q_index.__getitem__)
+        self._fk_configuration = units.configuration_of(self._linear, order)
+        self._fk_axes = len(order)
+
+    def _tool_placement_mm(self) -> pin.SE3:
+        """The tool frame on the flange's joint: the flange's placement times Tool (mm)."""
+        return self._flange_placement_mm * units.matrix_to_se3_mm(self._tool)
 
     def q_pin(self, q_gpl_si: Sequence[float]) -> np.ndarray:
         """GPL-ordered SI joint vector → Pinocchio configuration vector."""
@@ -198,18 +234,36 @@ class RobotModel:
 
     # -- public GPL-unit API --------------------------------------------------------------------
 
-    def _to_si(self, joints: Sequence[float]) -> np.ndarray:
-        if len(joints) != self.axis_count:
-            raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(joints)} values given")
-        q = units.joints_to_q(joints, self._linear)
-        # A finite sum proves every value finite (cheap on the caller's list); the full check
-        # only when it is not.
-        if not math.isfinite(sum(joints)) and not np.all(np.isfinite(q)):
-            raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {list(joints)}")
-        return q
+    def _pose(self, joints: Sequence[float], frame: int) -> Matrix:
+        """4×4 (mm) of ``frame`` of the millimetre model at ``joints`` (mm/deg), checked: -1036
+        without kinematics, -202 for a wrong length or a value that is not finite.
+
+        One list step, one ``np.array`` (``units.configuration_of``) and the two Pinocchio calls:
+        ``forward`` runs for every ``Where`` and trace sample, and ``benchmarks/kinematics_speed.py``
+        holds it to 3x the bare Pinocchio call (each further Python call costs a tenth of that)."""
+        values = joints if type(joints) is list else joints.tolist() if type(joints) is np.ndarray else list(joints)
+        if len(values) != self._fk_axes or not math.isfinite(sum(values)):  # (a finite sum: every value finite)
+            self._refuse_joints(values)
+        q = self._fk_configuration(values)
+        model, data, lock = self._fk_model, self._fk_data, self._fk_lock
+        lock.acquire()  # one pin.Data: GPL threads must not interleave in it
+        try:
+            pin.forwardKinematics(model, data, q)
+            return pin.updateFramePlacement(model, data, frame).homogeneous  # type: ignore[no-any-return]
+        finally:
+            lock.release()
+
+    def _refuse_joints(self, values: list[float]) -> NoReturn:
+        """Why ``values`` cannot go through the kinematics (``_pose``): -1036, or -202."""
+        if self.pin_model is None:
+            raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
+        if len(values) != len(self._linear):
+            raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(values)} values given")
+        raise GplException(INVALID_ARGUMENT, detail=f"joint values must be finite: {values}")
 
     def _to_si_list(self, joints: Sequence[float]) -> list[float]:
-        """``_to_si`` as a list of Python floats (the scalar solvers' form)."""
+        """GPL joints (mm/deg) → SI (m/rad) as Python floats (the scalar solvers' form), checked:
+        -202 for a wrong length or a value that is not finite."""
         values = joints if type(joints) is list else joints.tolist() if type(joints) is np.ndarray else list(joints)
         if len(values) != len(self._linear):
             raise GplException(INVALID_ARGUMENT, detail=f"{self.name} has {self.axis_count} axes, {len(values)} values given")
@@ -219,14 +273,14 @@ class RobotModel:
 
     def flange(self, joints: Sequence[float]) -> Matrix:
         """Flange pose (mm) of a joint vector (mm/deg), without Base and Tool."""
-        return units.se3_to_matrix(self.flange_se3(self._to_si(joints)))
+        return self._pose(joints, self.flange_frame)
 
     def forward(self, joints: Sequence[float]) -> Matrix:
-        """``Base · Flange(joints) · Tool`` (mm): what ``Robot.Where`` reports."""
-        T = self.flange(joints)
-        if not self._base_is_identity:
-            T = self._base @ T
-        return T if self._tool_is_identity else T @ self._tool
+        """``Base · Flange(joints) · Tool`` (mm): what ``Robot.Where`` reports.  The Tool is the
+        tool frame's own placement in the millimetre model (``_finish_pin_model``)."""
+        if self._base_is_identity:
+            return self._pose(joints, self._tool_frame)
+        return self._base @ self._pose(joints, self._tool_frame)
 
     def inverse(self, T: Matrix, config_bits: int = 0, current_joints: Sequence[float] | None = None,
                 check: bool = True) -> list[float]:
@@ -234,11 +288,19 @@ class RobotModel:
 
         ``check=False`` skips the final soft-limit check (-1012): for reading a planned path
         between the samples its limits were checked at."""
-        T = np.asarray(T, dtype=float)
-        # A finite sum is a cheap proof that every element is finite (the full check only on failure).
-        if T.shape != (4, 4) or (not math.isfinite(float(T.sum())) and not np.all(np.isfinite(T))):
+        if type(T) is np.ndarray and T.shape == (4, 4) and T.dtype is _FLOAT64 and type(current_joints) is list:
+            # the usual call, straight to the model's closed form (``matrix_to_pose``'s first case)
+            (r11, r12, r13, x), (r21, r22, r23, y), (r31, r32, r33, z), _ = T.tolist()
+            pose = (r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z)
+            if math.isfinite(sum(pose)):  # (else the general steps' -202)
+                q = self._plain_inverse(pose, config_bits, current_joints, check)
+                if q is not None:
+                    return q
+        pose = matrix_to_pose(T)  # -202 for what is not a numeric matrix
+        if (T.shape if type(T) is np.ndarray else np.shape(T)) != (4, 4):
             raise GplException(INVALID_ARGUMENT, detail="target must be a finite 4x4 homogeneous transform")
-        return self.inverse_pose(matrix_to_pose(T), config_bits, current_joints, check)
+        # (``inverse_pose`` refuses a pose that is not finite, -202)
+        return self.inverse_pose(pose, config_bits, current_joints, check)
 
     def inverse_pose(self, pose: Pose, config_bits: int = 0, current_joints: Sequence[float] | None = None,
                      check: bool = True) -> list[float]:
@@ -246,7 +308,32 @@ class RobotModel:
 
         Why a second entry point: a Location is a pose tuple, and a straight ``Move.Loc`` solves
         its destination when it is queued — on the hot path ``benchmarks/motion_speed.py`` times.
-        Converting to a matrix and back costs more than a closed-form solution itself."""
+        Converting to a matrix and back costs more than a closed-form solution itself.
+
+        The model's ``_plain_inverse`` answers first; what it leaves (None) takes the general
+        steps, which check everything and raise the controller's codes."""
+        if current_joints is None:
+            current: list[float] = self.ready_joints()
+        else:
+            current = (current_joints if type(current_joints) is list else current_joints.tolist()
+                       if type(current_joints) is np.ndarray else list(current_joints))
+        q = self._plain_inverse(pose, config_bits, current, check) if math.isfinite(sum(pose)) else None
+        return q if q is not None else self._general_inverse(pose, config_bits, current, check)
+
+    def _plain_inverse(self, pose: Pose, bits: int, current: list[float], check: bool) -> list[float] | None:
+        """The model's closed form for the case nearly every call is, in one method, or None for
+        the general steps (``_general_inverse``).  Its answer must be theirs, to the bit.  ``pose``
+        is finite (the callers check: the general steps refuse the rest with -202).
+
+        Why: ``inverse`` runs for every Cartesian ``Move`` and every cycle of a straight line, and
+        the general steps' calls cost more than a closed-form solution (``benchmarks/
+        kinematics_speed.py`` holds the wrappers to 3x the bare closed form).  Models without a
+        closed form (the articulated arm's numeric refinement) keep this default."""
+        return None
+
+    def _general_inverse(self, pose: Pose, config_bits: int, current: list[float], check: bool) -> list[float]:
+        """``inverse_pose`` step by step: the checks (-1036, -202), Base and Tool, the model's
+        ``_solve_pose`` in SI, the soft limits (-1012)."""
         if self.pin_model is None:
             raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
         if not math.isfinite(sum(pose)):
@@ -262,7 +349,6 @@ class RobotModel:
                 tx, ty, tz = shift
                 pose = (r11, r12, r13, r21, r22, r23, r31, r32, r33, r11 * tx + r12 * ty + r13 * tz + x,
                         r21 * tx + r22 * ty + r23 * tz + y, r31 * tx + r32 * ty + r33 * tz + z)
-        current = self.ready_joints() if current_joints is None else current_joints
         mm = units.MM_PER_M
         q = self._solve_pose(pose[:9], (pose[9] / mm, pose[10] / mm, pose[11] / mm), int(config_bits),
                              self._to_si_list(current))
@@ -295,7 +381,7 @@ class RobotModel:
         """Configuration bits of a joint vector (mm/deg)."""
         if self.pin_model is None:
             return 0
-        return self._config(self._to_si(joints))
+        return self._config(self._to_si_list(joints))  # (Python floats: ``_config`` does scalar math)
 
     def check_limits(self, joints: Sequence[float]) -> None:
         """-1012 *Joint out-of-range* (with ``Axis``) for the first axis outside its soft limits."""
@@ -327,7 +413,7 @@ class RobotModel:
         """Flange target (SI) → GPL-ordered SI joints."""
         raise GplException(KINEMATICS_NOT_INSTALLED, detail=f"{self.name}: robot type {self.module}")
 
-    def _config(self, q: np.ndarray) -> int:
+    def _config(self, q: Sequence[float]) -> int:
         return 0
 
     def _unwind(self, i: int, angle: float, current: np.ndarray, single: bool = False) -> float:

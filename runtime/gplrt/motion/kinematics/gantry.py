@@ -24,6 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
+from gplrt.geometry.transforms import Pose
 from gplrt.lang.errors import INVALID_AXIS_COUNT, INVALID_CARTESIAN, GplException
 from gplrt.motion.kinematics.base import (
     RobotModel,
@@ -31,7 +32,8 @@ from gplrt.motion.kinematics.base import (
     read_joints,
     read_transform,
 )
-from gplrt.motion.kinematics.config import GPL_SINGLE
+from gplrt.motion.kinematics.config import GPL_SINGLE, TWO_PI
+from gplrt.motion.kinematics.units import MM_PER_M
 
 MODULE_XYZTHETA = 2
 _AXES = ((0x01, "x"), (0x02, "y"), (0x04, "z"), (0x08, "theta"), (0x10, "gripper"))
@@ -40,6 +42,8 @@ _LINEAR_ROLES = {"x", "y", "z", "gripper"}
 _TOLERANCE = math.sin(math.radians(1e-6))
 #: Allowed coordinate error (m) for a coordinate whose axis is missing.
 _POSITION_TOLERANCE = 1e-9
+# (``_plain_inverse``: module-level names save an attribute lookup each)
+_atan2, _hypot, _radians, _degrees, _PI = math.atan2, math.hypot, math.radians, math.degrees, math.pi
 
 
 class GantryModel(RobotModel):
@@ -53,7 +57,15 @@ class GantryModel(RobotModel):
         self.roles = roles
         self._i = {role: roles.index(role) for role in roles}
         self.single_axis = self._i.get("theta")
+        self._n_axes = len(roles)
+        #: (x, y, z, theta) axis indices when the gantry has all four (``_plain_inverse``), else None
+        self._plain_axes = (tuple(self._i[r] for r in ("x", "y", "z", "theta"))
+                            if all(r in self._i for r in ("x", "y", "z", "theta")) else None)
         self._build_pin_model()
+        #: ``check_limits``'s bounds of the four axes (lower, upper, ...) and of the others
+        self._plain_bounds = tuple(b for k in self._plain_axes or () for b in self._joint_bounds[k])
+        solved = self._plain_axes or ()
+        self._plain_others = [(k, *self._joint_bounds[k]) for k in range(len(roles)) if k not in solved]
 
     def _build_pin_model(self) -> None:
         if not any(role in self._i for role in ("x", "y", "z", "theta")):
@@ -73,6 +85,43 @@ class GantryModel(RobotModel):
         if "gripper" in self._i:
             ids["gripper"] = model.addJoint(parent, pin.JointModelPY(), pin.SE3.Identity(), "Gripper")
         self._finish_pin_model(model, [ids[r] for r in self.roles], flange)
+
+    def _plain_inverse(self, pose: Pose, bits: int, current: list[float], check: bool) -> list[float] | None:
+        """The steps of ``RobotModel.inverse_pose`` and ``_solve_pose`` for the case nearly every
+        call is — no Base or Tool, every axis X, Y, Z and theta present, the tool vertical, theta's
+        nearest turn within its limits, no ``GPL_Single``, the result within the soft limits — in
+        one method; None for anything else, which the general steps then solve (and refuse with
+        their codes).  The arithmetic is theirs, operation for operation (metres and back
+        included), so the two agree to the bit (tests/motion/test_kinematics_gantry.py), except
+        that an axis the gantry does not solve (the gripper) keeps its value exactly.
+
+        Why: the general steps cost twenty times the gantry's closed form, which is four
+        assignments and an ``atan2`` (``benchmarks/kinematics_speed.py``)."""
+        axes = self._plain_axes
+        if axes is None or bits & GPL_SINGLE or len(current) != self._n_axes or not (
+                self._base_is_identity and self._tool_is_identity):
+            return None
+        r11, _, r13, r21, _, r23, _, _, r33, x, y, z = pose
+        if not (_hypot(r13, r23) <= _TOLERANCE and r33 >= 0.0):
+            return None
+        ix, iy, iz, it = axes
+        theta = -_atan2(r21, r11)
+        now = _radians(current[it])
+        near = theta + round((now - theta) / TWO_PI) * TWO_PI  # ``_unwind``'s first case
+        if not (abs(near - now) < _PI and self._slack_lower_si[it] <= near <= self._slack_upper_si[it]):
+            return None
+        mm = MM_PER_M
+        qx, qy, qz, qt = x / mm * mm, y / mm * mm, -(z / mm) * mm, _degrees(near)
+        if check:  # ``check_limits``: the four axes solved, then the others (the gripper) as they are
+            xl, xh, yl, yh, zl, zh, tl, th = self._plain_bounds
+            if not (xl <= qx <= xh and yl <= qy <= yh and zl <= qz <= zh and tl <= qt <= th):
+                return None
+            for k, lo, hi in self._plain_others:
+                if not lo <= current[k] <= hi:
+                    return None
+        q = current.copy()
+        q[ix], q[iy], q[iz], q[it] = qx, qy, qz, qt
+        return q
 
     def _solve_pose(self, rotation: Sequence[float], position: Sequence[float], bits: int,
                     current: list[float]) -> list[float]:
