@@ -1130,6 +1130,11 @@ def _falls_through(block: A.Block) -> bool:
         return any(_falls_through(b) for b in bodies)
     if isinstance(last, A.Select) and any(c.is_else for c in last.cases) and not _has_exit(last, "Select"):
         return any(_falls_through(c.body) for c in last.cases)
+    if isinstance(last, A.Try) and not _has_exit(last, "Try"):
+        # a Try whose body and Catch both return (or whose Finally does) ends the procedure
+        if last.finally_ is not None and not _falls_through(last.finally_.body):
+            return False
+        return _falls_through(last.body) or (last.catch is not None and _falls_through(last.catch.body))
     return True
 
 

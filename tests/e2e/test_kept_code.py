@@ -249,3 +249,25 @@ def test_a_goto_to_the_exit_label_is_the_exit_itself(tmp_path: Path) -> None:
     assert "_g1" not in code and "while True" not in code and "_jump" not in code
     assert code.count("return ret\n") == 3  # the two jumps and the label's own Return
     assert "# _exit:" in code and "# done:" in code
+
+
+def test_no_unreachable_return_after_a_try_whose_body_and_catch_return(tmp_path: Path) -> None:
+    src = """Module Main
+    Function Safe(ByVal a As Integer, ByVal b As Integer) As Integer
+        Dim e As Exception
+        Try
+            Return a \\ b
+        Catch e
+            Return e.ErrorCode
+        End Try
+    End Function
+    Public Sub Main()
+        Console.WriteLine(CStr(Safe(7, 2)) & " " & CStr(Safe(1, 0)))
+    End Sub
+End Module
+"""
+    r = run_gpl(tmp_path, src)
+    assert r.output == "3 -709\n", r.log
+    code = r.files[f"{r.package.__name__}/main_mod.py"]
+    body = code.split("def Safe")[1].split("\n\n\n")[0]
+    assert body.rstrip().endswith("return e.ErrorCode")  # nothing unreachable after the try
