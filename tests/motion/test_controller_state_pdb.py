@@ -86,6 +86,43 @@ def test_cap_writes_with_power_on_apply_to_the_next_motion() -> None:
     assert after == pytest.approx(expected, abs=1e-9)
 
 
+def _line_there_and_back(prof: Profile) -> float:
+    """A straight line out and back from a Cartesian start: the planned duration of the return."""
+    start, goal = Location(), Location()
+    start.XYZ(400.0, 0.0, 300.0, 0.0, 90.0, 180.0)
+    goal.XYZ(450.0, 100.0, 250.0, 0.0, 90.0, 180.0)
+    Move.Loc(start, Profile())
+    Move.Loc(goal, prof)
+    Move.Loc(start, prof)
+    seg = current_session().robots[1].queue.last
+    Move.WaitForEOM()
+    return float(seg.end - seg.t0)
+
+
+def test_cap_writes_with_power_on_apply_to_the_next_straight_line() -> None:
+    """A straight line's limits are memoised per Profile (``RobotLimits.line_limits``): a write
+    must reach the next line as it reaches the next joint move."""
+    line = fast()
+    line.Straight = True
+    s = Simulation(capture=True)
+    with s:
+        ready()
+        before = _line_there_and_back(line)
+        Controller.set_PDbNum(2704, 40.0)  # Max %speed allowed: 150 -> 40
+        after = _line_there_and_back(line)
+
+    def edit(db: object) -> None:
+        db.set(2704, 40.0, index=1)  # type: ignore[attr-defined]
+
+    s = Simulation(capture=True)
+    with s:
+        edit(registry.pdb_of(s))
+        ready()
+        expected = _line_there_and_back(line)
+    assert after > before * 1.5
+    assert after == pytest.approx(expected, abs=1e-9)
+
+
 def test_the_hard_speed_cap_used_along_paths_follows_2704() -> None:
     s = Simulation(capture=True)
     with s:

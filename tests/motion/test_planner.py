@@ -188,3 +188,23 @@ def test_a_motion_beyond_ruckigs_duration_range_is_a_gpl_error_not_a_valueerror(
     lim = LIMITS.joint_limits(prof, 100.0)
     q0 = np.array([300.0, 0.0, 90.0, 0.0, 100.0])
     assert code_of(plan_axes, q0, None, None, q0 + [300.0, 0, 0, 0, 0], lim) == PLANNING_FAILED
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 5), st.integers(0, 2**32 - 1), st.booleans())
+def test_plan_sample_is_ruckigs_own_evaluation_bit_for_bit(n: int, seed: int, moving: bool) -> None:
+    """``Plan.sample`` (every cycle of a path motion, the blend planner's overlap) gives exactly
+    what ``Plan.at`` (Ruckig's ``at_time``) gives at each time, before, inside and after the plan:
+    with a start in motion too, where a brake pre-phase sends it to Ruckig itself."""
+    rng = np.random.default_rng(seed)
+    q0, q1 = rng.uniform(LOWER, UPPER)[:n], rng.uniform(LOWER, UPPER)[:n]
+    v0 = rng.uniform(-200.0, 200.0, n) if moving else None
+    a0 = rng.uniform(-500.0, 500.0, n) if moving else None
+    lim = LIMITS.joint_limits(Profile(), 100.0)
+    lim = AxisLimits(lim.velocity[:n], lim.accel[:n], lim.decel[:n], lim.jerk[:n])
+    plan = plan_axes(q0, v0, a0, q1, lim)
+    ts = np.concatenate((rng.uniform(0.0, plan.duration, 50), [0.0, plan.duration, -1.0, plan.duration + 1.0]))
+    P, V, A = plan.sample(ts)
+    for i, t in enumerate(ts):
+        p, v, a = plan.at(float(t))
+        assert P[i].tolist() == p and V[i].tolist() == v and A[i].tolist() == a, t

@@ -75,6 +75,20 @@ class PathLimits:
     decel_ramp: float
 
 
+@dataclass(frozen=True)
+class LineLimits:
+    """What the 1-D plan of a Cartesian path needs of one Profile (``path_run.path_limits``):
+    the speed, acceleration and deceleration limits of the tool's length, its turn and each
+    joint, in that order, as Python float lists, and the two ramps.  Memoised per Profile
+    values (``RobotLimits.line_limits``) so that a straight ``Move.Loc`` only divides."""
+
+    velocity: list[float]
+    accel: list[float]
+    decel: list[float]
+    accel_ramp: float
+    decel_ramp: float
+
+
 @dataclass(eq=False)
 class RobotLimits:
     """The reference (100 %) values of one robot (``joint_limits`` results are memoised per
@@ -91,6 +105,7 @@ class RobotLimits:
     settle_time: float
     _joint_cache: dict[tuple[float, ...], AxisLimits] = field(default_factory=dict, repr=False)
     _path_cache: dict[tuple[float, ...], PathLimits] = field(default_factory=dict, repr=False)
+    _line_cache: dict[tuple[float, ...], LineLimits] = field(default_factory=dict, repr=False)
     _hard: tuple[Vec, Vec] | None = field(default=None, repr=False)
 
     @classmethod
@@ -131,14 +146,15 @@ class RobotLimits:
     @property
     def max_joint_speed(self) -> Vec:
         """Each joint's hard maximum speed, 2700 × 2704 %: the fastest any Profile may ask."""
-        return self._hard_limits()[0]
+        return self.hard_limits()[0]
 
     @property
     def max_joint_accel(self) -> Vec:
         """Each joint's hard maximum acceleration, 2702 × the larger of 2705 % and 2706 %."""
-        return self._hard_limits()[1]
+        return self.hard_limits()[1]
 
-    def _hard_limits(self) -> tuple[Vec, Vec]:
+    def hard_limits(self) -> tuple[Vec, Vec]:
+        """(``max_joint_speed``, ``max_joint_accel``) in one call (a straight Move takes both)."""
         if self._hard is None:
             pct = max(self.max_accel_pct, self.max_decel_pct)
             self._hard = (self.joint_speed * (self.max_speed_pct / 100.0), self.joint_accel * (pct / 100.0))
@@ -173,6 +189,19 @@ class RobotLimits:
         key = (prof._speed, prof._speed2, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
         lim = self._path_cache.get(key)
         return lim if lim is not None else _remember(self._path_cache, key, self._path_limits(prof, system_speed))
+
+    def line_limits(self, prof: Profile, system_speed: float) -> LineLimits:
+        """``path_limits`` and ``joint_limits`` of ``prof`` side by side, as a line's 1-D plan
+        reads them (memoised per Profile values like them)."""
+        key = (prof._speed, prof._speed2, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
+        lim = self._line_cache.get(key)
+        return lim if lim is not None else _remember(self._line_cache, key, self._line_limits(prof, system_speed))
+
+    def _line_limits(self, prof: Profile, system_speed: float) -> LineLimits:
+        cart, (vel, acc, dec, _) = self.path_limits(prof, system_speed), self.joint_limits(prof, system_speed).lists
+        return LineLimits([cart.linear_velocity, cart.rotation_velocity, *vel],
+                          [cart.linear_accel, cart.rotation_accel, *acc],
+                          [cart.linear_decel, cart.rotation_decel, *dec], prof._accel_ramp, prof._decel_ramp)
 
     def _path_limits(self, prof: Profile, system_speed: float) -> PathLimits:
         speed, accel, decel = self._pcts(prof, system_speed)

@@ -357,6 +357,8 @@ class _MoveClass:
                     end = robot.queue.end_time
             if sched.clock.reached(end):
                 break
+            if sched.run_alone_until(end):  # one GPL thread, as a rule: nothing else can happen first
+                continue
             with controller_wait(end):
                 sched.wait(robot.eom_waiters, end, until=lambda: sched.clock.reached(robot.queue.end_time))
         robot.raise_async_error()

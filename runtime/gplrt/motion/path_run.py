@@ -35,13 +35,14 @@ from __future__ import annotations
 
 import bisect
 import math
+import operator
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from gplrt.lang.errors import AXIS_OVER_SPEED, SOFT_ENVELOPE_ERROR, GplException
-from gplrt.motion.limits import MIN_RAMP, AxisLimits, PathLimits, Vec
+from gplrt.motion.limits import MIN_RAMP, LineLimits, Vec
 from gplrt.motion.planner import Plan
 from gplrt.motion.straight import Path, PathIK, PathJoints
 
@@ -51,8 +52,9 @@ CYCLE = 0.016
 END_GAP = CYCLE / 4
 #: Relative tolerance on the over-speed check (finite differences over one cycle).
 OVER_SPEED_TOLERANCE = 1e-6
-#: Cycles solved per batch (``RobotModel.inverse_path``) when the state is read far ahead.
-BATCH = 64
+#: Cycles solved per batch (``RobotModel.inverse_path``) when the state is read far ahead
+#: (8 s of motion: a line is solved in one batch as a rule; a longer one in a few).
+BATCH = 512
 
 
 @dataclass(frozen=True)
@@ -66,30 +68,27 @@ class Fault:
     error: GplException
 
 
-def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, joint: AxisLimits, cart: PathLimits, accel_ramp: float,
-                decel_ramp: float) -> tuple[float, float, float, float]:
+def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, lim: LineLimits) -> tuple[float, float, float, float]:
     """(u̇_max, ü_max accel, ü_max decel, jerk) of the 1-D plan: the Cartesian limits over the
     path's length and turn, and the joints' chord (see the module docstring).
 
     Each bound is ``limit / extent`` (u runs 0 → 1 over the extent) and the smallest wins;
     written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it."""
     inf = math.inf
-    vel, accel, decel, _ = joint.lists  # Python floats: faster than numpy on a handful of axes
-    extents = [path.length, path.turn, *(abs(b - a) for a, b in zip(q0.tolist(), q1.tolist()))]
-    v_lims = [cart.linear_velocity, cart.rotation_velocity, *vel]
-    a_lims = [cart.linear_accel, cart.rotation_accel, *accel]
-    d_lims = [cart.linear_decel, cart.rotation_decel, *decel]
     v = acc = dec = inf
-    for extent, lv, la, ld in zip(extents, v_lims, a_lims, d_lims):
+    vel, accel, decel = lim.velocity, lim.accel, lim.decel
+    # the extents: the path's length and turn, then each joint's chord |q1 − q0|
+    for i, extent in enumerate((path.length, path.turn, *map(abs, map(operator.sub, q1.tolist(), q0.tolist())))):
         if extent > 1e-12:
-            if lv / extent < v:
-                v = lv / extent
-            if la / extent < acc:
-                acc = la / extent
-            if ld / extent < dec:
-                dec = ld / extent
+            if vel[i] / extent < v:
+                v = vel[i] / extent
+            if accel[i] / extent < acc:
+                acc = accel[i] / extent
+            if decel[i] / extent < dec:
+                dec = decel[i] / extent
     if v == inf:  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
+    accel_ramp, decel_ramp = lim.accel_ramp, lim.decel_ramp
     ja = acc / accel_ramp if accel_ramp >= MIN_RAMP else inf
     jd = dec / decel_ramp if decel_ramp >= MIN_RAMP else inf
     return v, acc, dec, ja if ja < jd else jd
@@ -161,7 +160,9 @@ class PathRun:
         k1 = int(math.floor(min(t, end) / CYCLE + 1e-9))
         # a cycle closer than END_GAP to the end is left to the end itself: a sliver of an interval
         # there turns rounding into speeds and accelerations (``_check_rates``)
-        times = [k * CYCLE for k in range(k0, k1 + 1) if k * CYCLE < end - END_GAP]
+        times = (np.arange(k0, k1 + 1) * CYCLE).tolist()  # k · CYCLE, as Python floats multiply
+        while times and times[-1] >= end - END_GAP:
+            times.pop()
         if t >= end - 1e-12:
             times.append(end)
         i = 0
@@ -180,8 +181,7 @@ class PathRun:
         to the first that fails; then the joint speeds of all the cycles are checked at once.
         The first cycle that fails either way stops the motion at the one before it — the same
         cycle a check of each cycle in turn would stop at."""
-        plan_at = self.plan.at
-        us = [min(1.0, max(0.0, plan_at(tk)[0][0])) for tk in times]
+        us = np.clip(self.plan.sample(np.array(times))[0][:, 0], 0.0, 1.0).tolist()
         last_is_end = times[-1] >= self.plan.duration
         inner = us[:-1] if last_is_end else us
         prev = self.qs[-1]

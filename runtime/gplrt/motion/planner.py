@@ -66,16 +66,73 @@ def _set(given: dict[str, object], inp: InputParameter, name: str, value: object
 
 
 class Plan:
-    """A planned Ruckig trajectory; ``at(t)`` gives (position, velocity, acceleration) lists."""
+    """A planned Ruckig trajectory; ``at(t)`` gives (position, velocity, acceleration) lists,
+    ``sample(ts)`` the same at many times at once, as arrays."""
 
-    __slots__ = ("traj", "duration")
+    __slots__ = ("traj", "duration", "_pieces")
 
     def __init__(self, traj: Trajectory, duration: float) -> None:
         self.traj = traj
         self.duration = duration
+        self._pieces: _Pieces | None = None
 
     def at(self, t: float) -> tuple[list[float], list[float], list[float]]:
         return self.traj.at_time(min(max(t, 0.0), self.duration))  # type: ignore[no-any-return]
+
+    def sample(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``at(t)`` for every ``t`` of ``ts``: positions, velocities, accelerations (N×dof).
+
+        Why: a path motion's cycles and the blend planner read a plan at dozens of times, and
+        one ``at_time`` call per time costs more than the arithmetic.  This is Ruckig's own
+        evaluation (``Trajectory::at_time``: the phase whose cumulative end is the first past
+        ``t``, then ``p + t·(v + t·(a/2 + t·j/6))``) in numpy, operation for operation, so the
+        values are those ``at`` gives (tests/motion/test_planner.py checks them bit for bit)."""
+        t = np.clip(np.asarray(ts, dtype=float), 0.0, self.duration)
+        pieces = self._pieces
+        if pieces is None:
+            pieces = self._pieces = _pieces(self.traj)
+        if pieces is _AT_TIME:  # a profile with a brake or accel pre-phase: Ruckig itself
+            states = [self.traj.at_time(float(x)) for x in t]
+            return tuple(np.array([st[i] for st in states]).reshape(len(t), -1) for i in range(3))  # type: ignore[return-value]
+        starts, ends, p0, v0, a0, j = pieces
+        T = t[:, None]
+        # upper_bound over each DOF's cumulative phase ends (N×dof); past the last one, the final
+        # state with no jerk (Ruckig's "t_diff >= t_sum.back()" case); phase 0 starts at 0.0,
+        # and t − 0.0 is t, as Ruckig leaves it
+        k = (T[:, :, None] >= ends[None, :, :]).sum(axis=2)
+        rows = np.arange(len(ends))[None, :]
+        dt = T - starts[rows, k]
+        pk, vk, ak, jk = p0[rows, k], v0[rows, k], a0[rows, k], j[rows, k]
+        P = pk + dt * (vk + dt * (ak / 2.0 + dt * jk / 6.0))
+        V = vk + dt * (ak + dt * jk / 2.0)
+        A = ak + dt * jk
+        end = t >= self.duration  # Ruckig's "time >= duration": the final state itself
+        if end.any():
+            P[end], V[end], A[end] = p0[:, -1], v0[:, -1], a0[:, -1]
+        return P, V, A
+
+
+#: (phase starts, phase ends, start positions, velocities, accelerations, jerks): dof×8 arrays
+#: (ends dof×7) for ``Plan.sample``
+_Pieces = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+_AT_TIME: _Pieces = (np.empty(0),) * 6
+
+
+def _pieces(traj: Trajectory) -> _Pieces:
+    """The phases of a one-section trajectory's profiles, for ``Plan.sample``; ``_AT_TIME``
+    when Ruckig's own evaluation must be used (a brake or accel pre-phase, several sections)."""
+    sections = traj.profiles
+    if len(sections) != 1:
+        return _AT_TIME
+    profiles = sections[0]
+    for prof in profiles:
+        if prof.brake.duration > 0.0 or prof.accel.duration > 0.0:
+            return _AT_TIME
+    ends = np.cumsum([prof.t for prof in profiles], axis=1)  # Ruckig's t_sum: the same running sums
+    starts = np.concatenate((np.zeros((len(profiles), 1)), ends), axis=1)
+    jerk = np.concatenate(([prof.j for prof in profiles], np.zeros((len(profiles), 1))), axis=1)  # past the end: none
+    return (starts, ends, np.array([prof.p for prof in profiles]), np.array([prof.v for prof in profiles]),
+            np.array([prof.a for prof in profiles]), jerk)
 
 
 #: Ruckig occasionally fails on inputs that sit exactly on a profile boundary (for instance a
@@ -183,8 +240,7 @@ def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: f
     """One-DOF trajectory of a path parameter from (s0, v0, a0) to s1 at rest (s1 ≥ s0).
 
     A straight ``Move.Loc`` plans one of these when it is queued: the start (0 → 1 from rest,
-    as a rule) repeats, and so do the limits of a Profile, so only what changed is handed to
-    Ruckig."""
+    as a rule) repeats, so it is handed to Ruckig only when it changes."""
     otg, inp, given = _cache.solvers.get(1) or _solver(1)
     if given.get("mode") is not _SCALAR:
         given.clear()
@@ -200,13 +256,12 @@ def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: f
         inp.current_acceleration = [a0]
         inp.target_position = [s1]
         given["start"] = start
-    limits = (vmax, amax, dmax, jerk)
-    if given.get("limits") != limits:
-        inp.max_velocity = [vmax]
-        inp.max_acceleration = [amax]
-        inp.min_acceleration = [-dmax]
-        inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
-        given["limits"] = limits
+    # (the limits are set every time: they follow each line's length and chord, so a memo of
+    # them would cost more than it saves)
+    inp.max_velocity = [vmax]
+    inp.max_acceleration = [amax]
+    inp.min_acceleration = [-dmax]
+    inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
     return _calculate(otg, inp, given, 1, "path move")
 
 

@@ -111,8 +111,8 @@ class JointSegment(Segment):
 
     def rates(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         assert self.plan is not None
-        pva = [self.plan.at(float(t) - self.t0) for t in ts]
-        return np.array([x[1] for x in pva]), np.array([x[2] for x in pva])
+        _, v, a = self.plan.sample(np.asarray(ts, dtype=float) - self.t0)
+        return v, a
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         assert self.plan is not None
@@ -135,10 +135,15 @@ class PathSegment(Segment):
         p, v, a = self.plan.at(t - self.t0)
         return p[0], v[0], a[0]
 
+    def parameters(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``parameter(t)`` at every time of ``ts``: (u, u̇, ü) arrays."""
+        assert self.plan is not None
+        u, ud, udd = self.plan.sample(np.asarray(ts, dtype=float) - self.t0)
+        return u[:, 0], ud[:, 0], udd[:, 0]
+
     def rates(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         assert self.path_joints is not None
-        u, ud, udd = np.array([self.parameter(float(t)) for t in ts]).T
-        return self.path_joints.rates(u, ud, udd)
+        return self.path_joints.rates(*self.parameters(ts))
 
     def _stopped(self, t: float) -> Vec | None:
         """The joints the robot stopped at if a mid-path error stopped it by ``t`` (the cycles

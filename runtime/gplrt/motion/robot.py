@@ -480,13 +480,21 @@ class RobotState:
         the path parameter.  The joints along the way are solved cycle by cycle as the motion
         runs (``path_run.PathRun``, ``MotionQueue.advance``).  ``benchmarks/motion_speed.py``
         times this against a bare Ruckig call, so it keeps to Python floats where it can."""
-        self._check_stopped()
-        blend_from = self._blend_source(now)
-        if blend_from is not None:
+        if self.async_error or self.queue.fault is not None:
+            self.raise_async_error()  # (``_check_stopped``, inlined on this hot path)
+        history = self.queue.history
+        if not history:  # (``_blend_source`` and ``_start``'s commonest cases first)
+            blend_from, t0, q0 = None, now, self.queue.rest
+        elif history[-1].end <= now + CLOCK_RESOLUTION:  # idle: at rest where the last motion left it
+            blend_from, t0, q0 = None, now, history[-1].q_end
+        elif (blend_from := self._blend_source(now)) is not None:
             t0, q0 = blend_from.end, blend_from.q_end  # the line starts at the via point
         else:
             t0, q0, _, _ = self._start(now, can_blend=False)
-        path = make_path(self.pose_of(q0))
+        frames, model = self._frames, self.model
+        if frames is None or frames.tool is not model.tool or frames.base is not model.base:
+            frames = self._frames = QueuedFrames(model)
+        path = make_path(self.pose_of(q0, frames))
         mask = self.extra_mask if extra_mask is None else extra_mask
         q_extra = q0 if extra_end is None else np.where(mask, extra_end, q0)
         if config & _BRANCH_BITS:
@@ -503,17 +511,11 @@ class RobotState:
             if (model.config_of(q1.tolist()) ^ model.config_of(angles_end.tolist())) & _BRANCH_BITS:
                 raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
                                    detail="a straight-line motion cannot reach these angles' arm configuration")
-        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.joint_limits(prof, system_speed),
-                                        self.limits.path_limits(prof, system_speed), prof._accel_ramp,
-                                        prof._decel_ramp)
+        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.line_limits(prof, system_speed))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
-
-        frames, model = self._frames, self.model
-        if frames is None or frames.tool is not model.tool or frames.base is not model.base:
-            frames = self._frames = QueuedFrames(model)
-        limits = self.limits
-        pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, limits.max_joint_speed,
-                     limits.max_joint_accel, ik_path=frames.ik_path)
+        max_speed, max_accel = self.limits.hard_limits()
+        pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, max_speed, max_accel,
+                     frames.ik_path)
         if blend_from is not None:
             # The line must not end before the motion it blends out of: start no earlier than
             # its duration before that motion's end (a shorter overlap), never before now.
@@ -525,31 +527,38 @@ class RobotState:
                 seg: Segment = BlendedPathSegment(
                     t_b, plan.duration, blend_from.joints(t_b), q1, plan=plan, path_joints=pj,
                     kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=frames.forward)
-                self.remember_pose(q1, path.end_pose)
+                self.remember_pose(q1, path.end_pose, frames)
                 return self._append(seg, prof)
-        seg = PathSegment(t0, plan.duration, q0, q1, plan=plan, path_joints=pj, kind=kind)
-        self.remember_pose(q1, path.end_pose)
+        # (positional: t0, duration, q_start, q_end, profile, settle, blend, blend_tolerance, cut,
+        # kind, plan, path_joints; keywords cost a third of the call on this hot path)
+        seg = PathSegment(t0, plan.duration, q0, q1, None, 0.0, False, 0.0, None, kind, plan, pj)
+        self.remember_pose(q1, path.end_pose, frames)
         return self._append(seg, prof)
 
-    def pose_of(self, q: Vec) -> Pose:
+    def pose_of(self, q: Vec, frames: QueuedFrames | None = None) -> Pose:
         """The tool pose (a pose tuple) of the joints ``q``.
 
         A path starts where the previous motion ended, and when that motion went to a Cartesian
         destination the controller knows its pose already: ``remember_pose`` keeps it, keyed by
         the very array of the motion's end joints (segments' joint arrays are replaced, never
         changed in place) and by the Tool and Base it was reached with.  Anything else — a
-        motion cut short, a new Tool — is a different key, and gets the forward kinematics."""
+        motion cut short, a new Tool — is a different key, and gets the forward kinematics.
+        ``frames``: the path kinematics of the present Tool and Base, when the caller has them
+        (their Tool and Base are the model's, without a property call each)."""
         known = self._known_pose
-        model = self.model
-        if known is not None and known[0] is q and known[1] is model.tool and known[2] is model.base:
+        tool, base = (self.model.tool, self.model.base) if frames is None else (frames.tool, frames.base)
+        if known is not None and known[0] is q and known[1] is tool and known[2] is base:
             return known[3]
         pose = matrix_to_pose(self.forward(q))
-        self._known_pose = (q, model.tool, model.base, pose)
+        self._known_pose = (q, tool, base, pose)
         return pose
 
-    def remember_pose(self, q: Vec, pose: Pose) -> None:
+    def remember_pose(self, q: Vec, pose: Pose, frames: QueuedFrames | None = None) -> None:
         """``q`` (an array no one changes in place) puts the tool at ``pose`` (see ``pose_of``)."""
-        self._known_pose = (q, self.model.tool, self.model.base, pose)
+        if frames is None:
+            self._known_pose = (q, self.model.tool, self.model.base, pose)
+        else:
+            self._known_pose = (q, frames.tool, frames.base, pose)
 
     def _blend_within_limits(self, prev: Segment, t_b: float, prev_end: float, plan: Plan, pj: PathRun,
                              prof: Profile, system_speed: float) -> float:
@@ -585,14 +594,14 @@ class RobotState:
             start = prev_end - span * 0.5 ** k
             ts = np.linspace(start, prev_end, BLEND_CHECK_SAMPLES)
             v_prev, a_prev = prev.rates(ts)
-            pva = [plan.at(float(t) - start) for t in ts]
-            u_line, ud_line, udd_line = (np.array([x[i][0] for x in pva]) for i in range(3))
+            u, ud, udd = plan.sample(ts - start)
+            u_line, ud_line, udd_line = u[:, 0], ud[:, 0], udd[:, 0]
             v_line, a_line = pj.rates(u_line, ud_line, udd_line)
             if not (np.all(np.abs(v_prev) + np.abs(v_line) <= v_lim) and np.all(np.abs(a_prev) + np.abs(a_line) <= a_lim)):
                 continue
             if prev_path is not None:
                 assert isinstance(prev, PathSegment)
-                ud_prev = np.abs([prev.parameter(float(t))[1] for t in ts])
+                ud_prev = np.abs(prev.parameters(ts)[1])
                 ud_line = np.abs(ud_line)
                 if (np.any(prev_path.length * ud_prev + pj.path.length * ud_line > lin_lim * (1.0 + 1e-9))
                         or np.any(prev_path.turn * ud_prev + pj.path.turn * ud_line > rot_lim * (1.0 + 1e-9))):

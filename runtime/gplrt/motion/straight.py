@@ -118,7 +118,11 @@ class LinePath(Path):
     cycles, ``path_run``)."""
 
     def __init__(self, P0: Pose | np.ndarray, P1: Pose | np.ndarray) -> None:
-        self.start_pose, self.end_pose = P0, P1 = as_pose(P0), as_pose(P1)
+        if type(P0) is not tuple:  # (``as_pose``, inlined: a straight Move.Loc makes one of these)
+            P0 = matrix_to_pose(P0)
+        if type(P1) is not tuple:
+            P1 = matrix_to_pose(P1)
+        self.start_pose, self.end_pose = P0, P1
         dx, dy, dz = P1[9] - P0[9], P1[10] - P0[10], P1[11] - P0[11]
         self.length = math.sqrt(dx * dx + dy * dy + dz * dz)
         self.turn = 0.0 if P0[:9] == P1[:9] else turn_between(P0, P1)

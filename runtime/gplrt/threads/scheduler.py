@@ -15,9 +15,14 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   back of the queue.  The remaining slice is kept across sleeps, as on the controller (D0 §17.2).
   Charging compute time is what lets ``While Controller.Timer < t0 + 1 : End While`` terminate.
 * When no thread is runnable, time jumps to the earliest deadline; ties wake in the order the
-  waits began.  Jumps happen only while someone outside drives the run (``run_main``, ``call``,
-  ``run_for``, a blocking call from a notebook): between calls, a notebook's background threads
-  freeze instead of racing virtual time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
+  waits began.  A wait that nothing can overtake costs no thread switch: ``run_alone_until``
+  moves time straight to its end when no other thread, deadline or timer callback comes first
+  (``WaitForEOM`` and ``Thread.Sleep`` of a one-thread program), and a dispatch that picks the
+  very thread that has just parked itself hands the token back without its ``Event``.  Either
+  way the order of events is the one the ordinary wait gives.  Jumps happen only while someone
+  outside drives the run (``run_main``, ``call``, ``run_for``, a blocking call from a
+  notebook): between calls, a notebook's background threads freeze instead of racing virtual
+  time ahead.  Timer callbacks (:meth:`call_at`, used by the I/O rules) fire in that same order.
 * A thread in :func:`external_wait` (socket accept/receive, an operator dialog) is neither
   runnable nor a virtual waiter.  While one exists and nobody is runnable, virtual time advances
   no faster than real time: a real-time timer (the scheduler's one timer thread, see
@@ -212,29 +217,39 @@ def external_wait() -> Iterator[None]:
         ctx.sched._leave_external(ctx)
 
 
-@contextmanager
-def controller_wait(end: float) -> Iterator[None]:
-    """Mark the calling GPL thread as waiting for the controller until controller time ``end``.
+class controller_wait:  # noqa: N801 - used as a function, like contextlib's
+    """Mark the calling GPL thread as waiting for the controller until controller time ``end``
+    (``with controller_wait(end): ...``).
 
     The runtime wraps the waits whose end the controller, not the program or the outside world,
     decides — the end of the queued motions, homing, a power-up — so that the FAST scheduler may
     jump time to ``end`` even while sockets are open (see the module docstring).  Every other
     scheduler ignores the mark; so does a thread unknown to the scheduler.  An ``end`` beyond the
     clock's range (an infinite wait) marks nothing: there is no motion end to jump to.
+
+    A class rather than a ``@contextmanager`` generator: every ``WaitForEOM`` that waits enters
+    one, and a generator costs several times as much to enter and leave.
     """
-    ctx = _tls.ctx
-    try:
-        end_ns = to_ns(end)
-    except (OverflowError, ValueError):
-        end_ns = None
-    if ctx is None or end_ns is None:
-        yield
-        return
-    previous, ctx.busy_until = ctx.busy_until, end_ns
-    try:
-        yield
-    finally:
-        ctx.busy_until = previous
+
+    __slots__ = ("ctx", "end_ns", "previous")
+
+    def __init__(self, end: float) -> None:
+        self.ctx = _tls.ctx
+        try:
+            self.end_ns: int | None = to_ns(end)
+        except (OverflowError, ValueError):
+            self.end_ns = None
+        self.previous: int | None = None
+
+    def __enter__(self) -> None:
+        ctx = self.ctx
+        if ctx is not None and self.end_ns is not None:
+            self.previous, ctx.busy_until = ctx.busy_until, self.end_ns
+
+    def __exit__(self, *exc: object) -> None:
+        ctx = self.ctx
+        if ctx is not None and self.end_ns is not None:
+            ctx.busy_until = self.previous
 
 
 def hold_real_time() -> Callable[[], None]:
@@ -366,15 +381,30 @@ class Scheduler:
     def sleep(self, dt: float) -> None:
         if dt <= 0:
             self.yield_now()
-        else:
+        elif _tls.ctx is not None:
+            self.sleep_until(self.clock.now() + dt)
+        else:  # the time is read once the caller holds the token
             with self.adopted():
                 self.sleep_until(self.clock.now() + dt)
 
     def sleep_until(self, t: float) -> None:
-        with self.adopted() as ctx:
-            ctx.waiting_on = "sleep"
-            while not self.clock.reached(t):
+        ctx = _tls.ctx
+        if ctx is None:  # (a GPL thread skips ``adopted``'s generator: every Sleep passes here)
+            with self.adopted():
+                self.sleep_until(t)
+            return
+        ctx.waiting_on = "sleep"
+        while not self.clock.reached(t):
+            if not self.run_alone_until(t):
                 self.wait(None, t)
+
+    def run_alone_until(self, t: float) -> bool:
+        """The fast path of a wait for controller time ``t`` by the calling GPL thread: when
+        nothing can happen before ``t`` but the caller's own wake-up, move time to ``t`` and
+        return True; otherwise False, and the caller waits the ordinary way.
+
+        Only the virtual scheduler has one (a real clock's time passes by itself)."""
+        return False
 
     def wait(
         self,
@@ -391,11 +421,14 @@ class Scheduler:
         wake: without ``until`` such a wakeup is lost (a ``Join`` of a thread that ends at that
         moment would wait forever).
         """
-        with self.adopted() as ctx:
-            self._service_requests(ctx)
-            notified = self._block(ctx, queue, deadline, until)
-            self._service_requests(ctx)
-            return notified
+        ctx = _tls.ctx
+        if ctx is None:  # (a GPL thread skips ``adopted``'s generator: every wait passes here)
+            with self.adopted():
+                return self.wait(queue, deadline, until)
+        self._service_requests(ctx)
+        notified = self._block(ctx, queue, deadline, until)
+        self._service_requests(ctx)
+        return notified
 
     def notify_all(self, queue: WaitQueue) -> None:
         with self._lock:
@@ -583,11 +616,14 @@ class VirtualScheduler(Scheduler):
             self._idle_real = None
             self._fire_due()
 
-    def _dispatch(self) -> None:
+    def _dispatch(self, caller: ThreadCtx | None = None) -> bool:
         """Give the token to the next runnable thread, jumping time forward if nobody is runnable.
 
         Timer callbacks fired from here may make threads ready; ``_in_dispatch`` stops them from
-        dispatching recursively.
+        dispatching recursively.  Returns True when the token went to ``caller`` — the thread
+        that has just parked itself and is dispatching on its way out: its own wait is over
+        already (nobody else could run before it), so it is not signalled through its ``go``
+        event and keeps running without waiting for it (``_block``'s fast path).
         """
         self._in_dispatch = True
         try:
@@ -598,13 +634,16 @@ class VirtualScheduler(Scheduler):
                 # With no GPL thread alive, or nobody outside driving the run, time stands still.
                 if nd is None or not self.live or self.drivers == 0 or (self._paced() and not self._may_run_ahead(nd)):
                     self._go_idle(nd)
-                    return
+                    return False
                 self.clock.advance_to_ns(nd)
                 self._fire_due()
             nxt = self._ready.popleft()
             nxt.phase = Phase.RUNNING
             self._running = nxt
+            if nxt is caller:
+                return True
             nxt.go.set()
+            return False
         finally:
             self._in_dispatch = False
 
@@ -667,10 +706,11 @@ class VirtualScheduler(Scheduler):
             self.clock.advance_to_ns(deadline)
             self._dispatch()
 
-    def _switch_away(self, ctx: ThreadCtx) -> None:
-        """``ctx`` (the token holder, lock held) has parked itself: pass the token, then wait."""
+    def _switch_away(self, ctx: ThreadCtx) -> bool:
+        """``ctx`` (the token holder, lock held) has parked itself: pass the token on.  True when
+        it came straight back to ``ctx`` (see ``_dispatch``): ``ctx`` must not wait for it."""
         self._running = None
-        self._dispatch()
+        return self._dispatch(ctx)
 
     def _await_token(self, ctx: ThreadCtx) -> None:
         ctx.go.wait()
@@ -700,12 +740,45 @@ class VirtualScheduler(Scheduler):
                 queue.waiters.append((ctx, ctx.wait_id))
             if deadline is not None:
                 heapq.heappush(self._timers, (to_ns(deadline), next(self._seq), ctx, ctx.wait_id, None))
-            self._switch_away(ctx)
+            if self._switch_away(ctx):
+                # Fast path: nobody else could run before this wait ended (one GPL thread, as a
+                # rule): time has moved on and the token is back, without a thread switch.
+                if queue is not None:
+                    queue.waiters = [w for w in queue.waiters if w[0] is not ctx]
+                return not ctx.timed_out
         self._await_token(ctx)
         if queue is not None:
             with self._lock:
                 queue.waiters = [w for w in queue.waiters if w[0] is not ctx]
         return not ctx.timed_out
+
+    def run_alone_until(self, t: float) -> bool:
+        """See :meth:`Scheduler.run_alone_until`.
+
+        "Nothing can happen before ``t``": the caller holds the token, no other thread is
+        runnable, no deadline or timer callback (an I/O rule) falls at or before ``t``, time may
+        jump (someone drives the run, no connection to the outside world paces it), and no
+        Suspend/Abort is pending for the caller.  Then the ordinary wait — register, dispatch,
+        jump to ``t``, wake the caller, hand it the token — would end with nothing but time
+        moved to ``t``, and that is all this does: no wait-queue entry, no timer, no Event.  A
+        ``WaitForEOM`` or ``Thread.Sleep`` of a one-thread program takes it.  The lock is still
+        taken, once: threads the scheduler does not run (a notebook's ``call_at``, the real-time
+        pacer) change the timers under it."""
+        ctx = _tls.ctx
+        try:
+            t_ns = to_ns(t)
+        except (OverflowError, ValueError):
+            return False
+        with self._lock:
+            if (ctx is None or self._running is not ctx or self._ready or self.drivers == 0 or self._paced()
+                    or self._idle_real is not None or ctx.abort_requested or ctx.suspend_requested
+                    or ctx.saved_budget is not None):
+                return False
+            deadline = self._next_deadline()
+            if deadline is not None and deadline <= t_ns:
+                return False
+            self.clock.advance_to_ns(t_ns)
+            return True
 
     def _wake(self, ctx: ThreadCtx, timed_out: bool) -> None:
         ctx.wait_id += 1  # invalidates the other half of the wait (timer or queue entry)
@@ -742,7 +815,8 @@ class VirtualScheduler(Scheduler):
                 return
             ctx.phase = Phase.READY
             self._ready.append(ctx)
-            self._switch_away(ctx)
+            if self._switch_away(ctx):
+                return
         self._await_token(ctx)
 
     def _checkpoint_slow(self, ctx: ThreadCtx) -> None:
