@@ -42,7 +42,7 @@ from typing import NoReturn, TextIO
 from gpl2py import __version__
 from gpl2py import messages as msg
 from gpl2py.config import FILE_NAME, Config, ConfigError, discover
-from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, plural as _plural
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, internal_error_span, plural as _plural
 from gpl2py.formats import FORMATS, github_annotations, json_document, sarif_log, wants_colour
 from gpl2py.project import (
     DEFAULT_MAX_SOURCE_MB,
@@ -766,7 +766,7 @@ def _main(argv: list[str] | None) -> int:
         if os.environ.get("GPL2PY_TRACEBACK"):
             raise
         out = Outcome(failed=True)
-        out.sink.report(msg.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+        out.sink.report(msg.INTERNAL_ERROR, internal_error_span(exc), detail=f"{type(exc).__name__}: {exc}")
     if not out.emitted:
         _emit(out, args.display, stdout, stderr)
     if out.exit_status is not None:
