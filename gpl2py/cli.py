@@ -41,7 +41,7 @@ from typing import NoReturn, TextIO
 from gpl2py import __version__
 from gpl2py import messages as msg
 from gpl2py.config import FILE_NAME, Config, ConfigError, discover
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import DiagnosticSink, internal_error_span
 from gpl2py.formats import FORMATS, wants_colour
 from gpl2py.outcome import (  # the pieces ``run`` shares (gpl2py.outcome says why they live there)
     Display,
@@ -626,7 +626,7 @@ def _main(argv: list[str] | None) -> int:
         if os.environ.get("GPL2PY_TRACEBACK"):
             raise
         out = Outcome(failed=True)
-        out.sink.report(msg.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+        out.sink.report(msg.INTERNAL_ERROR, internal_error_span(exc), detail=f"{type(exc).__name__}: {exc}")
     if not out.emitted:
         _emit(out, args.display, stdout, stderr)
     if out.exit_status is not None:

@@ -81,6 +81,21 @@ def plural(n: int, word: str) -> str:
     return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
+class InternalError(Exception):
+    """A gap in gpl2py met at one node of the input (a kind of node or meaning a pass has no rule
+    for): reported as GPL9000 at that node's position, never as ``None`` in the output or a
+    statement silently dropped (``gpl2py.lower``'s visitors raise it)."""
+
+    def __init__(self, span: Span | None, detail: str) -> None:
+        super().__init__(detail)
+        self.span = span
+
+
+def internal_error_span(exc: BaseException) -> Span | None:
+    """Where an unexpected exception happened in the input, when the pass that raised it knew."""
+    return exc.span if isinstance(exc, InternalError) else None
+
+
 def one_line(text: str) -> str:
     """``text`` with every character Python does not call printable -- line breaks, other
     controls, bidirectional overrides, other separators than the space -- as ``\\xNN``,

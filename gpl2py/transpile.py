@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gpl2py import messages as M
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import DiagnosticSink, internal_error_span
 from gpl2py.lower.context import ProjectNames
 from gpl2py.lower.module import lower_module
 from gpl2py.lower.names import package_name
@@ -78,7 +78,7 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
         except Exception as exc:  # a bug in gpl2py, in any phase: a diagnostic, never a traceback
             if os.environ.get("GPL2PY_TRACEBACK"):
                 raise
-            sink.report(M.INTERNAL_ERROR, None, detail=f"{type(exc).__name__}: {exc}")
+            sink.report(M.INTERNAL_ERROR, internal_error_span(exc), detail=f"{type(exc).__name__}: {exc}")
             return None
 
 
@@ -160,8 +160,9 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
     top = model.project.modules.get(TOP_MODULE.lower())
     if top is not None:
         extra.append(top)
+    entries: dict[str, frozenset[str]] = {}
     for i, mod in enumerate(extra + modules):
-        text, gmap = lower_module(model, names, mod, sink)
+        text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
         if progress is not None:
             progress("writing", i + 1, len(extra) + len(modules))
         if keep_modules:
@@ -175,7 +176,7 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
     stub_modules = sorted({Path(rel).stem for rel in stub_texts
                            if not Path(rel).stem.startswith((USER_PREFIX, SHIPPED_PREFIX))})
     out.files[f"{package}/__init__.py"] = package_init(model, project.name, project.start, modules, extra,
-                                                       records, stub_modules, names.proc_name)
+                                                       records, stub_modules, names.proc_name, entries)
     out.files[f"{package}/__main__.py"] = package_main()
     out.files[f"{package}/_sourcemap.json"] = sourcemap_json(smap)
     return out

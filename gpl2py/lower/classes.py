@@ -237,11 +237,10 @@ def _method(ctx: ModuleContext, cls: ClassSym, p: ProcSym, sink: DiagnosticSink,
     out = lower_procedure(ctx, p, cls, sink, method=True)
     if fields is not None and fields.lines:
         # field initialisers run before the user's New (AMB-7): right after the def line
-        for i, ln in enumerate(out.lines):
-            if ln.text.startswith("def "):
-                out.lines[i + 1:i + 1] = [Line(ln.indent + 1 + f.indent, f.text, f.gpl_line, f.comment)
-                                          for f in fields.lines]
-                break
+        assert out.def_at is not None
+        at = out.def_at
+        indent = out.lines[at].indent + 1
+        out.lines[at + 1:at + 1] = [Line(indent + f.indent, f.text, f.gpl_line, f.comment) for f in fields.lines]
     return out
 
 

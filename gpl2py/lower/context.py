@@ -25,13 +25,12 @@ from gpl2py.lower.names import (
 from gpl2py.lower.stub_names import STUBS_MODULE_NAMES, stub_attr_base, stub_module_name
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model
+from gpl2py.semantics.info import DYNAMIC_MEMBERS
 from gpl2py.semantics.resolve import TOP_MODULE
 from gpl2py.semantics.stubs import Stub
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, OverloadSet, ProcSym, PropSym, VarSym
 
 
-# Info kinds that name a member of a value whose class is unknown at translation time.
-DYNAMIC_MEMBER_KINDS = frozenset({"extattr", "extinvoke"})
 
 
 @dataclass
@@ -96,7 +95,7 @@ class ProjectNames:
                 if isinstance(m, OverloadSet):
                     names._name_overloads(m, taken)
         names.taken = taken
-        names.dynamic_members = any(i.kind in DYNAMIC_MEMBER_KINDS for i in model.info.values())
+        names.dynamic_members = any(isinstance(i, DYNAMIC_MEMBERS) for i in model.info.values())
         # the package's namespace: its modules and stub modules never take a name a module
         # imports from the runtime or one the package defines (docs/security.md, "Names")
         package = Scope(taken | set(names.runtime) | set(PACKAGE_NAMES) | {"sys"})
@@ -198,17 +197,26 @@ class ModuleContext:
 
     def module_prefix(self, mod: ModuleSym | None) -> str:
         """``""`` for this module, else ``"sibling."`` (and the sibling is imported)."""
+        name = self.module_ref(mod)
+        return "" if name is None else name + "."
+
+    def module_ref(self, mod: ModuleSym | None) -> str | None:
+        """None for this module, else the name of the sibling module (imported)."""
         if mod is None or mod is self.mod:
-            return ""
+            return None
         name = self.names.module_py[mod]
         self.siblings.add(name)
-        return name + "."
+        return name
 
     def stub_ref(self, stub: Stub) -> str:
         """How this module names a stub: ``vendor_lib.Proc`` or ``_stubs.Foo`` (imported)."""
+        return ".".join(self.stub_parts(stub))
+
+    def stub_parts(self, stub: Stub) -> tuple[str, str]:
+        """The module (imported) and attribute that :meth:`stub_ref` joins: ``("_stubs", "Foo")``."""
         name = stub_module_name(stub, self.names.stub_module_py)
         self.siblings.add(name)
-        return f"{name}.{self.names.stub_attr_py[stub]}"
+        return name, self.names.stub_attr_py[stub]
 
     def owner_module(self, sym: object) -> ModuleSym | None:
         owner = getattr(sym, "owner", None)

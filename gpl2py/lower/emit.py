@@ -84,6 +84,7 @@ class Writer:
     peak_level: int = 0
     peak_blocks: int = 0
     _opened: list[int] = field(default_factory=list)
+    def_at: int | None = None  # the index of the ``def`` line of a procedure's Writer
 
     def line(self, text: str, gpl_line: int | None = None) -> Line:
         ln = Line(self.level, text, self.gpl_line if gpl_line is None else gpl_line)
@@ -135,8 +136,12 @@ class Writer:
 
     def ensure_body(self, start: int) -> None:
         """A Python block needs a statement: add ``pass`` when only comments were emitted."""
-        if all(ln.text.startswith("#") for ln in self.lines[start:]):
+        if self.only_comments(start):
             self.line("pass")
+
+    def only_comments(self, start: int) -> bool:
+        """Whether every line written since ``start`` is a comment (or there is none)."""
+        return all(ln.text.startswith("#") for ln in self.lines[start:])
 
     def extend(self, other: Writer, extra_indent: int = 0) -> None:
         for ln in other.lines:

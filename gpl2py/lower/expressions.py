@@ -9,15 +9,43 @@ where GPL differs from Python (``\\``, ``Mod``, ``^``, string/number ``+``, Bool
 from __future__ import annotations
 
 import struct
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.names import py_float, py_ident
 from gpl2py.lower.text import py_string
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Member
-from gpl2py.semantics.check import Info, Model, ParamInfo, nothing_as_string
-from gpl2py.semantics.stubs import Stub
+from gpl2py.semantics.catalogue import BuiltinClass
+from gpl2py.diagnostics import InternalError
+from gpl2py.semantics.check import Model, nothing_as_string
+from gpl2py.semantics.info import (
+    AddressOfInfo,
+    BinaryInfo,
+    BuiltinConstInfo,
+    BuiltinFunctionInfo,
+    BuiltinMemberInfo,
+    CallInfo,
+    DelegateCallInfo,
+    DynamicCallInfo,
+    DynamicMemberInfo,
+    ErrorInfo,
+    IndexInfo,
+    Info,
+    LiteralInfo,
+    MeInfo,
+    NewInfo,
+    NothingInfo,
+    ParamInfo,
+    PropInfo,
+    ResultInfo,
+    StubCallInfo,
+    StubNameInfo,
+    StubNewInfo,
+    TypeNameInfo,
+    UnaryInfo,
+    VarInfo,
+)
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ProcSym, PropSym, VarSym
 from gpl2py.syntax import ast as A
 
@@ -106,6 +134,9 @@ class ExprLowerer:
         # from a non-negative start that the body never writes)
         self.nonneg: set[VarSym] = set()
         self.chain_temps = 0  # temporaries made for long operator chains (chain_temp)
+        self.left_flat = False  # binop's result begins with its left operand unwrapped
+        #: the text of each Integer range check made (``chk_int32(x)``) -> its argument (``x``)
+        self.int_checks: dict[str, str] = {}
         # the Python locals of the procedure: a global of this module spelled the same (a class
         # ``Station`` in ``Dim Station As New Station``) is reached as ``_this.Station``
         self.local_py: frozenset[str] = frozenset(
@@ -221,64 +252,123 @@ class ExprLowerer:
     # -- expressions -------------------------------------------------------------------------------
 
     def expr(self, e: A.Expr) -> Code:
+        """``e`` as Python: dispatched on the class of its meaning (``semantics/info.py``) through
+        :data:`_VISIT`.  A meaning without a rule is a gap in gpl2py: :class:`InternalError`
+        (GPL9000 at ``e``), never ``None`` in the output."""
         i = self.model.info.get(e)
         if i is None:
-            return "None", P_ATOM  # unreachable when analysis succeeded
-        k = i.kind
-        if k == "literal":
-            return self.literal(e)
-        if k == "nothing":
+            return self.unlowered(e, "no meaning recorded")
+        visit = _VISIT.get(type(i))
+        if visit is None:  # a name that is not a value (reported, with --keep-going), or a gap
+            return self.unlowered(e, f"no lowering for {type(i).__name__}")
+        return visit(self, e, i)
+
+    def unlowered(self, e: A.Expr, why: str) -> Code:
+        """An expression the analysis could not give a meaning: after a reported error (output of
+        ``--keep-going``, which must still be Python) it is ``None``; otherwise a gap in gpl2py."""
+        if self.model.errors_reported:
             return "None", P_ATOM
-        if k == "me":
-            return "self", P_ATOM
-        if k == "var":
-            return self.var_code(i.sym, i.receiver)  # type: ignore[arg-type]
-        if k == "result":
-            return "_result", P_ATOM
-        if k == "call":
-            return self.user_call(i, e.args if isinstance(e, A.Invoke) else [])
-        if k == "prop":
-            prop: PropSym = i.sym  # type: ignore[assignment]
-            return self.prop_ref(prop, i.receiver), P_ATOM
-        if k == "index":
-            assert isinstance(e, A.Invoke)
-            return self.index_code(e), P_ATOM
-        if k == "bfunc":
-            return self.builtin_function(i, e.args if isinstance(e, A.Invoke) else [])
-        if k == "bconst":
-            c: BuiltinConstant = i.sym  # type: ignore[assignment]
-            return self.ctx.builtin(c.python_name), P_ATOM
-        if k in ("bmember", "vmember"):
-            return self.builtin_member(i, e, e.args if isinstance(e, A.Invoke) else None)
-        if k == "delegate_call":
-            assert isinstance(e, A.Invoke)
-            args = self.args_code(e.args, i.params or [])
-            return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})", P_ATOM
-        if k == "new":
-            assert isinstance(e, A.New)
-            return self.new_code(e, i)
-        if k == "addressof":
-            return self.addressof_code(i), P_ATOM
-        if k == "typename":
-            return py_string(str(i.sym)), P_ATOM  # ToBitString(x, Short, ...): the type's name
-        if k in ("extcall", "extname", "extnew", "extattr", "extinvoke"):
-            return self.ext_code(e, i), P_ATOM
-        if k == "unary":
-            assert isinstance(e, A.Unary)
-            return self.unary(e)
-        if k == "binary":
-            assert isinstance(e, A.Binary)
-            if e.op == "Is":
-                return self.identity(e, negate=False)
-            return self.binary_chain(e)
+        raise InternalError(e.span, f"{why} (a {type(e).__name__} expression)")
+
+    # -- one method per kind of meaning (_VISIT) ------------------------------------------------------
+
+    def x_literal(self, e: A.Expr, i: LiteralInfo) -> Code:
+        return self.literal(e)
+
+    def x_nothing(self, e: A.Expr, i: NothingInfo) -> Code:
         return "None", P_ATOM
+
+    def x_me(self, e: A.Expr, i: MeInfo) -> Code:
+        return "self", P_ATOM
+
+    def x_error(self, e: A.Expr, i: ErrorInfo) -> Code:
+        return self.unlowered(e, "an error that was never reported")
+
+    def x_var(self, e: A.Expr, i: VarInfo) -> Code:
+        return self.var_code(i.sym, i.receiver)
+
+    def x_result(self, e: A.Expr, i: ResultInfo) -> Code:
+        return "_result", P_ATOM
+
+    def x_call(self, e: A.Expr, i: CallInfo) -> Code:
+        return self.user_call(i, e.args if isinstance(e, A.Invoke) else [])
+
+    def x_prop(self, e: A.Expr, i: PropInfo) -> Code:
+        return self.prop_ref(i.sym, i.receiver), P_ATOM
+
+    def x_index(self, e: A.Expr, i: IndexInfo) -> Code:
+        assert isinstance(e, A.Invoke)
+        return self.index_code(e), P_ATOM
+
+    def x_bfunc(self, e: A.Expr, i: BuiltinFunctionInfo) -> Code:
+        return self.builtin_function(i, e.args if isinstance(e, A.Invoke) else [])
+
+    def x_bconst(self, e: A.Expr, i: BuiltinConstInfo) -> Code:
+        return self.ctx.builtin(i.sym.python_name), P_ATOM
+
+    def x_bmember(self, e: A.Expr, i: BuiltinMemberInfo) -> Code:
+        return self.builtin_member(i, e, e.args if isinstance(e, A.Invoke) else None)
+
+    def x_delegate_call(self, e: A.Expr, i: DelegateCallInfo) -> Code:
+        assert isinstance(e, A.Invoke)
+        args = self.args_code(e.args, i.params)
+        return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})", P_ATOM
+
+    def x_new(self, e: A.Expr, i: NewInfo) -> Code:
+        assert isinstance(e, A.New)
+        return self.new_code(e, i)
+
+    def x_addressof(self, e: A.Expr, i: AddressOfInfo) -> Code:
+        return self.proc_ref(i.sym, i.receiver), P_ATOM
+
+    def x_typename(self, e: A.Expr, i: TypeNameInfo) -> Code:
+        return py_string(str(i.sym)), P_ATOM  # ToBitString(x, Short, ...): the type's name
+
+    def x_stub(self, e: A.Expr, i: StubCallInfo | StubNameInfo | StubNewInfo) -> Code:
+        """A use of protected code or of a built-in member the catalogue lacks
+        (``gpl2py.semantics.stubs``): plain Python, since nothing is known to convert; the stub
+        raises -204 unless the user supplied it."""
+        stub = i.stub
+        if stub is None:  # New of a class nothing declares (reported)
+            return self.unlowered(e, "a stub without a name")
+        args = [self.val(a) for a in e.args] if isinstance(e, (A.Invoke, A.New)) and e.args else []
+        ref = self.ctx.stub_ref(stub)
+        receiver = i.receiver if isinstance(i, (StubCallInfo, StubNameInfo)) else None
+        if stub.builtin is not None and not stub.shared and receiver is not None:
+            args.insert(0, self.val(receiver))  # an instance member receives its object first
+        if isinstance(i, StubNameInfo) and stub.builtin is None and stub.kind != "procedure":
+            return ref, P_ATOM  # a variable of the protected code
+        return f"{ref}({', '.join(args)})", P_ATOM
+
+    def x_dynamic_member(self, e: A.Expr, i: DynamicMemberInfo) -> Code:
+        # never a raw Python attribute: the runtime admits GPL members only (docs/security.md)
+        assert i.receiver is not None
+        return self.dynamic_member(i.receiver, i.name), P_ATOM
+
+    def x_dynamic_call(self, e: A.Expr, i: DynamicCallInfo) -> Code:
+        """A call of a value of unknown type (``f(1)`` where ``f`` is a stub's value), or of one
+        of its members (``obj.Go``)."""
+        if isinstance(e, A.Invoke):
+            args = [self.val(a) for a in e.args]
+            return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})", P_ATOM
+        assert isinstance(e, A.MemberAccess)
+        return f"{self.dynamic_member(e.target, e.name)}()", P_ATOM
+
+    def x_unary(self, e: A.Expr, i: UnaryInfo) -> Code:
+        assert isinstance(e, A.Unary)
+        return self.unary(e)
+
+    def x_binary(self, e: A.Expr, i: BinaryInfo) -> Code:
+        assert isinstance(e, A.Binary)
+        if e.op == "Is":
+            return self.identity(e, negate=False)
+        return self.binary_chain(e)
 
     def _chains(self, e: A.Expr) -> bool:
         """Whether ``e`` continues a left-leaning operator chain that :meth:`binary_chain` folds."""
         if not isinstance(e, A.Binary) or e.op == "Is":
             return False
-        i = self.model.info.get(e)
-        return i is not None and i.kind == "binary"
+        return isinstance(self.model.info.get(e), BinaryInfo)
 
     def binary_chain(self, e: A.Binary) -> Code:
         """Lower ``e`` and the binary operators down its left operand in a loop, not by recursion.
@@ -302,13 +392,13 @@ class ExprLowerer:
         depth = 0  # how deep ``acc`` nests operators since the last step
         long = sum(1 for n in nodes if n.op not in ("AndAlso", "OrElse")) > LONG_CHAIN
         wrapped = False  # the last operator put ``acc`` inside a call or parentheses
+        left_node: A.Expr = first  # the GPL expression ``acc`` stands for
         at = 0
         while at < len(nodes):
             if depth >= LONG_CHAIN or wrapped:
                 temp = temp or self.chain_temp()
                 chunks.append(f"{temp} := {acc[0]}")
                 acc, depth = (temp, P_ATOM), 0
-            before = acc[0]
             run = 0
             while at + run < len(nodes) and nodes[at + run].op == "&":
                 run += 1
@@ -317,6 +407,7 @@ class ExprLowerer:
                 acc_type = t.STRING
                 at += run
                 depth += 1
+                left_node = nodes[at - 1]
                 continue
             node = nodes[at]
             at += 1
@@ -324,16 +415,20 @@ class ExprLowerer:
                 prec = P_AND if node.op == "AndAlso" else P_OR
                 # Python's and/or are associative like AndAlso/OrElse: a left operand of the same
                 # operator needs no parentheses and adds no depth (one flat BoolOp however long)
-                left = paren(self.cond_code(acc, acc_type), prec)
+                cond = self.cond_code(acc, acc_type)
+                self.left_flat = (cond is acc or (acc_type in _PLAIN_NUM and acc[1] > P_CMP)) and cond[1] >= prec
+                left = paren(cond, prec)
                 right = paren(self.cond(node.right), prec + 1)
                 acc = (f"{left} and {right}", P_AND) if node.op == "AndAlso" else (f"{left} or {right}", P_OR)
             else:
-                acc = self.binop(node.op, (*acc, acc_type), (*self.expr(node.right), self.type_of(node.right)))
+                acc = self.binop(node.op, (*acc, acc_type), (*self.expr(node.right), self.type_of(node.right)),
+                                 left_node, node.right)
                 depth += 1
             acc_type = self.type_of(node)
+            left_node = node
             # in a long chain, an operator that wraps the running value (``div(_chain1, x)``,
             # ``(_chain1 == x) == y``) ends its step: one readable line each, no nesting to wrap
-            wrapped = long and not acc[0].startswith(before + " ")
+            wrapped = long and not self.left_flat
         return self.chunked(chunks, acc)
 
     def chain_temp(self) -> str:
@@ -393,7 +488,7 @@ class ExprLowerer:
             return py_string(e.value), P_ATOM
         if isinstance(e, A.BooleanLiteral):
             return ("True" if e.value else "False"), P_ATOM
-        return "None", P_ATOM
+        raise InternalError(e.span, f"a literal {type(e).__name__}")
 
     # -- conversions ---------------------------------------------------------------------------------
 
@@ -503,6 +598,15 @@ class ExprLowerer:
             return _INT_RANGE[t.INTEGER]  # bitwise results are 32-bit (§4.4)
         return None
 
+    def range_checked(self, c: Code, dst: t.GplType) -> Code:
+        """``c`` (an int) checked against ``dst``'s range by the runtime's ``chk_*`` call.  An
+        Integer check is remembered in :attr:`int_checks` (the call's text -> its argument), so a
+        store can test the range inline instead (``ProcLowerer.checked``) without re-reading text."""
+        code = self.call(self.rt(CONV, _CHK_INT[dst]), c[0])
+        if dst is t.INTEGER:
+            self.int_checks[code[0]] = c[0]
+        return code
+
     def coerce(self, c: Code, src: t.GplType, dst: t.GplType, may_overflow: bool = True) -> Code:
         if src is t.NOTHING and dst is t.STRING:
             return '""', P_ATOM  # Nothing stored into a String is "" (docs/design/real-code.md)
@@ -511,14 +615,14 @@ class ExprLowerer:
         if dst in _INT_RANGE:
             if src is dst:
                 if may_overflow:
-                    return self.call(self.rt(CONV, _CHK_INT[dst]), c[0])
+                    return self.range_checked(c, dst)
                 return c
             if src in _INTS:
                 lo, hi = _INT_RANGE[dst]
                 slo, shi = _INT_RANGE[src]  # type: ignore[index]
                 if lo <= slo and shi <= hi and not may_overflow:
                     return c
-                return self.call(self.rt(CONV, _CHK_INT[dst]), c[0])
+                return self.range_checked(c, dst)
             if src is t.BOOLEAN and dst is not t.BYTE:
                 return self.call(self.rt(CONV, "bool_num"), c[0])
             return self.call(self.rt(CONV, _TO_INT[dst]), c[0])
@@ -597,7 +701,13 @@ class ExprLowerer:
         op = "is not" if negate else "is"
         return f"{self.sub(e.left, P_CMP + 1)} {op} {self.sub(e.right, P_CMP + 1)}", P_CMP
 
-    def binop(self, op: str, left: tuple[str, int, t.GplType], right: tuple[str, int, t.GplType]) -> Code:
+    def binop(self, op: str, left: tuple[str, int, t.GplType], right: tuple[str, int, t.GplType],
+              left_node: A.Expr | None = None, right_node: A.Expr | None = None) -> Code:
+        """``left op right`` from the operands' code and static types; ``left_node`` and
+        ``right_node``, when given, are the GPL operands, whose literal values and variables let
+        some operators stay plain Python.  Sets :attr:`left_flat`: whether the result begins
+        with the left operand as it was, unwrapped (:meth:`binary_chain` ends a step otherwise)."""
+        self.left_flat = False
         lc: Code = (left[0], left[1])
         rc: Code = (right[0], right[1])
         lt, rt_ = left[2], right[2]
@@ -611,29 +721,34 @@ class ExprLowerer:
         if op in ("+", "-", "*"):
             if plain or (op == "+" and lt is t.STRING and rt_ is t.STRING):
                 prec = P_ADD if op != "*" else P_MUL
-                return f"{paren(lc, prec)} {op} {paren(rc, prec + 1)}", prec
+                return f"{self.left(lc, prec)} {op} {paren(rc, prec + 1)}", prec
             name = {"+": "add", "-": "sub", "*": "mul"}[op]
             return self.call(self.rt(OPS, name), lc[0], rc[0])
         if op == "/":
-            if plain and _nonzero_literal(rc[0]):
-                return f"{paren(lc, P_MUL)} / {paren(rc, P_MUL + 1)}", P_MUL
+            value = _number(right_node)
+            if plain and value is not None and value != 0:
+                return f"{self.left(lc, P_MUL)} / {paren(rc, P_MUL + 1)}", P_MUL
             return self.call(self.rt(OPS, "div"), lc[0], rc[0])
         ints = lt in _INTS and rt_ in _INTS
-        lit = _int_value(rc[0])
+        lit = _integer(right_node)
+        var = self.plain_variable(left_node)
         if op == "\\" and ints and lit is not None and lit > 0:
-            if lc[1] == P_ATOM and lc[0] in {self.local_name(v) for v in self.nonneg}:
+            if var is not None and var.sym in self.nonneg:
+                self.left_flat = True
                 return f"{lc[0]} // {lit}", P_MUL  # a counter that cannot be negative here
-            if lc[1] == P_ATOM and lc[0].isidentifier():
+            if var is not None:
                 # truncation toward zero (§4.4) without a call: floor division on the magnitude
+                self.left_flat = True
                 return f"{lc[0]} // {lit} if {lc[0]} >= 0 else -(-{lc[0]} // {lit})", P_IF
             return f"int({paren(lc, P_MUL)} / {lit})", P_ATOM
-        if op == "Mod" and ints and lit is not None and lit > 0 and lc[1] == P_ATOM:
+        if op == "Mod" and ints and lit is not None and lit > 0 and var is not None:
             # the remainder has the dividend's sign (§4.4): Python's % on the magnitude, no call
-            if lc[0] in {self.local_name(v) for v in self.nonneg}:
+            self.left_flat = True
+            if var.sym in self.nonneg:
                 return f"{lc[0]} % {lit}", P_MUL  # a counter that cannot be negative here
-            if lc[0].isidentifier():
-                return f"{lc[0]} % {lit} if {lc[0]} >= 0 else -(-{lc[0]} % {lit})", P_IF
+            return f"{lc[0]} % {lit} if {lc[0]} >= 0 else -(-{lc[0]} % {lit})", P_IF
         if op == ">>" and ints and lit is not None and 0 <= lit <= 31 and lc[1] == P_ATOM:
+            self.left_flat = True
             return f"{lc[0]} >> {lit}", P_SHIFT  # an Integer variable: Python's shift is arithmetic
         if op in ("\\", "Mod", "^", "<<", ">>"):
             name = {"\\": "idiv", "Mod": "mod", "^": "power", "<<": "shl", ">>": ">>"}[op]
@@ -644,7 +759,7 @@ class ExprLowerer:
             parts = []
             for c, typ in ((lc, lt), (rc, rt_)):
                 if typ is t.STRING:
-                    parts.append(paren(c, P_ADD + 1) if parts else paren(c, P_ADD))
+                    parts.append(paren(c, P_ADD + 1) if parts else self.left(c, P_ADD))
                 else:
                     parts.append(self.coerce(c, typ if typ is not t.ERROR else t.DOUBLE, t.STRING)[0]
                                  if typ is not t.ERROR else self.call(self.rt(CONV, "to_string"), c[0])[0])
@@ -652,17 +767,17 @@ class ExprLowerer:
         if op in _PY_CMP:
             both_str = lt is t.STRING and rt_ is t.STRING
             if lt is t.BOOLEAN and rt_ is t.BOOLEAN and op in ("=", "<>"):
-                simple = _against_boolean_literal(op, lc, rc)
+                simple = _against_boolean_literal(op, (lc, left_node), (rc, right_node))
                 if simple is not None:
                     return simple
             if plain or both_str or (lt is t.BOOLEAN and rt_ is t.BOOLEAN and op in ("=", "<>")):
-                return f"{paren(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
+                return f"{self.left(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
             if (lt is t.BOOLEAN or lt in _PLAIN_NUM) and (rt_ is t.BOOLEAN or rt_ in _PLAIN_NUM):
                 if lt is t.BOOLEAN:
                     lc = self.call(self.rt(CONV, "bool_num"), lc[0])
                 if rt_ is t.BOOLEAN:
                     rc = self.call(self.rt(CONV, "bool_num"), rc[0])
-                return f"{paren(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
+                return f"{self.left(lc, P_CMP + 1)} {_PY_CMP[op]} {paren(rc, P_CMP + 1)}", P_CMP
             return self.call(self.rt(OPS, _RUNTIME_CMP[op]), lc[0], rc[0])
         if op in ("And", "Or", "Xor"):
             pyop, prec = {"And": ("&", P_BAND), "Or": ("|", P_BOR), "Xor": ("^", P_BXOR)}[op]
@@ -670,11 +785,33 @@ class ExprLowerer:
                 # arithmetic operands keep visible parentheses: (a + b) & 255, not a + b & 255; a left
                 # operand of the same operator needs none (a & b & c: Python's & is left-associative,
                 # and 200 nested parentheses are more than Python's tokenizer takes)
-                left = lc[0] if lc[1] == prec else paren(lc, P_UNARY)
+                left = self.left(lc, prec if lc[1] == prec else P_UNARY)
                 return f"{left} {pyop} {paren(rc, P_UNARY)}", prec
             name = {"And": "and_", "Or": "or_", "Xor": "xor"}[op]
             return self.call(self.rt(OPS, name), lc[0], rc[0])
         return self.call(self.rt(OPS, "eq"), lc[0], rc[0])
+
+    def left(self, c: Code, min_prec: int) -> str:
+        """The left operand of an infix operator, parenthesised if it binds looser than
+        ``min_prec``; records in :attr:`left_flat` whether it stays as it was."""
+        self.left_flat = c[1] >= min_prec
+        return paren(c, min_prec)
+
+    def plain_variable(self, e: A.Expr | None) -> VarInfo | None:
+        """``e``'s meaning when it is a variable read by its bare Python name, cheap and free of
+        effects to read twice (a local, parameter, Static or module variable; not a cell or a
+        field), else None."""
+        if not isinstance(e, A.Name):
+            return None
+        i = self.model.info.get(e)
+        if not isinstance(i, VarInfo) or i.receiver is not None:
+            return None
+        v = i.sym
+        if v.boxed or v.byref or v.storage not in ("local", "param", "static", "module"):
+            return None
+        if v.storage == "module" and (self.ctx.member_owner_ref(v) or self.shadowed(v)):
+            return None  # mod.x, or _this.x
+        return i
 
     # -- calls and members -------------------------------------------------------------------------------
 
@@ -696,8 +833,8 @@ class ExprLowerer:
         (a Nothing passed to a ByRef String is "")."""
         i = self.model.info.get(a)
         if a not in self.model.byref_temps and i is not None:
-            if i.kind == "var":
-                v: VarSym = i.sym  # type: ignore[assignment]
+            if isinstance(i, VarInfo):
+                v = i.sym
                 if v.storage in ("local", "param"):
                     return self.local_name(v)  # a boxed local, or a ByRef parameter's own cell
                 attr = self.rt(BYREF, "AttrRef")
@@ -705,16 +842,16 @@ class ExprLowerer:
                     self.ctx.needs_this = True
                     return f"{attr}(_this, {py_string(self.static_name(v))})"
                 if v.storage == "module":
-                    prefix = self.ctx.module_prefix(self.ctx.owner_module(v))
-                    if not prefix:
+                    module = self.ctx.module_ref(self.ctx.owner_module(v))
+                    if module is None:
                         self.ctx.needs_this = True
                         return f"{attr}(_this, {py_string(py_ident(v.name))})"
-                    return f"{attr}({prefix[:-1]}, {py_string(py_ident(v.name))})"
-                if v.shared:
-                    return f"{attr}({self.owner_ref(v)[:-1]}, {py_string(py_ident(v.name))})"
+                    return f"{attr}({module}, {py_string(py_ident(v.name))})"
+                if v.shared and isinstance(v.owner, ClassSym):
+                    return f"{attr}({self.class_ref(v.owner)}, {py_string(py_ident(v.name))})"
                 recv = "self" if i.receiver is None else self.val(i.receiver)
                 return f"{attr}({recv}, {py_string(py_ident(v.name))})"
-            if i.kind == "index":
+            if isinstance(i, IndexInfo):
                 assert isinstance(a, A.Invoke)
                 idx = [self.val(x) for x in a.args]
                 key = idx[0] if len(idx) == 1 else "(" + ", ".join(idx) + ")"
@@ -722,9 +859,8 @@ class ExprLowerer:
         value = self.conv(a, dst)[0] if self.type_of(a) is t.NOTHING else self.val(a)
         return f"{self.rt(BYREF, 'Box')}({value})"
 
-    def user_call(self, i: Info, args: list[A.Expr]) -> Code:
-        p: ProcSym = i.sym  # type: ignore[assignment]
-        return f"{self.proc_ref(p, i.receiver)}({', '.join(self.args_code(args, i.params or []))})", P_ATOM
+    def user_call(self, i: CallInfo, args: list[A.Expr]) -> Code:
+        return f"{self.proc_ref(i.sym, i.receiver)}({', '.join(self.args_code(args, i.params))})", P_ATOM
 
     def proc_ref(self, p: ProcSym, receiver: A.Expr | None) -> str:
         name = self.ctx.names.proc_name(p)
@@ -747,7 +883,7 @@ class ExprLowerer:
             ai = self.model.info.get(arg)
             tt = self.type_of(e.target)
             safe = (isinstance(arg, A.IntegerLiteral) and arg.value >= 0) or (
-                ai is not None and ai.kind == "var" and ai.sym in self.nonneg)
+                isinstance(ai, VarInfo) and ai.sym in self.nonneg)
             if safe and isinstance(tt, t.ArrayType) and tt.rank == 1:
                 # The subscript cannot be negative, so the element list itself does the upper-bound
                 # check (IndexError, which a Catch receives as -767): no Python-level call.
@@ -757,8 +893,8 @@ class ExprLowerer:
         idx = ", ".join(self.val(x) for x in e.args) or "()"
         return f"{self.sub(e.target, P_ATOM)}[{idx}]"
 
-    def builtin_function(self, i: Info, args: list[A.Expr]) -> Code:
-        f: BuiltinFunction = i.sym  # type: ignore[assignment]
+    def builtin_function(self, i: BuiltinFunctionInfo, args: list[A.Expr]) -> Code:
+        f = i.sym
         if f.name == "Chr" and len(args) == 1 and self.type_of(args[0]) in _INTS:
             return f"chr({self.sub(args[0], P_BAND + 1)} & 255)", P_ATOM  # low 8 bits (AMB-23)
         if f.name == "CStr" and len(args) == 1 and self.type_of(args[0]) is t.SINGLE:
@@ -767,14 +903,14 @@ class ExprLowerer:
             return f"str({self.val(args[0])})", P_ATOM  # an integer's digits (to_string's rule)
         if f.name == "Len" and len(args) == 1 and self.type_of(args[0]) is t.STRING:
             return f"len({self.val(args[0])})", P_ATOM  # a String is never None (Nothing is "")
-        return self.call(self.ctx.builtin(f.python_name), *self.args_code(args, i.params or []))
+        return self.call(self.ctx.builtin(f.python_name), *self.args_code(args, i.params))
 
-    def builtin_member(self, i: Info, e: A.Expr, args: list[A.Expr] | None, statement: bool = False) -> Code:
+    def builtin_member(self, i: BuiltinMemberInfo, e: A.Expr, args: list[A.Expr] | None,
+                       statement: bool = False) -> Code:
         """A built-in member read or called; ``statement``: its statement form (``Member.action``)."""
-        m: Member = i.sym  # type: ignore[assignment]
-        b: BuiltinClass = i.owner  # type: ignore[assignment]
+        m, b = i.sym, i.owner
         acode = self.args_code(args or [], i.params or [])
-        if i.kind == "vmember" and b.name == "String":
+        if i.on_value and b.name == "String":
             if m.name == "Length" and i.receiver is not None:
                 return f"len({self.val(i.receiver)})", P_ATOM
             if m.name == "IndexOf" and i.receiver is not None and len(acode) == 1 \
@@ -802,14 +938,14 @@ class ExprLowerer:
             return head, P_ATOM
         return f"{head}({', '.join(acode)})", P_ATOM
 
-    def new_code(self, e: A.New, i: Info) -> Code:
+    def new_code(self, e: A.New, i: NewInfo) -> Code:
         target = i.sym
         args = e.args or []
         if isinstance(target, ClassSym):
             ref = self.class_ref(target)
             acode = self.args_code(args, i.params or [])
-            if len(target.ctors) > 1 and isinstance(i.owner, ProcSym):
-                return f"{ref}._create_{i.owner.overload_index}({', '.join(acode)})", P_ATOM
+            if len(target.ctors) > 1 and i.ctor is not None:
+                return f"{ref}._create_{i.ctor.overload_index}({', '.join(acode)})", P_ATOM
             return f"{ref}({', '.join(acode)})", P_ATOM
         if isinstance(target, DelegateSym):
             ref = self.class_ref(target)
@@ -825,40 +961,43 @@ class ExprLowerer:
                 # delegates do, so the runtime never has to infer it from the Python caller.
                 acode.append(f"_module={py_string(self.ctx.mod.name)}")
             return self.call(self.ctx.builtin(target.python_name), *acode)
-        return "None", P_ATOM
-
-    def ext_code(self, e: A.Expr, i: Info) -> str:
-        """Uses of stubs (``gpl2py.semantics.stubs``) and of values of unknown type: plain Python,
-        since nothing is known to convert; the stub raises -204 unless the user supplied it."""
-        args = [self.val(a) for a in e.args] if isinstance(e, (A.Invoke, A.New)) and e.args else []
-        if i.kind == "extattr":
-            # never a raw Python attribute: the runtime admits GPL members only (docs/security.md)
-            return self.dynamic_member(i.receiver, str(i.sym))  # type: ignore[arg-type]
-        if i.kind == "extinvoke":
-            if isinstance(e, A.Invoke):
-                return f"{self.sub(e.target, P_ATOM)}({', '.join(args)})"
-            assert isinstance(e, A.MemberAccess)
-            return f"{self.dynamic_member(e.target, e.name)}()"
-        stub: Stub | None = i.sym  # type: ignore[assignment]
-        if stub is None:
-            return "None"
-        ref = self.ctx.stub_ref(stub)
-        if stub.builtin is not None and not stub.shared and i.receiver is not None:
-            args.insert(0, self.val(i.receiver))  # an instance member receives its object first
-        if i.kind == "extname" and stub.builtin is None and stub.kind != "procedure":
-            return ref  # a variable of the protected code
-        return f"{ref}({', '.join(args)})"
+        raise InternalError(e.span, f"New of a {type(target).__name__}")
 
     def dynamic_member(self, receiver: A.Expr, name: str) -> str:
         """``receiver.name`` where the receiver's class is unknown (gplrt.lang.members)."""
         return f"{self.rt(MEMBERS, 'get_member')}({self.val(receiver)}, {py_string(name)})"
 
-    def addressof_code(self, i: Info) -> str:
-        p: ProcSym = i.sym  # type: ignore[assignment]
-        return self.proc_ref(p, i.receiver)
-
 
 _PLAIN_MATH = {"Sin": "sin", "Cos": "cos", "Tan": "tan", "Atan": "atan", "Atan2": "atan2", "Sqrt": "sqrt"}
+
+#: The lowering of each kind of meaning (ExprLowerer.expr).  Kinds that name something rather than
+#: give a value (a module, a class, a procedure before its arguments) are absent: meeting one as a
+#: value is a gap in gpl2py (GPL9000), which the analysis never lets through.
+_VISIT: dict[type[Info], Callable[[ExprLowerer, A.Expr, Any], Code]] = {
+    LiteralInfo: ExprLowerer.x_literal,
+    NothingInfo: ExprLowerer.x_nothing,
+    MeInfo: ExprLowerer.x_me,
+    ErrorInfo: ExprLowerer.x_error,
+    VarInfo: ExprLowerer.x_var,
+    ResultInfo: ExprLowerer.x_result,
+    CallInfo: ExprLowerer.x_call,
+    PropInfo: ExprLowerer.x_prop,
+    IndexInfo: ExprLowerer.x_index,
+    BuiltinFunctionInfo: ExprLowerer.x_bfunc,
+    BuiltinConstInfo: ExprLowerer.x_bconst,
+    BuiltinMemberInfo: ExprLowerer.x_bmember,
+    DelegateCallInfo: ExprLowerer.x_delegate_call,
+    NewInfo: ExprLowerer.x_new,
+    AddressOfInfo: ExprLowerer.x_addressof,
+    TypeNameInfo: ExprLowerer.x_typename,
+    StubCallInfo: ExprLowerer.x_stub,
+    StubNameInfo: ExprLowerer.x_stub,
+    StubNewInfo: ExprLowerer.x_stub,
+    DynamicMemberInfo: ExprLowerer.x_dynamic_member,
+    DynamicCallInfo: ExprLowerer.x_dynamic_call,
+    UnaryInfo: ExprLowerer.x_unary,
+    BinaryInfo: ExprLowerer.x_binary,
+}
 
 
 def _may_overflow(e: A.Expr) -> bool:
@@ -870,28 +1009,30 @@ def _may_overflow(e: A.Expr) -> bool:
     return False
 
 
-def _int_value(code: str) -> int | None:
-    """The value of an integer literal in generated code (``12``, ``-3``, ``0x7FFF``), else None."""
-    try:
-        return int(code, 0)
-    except ValueError:
-        return None
+def _number(e: A.Expr | None) -> int | float | None:
+    """The value of a number literal, negated or not (``3``, ``-0.5``), else None."""
+    sign = 1
+    if isinstance(e, A.Unary) and e.op == "-":
+        e, sign = e.operand, -1
+    if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
+        return sign * e.value
+    return None
 
 
-def _nonzero_literal(code: str) -> bool:
-    try:
-        return float(code) != 0.0
-    except ValueError:
-        return bool(_int_value(code))
+def _integer(e: A.Expr | None) -> int | None:
+    """The value of an Integer literal, negated or not, else None."""
+    value = _number(e)
+    return value if isinstance(value, int) and -(2**31) <= value < 2**31 else None
 
 
-def _against_boolean_literal(op: str, lc: Code, rc: Code) -> Code | None:
+def _against_boolean_literal(op: str, left: tuple[Code, A.Expr | None],
+                             right: tuple[Code, A.Expr | None]) -> Code | None:
     """``flag = True`` as ``flag``, ``flag = False`` / ``flag <> True`` as ``not flag`` (PEP 8:
     never compare to True with ``==``).  Exact for two Booleans; the literal side has no effects
     to lose.  ``None`` when neither side is a literal."""
-    for lit, other in ((rc, lc), (lc, rc)):
-        if lit[1] == P_ATOM and lit[0] in ("True", "False"):
-            if (lit[0] == "True") == (op == "="):
+    for (_, lit), (other, _) in ((right, left), (left, right)):
+        if isinstance(lit, A.BooleanLiteral):
+            if lit.value == (op == "="):
                 return other
             return f"not {paren(other, P_NOT)}", P_NOT
     return None

@@ -57,10 +57,26 @@ class GotoPlan:
     retry_tries: set[A.Try] = field(default_factory=set)
     # statement entered from outside -> the block of it that the jump enters
     entered: dict[A.Stmt, A.Block] = field(default_factory=dict)
+    # Try bodies whose only target is their first statement, reached by retry jumps only: each
+    # attempt starts at the top, so the body needs no dispatch loop (the retry loop is enough)
+    straight: set[A.Block] = field(default_factory=set)
+    # loop bodies whose only targets are labels at their end, reached from inside the body: a jump
+    # there ends the iteration, a ``continue`` of the loop (While, Do tested at the top or not at
+    # all, For Each: loops whose Python form has no step after the body but a checkpoint)
+    tails: set[A.Block] = field(default_factory=set)
+    # labels at the end of the procedure's body, followed by nothing but labels and at most one
+    # Return or Exit Sub/Function/Property -> that statement (None: the end of the procedure); a
+    # jump there is that statement itself (``GoTo _exit`` is ``return``), so the body needs no
+    # dispatch loop
+    exits: dict[A.Label, A.Stmt | None] = field(default_factory=dict)
+    exit_blocks: set[A.Block] = field(default_factory=set)
 
     def dispatch(self, block: A.Block) -> BlockInfo | None:
         info = self.blocks.get(block)
-        return info if info is not None and info.targets else None
+        if info is None or not info.targets or block in self.straight or block in self.tails \
+                or block in self.exit_blocks:
+            return None
+        return info
 
     def segment(self, info: BlockInfo, stmt: A.Stmt) -> int:
         """Segment number of ``stmt`` in ``info``'s dispatch loop (segment 0 precedes the first)."""
@@ -146,7 +162,59 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
         plan.jumps[g] = Jump(g, common, states, entries)
     for info, stmts in wanted.items():
         info.targets = [s for s in info.block.statements if s in stmts]
+    for info in wanted:
+        top = info.block.statements[0] if info.block.statements else None
+        if info.targets == [top] and all(j.retry_try is not None for j in plan.jumps.values()
+                                         if any(b is info for b, _ in j.states)):
+            plan.straight.add(info.block)
+        elif _ends_iteration(info, plan):
+            plan.tails.add(info.block)
+        elif _exit_tail(info, plan):
+            plan.exit_blocks.add(info.block)
     return plan
+
+
+def _exit_tail(info: BlockInfo, plan: GotoPlan) -> bool:
+    """Whether every target of ``info``, the procedure's body, is a label of its exit tail (the
+    statements from the first target on are labels, then at most one Return or Exit of the
+    procedure), reached by jumps that enter nothing on the way: each jump is then the tail's
+    statement (recorded in ``plan.exits``)."""
+    if info.parent is not None:
+        return False
+    stmts = info.block.statements
+    first = next((k for k, s in enumerate(stmts) if s is info.targets[0]), -1)
+    if first < 0:
+        return False
+    tail = stmts[first:]
+    last = tail[-1]
+    end: A.Stmt | None = None
+    if isinstance(last, A.Return) or (isinstance(last, A.Exit) and last.kind in ("Sub", "Function", "Property")):
+        end, tail = last, tail[:-1]
+    if not all(isinstance(s, A.Label) for s in tail):
+        return False
+    if not all(j.retry_try is None and j.restart is info and len(j.states) == 1
+               for j in plan.jumps.values() if any(b is info for b, _ in j.states)):
+        return False
+    for s in tail:
+        plan.exits[s] = end  # type: ignore[index]
+    return True
+
+
+def _ends_iteration(info: BlockInfo, plan: GotoPlan) -> bool:
+    """Whether ``info``'s targets are all labels at the end of a loop body that only jumps from
+    within the body reach: a jump there is a ``continue`` of the loop."""
+    owner = info.owner
+    if info.role != "loop" or owner is None or owner in plan.entered:
+        return False
+    if not (isinstance(owner, (A.While, A.ForEach))
+            or (isinstance(owner, A.DoLoop) and (owner.condition is None or owner.test_at_top))):
+        return False
+    stmts = info.block.statements
+    first = stmts.index(info.targets[0]) if info.targets[0] in stmts else -1
+    if first < 0 or not all(isinstance(s, A.Label) for s in stmts[first:]):
+        return False
+    return all(j.restart is info and j.retry_try is None for j in plan.jumps.values()
+               if any(b is info for b, _ in j.states))
 
 
 def _chain(b: BlockInfo | None) -> list[BlockInfo]:

@@ -9,6 +9,7 @@ then the procedure registrations.  Importing the module runs nothing of the prog
 from __future__ import annotations
 
 import os
+from typing import NamedTuple
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.classes import delegate_line, field_value, lower_class, register_line, register_lines
@@ -16,7 +17,7 @@ from gpl2py.lower.context import ModuleContext, ProjectNames
 from gpl2py.lower.emit import Writer
 from gpl2py.lower.expressions import annotation, default_code
 from gpl2py.lower.names import py_ident, py_literal
-from gpl2py.lower.text import escape, py_string
+from gpl2py.lower.text import escape
 from gpl2py.lower.statements import ProcLowerer, lower_procedure
 from gpl2py.semantics.check import Model
 from gpl2py.semantics.symbols import ClassSym, DelegateSym, ModuleSym, ProcSym, VarSym
@@ -49,7 +50,7 @@ def _literal_value(e: A.Expr | None) -> bool:
         isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, (A.IntegerLiteral, A.RealLiteral)))
 
 
-def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink) -> tuple[str, list[int]]:
+def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink) -> LoweredModule:
     """The text of the generated module and, per line, the GPL line it came from."""
     ctx = ModuleContext(model, names, mod)
     body = Writer()
@@ -105,7 +106,7 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
         if isinstance(m, A.VarDecl):
             for d in m.declarators:
                 v = mod.members.get(d.name.lower())
-                if isinstance(v, VarSym) and v.decl is d and v not in model.const_values:
+                if isinstance(v, VarSym) and v.decl is d and v not in model.const_values and initialised(d):
                     init.gpl_line = d.span.line
                     init_low.globals.add(py_ident(v.name))
                     init.line(f"{py_ident(v.name)} = {field_value(init_low, v)}")
@@ -115,13 +116,13 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
                 _shared_inits(ctx, cls, init, init_low)
     # _reset: every module variable and Shared field back to its default (§12.2 step 1), so an
     # initializer that calls a function sees later variables at their defaults, in every session
-    resets: list[str] = []
+    resets: list[tuple[str, str]] = []  # (target, value)
     for m in members:
         if isinstance(m, A.VarDecl):
             for d in m.declarators:
                 v = mod.members.get(d.name.lower())
                 if isinstance(v, VarSym) and v.decl is d:
-                    resets.append(f"{py_ident(v.name)} = {reset_value(ctx, v)}")
+                    resets.append((py_ident(v.name), reset_value(ctx, v)))
         elif isinstance(m, A.ClassDecl):
             cls = mod.members.get(m.name.lower())
             if isinstance(cls, ClassSym):
@@ -130,25 +131,30 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     for name, value in ctx.statics:  # Static locals start afresh in a new session too
         if name not in seen_statics:
             seen_statics.add(name)
-            resets.append(f"{name} = {value}")
-    defs.blank(2)
-    defs.line("def _reset() -> None:")
-    defs.indent()
-    defs.line('"""Module variables, Shared fields and Static locals at their defaults (§12.2, step 1)."""')
-    names_reset = sorted({r.split(" = ")[0] for r in resets if "." not in r.split(" = ")[0]})
-    if names_reset:
-        defs.line("global " + ", ".join(names_reset))
-    for r in resets:
-        defs.line(r)
-    defs.dedent()
-    defs.blank(2)
-    defs.line("def _init() -> None:")
-    defs.indent()
-    defs.line('"""Module variable and Shared field initializers, in textual order (§12.2)."""')
-    if init_low.globals:
-        defs.line("global " + ", ".join(sorted(init_low.globals)))
-    defs.dedent()
-    defs.extend(init)
+            resets.append((name, value))
+    entries: set[str] = set()
+    if resets:
+        entries.add("_reset")
+        defs.blank(2)
+        defs.line("def _reset() -> None:")
+        defs.indent()
+        defs.line('"""Module variables, Shared fields and Static locals at their defaults (§12.2, step 1)."""')
+        names_reset = sorted({target for target, _ in resets if "." not in target})
+        if names_reset:
+            defs.line("global " + ", ".join(names_reset))
+        for target, value in resets:
+            defs.line(f"{target} = {value}")
+        defs.dedent()
+    if init.lines:
+        entries.add("_init")
+        defs.blank(2)
+        defs.line("def _init() -> None:")
+        defs.indent()
+        defs.line('"""Module variable and Shared field initializers, in textual order (§12.2)."""')
+        if init_low.globals:
+            defs.line("global " + ", ".join(sorted(init_low.globals)))
+        defs.dedent()
+        defs.extend(init)
     # registrations
     reg_lines: list[str] = []
     for p in procs:
@@ -193,7 +199,25 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
         out.blank(2)
         for line in reg_lines:
             out.line(line)
-    return out.render()
+    text, lines = out.render()
+    return LoweredModule(text, lines, frozenset(entries))
+
+
+class LoweredModule(NamedTuple):
+    """A generated module: its text, the GPL line of each of its lines, and which of ``_reset`` /
+    ``_init`` it defines (a module with nothing to reset or initialise has neither, and the
+    package's ``init()`` does not call them)."""
+
+    text: str
+    lines: list[int]
+    entries: frozenset[str]
+
+
+def initialised(d: A.VarDeclarator) -> bool:
+    """Whether declaring ``d`` stores something of its own (an initializer, ``New``, array
+    bounds): a variable without one keeps the default ``_reset()`` gave it, so ``_init()`` has
+    nothing to do for it (the controller runs no code for a bare declaration)."""
+    return d.initializer is not None or bool(d.new) or bool(d.bounds and all(b is not None for b in d.bounds))
 
 
 def reset_value(ctx: ModuleContext, v: VarSym) -> str:
@@ -204,11 +228,11 @@ def reset_value(ctx: ModuleContext, v: VarSym) -> str:
     return default_code(v.type)
 
 
-def _shared_resets(ctx: ModuleContext, cls: ClassSym) -> list[str]:
-    out: list[str] = []
+def _shared_resets(ctx: ModuleContext, cls: ClassSym) -> list[tuple[str, str]]:
+    out: list[tuple[str, str]] = []
     for m in cls.members.values():
         if isinstance(m, VarSym) and m.shared:
-            out.append(f"{ctx.class_ref(cls)}.{py_ident(m.name)} = {reset_value(ctx, m)}")
+            out.append((f"{ctx.class_ref(cls)}.{py_ident(m.name)}", reset_value(ctx, m)))
         elif isinstance(m, ClassSym):
             out.extend(_shared_resets(ctx, m))
     return out
@@ -220,7 +244,8 @@ def _shared_inits(ctx: ModuleContext, cls: ClassSym, init: Writer, low: ProcLowe
         if isinstance(m, A.VarDecl):
             for d in m.declarators:
                 v = cls.members.get(d.name.lower())
-                if isinstance(v, VarSym) and v.decl is d and v.shared and v not in ctx.model.const_values:
+                if isinstance(v, VarSym) and v.decl is d and v.shared and v not in ctx.model.const_values \
+                        and initialised(d):
                     init.gpl_line = d.span.line
                     init.line(f"{ctx.class_ref(cls)}.{py_ident(v.name)} = {field_value(shared_low, v)}")
         elif isinstance(m, A.ClassDecl):

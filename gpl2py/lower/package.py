@@ -20,11 +20,13 @@ from gpl2py.semantics.symbols import ClassSym, ModuleSym, ProcSym
 def package_init(model: Model, project_name: str, start_text: str | None, modules: list[ModuleSym],
                  extra: list[ModuleSym], stubs: list[dict[str, object]] | None = None,
                  stub_modules: list[str] | None = None,
-                 proc_name: Callable[[ProcSym], str] | None = None) -> str:
+                 proc_name: Callable[[ProcSym], str] | None = None,
+                 entries: dict[str, frozenset[str]] | None = None) -> str:
     """``stubs``: the PROJECT["stubs"] records (name, kind, provided by the user); ``stub_modules``:
     the generated stub modules, reset with the others for a new session; ``proc_name``: the
     Python name of a procedure (``ProjectNames.proc_name``: an overloaded Init or start
-    procedure has a name of its own)."""
+    procedure has a name of its own); ``entries``: which of ``_reset``/``_init`` each module
+    (by Python name) defines (``lower_module``; by default both)."""
     if proc_name is None:
         def proc_name(p: ProcSym) -> str:
             return py_ident(p.name)
@@ -33,7 +35,7 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     if model.start is not None and model.start.module is not None:
         start_name = py_string(f"{model.start.module.name}.{model.start.name}")
     stub_modules = sorted(stub_modules or [])
-    names = ", ".join(sorted([m.py_name for m in all_mods] + stub_modules))
+    imported = sorted([m.py_name for m in all_mods] + stub_modules)
     start = model.start
     has_start = start is not None and start.module is not None
     lines = [
@@ -51,9 +53,13 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
         "",
     ]
     if all_mods or stub_modules:
-        text = f"from . import {names}"
-        lines.extend([text, ""] if len(text) <= 99 else ["from . import (", *(
-            f"    {n}," for n in names.split(", ")), ")", ""])
+        text = f"from . import {', '.join(imported)}"
+        lines.extend([text, ""] if len(text) <= 99 else ["from . import (", *(f"    {n}," for n in imported), ")", ""])
+        # every module is imported for the procedures it registers (Thread("Proc"), delegates by
+        # name), also one that init() has nothing to call in: the package's public names say so
+        exported = [py_string(n) for n in ["PROJECT", *imported, "init", "main"]]
+        text = f"__all__ = [{', '.join(exported)}]"
+        lines.extend([text, ""] if len(text) <= 99 else ["__all__ = [", *(f"    {n}," for n in exported), "]", ""])
     lines += [
         "PROJECT = {",
         f"    \"name\": {py_string(project_name)},",
@@ -77,10 +83,11 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
     ]
     for name in stub_modules:
         lines.append(f"    {name}._reset()")
-    for m in extra + modules:
-        lines.append(f"    {m.py_name}._reset()")
-    for m in extra + modules:
-        lines.append(f"    {m.py_name}._init()")
+    def defines(m: ModuleSym, entry: str) -> bool:
+        return entries is None or entry in entries.get(m.py_name, ())
+
+    lines += [f"    {m.py_name}._reset()" for m in extra + modules if defines(m, "_reset")]
+    lines += [f"    {m.py_name}._init()" for m in extra + modules if defines(m, "_init")]
     for m in extra + modules:
         # the Shared Sub Init of each class (real code relies on it: docs/design/real-code.md),
         # before its module's Init, which may use the class
@@ -91,15 +98,16 @@ def package_init(model: Model, project_name: str, start_text: str | None, module
                 lines.append(f"    {m.py_name}.{path}.{proc_name(p)}()")
         if m in modules and m.init_proc is not None:
             lines.append(f"    {m.py_name}.{proc_name(m.init_proc)}()")
+    # without a start procedure there is no Simulation import to annotate with
+    sim_type = "Simulation | None" if has_start else "object"
     lines += [
         "",
         "",
-        "def main(sim: Simulation | None = None) -> int:",
+        f"def main(sim: {sim_type} = None) -> int:",
         '    """Run ProjectStart on the main GPL thread; 1 if any thread ended with an unhandled error."""',
     ]
     if not has_start:
         # no start procedure: say so before any thread starts (``python -m`` prints it, status 1)
-        lines[lines.index("def main(sim: Simulation | None = None) -> int:")] = "def main(sim: object = None) -> int:"
         lines.append(f"    raise SystemExit({py_string(_NO_START.format(project=project_name))})")
     else:
         assert start is not None and start.module is not None

@@ -9,10 +9,12 @@ how a jump knows how many loops it must leave.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
 
 from gpl2py import messages as M
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import DiagnosticSink, InternalError
 from gpl2py.lower.context import ModuleContext
 from gpl2py.lower.emit import BLOCKS, MAX_BLOCKS, MAX_INDENT, Writer
 from gpl2py.lower.expressions import (
@@ -20,6 +22,7 @@ from gpl2py.lower.expressions import (
     CONV,
     MEMBERS,
     P_AND,
+    P_ADD,
     P_ATOM,
     P_NOT,
     P_OR,
@@ -34,14 +37,26 @@ from gpl2py.lower.goto import GotoPlan, plan_gotos
 from gpl2py.lower.names import py_ident
 from gpl2py.lower.text import py_string
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import Member
 from gpl2py.semantics.check import child_blocks
-from gpl2py.semantics.stubs import Stub
-from gpl2py.semantics.symbols import ClassSym, ProcSym, PropSym, VarSym
+from gpl2py.semantics.info import (
+    BuiltinMemberInfo,
+    DynamicMemberInfo,
+    IndexInfo,
+    PropInfo,
+    Reached,
+    ResultInfo,
+    StubNameInfo,
+    VarInfo,
+)
+from gpl2py.semantics.symbols import ClassSym, ProcSym, VarSym
 from gpl2py.syntax import ast as A
 
 THREADS = "gplrt.threads"
 EXC = "gplrt.lang.exceptions"
+# A range For of fewer literal steps than this is a plain ``range``: ``paced_range`` would return
+# the range itself (its checkpoint every PACE iterations, gplrt.threads.scheduler.PACE, which a
+# test keeps equal; the transpiler does not import the runtime).
+PACE = 1024
 ARRAYS = "gplrt.lang.arrays"
 
 
@@ -56,21 +71,8 @@ class Frame:
 
 def lower_procedure(ctx: ModuleContext, p: ProcSym, cls: ClassSym | None, sink: DiagnosticSink,
                     method: bool) -> Writer:
-    """The ``def`` of procedure ``p`` (:meth:`ProcLowerer.procedure`).
-
-    A For over a variable range becomes two Python loops (checkpoint() every 1,024 iterations),
-    so ten nested ones reach CPython's 20 nested blocks.  When some statement nests too deeply,
-    the procedure is lowered again with every For as one loop (the general form, a checkpoint()
-    per iteration) before anything is reported: only what still does not fit is an error."""
-    first = DiagnosticSink()
-    low = ProcLowerer(ctx, p, cls, first)
-    out = low.procedure(p, method=method)
-    if not low.too_deep_seen:
-        sink.extend(first)
-        return out
-    again = ProcLowerer(ctx, p, cls, sink)
-    again.one_loop_fors = True
-    return again.procedure(p, method=method)
+    """The ``def`` of procedure ``p`` (:meth:`ProcLowerer.procedure`)."""
+    return ProcLowerer(ctx, p, cls, sink).procedure(p, method=method)
 
 
 class ProcLowerer(ExprLowerer):
@@ -86,20 +88,20 @@ class ProcLowerer(ExprLowerer):
         self.plan: GotoPlan | None = None
         self.state_var: dict[A.Block, str] = {}
         self.entry_flag: dict[A.Stmt, str] = {}
-        # every For in the form that is one Python loop (lower_procedure), and whether a
-        # statement was nested too deeply for Python (too_deep)
-        self.one_loop_fors = False
-        self.too_deep_seen = False
-        self._used_beyond_counters: set[str] | None = None
+        # per Try being lowered (innermost last): None when its Exit Try raises ExitTry, else the
+        # loop a retried Try runs in (framed_try), which Exit Try breaks
+        self.exit_try: list[Frame | None] = []
+        self.too_deep_seen = False  # a statement was nested too deeply for Python (too_deep)
+        self._read_past_loops: set[str] | None = None
 
-    def used_beyond_counters(self, v: VarSym) -> bool:
-        """Whether the procedure mentions ``v`` anywhere but as the counter of a For loop (its
-        ``For v =`` and ``Next v``): only then does a loop need to leave the first value past the
-        end in it (a store nothing reads would be dead code, pyflakes F841)."""
-        if self._used_beyond_counters is None:
+    def read_past_loops(self, v: VarSym) -> bool:
+        """Whether the procedure may read ``v`` where a range For over it has left its final value:
+        anywhere but inside the bodies of the For loops over ``v`` (each stores ``v`` before its
+        body runs).  A For over ``v`` nested in another is read in the outer body: always True."""
+        if self._read_past_loops is None:
             body = getattr(getattr(self.proc, "decl", None), "body", None)
-            self._used_beyond_counters = _names_beyond_for_counters(body) if body is not None else None
-        return self._used_beyond_counters is None or v.name.lower() in self._used_beyond_counters
+            self._read_past_loops = _reads_outside_own_loops(body) if body is not None else None
+        return self._read_past_loops is None or v.name.lower() in self._read_past_loops
 
     def fresh(self, stem: str) -> str:
         self.counter += 1
@@ -110,80 +112,87 @@ class ProcLowerer(ExprLowerer):
     def target_type(self, e: A.Expr) -> t.GplType:
         return self.info(e).type  # a built-in member's: the value type of its assignment form
 
-    def store(self, target: A.Expr, value: str) -> None:
-        """Emit ``target = value`` (``value`` already converted to the target's type)."""
+    def store(self, target: A.Expr, value: str, source: A.Expr | None = None) -> None:
+        """Emit ``target = value`` (``value`` already converted to the target's type; ``source``:
+        the GPL expression it came from, when there is one).  Dispatched on the target's meaning;
+        a target with no rule is a gap in gpl2py (GPL9000), never a line left out."""
         i = self.info(target)
-        k = i.kind
-        if k == "var":
-            v: VarSym = i.sym  # type: ignore[assignment]
-            if v.storage == "temp":
-                self.w.line(f"{v.name} = {value}")
-                return
-            if v.storage == "local" and not v.read and not v.boxed:
-                # never read: keep the value's side effects only (no unused local for pyflakes)
-                if not _is_simple(value):
-                    self.w.line(value)
-                return
-            if v.storage in ("local", "param"):
-                n = self.local_name(v)
-                if v.storage == "param" and v.byref:
-                    self.w.line(f"{n}.value = {value}")
-                elif v.boxed:
-                    self.w.line(f"{n}.value = {value}")
-                else:
-                    self.w.line(f"{n} = {value}")
-                return
-            if v.storage == "static":
-                name = self.static_name(v)
-                self.globals.add(name)
-                self.w.line(f"{name} = {value}")
-                return
-            if v.storage == "module" and not self.ctx.module_prefix(self.ctx.owner_module(v)) \
-                    and not self.shadowed(v):
-                self.globals.add(py_ident(v.name))
-            self.w.line(f"{self.var_code(v, i.receiver)[0]} = {value}")
-            return
-        if k == "result":
+        if isinstance(i, VarInfo):
+            self.store_var(i, value, source)
+        elif isinstance(i, ResultInfo):
             self.w.line(f"_result = {value}")
-            return
-        if k == "index":
+        elif isinstance(i, IndexInfo):
             assert isinstance(target, A.Invoke)
             self.w.line(f"{self.index_code(target)} = {value}")
-            return
-        if k == "prop":
-            prop: PropSym = i.sym  # type: ignore[assignment]
+        elif isinstance(i, PropInfo):
+            prop = i.sym
             if prop.shared:
-                self.w.line(f"{self.class_ref(prop.owner)}._set_{py_ident(prop.name)}({value})")
+                self.w.line(f"{self.class_ref(prop.owner)}._set_{py_ident(prop.name)}({value})")  # type: ignore[arg-type]
             else:
                 self.w.line(f"{self.prop_ref(prop, i.receiver)} = {value}")
-            return
-        if k == "bmember":
-            m: Member = i.sym  # type: ignore[assignment]
-            head = (self.ctx.builtin(i.owner.python_name) if i.static  # type: ignore[union-attr]
-                    else self.sub(i.receiver, P_ATOM))  # type: ignore[arg-type]
+        elif isinstance(i, BuiltinMemberInfo):
+            m = i.sym
+            head = self.ctx.builtin(i.owner.python_name) if i.static else self.sub(i.receiver, P_ATOM)  # type: ignore[arg-type]
             if m.kind == "property" and not isinstance(target, A.Invoke):
                 self.w.line(f"{head}.{m.name} = {value}")
             else:  # ``X.M(args) = v``, or a member whose getter takes arguments: its set_ companion
                 args = self.args_code(target.args if isinstance(target, A.Invoke) else [], i.params or [])
                 self.w.line(f"{head}.set_{m.name}({', '.join([*args, value])})")
-            return
-        if k == "extattr":
+        elif isinstance(i, DynamicMemberInfo):
             # a member of a value of unknown type: the runtime admits GPL members only
+            assert i.receiver is not None
             setter = self.rt(MEMBERS, "set_member")
-            recv = self.val(i.receiver)  # type: ignore[arg-type]
-            self.w.line(f"{setter}({recv}, {py_string(str(i.sym))}, {value})")
-            return
-        if k == "extname":
-            stub: Stub = i.sym  # type: ignore[assignment]
-            ref = self.ctx.stub_ref(stub)
+            self.w.line(f"{setter}({self.val(i.receiver)}, {py_string(i.name)}, {value})")
+        elif isinstance(i, StubNameInfo):
+            stub = i.stub
             if stub.builtin is None:
-                self.w.line(f"{ref} = {value}")  # a variable of the protected code
+                self.w.line(f"{self.ctx.stub_ref(stub)} = {value}")  # a variable of the protected code
                 return
-            head, _, attr = ref.rpartition(".")
+            module, attr = self.ctx.stub_parts(stub)
             args = [self.val(i.receiver)] if not stub.shared and i.receiver is not None else []
-            self.w.line(f"{head}.set_{attr}({', '.join([*args, value])})")
+            self.w.line(f"{module}.set_{attr}({', '.join([*args, value])})")
+        elif self.model.errors_reported:  # not a target (reported; --keep-going output)
+            self.w.line(f"pass  # cannot assign {type(target).__name__} (reported)")
+        else:
+            raise InternalError(target.span, f"no lowering for a store into {type(i).__name__}")
+
+    def store_var(self, i: VarInfo, value: str, source: A.Expr | None) -> None:
+        """``v = value`` for each storage of a variable (docs/design/lowering.md, "Declarations")."""
+        v = i.sym
+        if v.storage == "temp":
+            self.w.line(f"{v.name} = {value}")
             return
-        self.w.line(f"pass  # cannot assign {type(target).__name__}")
+        if v.storage == "local" and not v.read and not v.boxed:
+            # never read: keep the value's side effects only (no unused local for pyflakes)
+            if source is None or not self.effect_free(source, v.type):
+                self.w.line(value)
+            return
+        if v.storage in ("local", "param"):
+            n = self.local_name(v)
+            if (v.storage == "param" and v.byref) or v.boxed:
+                self.w.line(f"{n}.value = {value}")
+            else:
+                self.w.line(f"{n} = {value}")
+            return
+        if v.storage == "static":
+            name = self.static_name(v)
+            self.globals.add(name)
+            self.w.line(f"{name} = {value}")
+            return
+        if v.storage == "module" and not self.ctx.module_prefix(self.ctx.owner_module(v)) \
+                and not self.shadowed(v):
+            self.globals.add(py_ident(v.name))
+        self.w.line(f"{self.var_code(v, i.receiver)[0]} = {value}")
+
+    def effect_free(self, e: A.Expr, dst: t.GplType) -> bool:
+        """Whether storing ``e`` into a ``dst`` variable can neither fail nor act: a literal of
+        ``dst``'s own type, Nothing, or a plain variable of that type (no conversion to raise)."""
+        if isinstance(e, A.NothingLiteral):
+            return True
+        i = self.model.info.get(e)
+        if isinstance(e, (A.IntegerLiteral, A.RealLiteral, A.StringLiteral, A.BooleanLiteral)):
+            return i is not None and i.type is dst
+        return isinstance(e, A.Name) and isinstance(i, VarInfo) and i.type is dst and i.receiver is None
 
     # -- procedures -----------------------------------------------------------------------------------------
 
@@ -193,7 +202,7 @@ class ProcLowerer(ExprLowerer):
         assert decl is not None
         self.plan = plan_gotos(decl.body, self.sink)
         for info in self.plan.blocks.values():
-            if info.targets:
+            if self.plan.dispatch(info.block) is not None:
                 self.state_var[info.block] = self.fresh("g")
         for stmt in self.plan.entered:
             flag = self.fresh("enter")
@@ -207,7 +216,7 @@ class ProcLowerer(ExprLowerer):
         body.base = len(self.cls.path) if method and self.cls is not None else 0  # inside its classes
         start = body.mark()
         self.block(decl.body)
-        if p.kind == "Function" and (p.labels or _falls_through(decl.body)):
+        if p.kind == "Function" and _falls_through(decl.body):
             # the value of a Function that ends without Return (§9.1); no unreachable line
             body.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
         out = Writer()
@@ -250,7 +259,7 @@ class ProcLowerer(ExprLowerer):
             out.line(f"@{name}.setter")
         elif method and p.shared:
             out.line("@staticmethod")
-        header = out.mark()
+        header = out.def_at = out.mark()
         out.line(f"def {name}({', '.join(params)}){ret}:")
         out.trailing(decl.trailing_comment, header)
         out.indent()
@@ -258,7 +267,7 @@ class ProcLowerer(ExprLowerer):
         for line in prologue:
             out.line(line)
         out.extend(body, extra_indent=0)
-        if not prologue and all(ln.text.startswith("#") for ln in body.lines[start:]):
+        if not prologue and body.only_comments(start):
             out.line("pass")
         if decl.end_comment is not None:
             out.comments([decl.end_comment])
@@ -391,9 +400,10 @@ class ProcLowerer(ExprLowerer):
         outer = (w.peak_level, w.peak_blocks)
         w.peak_level, w.peak_blocks = w.level, w.blocks
         fits = w.fits_python()  # else the statement around it is the one to blame
-        method = getattr(self, "s_" + type(s).__name__, None)
-        if method is not None:
-            method(s)
+        visit = _STMT_VISIT.get(type(s))
+        if visit is None:  # a gap in gpl2py: GPL9000 at the statement, never a statement dropped
+            raise InternalError(s.span, f"no lowering for the statement {type(s).__name__}")
+        visit(self, s)
         if fits and not w.fits_python():
             self.too_deep(s, start)
         w.peak_level, w.peak_blocks = max(outer[0], w.peak_level), max(outer[1], w.peak_blocks)
@@ -415,6 +425,12 @@ class ProcLowerer(ExprLowerer):
         del w.lines[start:]
         w.line("pass  # nested too deeply for Python (reported)")
         w.peak_level, w.peak_blocks = w.level, w.blocks
+
+    def s_misplaced(self, s: A.Stmt) -> None:
+        """A declaration inside a procedure body: the parser reported it (--keep-going output)."""
+        if not self.model.errors_reported:
+            raise InternalError(s.span, f"a {type(s).__name__} inside a procedure body was not reported")
+        self.w.line(f"pass  # {type(s).__name__} not lowered (reported)")
 
     def s_Label(self, s: A.Label) -> None:
         self.w.line(f"# {s.name}:")
@@ -440,8 +456,8 @@ class ProcLowerer(ExprLowerer):
                 self.w.dedent()
             else:
                 target = A.Name(d.span, d.name)
-                self.model.info[target] = self.model.info.get(target) or _var_info(v)
-                self.store(target, value)
+                self.model.info[target] = self.model.info.get(target) or VarInfo(v.type, v)
+                self.store(target, value, d.initializer if not d.bounds and d not in self.model.decl_new else None)
 
     def declarator_value(self, d: A.VarDeclarator, v: VarSym) -> str | None:
         """The value a declaration statement stores (array, New, initializer), or None."""
@@ -462,54 +478,57 @@ class ProcLowerer(ExprLowerer):
             value = self.conv(s.value, tt)[0]
             if tt is t.DOUBLE and _may_overflow_double(s.value, self):
                 value = self.double_checked(value)
-            self.store(s.target, self.checked(s.target, value, s.value))
+            self.store(s.target, self.checked(s.target, value, s.value), s.value)
+            return
+        op = s.op[:-1]
+        vt = self.type_of(s.value)
+        checked = tt is t.DOUBLE and op == "*" and _bound(s.target, self) * _bound(s.value, self) > _SAFE \
+            and not _shrinks(s.value)
+        if not checked and self.augmented(s.target, op, tt, s.value):
             return
         target = s.target
-        if isinstance(target, A.Invoke) and self.info(target).kind == "index":
+        if isinstance(target, A.Invoke) and isinstance(self.info(target), IndexInfo):
             target = self.hoist_index(target)
         ti = self.info(target)
-        if ti.receiver is not None and not isinstance(ti.receiver, (A.Name, A.MeExpr)):
+        if isinstance(ti, Reached) and ti.receiver is not None and not isinstance(ti.receiver, (A.Name, A.MeExpr)):
             # the object expression is evaluated once (§10.1): GetObj().f += 1
             tmp = self.fresh("t")
             self.w.line(f"{tmp} = {self.val(ti.receiver)}")
             recv = A.Name(ti.receiver.span, tmp)
-            self.model.info[recv] = _raw_info(tmp, self.type_of(ti.receiver))
+            self.model.info[recv] = VarInfo(self.type_of(ti.receiver), VarSym(tmp, None, self.type_of(ti.receiver), "temp"))
             target = A.MemberAccess(target.span, recv, getattr(target, "name", ""))
-            from dataclasses import replace
-
             self.model.info[target] = replace(ti, receiver=recv)
-        value = self.binop(s.op[:-1], (*self.expr(target), tt), (*self.expr(s.value), self.type_of(s.value)))
-        res_type = _binary_result(s.op[:-1], tt, self.type_of(s.value))
-        code = self.coerce(value, res_type, tt)[0]
-        if tt is t.DOUBLE and s.op == "*=" and _bound(target, self) * _bound(s.value, self) > _SAFE \
-                and not _shrinks(s.value):
+        value = self.binop(op, (*self.expr(target), tt), (*self.expr(s.value), vt), target, s.value)
+        code = self.coerce(value, _binary_result(op, tt, vt), tt)[0]
+        if checked:
             code = self.double_checked(code)
-        if code == value[0] and self.augmented(target, code):
-            return
-        self.store(target, self.checked(target, code, A.Binary(s.span, s.op[:-1], target, s.value)))
+        self.store(target, self.checked(target, code, A.Binary(s.span, op, target, s.value)))
 
-    def augmented(self, target: A.Expr, code: str) -> bool:
-        """Emit ``x += v`` / ``x -= v`` / ``x *= v`` when the GPL was a compound assignment and the
-        plain Python operation (``code``, the operator's own text: no conversion or range check
-        around it) is exactly what GPL does: Doubles, Strings."""
+    def augmented(self, target: A.Expr, op: str, tt: t.GplType, value: A.Expr) -> bool:
+        """Emit ``x += v`` / ``x -= v`` / ``x *= v`` for a compound assignment whose plain Python
+        operation is exactly GPL's, with no conversion or range check around it: Doubles with
+        numbers, Strings joined (``&=``, or ``+=`` of two Strings)."""
         i = self.info(target)
-        if i.kind != "var":
+        if not isinstance(i, VarInfo):
             return False
-        v: VarSym = i.sym  # type: ignore[assignment]
+        v = i.sym
         if v.storage not in ("local", "param", "module") or v.boxed or v.byref or not v.read:
             return False
         if v.storage == "module" and (self.ctx.module_prefix(self.ctx.owner_module(v)) or self.shadowed(v)):
             return False
-        name = self.var_code(v, i.receiver)[0]
-        for op in ("+", "-", "*"):
-            head = f"{name} {op} "
-            if code.startswith(head):
-                # binop parenthesises its right operand as needed, so ``x op rest`` is ``x op (rest)``
-                if v.storage == "module":
-                    self.globals.add(py_ident(v.name))
-                self.w.line(f"{name} {op}= {_unparen(code[len(head):])}")
-                return True
-        return False
+        vt = self.type_of(value)
+        if tt is t.DOUBLE and op in ("+", "-", "*") and vt in (t.BYTE, t.SHORT, t.INTEGER, t.SINGLE, t.DOUBLE):
+            right = self.val(value)
+        elif tt is t.STRING and op == "+" and vt is t.STRING:
+            right = self.val(value)
+        elif tt is t.STRING and op == "&" and vt not in (t.NOTHING, t.ERROR):
+            right, op = self.concat_part(self.expr(value), vt), "+"
+        else:
+            return False
+        if v.storage == "module":
+            self.globals.add(py_ident(v.name))
+        self.w.line(f"{self.var_code(v, i.receiver)[0]} {op}= {right}")
+        return True
 
     def double_checked(self, value: str) -> str:
         """A Double product that may leave the Double range: checked before the store (-710
@@ -526,8 +545,8 @@ class ProcLowerer(ExprLowerer):
         ``source`` is the GPL expression stored: a sum or difference of two Integer variables or
         literals one of which cannot be negative can leave the range on one side only, and is
         tested on that side."""
-        inner = _sole_argument(value, self.ctx.alias("chk_int32"))
-        if inner is None or self.info(target).kind != "var":
+        inner = self.int_checks.get(value)
+        if inner is None or not isinstance(self.info(target), VarInfo):
             return value
         return self.int_checked(inner, source)
 
@@ -573,7 +592,7 @@ class ProcLowerer(ExprLowerer):
         if self.type_of(e) is t.BYTE:
             return True
         i = self.model.info.get(e)
-        return i is not None and i.kind == "var" and i.sym in self.nonneg
+        return isinstance(i, VarInfo) and i.sym in self.nonneg
 
     def hoist_index(self, e: A.Invoke) -> A.Invoke:
         """Evaluate an element's array and subscripts once for ``a(i) += x`` (§10.1)."""
@@ -585,7 +604,7 @@ class ProcLowerer(ExprLowerer):
             tmp = self.fresh("t")
             self.w.line(f"{tmp} = {self.val(sub)}")
             n = A.Name(sub.span, tmp)
-            self.model.info[n] = _raw_info(tmp, self.type_of(sub))
+            self.model.info[n] = VarInfo(self.type_of(sub), VarSym(tmp, None, self.type_of(sub), "temp"))
             names.append(n)
         new = A.Invoke(e.span, names[0], names[1:])
         self.model.info[new] = self.info(e)
@@ -593,7 +612,7 @@ class ProcLowerer(ExprLowerer):
 
     def s_CallStmt(self, s: A.CallStmt) -> None:
         i = self.model.info.get(s.expr)
-        if i is not None and i.kind == "bmember" and getattr(i.sym, "action", None):
+        if isinstance(i, BuiltinMemberInfo) and i.sym.action:
             # a built-in member whose statement form acts (Robot.RapidDecel(1) stops robot 1)
             args = s.expr.args if isinstance(s.expr, A.Invoke) else []
             self.w.line(self.builtin_member(i, s.expr, args, statement=True)[0])
@@ -647,19 +666,19 @@ class ProcLowerer(ExprLowerer):
 
     def s_While(self, s: A.While) -> None:
         self.w.line(f"while {self.entered_cond(s, s.body, self.cond(s.condition))}:")
-        self.loop_body(s.body, Frame("While"), [f"{self.rt(THREADS, 'checkpoint')}()"])
+        self.loop_body(s.body, Frame("While", block=s.body), [f"{self.rt(THREADS, 'checkpoint')}()"])
 
     def s_DoLoop(self, s: A.DoLoop) -> None:
         cp = f"{self.rt(THREADS, 'checkpoint')}()"
         if s.condition is None:
             self.w.line("while True:")
-            self.loop_body(s.body, Frame("Do"), [cp])
+            self.loop_body(s.body, Frame("Do", block=s.body), [cp])
             return
         c = self.cond(s.condition)
         if s.test_at_top:
             test: Code = (f"not {paren(c, P_NOT)}", P_NOT) if s.until else c
             self.w.line(f"while {self.entered_cond(s, s.body, test)}:")
-            self.loop_body(s.body, Frame("Do"), [cp])
+            self.loop_body(s.body, Frame("Do", block=s.body), [cp])
             return
         exit_test = c[0] if s.until else f"not {paren(c, P_NOT)}"
         self.w.line("while True:")
@@ -668,49 +687,16 @@ class ProcLowerer(ExprLowerer):
     def s_For(self, s: A.For) -> None:
         vt = self.type_of(s.var)
         vi = self.info(s.var)
-        v = vi.sym if vi.kind == "var" else None
+        v = vi.sym if isinstance(vi, VarInfo) else None
         step_lit = _int_literal(s.step) if s.step is not None else 1
         fast = (isinstance(v, VarSym) and v.storage in ("local", "param") and not v.boxed and not v.byref
                 and vt is t.INTEGER and step_lit in (1, -1)
                 and self.type_of(s.start) in (t.INTEGER, t.SHORT, t.BYTE)
                 and self.type_of(s.end) in (t.INTEGER, t.SHORT, t.BYTE)
                 and not _writes_or_leaves(s.body, v.name.lower()))
-        if fast and self.one_loop_fors and not _few_literal_steps(s):
-            fast = False  # deeply nested code: the general form is one Python loop, not two
         if fast:
             assert isinstance(v, VarSym)
-            name = self.local_name(v)
-            start = self.once(s.start, s.body)
-            end = self.once(s.end, s.body)
-            # A scheduling point every _CHUNK iterations, so a long loop cannot starve the other GPL
-            # threads in virtual time: the range is walked in chunks with checkpoint() between them
-            # (~1-2 ns per iteration; a test of the counter in the body costs ~20 ns). A loop of at
-            # most _CHUNK literal steps needs none.
-            lo, hi = _int_value_of(start), _int_value_of(end)
-            chunked = not (lo is not None and hi is not None and abs(hi - lo) < _CHUNK)
-            stop = _plus(end, 1 if step_lit == 1 else -1)
-            tail = ", -1" if step_lit == -1 else ""
-            if chunked:
-                k = self.fresh("k")
-                edge = "min" if step_lit == 1 else "max"
-                self.w.line(f"for {k} in range({start}, {stop}, {_CHUNK * step_lit}):  # checkpoint() every {_CHUNK}")
-                self.w.indent(BLOCKS["loop"])
-                self.w.line(f"for {name} in range({k}, {edge}({k} + {_CHUNK * step_lit}, {stop}){tail}):")
-            else:
-                self.w.line(f"for {name} in range({start}, {stop}{tail}):")
-            if step_lit == 1:
-                final = f"{name} = max({start}, {stop})"
-                if _int_value_of(start) is not None and _int_value_of(start) >= 0:  # type: ignore[operator]
-                    self.nonneg.add(v)  # a subscript that cannot be negative (lower/expressions.py)
-            else:
-                final = f"{name} = min({start}, {stop})"
-            self.loop_body(s.body, Frame("For"))
-            if chunked:
-                self.w.line(f"{self.rt(THREADS, 'checkpoint')}()")
-                self.w.dedent()
-            self.nonneg.discard(v)
-            if self.used_beyond_counters(v):
-                self.w.line(final + "  # the first value past the end (§10.3)")
+            self.range_for(s, v, step_lit)  # type: ignore[arg-type]
             return
         self.store(s.var, self.conv(s.start, vt)[0])
         end = self.once(s.end, s.body, force=True)
@@ -737,13 +723,51 @@ class ProcLowerer(ExprLowerer):
         self.w.dedent()
         self.after(frame)
 
+    def range_for(self, s: A.For, v: VarSym, step: int) -> None:
+        """A For over an Integer local with Step 1 or -1 whose body neither writes the counter nor
+        leaves early: ``for i in paced_range(a, b + 1):``.  ``paced_range`` (gplrt.threads) is a
+        ``range`` that gives the other GPL threads their turn every 1024 iterations, without a
+        call per iteration; a loop of fewer literal steps is a plain ``range``.  The counter holds
+        the first value past the end afterwards (§10.3) only where something reads it there."""
+        name = self.local_name(v)
+        final = self.read_past_loops(v)
+        lo, hi = _int_literal(s.start), _int_literal(s.end)
+        if final:  # the bounds are used again after the loop: evaluated once, into temporaries
+            start, end = self.once(s.start, s.body), self.once(s.end, s.body)
+            stop = str(hi + step) if hi is not None else f"{end} {'+' if step > 0 else '-'} 1"
+        else:  # range() evaluates each once, in order, as For does (§10.3)
+            start = self.val(s.start)
+            stop = str(hi + step) if hi is not None else self.range_stop(s.end, step)
+        tail = ", -1" if step == -1 else ""
+        few = lo is not None and hi is not None and abs(hi - lo) < PACE
+        loop = "range" if few else self.rt(THREADS, "paced_range")
+        self.w.line(f"for {name} in {loop}({start}, {stop}{tail}):")
+        if step == 1 and lo is not None and lo >= 0:
+            self.nonneg.add(v)  # a subscript that cannot be negative (lower/expressions.py)
+        self.loop_body(s.body, Frame("For"))
+        self.nonneg.discard(v)
+        if final:
+            edge = "max" if step == 1 else "min"
+            self.w.line(f"{name} = {edge}({start}, {stop})  # the first value past the end (§10.3)")
+
+    def range_stop(self, e: A.Expr, step: int) -> str:
+        """The stop of ``range`` for a For ending at ``e``: ``n`` for ``To n - 1`` (``For i = 0 To
+        count - 1`` is ``range(0, count)``), else ``end + 1`` (``end - 1`` stepping down)."""
+        back = "-" if step > 0 else "+"
+        if isinstance(e, A.Binary) and e.op == back and isinstance(e.right, A.IntegerLiteral) \
+                and 1 <= e.right.value < 2**31 and self.type_of(e.left) in (t.INTEGER, t.SHORT, t.BYTE):
+            k = e.right.value - 1
+            left = self.expr(e.left)
+            return left[0] if k == 0 else f"{paren(left, P_ADD)} {back} {k}"
+        return f"{paren(self.expr(e), P_ADD)} {'+' if step > 0 else '-'} 1"
+
     def once(self, e: A.Expr, body: A.Block, force: bool = False) -> str:
         """A For bound: evaluated once (§10.3) -- a temporary unless it is a literal or a local the
         body never writes."""
         if isinstance(e, (A.IntegerLiteral, A.RealLiteral)):
             return self.val(e)
         i = self.info(e)
-        if isinstance(e, A.Name) and i.kind == "var" and i.sym.storage in ("local", "param") \
+        if isinstance(e, A.Name) and isinstance(i, VarInfo) and i.sym.storage in ("local", "param") \
                 and not i.sym.boxed and not i.sym.byref and not _writes_or_leaves(body, e.name.lower(), exits=False):
             return self.val(e)
         tmp = self.fresh("end" if not force else "v")
@@ -752,17 +776,17 @@ class ProcLowerer(ExprLowerer):
 
     def s_ForEach(self, s: A.ForEach) -> None:
         vi = self.info(s.var)
-        v = vi.sym if vi.kind == "var" else None
+        v = vi.sym if isinstance(vi, VarInfo) else None
         if isinstance(v, VarSym) and v.storage in ("local", "param") and not v.boxed and not v.byref:
             self.w.line(f"for {self.local_name(v)} in {self.val(s.collection)}:")
-            self.loop_body(s.body, Frame("For"))
+            self.loop_body(s.body, Frame("For", block=s.body))
             return
         tmp = self.fresh("item")
         self.w.line(f"for {tmp} in {self.val(s.collection)}:")
         self.w.indent(BLOCKS["loop"])
         self.store(s.var, tmp)
         self.w.dedent()
-        self.loop_body(s.body, Frame("For"))
+        self.loop_body(s.body, Frame("For", block=s.body))
 
     def s_Select(self, s: A.Select) -> None:
         st = self.type_of(s.subject)
@@ -826,21 +850,35 @@ class ProcLowerer(ExprLowerer):
     def s_Try(self, s: A.Try) -> None:
         assert self.plan is not None
         retry = s in self.plan.retry_tries
-        needs_frame = retry or _has_exit(s, "Try")
-        if retry:
+        if retry and s.body in self.state_var:
             self.w.line(f"{self.state_var[s.body]} = 0")
         if s.catch is None and s.finally_ is None:  # the parser reported it: keep the body
             self.block(s.body)
             return
-        if not needs_frame:  # one try statement: except and finally share it
-            both = s.catch is not None and s.finally_ is not None
-            self.w.line("try:")
-            self.w.indent(BLOCKS["try+finally" if both else "try"])
-            self.block(s.body)
-            self.w.dedent()
-            self.catch(s, BLOCKS["except+finally" if both else "except"])
-            self.finally_(s)
+        if retry:
+            self.framed_try(s)
             return
+        # One try statement: except and finally share it.  ``Exit Try`` raises ExitTry, which the
+        # statement's own first ``except`` clause ends (Finally runs as on any way out), so leaving
+        # loops nested in the body needs no flags.  From the Catch body, the handler's own ``try``
+        # ends it (a raise there would bypass the sibling clause).
+        both = s.catch is not None and s.finally_ is not None
+        self.w.line("try:")
+        self.w.indent(BLOCKS["try+finally" if both else "try"])
+        self.exit_try.append(None)
+        self.block(s.body)
+        self.exit_try.pop()
+        self.w.dedent()
+        if _exits(s.body, "Try"):
+            self.w.line(f"except {self.rt(EXC, 'ExitTry')}:")
+            self.w.line("    pass")
+        self.catch(s, BLOCKS["except+finally" if both else "except"])
+        self.finally_(s)
+
+    def framed_try(self, s: A.Try) -> None:
+        """A Try re-entered by a retry GoTo from its Catch: ``try: while True: try/except ...
+        break finally: ...``; the GoTo ``continue``s the loop (Finally does not run between
+        attempts) and an ``Exit Try`` ``break``s it."""
         if s.finally_ is not None:
             self.w.line("try:")
             self.w.indent(BLOCKS["try"])
@@ -848,6 +886,7 @@ class ProcLowerer(ExprLowerer):
         self.w.indent(BLOCKS["loop"])
         frame = Frame("Try")
         self.frames.append(frame)
+        self.exit_try.append(frame)
         if s.catch is None:
             self.block(s.body)
         else:
@@ -855,7 +894,8 @@ class ProcLowerer(ExprLowerer):
             self.w.indent(BLOCKS["try"])
             self.block(s.body)
             self.w.dedent()
-            self.catch(s, BLOCKS["except"])
+            self.catch(s, BLOCKS["except"], framed=True)
+        self.exit_try.pop()
         self.w.line("break")
         self.frames.pop()
         self.w.dedent()
@@ -872,7 +912,7 @@ class ProcLowerer(ExprLowerer):
         self.w.line(header)
         self.w.trailing(clause.trailing_comment, mark)
 
-    def catch(self, s: A.Try, blocks: int) -> None:
+    def catch(self, s: A.Try, blocks: int, framed: bool = False) -> None:
         c = s.catch
         if c is None:
             return
@@ -884,7 +924,17 @@ class ProcLowerer(ExprLowerer):
             self.store(ref, exc)
         else:
             self.w.line(exc)
-        self.block(c.body)
+        if framed or not _exits(c.body, "Try"):
+            self.block(c.body)  # (a framed Try's Exit Try breaks its loop from here too)
+        else:
+            self.w.line("try:")
+            self.w.indent(BLOCKS["try"])
+            self.exit_try.append(None)
+            self.block(c.body)
+            self.exit_try.pop()
+            self.w.dedent()
+            self.w.line(f"except {self.rt(EXC, 'ExitTry')}:")
+            self.w.line("    pass")
         self.w.dedent()
 
     def finally_(self, s: A.Try) -> None:
@@ -904,13 +954,42 @@ class ProcLowerer(ExprLowerer):
         if j is None:
             self.w.line(f"pass  # GoTo {s.label}: not lowered (reported)")
             return
-        pre = [f"{self.state_var[b.block]} = {self.plan.segment(b, st)}" for b, st in j.states]
+        label = j.states[-1][1]
+        if isinstance(label, A.Label) and label in self.plan.exits:
+            self.exit_tail(self.plan.exits[label])  # GoTo _exit: the statement the label leads to
+            return
+        pre = [f"{self.state_var[b.block]} = {self.plan.segment(b, st)}" for b, st in j.states
+               if b.block in self.state_var]
+        if j.retry_try is not None and j.retry_try.body not in self.state_var:
+            # the attempt starts at the top of the Try body, which has no dispatch loop (and so no
+            # checkpoint of its own): the retry loop's back-edge is a scheduling point
+            pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
         pre += [f"{self.entry_flag[st]} = True" for st in j.entries]
-        if j.retry_try is not None:
+        if j.restart.block in self.plan.tails:
+            # to the labels that end a loop body: the next iteration, through the loop's
+            # scheduling point (which its own back-edge would have been)
+            frame = next(f for f in reversed(self.frames) if f.block is j.restart.block)
+            if not isinstance(j.restart.owner, A.ForEach):
+                pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
+        elif j.retry_try is not None:
             frame = next(f for f in reversed(self.frames) if f.kind == "Try")
         else:
             frame = next(f for f in reversed(self.frames) if f.kind == "dispatch" and f.block is j.restart.block)
         self.jump(frame, "continue", pre)
+
+    def exit_tail(self, end: A.Stmt | None) -> None:
+        """What a jump to the procedure's exit labels does: their Return or Exit, else what the
+        end of the procedure does (``gpl2py.lower.goto``, ``GotoPlan.exits``)."""
+        p = self.proc
+        assert p is not None
+        if isinstance(end, A.Return):
+            self.s_Return(end)
+        elif isinstance(end, A.Exit):
+            self.s_Exit(end)
+        elif p.kind == "Function":
+            self.w.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
+        else:
+            self.w.line("return")
 
     def s_Exit(self, s: A.Exit) -> None:
         p = self.proc
@@ -923,6 +1002,9 @@ class ProcLowerer(ExprLowerer):
             return
         if s.kind == "Function":
             self.w.line("return _result" if p.uses_result else f"return {default_code(p.result)}")
+            return
+        if s.kind == "Try" and self.exit_try and self.exit_try[-1] is None:
+            self.w.line(f"raise {self.rt(EXC, 'ExitTry')}")  # ends the Try statement (s_Try)
             return
         frame = self.innermost(s.kind)
         if frame is None:
@@ -938,7 +1020,7 @@ class ProcLowerer(ExprLowerer):
             return
         if p.kind == "Function":
             value = self.conv(s.value, p.result)[0]
-            inner = _sole_argument(value, self.ctx.alias("chk_int32"))
+            inner = self.int_checks.get(value)
             if inner is not None:  # (inline, as for a store: checked)
                 value = self.int_checked(inner, s.value)
             self.w.line(f"return {value}")
@@ -963,12 +1045,6 @@ class ProcLowerer(ExprLowerer):
 
 _SAFE = 1e300  # a magnitude bound below this cannot overflow in one more + or -
 _INT_BOUND = 2.0**31
-
-
-# Iterations of a range For loop between two scheduling points: the scheduler's slice is counted in
-# checkpoints (1000 per slice by default), so a slice is ~1,000,000 iterations of a tight loop
-# (~0.1 s); smaller chunks cost measurably more in tight loops (benchmarks/runtime_speed.py).
-_CHUNK = 1024
 
 
 def _bound(e: A.Expr, low: ExprLowerer, memo: dict[int, float] | None = None) -> float:
@@ -1027,8 +1103,7 @@ def _leaf_bound(e: A.Expr, low: ExprLowerer) -> float:
     if low.type_of(e) in (t.BYTE, t.SHORT, t.INTEGER, t.BOOLEAN):
         return _INT_BOUND
     i = low.model.info.get(e)
-    if i is not None and i.kind == "bmember" and isinstance(i.sym, Member) and i.owner is not None \
-            and getattr(i.owner, "name", "") == "Math":
+    if isinstance(i, BuiltinMemberInfo) and i.owner.name == "Math":
         if i.sym.name in ("Sin", "Cos"):
             return 1.0
         if i.sym.name in ("Atan", "Atan2"):
@@ -1073,35 +1148,27 @@ def _names_in(node: A.Node) -> set[str]:
     return out
 
 
-def _names_beyond_for_counters(body: A.Node) -> set[str]:
-    """The names ``body`` mentions, leaving out the plain counters of its For loops (a For's own
-    ``var`` and ``next_var``)."""
+def _reads_outside_own_loops(body: A.Node) -> set[str]:
+    """The names ``body`` mentions outside the bodies of the For loops counting with them (and
+    outside those loops' own ``For v =`` / ``Next v``): where a range loop's final value could be
+    seen.  A For nested in a For over the same name counts as seen (the outer body reads it)."""
     out: set[str] = set()
-    stack: list[A.Node] = [body]
+    stack: list[tuple[A.Node, frozenset[str]]] = [(body, frozenset())]
     while stack:
-        n = stack.pop()
+        n, inside = stack.pop()
         if isinstance(n, A.For):
-            stack.extend(c for c in (n.start, n.end, n.step, n.body) if c is not None)
-            if not isinstance(n.var, A.Name):  # an element or field counter: its parts are read
-                stack.append(n.var)
+            counter = n.var.name.lower() if isinstance(n.var, A.Name) else None
+            if counter in inside:
+                out.add(counter)  # type: ignore[arg-type]
+            stack.extend((c, inside) for c in (n.start, n.end, n.step) if c is not None)
+            if counter is None:
+                stack.append((n.var, inside))  # an element or field counter: its parts are read
+            stack.append((n.body, inside | {counter} if counter is not None else inside))
             continue
-        if isinstance(n, A.Name):
+        if isinstance(n, A.Name) and n.name.lower() not in inside:
             out.add(n.name.lower())
-        stack.extend(n.children())
+        stack.extend((c, inside) for c in n.children())
     return out
-
-
-def _unparen(code: str) -> str:
-    """``(a - b)`` -> ``a - b`` when the parentheses enclose the whole text (``x -= a - b``)."""
-    if not (code.startswith("(") and code.endswith(")")):
-        return code
-    depth = 0
-    for i, ch in enumerate(code):
-        depth += ch == "("
-        depth -= ch == ")"
-        if depth == 0 and i < len(code) - 1:
-            return code  # (a) + (b): the first parenthesis closes early
-    return code[1:-1]
 
 
 def _falls_through(block: A.Block) -> bool:
@@ -1122,6 +1189,11 @@ def _falls_through(block: A.Block) -> bool:
         return any(_falls_through(b) for b in bodies)
     if isinstance(last, A.Select) and any(c.is_else for c in last.cases) and not _has_exit(last, "Select"):
         return any(_falls_through(c.body) for c in last.cases)
+    if isinstance(last, A.Try) and not _has_exit(last, "Try"):
+        # a Try whose body and Catch both return (or whose Finally does) ends the procedure
+        if last.finally_ is not None and not _falls_through(last.finally_.body):
+            return False
+        return _falls_through(last.body) or (last.catch is not None and _falls_through(last.catch.body))
     return True
 
 
@@ -1187,28 +1259,10 @@ def _assigned_before_use(p: ProcSym) -> set[VarSym]:
     return out
 
 
-def _is_simple(code: str) -> bool:
-    """A literal or plain name: nothing to evaluate for its side effects."""
-    return code.replace(".", "").replace("_", "").replace("-", "").replace('"', "").isalnum() or code in ('""', "None")
-
-
 def _ctext(c: A.Comment) -> str:
     from gpl2py.lower.emit import comment_text
 
     return comment_text(c)
-
-
-def _var_info(v: VarSym):  # type: ignore[no-untyped-def]
-    from gpl2py.semantics.check import Info
-
-    return Info(v.type, "var", v)
-
-
-def _raw_info(name: str, typ: t.GplType):  # type: ignore[no-untyped-def]
-    from gpl2py.semantics.check import Info
-
-    v = VarSym(name, None, typ, "temp")
-    return Info(typ, "var", v)
 
 
 def _binary_result(op: str, lt: t.GplType, rt: t.GplType) -> t.GplType:
@@ -1228,46 +1282,6 @@ def _binary_result(op: str, lt: t.GplType, rt: t.GplType) -> t.GplType:
 _INT_TYPES = (t.BYTE, t.SHORT, t.INTEGER)
 
 
-def _sole_argument(code: str, function: str) -> str | None:
-    """The argument text when ``code`` is exactly one call ``function(argument)`` (the whole of
-    it: ``f(a) + f(b)`` is not), else None.  Parentheses inside string literals do not count."""
-    head = function + "("
-    if not (code.startswith(head) and code.endswith(")")):
-        return None
-    depth, quote, i, end = 1, "", len(head), len(code) - 1
-    while i < end:
-        c = code[i]
-        if quote:
-            if c == "\\":
-                i += 1
-            elif c == quote:
-                quote = ""
-        elif c in "'\"":
-            quote = c
-        elif c == "(":
-            depth += 1
-        elif c == ")":
-            depth -= 1
-            if depth == 0:
-                return None  # the call closes before the end
-        i += 1
-    return code[len(head):end] if depth == 1 and not quote else None
-
-
-def _int_value_of(code: str) -> int | None:
-    try:
-        return int(code)
-    except ValueError:
-        return None
-
-
-def _few_literal_steps(s: A.For) -> bool:
-    """A For from one integer literal to another less than _CHUNK apart: its range loop needs no
-    chunks (ProcLowerer.s_For)."""
-    lo, hi = _int_literal(s.start), _int_literal(s.end)
-    return lo is not None and hi is not None and abs(hi - lo) < _CHUNK
-
-
 def _int_literal(e: A.Expr | None) -> int | None:
     if isinstance(e, A.IntegerLiteral):
         return e.value
@@ -1282,13 +1296,6 @@ def _pos_real(e: A.Expr | None) -> bool:
 
 def _neg_real(e: A.Expr | None) -> bool:
     return isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, (A.RealLiteral, A.IntegerLiteral))
-
-
-def _plus(code: str, n: int) -> str:
-    try:
-        return str(int(code) + n)
-    except ValueError:
-        return f"{code} + {n}" if n > 0 else f"{code} - {-n}"
 
 
 def _walk_stmts(block: A.Block):  # type: ignore[no-untyped-def]
@@ -1341,5 +1348,30 @@ def _exits(block: A.Block, kind: str) -> bool:
             return True
     return False
 
+
+#: The lowering of each kind of statement (ProcLowerer.stmt); a kind without one raises.
+_STMT_VISIT: dict[type[A.Stmt], Callable[[ProcLowerer, Any], None]] = {
+    A.Label: ProcLowerer.s_Label,
+    A.VarDecl: ProcLowerer.s_VarDecl,
+    A.Assign: ProcLowerer.s_Assign,
+    A.CallStmt: ProcLowerer.s_CallStmt,
+    A.If: ProcLowerer.s_If,
+    A.While: ProcLowerer.s_While,
+    A.DoLoop: ProcLowerer.s_DoLoop,
+    A.For: ProcLowerer.s_For,
+    A.ForEach: ProcLowerer.s_ForEach,
+    A.Select: ProcLowerer.s_Select,
+    A.Try: ProcLowerer.s_Try,
+    A.GoTo: ProcLowerer.s_GoTo,
+    A.Exit: ProcLowerer.s_Exit,
+    A.Return: ProcLowerer.s_Return,
+    A.Throw: ProcLowerer.s_Throw,
+    A.ReDim: ProcLowerer.s_ReDim,
+    A.ProcDecl: ProcLowerer.s_misplaced,
+    A.PropertyDecl: ProcLowerer.s_misplaced,
+    A.DelegateDecl: ProcLowerer.s_misplaced,
+    A.ClassDecl: ProcLowerer.s_misplaced,
+    A.ModuleDecl: ProcLowerer.s_misplaced,
+}
 
 __all__ = ["ProcLowerer", "Frame"]

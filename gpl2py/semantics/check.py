@@ -2,8 +2,10 @@
 
 :func:`analyze` runs the whole semantic analysis of a project and returns a :class:`Model` that the
 lowering reads.  For every expression node it records an :class:`Info`: the static type and *what
-the node is* (a local variable, a call of a user procedure, an array element, a built-in member,
-...), so the lowering never has to look a name up again.  Errors are reported to the sink with
+the node is*, as one typed record per kind (``semantics/info.py``: a :class:`VarInfo` for a
+variable, a :class:`CallInfo` for a call of a user procedure, an :class:`IndexInfo` for an array
+element, a :class:`BuiltinMemberInfo` for a built-in member, ...), so the lowering never has to
+look a name up again.  Errors are reported to the sink with
 positions and analysis carries on with the ERROR type, which silences follow-on errors, so one run
 reports every independent mistake.
 """
@@ -11,23 +13,64 @@ reports every independent mistake.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from sys import intern
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import (
-    BuiltinClass,
-    BuiltinConstant,
-    BuiltinFunction,
-    Catalogue,
-    Member,
-    Param,
-)
+from gpl2py.semantics.catalogue import BuiltinClass, Catalogue, Member, Param
 from gpl2py.semantics.consts import fold_constants
+from gpl2py.semantics.info import (
+    CALLS,
+    NAMES_NOT_VALUES,
+    AddressOfInfo,
+    BinaryInfo,
+    BuiltinClassInfo,
+    BuiltinConstInfo,
+    BuiltinFunctionInfo,
+    BuiltinFunctionRefInfo,
+    BuiltinMemberInfo,
+    CallInfo,
+    ClassInfo,
+    DelegateCallInfo,
+    DynamicCallInfo,
+    DynamicMemberInfo,
+    ErrorInfo,
+    IndexInfo,
+    Info,
+    LiteralInfo,
+    MeInfo,
+    ModuleInfo,
+    NewInfo,
+    NothingInfo,
+    ParamInfo,
+    ProcRefInfo,
+    PropInfo,
+    ResultInfo,
+    StubCallInfo,
+    StubModuleInfo,
+    StubNameInfo,
+    StubNewInfo,
+    StubRefInfo,
+    TypeNameInfo,
+    UnaryInfo,
+    VarInfo,
+)
 from gpl2py.semantics.overloads import best_overloads, signature_text
-from gpl2py.semantics.resolve import TOP_MODULE, Collector, Found, Resolver, visible
+from gpl2py.semantics.resolve import (
+    TOP_MODULE,
+    Collector,
+    Found,
+    FoundBuiltinClass,
+    FoundBuiltinConstant,
+    FoundBuiltinFunction,
+    FoundMember,
+    FoundModule,
+    FoundResult,
+    Resolver,
+    visible,
+)
 from gpl2py.semantics.stubs import Stub, StubTable
 from gpl2py.semantics.symbols import (
     ClassSym,
@@ -45,32 +88,9 @@ from gpl2py.source import Span
 from gpl2py.syntax import ast as A
 
 
-@dataclass(frozen=True)
-class ParamInfo:
-    """What the lowering needs to pass one argument: the parameter's type and passing mode."""
-
-    name: str
-    type: t.GplType
-    byref: bool = False
-    optional: bool = False
-
-
-@dataclass(eq=False, slots=True)
-class Info:
-    """The meaning of one expression node (see module docstring for ``kind``)."""
-
-    type: t.GplType
-    kind: str
-    sym: object = None
-    owner: object = None  # BuiltinClass for built-in members; ClassSym/ModuleSym for user members
-    params: tuple[ParamInfo, ...] | None = None  # shared by every Info of one parameter list
-    receiver: A.Expr | None = None  # the object expression of a member access, if any
-    static: bool = False  # a Shared member reached through a class or global class
-
-
 # One Info per literal type, shared by every literal (a third of all expressions in dense code;
-# nothing changes an Info of kind "literal"): docs/security.md, "Input size".
-_LITERAL = {typ: Info(typ, "literal") for typ in (t.INTEGER, t.DOUBLE, t.STRING, t.BOOLEAN)}
+# nothing changes a LiteralInfo): docs/security.md, "Input size".
+_LITERAL = {typ: LiteralInfo(typ) for typ in (t.INTEGER, t.DOUBLE, t.STRING, t.BOOLEAN)}
 
 
 class InfoTable:
@@ -148,6 +168,9 @@ class Model:
     # procedure declares the same variable (_declare_locals), a rejected duplicate is absent
     local_of: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
     stubs: StubTable | None = None  # names defined in protected code / missing built-in members
+    # errors were reported before lowering (it runs then for --keep-going only): an expression
+    # without a meaning is one of them, not a gap in gpl2py
+    errors_reported: bool = False
     # module and class Consts whose value translation computed (semantics/consts.py)
     const_values: dict[VarSym, object] = field(default_factory=dict)
 
@@ -247,7 +270,7 @@ class Checker:
         # Infos that only say "a variable" or "an operator's result of this type" are shared by
         # every expression they describe (most expressions of dense code: docs/security.md,
         # "Input size"); nothing changes an Info of these kinds once made
-        self._var_infos: dict[VarSym, Info] = {}
+        self._var_infos: dict[VarSym, VarInfo] = {}
         self._binary_infos: dict[t.GplType, Info] = {}
         # the ParamInfos of each parameter list, made once (``_params``)
         self._param_infos: dict[tuple[int, int], tuple[Sequence[VarSym | Param], tuple[ParamInfo, ...]]] = {}
@@ -280,6 +303,7 @@ class Checker:
             self._start(start, start_span)
         else:
             self._assume_main()
+        self.model.errors_reported = self.sink.has_errors()
         return self.model
 
     def _assume_main(self) -> None:
@@ -602,8 +626,7 @@ class Checker:
 
     def _call_stmt(self, e: A.Expr, ctx: _Ctx) -> None:
         info = self._expr(e, ctx, as_statement=True)
-        if info.kind not in ("call", "bfunc", "bmember", "vmember", "delegate_call", "error", "extcall",
-                             "extinvoke"):
+        if not isinstance(info, CALLS):
             self.sink.report(M.NOT_SUPPORTED, e.span, what=f"'{_text(e)}' as a statement (it is not a call)")
 
     # -- expressions: entry points ------------------------------------------------------------------------
@@ -612,15 +635,15 @@ class Checker:
         return self._value_check(e, self._expr(e, ctx))
 
     def _value_check(self, e: A.Expr, info: Info) -> t.GplType:
-        if info.kind == "typename":
+        if isinstance(info, TypeNameInfo):
             self.sink.report(M.NOT_A_VALUE, e.span, name=_text(e), what="type")
             info.type = t.ERROR
         elif info.type is t.VOID:
             self.sink.report(M.SUB_AS_VALUE, e.span, name=_text(e))
             info.type = t.ERROR
-        elif info.kind in ("module", "class", "bclass", "extmodule"):
+        elif isinstance(info, NAMES_NOT_VALUES):
             self.sink.report(M.NOT_A_VALUE, e.span, name=_text(e),
-                             what="module" if info.kind in ("module", "extmodule") else "class")
+                             what="module" if isinstance(info, (ModuleInfo, StubModuleInfo)) else "class")
             info.type = t.ERROR
         return info.type
 
@@ -648,22 +671,21 @@ class Checker:
     def _target(self, e: A.Expr, ctx: _Ctx, for_var: bool = False) -> t.GplType:
         """Check an assignment target; returns its type."""
         info = self._expr(e, ctx, as_target=True)
-        k = info.kind
-        if k == "var":
-            v: VarSym = info.sym  # type: ignore[assignment]
+        if isinstance(info, VarInfo):
+            v = info.sym
             if v.const:
                 self.sink.report(M.CONST_ASSIGN, e.span, name=v.name)
             v.assigned = True
             return info.type
-        if k in ("result", "index", "error", "extname", "extattr"):
+        if isinstance(info, (ResultInfo, IndexInfo, ErrorInfo, StubNameInfo, DynamicMemberInfo)):
             return info.type
-        if k == "prop":
-            prop: PropSym = info.sym  # type: ignore[assignment]
+        if isinstance(info, PropInfo):
+            prop = info.sym
             if prop.setter is None:
                 self.sink.report(M.PROPERTY_ACCESS, e.span, name=prop.name, what="read-only")
             return prop.type
-        if k == "bmember":
-            m: Member = info.sym  # type: ignore[assignment]
+        if isinstance(info, BuiltinMemberInfo) and not info.on_value:
+            m = info.sym
             if m.settable:
                 return info.type  # the value's type in the assignment form used (_assigned_member)
             self.sink.report(M.PROPERTY_ACCESS, e.span, name=m.name, what="read-only")
@@ -688,13 +710,13 @@ class Checker:
         if isinstance(e, A.BooleanLiteral):
             return self._record(e, _LITERAL[t.BOOLEAN])
         if isinstance(e, A.NothingLiteral):
-            return self._record(e, Info(t.NOTHING, "nothing"))
+            return self._record(e, NothingInfo(t.NOTHING))
         if isinstance(e, A.MeExpr):
             if not ctx.instance:
                 self.sink.report(M.ME_OUTSIDE_INSTANCE, e.span)
-                return self._record(e, Info(t.ERROR, "error"))
+                return self._record(e, ErrorInfo(t.ERROR))
             assert ctx.cls is not None
-            return self._record(e, Info(ctx.cls.type, "me"))
+            return self._record(e, MeInfo(ctx.cls.type))
         if isinstance(e, A.Name):
             return self._record(e, self._name(e, ctx, as_statement, as_target))
         if isinstance(e, A.MemberAccess):
@@ -714,7 +736,7 @@ class Checker:
             if not _scalar(ot):
                 self.sink.report(M.BAD_OPERANDS, e.span, op=e.op, left="", right=str(ot))
                 typ = t.ERROR
-            return self._record(e, Info(typ, "unary"))
+            return self._record(e, UnaryInfo(typ))
         if isinstance(e, A.Binary):
             if e.op == "Is":
                 lt = self._expr(e.left, ctx).type
@@ -723,13 +745,13 @@ class Checker:
                     if not _identity_operand(st, other):
                         self.sink.report(M.BAD_OPERANDS, side.span, op="Is", left=str(lt), right=str(rt))
                         break
-                return self._record(e, Info(t.BOOLEAN, "binary"))
+                return self._record(e, BinaryInfo(t.BOOLEAN))
             return self._binary_chain(e, ctx)
         if isinstance(e, A.New):
             return self._record(e, self._new(e, ctx))
         if isinstance(e, A.AddressOf):
             return self._record(e, self._addressof(e, ctx))
-        return self._record(e, Info(t.ERROR, "error"))
+        return self._record(e, ErrorInfo(t.ERROR))
 
     def _binary_chain(self, e: A.Binary, ctx: _Ctx) -> Info:
         """Type a left-leaning chain of binary operators (``a & b & c ...``) without recursing on it.
@@ -746,13 +768,13 @@ class Checker:
             spine.append(left)
             left = left.left
         lt = self._value(left, ctx)
-        info = Info(t.ERROR, "binary")
+        info = BinaryInfo(t.ERROR)
         for node in reversed(spine):
             rt = self._value(node.right, ctx)
             typ = self._binary_type(node.op, lt, rt, node)
             shared = self._binary_infos.get(typ)
             if shared is None:
-                shared = self._binary_infos[typ] = Info(typ, "binary")
+                shared = self._binary_infos[typ] = BinaryInfo(typ)
             info = self._record(node, shared)
             lt = info.type
         return info
@@ -800,79 +822,77 @@ class Checker:
                     as_statement: bool, as_target: bool, in_invoke: bool = False,
                     static: bool = False) -> Info:
         """``static``: a member reached through its class's name, so only Shared overloads count."""
-        k = found.kind
-        s = found.sym
-        if k == "result":
-            assert isinstance(s, ProcSym)
+        if isinstance(found, FoundResult):
+            s = found.sym
             if as_statement:
                 return self._proc_call_info(s, [], span, ctx, None)
             s.uses_result = True
-            return Info(s.result, "result", s)
-        if k == "module":
-            return Info(t.VOID, "module", s)
-        if k == "builtin_class":
-            assert isinstance(s, BuiltinClass)
-            return Info(s.type if not s.is_global else t.VOID, "bclass", s)
-        if k == "builtin_function":
-            assert isinstance(s, BuiltinFunction)
-            if sum(1 for p in s.params if not p.optional) > 0:
-                self.sink.report(M.WRONG_ARG_COUNT, span, name=s.name,  # type: ignore[arg-type]
-                                 expected=len(s.params), given=0)
-            return Info(s.result, "bfunc", s, params=self._params(s.params))
-        if k == "builtin_constant":
-            assert isinstance(s, BuiltinConstant)
-            return Info(s.type, "bconst", s)
+            return ResultInfo(s.result, s)
+        if isinstance(found, FoundModule):
+            return ModuleInfo(t.VOID, found.sym)
+        if isinstance(found, FoundBuiltinClass):
+            b = found.sym
+            return BuiltinClassInfo(b.type if not b.is_global else t.VOID, b)
+        if isinstance(found, FoundBuiltinFunction):
+            f = found.sym
+            if sum(1 for p in f.params if not p.optional) > 0:
+                self.sink.report(M.WRONG_ARG_COUNT, span, name=f.name,  # type: ignore[arg-type]
+                                 expected=len(f.params), given=0)
+            return BuiltinFunctionInfo(f.result, f, self._params(f.params))
+        if isinstance(found, FoundBuiltinConstant):
+            return BuiltinConstInfo(found.sym.type, found.sym)
         # user member
+        s = found.sym
         if isinstance(s, VarSym):
             if not as_target:
                 s.read = True
             if receiver is not None:
-                return Info(s.type, "var", s, receiver=receiver)
+                return VarInfo(s.type, s, receiver=receiver)
             shared = self._var_infos.get(s)
             if shared is None or shared.type is not s.type:
-                shared = self._var_infos[s] = Info(s.type, "var", s)
+                shared = self._var_infos[s] = VarInfo(s.type, s)
             return shared
         if isinstance(s, ProcSym):
             if in_invoke:
-                return Info(s.result, "procref", s, receiver=receiver)
+                return ProcRefInfo(s.result, s, receiver=receiver)
             return self._proc_call_info(s, [], span, ctx, receiver)
         if isinstance(s, OverloadSet):
             if in_invoke:  # the arguments choose the overload (_invoke)
-                return Info(s.result, "procref", s, receiver=receiver, static=static)
+                return ProcRefInfo(s.result, s, receiver=receiver, static=static)
             chosen = self._choose_overload(s, [], [], span, ctx, static)
             if chosen is None:
-                return Info(t.ERROR, "error")
+                return ErrorInfo(t.ERROR)
             return self._proc_call_info(chosen, [], span, ctx, receiver)
         if isinstance(s, PropSym):
             if s.getter is None and not as_target:
                 self.sink.report(M.PROPERTY_ACCESS, span, name=s.name, what="write-only")  # type: ignore[arg-type]
-            return Info(s.type, "prop", s, receiver=receiver)
+            return PropInfo(s.type, s, receiver=receiver)
         if isinstance(s, ClassSym):
-            return Info(t.VOID, "class", s)
+            return ClassInfo(t.VOID, s)
         if isinstance(s, DelegateSym):
-            return Info(t.VOID, "class", s)
-        return Info(t.ERROR, "error")
+            return ClassInfo(t.VOID, s)
+        return ErrorInfo(t.ERROR)
 
     def _name(self, e: A.Name, ctx: _Ctx, as_statement: bool, as_target: bool) -> Info:
         found = self.r.lookup(e.name, ctx.proc, ctx.cls, ctx.module)
         if found is None:
             if e.name.lower() == "string":
-                return Info(t.VOID, "bclass", self.cat.type_members.get("string"))
+                return BuiltinClassInfo(t.VOID, self.cat.type_members.get("string"))
             prim = t.lookup_primitive(e.name)
             if prim is not None:  # a type keyword as an argument: ToBitString(x, Short, True)
-                return Info(t.VOID, "typename", prim)
+                return TypeNameInfo(t.VOID, prim)
             if self.stubs.protected:
                 return self._stub_use(self.stubs.protected_name(e.name, e.span), as_statement, as_target)
             self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         if isinstance(found, str):
             self.sink.report(M.AMBIGUOUS_NAME, e.span, name=e.name, where=found)
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         s = found.sym
         if isinstance(s, (VarSym, ProcSym, PropSym)) and s.owner is ctx.cls and ctx.cls is not None:
             if not getattr(s, "shared", False) and not ctx.instance:
                 self.sink.report(M.ME_OUTSIDE_INSTANCE, e.span)
-                return Info(t.ERROR, "error")
+                return ErrorInfo(t.ERROR)
         return self._found_info(found, e.name, e.span, ctx, None, as_statement, as_target)
 
     def _member(self, e: A.MemberAccess, ctx: _Ctx, as_statement: bool, as_target: bool,
@@ -881,59 +901,59 @@ class Checker:
                 and self.r.lookup(e.target.name, ctx.proc, ctx.cls, ctx.module) is None \
                 and t.lookup_primitive(e.target.name) is None and e.target.name.lower() != "string":
             # Module.Name of a module no readable source declares: a stub module
-            self._record(e.target, Info(t.VOID, "extmodule", e.target.name))
+            self._record(e.target, StubModuleInfo(t.VOID, e.target.name))
             stub = self.stubs.protected_name(e.name, e.span, module=e.target.name)
             if in_invoke:
-                return Info(t.ANY, "extref", stub)
+                return StubRefInfo(t.ANY, stub)
             return self._stub_use(stub, as_statement, as_target)
         tinfo = self._expr(e.target, ctx)
-        k = tinfo.kind
-        if tinfo.type is t.ERROR and k == "error":
-            return Info(t.ERROR, "error")
-        if tinfo.type is t.ANY and k not in ("module", "class", "bclass"):
+        if tinfo.type is t.ERROR and isinstance(tinfo, ErrorInfo):
+            return ErrorInfo(t.ERROR)
+        if tinfo.type is t.ANY and not isinstance(tinfo, (ModuleInfo, ClassInfo, BuiltinClassInfo)):
             # a member of a value of unknown type (from a stub): plain Python attribute access
-            kind = "extinvoke" if as_statement else "extattr"
-            return Info(t.ANY, kind, e.name, receiver=e.target)
-        if k == "module":
-            mod: ModuleSym = tinfo.sym  # type: ignore[assignment]
+            if as_statement:
+                return DynamicCallInfo(t.ANY, e.name, receiver=e.target)
+            return DynamicMemberInfo(t.ANY, e.name, receiver=e.target)
+        if isinstance(tinfo, ModuleInfo):
+            mod = tinfo.sym
             m = self._visible_member(mod.members, f"module {mod.name}", mod.name, e, ctx)
             if m is None:
-                return Info(t.ERROR, "error")
-            return self._found_info(Found("member", m, mod), e.name, e.span, ctx, None,
+                return ErrorInfo(t.ERROR)
+            return self._found_info(FoundMember(m, mod), e.name, e.span, ctx, None,
                                     as_statement, as_target, in_invoke)
-        if k == "class" and isinstance(tinfo.sym, ClassSym):
+        if isinstance(tinfo, ClassInfo) and isinstance(tinfo.sym, ClassSym):
             cls: ClassSym = tinfo.sym
             m = self._visible_member(cls.members, f"class {cls.name}", cls.name, e, ctx)
             if m is None:
-                return Info(t.ERROR, "error")
+                return ErrorInfo(t.ERROR)
             if isinstance(m, (VarSym, ProcSym, PropSym, OverloadSet)) and not m.shared:
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=f"class {cls.name} (Shared members)",
                                  member=e.name)
-                return Info(t.ERROR, "error")
-            return self._found_info(Found("member", m, cls.module), e.name, e.span, ctx, None,
+                return ErrorInfo(t.ERROR)
+            return self._found_info(FoundMember(m, cls.module), e.name, e.span, ctx, None,
                                     as_statement, as_target, in_invoke, static=True)
-        if k == "bclass":
-            b: BuiltinClass = tinfo.sym  # type: ignore[assignment]
+        if isinstance(tinfo, BuiltinClassInfo):
+            b = tinfo.sym
             bm = b.member(e.name) if b is not None else None
             if bm is None and b is not None and b.name != "String":
                 stub = self.stubs.builtin_member(b.name, e.name, e.span, shared=True)
                 return self._builtin_stub_use(stub, None, as_statement, as_target, in_invoke)
             if bm is None or (not bm.shared and not b.is_global):
                 self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=b.name if b else "?", member=e.name)
-                return Info(t.ERROR, "error")
+                return ErrorInfo(t.ERROR)
             return self._bmember_info(bm, b, e, None, True, in_invoke, value_type=b.name == "String",
                                       as_target=as_target)
         typ = tinfo.type
         if typ is t.ERROR:
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         ucls = self.r.class_of(typ)
         if ucls is not None:
             # a nested class or delegate is reached through the class name, never an instance
             m = self._visible_member(ucls.members, f"class {ucls.name}", ucls.name, e, ctx,
                                      hidden=(ClassSym, DelegateSym))
             if m is None:
-                return Info(t.ERROR, "error")
-            return self._found_info(Found("member", m, ucls.module), e.name, e.span, ctx, e.target,
+                return ErrorInfo(t.ERROR)
+            return self._found_info(FoundMember(m, ucls.module), e.name, e.span, ctx, e.target,
                                     as_statement, as_target, in_invoke)
         if isinstance(typ, t.ArrayType):
             b = self.cat.type_members.get("array")
@@ -941,7 +961,7 @@ class Checker:
             b = self.r.builtin_of(typ)
         if b is None:
             self.sink.report(M.NOT_AN_OBJECT, e.span, type=str(typ), member=e.name)
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         bm = b.member(e.name)
         if bm is None and isinstance(typ, t.ClassType):
             # through a variable of a global class (CTL As Controller) the member is the class's own
@@ -950,7 +970,7 @@ class Checker:
                                           in_invoke)
         if bm is None:
             self.sink.report(M.NO_SUCH_MEMBER, e.span, owner=str(typ), member=e.name)
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         # a Shared member of a global class through a variable of its type (``Dim CTL As
         # Controller``: the variable is Nothing) is the class's own member
         return self._bmember_info(bm, b, e, None if b.is_global else e.target, b.is_global, in_invoke,
@@ -974,20 +994,20 @@ class Checker:
 
     def _bmember_info(self, bm: Member, b: BuiltinClass, e: A.Expr, receiver: A.Expr | None, static: bool,
                       in_invoke: bool, value_type: bool, as_target: bool = False) -> Info:
-        kind = "vmember" if value_type and b.name in ("String", "Array") else "bmember"
+        on_value = value_type and b.name in ("String", "Array")
         if as_target and not in_invoke and bm.settable:  # ``X.M = v``
-            return self._assigned_member(bm, Info(bm.result, kind, bm, owner=b, receiver=receiver,
-                                                  static=static), [], e.span)
+            return self._assigned_member(bm, BuiltinMemberInfo(bm.result, bm, b, receiver=receiver, static=static,
+                                                               on_value=on_value), [], e.span)
         if bm.kind == "property":
-            return Info(bm.result, kind, bm, owner=b, receiver=receiver, static=static)
+            return BuiltinMemberInfo(bm.result, bm, b, receiver=receiver, static=static, on_value=on_value)
         form = bm.call_form(0) if not in_invoke else None
-        info = Info(bm.result, kind, bm, owner=b, params=self._params(form if form is not None else bm.params),
-                    receiver=receiver, static=static)
+        info = BuiltinMemberInfo(bm.result, bm, b, self._params(form if form is not None else bm.params),
+                                 receiver=receiver, static=static, on_value=on_value)
         if not in_invoke and form is None:
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=bm.name, expected=bm.min_args, given=0)
         return info
 
-    def _assigned_member(self, m: Member, ci: Info, args: list[A.Expr], span: object) -> Info:
+    def _assigned_member(self, m: Member, ci: BuiltinMemberInfo, args: list[A.Expr], span: object) -> Info:
         """``X.M = v`` or ``X.M(args) = v`` of a built-in member: the assignment form with that
         many arguments (Member.set_forms); its parameters, and the value's type as the type.  The
         arguments are checked by the caller against the returned parameters."""
@@ -996,37 +1016,36 @@ class Checker:
             if not _unparsed(args):
                 self.sink.report(M.WRONG_ARG_COUNT, span, name=m.name,  # type: ignore[arg-type]
                                  expected=_count_text(m.set_min_args, m.set_max_args), given=len(args))
-            return Info(t.ERROR, ci.kind, m, owner=ci.owner, params=(), receiver=ci.receiver, static=ci.static)
-        return Info(form[-1].type, ci.kind, m, owner=ci.owner, params=self._params(form, len(form) - 1), receiver=ci.receiver,
-                    static=ci.static)
+            return replace(ci, type=t.ERROR, sym=m, params=())
+        return replace(ci, type=form[-1].type, sym=m, params=self._params(form, len(form) - 1))
 
     def _stub_use(self, stub: Stub, as_statement: bool, as_target: bool) -> Info:
         """A protected name used without parentheses: a call as a statement, else a value/target."""
         if as_statement:
             stub.called = True
-            return Info(t.ANY, "extcall", stub)
+            return StubCallInfo(t.ANY, stub)
         if as_target:
             stub.assigned = True
-        return Info(t.ANY, "extname", stub)
+        return StubNameInfo(t.ANY, stub)
 
     def _builtin_stub_use(self, stub: Stub, receiver: A.Expr | None, as_statement: bool, as_target: bool,
                           in_invoke: bool) -> Info:
         """An unknown built-in member: always called (with the object first for an instance
         member); as an assignment target it is set through the stub's ``set_`` companion."""
         if in_invoke:
-            return Info(t.ANY, "extref", stub, receiver=receiver)
+            return StubRefInfo(t.ANY, stub, receiver=receiver)
         if as_target:
             stub.assigned = True
-            return Info(t.ANY, "extname", stub, receiver=receiver)
+            return StubNameInfo(t.ANY, stub, receiver=receiver)
         stub.called = True
-        return Info(t.ANY, "extcall", stub, receiver=receiver)
+        return StubCallInfo(t.ANY, stub, receiver=receiver)
 
     def _proc_call_info(self, p: ProcSym, args: list[A.Expr], span: object, ctx: _Ctx,
                         receiver: A.Expr | None) -> Info:
         if not (p.min_args <= len(args) <= len(p.params)) and not _unparsed(args):
             self.sink.report(M.WRONG_ARG_COUNT, span, name=p.name,  # type: ignore[arg-type]
                              expected=_count_text(p.min_args, len(p.params)), given=len(args))
-        return Info(p.result, "call", p, params=self._params(p.params), receiver=receiver)
+        return CallInfo(p.result, p, self._params(p.params), receiver=receiver)
 
     # -- calls, indexing, New, AddressOf -----------------------------------------------------------------
 
@@ -1035,22 +1054,20 @@ class Checker:
         if isinstance(e, A.Name):
             found = self.r.lookup(e.name, ctx.proc, ctx.cls, ctx.module)
             if found is None and self.stubs.protected and t.lookup_primitive(e.name) is None:
-                return self._record(e, Info(t.ANY, "extref", self.stubs.protected_name(e.name, e.span)))
+                return self._record(e, StubRefInfo(t.ANY, self.stubs.protected_name(e.name, e.span)))
             if found is None:
                 self.sink.report(M.UNDECLARED_NAME, e.span, name=e.name)
-                return self._record(e, Info(t.ERROR, "error"))
+                return self._record(e, ErrorInfo(t.ERROR))
             if isinstance(found, str):
                 self.sink.report(M.AMBIGUOUS_NAME, e.span, name=e.name, where=found)
-                return self._record(e, Info(t.ERROR, "error"))
-            if found.kind == "result":  # a Function calling itself -- or another overload of its name
-                assert isinstance(found.sym, ProcSym)
+                return self._record(e, ErrorInfo(t.ERROR))
+            if isinstance(found, FoundResult):  # a Function calling itself -- or another overload of its name
                 callee = _overloads_of(found.sym)
-                return self._record(e, Info(callee.result, "procref", callee))
+                return self._record(e, ProcRefInfo(callee.result, callee))
             if isinstance(found.sym, (ProcSym, OverloadSet)):
-                return self._record(e, Info(found.sym.result, "procref", found.sym))
-            if found.kind == "builtin_function":
-                f: BuiltinFunction = found.sym  # type: ignore[assignment]
-                return self._record(e, Info(f.result, "bfuncref", f))
+                return self._record(e, ProcRefInfo(found.sym.result, found.sym))
+            if isinstance(found, FoundBuiltinFunction):
+                return self._record(e, BuiltinFunctionRefInfo(found.sym.result, found.sym))
             return self._record(e, self._found_info(found, e.name, e.span, ctx, None, False, False))
         if isinstance(e, A.MemberAccess):
             return self._record(e, self._member(e, ctx, False, False, in_invoke=True))
@@ -1058,72 +1075,71 @@ class Checker:
 
     def _invoke(self, e: A.Invoke, ctx: _Ctx, as_target: bool = False) -> Info:
         ci = self._callee(e.target, ctx)
-        k = ci.kind
-        if as_target and k == "bmember" and isinstance(ci.sym, Member) and ci.sym.settable:
+        if as_target and isinstance(ci, BuiltinMemberInfo) and not ci.on_value and ci.sym.settable:
             info = self._assigned_member(ci.sym, ci, e.args, e.span)  # ``X.M(args) = v``
             self._args(e.args, info.params or [], ctx)
             return info
-        if k == "error":
+        if isinstance(ci, ErrorInfo):
             for a in e.args:
                 self._expr(a, ctx)
-            return Info(t.ERROR, "error")
-        if k == "extref":
-            stub: Stub = ci.sym  # type: ignore[assignment]
+            return ErrorInfo(t.ERROR)
+        if isinstance(ci, StubRefInfo):
+            stub = ci.stub
             stub.called = True
             for a in e.args:
                 self._value(a, ctx)
-            return Info(t.ANY, "extcall", stub, receiver=ci.receiver)
-        if ci.type is t.ANY and k in ("extattr", "extname", "extinvoke", "extcall", "var", "index", "prop"):
+            return StubCallInfo(t.ANY, stub, receiver=ci.receiver)
+        if ci.type is t.ANY and isinstance(ci, (DynamicMemberInfo, StubNameInfo, DynamicCallInfo, StubCallInfo, VarInfo,
+                                                IndexInfo, PropInfo)):
             # calling or indexing a value of unknown type: plain Python
             for a in e.args:
                 self._value(a, ctx)
-            return Info(t.ANY, "extinvoke")
-        if k == "procref" and isinstance(ci.sym, OverloadSet):
+            return DynamicCallInfo(t.ANY)
+        if isinstance(ci, ProcRefInfo) and isinstance(ci.sym, OverloadSet):
             infos = [self._expr(a, ctx) for a in e.args]
             chosen = self._choose_overload(ci.sym, e.args, infos, e.span, ctx, ci.static)
             if chosen is None:
-                return Info(t.ERROR, "error")
-            info = Info(chosen.result, "call", chosen, params=self._params(chosen.params), receiver=ci.receiver)
+                return ErrorInfo(t.ERROR)
+            info = CallInfo(chosen.result, chosen, self._params(chosen.params), receiver=ci.receiver)
             self._args(e.args, info.params or [], ctx, infos)
             return info
-        if k == "procref":
-            p: ProcSym = ci.sym  # type: ignore[assignment]
-            info = self._proc_call_info(p, e.args, e.span, ctx, ci.receiver)
+        if isinstance(ci, ProcRefInfo):
+            assert isinstance(ci.sym, ProcSym)
+            info = self._proc_call_info(ci.sym, e.args, e.span, ctx, ci.receiver)
             self._args(e.args, info.params or [], ctx)
             return info
-        if k == "bfuncref":
-            f: BuiltinFunction = ci.sym  # type: ignore[assignment]
+        if isinstance(ci, BuiltinFunctionRefInfo):
+            f = ci.sym
             params = self._params(f.params)
             self._check_count(f.name, params, e.args, e.span)
             self._args(e.args, params, ctx)
-            return Info(f.result, "bfunc", f, params=params)
-        if k in ("bmember", "vmember") and isinstance(ci.sym, Member) and ci.sym.kind == "method":
+            return BuiltinFunctionInfo(f.result, f, params)
+        if isinstance(ci, BuiltinMemberInfo) and ci.sym.kind == "method":
             form = ci.sym.call_form(len(e.args))  # the overload called with that many arguments
             params = self._params(form) if form is not None else ci.params or ()
             if form is None and not _unparsed(e.args):
                 self.sink.report(M.WRONG_ARG_COUNT, e.span, name=ci.sym.name,
                                  expected=_count_text(ci.sym.min_args, ci.sym.max_args), given=len(e.args))
             self._args(e.args, params, ctx)
-            return Info(ci.type, k, ci.sym, owner=ci.owner, params=params, receiver=ci.receiver,
-                        static=ci.static)
+            return replace(ci, params=params)
         typ = ci.type
         if isinstance(typ, t.ArrayType):
             if len(e.args) != typ.rank:
                 self.sink.report(M.SUBSCRIPT_COUNT, e.span, name=_text(e.target), rank=typ.rank, given=len(e.args))
             for a in e.args:
                 self._numeric(a, ctx)
-            return Info(typ.element, "index")
+            return IndexInfo(typ.element)
         d = self.r.delegate_of(typ)
         if d is not None:
             params = self._params(d.params)
             self._check_count(d.name, params, e.args, e.span)
             self._args(e.args, params, ctx)
-            return Info(d.result, "delegate_call", d, params=params)
+            return DelegateCallInfo(d.result, d, params)
         if typ is not t.ERROR:
             self.sink.report(M.NOT_INDEXABLE, e.span, name=_text(e.target))
         for a in e.args:
             self._expr(a, ctx)
-        return Info(t.ERROR, "error")
+        return ErrorInfo(t.ERROR)
 
     def _check_count(self, name: str, params: Sequence[ParamInfo], args: list[A.Expr], span: object) -> None:
         lo = sum(1 for p in params if not p.optional)
@@ -1154,15 +1170,15 @@ class Checker:
                     self.sink.report(M.TYPE_MISMATCH, a.span, src=str(info.type), dst=str(p.type))
             elif t.permissive(p.type):  # Any-annotated runtime parameter: any value (or a type name)
                 info = given or self._expr(a, ctx)
-                if info.kind != "typename":
+                if not isinstance(info, TypeNameInfo):
                     self._value_check(a, info)
             else:
                 self._store_value(a, p.type, ctx, given)
 
     def _mark_byref(self, a: A.Expr, info: Info, p: ParamInfo) -> bool:
         """Whether ``a`` is a variable that can be passed by reference; boxes locals that are."""
-        if info.kind == "var":
-            v: VarSym = info.sym  # type: ignore[assignment]
+        if isinstance(info, VarInfo):
+            v = info.sym
             if v.const:
                 return False
             if v.storage in ("local", "param") and not v.byref:
@@ -1170,11 +1186,7 @@ class Checker:
             v.assigned = True
             v.read = True
             return True
-        if info.kind == "index":
-            return True
-        if info.kind == "result":
-            return False
-        return False
+        return isinstance(info, IndexInfo)
 
     def _new(self, e: A.New, ctx: _Ctx) -> Info:
         typ = self.r.resolve_type(e.type, ctx.module, ctx.cls)
@@ -1182,25 +1194,25 @@ class Checker:
         if typ is t.ANY:  # a class from protected code
             for a in args:
                 self._value(a, ctx)
-            return Info(t.ANY, "extnew", self.stubs.stubs.get(e.type.name.lower()))
+            return StubNewInfo(t.ANY, self.stubs.stubs.get(e.type.name.lower()))
         if typ is t.ERROR:
             for a in args:
                 self._expr(a, ctx)
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         if isinstance(typ, t.PrimitiveType):
             self.sink.report(M.NOT_SUPPORTED, e.span, what=f"New {typ}")
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         cls = self.r.class_of(typ)
         if cls is not None:
             if not cls.ctors:
                 if args:
                     self.sink.report(M.NO_CTOR_OVERLOAD, e.span, cls=cls.name, count=len(args))
-                return Info(typ, "new", cls)
+                return NewInfo(typ, cls)
             arg_types = [self._value(a, ctx) for a in args]
             best = best_overloads(cls.ctors, arg_types)
             if not best:
                 self.sink.report(M.NO_CTOR_OVERLOAD, e.span, cls=cls.name, count=len(args))
-                return Info(typ, "new", cls)
+                return NewInfo(typ, cls)
             ctor = best[0]
             if len(best) > 1 and not any(t.permissive(a) for a in arg_types):
                 self.sink.report(M.AMBIGUOUS_OVERLOAD, e.span, name=f"New {cls.name}",
@@ -1210,30 +1222,30 @@ class Checker:
                     info = self.model.info[a]
                     if not self._mark_byref(a, info, ParamInfo(prm.name, prm.type, True)):
                         self.model.byref_temps.add(a)
-            return Info(typ, "new", cls, owner=ctor, params=self._params(ctor.params))
+            return NewInfo(typ, cls, ctor, self._params(ctor.params))
         d = self.r.delegate_of(typ)
         if d is not None:
             if len(args) != 1:
                 self.sink.report(M.WRONG_ARG_COUNT, e.span, name=d.name, expected=1, given=len(args))
-                return Info(typ, "new", d)
+                return NewInfo(typ, d)
             a = args[0]
             if isinstance(a, A.AddressOf):
                 self._addressof(a, ctx, d)
-                self._record(a, self.model.info.get(a) or Info(t.ERROR, "error"))
+                self._record(a, self.model.info.get(a) or ErrorInfo(t.ERROR))
             else:
                 self._store_value(a, t.STRING, ctx)
-            return Info(typ, "new", d)
+            return NewInfo(typ, d)
         b = self.r.builtin_of(typ)
         if b is None:
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         if b.is_global:  # Move, Controller, ...: one per controller, never created
             self.sink.report(M.NEW_OF_GLOBAL_CLASS, e.span, cls=b.name)
-            return Info(t.ERROR, "error")
+            return ErrorInfo(t.ERROR)
         params = self._params(b.constructor or ())
         if b.constructor is not None and params:
             self._check_count(b.name, params, args, e.span)
         self._args(args, params, ctx)
-        return Info(typ, "new", b, params=params)
+        return NewInfo(typ, b, params=params)
 
     def _address_overload(self, group: OverloadSet, e: A.AddressOf, ctx: _Ctx, d: DelegateSym | None,
                           static: bool) -> ProcSym | None:
@@ -1278,18 +1290,19 @@ class Checker:
 
     def _addressof(self, e: A.AddressOf, ctx: _Ctx, d: DelegateSym | None = None) -> Info:
         ci = self._callee(e.target, ctx)
-        if ci.kind != "procref":
+        if not isinstance(ci, ProcRefInfo):
             self.sink.report(M.ADDRESSOF_TARGET, e.span, what=f"'{_text(e.target)}'")
-            return self._record(e, Info(t.ERROR, "error"))
+            return self._record(e, ErrorInfo(t.ERROR))
         if isinstance(ci.sym, OverloadSet):
             chosen = self._address_overload(ci.sym, e, ctx, d, ci.static)
             if chosen is None:
-                return self._record(e, Info(t.ERROR, "error"))
-            ci = Info(chosen.result, "procref", chosen, receiver=ci.receiver)
-        p: ProcSym = ci.sym  # type: ignore[assignment]
+                return self._record(e, ErrorInfo(t.ERROR))
+            ci = ProcRefInfo(chosen.result, chosen, receiver=ci.receiver)
+        p = ci.sym
+        assert isinstance(p, ProcSym)
         if d is not None and len(p.params) != len(d.params):
             self.sink.report(M.WRONG_ARG_COUNT, e.span, name=p.name, expected=len(d.params), given=len(p.params))
-        return self._record(e, Info(d.type if d else t.ERROR, "addressof", p, receiver=ci.receiver))
+        return self._record(e, AddressOfInfo(d.type if d else t.ERROR, p, receiver=ci.receiver))
 
 
 def _overloads_of(p: ProcSym) -> ProcSym | OverloadSet:
@@ -1301,7 +1314,7 @@ def _overloads_of(p: ProcSym) -> ProcSym | OverloadSet:
 
 def _arg_type(info: Info) -> t.GplType:
     """The type an argument offers to overload resolution (a type or module name offers none)."""
-    if info.kind in ("typename", "module", "class", "bclass", "extmodule"):
+    if isinstance(info, NAMES_NOT_VALUES):
         return t.ERROR
     return info.type
 

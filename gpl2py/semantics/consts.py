@@ -29,7 +29,8 @@ from typing import Any
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import BuiltinConstant, BuiltinFunction
+from gpl2py.semantics.catalogue import BuiltinFunction
+from gpl2py.semantics.info import BuiltinConstInfo, BuiltinFunctionInfo, VarInfo
 from gpl2py.semantics.symbols import ProjectSyms, VarSym
 from gpl2py.syntax import ast as A
 
@@ -138,13 +139,11 @@ class ConstFolder:
         if isinstance(e, A.Binary) and e.op in _BINARY_OPS:
             return self._binary(e)
         info = self.info.get(e)
-        if info is not None and info.kind == "var" and isinstance(info.sym, VarSym) and info.sym.const \
-                and info.sym.storage in ("module", "field"):
+        if isinstance(info, VarInfo) and info.sym.const and info.sym.storage in ("module", "field"):
             return self._const(info.sym)
-        if info is not None and info.kind == "bconst" and isinstance(info.sym, BuiltinConstant):
+        if isinstance(info, BuiltinConstInfo):
             return info.sym.value
-        if info is not None and info.kind == "bfunc" and isinstance(info.sym, BuiltinFunction) \
-                and info.sym.name in PURE_FUNCTIONS and isinstance(e, A.Invoke):
+        if isinstance(info, BuiltinFunctionInfo) and info.sym.name in PURE_FUNCTIONS and isinstance(e, A.Invoke):
             args = [self._value(a) for a in e.args]
             return _builtin(info.sym)(*args)
         raise _NotConstant

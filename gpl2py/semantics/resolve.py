@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import BuiltinClass, Catalogue
+from gpl2py.semantics.catalogue import BuiltinClass, BuiltinConstant, BuiltinFunction, Catalogue
 from gpl2py.semantics.stubs import StubTable
 from gpl2py.semantics.symbols import (
     ClassSym,
@@ -40,13 +40,46 @@ from gpl2py.syntax import ast as A
 TOP_MODULE = "_Top"
 
 
-@dataclass
-class Found:
-    """The result of a lookup: the symbol (or built-in entry) and, for module members, its module."""
+@dataclass(frozen=True, slots=True)
+class FoundMember:
+    """A lookup found a declaration of the project (a local, a member of a class or module, a
+    Public member of another module), declared in ``module``."""
 
-    kind: str  # "member" | "module" | "builtin_class" | "builtin_function" | "builtin_constant"
-    sym: object
+    sym: Member
     module: ModuleSym | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class FoundResult:
+    """A lookup found the Function's own name inside it: its result variable (or a call)."""
+
+    sym: ProcSym
+
+
+@dataclass(frozen=True, slots=True)
+class FoundModule:
+    """A lookup found a module's name."""
+
+    sym: ModuleSym
+
+
+@dataclass(frozen=True, slots=True)
+class FoundBuiltinClass:
+    sym: BuiltinClass
+
+
+@dataclass(frozen=True, slots=True)
+class FoundBuiltinFunction:
+    sym: BuiltinFunction
+
+
+@dataclass(frozen=True, slots=True)
+class FoundBuiltinConstant:
+    sym: BuiltinConstant
+
+
+#: The result of a name lookup: one typed record per kind of declaration found.
+Found = FoundMember | FoundResult | FoundModule | FoundBuiltinClass | FoundBuiltinFunction | FoundBuiltinConstant
 
 
 class Resolver:
@@ -156,35 +189,35 @@ class Resolver:
         if proc is not None:
             v = proc.locals.get(key)
             if v is not None:
-                return Found("member", v, proc.module)
+                return FoundMember(v, proc.module)
             if proc.is_function and proc.kind == "Function" and proc.name.lower() == key:
-                return Found("result", proc, proc.module)
+                return FoundResult(proc)
         c = cls
         while c is not None:
             m = c.members.get(key)
             if m is not None:
-                return Found("member", m, c.module)
+                return FoundMember(m, c.module)
             c = c.outer
         if module is not None:
             m = module.members.get(key)
             if m is not None:
-                return Found("member", m, module)
+                return FoundMember(m, module)
         if key in self.project.modules and key != TOP_MODULE.lower():
-            return Found("module", self.project.modules[key])
+            return FoundModule(self.project.modules[key])
         pub = self.project.public_members(key)
         if len(pub) == 1:
-            return Found("member", pub[0].member, pub[0].module)
+            return FoundMember(pub[0].member, pub[0].module)
         if len(pub) > 1:
             return ", ".join(p.where for p in pub)
         b = self.cat.lookup_class(key)
         if b is not None:
-            return Found("builtin_class", b)
+            return FoundBuiltinClass(b)
         f = self.cat.lookup_function(key)
         if f is not None:
-            return Found("builtin_function", f)
+            return FoundBuiltinFunction(f)
         k = self.cat.lookup_constant(key)
         if k is not None:
-            return Found("builtin_constant", k)
+            return FoundBuiltinConstant(k)
         return None
 
 

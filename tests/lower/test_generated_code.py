@@ -72,11 +72,27 @@ def test_integer_for_loop_uses_range_and_keeps_the_final_value(tmp_path: Path) -
     body = main_body(gen(tmp_path, """        Dim i, n, s As Integer
         For i = 1 To n
             s = s + i
+        Next
+        Console.WriteLine(i)"""))
+    # one Python loop; paced_range gives other threads their turn every 1024 iterations
+    # (lowering.md, "Loops and other threads")
+    assert "for i in paced_range(1, n + 1):" in body
+    assert "_k1" not in body and "min(" not in body
+    assert "i = max(1, n + 1)" in body  # read after the loop: the first value past the end
+
+
+def test_a_for_counter_nobody_reads_afterwards_gets_no_final_store(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim i, n, s As Integer
+        Dim a(9) As Integer
+        For i = 0 To n - 1
+            s = s + a(i)
+        Next
+        For i = 9 To 0 Step -1
+            a(i) = s
         Next"""))
-    # chunks of 1024 with a scheduling point between them (lowering.md, "Statements")
-    assert "for _k1 in range(1, n + 1, 1024):  # checkpoint() every 1024" in body
-    assert "for i in range(_k1, min(_k1 + 1024, n + 1)):" in body
-    assert "i = max(1, n + 1)" in body
+    assert "for i in paced_range(0, n):" in body  # To n - 1: range's own stop
+    assert "for i in range(9, -1, -1):" in body  # few literal steps: a plain range
+    assert "max(" not in body and "min(" not in body  # each loop sets i before its body reads it
 
 
 def test_for_loop_writing_its_variable_stays_a_while_loop(tmp_path: Path) -> None:

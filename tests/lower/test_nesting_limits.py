@@ -65,7 +65,7 @@ def nest(kind: str, depth: int) -> str:
 DEEPEST = {
     "If": 98, "While": 20, "Do": 20, "For literal": 20, "For variable": 20, "Select": 98,
     "Select with Exit": 20, "Try in Try": 19, "Try in Catch": 10, "Try/Finally in Catch": 6,
-    "Try with Exit Try": 9, "Class": 98, "If in a method of 50 classes": 48,
+    "Try with Exit Try": 19, "Class": 98, "If in a method of 50 classes": 48,
 }
 
 

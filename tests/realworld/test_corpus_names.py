@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import pytest
 
+from gpl2py.semantics.info import BuiltinMemberInfo, VarInfo
 from gpl2py.semantics.symbols import ClassSym, VarSym
 from gpltest import analyze_project, corpus_dir
 
@@ -63,7 +64,8 @@ def test_a_controller_variable_of_the_plugin_is_the_controller_class() -> None:
     ssgrip = model.project.modules["ssgrip"]
     ctl = ssgrip.members["ctl"]
     assert isinstance(ctl, VarSym) and str(ctl.type) == "Controller"
-    through_ctl = [i for e, i in model.info.items() if i.kind == "bmember" and getattr(e, "target", None) is not None
-                   and model.info.get(e.target) is not None and model.info[e.target].sym is ctl]
+    through_ctl = [i for e, i in model.info.items() if isinstance(i, BuiltinMemberInfo)
+                   and getattr(e, "target", None) is not None
+                   and isinstance(model.info.get(e.target), VarInfo) and model.info[e.target].sym is ctl]
     assert through_ctl and all(i.static and i.receiver is None for i in through_ctl)
     assert not any(isinstance(c, ClassSym) and c.name == "Controller" for c in model.project.classes)

@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from gpl2py import messages as M
+from gpl2py.semantics.info import CallInfo
 from gpl2py.semantics.symbols import ClassSym, ProjectSyms, PublicName
 from gpltest import analyze_text
 
@@ -116,7 +117,7 @@ def test_the_index_is_built_once_per_project(tmp_path: Path, monkeypatch: pytest
     model, sink = analyze_text(tmp_path, text)
     assert not sink.has_errors(), [d.header() for d in sink]
     assert builds == [modules]  # once, after every module was collected
-    calls = [e for e, info in model.info.items() if info.kind == "call"]
+    calls = [e for e, info in model.info.items() if isinstance(info, CallInfo)]
     assert len(calls) >= modules  # each F{i+1} was found through the index
 
 

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from gpl2py.semantics.info import AddressOfInfo, BuiltinMemberInfo, CallInfo
 from gpl2py.semantics.symbols import OverloadSet, VarSym
 from gpltest import analyze_project, analyze_text
 
@@ -140,7 +141,7 @@ End Module
 """
     model, sink = analyze_text(tmp_path, text)
     assert _codes(sink) == []
-    members = [i for i in model.info.values() if i.kind == "bmember" and i.owner.name == "Controller"]
+    members = [i for i in model.info.values() if isinstance(i, BuiltinMemberInfo) and i.owner.name == "Controller"]
     assert members and all(i.static and i.receiver is None for i in members)
 
 
@@ -180,7 +181,7 @@ End Module
 def _calls(model: object, name: str) -> list[int]:
     """The overload index of each call of ``name``, in source order."""
     infos = [(e.span.line, e.span.col, i.sym.overload_index) for e, i in model.info.items()  # type: ignore[attr-defined]
-             if i.kind == "call" and getattr(i.sym, "name", "") == name]
+             if isinstance(i, CallInfo) and getattr(i.sym, "name", "") == name]
     return [k for _, _, k in sorted(infos)]
 
 
@@ -316,7 +317,7 @@ End Module
 """
     model, sink = analyze_text(tmp_path, text)
     assert _codes(sink) == []
-    bound = sorted((e.span.line, i.sym.overload_index) for e, i in model.info.items() if i.kind == "addressof")
+    bound = sorted((e.span.line, i.sym.overload_index) for e, i in model.info.items() if isinstance(i, AddressOfInfo))
     assert bound == [(11, 0), (12, 1)]
 
 

@@ -57,7 +57,7 @@ from gplrt.lang.errors import (
 from gplrt.lang.sourcemap import locate
 
 
-__all__ = ["as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available", "not_simulated"]
+__all__ = ["ExitTry", "as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available", "not_simulated"]
 
 
 def gpl_code_for(exc: BaseException) -> int:
@@ -90,6 +90,12 @@ def gpl_code_for(exc: BaseException) -> int:
             return VALUE_OUT_OF_RANGE
         return VALUE_OUT_OF_RANGE
     return INTERNAL_ERROR
+
+
+class ExitTry(BaseException):
+    """GPL's ``Exit Try``: generated code raises it and the Try statement's own first ``except``
+    clause ends it, so Finally runs and leaving loops nested in the Try body needs no flags
+    (docs/design/lowering.md).  A BaseException, so no GPL Catch could ever receive it."""
 
 
 def as_gpl_exception(exc: BaseException) -> GplException:
