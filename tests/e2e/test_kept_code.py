@@ -88,8 +88,10 @@ def test_a_byref_integer_increment_is_one_line_and_still_overflows(tmp_path: Pat
     r = run_gpl(tmp_path, BYREF)
     assert r.output == "2147483647\nerror -710, n still 2147483647\n", r.log
     code = r.files[f"{r.package.__name__}/main_mod.py"]
-    assert "    count.value = chk_int32(count.value + 1)\n" in code
-    assert "2147483647 or" not in code
+    # one line, as every Integer store: the range tested inline, on the side an increment can
+    # leave (docs/design/lowering.md, "Storing")
+    stores = [line.strip() for line in code.splitlines() if line.strip().startswith("count.value =")]
+    assert stores == ["count.value = chk_int32(_v1) if (_v1 := count.value + 1) > 2147483647 else _v1"]
 
 
 MODULES = {
