@@ -32,7 +32,7 @@ from __future__ import annotations
 from dataclasses import KW_ONLY, MISSING, Field, InitVar, dataclass, field, fields
 from typing import Any, ClassVar, Iterator
 
-from gpl2py.source import Span, make_span
+from gpl2py.source import Span
 
 
 @dataclass(slots=True, frozen=True)

@@ -45,7 +45,6 @@ from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import (
     INCONSISTENT_TRIGGER_MODE,
     INVALID_AXIS,
-    INVALID_CARTESIAN,
     NO_ROBOT_ATTACHED,
     VALUE_INFINITE_OR_NAN,
     VALUE_OUT_OF_RANGE,
@@ -224,8 +223,6 @@ class _MoveClass:
                 if len(vals) >= n:
                     values = list(vals[:n])  # what _angles_of gives, without a numpy round trip
                 else:
-                    queue = robot.queue
-                    dest = queue.history[-1].q_end if queue.history else queue.rest
                     values = _angles_of(robot, loc).tolist()
                 robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)
         elif isinstance(loc, Location) and loc._type != 1 and isinstance(Profile1, Profile):
