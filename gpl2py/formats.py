@@ -46,6 +46,11 @@ def wants_colour(stream: TextIO, choice: str = "auto", env: Mapping[str, str] | 
         return True
     if env.get("TERM") == "dumb":
         return False
+    return is_terminal(stream)
+
+
+def is_terminal(stream: TextIO) -> bool:
+    """Whether ``stream`` is a terminal: a closed stream, or one without ``isatty``, is not."""
     isatty = getattr(stream, "isatty", None)
     try:
         return bool(isatty and isatty())

@@ -11,6 +11,8 @@ from __future__ import annotations
 import time
 from typing import TextIO
 
+from gpl2py.formats import is_terminal
+
 MIN_FILES = 8
 _WIDTH = 28
 _MIN_INTERVAL = 0.05  # s between redraws: a fast run must not spend its time drawing
@@ -20,11 +22,7 @@ def wants_progress(stream: TextIO, quiet: bool, as_json: bool) -> bool:
     """Whether a bar may be drawn on ``stream`` at all (TTY, not --quiet, not --json)."""
     if quiet or as_json:
         return False
-    isatty = getattr(stream, "isatty", None)
-    try:
-        return bool(isatty and isatty())
-    except (OSError, ValueError):
-        return False
+    return is_terminal(stream)
 
 
 class ProgressBar:
