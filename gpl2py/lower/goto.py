@@ -88,25 +88,7 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
     gotos: list[tuple[A.GoTo, BlockInfo]] = []
     label_at: dict[str, tuple[BlockInfo, A.Label]] = {}
 
-    def walk(block: A.Block, parent: BlockInfo | None, role: str, owner: A.Stmt | None) -> None:
-        info = BlockInfo(block, parent, role, owner)
-        plan.blocks[block] = info
-        for s in block.statements:
-            if isinstance(s, A.Label):
-                label_at.setdefault(s.name.lower(), (info, s))
-            elif isinstance(s, A.GoTo):
-                gotos.append((s, info))
-            for child in child_blocks(s):
-                if isinstance(s, A.Try):
-                    r = "try" if child is s.body else ("catch" if s.catch and child is s.catch.body else "finally")
-                elif isinstance(s, (A.For, A.ForEach, A.While, A.DoLoop)):
-                    r = "loop"
-                else:
-                    r = "branch"
-                walk(child, info, r, s)
-
-    walk(body, None, "body", None)
-    del walk  # the closure refers to itself: free it now, not at the next garbage collection
+    _walk_blocks(body, None, "body", None, plan, gotos, label_at)
     if not gotos:
         return plan
     wanted: dict[BlockInfo, set[A.Stmt]] = {}
@@ -172,6 +154,28 @@ def plan_gotos(body: A.Block, sink: DiagnosticSink) -> GotoPlan:
         elif _exit_tail(info, plan):
             plan.exit_blocks.add(info.block)
     return plan
+
+
+def _walk_blocks(block: A.Block, parent: BlockInfo | None, role: str, owner: A.Stmt | None, plan: GotoPlan,
+                 gotos: list[tuple[A.GoTo, BlockInfo]], label_at: dict[str, tuple[BlockInfo, A.Label]]) -> None:
+    """Record ``block`` and the blocks nested in it in ``plan``, with every GoTo and the first
+    Label of each name, in source order (a function, not a closure calling itself: no reference
+    cycle left for the collector)."""
+    info = BlockInfo(block, parent, role, owner)
+    plan.blocks[block] = info
+    for s in block.statements:
+        if isinstance(s, A.Label):
+            label_at.setdefault(s.name.lower(), (info, s))
+        elif isinstance(s, A.GoTo):
+            gotos.append((s, info))
+        for child in child_blocks(s):
+            if isinstance(s, A.Try):
+                r = "try" if child is s.body else ("catch" if s.catch and child is s.catch.body else "finally")
+            elif isinstance(s, (A.For, A.ForEach, A.While, A.DoLoop)):
+                r = "loop"
+            else:
+                r = "branch"
+            _walk_blocks(child, info, r, s, plan, gotos, label_at)
 
 
 def _exit_tail(info: BlockInfo, plan: GotoPlan) -> bool:
