@@ -87,6 +87,12 @@ class LineLimits:
     decel: list[float]
     accel_ramp: float
     decel_ramp: float
+    #: ``accel == decel`` (Profile.Accel = Decel, the rule): the deceleration bound is the
+    #: acceleration bound, and ``path_limits`` computes it once.
+    symmetric: bool = field(init=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "symmetric", self.accel == self.decel)
 
 
 @dataclass(eq=False)
@@ -107,6 +113,11 @@ class RobotLimits:
     _path_cache: dict[tuple[float, ...], PathLimits] = field(default_factory=dict, repr=False)
     _line_cache: dict[tuple[float, ...], LineLimits] = field(default_factory=dict, repr=False)
     _hard: tuple[Vec, Vec] | None = field(default=None, repr=False)
+    #: (Profile values, SystemSpeed, result) of the last ``joint_limits`` / ``line_limits`` call:
+    #: a program moves with the same unchanged Profile move after move, and ``Profile.values``
+    #: is then the very same tuple, so the memo is found by identity without building a key.
+    _joint_last: tuple[object, object, AxisLimits | None] = field(default=(None, None, None), repr=False)
+    _line_last: tuple[object, object, LineLimits | None] = field(default=(None, None, None), repr=False)
 
     @classmethod
     def from_pdb(cls, pdb: object, robot: int, n: int) -> RobotLimits:
@@ -170,9 +181,16 @@ class RobotLimits:
 
     def joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
         """Joint-interpolated move limits for ``prof`` at ``Controller.SystemSpeed``."""
+        values = prof._values or prof.values()
+        last = self._joint_last  # (the hits stay inline: every Move.Loc asks)
+        if last[0] is values and last[1] == system_speed:
+            return last[2]  # type: ignore[return-value]
         key = (prof._speed, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
-        lim = self._joint_cache.get(key)  # (the hit stays inline: every Move.Loc asks)
-        return lim if lim is not None else _remember(self._joint_cache, key, self._joint_limits(prof, system_speed))
+        lim = self._joint_cache.get(key)
+        if lim is None:
+            lim = _remember(self._joint_cache, key, self._joint_limits(prof, system_speed))
+        self._joint_last = (values, system_speed, lim)
+        return lim
 
     def _joint_limits(self, prof: Profile, system_speed: float) -> AxisLimits:
         speed, accel, decel = self._pcts(prof, system_speed)
@@ -193,9 +211,16 @@ class RobotLimits:
     def line_limits(self, prof: Profile, system_speed: float) -> LineLimits:
         """``path_limits`` and ``joint_limits`` of ``prof`` side by side, as a line's 1-D plan
         reads them (memoised per Profile values like them)."""
+        values = prof._values or prof.values()
+        last = self._line_last
+        if last[0] is values and last[1] == system_speed:
+            return last[2]  # type: ignore[return-value]
         key = (prof._speed, prof._speed2, prof._accel, prof._decel, prof._accel_ramp, prof._decel_ramp, system_speed)
         lim = self._line_cache.get(key)
-        return lim if lim is not None else _remember(self._line_cache, key, self._line_limits(prof, system_speed))
+        if lim is None:
+            lim = _remember(self._line_cache, key, self._line_limits(prof, system_speed))
+        self._line_last = (values, system_speed, lim)
+        return lim
 
     def _line_limits(self, prof: Profile, system_speed: float) -> LineLimits:
         cart, (vel, acc, dec, _) = self.path_limits(prof, system_speed), self.joint_limits(prof, system_speed).lists

@@ -78,14 +78,29 @@ def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, lim: LineLimits) -> 
     v = acc = dec = inf
     vel, accel, decel = lim.velocity, lim.accel, lim.decel
     # the extents: the path's length and turn, then each joint's chord |q1 − q0|
-    for i, extent in enumerate((path.length, path.turn, *map(abs, map(operator.sub, q1.tolist(), q0.tolist())))):
-        if extent > 1e-12:
-            if vel[i] / extent < v:
-                v = vel[i] / extent
-            if accel[i] / extent < acc:
-                acc = accel[i] / extent
-            if decel[i] / extent < dec:
-                dec = decel[i] / extent
+    extents = (path.length, path.turn, *map(abs, map(operator.sub, q1.tolist(), q0.tolist())))
+    if lim.symmetric:  # Accel = Decel: one bound serves both (the same divisions, so the same floats)
+        for i, extent in enumerate(extents):
+            if extent > 1e-12:
+                x = vel[i] / extent
+                if x < v:
+                    v = x
+                x = accel[i] / extent
+                if x < acc:
+                    acc = x
+        dec = acc
+    else:
+        for i, extent in enumerate(extents):
+            if extent > 1e-12:
+                x = vel[i] / extent
+                if x < v:
+                    v = x
+                x = accel[i] / extent
+                if x < acc:
+                    acc = x
+                x = decel[i] / extent
+                if x < dec:
+                    dec = x
     if v == inf:  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
     accel_ramp, decel_ramp = lim.accel_ramp, lim.decel_ramp

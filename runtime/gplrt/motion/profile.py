@@ -79,7 +79,12 @@ def _checked(value: float, name: str, *, positive: bool) -> float:
 class Profile:
     """GPL ``Profile``.  ``New Profile`` (no arguments) gives the controller defaults above."""
 
-    __slots__ = ("_speed", "_speed2", "_accel", "_decel", "_accel_ramp", "_decel_ramp", "_straight", "_inrange", "_text")
+    #: The values a motion takes from its Profile (``values``), in this order.
+    FIELDS = ("_speed", "_speed2", "_accel", "_decel", "_accel_ramp", "_decel_ramp", "_straight", "_inrange", "_text")
+    #: ``_values``: the tuple ``values`` returned last, None after any change (every setter
+    #: clears it), so a Move with an unchanged Profile takes no snapshot and its limits are found
+    #: by identity (``RobotLimits.joint_limits``).
+    __slots__ = (*FIELDS, "_values")
 
     def __init__(self) -> None:
         d = _defaults
@@ -92,6 +97,17 @@ class Profile:
         self._straight = False
         self._inrange = DEFAULT_INRANGE
         self._text = ""
+        self._values: tuple[object, ...] | None = None
+
+    def values(self) -> tuple[object, ...]:
+        """The Profile's values (``FIELDS``) as one tuple: what a queued motion keeps of it (the
+        program may change its Profile after the Move).  The same tuple object until a setter
+        changes a value, which is what lets the motion layer memoise per Profile state by identity."""
+        values = self._values
+        if values is None:
+            values = self._values = (self._speed, self._speed2, self._accel, self._decel, self._accel_ramp,
+                                     self._decel_ramp, self._straight, self._inrange, self._text)
+        return values
 
     @property
     def Speed(self) -> Double:
@@ -100,6 +116,7 @@ class Profile:
 
     @Speed.setter
     def Speed(self, value: Double) -> None:
+        self._values = None
         self._speed = _checked(value, "Speed", positive=True)
 
     @property
@@ -109,6 +126,7 @@ class Profile:
 
     @Speed2.setter
     def Speed2(self, value: Double) -> None:
+        self._values = None
         self._speed2 = _checked(value, "Speed2", positive=False)
 
     @property
@@ -118,6 +136,7 @@ class Profile:
 
     @Accel.setter
     def Accel(self, value: Double) -> None:
+        self._values = None
         self._accel = _checked(value, "Accel", positive=True)
 
     @property
@@ -127,6 +146,7 @@ class Profile:
 
     @Decel.setter
     def Decel(self, value: Double) -> None:
+        self._values = None
         self._decel = _checked(value, "Decel", positive=True)
 
     @property
@@ -136,6 +156,7 @@ class Profile:
 
     @AccelRamp.setter
     def AccelRamp(self, value: Double) -> None:
+        self._values = None
         self._accel_ramp = _checked(value, "AccelRamp", positive=False)
 
     @property
@@ -145,6 +166,7 @@ class Profile:
 
     @DecelRamp.setter
     def DecelRamp(self, value: Double) -> None:
+        self._values = None
         self._decel_ramp = _checked(value, "DecelRamp", positive=False)
 
     @property
@@ -154,6 +176,7 @@ class Profile:
 
     @Straight.setter
     def Straight(self, value: Boolean) -> None:
+        self._values = None
         self._straight = to_bool(value)  # "False" is False, as CBool reads it
 
     @property
@@ -163,6 +186,7 @@ class Profile:
 
     @InRange.setter
     def InRange(self, value: Double) -> None:
+        self._values = None
         v = to_double(value)
         if not math.isfinite(v):
             raise GplException(VALUE_INFINITE_OR_NAN, detail=f"Profile.InRange = {v}")
@@ -175,13 +199,15 @@ class Profile:
 
     @Text.setter
     def Text(self, value: String) -> None:
+        self._values = None
         self._text = to_string(value)  # CStr rules: 2.0 is "2"
 
     def Clone(self) -> Profile:
         """An independent copy."""
         twin = Profile.__new__(Profile)
-        for name in Profile.__slots__:
+        for name in Profile.FIELDS:
             setattr(twin, name, getattr(self, name))
+        twin._values = self._values  # (an immutable tuple of the same values)
         return twin
 
     # -- Python side -------------------------------------------------------------------------------

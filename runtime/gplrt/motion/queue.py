@@ -28,7 +28,6 @@ Segment kinds:
 from __future__ import annotations
 
 import bisect
-import operator
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -41,14 +40,16 @@ from gplrt.lang.errors import AXIS_OVER_SPEED, GplException
 from gplrt.motion.path_run import PathRun
 from gplrt.session import check_window
 
-#: A Profile's values, taken when a motion is queued (cheaper than a Clone on every Move).
-profile_values = operator.attrgetter(*Profile.__slots__)
+#: A Profile's values, taken when a motion is queued (cheaper than a Clone on every Move; the
+#: same tuple while the Profile is unchanged: ``Profile.values``).
+profile_values = Profile.values
 
 
 def profile_from_values(values: tuple[object, ...]) -> Profile:
     prof = Profile.__new__(Profile)
-    for name, value in zip(Profile.__slots__, values):
+    for name, value in zip(Profile.FIELDS, values):
         setattr(prof, name, value)
+    prof._values = None
     return prof
 
 

@@ -67,7 +67,6 @@ from gplrt.motion.queue import (
     PathSegment,
     Segment,
     profile_from_values,
-    profile_values,
 )
 from gplrt.motion.path_run import PathRun, path_limits
 from gplrt.motion.servo import ServoGripper
@@ -642,7 +641,7 @@ class RobotState:
             seg.blend_tolerance = abs(inrange)
             seg.settle = self.limits.settle_time if inrange > 0.0 else 0.0
         # the program may change its Profile after the Move
-        seg.profile = self.last_profile = profile_values(prof)
+        seg.profile = self.last_profile = prof._values or prof.values()  # (``profile_values``, inline)
         queue = self.queue
         queue.history.append(seg)  # MotionQueue.append, inlined on this hot path
         queue._starts.append(seg.t0)
