@@ -68,9 +68,11 @@ class Fault:
     error: GplException
 
 
-def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, lim: LineLimits) -> tuple[float, float, float, float]:
+def path_limits(length: float, turn: float, q0: list[float], q1: list[float],
+                lim: LineLimits) -> tuple[float, float, float, float]:
     """(u̇_max, ü_max accel, ü_max decel, jerk) of the 1-D plan: the Cartesian limits over the
-    path's length and turn, and the joints' chord (see the module docstring).
+    path's ``length`` and ``turn``, and the joints' chord from ``q0`` to ``q1`` (see the module
+    docstring).
 
     Each bound is ``limit / extent`` (u runs 0 → 1 over the extent) and the smallest wins;
     written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it."""
@@ -78,7 +80,7 @@ def path_limits(path: Path, q0: np.ndarray, q1: np.ndarray, lim: LineLimits) -> 
     v = acc = dec = inf
     vel, accel, decel = lim.velocity, lim.accel, lim.decel
     # the extents: the path's length and turn, then each joint's chord |q1 − q0|
-    extents = (path.length, path.turn, *map(abs, map(operator.sub, q1.tolist(), q0.tolist())))
+    extents = (length, turn, *map(abs, map(operator.sub, q1, q0)))
     if lim.symmetric:  # Accel = Decel: one bound serves both (the same divisions, so the same floats)
         for i, extent in enumerate(extents):
             if extent > 1e-12:

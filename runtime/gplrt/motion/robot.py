@@ -491,28 +491,34 @@ class RobotState:
         else:
             t0, q0, _, _ = self._start(now, can_blend=False)
         frames, model = self._frames, self.model
-        if frames is None or frames.tool is not model.tool or frames.base is not model.base:
+        # (the model's frames themselves, not its ``tool``/``base`` properties: a hot path)
+        if frames is None or frames.tool is not model._tool or frames.base is not model._base:
             frames = self._frames = QueuedFrames(model)
-        path = make_path(self.pose_of(q0, frames))
+        known = self._known_pose  # (``pose_of``, its commonest case inlined)
+        if known is not None and known[0] is q0 and known[1] is frames.tool and known[2] is frames.base:
+            path = make_path(known[3])
+        else:
+            path = make_path(self.pose_of(q0, frames))
         mask = self.extra_mask if extra_mask is None else extra_mask
         q_extra = q0 if extra_end is None else np.where(mask, extra_end, q0)
+        start = q0.tolist()  # (Python floats: the seed, the Config and the chord read them)
         if config & _BRANCH_BITS:
-            self._check_config_kept(config, self.model.config_of(q0.tolist()))
+            self._check_config_kept(config, model.config_of(start))
         if path.length < ZERO_PATH and path.turn < ZERO_PATH and (q_extra is q0 or np.array_equal(q_extra, q0)):
             # Nothing moves (``Move.Rel`` by nothing, a line to where the tool is): the motion is
             # done at once, exactly where it started; a blending motion before it runs to its end.
             seg = DwellSegment(t0, 0.0, q0, q0, kind=kind)
             return self._append(seg, prof)
-        seed = q0 if q_extra is q0 else _seed_at(q0, q_extra, mask, 1.0)
-        q1 = np.array(self.model.inverse_pose(path.end_pose, 0, seed.tolist()))
+        end = model.inverse_pose(path.end_pose, 0, start if q_extra is q0 else _seed_at(q0, q_extra, mask, 1.0).tolist())
         if angles_end is not None:
-            model = self.model
-            if (model.config_of(q1.tolist()) ^ model.config_of(angles_end.tolist())) & _BRANCH_BITS:
+            if (model.config_of(end) ^ model.config_of(angles_end.tolist())) & _BRANCH_BITS:
                 raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
                                    detail="a straight-line motion cannot reach these angles' arm configuration")
-        v, acc, dec, jerk = path_limits(path, q0, q1, self.limits.line_limits(prof, system_speed))
+        limits = self.limits
+        v, acc, dec, jerk = path_limits(path.length, path.turn, start, end, limits.line_limits(prof, system_speed))
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
-        max_speed, max_accel = self.limits.hard_limits()
+        q1 = np.array(end)
+        max_speed, max_accel = limits._hard or limits.hard_limits()
         pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, max_speed, max_accel,
                      frames.ik_path)
         if blend_from is not None:
@@ -531,7 +537,7 @@ class RobotState:
         # (positional: t0, duration, q_start, q_end, profile, settle, blend, blend_tolerance, cut,
         # kind, plan, path_joints; keywords cost a third of the call on this hot path)
         seg = PathSegment(t0, plan.duration, q0, q1, None, 0.0, False, 0.0, None, kind, plan, pj)
-        self.remember_pose(q1, path.end_pose, frames)
+        self._known_pose = (q1, frames.tool, frames.base, path.end_pose)  # (``remember_pose``, inlined)
         return self._append(seg, prof)
 
     def pose_of(self, q: Vec, frames: QueuedFrames | None = None) -> Pose:
