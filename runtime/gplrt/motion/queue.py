@@ -63,9 +63,14 @@ _H = 1e-5  # path-parameter step for q'(u), q''(u)
 CLOCK_RESOLUTION = 1e-9
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True, weakref_slot=True)
 class Segment:
-    """Common part of every queued segment (times in controller seconds)."""
+    """Common part of every queued segment (times in controller seconds).
+
+    Slotted (every subclass too): one is made per ``Move``, and a slotted record is cheaper to
+    build and to read (``benchmarks/motion_speed.py``).  A subclass that overrides a method calls
+    its base by name (``PathSegment.state(self, t)``): a slotted dataclass has no bare
+    ``super()`` before Python 3.14."""
 
     t0: float
     duration: float
@@ -106,7 +111,7 @@ class Segment:
         return np.array([st[1] for st in states]), np.array([st[2] for st in states])
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class JointSegment(Segment):
     plan: Plan | None = None
 
@@ -125,7 +130,7 @@ class JointSegment(Segment):
         return np.array(p), np.array(v), np.array(a)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class PathSegment(Segment):
     plan: Plan | None = None
     path_joints: PathRun | None = None
@@ -186,7 +191,7 @@ class PathSegment(Segment):
 _BLEND_DT = 1e-4
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class BlendedPathSegment(PathSegment):
     """A Cartesian path (line, arc, circle) entered while the previous (blending) motion is
     still running out; below, "the line" stands for any of them.
@@ -209,7 +214,7 @@ class BlendedPathSegment(PathSegment):
 
     def joints(self, t: float) -> Vec:
         if t >= self.prev_end:
-            return super().joints(t)
+            return PathSegment.joints(self, t)  # (a slotted dataclass: no bare super())
         assert self.prev is not None and self.via is not None and self.forward is not None
         pj = self.path_joints
         assert pj is not None
@@ -227,13 +232,13 @@ class BlendedPathSegment(PathSegment):
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
         if t - _BLEND_DT >= self.prev_end:
-            return super().state(t)
+            return PathSegment.state(self, t)
         h = _BLEND_DT
         q_lo, q_mid, q_hi = self.joints(t - h), self.joints(t), self.joints(t + h)
         return q_mid, (q_hi - q_lo) / (2.0 * h), (q_hi - 2.0 * q_mid + q_lo) / (h * h)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class DwellSegment(Segment):
     kind: str = "delay"
 

@@ -84,7 +84,7 @@ class SpecialMode:
     free: set[int] = field(default_factory=set)  # axes (0-based) in free mode
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class ManualSegment(Segment):
     """Open-ended motion of a special mode: each axis at its constant ``velocity`` from
     ``q_start`` (0: held), stopping at its soft limits ``lower``/``upper``."""
@@ -102,7 +102,7 @@ class ManualSegment(Segment):
         return q, v, np.zeros_like(q)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class OverlapSegment(JointSegment):
     """A joint motion started by ``Move.ForceOverlap`` while the previous one runs out: until
     ``prev_end`` the two displacements add up (the new one planned from the previous target)."""
@@ -111,7 +111,7 @@ class OverlapSegment(JointSegment):
     prev_end: float = 0.0
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
-        q, v, a = super().state(t)
+        q, v, a = JointSegment.state(self, t)  # (a slotted dataclass: no bare super())
         if t >= self.prev_end or self.prev is None:
             return q, v, a
         qp, vp, ap = self.prev.state(t)
