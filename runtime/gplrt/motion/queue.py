@@ -132,9 +132,29 @@ class JointSegment(Segment):
 
 @dataclass(eq=False, slots=True)
 class PathSegment(Segment):
+    """A Cartesian path motion: ``plan`` is the 1-D profile of its path parameter, and
+    ``path_joints`` its joints cycle by cycle (``path_run.PathRun``).
+
+    The ``PathRun`` is built the first time the motion's cycles or joints are read (``run_inputs``
+    holds what it is built from until then): a straight ``Move.Loc`` queues its motion without it,
+    as the controller plans a line's profile when it is queued and solves its joints as it runs."""
+
     plan: Plan | None = None
-    path_joints: PathRun | None = None
-    u_start: float = 0.0
+    run: PathRun | None = None
+    #: (path, Tool/Base kinematics, start joints, extra-axis targets, their mask, destination
+    #: joints, hard maximum speeds, accelerations): ``path_joints``'s arguments, until it is built
+    run_inputs: tuple[object, ...] | None = None
+
+    @property
+    def path_joints(self) -> PathRun | None:
+        run = self.run
+        if run is None and self.run_inputs is not None:
+            path, frames, q0, q_extra, mask, q1, max_speed, max_accel = self.run_inputs  # type: ignore[misc]
+            assert self.plan is not None
+            run = self.run = PathRun(path, self.plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1,
+                                     max_speed, max_accel, frames.ik_path)
+            self.run_inputs = None
+        return run
 
     def parameter(self, t: float) -> tuple[float, float, float]:
         assert self.plan is not None

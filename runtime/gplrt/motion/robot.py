@@ -519,9 +519,10 @@ class RobotState:
         plan = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk)
         q1 = np.array(end)
         max_speed, max_accel = limits._hard or limits.hard_limits()
-        pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, max_speed, max_accel,
-                     frames.ik_path)
+        pj: PathRun | None = None
         if blend_from is not None:
+            pj = PathRun(path, plan, frames.ik, frames.ik_between, q0, q_extra, mask, q1, max_speed, max_accel,
+                         frames.ik_path)
             # The line must not end before the motion it blends out of: start no earlier than
             # its duration before that motion's end (a shorter overlap), never before now.
             prev_end = blend_from.motion_end
@@ -530,13 +531,15 @@ class RobotState:
             if t_b < prev_end:
                 blend_from.cut = t_b
                 seg: Segment = BlendedPathSegment(
-                    t_b, plan.duration, blend_from.joints(t_b), q1, plan=plan, path_joints=pj,
+                    t_b, plan.duration, blend_from.joints(t_b), q1, plan=plan, run=pj,
                     kind=kind, prev=blend_from, prev_end=prev_end, via=path.pose(0.0), forward=frames.forward)
                 self.remember_pose(q1, path.end_pose, frames)
                 return self._append(seg, prof)
         # (positional: t0, duration, q_start, q_end, profile, settle, blend, blend_tolerance, cut,
-        # kind, plan, path_joints; keywords cost a third of the call on this hot path)
-        seg = PathSegment(t0, plan.duration, q0, q1, None, 0.0, False, 0.0, None, kind, plan, pj)
+        # kind, plan, run, run_inputs; keywords cost a third of the call on this hot path)
+        # The PathRun is built when the cycles are first read (``PathSegment.path_joints``).
+        seg = PathSegment(t0, plan.duration, q0, q1, None, 0.0, False, 0.0, None, kind, plan, pj,
+                          (path, frames, q0, q_extra, mask, q1, max_speed, max_accel) if pj is None else None)
         self._known_pose = (q1, frames.tool, frames.base, path.end_pose)  # (``remember_pose``, inlined)
         return self._append(seg, prof)
 
