@@ -168,37 +168,37 @@ class PathSegment(Segment):
         return u[:, 0], ud[:, 0], udd[:, 0]
 
     def rates(self, ts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        assert self.path_joints is not None
-        return self.path_joints.rates(*self.parameters(ts))
+        pj = self.path_joints
+        assert pj is not None
+        return pj.rates(*self.parameters(ts))
 
-    def _stopped(self, t: float) -> Vec | None:
+    def _stopped(self, t: float, run: PathRun) -> Vec | None:
         """The joints the robot stopped at if a mid-path error stopped it by ``t`` (the cycles
         up to ``t`` are run first)."""
-        run = self.path_joints
-        assert run is not None
         fault = run.run_to(t - self.t0)
         return fault.q.copy() if fault is not None else None
 
     def joints(self, t: float) -> Vec:
-        assert self.path_joints is not None
-        stopped = self._stopped(t)
+        pj = self.path_joints  # (a property: read once)
+        assert pj is not None
+        stopped = self._stopped(t, pj)
         if stopped is not None:
             return stopped
         if t - self.t0 >= self.duration - CLOCK_RESOLUTION:
             return self.q_end.copy()
-        return self.path_joints.joints(self.parameter(t)[0])
+        return pj.joints(self.parameter(t)[0])
 
     def state(self, t: float) -> tuple[Vec, Vec, Vec]:
-        assert self.path_joints is not None
-        stopped = self._stopped(t + _H)
-        if stopped is not None and self.path_joints.fault is not None and t - self.t0 >= self.path_joints.fault.t:
+        pj = self.path_joints  # (a property: read once)
+        assert pj is not None
+        stopped = self._stopped(t + _H, pj)
+        if stopped is not None and pj.fault is not None and t - self.t0 >= pj.fault.t:
             z = np.zeros(len(stopped))
             return stopped, z, z.copy()
         if t - self.t0 >= self.duration - CLOCK_RESOLUTION:
             z = np.zeros(len(self.q_end))
             return self.q_end.copy(), z, z.copy()
         u, ud, udd = self.parameter(t)
-        pj = self.path_joints
         lo, hi = max(0.0, u - _H), min(1.0, u + _H)
         mid = min(max(u, lo + 1e-12), hi)
         q_lo, q_mid, q_hi = pj.joints(lo), pj.joints(mid), pj.joints(hi)
@@ -343,8 +343,7 @@ class MotionQueue:
             seg = history[i]
             if seg.t0 > t:
                 break
-            if isinstance(seg, PathSegment) and seg.path_joints is not None:
-                run = seg.path_joints
+            if isinstance(seg, PathSegment) and (run := seg.path_joints) is not None:
                 end_local = seg.motion_end - seg.t0
                 fault = run.run_to(min(t - seg.t0, end_local))
                 if fault is not None:
