@@ -39,6 +39,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from gplrt.controller.state import POWER_ON_STATES
 from gplrt.geometry._checks import wrong_object
 from gplrt.geometry.location import Location
 from gplrt.geometry.transforms import matrix_to_pose
@@ -55,7 +56,6 @@ from gplrt.lang.arrays import GplArray
 from gplrt.lang.conversions import to_double, to_int32
 from gplrt.lang.exceptions import not_simulated
 from gplrt.lang.gpltypes import Boolean, Double, Integer
-from gplrt.controller.state import POWER_ON_STATES
 from gplrt.motion import registry, special
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot import QUEUE_DEPTH, RobotState

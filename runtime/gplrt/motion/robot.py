@@ -509,7 +509,8 @@ class RobotState:
             # done at once, exactly where it started; a blending motion before it runs to its end.
             seg = DwellSegment(t0, 0.0, q0, q0, kind=kind)
             return self._append(seg, prof)
-        end = model.inverse_pose(path.end_pose, 0, start if q_extra is q0 else _seed_at(q0, q_extra, mask, 1.0).tolist())
+        seed = start if q_extra is q0 else _seed_at(q0, q_extra, mask, 1.0).tolist()
+        end = model.inverse_pose(path.end_pose, 0, seed)  # the destination's joints, Python floats
         if angles_end is not None:
             if (model.config_of(end) ^ model.config_of(angles_end.tolist())) & _BRANCH_BITS:
                 raise GplException(CANT_CHANGE_CONFIG, robot_num=self.number,
