@@ -281,7 +281,10 @@ class RobotState:
     # -- checks --------------------------------------------------------------------------------
 
     def check_can_move(self, key: ThreadKey, power_on: bool) -> None:
-        """The controller's motion preconditions (gpl-classes §7): attached, power, homed."""
+        """The controller's motion preconditions (gpl-classes §7): attached, power, homed.
+
+        ``move._ready_now`` reads the same state in one look for ``Move.Loc`` and comes here for
+        anything unusual: a precondition added here must be added to its test too."""
         if self.owner is None or self.owner is not key:
             raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
                                detail=f"robot {self.number} is not attached to this thread")
