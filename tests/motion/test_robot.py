@@ -54,6 +54,26 @@ def test_move_refusals_in_controller_order(sim: Simulation) -> None:
     assert (err.ErrorCode, err.RobotError, err.Axis) == (-1012, True, 1)
 
 
+def test_every_move_loc_refuses_in_jog_mode_and_moves_after_it(sim: Simulation) -> None:
+    """Move.Loc's fast paths (Angles, Cartesian, straight) refuse a robot in a special mode with
+    -1017 *Robot not in position mode*, as every other Move does, and move once it is stopped."""
+    ready()
+    start = Robot.WhereAngles().axis_values()
+    goal = Location()
+    goal.XYZ(400.0, 100.0, 300.0, 0.0, 90.0, 180.0)
+    straight = Profile()
+    straight.Straight = True
+    Move.StartJogMode()
+    assert code_of(Move.Loc, SAFE, Profile()) == -1017
+    assert code_of(Move.Loc, goal, Profile()) == -1017
+    assert code_of(Move.Loc, goal, straight) == -1017
+    assert Robot.WhereAngles().axis_values() == start  # nothing was queued
+    Move.StopSpecialModes()
+    Move.Loc(goal, straight)
+    Move.WaitForEOM()
+    assert np.max(np.abs(Robot.Where().matrix() - goal.matrix())) < 1e-9
+
+
 @pytest.mark.parametrize(
     ("xyz", "code"),
     [
