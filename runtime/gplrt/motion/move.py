@@ -241,7 +241,7 @@ class _MoveClass:
             n = robot._axis_count
             with robot.lock:
                 if len(vals) >= n:
-                    values = list(vals[:n])  # what _angles_of gives, without a numpy round trip
+                    values = vals[:n]  # what _angles_of gives, as the tuple Ruckig takes (no copy when n)
                 else:
                     values = _angles_of(robot, loc).tolist()
                 robot.queue_joint_values(s.scheduler.clock.now(), values, Profile1, s.controller.system_speed)

@@ -187,14 +187,15 @@ def _finite(values: Vec) -> list[float]:
 def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[float] | None,
               q1: Sequence[float], lim: AxisLimits) -> Plan:
     """Synchronised joint trajectory from state (q0, v0, a0) to q1 at rest (None = 0); a ``list``
-    ``q1`` must hold Python floats (it is handed to Ruckig as it is).
+    or ``tuple`` ``q1`` must hold Python floats (it is handed to Ruckig as it is).
 
     Only what differs from the previous call is handed to Ruckig (the limits of a Profile
     repeat move after move), so the cost stays close to a bare ``Ruckig.calculate``."""
     n = len(q0)
     otg, inp, given = _cache.solvers.get(n) or _solver(n)
     p0 = q0.tolist() if type(q0) is np.ndarray else [float(x) for x in q0]
-    p1 = q1 if type(q1) is list else q1.tolist() if isinstance(q1, np.ndarray) else [float(x) for x in q1]
+    p1 = (q1 if type(q1) is list or type(q1) is tuple else q1.tolist() if isinstance(q1, np.ndarray)
+          else [float(x) for x in q1])
     if given.get("mode") is not _AXES:
         given.clear()  # another mode's memo says nothing of what the input holds now
         zero = [0.0] * n

@@ -409,9 +409,9 @@ class RobotState:
         values = target.tolist() if type(target) is np.ndarray else [float(v) for v in target]
         return self.queue_joint_values(now, values, prof, system_speed)
 
-    def queue_joint_values(self, now: float, values: list[float], prof: Profile, system_speed: float) -> Segment:
-        """``queue_joint`` for a list of Python floats, the form Ruckig takes: ``Move.Loc`` to an
-        Angles Location (the commonest motion of all) converts nothing on its way here."""
+    def queue_joint_values(self, now: float, values: Sequence[float], prof: Profile, system_speed: float) -> Segment:
+        """``queue_joint`` for a list or tuple of Python floats, the forms Ruckig takes: ``Move.Loc``
+        to an Angles Location (the commonest motion of all) converts nothing on its way here."""
         if self.async_error or self.queue.fault is not None:
             self.raise_async_error()  # (see ``_check_stopped``; inlined on this hot path)
         self.check_joint_limits(values)
@@ -434,7 +434,7 @@ class RobotState:
         return self._append(JointSegment(t0, plan.duration, q0, np.array(values), None, 0.0, False, 0.0, None,
                                          "joint", plan), prof)
 
-    def _queue_overlapped(self, now: float, values: list[float], lim: AxisLimits, prof: Profile) -> Segment:
+    def _queue_overlapped(self, now: float, values: Sequence[float], lim: AxisLimits, prof: Profile) -> Segment:
         """A joint motion that ``Move.ForceOverlap`` overlaps with the running one
         (``gplrt.motion.special``): planned from rest at its target, started when it has the
         overlap percentage of its duration left, and superimposed on it until it ends."""
