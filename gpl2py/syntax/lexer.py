@@ -141,53 +141,54 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
     toks: list[RawToken] = []
     append = toks.append
     kw = KEYWORDS.get
-    # spelling -> (interned spelling, kind): one probe per word instead of intern, lower and a
-    # keyword probe (a file uses a few hundred words thousands of times)
-    words: dict[str, tuple[str, TokenKind]] = {}
+    # spelling -> (interned spelling, kind, length, too long for a name): one probe per word instead
+    # of intern, lower, a keyword probe and len (a file uses a few hundred words thousands of times)
+    words: dict[str, tuple[str, TokenKind, int, bool]] = {}
     words_get = words.get
     ops = OPERATORS
     IDENT = _K.IDENT
     NEWLINE = _K.NEWLINE
     line = 1
-    line_start = 0
+    begin = 0  # where the scan starts
     has_tokens = False  # does the current logical line hold a token yet?
     deferred: list[RawToken] = []  # comments after ' _' continuations, emitted before NEWLINE
 
     if text.startswith("\ufeff"):  # a UTF-8 byte-order mark from a Windows editor: not source text
-        line_start = 1
+        begin = 1
     stop = len(text)
-    while stop > line_start and text[stop - 1] == "\x1a":  # DOS end-of-file marker(s): not source
+    while stop > begin and text[stop - 1] == "\x1a":  # DOS end-of-file marker(s): not source
         stop -= 1
-    for m in _MASTER.finditer(text, line_start, stop):
+    base = begin - 1  # a column is the offset minus this: the offset where its line starts, less one
+    for m in _MASTER.finditer(text, begin, stop):
         g = m.lastindex
         if g == 1:  # word
             t = m.group(1)
             seen = words_get(t)
             if seen is None:
                 t = intern(t)  # one string per name, however often it is used
-                seen = words[t] = (t, kw(t.lower(), IDENT))
-            t, kind = seen
-            col = m.start(1) - line_start + 1
-            if kind is IDENT and len(t) > _MAX_NAME:
-                sink.report(M.LEX_LONG_IDENTIFIER, _span(path, line, col, col + len(t)), name=t[:20],
-                            length=len(t))
-            append((kind, t, None, (path, line, col, line, col + len(t))))
+                kind = kw(t.lower(), IDENT)
+                seen = words[t] = (t, kind, len(t), kind is IDENT and len(t) > _MAX_NAME)
+            t, kind, n, too_long = seen
+            col = m.start(1) - base
+            if too_long:
+                sink.report(M.LEX_LONG_IDENTIFIER, _span(path, line, col, col + n), name=t[:20], length=n)
+            append((kind, t, None, (path, line, col, line, col + n)))
             has_tokens = True
         elif g == 4:  # operator / punctuation
             t = m.group(4)
-            col = m.start(4) - line_start + 1
+            col = m.start(4) - base
             append((ops[t], t, None, (path, line, col, line, col + len(t))))
             has_tokens = True
         elif g == 5:  # line break
             if has_tokens:
-                col = m.start(5) - line_start + 1
+                col = m.start(5) - base
                 if deferred:
                     toks.extend(deferred)
                     deferred.clear()
                 append((NEWLINE, "", None, (path, line, col, line, col)))
                 has_tokens = False
             line += 1
-            line_start = m.end()
+            base = m.end() - 1
             if len(toks) >= chunk:
                 yield toks
                 toks = []
@@ -195,7 +196,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         elif g == 2:  # number
             start = m.start(g)
             t = intern(m.group(g))  # a literal keeps its text: one string per spelling, like names
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             if "." in t or "e" in t or "E" in t:
                 value: object = float(t)
@@ -210,7 +211,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         elif g == 6:  # S
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             value = t[1:-1].replace('""', '"')
             _check_string(value, span, sink)
@@ -222,13 +223,13 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 deferred.clear()
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             append((_K.COMMENT, t, t[1:], _span(path, line, col, col + len(t))))
             has_tokens = True
         elif g == 3:  # H
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             raw = int(t[2:], 16 if t[1] in "Hh" else 8)
             if raw > 0xFFFFFFFF:
@@ -241,7 +242,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
             _check_suffix(text, m.end(g), t, span, sink)
         elif g == 8:  # CONT
             start = m.start(g)
-            col = start - line_start + 1
+            col = start - base
             if start > 0 and _NAME_CHAR(text[start - 1]):
                 # '_' glued to a number ('1_') is not a continuation: it cannot be one token's end
                 span = _span(path, line, col, col + 1)
@@ -250,17 +251,17 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 has_tokens = True
             cc = m.group("CC")
             if cc is not None:
-                ccol = m.start("CC") - line_start + 1
+                ccol = m.start("CC") - base
                 cspan = _span(path, line, ccol, ccol + len(cc))
                 if not deferred:  # one warning per statement, however many lines it comments
                     sink.report(M.LEX_COMMENT_AFTER_CONTINUATION, cspan)
                 deferred.append((_K.COMMENT, cc, cc[1:], cspan))
             line += 1
-            line_start = m.end()
+            base = m.end() - 1
         elif g == 11:  # D
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             if has_tokens:
                 sink.report(M.LEX_MISPLACED_HASH, span)
@@ -274,7 +275,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         elif g == 10:  # US
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             sink.report(M.LEX_UNTERMINATED_STRING, span)
             value = t[1:].replace('""', '"')
@@ -285,13 +286,13 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         else:  # "X": a character (or a run of non-ASCII characters) no token can start with
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             sink.report(M.LEX_INVALID_CHAR, span, char=_show(t))
             append((_K.ERROR, t, None, span))
             has_tokens = True
 
-    col = stop - line_start + 1
+    col = stop - base
     if has_tokens or deferred:
         toks.extend(deferred)
         append((NEWLINE, "", None, (path, line, col, line, col)))

@@ -341,24 +341,25 @@ class Parser:
         self.sink.report(message, where, **args)
 
     def expect(self, kind: TokenKind, what: str | None = None) -> RawToken | None:
-        tok = self.tok
-        if tok[KIND] is kind:
+        if self.kind is kind:
             return self.next()
+        tok = self.tok
         self.error(M.PARSE_EXPECTED, tok, expected=what or f"'{kind.value}'", found=describe(tok))
         return None
 
     def word(self, what: str) -> RawToken | None:
         """An identifier, or any keyword (member names after '.' may be keywords: ``tl.Stop``)."""
-        tok = self.tok
-        if tok[KIND] is K.IDENT or tok[KIND] in KEYWORD_KINDS:
+        k = self.kind
+        if k is K.IDENT or k in KEYWORD_KINDS:
             return self.next()
+        tok = self.tok
         self.error(M.PARSE_EXPECTED, tok, expected=what, found=describe(tok))
         return None
 
     def ident(self, what: str) -> RawToken | None:
-        tok = self.tok
-        if tok[KIND] is K.IDENT:
+        if self.kind is K.IDENT:
             return self.next()
+        tok = self.tok
         self.error(M.PARSE_EXPECTED, tok, expected=what, found=describe(tok))
         return None
 
@@ -372,7 +373,7 @@ class Parser:
         out: list[A.Comment] = []
         while True:
             tok = self.tok
-            k = tok[KIND]
+            k = self.kind
             if k is K.COMMENT or k is K.DIRECTIVE:
                 self.next()
                 out.append(A.Comment(_at(tok), tok[VALUE], k is K.DIRECTIVE))  # type: ignore[arg-type]
@@ -388,7 +389,7 @@ class Parser:
         and skipped.  Returns the trailing comment.
         """
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if k is not K.NEWLINE and k is not K.COMMENT and k is not K.EOF:
             if k is K.COLON:
                 self.error(M.PARSE_COLON_SEPARATOR, tok)
@@ -606,7 +607,7 @@ class Parser:
             while True:
                 comments = self.comments()
                 tok = self.tok
-                k = tok[KIND]
+                k = self.kind
                 if k is K.EOF:
                     self.unclosed(container, f"End {container}", start)
                     break
@@ -641,7 +642,7 @@ class Parser:
         mods: list[str] = []
         while True:
             tok = self.tok
-            k = tok[KIND]
+            k = self.kind
             if k is K.PUBLIC or k is K.PRIVATE or k is K.SHARED:
                 mods.append(k.value)
                 self.next()
@@ -660,7 +661,7 @@ class Parser:
         start = self.tok
         mods = self.modifiers()
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if container == "file" and k is not K.MODULE and k is not K.CLASS:
             if k in _DECL_WORDS or k in (K.DIM, K.CONST, K.STATIC) or mods:
                 what = "a variable" if k not in _DECL_WORDS else f"a {k.value}"
@@ -871,7 +872,7 @@ class Parser:
         optional = False
         while True:
             tok = self.tok
-            k = tok[KIND]
+            k = self.kind
             if k is K.BYVAL:
                 self.next()
             elif k is K.BYREF:
@@ -964,7 +965,7 @@ class Parser:
             while True:
                 comments = self.comments()
                 tok = self.tok
-                k = tok[KIND]
+                k = self.kind
                 if k is K.GET or k is K.SET:
                     acc = self.accessor()
                     acc.leading_comments = comments + acc.leading_comments
@@ -1045,7 +1046,7 @@ class Parser:
     def statement(self, out: list[A.Stmt]) -> None:
         """Parse one logical line of a procedure body into ``out`` (a label may add two nodes)."""
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if (k is K.IDENT or k is K.INTEGER) and self.peek()[KIND] is K.COLON:
             self.next()
             self.next()
@@ -1055,7 +1056,7 @@ class Parser:
                 self.end_of_line(label)
                 return
             tok = self.tok
-            k = tok[KIND]
+            k = self.kind
         if k is K.COLON:
             self.error(M.PARSE_COLON_SEPARATOR, tok)
             self.skip_line()
@@ -1076,7 +1077,7 @@ class Parser:
     def simple_statement(self) -> A.Stmt | None:
         """A statement that fits on one line (does not consume the end of the line)."""
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if k is K.IDENT:
             nk = self.peek()[KIND]
             if nk not in _NAME_FOLLOWERS:
@@ -1211,7 +1212,7 @@ class Parser:
 
     def _single_line_part(self) -> A.Stmt | None:
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if k is K.IF:
             if not self.deeper(tok, "single-line If statements"):
                 return None
@@ -1518,9 +1519,9 @@ class Parser:
         binops = _BINOPS
         between = A.span_between
         while True:
-            tok = self.tok
-            info = binops.get(tok[KIND])
+            info = binops.get(self.kind)
             if info is None:
+                tok = self.tok
                 if tok[KIND] is K.IDENT and tok[TEXT].lower() == "isnot" and min_prec <= _P_REL:
                     self.error(M.PARSE_UNSUPPORTED, tok, what="'IsNot'", hint=" (write 'Not a Is b')")
                     self.next()
@@ -1553,7 +1554,7 @@ class Parser:
 
     def unary(self) -> A.Expr:
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if k is K.MINUS or k is K.PLUS or k is K.NOT:
             if not self.deeper(tok, "expressions"):
                 return A.ErrorExpr(tok[SPAN])
@@ -1564,11 +1565,9 @@ class Parser:
         return self.postfix()
 
     def postfix(self) -> A.Expr:
-        tok = self.tok
-        k = tok[KIND]
-        if k is K.IDENT:  # (primary's commonest case, inlined: a third of all calls)
-            self.next()
-            expr: A.Expr = A.Name(tok[SPAN], tok[TEXT])
+        if self.kind is K.IDENT:  # (primary's commonest case, inlined: a third of all calls)
+            _, text, _, span = self.next()
+            expr: A.Expr = A.Name(span, text)
         else:
             expr = self.primary()
         while True:
@@ -1615,7 +1614,7 @@ class Parser:
 
     def primary(self) -> A.Expr:
         tok = self.tok
-        k = tok[KIND]
+        k = self.kind
         if k is K.IDENT:
             self.next()
             return A.Name(tok[SPAN], tok[TEXT])
