@@ -1,8 +1,12 @@
-"""The GPL lexer: source text -> a flat list of :class:`~gpl2py.syntax.tokens.Token`.
+"""The GPL lexer: source text -> tokens, plain tuples ``(kind, text, value, span)``.
 
 It is the only layer that knows characters (spec §1).  One compiled master regular expression with
 named groups scans the whole file (``re.finditer``); each match is one token plus the blanks before
-it, so there is no per-character Python loop.  The token stream it produces is *logical-line* shaped:
+it, so there is no per-character Python loop, and the group that matched (``m.lastindex``) says
+what it is.  A token is a plain tuple and so is its span (:data:`~gpl2py.syntax.tokens.KIND`): the
+lexer makes one per token and a plain tuple is the cheapest object Python builds.
+:func:`tokenize` lists them as named :class:`~gpl2py.syntax.tokens.Token` records.  The token
+stream is *logical-line* shaped:
 
 * ``NEWLINE`` ends every logical line that holds at least one token.  Blank lines produce nothing.
 * A line continuation (`` _`` at the end of a physical line, spec §1.3) produces nothing; the next

@@ -275,9 +275,9 @@ class Parser:
         tok = self.tok
         pos = self.pos
         if pos < self.last or (self.more and self._slide()):
-            self.pos = pos = self.pos + 1
+            self.pos = pos = pos + 1
             self.tok = cur = self.toks[pos]
-            self.kind = cur[0]  # cur[KIND]
+            self.kind = cur[KIND]
         return tok
 
     def _slide(self) -> bool:

@@ -1,6 +1,6 @@
-"""Token kinds and the :class:`Token` record produced by :mod:`gpl2py.syntax.lexer`.
+"""Token kinds, and the layout of the tokens :mod:`gpl2py.syntax.lexer` produces (:data:`KIND`).
 
-Every GPL keyword has its own :class:`TokenKind`, so the parser dispatches on ``tok.kind is K.IF``
+Every GPL keyword has its own :class:`TokenKind`, so the parser dispatches on ``kind is K.IF``
 (identity comparisons on enum members are the cheapest test Python offers) instead of comparing
 lowered strings.  Words the seeds reject (``GoSub``, ``With``, ``Enum`` …) are deliberately *not*
 keywords: the spec (§1.8) says they must stay usable as names, so they lex as :attr:`TokenKind.IDENT`
