@@ -275,7 +275,7 @@ class Parser:
         tok = self.tok
         pos = self.pos
         if pos < self.last or (self.more and self._slide()):
-            self.pos = pos = pos + 1
+            self.pos = pos = self.pos + 1  # (not pos + 1: _slide() moves pos back by what it drops)
             self.tok = cur = self.toks[pos]
             self.kind = cur[KIND]
         return tok
