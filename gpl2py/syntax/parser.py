@@ -606,7 +606,6 @@ class Parser:
         try:
             while True:
                 comments = self.comments()
-                tok = self.tok
                 k = self.kind
                 if k is K.EOF:
                     self.unclosed(container, f"End {container}", start)
