@@ -68,6 +68,8 @@ _TO_INT = {t.INTEGER: "to_int32", t.SHORT: "to_int16", t.BYTE: "to_uint8"}
 _CHK_INT = {t.INTEGER: "chk_int32", t.SHORT: "chk_int16", t.BYTE: "chk_uint8"}
 _RUNTIME_CMP = {"=": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le", ">=": "ge"}
 _PY_CMP = {"=": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", ">=": ">="}
+#: The comparison that is true exactly when the key is false, for operands without NaN.
+_INVERSE_CMP = {"=": "<>", "<>": "=", "<": ">=", ">": "<=", "<=": ">", ">=": "<"}
 _F32 = struct.Struct("f")
 # How deep a chain of binary operators may nest in one Python expression (ExprLowerer.binary_chain).
 # Measured on CPython 3.11: the compiler gives up near 2,990 nested ``a + b`` at the top of the
@@ -77,6 +79,14 @@ _F32 = struct.Struct("f")
 LONG_CHAIN = 100
 # a run of this many ``&`` operators or more is lowered as one "".join((...)) (ExprLowerer.flat_concat)
 FLAT_CONCAT_MIN = LONG_CHAIN
+
+
+def negation(c: Code) -> Code:
+    """``not c``, without a double negation when ``c`` is itself ``not x``."""
+    text, prec = c
+    if prec == P_NOT and text.startswith("not "):
+        return text[4:], P_NOT + 1
+    return f"not {paren(c, P_NOT)}", P_NOT
 
 
 def paren(c: Code, min_prec: int) -> str:
@@ -661,6 +671,21 @@ class ExprLowerer:
         if src in _PLAIN_NUM:
             return f"{paren(c, P_CMP + 1)} != 0", P_CMP
         return self.call(self.rt(CONV, "to_bool"), c[0])
+
+    def negated_cond(self, e: A.Expr) -> Code:
+        """``Not e`` as a Python condition: a loop's exit test.  A comparison of integers, or of two
+        Strings, is inverted (``eol < 0`` rather than ``not eol >= 0``): only a NaN tells the two
+        apart, and neither type has one.  ``a Is b`` becomes ``a is not b``, ``Not a Is b`` ``a is b``."""
+        if isinstance(e, A.Binary) and e.op == "Is":
+            return self.identity(e, negate=True)
+        if isinstance(e, A.Unary) and e.op == "Not" and isinstance(e.operand, A.Binary) and e.operand.op == "Is":
+            return self.identity(e.operand, negate=False)  # While Not x Is Nothing
+        if isinstance(e, A.Binary) and e.op in _INVERSE_CMP:
+            lt, rt_ = self.type_of(e.left), self.type_of(e.right)
+            if (lt in _INTS and rt_ in _INTS) or (lt is t.STRING and rt_ is t.STRING):
+                return self.binop(_INVERSE_CMP[e.op], (*self.expr(e.left), lt), (*self.expr(e.right), rt_),
+                                  e.left, e.right)
+        return negation(self.cond(e))
 
     # -- operators --------------------------------------------------------------------------------------
 

@@ -53,7 +53,7 @@ RUNTIME_IMPORTS: dict[str, frozenset[str]] = {
     "gplrt.lang.procedures": frozenset({"register_procedure", "use_procedures"}),
     "gplrt.lang.sourcemap": frozenset({"register_package"}),
     "gplrt.sim": frozenset({"Simulation", "current"}),
-    "gplrt.threads": frozenset({"checkpoint", "paced_range"}),
+    "gplrt.threads": frozenset({"checkpoint", "paced", "paced_range"}),
     "math": frozenset({"atan", "atan2", "cos", "sin", "sqrt", "tan"}),
 }
 

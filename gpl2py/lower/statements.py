@@ -9,7 +9,7 @@ how a jump knows how many loops it must leave.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -24,10 +24,10 @@ from gpl2py.lower.expressions import (
     P_AND,
     P_ADD,
     P_ATOM,
-    P_NOT,
     P_OR,
     Code,
     ExprLowerer,
+    negation,
     annotation,
     default_code,
     elem_type_code,
@@ -85,6 +85,11 @@ class ProcLowerer(ExprLowerer):
         self.flags: list[str] = []
         self.flag_of: dict[tuple[int, str], str] = {}
         self.counter = 0
+        # Integer locals that can never be negative (_counters); set when a procedure is lowered
+        self.counters: set[VarSym] = set()
+        # the first statement of a loop body that adds 1 to a variable the loop's test has just
+        # found below an Integer: it cannot overflow (guarded_increment)
+        self.guarded: set[A.Stmt] = set()
         self.plan: GotoPlan | None = None
         self.state_var: dict[A.Block, str] = {}
         self.entry_flag: dict[A.Stmt, str] = {}
@@ -215,6 +220,8 @@ class ProcLowerer(ExprLowerer):
         body.level = 1
         body.base = len(self.cls.path) if method and self.cls is not None else 0  # inside its classes
         start = body.mark()
+        self.counters = _counters(p, self.model.info)
+        self.nonneg |= self.counters
         self.block(decl.body)
         if p.kind == "Function" and _falls_through(decl.body):
             # the value of a Function that ends without Return (§9.1); no unreachable line
@@ -331,11 +338,10 @@ class ProcLowerer(ExprLowerer):
             if any(s is x for x in targets):
                 segments.append([])
             segments[-1].append(s)
-        self.w.line("while True:")
+        self.paced_loop()
         self.w.indent(BLOCKS["loop"])
         frame = Frame("dispatch", block=block)
         self.frames.append(frame)
-        self.w.line(f"{self.rt(THREADS, 'checkpoint')}()")
         for k, seg in enumerate(segments):
             if k == 0 and not seg:
                 continue
@@ -474,6 +480,11 @@ class ProcLowerer(ExprLowerer):
 
     def s_Assign(self, s: A.Assign) -> None:
         tt = self.target_type(s.target)
+        if s in self.guarded:  # i = i + 1 right after the loop found i < n: no range check
+            value = self.conv(s.value, tt)[0] if s.op == "=" else self.binop(
+                "+", (*self.expr(s.target), tt), (*self.expr(s.value), tt), s.target, s.value)[0]
+            self.store(s.target, self.int_checks.get(value, value), s.value)
+            return
         if s.op == "=":
             value = self.conv(s.value, tt)[0]
             if tt is t.DOUBLE and _may_overflow_double(s.value, self):
@@ -652,9 +663,12 @@ class ProcLowerer(ExprLowerer):
         self.block(body)
         self.w.dedent()
 
-    def loop_body(self, body: A.Block, frame: Frame, tail: list[str] | None = None) -> None:
+    def loop_body(self, body: A.Block, frame: Frame, head: list[str] | None = None,
+                  tail: list[str] | None = None) -> None:
         self.w.indent(BLOCKS["loop"])
         self.frames.append(frame)
+        for line in head or []:
+            self.w.line(line)
         start = self.w.mark()
         self.block(body)
         for line in tail or []:
@@ -664,25 +678,41 @@ class ProcLowerer(ExprLowerer):
         self.w.dedent()
         self.after(frame)
 
+    def paced_loop(self) -> None:
+        """The header of a While or Do loop: ``for _ in paced():``, endless, each turn one
+        checkpoint of the thread's slice taken in C by the ``for`` itself (gplrt.threads.paced;
+        docs/design/lowering.md, "Loops and other threads"); the loop's test is an ``if ...:
+        break`` in its body."""
+        self.w.line(f"for _ in {self.rt(THREADS, 'paced')}():")
+
+    def loop_exit(self, s: A.While | A.DoLoop, condition: A.Expr, until: bool, body: A.Block | None) -> list[str]:
+        """``if <exit>: break``, the test of a While or Do loop: the loop ends when ``condition``
+        is true (``until``) or false; ``body`` is given for a test at the top of the body."""
+        if body is not None and s not in self.entry_flag and self.plan is not None and self.plan.dispatch(body) is None:
+            first = guarded_increment(condition, until, body, self.model.info)
+            if first is not None:
+                self.guarded.add(first)
+        if body is not None and s in self.entry_flag:  # entered by a GoTo: the first turn does not test
+            c = self.cond(condition)
+            stay: Code = negation(c) if until else c
+            entering = self.plan is not None and self.plan.entered.get(s) is body
+            exit_test = negation((self.entered_cond(s, body, stay), P_OR if entering else P_AND))
+        else:
+            exit_test = self.cond(condition) if until else self.negated_cond(condition)
+        return [f"if {exit_test[0]}:", "    break"]
+
     def s_While(self, s: A.While) -> None:
-        self.w.line(f"while {self.entered_cond(s, s.body, self.cond(s.condition))}:")
-        self.loop_body(s.body, Frame("While", block=s.body), [f"{self.rt(THREADS, 'checkpoint')}()"])
+        self.paced_loop()
+        self.loop_body(s.body, Frame("While", block=s.body), self.loop_exit(s, s.condition, False, s.body))
 
     def s_DoLoop(self, s: A.DoLoop) -> None:
-        cp = f"{self.rt(THREADS, 'checkpoint')}()"
+        self.paced_loop()
         if s.condition is None:
-            self.w.line("while True:")
-            self.loop_body(s.body, Frame("Do", block=s.body), [cp])
-            return
-        c = self.cond(s.condition)
-        if s.test_at_top:
-            test: Code = (f"not {paren(c, P_NOT)}", P_NOT) if s.until else c
-            self.w.line(f"while {self.entered_cond(s, s.body, test)}:")
-            self.loop_body(s.body, Frame("Do", block=s.body), [cp])
-            return
-        exit_test = c[0] if s.until else f"not {paren(c, P_NOT)}"
-        self.w.line("while True:")
-        self.loop_body(s.body, Frame("Do"), [cp, f"if {exit_test}:", "    break"])
+            self.loop_body(s.body, Frame("Do", block=s.body))
+        elif s.test_at_top:
+            self.loop_body(s.body, Frame("Do", block=s.body), self.loop_exit(s, s.condition, s.until, s.body))
+        else:
+            self.loop_body(s.body, Frame("Do"), tail=self.loop_exit(s, s.condition, s.until, None))
 
     def s_For(self, s: A.For) -> None:
         vt = self.type_of(s.var)
@@ -745,7 +775,8 @@ class ProcLowerer(ExprLowerer):
         if step == 1 and lo is not None and lo >= 0:
             self.nonneg.add(v)  # a subscript that cannot be negative (lower/expressions.py)
         self.loop_body(s.body, Frame("For"))
-        self.nonneg.discard(v)
+        if v not in self.counters:
+            self.nonneg.discard(v)
         if final:
             edge = "max" if step == 1 else "min"
             self.w.line(f"{name} = {edge}({start}, {stop})  # the first value past the end (§10.3)")
@@ -966,11 +997,9 @@ class ProcLowerer(ExprLowerer):
             pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
         pre += [f"{self.entry_flag[st]} = True" for st in j.entries]
         if j.restart.block in self.plan.tails:
-            # to the labels that end a loop body: the next iteration, through the loop's
-            # scheduling point (which its own back-edge would have been)
+            # to the labels that end a loop body: the next iteration (a While or Do loop's next
+            # turn is its scheduling point, as for its own back-edge)
             frame = next(f for f in reversed(self.frames) if f.block is j.restart.block)
-            if not isinstance(j.restart.owner, A.ForEach):
-                pre.append(f"{self.rt(THREADS, 'checkpoint')}()")
         elif j.retry_try is not None:
             frame = next(f for f in reversed(self.frames) if f.kind == "Try")
         else:
@@ -1256,6 +1285,97 @@ def _assigned_before_use(p: ProcSym) -> set[VarSym]:
         if isinstance(s, A.Assign):
             for sub in s.target.children():
                 read |= _names_in(sub)
+    return out
+
+
+def guarded_increment(condition: A.Expr, until: bool, body: A.Block, info: Mapping[A.Node, object]) -> A.Assign | None:
+    """The first statement of a loop body tested at the top, when it adds 1 to an Integer local
+    that the loop's test has just found below an Integer variable or literal (``While i < n``
+    then ``i += 1``): the sum is at most ``n``, so it needs no range check.  Locals only (no other
+    thread or callee can change them between the test and the store), neither boxed nor ByRef."""
+    if not (isinstance(condition, A.Binary) and condition.op in (("<", ">") if not until else (">=", "<="))):
+        return None
+    below_first = condition.op in ("<", ">=")  # i < n, Until i >= n; else n > i, Until n <= i
+    v_side, bound = (condition.left, condition.right) if below_first else (condition.right, condition.left)
+
+    def local(e: A.Expr) -> VarSym | None:
+        i = info.get(e)
+        if isinstance(i, VarInfo) and i.receiver is None:
+            v = i.sym
+            if v.storage in ("local", "param") and not v.boxed and not v.byref and v.type is t.INTEGER:
+                return v
+        return None
+
+    v = local(v_side)
+    bi = info.get(bound)
+    in_range = (isinstance(bound, A.IntegerLiteral) and bound.value <= 2147483647) or (
+        isinstance(bound, A.Name) and isinstance(bi, VarInfo) and bi.sym.type in _INT_TYPES)
+    if v is None or not in_range or not body.statements:
+        return None
+    first = body.statements[0]
+    if not (isinstance(first, A.Assign) and local(first.target) is v):
+        return None
+
+    def one(e: A.Expr) -> bool:
+        return isinstance(e, A.IntegerLiteral) and e.value == 1
+
+    if first.op == "+=" and one(first.value):
+        return first
+    val = first.value
+    if first.op == "=" and isinstance(val, A.Binary) and val.op == "+" and (
+            (local(val.left) is v and one(val.right)) or (one(val.left) and local(val.right) is v)):
+        return first
+    return None
+
+
+def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
+    """The procedure's counters: Integer locals that can never be negative, because every store
+    into them is a literal that is not negative, itself plus such a literal (``n = n + 1``,
+    ``n += 1``), or an ascending ``For`` from such a literal; their default is 0 and an overflow
+    stores nothing.  ``i Mod 3`` of a counter is Python's ``%`` (no test of the sign).
+
+    Only locals that are neither Static nor passed ByRef (``boxed``): nothing but the procedure's
+    own statements writes them."""
+    decl = p.decl
+    if decl is None:
+        return set()
+    cands = {v for v in p.locals.values()
+             if v.storage == "local" and not v.boxed and v.type in _INT_TYPES}
+    if not cands:
+        return set()
+    out = set(cands)
+
+    def target(e: A.Expr | None) -> VarSym | None:
+        i = info.get(e) if e is not None else None
+        return i.sym if isinstance(i, VarInfo) and i.sym in out else None
+
+    def keeps_sign(v: VarSym, op: str, value: A.Expr | None) -> bool:
+        if value is None:
+            return False
+        if op == "=" and isinstance(value, A.Binary) and value.op == "+":
+            parts = (value.left, value.right)
+            return (any(target(x) is v for x in parts)
+                    and any(isinstance(x, A.IntegerLiteral) and x.value >= 0 for x in parts))
+        return op in ("=", "+=") and isinstance(value, A.IntegerLiteral) and value.value >= 0
+
+    for s in _walk_stmts(decl.body):
+        if isinstance(s, A.Assign):
+            v = target(s.target)
+            if v is not None and not keeps_sign(v, s.op, s.value):
+                out.discard(v)
+        elif isinstance(s, A.For):
+            v = target(s.var)
+            if v is not None and not (keeps_sign(v, "=", s.start) and (s.step is None or _int_literal(s.step) == 1)):
+                out.discard(v)
+        elif isinstance(s, A.ForEach):
+            v = target(s.var)
+            if v is not None:
+                out.discard(v)
+        elif isinstance(s, A.VarDecl):
+            for d in s.declarators:
+                v = next((c for c in out if c.decl is d), None)
+                if v is not None and d.initializer is not None and not keeps_sign(v, "=", d.initializer):
+                    out.discard(v)
     return out
 
 

@@ -173,7 +173,7 @@ def test_goto_free_procedures_stay_structured(tmp_path: Path) -> None:
         While i < 3
             i += 1
         End While"""))
-    assert "while i < 3:" in body and "_g" not in body
+    assert "for _ in paced():\n        if i >= 3:\n            break\n" in body and "_g" not in body
 
 
 def test_no_exec_or_eval_and_valid_python_for_all_frontend_sources() -> None:

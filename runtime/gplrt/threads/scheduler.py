@@ -8,9 +8,10 @@ VIRTUAL mode (:class:`VirtualScheduler`, the simulator's default) — a *token* 
   token changes hands only at scheduling points: ``Thread.Sleep`` (``Sleep(0)`` included),
   ``WaitEvent``, ``Join``, clock waits (``sleep_until``, ``WaitForEOM``), thread start/end (the new
   thread queues; the starter keeps running), :func:`external_wait`, and :func:`checkpoint` — which
-  the transpiler puts on every loop back-edge.
+  every turn of a transpiled loop takes.
 * Round-robin in a FIFO of runnable threads.  A thread gets a *slice* of ``slice_checkpoints``
-  checkpoint calls (fast path: one integer decrement); when the slice is used up, virtual time
+  checkpoints (each turn of a transpiled loop takes one in C from ``ThreadCtx.turns``, see
+  :func:`paced`; :func:`checkpoint` takes one from Python); when the slice is used up, virtual time
   advances by ``slice_time`` (the controller's 1 ms round-robin slice) and the thread moves to the
   back of the queue.  The remaining slice is kept across sleeps, as on the controller (D0 §17.2).
   Charging compute time is what lets ``While Controller.Timer < t0 + 1 : End While`` terminate.
@@ -66,6 +67,7 @@ do not swallow it while ``Finally`` blocks still run.
 
 from __future__ import annotations
 
+import functools
 import heapq
 import itertools
 import threading
@@ -103,11 +105,18 @@ class Phase:
 
 @dataclass(eq=False)
 class ThreadCtx:
-    """What the scheduler keeps about one thread that runs (or waits for) GPL code."""
+    """What the scheduler keeps about one thread that runs (or waits for) GPL code.
+
+    The thread's slice is counted by :attr:`turns`, an endless iterator that the transpiled
+    ``While``/``Do`` loops iterate directly (``for _ in paced():``, see :func:`paced`) and that
+    :func:`checkpoint` advances by one: each item is one checkpoint of the slice.  It runs in C
+    (a ``chain`` over list iterators) and calls back into Python only when the slice is used up
+    (:meth:`_next_slice`), so a loop's scheduling point costs a few nanoseconds instead of a
+    function call.  :attr:`budget` reads and sets the checkpoints left, as an integer.
+    """
 
     name: str
     sched: "Scheduler"
-    budget: int = 0
     phase: str = Phase.NEW
     go: threading.Event = field(default_factory=threading.Event)
     wait_id: int = 0
@@ -122,11 +131,85 @@ class ThreadCtx:
     busy_until: int | None = None
     resume_q: "WaitQueue" = field(default_factory=lambda: WaitQueue("resume"))
 
+    def __post_init__(self) -> None:
+        size = self.sched.slice_checkpoints
+        # The items a slice hands out; a chunk is an iterator over it started at the right index.
+        self._items = _slice_items(size)
+        # The chunk being handed out, or None while the slice changes hands (_next_slice).
+        self._chunk: Iterator[None] | None = None
+        # The budget set while there is no chunk (inside _next_slice).
+        self._pending: int | None = None
+        # A budget set to 0 or below: the chunk is empty, and this is what ``budget`` reads.
+        self._spent: int | None = None
+        self.turns: Iterator[None] = self._new_turns(size)
+
+    def _new_turns(self, budget: int) -> Iterator[None]:
+        """The endless iterator of this thread's checkpoints, starting with ``budget`` left."""
+        first = self._chunk_of(budget - 1)
+        return chain.from_iterable(chain((first,), map(self._next_slice, repeat(None))))
+
+    def _chunk_of(self, n: int) -> Iterator[None]:
+        """A chunk that hands out ``n`` items; it becomes the current one."""
+        chunk = iter(self._items)
+        chunk.__setstate__(len(self._items) - max(0, min(n, len(self._items))))  # type: ignore[attr-defined]
+        self._chunk = chunk
+        return chunk
+
+    @property
+    def budget(self) -> int:
+        """Checkpoints left in the slice: the one that brings it to 0 is a scheduling point."""
+        chunk = self._chunk
+        if chunk is None:
+            return self._pending if self._pending is not None else 0
+        left = chunk.__length_hint__()  # type: ignore[attr-defined]
+        if left == 0 and self._spent is not None:
+            return self._spent
+        return left + 1
+
+    @budget.setter
+    def budget(self, n: int) -> None:
+        chunk = self._chunk
+        if chunk is None:
+            self._pending = n
+            return
+        self._spent = n if n <= 0 else None
+        chunk.__setstate__(len(self._items) - max(0, min(n - 1, len(self._items))))  # type: ignore[attr-defined]
+
+    def _next_slice(self, _: None) -> Iterator[None]:
+        """The checkpoint that used up the slice (or was forced to by a request): the scheduler's
+        slow path, then the next slice's chunk.
+
+        The pull that calls this is charged to the slice that ended; the chunk returned holds the
+        new budget, of which ``chain`` takes one item for that pull, so ``budget`` reads the new
+        budget afterwards, as :func:`checkpoint`'s integer decrement did.  If the slow path raises
+        (an Abort), ``turns`` is rebuilt: ``chain`` is dead once its source raised, and the loops of
+        the ``Finally`` blocks that run next must still get their checkpoints.
+        """
+        self._chunk = None
+        self._pending = None
+        self._spent = None
+        try:
+            self.sched._checkpoint_slow(self)
+        except BaseException:
+            budget = self._pending if self._pending is not None else self.sched.slice_checkpoints
+            self._pending = None
+            self.turns = self._new_turns(budget)
+            raise
+        budget = self._pending if self._pending is not None else self.sched.slice_checkpoints
+        self._pending = None
+        return self._chunk_of(budget)
+
     def force_slow_path(self) -> None:
         """Make the next :func:`checkpoint` take the slow path (to notice Suspend/Abort)."""
         if self.saved_budget is None:
             self.saved_budget = self.budget
         self.budget = 0
+
+
+@functools.cache
+def _slice_items(size: int) -> list[None]:
+    """The list a slice's chunks iterate, one per slice size: only ever read, so all threads share it."""
+    return [None] * (size + 1)
 
 
 #: Who holds a robot or has one Selected: the GPL thread's record, or the Python thread for code
@@ -143,17 +226,33 @@ class WaitQueue:
 
 
 def checkpoint() -> None:
-    """A scheduling point the transpiler emits at loop back-edges (cheap: one decrement).
+    """A scheduling point: one checkpoint of the calling thread's slice.
 
-    In virtual mode it hands the token on once the thread's slice is used up; in both modes it is
-    where a Suspend or Abort aimed at this thread takes effect.
+    In virtual mode the thread hands the token on once its slice is used up; in both modes it is
+    where a Suspend or Abort aimed at this thread takes effect.  The transpiled ``While``/``Do``
+    loops take their checkpoints by iterating :func:`paced` instead (no call per iteration).
     """
     ctx = _tls.ctx
-    if ctx is None:
-        return
-    ctx.budget -= 1
-    if ctx.budget <= 0:
-        ctx.sched._checkpoint_slow(ctx)
+    if ctx is not None:
+        next(ctx.turns)
+
+
+#: The checkpoints of code the scheduler does not run (a notebook, pytest): endless and free.
+_FREE_TURNS: Iterator[None] = repeat(None)
+
+
+def paced() -> Iterator[None]:
+    """The checkpoints of the calling thread, one per item: what a transpiled loop iterates.
+
+    The transpiler writes ``While c ... End While`` as ``for _ in paced(): if not c: break ...``:
+    each turn of the loop (each test of its condition) is one checkpoint of the thread's slice,
+    taken by the ``for`` statement from :attr:`ThreadCtx.turns` in C, so a loop that waits on
+    another thread or on ``Controller.Timer`` still lets time pass and the other threads run,
+    without a Python call per iteration.  All the loops of a thread share its one iterator, as
+    they share its slice.  Off the scheduler's threads it is an endless ``repeat``.
+    """
+    ctx = _tls.ctx
+    return _FREE_TURNS if ctx is None else ctx.turns
 
 
 #: Iterations of a :func:`paced_range` loop between two checkpoints.  A virtual slice is 1000
@@ -303,7 +402,7 @@ class Scheduler:
     # -- thread lifecycle --------------------------------------------------------------------------
 
     def new_ctx(self, name: str, owner: Thread | None = None) -> ThreadCtx:
-        return ThreadCtx(name=name, sched=self, budget=self.slice_checkpoints, owner=owner)
+        return ThreadCtx(name=name, sched=self, owner=owner)
 
     def spawn(self, ctx: ThreadCtx, body: Callable[[], None]) -> threading.Thread:
         """Start a Python thread that runs ``body`` as the GPL thread ``ctx``."""
