@@ -115,6 +115,7 @@ class Selection:
         warning GPL9004 in ``sink``."""
         from gpl2py.syntax.lexer import token_chunks
         from gpl2py.syntax.tokens import TokenKind
+        from gpl2py.source import make_span
 
         for source in sources:
             if source.path in self._scanned:
@@ -124,16 +125,16 @@ class Selection:
                 continue
             lines: dict[int, tuple[str, ...] | None] = {}
             for chunk in token_chunks(source, DiagnosticSink()):  # the parse reports the lexer's errors
-                for tok in chunk:
-                    if tok.kind is not TokenKind.COMMENT:
+                for kind, _, value, span in chunk:  # (the parser's plain-tuple tokens)
+                    if kind is not TokenKind.COMMENT:
                         continue
-                    found = _DIRECTIVE.search(str(tok.value))
+                    found = _DIRECTIVE.search(str(value))
                     if found is None:
                         continue
-                    codes = self._comment_codes(found.group(1), tok.span, sink)
+                    codes = self._comment_codes(found.group(1), make_span(*span), sink)
                     if codes is not None and not codes:
                         continue  # only bad codes: suppress nothing (GPL9004 said why)
-                    line = tok.span.line
+                    line = span[1]  # (file, line, col, end_line, end_col)
                     if codes is None or lines.get(line, ()) is None:
                         lines[line] = None
                     else:

@@ -1,8 +1,12 @@
-"""The GPL lexer: source text -> a flat list of :class:`~gpl2py.syntax.tokens.Token`.
+"""The GPL lexer: source text -> tokens, plain tuples ``(kind, text, value, span)``.
 
 It is the only layer that knows characters (spec §1).  One compiled master regular expression with
 named groups scans the whole file (``re.finditer``); each match is one token plus the blanks before
-it, so there is no per-character Python loop.  The token stream it produces is *logical-line* shaped:
+it, so there is no per-character Python loop, and the group that matched (``m.lastindex``) says
+what it is.  A token is a plain tuple and so is its span (:data:`~gpl2py.syntax.tokens.KIND`): the
+lexer makes one per token and a plain tuple is the cheapest object Python builds.
+:func:`tokenize` lists them as named :class:`~gpl2py.syntax.tokens.Token` records.  The token
+stream is *logical-line* shaped:
 
 * ``NEWLINE`` ends every logical line that holds at least one token.  Blank lines produce nothing.
 * A line continuation (`` _`` at the end of a physical line, spec §1.3) produces nothing; the next
@@ -49,7 +53,7 @@ from typing import Iterator
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.source import SourceFile, Span
-from gpl2py.syntax.tokens import KEYWORDS, OPERATORS, Token, TokenKind
+from gpl2py.syntax.tokens import KEYWORDS, OPERATORS, RawToken, Token, TokenKind
 
 _MASTER = re.compile(
     r"""[ \t\f\v]*(?:
@@ -76,13 +80,11 @@ _MAX_STRING = 128
 
 _K = TokenKind
 
-# A Span is a tuple: the hottest branches below build it with one C call (gpl2py.source.make_span,
-# inlined), where a function call per token would cost as much again.
 _new = tuple.__new__
 
 
 def _span(path: str, line: int, col: int, end_col: int) -> Span:
-    """``Span(Position(path, line, col), line, end_col)``, built fast (equal and hash-equal)."""
+    """The :class:`Span` of a one-line range: for diagnostics (tokens keep plain tuples)."""
     return _new(Span, (path, line, col, line, end_col))
 
 
@@ -90,12 +92,14 @@ def tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
     """Split ``source`` into tokens; problems go to ``sink``, never raised.
 
     The result always ends with an ``EOF`` token, and every non-empty logical line ends with
-    ``NEWLINE`` (also the last one, even without a final line break).
+    ``NEWLINE`` (also the last one, even without a final line break).  These are the parser's
+    tokens (:func:`token_chunks`) with named fields, for tools and tests that list tokens.
     """
     toks: list[Token] = []
+    of = Token.of
     with gc_paused():
         for chunk in token_chunks(source, sink):
-            toks.extend(chunk)
+            toks.extend(map(of, chunk))
     return toks
 
 
@@ -105,10 +109,11 @@ def tokenize(source: SourceFile, sink: DiagnosticSink) -> list[Token]:
 CHUNK = 4096
 
 
-def token_chunks(source: SourceFile, sink: DiagnosticSink, chunk: int = CHUNK) -> Iterator[list[Token]]:
-    """The tokens of ``source`` as :func:`tokenize` gives them, in consecutive lists of about
-    ``chunk`` tokens (a list ends at a line break, so one logical line may make it longer).
-    Diagnostics are reported as the tokens are made."""
+def token_chunks(source: SourceFile, sink: DiagnosticSink, chunk: int = CHUNK) -> Iterator[list[RawToken]]:
+    """The tokens of ``source`` as the parser reads them, plain tuples ``(kind, text, value, span)``
+    (:data:`~gpl2py.syntax.tokens.KIND`), in consecutive lists of about ``chunk`` tokens (a list
+    ends at a line break, so one logical line may make it longer).  Diagnostics are reported as
+    the tokens are made."""
     return _tokenize(source, sink, chunk)
 
 
@@ -130,62 +135,64 @@ def gc_paused() -> Iterator[None]:
             gc.enable()
 
 
-def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[list[Token]]:
+def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[list[RawToken]]:
+    """The scan: one ``finditer`` over the file, dispatched on the group that matched.
+
+    Every token is the plain tuple ``(kind, text, value, (path, line, col, line, end_col))``; a
+    token never spans lines.  A diagnostic gets a :class:`Span` (:func:`_span`)."""
     text = source.text
     path = source.path
-    toks: list[Token] = []
+    toks: list[RawToken] = []
     append = toks.append
     kw = KEYWORDS.get
-    new = _new
-    SPAN = Span
-    # spelling -> (interned spelling, kind): one probe per word instead of intern, lower and a
-    # keyword probe (a file uses a few hundred words thousands of times)
-    words: dict[str, tuple[str, TokenKind]] = {}
+    # spelling -> (interned spelling, kind, length, too long for a name): one probe per word instead
+    # of intern, lower, a keyword probe and len (a file uses a few hundred words thousands of times)
+    words: dict[str, tuple[str, TokenKind, int, bool]] = {}
     words_get = words.get
     ops = OPERATORS
     IDENT = _K.IDENT
     NEWLINE = _K.NEWLINE
     line = 1
-    line_start = 0
+    begin = 0  # where the scan starts
     has_tokens = False  # does the current logical line hold a token yet?
-    deferred: list[Token] = []  # comments after ' _' continuations, emitted before NEWLINE
+    deferred: list[RawToken] = []  # comments after ' _' continuations, emitted before NEWLINE
 
     if text.startswith("\ufeff"):  # a UTF-8 byte-order mark from a Windows editor: not source text
-        line_start = 1
+        begin = 1
     stop = len(text)
-    while stop > line_start and text[stop - 1] == "\x1a":  # DOS end-of-file marker(s): not source
+    while stop > begin and text[stop - 1] == "\x1a":  # DOS end-of-file marker(s): not source
         stop -= 1
-    for m in _MASTER.finditer(text, line_start, stop):
+    base = begin - 1  # a column is the offset minus this: the offset where its line starts, less one
+    for m in _MASTER.finditer(text, begin, stop):
         g = m.lastindex
         if g == 1:  # word
             t = m.group(1)
             seen = words_get(t)
             if seen is None:
                 t = intern(t)  # one string per name, however often it is used
-                seen = words[t] = (t, kw(t.lower(), IDENT))
-            t, kind = seen
-            col = m.start(1) - line_start + 1
-            span = new(SPAN, (path, line, col, line, col + len(t)))
-            if kind is IDENT and len(t) > _MAX_NAME:
-                sink.report(M.LEX_LONG_IDENTIFIER, span, name=t[:20], length=len(t))
-            append(Token(kind, t, None, span))
+                kind = kw(t.lower(), IDENT)
+                seen = words[t] = (t, kind, len(t), kind is IDENT and len(t) > _MAX_NAME)
+            t, kind, n, too_long = seen
+            col = m.start(1) - base
+            if too_long:
+                sink.report(M.LEX_LONG_IDENTIFIER, _span(path, line, col, col + n), name=t[:20], length=n)
+            append((kind, t, None, (path, line, col, line, col + n)))
             has_tokens = True
         elif g == 4:  # operator / punctuation
             t = m.group(4)
-            col = m.start(4) - line_start + 1
-            span = new(SPAN, (path, line, col, line, col + len(t)))
-            append(Token(ops[t], t, None, span))
+            col = m.start(4) - base
+            append((ops[t], t, None, (path, line, col, line, col + len(t))))
             has_tokens = True
         elif g == 5:  # line break
             if has_tokens:
-                col = m.start(5) - line_start + 1
+                col = m.start(5) - base
                 if deferred:
                     toks.extend(deferred)
                     deferred.clear()
-                append(Token(NEWLINE, "", None, new(SPAN, (path, line, col, line, col))))
+                append((NEWLINE, "", None, (path, line, col, line, col)))
                 has_tokens = False
             line += 1
-            line_start = m.end()
+            base = m.end() - 1
             if len(toks) >= chunk:
                 yield toks
                 toks = []
@@ -193,26 +200,26 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         elif g == 2:  # number
             start = m.start(g)
             t = intern(m.group(g))  # a literal keeps its text: one string per spelling, like names
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             if "." in t or "e" in t or "E" in t:
                 value: object = float(t)
                 if value == float("inf"):
                     sink.report(M.LEX_LITERAL_RANGE, span, text=t)
                     value = 0.0
-                append(Token(_K.REAL, t, value, span))
+                append((_K.REAL, t, value, span))
             else:
-                append(Token(_K.INTEGER, t, int(t), span))
+                append((_K.INTEGER, t, int(t), span))
             has_tokens = True
             _check_suffix(text, m.end(g), t, span, sink)
         elif g == 6:  # S
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             value = t[1:-1].replace('""', '"')
             _check_string(value, span, sink)
-            append(Token(_K.STRING, t, value, span))
+            append((_K.STRING, t, value, span))
             has_tokens = True
         elif g == 7:  # C
             if deferred:  # keep source order: continuation comments come first
@@ -220,13 +227,13 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 deferred.clear()
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
-            append(Token(_K.COMMENT, t, t[1:], _span(path, line, col, col + len(t))))
+            col = start - base
+            append((_K.COMMENT, t, t[1:], _span(path, line, col, col + len(t))))
             has_tokens = True
         elif g == 3:  # H
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             raw = int(t[2:], 16 if t[1] in "Hh" else 8)
             if raw > 0xFFFFFFFF:
@@ -234,67 +241,66 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 raw = 0
             elif raw >= 0x80000000:
                 raw -= 0x100000000
-            append(Token(_K.INTEGER, t, raw, span))
+            append((_K.INTEGER, t, raw, span))
             has_tokens = True
             _check_suffix(text, m.end(g), t, span, sink)
         elif g == 8:  # CONT
             start = m.start(g)
-            col = start - line_start + 1
+            col = start - base
             if start > 0 and _NAME_CHAR(text[start - 1]):
                 # '_' glued to a number ('1_') is not a continuation: it cannot be one token's end
-                sink.report(
-                    M.LEX_INVALID_CHAR, _span(path, line, col, col + 1), char="'_'"
-                )
-                append(Token(_K.ERROR, "_", None, _span(path, line, col, col + 1)))
+                span = _span(path, line, col, col + 1)
+                sink.report(M.LEX_INVALID_CHAR, span, char="'_'")
+                append((_K.ERROR, "_", None, span))
                 has_tokens = True
             cc = m.group("CC")
             if cc is not None:
-                ccol = m.start("CC") - line_start + 1
+                ccol = m.start("CC") - base
                 cspan = _span(path, line, ccol, ccol + len(cc))
                 if not deferred:  # one warning per statement, however many lines it comments
                     sink.report(M.LEX_COMMENT_AFTER_CONTINUATION, cspan)
-                deferred.append(Token(_K.COMMENT, cc, cc[1:], cspan))
+                deferred.append((_K.COMMENT, cc, cc[1:], cspan))
             line += 1
-            line_start = m.end()
+            base = m.end() - 1
         elif g == 11:  # D
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             if has_tokens:
                 sink.report(M.LEX_MISPLACED_HASH, span)
-                append(Token(_K.ERROR, "#", None, _span(path, line, col, col + 1)))
+                append((_K.ERROR, "#", None, _span(path, line, col, col + 1)))
             else:
                 d = t.rstrip()
                 if _CONDITIONAL.match(d):
                     sink.report(M.LEX_CONDITIONAL_DIRECTIVE, span, directive=d.split("'")[0][:30])
-                append(Token(_K.DIRECTIVE, t, d, span))
+                append((_K.DIRECTIVE, t, d, span))
             has_tokens = True
         elif g == 10:  # US
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             sink.report(M.LEX_UNTERMINATED_STRING, span)
             value = t[1:].replace('""', '"')
             if not value.isascii():
                 _check_string(value, span, sink)
-            append(Token(_K.STRING, t, value, span))
+            append((_K.STRING, t, value, span))
             has_tokens = True
         else:  # "X": a character (or a run of non-ASCII characters) no token can start with
             start = m.start(g)
             t = m.group(g)
-            col = start - line_start + 1
+            col = start - base
             span = _span(path, line, col, col + len(t))
             sink.report(M.LEX_INVALID_CHAR, span, char=_show(t))
-            append(Token(_K.ERROR, t, None, span))
+            append((_K.ERROR, t, None, span))
             has_tokens = True
 
-    col = stop - line_start + 1
+    col = stop - base
     if has_tokens or deferred:
         toks.extend(deferred)
-        append(Token(NEWLINE, "", None, _span(path, line, col, col)))
-    append(Token(_K.EOF, "", None, _span(path, line, col, col)))
+        append((NEWLINE, "", None, (path, line, col, line, col)))
+    append((_K.EOF, "", None, (path, line, col, line, col)))
     yield toks
 
 

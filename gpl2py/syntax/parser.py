@@ -44,12 +44,19 @@ import sys
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.messages import Message
-from gpl2py.source import SourceFile, Span, make_span
+from gpl2py.source import SourceFile, Span
 from gpl2py.syntax import ast as A
 from gpl2py.syntax.lexer import gc_paused, token_chunks
-from gpl2py.syntax.tokens import COMPOUND_ASSIGN, KEYWORD_KINDS, Token, TokenKind
+from gpl2py.syntax.tokens import COMPOUND_ASSIGN, KEYWORD_KINDS, KIND, SPAN, TEXT, VALUE, RawToken, TokenKind, describe
 
 K = TokenKind
+_new = tuple.__new__  # _new(Span, (file, line, col, end_line, end_col)): a Span in one C call
+
+
+def _at(tok: RawToken) -> Span:
+    """Where a diagnostic about ``tok`` points (a token keeps its span as a plain tuple)."""
+    return _new(Span, tok[SPAN])
+
 
 # precedence (higher binds tighter), spec §3.7
 _P_XOR, _P_OR, _P_AND, _P_NOT, _P_REL, _P_SHIFT, _P_CONCAT = 1, 2, 3, 4, 5, 6, 7
@@ -232,8 +239,8 @@ def parse_expression(source: SourceFile, sink: DiagnosticSink) -> A.Expr:
         p = Parser(source, sink)
         expr = p.expression()
     p.end_of_line(None)
-    if p.tok.kind is not K.EOF:
-        p.error(M.PARSE_TRAILING_TOKENS, p.tok, found=p.tok.describe())
+    if p.kind is not K.EOF:
+        p.error(M.PARSE_TRAILING_TOKENS, p.tok, found=describe(p.tok))
     return expr
 
 
@@ -247,11 +254,14 @@ class Parser:
         # ones peeked at, and back to the last token that is not layout (for prev).  The
         # window slides in next(), so the file's tokens never all live at once.
         self._chunks = token_chunks(source, sink)
-        self.toks: list[Token] = next(self._chunks)
+        self.toks: list[RawToken] = next(self._chunks)
         self.more = True  # the lexer has more chunks
         self.pos = 0
         self.last = len(self.toks) - 1
-        self.tok: Token = self.toks[0]
+        # The current token, and its kind on its own: the parser tests the kind several times a
+        # token, and an attribute of the parser is the cheapest thing to read (next() sets both).
+        self.tok: RawToken = self.toks[0]
+        self.kind: TokenKind = self.tok[KIND]
         self.failed = False  # an error was reported on the current logical line
         self.open: list[str] = []  # constructs whose end has not been seen, innermost last
         self.in_proc = False
@@ -260,12 +270,14 @@ class Parser:
 
     # ---------------------------------------------------------------------------------- tokens
 
-    def next(self) -> Token:
+    def next(self) -> RawToken:
+        """Consume the current token (returned); the one after it becomes current."""
         tok = self.tok
         pos = self.pos
         if pos < self.last or (self.more and self._slide()):
-            self.pos = pos = self.pos + 1
-            self.tok = self.toks[pos]
+            self.pos = pos = self.pos + 1  # (not pos + 1: _slide() moves pos back by what it drops)
+            self.tok = cur = self.toks[pos]
+            self.kind = cur[KIND]
         return tok
 
     def _slide(self) -> bool:
@@ -277,7 +289,7 @@ class Parser:
             return False
         toks = self.toks
         keep = self.pos
-        while keep > 0 and toks[keep].kind in _LAYOUT:
+        while keep > 0 and toks[keep][KIND] in _LAYOUT:
             keep -= 1
         self.toks = toks[keep:] + chunk
         self.pos -= keep
@@ -295,75 +307,77 @@ class Parser:
         return True
 
     @property
-    def prev(self) -> Token:
+    def prev(self) -> RawToken:
         """The last consumed token that is not a NEWLINE or COMMENT (where spans end)."""
         toks = self.toks
-        i = self.pos - 1 if self.tok.kind is not K.EOF or self.pos == 0 else self.pos
-        while i > 0 and toks[i].kind in _LAYOUT:
+        i = self.pos - 1 if self.kind is not K.EOF or self.pos == 0 else self.pos
+        while i > 0 and toks[i][KIND] in _LAYOUT:
             i -= 1
         return toks[max(i, 0)]
 
-    def peek(self, offset: int = 1) -> Token:
+    def peek(self, offset: int = 1) -> RawToken:
         i = self.pos + offset
         while i > self.last and self.more and self._extend():
             pass
         return self.toks[i] if i <= self.last else self.toks[self.last]
 
-    def span_from(self, start: Token | Span) -> Span:
-        s = start.span if isinstance(start, Token) else start
-        end = self.prev.span
-        if end.end_line < s.line or (end.end_line == s.line and end.end_col < s.col):
-            return s
-        return make_span(s.file, s.line, s.col, end.end_line, end.end_col)
+    def span_from(self, start: RawToken | Span) -> Span:
+        """From the start of ``start`` (a token or a span) to the end of the last token consumed."""
+        s = start if isinstance(start, Span) else start[SPAN]
+        end = self.prev[SPAN]
+        if end[3] < s[1] or (end[3] == s[1] and end[4] < s[2]):  # (nothing consumed since)
+            return _new(Span, s)
+        return _new(Span, (s[0], s[1], s[2], end[3], end[4]))
 
-    def error(self, message: Message, where: Token | Span, /, **args: object) -> None:
+    def error(self, message: Message, where: RawToken | Span, /, **args: object) -> None:
         """Report a line-local error: only the first one per logical line is reported."""
         if self.failed:
             return
         self.failed = True
-        if isinstance(where, Token):
-            if where.kind is K.ERROR:
+        if not isinstance(where, Span):  # a token
+            if where[KIND] is K.ERROR:
                 return  # the lexer already reported this character
-            where = where.span
+            where = _at(where)
         self.sink.report(message, where, **args)
 
-    def expect(self, kind: TokenKind, what: str | None = None) -> Token | None:
-        tok = self.tok
-        if tok.kind is kind:
+    def expect(self, kind: TokenKind, what: str | None = None) -> RawToken | None:
+        if self.kind is kind:
             return self.next()
-        self.error(M.PARSE_EXPECTED, tok, expected=what or f"'{kind.value}'", found=tok.describe())
+        tok = self.tok
+        self.error(M.PARSE_EXPECTED, tok, expected=what or f"'{kind.value}'", found=describe(tok))
         return None
 
-    def word(self, what: str) -> Token | None:
+    def word(self, what: str) -> RawToken | None:
         """An identifier, or any keyword (member names after '.' may be keywords: ``tl.Stop``)."""
-        tok = self.tok
-        if tok.kind is K.IDENT or tok.kind in KEYWORD_KINDS:
+        k = self.kind
+        if k is K.IDENT or k in KEYWORD_KINDS:
             return self.next()
-        self.error(M.PARSE_EXPECTED, tok, expected=what, found=tok.describe())
+        tok = self.tok
+        self.error(M.PARSE_EXPECTED, tok, expected=what, found=describe(tok))
         return None
 
-    def ident(self, what: str) -> Token | None:
-        tok = self.tok
-        if tok.kind is K.IDENT:
+    def ident(self, what: str) -> RawToken | None:
+        if self.kind is K.IDENT:
             return self.next()
-        self.error(M.PARSE_EXPECTED, tok, expected=what, found=tok.describe())
+        tok = self.tok
+        self.error(M.PARSE_EXPECTED, tok, expected=what, found=describe(tok))
         return None
 
     # ---------------------------------------------------------------------------- line handling
 
     def comments(self) -> tuple[A.Comment, ...]:
         """Full-line comments and '#' lines at the current position (consumed)."""
-        k = self.tok.kind
+        k = self.kind
         if k is not K.COMMENT and k is not K.DIRECTIVE:
             return ()
         out: list[A.Comment] = []
         while True:
             tok = self.tok
-            k = tok.kind
+            k = self.kind
             if k is K.COMMENT or k is K.DIRECTIVE:
                 self.next()
-                out.append(A.Comment(tok.span, tok.value, k is K.DIRECTIVE))  # type: ignore[arg-type]
-                if self.tok.kind is K.NEWLINE:
+                out.append(A.Comment(_at(tok), tok[VALUE], k is K.DIRECTIVE))  # type: ignore[arg-type]
+                if self.kind is K.NEWLINE:
                     self.next()
             else:
                 return tuple(out)
@@ -375,19 +389,19 @@ class Parser:
         and skipped.  Returns the trailing comment.
         """
         tok = self.tok
-        k = tok.kind
+        k = self.kind
         if k is not K.NEWLINE and k is not K.COMMENT and k is not K.EOF:
             if k is K.COLON:
                 self.error(M.PARSE_COLON_SEPARATOR, tok)
             else:
-                self.error(M.PARSE_TRAILING_TOKENS, tok, found=tok.describe())
+                self.error(M.PARSE_TRAILING_TOKENS, tok, found=describe(tok))
             while k is not K.NEWLINE and k is not K.COMMENT and k is not K.EOF:
                 self.next()
-                k = self.tok.kind
+                k = self.kind
         comment = None
         if k is K.COMMENT:
             comment = self._trailing_comment()
-            k = self.tok.kind
+            k = self.kind
         if k is K.NEWLINE:
             self.next()
         self.failed = False
@@ -397,10 +411,10 @@ class Parser:
 
     def _trailing_comment(self) -> A.Comment:
         first = self.next()
-        comment = A.Comment(first.span, first.value)  # type: ignore[arg-type]
-        while self.tok.kind is K.COMMENT:  # several (a continuation comment + the line's own)
+        comment = A.Comment(_at(first), first[VALUE])  # type: ignore[arg-type]
+        while self.kind is K.COMMENT:  # several (a continuation comment + the line's own)
             more = self.next()
-            comment = A.Comment(first.span, f"{comment.text} {more.value}")
+            comment = A.Comment(_at(first), f"{comment.text} {more[VALUE]}")
         return comment
 
     def skip_line(self) -> A.Comment | None:
@@ -408,22 +422,22 @@ class Parser:
         return self.end_of_line(None)
 
     def at_line_end(self) -> bool:
-        return self.tok.kind in _LINE_END
+        return self.kind in _LINE_END
 
     # -------------------------------------------------------------------------------- closers
 
     def closer(self) -> str | None:
         """If the current line closes a construct, the kind it closes (else ``None``)."""
-        c = _CLOSERS.get(self.tok.kind)
+        c = _CLOSERS.get(self.kind)
         if c is None:
             return None
         if c == "END":
-            return _END_KINDS.get(self.peek().kind)
+            return _END_KINDS.get(self.peek()[KIND])
         if c == "MOD":
             i = 1
-            while self.peek(i).kind in _MODIFIER_KINDS:
+            while self.peek(i)[KIND] in _MODIFIER_KINDS:
                 i += 1
-            return "<decl>" if self.peek(i).kind in _DECL_WORDS else None
+            return "<decl>" if self.peek(i)[KIND] in _DECL_WORDS else None
         return c
 
     def is_open(self, kind: str) -> bool:
@@ -441,23 +455,23 @@ class Parser:
             # by the caller (top level), never reached from blocks
             self.skip_line()
             return
-        text = tok.text
-        if tok.kind is K.END:
-            text = f"End {self.peek().text}"
+        text = tok[TEXT]
+        if tok[KIND] is K.END:
+            text = f"End {self.peek()[TEXT]}"
         opener = "Select" if kind == "Select" else kind
-        self.sink.report(M.PARSE_UNMATCHED_END, tok.span, closer=text, opener=opener)
+        self.sink.report(M.PARSE_UNMATCHED_END, _at(tok), closer=text, opener=opener)
         self.skip_line()
 
-    def unclosed(self, opener: str, closer: str, start: Token) -> None:
+    def unclosed(self, opener: str, closer: str, start: RawToken) -> None:
         if self.aborted:
             return  # everything after the nesting limit was skipped: do not cascade
         tok = self.tok
-        found = tok.describe()
-        if tok.kind is K.END:
-            found = f"'End {self.peek().text}'"
-        elif tok.kind is not K.EOF and tok.kind is not K.NEWLINE:
-            found = f"'{tok.text}'"
-        self.sink.report(M.PARSE_UNCLOSED_BLOCK, start.span, opener=opener, closer=closer, found=found)
+        found = describe(tok)
+        if tok[KIND] is K.END:
+            found = f"'End {self.peek()[TEXT]}'"
+        elif tok[KIND] is not K.EOF and tok[KIND] is not K.NEWLINE:
+            found = f"'{tok[TEXT]}'"
+        self.sink.report(M.PARSE_UNCLOSED_BLOCK, _at(start), opener=opener, closer=closer, found=found)
 
     # --------------------------------------------------------------------------------- blocks
 
@@ -471,7 +485,7 @@ class Parser:
             if pending:
                 comments = pending + comments
                 pending = ()
-            k = self.tok.kind
+            k = self.kind
             if k is K.EOF:
                 break
             kind = self.closer()
@@ -488,7 +502,7 @@ class Parser:
                     stmts[n].leading_comments = comments + stmts[n].leading_comments
             elif comments:
                 pending = comments
-        return A.Block(self.span_from(start) if stmts else start.span, stmts, end_comments=comments)
+        return A.Block(self.span_from(start) if stmts else start[SPAN], stmts, end_comments=comments)
 
     def too_deep(self, what: str) -> bool:
         """Report and skip the rest of the file if one more nested construct would pass the limit.
@@ -498,13 +512,13 @@ class Parser:
         """
         if len(self.open) <= _MAX_BLOCK_DEPTH:
             return False
-        self.sink.report(M.PARSE_TOO_DEEP, self.tok.span, what=what, limit=_MAX_BLOCK_DEPTH)
+        self.sink.report(M.PARSE_TOO_DEEP, _at(self.tok), what=what, limit=_MAX_BLOCK_DEPTH)
         self.aborted = True
-        while self.tok.kind is not K.EOF:
+        while self.kind is not K.EOF:
             self.next()
         return True
 
-    def deeper(self, where: Token, what: str) -> bool:
+    def deeper(self, where: RawToken, what: str) -> bool:
         """Enter one more level of expression nesting; ``False`` (with GPL1117) past the limit.
 
         Every recursive expression rule goes through here, so no spelling of deep nesting
@@ -521,7 +535,7 @@ class Parser:
     def body(self, kind: str) -> A.Block:
         """The block of a construct of ``kind`` (pushed on the open stack while it is parsed)."""
         if self.too_deep("blocks"):
-            return A.Block(self.tok.span, [])
+            return A.Block(self.tok[SPAN], [])
         self.open.append(kind)
         try:
             return self.block()
@@ -536,7 +550,7 @@ class Parser:
         finally:
             self.in_proc = saved
 
-    def close_end(self, kind: str, start: Token, node: A.Stmt) -> bool:
+    def close_end(self, kind: str, start: RawToken, node: A.Stmt) -> bool:
         """Consume ``End <kind>`` (attaching its comment to ``node.end_comment``) or report.
 
         A procedure closed by the other procedure keyword (``Function … End Sub``) is one error at
@@ -544,11 +558,11 @@ class Parser:
         Function as unclosed would give two errors for one typo, far from where it is.
         """
         tok = self.tok
-        found = _END_KINDS.get(self.peek().kind) if tok.kind is K.END else None
+        found = _END_KINDS.get(self.peek()[KIND]) if tok[KIND] is K.END else None
         if found != kind and kind in _PROC_KINDS and found in _PROC_KINDS:
             self.sink.report(
-                M.PARSE_EXPECTED, tok.span.to(self.peek().span), expected=f"'End {kind}'",
-                found=f"'End {self.peek().text}'",
+                M.PARSE_EXPECTED, _at(tok).to(self.peek()[SPAN]), expected=f"'End {kind}'",
+                found=f"'End {self.peek()[TEXT]}'",
             )
             found = kind
         if found == kind:
@@ -569,9 +583,9 @@ class Parser:
         while True:
             comments = self.comments()
             tok = self.tok
-            if tok.kind is K.EOF:
+            if tok[KIND] is K.EOF:
                 break
-            c = _CLOSERS.get(tok.kind)
+            c = _CLOSERS.get(tok[KIND])
             if c is not None and c != "<decl>" and c != "MOD":
                 kind = self.closer()
                 if kind is not None:
@@ -583,7 +597,7 @@ class Parser:
                 members.append(member)
         return A.SourceUnit(self.span_from(start), self.source.path, members, end_comments=comments)
 
-    def members(self, container: str, start: Token, node: A.Stmt) -> list[A.Stmt]:
+    def members(self, container: str, start: RawToken, node: A.Stmt) -> list[A.Stmt]:
         """Members of a Module or Class up to its ``End``; sets ``node.end_comments``."""
         out: list[A.Stmt] = []
         if self.too_deep("classes"):
@@ -592,13 +606,12 @@ class Parser:
         try:
             while True:
                 comments = self.comments()
-                tok = self.tok
-                k = tok.kind
+                k = self.kind
                 if k is K.EOF:
                     self.unclosed(container, f"End {container}", start)
                     break
                 if k is K.END:
-                    kind = _END_KINDS.get(self.peek().kind)
+                    kind = _END_KINDS.get(self.peek()[KIND])
                     if kind == container:
                         self.next()
                         self.next()
@@ -628,15 +641,15 @@ class Parser:
         mods: list[str] = []
         while True:
             tok = self.tok
-            k = tok.kind
+            k = self.kind
             if k is K.PUBLIC or k is K.PRIVATE or k is K.SHARED:
                 mods.append(k.value)
                 self.next()
-            elif k is K.IDENT and tok.text.lower() in _UNSUPPORTED_MODIFIERS:
-                nxt = self.peek().kind
+            elif k is K.IDENT and tok[TEXT].lower() in _UNSUPPORTED_MODIFIERS:
+                nxt = self.peek()[KIND]
                 if nxt in _NAME_FOLLOWERS or nxt is K.AS or nxt in _LINE_END:
                     return mods  # a variable that happens to be called e.g. 'Friend'
-                word = _UNSUPPORTED_MODIFIERS[tok.text.lower()]
+                word = _UNSUPPORTED_MODIFIERS[tok[TEXT].lower()]
                 self.error(M.PARSE_UNSUPPORTED, tok, what=f"'{word}'", hint="")
                 self.next()
             else:
@@ -647,18 +660,18 @@ class Parser:
         start = self.tok
         mods = self.modifiers()
         tok = self.tok
-        k = tok.kind
+        k = self.kind
         if container == "file" and k is not K.MODULE and k is not K.CLASS:
             if k in _DECL_WORDS or k in (K.DIM, K.CONST, K.STATIC) or mods:
                 what = "a variable" if k not in _DECL_WORDS else f"a {k.value}"
-                self.sink.report(M.PARSE_OUTSIDE_MODULE, start.span, what=what)
+                self.sink.report(M.PARSE_OUTSIDE_MODULE, _at(start), what=what)
         if k is K.SUB or k is K.FUNCTION:
             return self.procedure(start, mods)
         if k is K.PROPERTY:
             if container != "Class":
                 self.sink.report(
                     M.PARSE_MISPLACED_DECLARATION,
-                    tok.span,
+                    _at(tok),
                     what="a Property",
                     where="outside a Class (properties are class members)",
                 )
@@ -668,19 +681,19 @@ class Parser:
         if k is K.MODULE:
             if container != "file":
                 self.sink.report(
-                    M.PARSE_MISPLACED_DECLARATION, tok.span, what="a Module", where=f"inside a {container}"
+                    M.PARSE_MISPLACED_DECLARATION, _at(tok), what="a Module", where=f"inside a {container}"
                 )
             if mods:
-                self.sink.report(M.PARSE_BAD_MODIFIER, start.span, modifier=mods[0], where="on a Module")
+                self.sink.report(M.PARSE_BAD_MODIFIER, _at(start), modifier=mods[0], where="on a Module")
             return self.module_decl(start)
         if k is K.DELEGATE:
             return self.delegate_decl(start, mods)
         if k is K.DIM or k is K.CONST:
             self.next()
-            return self._member_var(start, tok.kind.value, mods)
+            return self._member_var(start, tok[KIND].value, mods)
         if k is K.STATIC:
             self.next()
-            if self.tok.kind is K.SUB or self.tok.kind is K.FUNCTION:
+            if self.kind is K.SUB or self.kind is K.FUNCTION:
                 self.error(M.PARSE_UNSUPPORTED, tok, what="'Static' procedures", hint="")
                 self.failed = False
                 return self.procedure(start, mods)
@@ -692,35 +705,35 @@ class Parser:
         if mods and k is K.IDENT:
             return self._member_var(start, None, mods)
         if k is K.IDENT:
-            low = tok.text.lower()
+            low = tok[TEXT].lower()
             word = _UNSUPPORTED_STATEMENTS.get(low)
-            if word is not None and self.peek().kind not in _NAME_FOLLOWERS:
+            if word is not None and self.peek()[KIND] not in _NAME_FOLLOWERS:
                 self.error(M.PARSE_UNSUPPORTED, tok, what=f"'{word}'", hint=_UNSUPPORTED_HINTS.get(word, ""))
                 self.skip_line()
                 return None
         where = "the file" if container == "file" else f"a {container}"
-        self.error(M.PARSE_STATEMENT_OUTSIDE_PROCEDURE, tok, found=tok.describe(), container=where)
+        self.error(M.PARSE_STATEMENT_OUTSIDE_PROCEDURE, tok, found=describe(tok), container=where)
         self.skip_line()
         return None
 
-    def _member_var(self, start: Token, keyword: str | None, mods: list[str]) -> A.VarDecl:
+    def _member_var(self, start: RawToken, keyword: str | None, mods: list[str]) -> A.VarDecl:
         node = self.var_decl(start, keyword, mods)
         self.end_of_line(node)
         return node
 
-    def module_decl(self, start: Token) -> A.ModuleDecl:
+    def module_decl(self, start: RawToken) -> A.ModuleDecl:
         self.next()  # Module
         name = self.ident("a module name")
-        node = A.ModuleDecl(start.span, name.text if name else "", [])
+        node = A.ModuleDecl(start[SPAN], name[TEXT] if name else "", [])
         self.end_of_line(node)
         node.members = self.members("Module", start, node)
         node.span = self.span_from(start)
         return node
 
-    def class_decl(self, start: Token, mods: list[str]) -> A.ClassDecl:
+    def class_decl(self, start: RawToken, mods: list[str]) -> A.ClassDecl:
         self.next()  # Class
         name = self.ident("a class name")
-        node = A.ClassDecl(start.span, name.text if name else "", mods, [])
+        node = A.ClassDecl(start[SPAN], name[TEXT] if name else "", mods, [])
         self.end_of_line(node)
         saved = self.in_proc
         self.in_proc = False
@@ -737,16 +750,16 @@ class Parser:
         first = self.ident("a type name")
         if first is None:
             return None
-        parts = [first.text]
-        while self.tok.kind is K.DOT:
+        parts = [first[TEXT]]
+        while self.kind is K.DOT:
             self.next()
             w = self.word("a type name after '.'")
             if w is None:
                 break
-            parts.append(w.text)
+            parts.append(w[TEXT])
         return A.TypeRef(self.span_from(first), ".".join(parts))
 
-    def var_decl(self, start: Token, keyword: str | None, mods: list[str]) -> A.VarDecl:
+    def var_decl(self, start: RawToken, keyword: str | None, mods: list[str]) -> A.VarDecl:
         """``[mods] [Dim|Static|Const] name[(bounds)] {, …} As [New] T [= init] {, group}``."""
         declarators: list[A.VarDeclarator] = []
         pending: list[A.VarDeclarator] = []
@@ -756,13 +769,13 @@ class Parser:
             if name is None:
                 break
             bounds: list[A.Expr | None] | None = None
-            if self.tok.kind is K.LPAREN:
+            if self.kind is K.LPAREN:
                 bounds = self.array_suffix()
                 if len(bounds) > 4:
-                    self.error(M.PARSE_ARRAY_RANK, name, name=name.text, rank=len(bounds))
-            d = A.VarDeclarator(self.span_from(name), name.text, bounds, None)
+                    self.error(M.PARSE_ARRAY_RANK, name, name=name[TEXT], rank=len(bounds))
+            d = A.VarDeclarator(self.span_from(name), name[TEXT], bounds, None)
             pending.append(d)
-            k = self.tok.kind
+            k = self.kind
             if k is K.COMMA:
                 self.next()
                 continue
@@ -770,26 +783,26 @@ class Parser:
                 self.next()
                 group_new = False
                 new_args: list[A.Expr] | None = None
-                if self.tok.kind is K.NEW:
+                if self.kind is K.NEW:
                     self.next()
                     group_new = True
                     type_ = self.type_ref()
-                    if self.tok.kind is K.LPAREN:
+                    if self.kind is K.LPAREN:
                         new_args = self.arguments()
                 else:
                     type_ = self.type_ref()
                 init: A.Expr | None = None
-                if self.tok.kind is K.EQ:
+                if self.kind is K.EQ:
                     self.next()
                     init = self.expression()
                 elif is_const:
-                    self.error(M.PARSE_EXPECTED, self.tok, expected="'=' and the constant's value", found=self.tok.describe())
+                    self.error(M.PARSE_EXPECTED, self.tok, expected="'=' and the constant's value", found=describe(self.tok))
                 if (group_new or init is not None) and len(pending) > 1:
                     self.error(M.PARSE_NEW_NEEDS_ONE_NAME, pending[0].span)
                 for p in pending:
                     p.type = type_
                     p.new = group_new
-                    p.span = p.span.to(self.prev.span)
+                    p.span = p.span.to(self.prev[SPAN])
                 last = pending[-1]
                 last.new_args = new_args
                 last.initializer = init
@@ -797,14 +810,14 @@ class Parser:
                     self.error(M.PARSE_ARRAY_INITIALIZER, init.span)
                 declarators.extend(pending)
                 pending = []
-                if self.tok.kind is K.COMMA:
+                if self.kind is K.COMMA:
                     self.next()
                     continue
                 break
             break
         if pending:
             self.error(M.PARSE_MISSING_TYPE, pending[-1].span, name=pending[-1].name)
-            if self.tok.kind is K.EQ:  # 'Const x = 1': parse the value anyway
+            if self.kind is K.EQ:  # 'Const x = 1': parse the value anyway
                 self.next()
                 pending[-1].initializer = self.expression()
             declarators.extend(pending)
@@ -813,22 +826,22 @@ class Parser:
 
     def array_suffix(self) -> list[A.Expr | None]:
         self.next()  # (
-        k = self.tok.kind
+        k = self.kind
         if k is K.RPAREN:
             self.next()
             return [None]
         if k is K.COMMA:
             rank = 1
-            while self.tok.kind is K.COMMA:
+            while self.kind is K.COMMA:
                 self.next()
                 rank += 1
             self.expect(K.RPAREN)
             return [None] * rank
         bounds: list[A.Expr | None] = [self.expression()]
-        while self.tok.kind is K.COMMA:
+        while self.kind is K.COMMA:
             self.next()
             bounds.append(self.expression())
-        if self.tok.kind is K.TO:
+        if self.kind is K.TO:
             self.error(M.PARSE_UNSUPPORTED, self.tok, what="an array lower bound ('x To y')", hint=" (arrays start at 0)")
         self.expect(K.RPAREN)
         return bounds
@@ -837,7 +850,7 @@ class Parser:
         """``( [param {, param}] )``; the current token is ``(``."""
         self.next()
         out: list[A.Param] = []
-        if self.tok.kind is K.RPAREN:
+        if self.kind is K.RPAREN:
             self.next()
             return out
         while True:
@@ -845,7 +858,7 @@ class Parser:
             if p is None:
                 break
             out.append(p)
-            if self.tok.kind is K.COMMA:
+            if self.kind is K.COMMA:
                 self.next()
                 continue
             self.expect(K.RPAREN, "',' or ')'")
@@ -858,14 +871,14 @@ class Parser:
         optional = False
         while True:
             tok = self.tok
-            k = tok.kind
+            k = self.kind
             if k is K.BYVAL:
                 self.next()
             elif k is K.BYREF:
                 by_ref = True
                 self.next()
-            elif k is K.IDENT and self.peek().kind in (K.IDENT, K.BYVAL, K.BYREF):
-                low = tok.text.lower()
+            elif k is K.IDENT and self.peek()[KIND] in (K.IDENT, K.BYVAL, K.BYREF):
+                low = tok[TEXT].lower()
                 if low == "optional":
                     optional = True
                     self.next()
@@ -880,66 +893,66 @@ class Parser:
         if name is None:
             return None
         rank = 0
-        if self.tok.kind is K.LPAREN:
+        if self.kind is K.LPAREN:
             self.next()
             rank = 1
-            while self.tok.kind is K.COMMA:
+            while self.kind is K.COMMA:
                 self.next()
                 rank += 1
             self.expect(K.RPAREN, "')' (array parameters are written 'name()')")
         type_: A.TypeRef | None = None
-        if self.tok.kind is K.AS:
+        if self.kind is K.AS:
             self.next()
             type_ = self.type_ref()
         else:
-            self.error(M.PARSE_MISSING_TYPE, name, name=name.text)
+            self.error(M.PARSE_MISSING_TYPE, name, name=name[TEXT])
         default: A.Expr | None = None
-        if self.tok.kind is K.EQ:
+        if self.kind is K.EQ:
             self.next()
             default = self.expression()
-        return A.Param(self.span_from(start), name.text, type_, by_ref, rank, optional, default)
+        return A.Param(self.span_from(start), name[TEXT], type_, by_ref, rank, optional, default)
 
-    def procedure(self, start: Token, mods: list[str]) -> A.ProcDecl:
+    def procedure(self, start: RawToken, mods: list[str]) -> A.ProcDecl:
         kw = self.next()  # Sub | Function
-        kind = kw.kind.value
+        kind = kw[KIND].value
         tok = self.tok
-        if tok.kind is K.IDENT or (tok.kind is K.NEW and kind == "Sub"):
+        if tok[KIND] is K.IDENT or (tok[KIND] is K.NEW and kind == "Sub"):
             self.next()
-            name = tok.text
+            name = tok[TEXT]
         else:
-            self.error(M.PARSE_EXPECTED, tok, expected=f"a {kind} name", found=tok.describe())
+            self.error(M.PARSE_EXPECTED, tok, expected=f"a {kind} name", found=describe(tok))
             name = ""
         params: list[A.Param] = []
-        if self.tok.kind is K.LPAREN:
+        if self.kind is K.LPAREN:
             params = self.params()
         ret: A.TypeRef | None = None
-        if self.tok.kind is K.AS:
+        if self.kind is K.AS:
             self.next()
             ret = self.type_ref()
             if kind == "Sub":
                 self.error(M.PARSE_UNSUPPORTED, kw, what="a return type on a Sub", hint=" (use a Function)")
         elif kind == "Function":
             self.error(M.PARSE_FUNCTION_NEEDS_TYPE, self.tok, what="Function", name=name)
-        node = A.ProcDecl(self.span_from(start), kind, name, mods, params, ret, A.Block(start.span, []))
+        node = A.ProcDecl(self.span_from(start), kind, name, mods, params, ret, A.Block(start[SPAN], []))
         self.end_of_line(node)
         node.body = self.proc_body(kind)
         self.close_end(kind, start, node)
         node.span = self.span_from(start)
         return node
 
-    def property_decl(self, start: Token, mods: list[str]) -> A.PropertyDecl:
+    def property_decl(self, start: RawToken, mods: list[str]) -> A.PropertyDecl:
         self.next()  # Property
         name_tok = self.ident("a property name")
-        name = name_tok.text if name_tok else ""
-        if self.tok.kind is K.LPAREN:
-            if self.peek().kind is K.RPAREN:  # 'Property Name() As T': an empty list, as on Subs
+        name = name_tok[TEXT] if name_tok else ""
+        if self.kind is K.LPAREN:
+            if self.peek()[KIND] is K.RPAREN:  # 'Property Name() As T': an empty list, as on Subs
                 self.next()
                 self.next()
             else:
                 self.error(M.PARSE_UNSUPPORTED, self.tok, what="a property with parameters", hint="")
                 self.params()
         type_: A.TypeRef | None = None
-        if self.tok.kind is K.AS:
+        if self.kind is K.AS:
             self.next()
             type_ = self.type_ref()
         else:
@@ -951,21 +964,21 @@ class Parser:
             while True:
                 comments = self.comments()
                 tok = self.tok
-                k = tok.kind
+                k = self.kind
                 if k is K.GET or k is K.SET:
                     acc = self.accessor()
                     acc.leading_comments = comments + acc.leading_comments
                     if k is K.GET:
                         if node.getter is not None:
-                            self.sink.report(M.PARSE_EXPECTED, tok.span, expected="one Get block", found="a second 'Get'")
+                            self.sink.report(M.PARSE_EXPECTED, _at(tok), expected="one Get block", found="a second 'Get'")
                         node.getter = acc
                     else:
                         if node.setter is not None:
-                            self.sink.report(M.PARSE_EXPECTED, tok.span, expected="one Set block", found="a second 'Set'")
+                            self.sink.report(M.PARSE_EXPECTED, _at(tok), expected="one Set block", found="a second 'Set'")
                         node.setter = acc
                     continue
                 node.end_comments = comments
-                if k is K.END and self.peek().kind is K.PROPERTY:
+                if k is K.END and self.peek()[KIND] is K.PROPERTY:
                     self.next()
                     self.next()
                     c = self.end_of_line(None)
@@ -976,20 +989,20 @@ class Parser:
                 if k is K.EOF or (kind is not None and self.is_open(kind)):
                     self.unclosed("Property", "End Property", start)
                     break
-                self.error(M.PARSE_EXPECTED, tok, expected="'Get', 'Set' or 'End Property'", found=tok.describe())
+                self.error(M.PARSE_EXPECTED, tok, expected="'Get', 'Set' or 'End Property'", found=describe(tok))
                 self.skip_line()
         finally:
             self.open.pop()
         if node.getter is None and node.setter is None:
-            self.sink.report(M.PARSE_PROPERTY_NEEDS_ACCESSOR, start.span, name=name)
+            self.sink.report(M.PARSE_PROPERTY_NEEDS_ACCESSOR, _at(start), name=name)
         node.span = self.span_from(start)
         return node
 
     def accessor(self) -> A.Accessor:
         start = self.next()  # Get | Set
-        kind = start.kind.value
+        kind = start[KIND].value
         param: A.Param | None = None
-        if self.tok.kind is K.LPAREN:
+        if self.kind is K.LPAREN:
             params = self.params()
             if kind == "Get" and params:
                 self.error(M.PARSE_UNSUPPORTED, start, what="parameters on Get", hint="")
@@ -997,33 +1010,33 @@ class Parser:
                 if len(params) > 1:
                     self.error(M.PARSE_EXPECTED, start, expected="one Set parameter", found=f"{len(params)}")
                 param = params[0] if params else None
-        node = A.Accessor(self.span_from(start), kind, param, A.Block(start.span, []))
+        node = A.Accessor(self.span_from(start), kind, param, A.Block(start[SPAN], []))
         self.end_of_line(node)
         node.body = self.proc_body(kind)
         self.close_end(kind, start, node)
         node.span = self.span_from(start)
         return node
 
-    def delegate_decl(self, start: Token, mods: list[str]) -> A.DelegateDecl:
+    def delegate_decl(self, start: RawToken, mods: list[str]) -> A.DelegateDecl:
         self.next()  # Delegate
         kw = self.tok
-        if kw.kind is not K.SUB and kw.kind is not K.FUNCTION:
-            self.error(M.PARSE_EXPECTED, kw, expected="'Sub' or 'Function'", found=kw.describe())
+        if kw[KIND] is not K.SUB and kw[KIND] is not K.FUNCTION:
+            self.error(M.PARSE_EXPECTED, kw, expected="'Sub' or 'Function'", found=describe(kw))
             self.skip_line()
             return A.DelegateDecl(self.span_from(start), "Sub", "", mods, [], None)
         self.next()
-        kind = kw.kind.value
+        kind = kw[KIND].value
         name = self.ident("a delegate name")
         params: list[A.Param] = []
-        if self.tok.kind is K.LPAREN:
+        if self.kind is K.LPAREN:
             params = self.params()
         ret: A.TypeRef | None = None
-        if self.tok.kind is K.AS:
+        if self.kind is K.AS:
             self.next()
             ret = self.type_ref()
         elif kind == "Function":
-            self.error(M.PARSE_FUNCTION_NEEDS_TYPE, self.tok, what="Delegate Function", name=name.text if name else "")
-        node = A.DelegateDecl(self.span_from(start), kind, name.text if name else "", mods, params, ret)
+            self.error(M.PARSE_FUNCTION_NEEDS_TYPE, self.tok, what="Delegate Function", name=name[TEXT] if name else "")
+        node = A.DelegateDecl(self.span_from(start), kind, name[TEXT] if name else "", mods, params, ret)
         self.end_of_line(node)
         return node
 
@@ -1032,17 +1045,17 @@ class Parser:
     def statement(self, out: list[A.Stmt]) -> None:
         """Parse one logical line of a procedure body into ``out`` (a label may add two nodes)."""
         tok = self.tok
-        k = tok.kind
-        if (k is K.IDENT or k is K.INTEGER) and self.peek().kind is K.COLON:
+        k = self.kind
+        if (k is K.IDENT or k is K.INTEGER) and self.peek()[KIND] is K.COLON:
             self.next()
             self.next()
-            label = A.Label(self.span_from(tok), tok.text)
+            label = A.Label(self.span_from(tok), tok[TEXT])
             out.append(label)
-            if self.tok.kind in _LINE_END:
+            if self.kind in _LINE_END:
                 self.end_of_line(label)
                 return
             tok = self.tok
-            k = tok.kind
+            k = self.kind
         if k is K.COLON:
             self.error(M.PARSE_COLON_SEPARATOR, tok)
             self.skip_line()
@@ -1063,11 +1076,11 @@ class Parser:
     def simple_statement(self) -> A.Stmt | None:
         """A statement that fits on one line (does not consume the end of the line)."""
         tok = self.tok
-        k = tok.kind
+        k = self.kind
         if k is K.IDENT:
-            nk = self.peek().kind
+            nk = self.peek()[KIND]
             if nk not in _NAME_FOLLOWERS:
-                word = _UNSUPPORTED_STATEMENTS.get(tok.text.lower())
+                word = _UNSUPPORTED_STATEMENTS.get(tok[TEXT].lower())
                 if word is not None:
                     self.error(M.PARSE_UNSUPPORTED, tok, what=f"'{word}'", hint=_UNSUPPORTED_HINTS.get(word, ""))
                     return None
@@ -1079,11 +1092,11 @@ class Parser:
 
     def expression_statement(self) -> A.Stmt | None:
         start = self.tok
-        if start.kind not in _EXPR_STARTS:
-            self.error(M.PARSE_EXPECTED, start, expected="a statement", found=start.describe())
+        if start[KIND] not in _EXPR_STARTS:
+            self.error(M.PARSE_EXPECTED, start, expected="a statement", found=describe(start))
             return None
         target = self.postfix()
-        k = self.tok.kind
+        k = self.kind
         if k is K.EQ:
             self.next()
             value = self.expression()
@@ -1094,7 +1107,7 @@ class Parser:
             value = self.expression()
             return A.Assign(self.span_from(start), target, op, value)
         if isinstance(target, (A.Name, A.MemberAccess, A.Invoke)):
-            if self.tok.kind is K.IDENT and self.tok.text.lower() == "isnot":
+            if self.kind is K.IDENT and self.tok[TEXT].lower() == "isnot":
                 self.error(M.PARSE_UNSUPPORTED, self.tok, what="'IsNot'", hint=" (write 'Not a Is b')")
             return A.CallStmt(self.span_from(start), target)
         if isinstance(target, A.ErrorExpr):
@@ -1114,9 +1127,9 @@ class Parser:
             self.error(M.PARSE_BAD_MODIFIER, start, modifier=mods[0], where="inside a procedure (locals use Dim or Static)")
             self.failed = False
         tok = self.tok
-        if tok.kind in (K.DIM, K.STATIC, K.CONST):
+        if tok[KIND] in (K.DIM, K.STATIC, K.CONST):
             self.next()
-            keyword = tok.kind.value
+            keyword = tok[KIND].value
         else:
             keyword = None
         # a declaration inside a block (If, Select, For, Try ...) is legal: real code does it and the
@@ -1130,49 +1143,49 @@ class Parser:
     def if_statement(self) -> A.Stmt | None:
         start = self.next()  # If
         cond = self.expression()
-        if self.tok.kind is K.THEN:
+        if self.kind is K.THEN:
             self.next()
         else:
-            self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=self.tok.describe())
-            if self.tok.kind not in _LINE_END:
+            self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=describe(self.tok))
+            if self.kind not in _LINE_END:
                 # 'If c stmt': more on the line means a single-line If with a missing Then; a
                 # block If would swallow the rest of the procedure and report a second error.
-                node = A.If(self.span_from(start), cond, A.Block(start.span, []), single_line=True)
+                node = A.If(self.span_from(start), cond, A.Block(start[SPAN], []), single_line=True)
                 self.end_of_line(node)
                 return node
-        if not self.failed and self.tok.kind not in _LINE_END:
+        if not self.failed and self.kind not in _LINE_END:
             node = self.single_line_if(start, cond)
             self.end_of_line(node)
             return node
-        node = A.If(start.span, cond, A.Block(start.span, []))
+        node = A.If(start[SPAN], cond, A.Block(start[SPAN], []))
         node.then_body = self._if_body(node)
         while True:
             tok = self.tok
-            if tok.kind is K.ELSEIF or (tok.kind is K.ELSE and self.peek().kind is K.IF):
-                if tok.kind is K.ELSE:
-                    self.sink.report(M.PARSE_ELSE_IF, tok.span)
+            if tok[KIND] is K.ELSEIF or (tok[KIND] is K.ELSE and self.peek()[KIND] is K.IF):
+                if tok[KIND] is K.ELSE:
+                    self.sink.report(M.PARSE_ELSE_IF, _at(tok))
                     self.next()
                 self.next()
                 c = self.expression()
-                if self.tok.kind is K.THEN:
+                if self.kind is K.THEN:
                     self.next()
                 else:
-                    self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=self.tok.describe())
-                clause = A.ElseIfClause(self.span_from(tok), c, A.Block(tok.span, []))
+                    self.error(M.PARSE_EXPECTED, self.tok, expected="'Then'", found=describe(self.tok))
+                clause = A.ElseIfClause(self.span_from(tok), c, A.Block(tok[SPAN], []))
                 clause.body = self._if_body(clause)
                 node.elseifs.append(clause)
                 continue
-            if tok.kind is K.ELSE:
+            if tok[KIND] is K.ELSE:
                 self.next()
                 else_comment = self.end_of_line(None)
                 body = self.body("If")
                 body.header_comment = else_comment
                 if node.else_body is not None:
-                    self.sink.report(M.PARSE_EXPECTED, tok.span, expected="'End If' (only one Else per If)", found="'Else'")
+                    self.sink.report(M.PARSE_EXPECTED, _at(tok), expected="'End If' (only one Else per If)", found="'Else'")
                 node.else_body = body
                 continue
             break
-        if self.tok.kind is K.END and self.peek().kind is K.IF:
+        if self.kind is K.END and self.peek()[KIND] is K.IF:
             self.next()
             self.next()
             c2 = self.end_of_line(None)
@@ -1186,19 +1199,19 @@ class Parser:
         self.end_of_line(owner)
         return self.body("If")
 
-    def single_line_if(self, start: Token, cond: A.Expr) -> A.If:
+    def single_line_if(self, start: RawToken, cond: A.Expr) -> A.If:
         then_stmt = self._single_line_part()
         else_body: A.Block | None = None
-        if self.tok.kind is K.ELSE:
+        if self.kind is K.ELSE:
             else_tok = self.next()
             else_stmt = self._single_line_part()
-            else_body = A.Block(else_tok.span, [else_stmt] if else_stmt else [])
-        then_body = A.Block(then_stmt.span if then_stmt else start.span, [then_stmt] if then_stmt else [])
+            else_body = A.Block(else_tok[SPAN], [else_stmt] if else_stmt else [])
+        then_body = A.Block(then_stmt.span if then_stmt else start[SPAN], [then_stmt] if then_stmt else [])
         return A.If(self.span_from(start), cond, then_body, [], else_body, single_line=True)
 
     def _single_line_part(self) -> A.Stmt | None:
         tok = self.tok
-        k = tok.kind
+        k = self.kind
         if k is K.IF:
             if not self.deeper(tok, "single-line If statements"):
                 return None
@@ -1206,56 +1219,56 @@ class Parser:
                 start = self.next()
                 cond = self.expression()
                 self.expect(K.THEN)
-                if self.tok.kind in _LINE_END:
+                if self.kind in _LINE_END:
                     self.error(M.PARSE_BLOCK_IN_SINGLE_LINE_IF, tok, what="a block If")
                     return None
                 return self.single_line_if(start, cond)
             finally:
                 self.depth -= 1
         if k in _BLOCK_STATEMENTS or k in (K.DIM, K.STATIC, K.CONST, K.PUBLIC, K.PRIVATE, K.SHARED):
-            what = f"'{tok.text}'"
+            what = f"'{tok[TEXT]}'"
             self.error(M.PARSE_BLOCK_IN_SINGLE_LINE_IF, tok, what=what)
             return None
-        if (k is K.IDENT or k is K.INTEGER) and self.peek().kind is K.COLON:
+        if (k is K.IDENT or k is K.INTEGER) and self.peek()[KIND] is K.COLON:
             self.error(M.PARSE_BLOCK_IN_SINGLE_LINE_IF, tok, what="a label")
             return None
         if k in _LINE_END:
-            self.error(M.PARSE_EXPECTED, tok, expected="a statement after 'Then'", found=tok.describe())
+            self.error(M.PARSE_EXPECTED, tok, expected="a statement after 'Then'", found=describe(tok))
             return None
         return self.simple_statement()
 
     def for_statement(self) -> A.Stmt | None:
         start = self.next()  # For
         node: A.For | A.ForEach
-        if self.tok.kind is K.IDENT and self.tok.text.lower() == "each":
+        if self.kind is K.IDENT and self.tok[TEXT].lower() == "each":
             self.next()
             var = self.postfix()
-            if self.tok.kind is K.IDENT and self.tok.text.lower() == "in":
+            if self.kind is K.IDENT and self.tok[TEXT].lower() == "in":
                 self.next()
             else:
-                self.error(M.PARSE_EXPECTED, self.tok, expected="'In'", found=self.tok.describe())
+                self.error(M.PARSE_EXPECTED, self.tok, expected="'In'", found=describe(self.tok))
             coll = self.expression()
-            node = A.ForEach(self.span_from(start), var, coll, A.Block(start.span, []))
+            node = A.ForEach(self.span_from(start), var, coll, A.Block(start[SPAN], []))
         else:
             var = self.postfix()
-            if self.tok.kind is K.AS:
+            if self.kind is K.AS:
                 self.error(M.PARSE_UNSUPPORTED, self.tok, what="declaring the loop variable in 'For'", hint=" (declare it with Dim at the top of the procedure)")
             self.expect(K.EQ, "'='")
             first = self.expression()
             self.expect(K.TO, "'To'")
             last = self.expression()
             step = None
-            if self.tok.kind is K.STEP:
+            if self.kind is K.STEP:
                 self.next()
                 step = self.expression()
-            node = A.For(self.span_from(start), var, first, last, step, A.Block(start.span, []))
+            node = A.For(self.span_from(start), var, first, last, step, A.Block(start[SPAN], []))
         self.end_of_line(node)
         node.body = self.body("For")
-        if self.tok.kind is K.NEXT:
+        if self.kind is K.NEXT:
             self.next()
-            if self.tok.kind not in _LINE_END:
+            if self.kind not in _LINE_END:
                 node.next_var = self.postfix()
-                if self.tok.kind is K.COMMA:
+                if self.kind is K.COMMA:
                     self.error(M.PARSE_UNSUPPORTED, self.tok, what="'Next' with several loop variables", hint=" (close each For with its own Next)")
             node.end_comment = self.end_of_line(None)
         else:
@@ -1266,7 +1279,7 @@ class Parser:
     def while_statement(self) -> A.Stmt | None:
         start = self.next()
         cond = self.expression()
-        node = A.While(self.span_from(start), cond, A.Block(start.span, []))
+        node = A.While(self.span_from(start), cond, A.Block(start[SPAN], []))
         self.end_of_line(node)
         node.body = self.body("While")
         self.close_end("While", start, node)
@@ -1278,18 +1291,18 @@ class Parser:
         cond: A.Expr | None = None
         until = False
         top = False
-        k = self.tok.kind
+        k = self.kind
         if k is K.WHILE or k is K.UNTIL:
             self.next()
             until = k is K.UNTIL
             top = True
             cond = self.expression()
-        node = A.DoLoop(self.span_from(start), cond, top, until, A.Block(start.span, []))
+        node = A.DoLoop(self.span_from(start), cond, top, until, A.Block(start[SPAN], []))
         self.end_of_line(node)
         node.body = self.body("Do")
-        if self.tok.kind is K.LOOP:
+        if self.kind is K.LOOP:
             loop_tok = self.next()
-            k = self.tok.kind
+            k = self.kind
             if k is K.WHILE or k is K.UNTIL:
                 self.next()
                 c = self.expression()
@@ -1308,7 +1321,7 @@ class Parser:
         if self.too_deep("blocks"):  # its Case blocks are parsed by block(), not body(): check here
             return None
         start = self.next()  # Select
-        if self.tok.kind is K.CASE:
+        if self.kind is K.CASE:
             self.next()
         subject = self.expression()
         node = A.Select(self.span_from(start), subject, [])
@@ -1320,11 +1333,11 @@ class Parser:
                 self.sink.report(M.PARSE_CASE_OUTSIDE_SELECT, pre.statements[0].span)
             pending = pre.end_comments  # comments between 'Select' and the first 'Case'
             seen_else = False
-            while self.tok.kind is K.CASE:
+            while self.kind is K.CASE:
                 case_tok = self.next()
                 clause = self.case_clause(case_tok)
                 if seen_else:
-                    self.sink.report(M.PARSE_EXPECTED, case_tok.span, expected="'End Select' after the 'Case Else' block", found="'Case'")
+                    self.sink.report(M.PARSE_EXPECTED, _at(case_tok), expected="'End Select' after the 'Case Else' block", found="'Case'")
                 seen_else = seen_else or clause.is_else
                 clause.leading_comments = pending + clause.leading_comments
                 pending = ()
@@ -1336,90 +1349,90 @@ class Parser:
         node.span = self.span_from(start)
         return node
 
-    def case_clause(self, case_tok: Token) -> A.CaseClause:
+    def case_clause(self, case_tok: RawToken) -> A.CaseClause:
         items: list[A.CaseValue | A.CaseRange | A.CaseIs] = []
         is_else = False
-        if self.tok.kind is K.ELSE:
+        if self.kind is K.ELSE:
             self.next()
             is_else = True
         else:
             while True:
                 tok = self.tok
-                if tok.kind is K.IS:
+                if tok[KIND] is K.IS:
                     self.next()
-                    op = _CASE_IS_OPS.get(self.tok.kind)
+                    op = _CASE_IS_OPS.get(self.kind)
                     if op is None:
-                        self.error(M.PARSE_EXPECTED, self.tok, expected="a comparison operator after 'Case Is'", found=self.tok.describe())
+                        self.error(M.PARSE_EXPECTED, self.tok, expected="a comparison operator after 'Case Is'", found=describe(self.tok))
                         break
                     self.next()
                     value = self.expression()
                     items.append(A.CaseIs(self.span_from(tok), op, value))
                 else:
-                    op = _CASE_IS_OPS.get(tok.kind)
-                    if op is not None and tok.kind is not K.EQ:  # VB shorthand 'Case > 5'
+                    op = _CASE_IS_OPS.get(tok[KIND])
+                    if op is not None and tok[KIND] is not K.EQ:  # VB shorthand 'Case > 5'
                         self.next()
                         value = self.expression()
                         items.append(A.CaseIs(self.span_from(tok), op, value))
                     else:
                         low = self.expression()
-                        if self.tok.kind is K.TO:
+                        if self.kind is K.TO:
                             self.next()
                             high = self.expression()
                             items.append(A.CaseRange(self.span_from(tok), low, high))
                         else:
                             items.append(A.CaseValue(low.span, low))
-                if self.tok.kind is K.COMMA:
+                if self.kind is K.COMMA:
                     self.next()
                     continue
                 break
-        clause = A.CaseClause(self.span_from(case_tok), items, A.Block(case_tok.span, []), is_else)
+        clause = A.CaseClause(self.span_from(case_tok), items, A.Block(case_tok[SPAN], []), is_else)
         self.end_of_line(clause)
         clause.body = self.block()
         return clause
 
     def try_statement(self) -> A.Stmt | None:
         start = self.next()  # Try
-        node = A.Try(start.span, A.Block(start.span, []), None, None)
+        node = A.Try(start[SPAN], A.Block(start[SPAN], []), None, None)
         self.end_of_line(node)
         node.body = self.body("Try")
         while True:
             tok = self.tok
-            if tok.kind is K.CATCH:
+            if tok[KIND] is K.CATCH:
                 self.next()
                 var: str | None = None
                 type_: A.TypeRef | None = None
-                if self.tok.kind is K.IDENT:
-                    var = self.next().text
-                    if self.tok.kind is K.AS:
+                if self.kind is K.IDENT:
+                    var = self.next()[TEXT]
+                    if self.kind is K.AS:
                         self.next()
                         type_ = self.type_ref()
-                    if self.tok.kind is K.IDENT and self.tok.text.lower() == "when":
+                    if self.kind is K.IDENT and self.tok[TEXT].lower() == "when":
                         self.error(M.PARSE_UNSUPPORTED, self.tok, what="'Catch … When'", hint=" (a Catch catches every error)")
-                elif self.tok.kind in _LINE_END:
+                elif self.kind in _LINE_END:
                     self.error(M.PARSE_CATCH_NEEDS_VARIABLE, tok)
-                clause = A.CatchClause(self.span_from(tok), var, type_, A.Block(tok.span, []))
+                clause = A.CatchClause(self.span_from(tok), var, type_, A.Block(tok[SPAN], []))
                 self.end_of_line(clause)
                 clause.body = self.body("Try")
                 if node.catch is not None:
-                    self.sink.report(M.PARSE_DUPLICATE_CLAUSE, tok.span, clause="Catch")
+                    self.sink.report(M.PARSE_DUPLICATE_CLAUSE, _at(tok), clause="Catch")
                 elif node.finally_ is not None:
-                    self.sink.report(M.PARSE_EXPECTED, tok.span, expected="'End Try' after Finally", found="'Catch'")
+                    self.sink.report(M.PARSE_EXPECTED, _at(tok), expected="'End Try' after Finally", found="'Catch'")
                 else:
                     node.catch = clause
                 continue
-            if tok.kind is K.FINALLY:
+            if tok[KIND] is K.FINALLY:
                 self.next()
-                fin = A.FinallyClause(tok.span, A.Block(tok.span, []))
+                fin = A.FinallyClause(tok[SPAN], A.Block(tok[SPAN], []))
                 self.end_of_line(fin)
                 fin.body = self.body("Try")
                 if node.finally_ is not None:
-                    self.sink.report(M.PARSE_DUPLICATE_CLAUSE, tok.span, clause="Finally")
+                    self.sink.report(M.PARSE_DUPLICATE_CLAUSE, _at(tok), clause="Finally")
                 else:
                     node.finally_ = fin
                 continue
             break
         if node.catch is None and node.finally_ is None:
-            self.sink.report(M.PARSE_EXPECTED, start.span, expected="a Catch or Finally block in this Try", found=self.tok.describe())
+            self.sink.report(M.PARSE_EXPECTED, _at(start), expected="a Catch or Finally block in this Try", found=describe(self.tok))
         self.close_end("Try", start, node)
         node.span = self.span_from(start)
         return node
@@ -1429,29 +1442,29 @@ class Parser:
     def goto_statement(self) -> A.Stmt | None:
         start = self.next()
         tok = self.tok
-        if tok.kind is K.IDENT or tok.kind is K.INTEGER:
+        if tok[KIND] is K.IDENT or tok[KIND] is K.INTEGER:
             self.next()
-            return A.GoTo(self.span_from(start), tok.text)
-        self.error(M.PARSE_EXPECTED, tok, expected="a label after 'GoTo'", found=tok.describe())
+            return A.GoTo(self.span_from(start), tok[TEXT])
+        self.error(M.PARSE_EXPECTED, tok, expected="a label after 'GoTo'", found=describe(tok))
         return None
 
     def exit_statement(self) -> A.Stmt | None:
         start = self.next()
-        kind = _EXIT_KINDS.get(self.tok.kind)
+        kind = _EXIT_KINDS.get(self.kind)
         if kind is None:
-            self.error(M.PARSE_EXPECTED, self.tok, expected="Sub, Function, Property, For, Do, While, Select or Try after 'Exit'", found=self.tok.describe())
+            self.error(M.PARSE_EXPECTED, self.tok, expected="Sub, Function, Property, For, Do, While, Select or Try after 'Exit'", found=describe(self.tok))
             return None
         self.next()
         return A.Exit(self.span_from(start), kind)
 
     def return_statement(self) -> A.Stmt | None:
         start = self.next()
-        value = None if self.tok.kind in _STMT_END else self.expression()
+        value = None if self.kind in _STMT_END else self.expression()
         return A.Return(self.span_from(start), value)
 
     def throw_statement(self) -> A.Stmt | None:
         start = self.next()
-        value = None if self.tok.kind in _STMT_END else self.expression()
+        value = None if self.kind in _STMT_END else self.expression()
         return A.Throw(self.span_from(start), value)
 
     def call_statement(self) -> A.Stmt | None:
@@ -1468,7 +1481,7 @@ class Parser:
         start = self.next()  # ReDim
         preserve = False
         tok = self.tok
-        if tok.kind is K.IDENT and tok.text.lower() == "preserve" and self.peek().kind is K.IDENT:
+        if tok[KIND] is K.IDENT and tok[TEXT].lower() == "preserve" and self.peek()[KIND] is K.IDENT:
             # real code uses it and the controller runs it (docs/design/real-code.md)
             self.next()
             preserve = True
@@ -1476,16 +1489,16 @@ class Parser:
         if isinstance(expr, A.Invoke) and expr.args:
             return A.ReDim(self.span_from(start), expr.target, expr.args, preserve)
         if not isinstance(expr, A.ErrorExpr):
-            self.error(M.PARSE_EXPECTED, expr.span, expected="an array with its new bounds, e.g. 'ReDim a(9)'", found=self.tok.describe())
+            self.error(M.PARSE_EXPECTED, expr.span, expected="an array with its new bounds, e.g. 'ReDim a(9)'", found=describe(self.tok))
         return None
 
     def end_statement(self) -> A.Stmt | None:
         tok = self.tok
         nxt = self.peek()
-        if nxt.kind in _LINE_END:
+        if nxt[KIND] in _LINE_END:
             self.error(M.PARSE_UNSUPPORTED, tok, what="the 'End' statement", hint=" (use Exit Sub or Controller methods)")
         else:
-            self.error(M.PARSE_UNSUPPORTED, tok, what=f"'End {nxt.text}'", hint="")
+            self.error(M.PARSE_UNSUPPORTED, tok, what=f"'End {nxt[TEXT]}'", hint="")
         return None
 
     def set_statement(self) -> A.Stmt | None:
@@ -1494,21 +1507,21 @@ class Parser:
 
     def misplaced_keyword(self) -> A.Stmt | None:
         tok = self.tok
-        self.error(M.PARSE_EXPECTED, tok, expected="a statement", found=tok.describe())
+        self.error(M.PARSE_EXPECTED, tok, expected="a statement", found=describe(tok))
         return None
 
     # --------------------------------------------------------------------------- expressions
 
     def expression(self, min_prec: int = 0) -> A.Expr:
         """Precedence climbing over :data:`_BINOPS` (spec §3.7), all operators left-associative."""
-        left = self.unary() if self.tok.kind in _UNARY_KINDS else self.postfix()
+        left = self.unary() if self.kind in _UNARY_KINDS else self.postfix()
         binops = _BINOPS
         between = A.span_between
         while True:
-            tok = self.tok
-            info = binops.get(tok.kind)
+            info = binops.get(self.kind)
             if info is None:
-                if tok.kind is K.IDENT and tok.text.lower() == "isnot" and min_prec <= _P_REL:
+                tok = self.tok
+                if tok[KIND] is K.IDENT and tok[TEXT].lower() == "isnot" and min_prec <= _P_REL:
                     self.error(M.PARSE_UNSUPPORTED, tok, what="'IsNot'", hint=" (write 'Not a Is b')")
                     self.next()
                     right = self.expression(_P_REL + 1)
@@ -1529,46 +1542,44 @@ class Parser:
     def pow_operand(self) -> A.Expr:
         """The right operand of ``^``: a postfix expression, optionally negated (``x ^ -1``)."""
         tok = self.tok
-        if tok.kind is K.MINUS or tok.kind is K.PLUS:
+        if tok[KIND] is K.MINUS or tok[KIND] is K.PLUS:
             if not self.deeper(tok, "expressions"):
-                return A.ErrorExpr(tok.span)
+                return A.ErrorExpr(tok[SPAN])
             self.next()
             operand = self.pow_operand()
             self.depth -= 1
-            return A.Unary(self.span_from(tok), tok.kind.value, operand)
+            return A.Unary(self.span_from(tok), tok[KIND].value, operand)
         return self.postfix()
 
     def unary(self) -> A.Expr:
         tok = self.tok
-        k = tok.kind
+        k = self.kind
         if k is K.MINUS or k is K.PLUS or k is K.NOT:
             if not self.deeper(tok, "expressions"):
-                return A.ErrorExpr(tok.span)
+                return A.ErrorExpr(tok[SPAN])
             self.next()
             operand = self.expression(_P_UNARY if k is not K.NOT else _P_REL)
             self.depth -= 1
-            return A.Unary(tok.span.to(operand.span), k.value, operand)
+            return A.Unary(_at(tok).to(operand.span), k.value, operand)
         return self.postfix()
 
     def postfix(self) -> A.Expr:
-        tok = self.tok
-        k = tok.kind
-        if k is K.IDENT:  # (primary's commonest case, inlined: a third of all calls)
-            self.next()
-            expr: A.Expr = A.Name(tok.span, tok.text)
+        if self.kind is K.IDENT:  # (primary's commonest case, inlined: a third of all calls)
+            _, text, _, span = self.next()
+            expr: A.Expr = A.Name(span, text)
         else:
             expr = self.primary()
         while True:
-            k = self.tok.kind
+            k = self.kind
             if k is K.DOT:
                 self.next()
                 name = self.word("a member name after '.'")
                 if name is None:
                     return expr
-                expr = A.MemberAccess(A.span_to(expr, name.span), expr, name.text)
+                expr = A.MemberAccess(A.span_to(expr, name[SPAN]), expr, name[TEXT])
             elif k is K.LPAREN:
                 args = self.arguments()
-                expr = A.Invoke(A.span_to(expr, self.prev.span), expr, args)
+                expr = A.Invoke(A.span_to(expr, self.prev[SPAN]), expr, args)
             else:
                 return expr
 
@@ -1576,48 +1587,48 @@ class Parser:
         """``( [expr {, expr}] )``; the current token is ``(``."""
         self.next()
         args: list[A.Expr] = []
-        if self.tok.kind is K.RPAREN:
+        if self.kind is K.RPAREN:
             self.next()
             return args
         if not self.deeper(self.tok, "expressions"):
-            return [A.ErrorExpr(self.tok.span)]  # (arguments unknown: the call's count is not checked)
+            return [A.ErrorExpr(self.tok[SPAN])]  # (arguments unknown: the call's count is not checked)
         while True:
-            if self.tok.kind is K.COMMA or self.tok.kind is K.RPAREN:
-                self.error(M.PARSE_EXPECTED, self.tok, expected="an argument (arguments cannot be omitted)", found=self.tok.describe())
+            if self.kind is K.COMMA or self.kind is K.RPAREN:
+                self.error(M.PARSE_EXPECTED, self.tok, expected="an argument (arguments cannot be omitted)", found=describe(self.tok))
                 break
             args.append(self.expression())
-            k = self.tok.kind
+            k = self.kind
             if k is K.COMMA:
                 self.next()
                 continue
             if k is K.RPAREN:
                 self.next()
-            elif k is K.COLON and self.peek().kind is K.EQ:
+            elif k is K.COLON and self.peek()[KIND] is K.EQ:
                 self.error(M.PARSE_UNSUPPORTED, self.tok, what="named arguments (':=')", hint="")
             else:
-                self.error(M.PARSE_EXPECTED, self.tok, expected="',' or ')'", found=self.tok.describe())
+                self.error(M.PARSE_EXPECTED, self.tok, expected="',' or ')'", found=describe(self.tok))
             break
         self.depth -= 1
         return args
 
     def primary(self) -> A.Expr:
         tok = self.tok
-        k = tok.kind
+        k = self.kind
         if k is K.IDENT:
             self.next()
-            return A.Name(tok.span, tok.text)
+            return A.Name(tok[SPAN], tok[TEXT])
         if k is K.INTEGER:
             self.next()
-            return A.IntegerLiteral(tok.span, tok.value, tok.text)  # type: ignore[arg-type]
+            return A.IntegerLiteral(tok[SPAN], tok[VALUE], tok[TEXT])  # type: ignore[arg-type]
         if k is K.STRING:
             self.next()
-            return A.StringLiteral(tok.span, tok.value)  # type: ignore[arg-type]
+            return A.StringLiteral(tok[SPAN], tok[VALUE])  # type: ignore[arg-type]
         if k is K.REAL:
             self.next()
-            return A.RealLiteral(tok.span, tok.value, tok.text)  # type: ignore[arg-type]
+            return A.RealLiteral(tok[SPAN], tok[VALUE], tok[TEXT])  # type: ignore[arg-type]
         if k is K.LPAREN:
             if not self.deeper(tok, "parentheses"):
-                return A.ErrorExpr(tok.span)
+                return A.ErrorExpr(tok[SPAN])
             self.next()
             inner = self.expression()
             self.expect(K.RPAREN, "')'")
@@ -1625,35 +1636,35 @@ class Parser:
             return inner
         if k is K.TRUE or k is K.FALSE:
             self.next()
-            return A.BooleanLiteral(tok.span, k is K.TRUE)
+            return A.BooleanLiteral(tok[SPAN], k is K.TRUE)
         if k is K.NOTHING:
             self.next()
-            return A.NothingLiteral(tok.span)
+            return A.NothingLiteral(tok[SPAN])
         if k is K.ME:
             self.next()
-            return A.MeExpr(tok.span)
+            return A.MeExpr(tok[SPAN])
         if k is K.NEW:
             self.next()
             type_ = self.type_ref()
             if type_ is None:
-                return A.ErrorExpr(tok.span)
-            args = self.arguments() if self.tok.kind is K.LPAREN else None
+                return A.ErrorExpr(tok[SPAN])
+            args = self.arguments() if self.kind is K.LPAREN else None
             return A.New(self.span_from(tok), type_, args)
         if k is K.ADDRESSOF:
             self.next()
             name = self.ident("a procedure name after 'AddressOf'")
             if name is None:
-                return A.ErrorExpr(tok.span)
-            target: A.Expr = A.Name(name.span, name.text)
-            while self.tok.kind is K.DOT:
+                return A.ErrorExpr(tok[SPAN])
+            target: A.Expr = A.Name(name[SPAN], name[TEXT])
+            while self.kind is K.DOT:
                 self.next()
                 member = self.word("a member name after '.'")
                 if member is None:
                     break
-                target = A.MemberAccess(self.span_from(name), target, member.text)
+                target = A.MemberAccess(self.span_from(name), target, member[TEXT])
             return A.AddressOf(self.span_from(tok), target)
-        self.error(M.PARSE_EXPECTED_EXPRESSION, tok, found=tok.describe())
-        return A.ErrorExpr(tok.span)
+        self.error(M.PARSE_EXPECTED_EXPRESSION, tok, found=describe(tok))
+        return A.ErrorExpr(tok[SPAN])
 
 
 def _block_declaration(p: Parser) -> A.Stmt | None:

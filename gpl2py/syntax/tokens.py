@@ -1,6 +1,6 @@
-"""Token kinds and the :class:`Token` record produced by :mod:`gpl2py.syntax.lexer`.
+"""Token kinds, and the layout of the tokens :mod:`gpl2py.syntax.lexer` produces (:data:`KIND`).
 
-Every GPL keyword has its own :class:`TokenKind`, so the parser dispatches on ``tok.kind is K.IF``
+Every GPL keyword has its own :class:`TokenKind`, so the parser dispatches on ``kind is K.IF``
 (identity comparisons on enum members are the cheapest test Python offers) instead of comparing
 lowered strings.  Words the seeds reject (``GoSub``, ``With``, ``Enum`` …) are deliberately *not*
 keywords: the spec (§1.8) says they must stay usable as names, so they lex as :attr:`TokenKind.IDENT`
@@ -163,9 +163,40 @@ OPERATORS: dict[str, TokenKind] = {
 }
 
 
+#: The parser's tokens are plain tuples ``(kind, text, value, span)``, read by these indices (or
+#: unpacked).  Building a plain tuple is a quarter of the cost of a class instance, and the lexer
+#: makes one per token: a tuple and its span as plain tuples halve the lexer's Python work
+#: (docs/design/performance.md, "Parsing").  ``span`` is the plain tuple
+#: ``(file, line, col, end_line, end_col)``: :class:`~gpl2py.source.Span`'s fields in Span's order,
+#: so a node built from it unpacks it like a Span, and ``tuple.__new__(Span, span)`` makes it one
+#: where a Span is kept (a diagnostic, a comment).  :class:`Token` is the same record with names,
+#: for the code that lists tokens rather than parsing them (:func:`~gpl2py.syntax.lexer.tokenize`).
+KIND, TEXT, VALUE, SPAN = 0, 1, 2, 3
+
+#: A token as the lexer hands it to the parser (see :data:`KIND`).
+RawToken = tuple[TokenKind, str, object, tuple[str, int, int, int, int]]
+
+
+def describe(tok: RawToken) -> str:
+    """How a diagnostic names a token: ``'Then'``, ``end of line``, ``identifier 'foo'``."""
+    return _describe(tok[KIND], tok[TEXT])
+
+
+def _describe(kind: TokenKind, text: str) -> str:
+    if kind is TokenKind.NEWLINE or kind is TokenKind.EOF:
+        return kind.value
+    if kind is TokenKind.IDENT:
+        return f"identifier '{text}'"
+    if kind is TokenKind.COMMENT:
+        return "comment"
+    if kind in (TokenKind.INTEGER, TokenKind.REAL, TokenKind.STRING):
+        return f"{kind.value} {text}"
+    return f"'{text}'"
+
+
 @dataclass(slots=True)
 class Token:
-    """One token.
+    """One token, with named fields: what :func:`~gpl2py.syntax.lexer.tokenize` lists.
 
     ``text`` is the exact source spelling (keywords keep their case, for messages); ``value`` is the
     decoded value of a literal (``int`` for integer/hex/octal, ``float`` for reals, ``str`` for
@@ -177,6 +208,12 @@ class Token:
     value: object
     span: Span
 
+    @classmethod
+    def of(cls, raw: RawToken) -> Token:
+        """The named form of a parser token (:data:`KIND`)."""
+        kind, text, value, span = raw
+        return cls(kind, text, value, tuple.__new__(Span, span))
+
     @property
     def line(self) -> int:
         return self.span.line
@@ -187,13 +224,4 @@ class Token:
 
     def describe(self) -> str:
         """How a diagnostic names this token: ``'Then'``, ``end of line``, ``identifier 'foo'``."""
-        kind = self.kind
-        if kind is TokenKind.NEWLINE or kind is TokenKind.EOF:
-            return kind.value
-        if kind is TokenKind.IDENT:
-            return f"identifier '{self.text}'"
-        if kind is TokenKind.COMMENT:
-            return "comment"
-        if kind in (TokenKind.INTEGER, TokenKind.REAL, TokenKind.STRING):
-            return f"{kind.value} {self.text}"
-        return f"'{self.text}'"
+        return _describe(self.kind, self.text)

@@ -922,3 +922,30 @@ def test_head_trap_in_a_declaration_is_a_syntax_error_at_the_literal() -> None:
 def test_diagnostic_header_is_file_line_col() -> None:
     _, sink = parse_text("Module M\nSub A()\n\tx = = 1\nEnd Sub\nEnd Module\n")
     assert [d.header() for d in sink] == ["t.gpl:3:6: error GPL1101: expected an expression, found '='"]
+
+
+def test_a_file_of_many_token_chunks_parses_whole_with_exact_positions() -> None:
+    # The parser reads the lexer's tokens in chunks of CHUNK (4,096) and slides its window at
+    # each boundary: statements, look-aheads ('End' + 'If') and spans that straddle a boundary
+    # must come out as in a short file.  Statements of varying length put the boundaries at
+    # every place in a statement.
+    lines = ["Module M", "    Sub Main()"]
+    expected: list[tuple[int, str]] = []  # (line, target name) of every assignment
+    for i in range(3000):
+        pad = " + 1" * (i % 7)
+        if i % 50 == 0:
+            lines += [f"        If v{i} = {i} Then", f"            w{i} = a({i}, b.c){pad}", "        End If"]
+            expected.append((len(lines) - 1, f"w{i}"))
+        else:
+            lines.append(f"        v{i} = a({i}, b.c){pad} ' note {i}")
+            expected.append((len(lines), f"v{i}"))
+    lines += ["        x = = 1", "    End Sub", "End Module"]
+    text = "\n".join(lines) + "\n"
+    unit, sink = parse_text(text)
+    assigns = [n for n in _walk(unit) if isinstance(n, A.Assign)]
+    assert [(a.span.line, sx(a.target)) for a in assigns] == expected + [(len(lines) - 2, "x")]
+    last = assigns[-2]
+    assert (last.span.col, last.span.end_col) == (9, len(lines[last.span.line - 1].split(" '")[0]) + 1)
+    assert last.trailing_comment is not None and last.trailing_comment.text == " note 2999"
+    # the one error, after every boundary, at its exact place
+    assert errors(text) == [(len(lines) - 2, 13, "GPL1101")]
