@@ -687,7 +687,10 @@ class ProcLowerer(ExprLowerer):
 
     def loop_exit(self, s: A.While | A.DoLoop, condition: A.Expr, until: bool, body: A.Block | None) -> list[str]:
         """``if <exit>: break``, the test of a While or Do loop: the loop ends when ``condition``
-        is true (``until``) or false; ``body`` is given for a test at the top of the body."""
+        is true (``until``) or false; ``body`` is given for a test at the top of the body.  A
+        literal test that never ends the loop (``While True``, ``Loop Until False``) is none."""
+        if isinstance(condition, A.BooleanLiteral) and condition.value != until:
+            return []
         if body is not None and s not in self.entry_flag and self.plan is not None and self.plan.dispatch(body) is None:
             first = guarded_increment(condition, until, body, self.model.info)
             if first is not None:

@@ -176,6 +176,19 @@ def test_goto_free_procedures_stay_structured(tmp_path: Path) -> None:
     assert "for _ in paced():\n        if i >= 3:\n            break\n" in body and "_g" not in body
 
 
+def test_a_loop_whose_literal_test_never_ends_it_has_no_test(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim i As Integer
+        While True
+            i += 1
+            If i > 3 Then Exit While
+        End While
+        Do
+            i += 1
+        Loop Until False"""))
+    assert "True" not in body and "False" not in body, body
+    assert body.count("for _ in paced():\n") == 2
+
+
 def test_no_exec_or_eval_and_valid_python_for_all_frontend_sources() -> None:
     for src in sorted((REPO / "tests/frontend/sources").glob("*.gpl")):
         out = transpile(str(src), DiagnosticSink(), keep_going=True)
