@@ -86,7 +86,9 @@ def negation(c: Code) -> Code:
     text, prec = c
     if prec == P_NOT and text.startswith("not "):
         return text[4:], P_NOT + 1
-    return f"not {paren(c, P_NOT)}", P_NOT
+    # ``not (a & b)``, ``not (i < n)``: Python's ``not`` binds looser than any operator, which
+    # ``not a & b`` would leave the reader to remember
+    return f"not {paren(c, P_ATOM)}", P_NOT
 
 
 def paren(c: Code, min_prec: int) -> str:
@@ -675,14 +677,15 @@ class ExprLowerer:
     def negated_cond(self, e: A.Expr) -> Code:
         """``Not e`` as a Python condition: a loop's exit test.  A comparison of integers, or of two
         Strings, is inverted (``eol < 0`` rather than ``not eol >= 0``): only a NaN tells the two
-        apart, and neither type has one.  ``a Is b`` becomes ``a is not b``, ``Not a Is b`` ``a is b``."""
+        apart, and neither type has one; so is ``=`` or ``<>`` of two Booleans.  ``a Is b`` becomes ``a is not b``, ``Not a Is b`` ``a is b``."""
         if isinstance(e, A.Binary) and e.op == "Is":
             return self.identity(e, negate=True)
         if isinstance(e, A.Unary) and e.op == "Not" and isinstance(e.operand, A.Binary) and e.operand.op == "Is":
             return self.identity(e.operand, negate=False)  # While Not x Is Nothing
         if isinstance(e, A.Binary) and e.op in _INVERSE_CMP:
             lt, rt_ = self.type_of(e.left), self.type_of(e.right)
-            if (lt in _INTS and rt_ in _INTS) or (lt is t.STRING and rt_ is t.STRING):
+            if ((lt in _INTS and rt_ in _INTS) or (lt is t.STRING and rt_ is t.STRING)
+                    or (lt is t.BOOLEAN and rt_ is t.BOOLEAN and e.op in ("=", "<>"))):
                 return self.binop(_INVERSE_CMP[e.op], (*self.expr(e.left), lt), (*self.expr(e.right), rt_),
                                   e.left, e.right)
         return negation(self.cond(e))
