@@ -781,8 +781,11 @@ class ProcLowerer(ExprLowerer):
         if v not in self.counters:
             self.nonneg.discard(v)
         if final:
-            edge = "max" if step == 1 else "min"
-            self.w.line(f"{name} = {edge}({start}, {stop})  # the first value past the end (§10.3)")
+            if lo is not None and hi is not None:  # For ii = 1 To 80: ii = 81
+                past = str(max(lo, hi + step) if step == 1 else min(lo, hi + step))
+            else:
+                past = f"{'max' if step == 1 else 'min'}({start}, {stop})"
+            self.w.line(f"{name} = {past}  # the first value past the end (§10.3)")
 
     def range_stop(self, e: A.Expr, step: int) -> str:
         """The stop of ``range`` for a For ending at ``e``: ``n`` for ``To n - 1`` (``For i = 0 To

@@ -81,6 +81,25 @@ def test_integer_for_loop_uses_range_and_keeps_the_final_value(tmp_path: Path) -
     assert "i = max(1, n + 1)" in body  # read after the loop: the first value past the end
 
 
+def test_the_final_value_of_a_literal_for_is_a_literal(tmp_path: Path) -> None:
+    body = main_body(gen(tmp_path, """        Dim i, s As Integer
+        For i = 1 To 80
+            s = s + i
+        Next
+        Console.WriteLine(i)
+        For i = 5 To 1 Step -1
+            s = s + i
+        Next
+        Console.WriteLine(i)
+        For i = 7 To 3
+            s = s + i
+        Next
+        Console.WriteLine(i)"""))
+    for line in ("i = 81  #", "i = 0  #", "i = 7  #"):  # an empty loop leaves its start value
+        assert line in body, (line, body)
+    assert "max(" not in body and "min(" not in body
+
+
 def test_a_for_counter_nobody_reads_afterwards_gets_no_final_store(tmp_path: Path) -> None:
     body = main_body(gen(tmp_path, """        Dim i, n, s As Integer
         Dim a(9) As Integer
