@@ -132,15 +132,16 @@ def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main")
 
 
 def run_gpl(root: Path, sources: dict[str, str] | str, start: str = "Main",
-            setup: Callable[[Simulation], object] | None = None) -> RunResult:
+            setup: Callable[[Simulation], object] | None = None, slice_checkpoints: int = 1000) -> RunResult:
     """Transpile and run ``sources``; ``setup(sim)`` prepares the controller first (a slow
-    power-up, an input), as ``gpl2py run --setup`` does."""
+    power-up, an input), as ``gpl2py run --setup`` does.  A short ``slice_checkpoints`` makes
+    tests of thread scheduling fast (the controller's is 1000)."""
     package, files, _ = transpile_to(root, sources, start)
     out_dir = str(root / "out")
     sys.path.insert(0, out_dir)
     try:
         pkg = importlib.import_module(package)
-        sim = Simulation(capture=True, project=package)
+        sim = Simulation(capture=True, project=package, slice_checkpoints=slice_checkpoints)
         if setup is not None:
             setup(sim)
         status = pkg.main(sim)

@@ -3,12 +3,9 @@ iterations, so in virtual time it cannot starve the other GPL threads (docs/desi
 
 from __future__ import annotations
 
-import importlib
-import sys
 from pathlib import Path
 
-from gpltest import transpile_to
-from gplrt.sim import Simulation
+from gpltest import run_gpl
 
 SRC = """Module Main
     Public seen As Integer
@@ -30,17 +27,10 @@ End Module
 
 
 def _run(tmp_path: Path, n: int) -> tuple[str, str]:
-    package, files, _ = transpile_to(tmp_path, SRC.format(n=n))
-    out_dir = str(tmp_path / "out")
-    sys.path.insert(0, out_dir)
-    try:
-        pkg = importlib.import_module(package)
-        # a short slice (10 scheduling points) keeps the test fast; the default is 1000
-        sim = Simulation(capture=True, project=package, slice_checkpoints=10)
-        assert pkg.main(sim) == 0, sim.console.log_text
-    finally:
-        sys.path.remove(out_dir)
-    return sim.console.output, files[f"{package}/main_mod.py"]
+    # a short slice (10 scheduling points) keeps the test fast; the default is 1000
+    r = run_gpl(tmp_path, SRC.format(n=n), slice_checkpoints=10)
+    assert r.status == 0, r.log
+    return r.output, r.files[f"{r.package.__name__}/main_mod.py"]
 
 
 def test_long_for_loop_lets_other_threads_run(tmp_path: Path) -> None:

@@ -6,25 +6,15 @@ thread's slice."""
 
 from __future__ import annotations
 
-import importlib
-import sys
 from pathlib import Path
 
-from gpltest import transpile_to
-from gplrt.sim import Simulation
+from gpltest import run_gpl
 
 
 def _run(tmp_path: Path, src: str, slice_checkpoints: int = 10) -> tuple[str, str]:
-    package, files, _ = transpile_to(tmp_path, src)
-    out_dir = str(tmp_path / "out")
-    sys.path.insert(0, out_dir)
-    try:
-        pkg = importlib.import_module(package)
-        sim = Simulation(capture=True, project=package, slice_checkpoints=slice_checkpoints)
-        assert pkg.main(sim) == 0, sim.console.log_text
-    finally:
-        sys.path.remove(out_dir)
-    return sim.console.output, files[f"{package}/main_mod.py"]
+    r = run_gpl(tmp_path, src, slice_checkpoints=slice_checkpoints)
+    assert r.status == 0, r.log
+    return r.output, r.files[f"{r.package.__name__}/main_mod.py"]
 
 
 SPIN = """Module Main
