@@ -87,9 +87,6 @@ class LineLimits:
     decel: list[float]
     accel_ramp: float
     decel_ramp: float
-    #: ``accel == decel`` (Profile.Accel = Decel, the rule): the deceleration bound is the
-    #: acceleration bound, and ``path_limits`` computes it once.
-    symmetric: bool = field(init=False)
     #: The joints' part of ``velocity``, ``accel``, ``decel`` (from the third entry on), kept
     #: apart so that ``path_limits`` walks the joints' chords without an index per joint.
     joint_velocity: list[float] = field(init=False)
@@ -97,7 +94,6 @@ class LineLimits:
     joint_decel: list[float] = field(init=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "symmetric", self.accel == self.decel)
         object.__setattr__(self, "joint_velocity", self.velocity[2:])
         object.__setattr__(self, "joint_accel", self.accel[2:])
         object.__setattr__(self, "joint_decel", self.decel[2:])

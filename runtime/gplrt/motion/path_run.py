@@ -93,30 +93,18 @@ def path_limits(length: float, turn: float, q0: list[float], q1: list[float],
         if x < dec:
             dec = x
     # then each joint's chord |q1 − q0|
-    if lim.symmetric:  # Accel = Decel: one bound serves both (the same divisions, so the same floats)
-        for e1, e0, vi, ai in zip(q1, q0, lim.joint_velocity, lim.joint_accel):
-            extent = abs(e1 - e0)
-            if extent > 1e-12:
-                x = vi / extent
-                if x < v:
-                    v = x
-                x = ai / extent
-                if x < acc:
-                    acc = x
-        dec = acc
-    else:
-        for e1, e0, vi, ai, di in zip(q1, q0, lim.joint_velocity, lim.joint_accel, lim.joint_decel):
-            extent = abs(e1 - e0)
-            if extent > 1e-12:
-                x = vi / extent
-                if x < v:
-                    v = x
-                x = ai / extent
-                if x < acc:
-                    acc = x
-                x = di / extent
-                if x < dec:
-                    dec = x
+    for e1, e0, vi, ai, di in zip(q1, q0, lim.joint_velocity, lim.joint_accel, lim.joint_decel):
+        extent = abs(e1 - e0)
+        if extent > 1e-12:
+            x = vi / extent
+            if x < v:
+                v = x
+            x = ai / extent
+            if x < acc:
+                acc = x
+            x = di / extent
+            if x < dec:
+                dec = x
     if v == inf:  # nothing moves (the caller queues a dwell instead)
         v, acc, dec = 1.0, 1.0, 1.0
     accel_ramp, decel_ramp = lim.accel_ramp, lim.decel_ramp

@@ -215,14 +215,7 @@ def plan_axes(q0: Sequence[float], v0: Sequence[float] | None, a0: Sequence[floa
     # With Accel = Decel the limits do not depend on the direction of travel: skip comparing it.
     if lim.symmetric:
         if given["lim"] is lim and given["up"] is None:  # the same limits as the last joint move
-            traj = Trajectory(n)  # (``_calculate``'s success, inlined: the commonest plan of all)
-            try:
-                result = otg.calculate(inp, traj)
-            except (RuckigError, ValueError):
-                result = None
-            if result is _WORKING or result is _FINISHED:
-                return Plan(traj, traj.duration)
-            return _retry(otg, inp, given, n, "joint move")
+            return _calculate(otg, inp, given, n, "joint move")
         up = None
     else:
         up = [e >= s for s, e in zip(p0, p1)]
@@ -270,14 +263,7 @@ def plan_scalar(s0: float, v0: float, a0: float, s1: float, vmax: float, amax: f
     inp.max_acceleration = [amax]
     inp.min_acceleration = [-dmax]
     inp.max_jerk = [jerk if math.isfinite(jerk) else math.inf]
-    traj = Trajectory(1)  # (``_calculate``'s success, inlined: every straight Move plans one)
-    try:
-        result = otg.calculate(inp, traj)
-    except (RuckigError, ValueError):
-        result = None
-    if result is _WORKING or result is _FINISHED:
-        return Plan(traj, traj.duration)
-    return _retry(otg, inp, given, 1, "path move")
+    return _calculate(otg, inp, given, 1, "path move")
 
 
 def plan_stop(q0: Vec, v0: Vec, a0: Vec, decel: Vec, jerk: Vec) -> Plan:
