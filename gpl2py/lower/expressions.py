@@ -82,12 +82,8 @@ FLAT_CONCAT_MIN = LONG_CHAIN
 
 
 def negation(c: Code) -> Code:
-    """``not c``, without a double negation when ``c`` is itself ``not x``."""
-    text, prec = c
-    if prec == P_NOT and text.startswith("not "):
-        return text[4:], P_NOT + 1
-    # ``not (a & b)``, ``not (i < n)``: Python's ``not`` binds looser than any operator, which
-    # ``not a & b`` would leave the reader to remember
+    """``not c``; an operation is parenthesised (``not (a & b)``, ``not (i < n)``): Python's ``not``
+    binds looser than any operator, which ``not a & b`` would leave the reader to remember."""
     return f"not {paren(c, P_ATOM)}", P_NOT
 
 
@@ -677,11 +673,16 @@ class ExprLowerer:
     def negated_cond(self, e: A.Expr) -> Code:
         """``Not e`` as a Python condition: a loop's exit test.  A comparison of integers, or of two
         Strings, is inverted (``eol < 0`` rather than ``not eol >= 0``): only a NaN tells the two
-        apart, and neither type has one; so is ``=`` or ``<>`` of two Booleans.  ``a Is b`` becomes ``a is not b``, ``Not a Is b`` ``a is b``."""
+        apart, and neither type has one; so is ``=`` or ``<>`` of two Booleans.  ``a Is b`` becomes
+        ``a is not b``, ``Not a Is b`` ``a is b``, and ``Not x`` of a Boolean or a number the test
+        of ``x``."""
         if isinstance(e, A.Binary) and e.op == "Is":
             return self.identity(e, negate=True)
-        if isinstance(e, A.Unary) and e.op == "Not" and isinstance(e.operand, A.Binary) and e.operand.op == "Is":
-            return self.identity(e.operand, negate=False)  # While Not x Is Nothing
+        if isinstance(e, A.Unary) and e.op == "Not":
+            if isinstance(e.operand, A.Binary) and e.operand.op == "Is":
+                return self.identity(e.operand, negate=False)  # While Not x Is Nothing
+            if self.type_of(e.operand) is t.BOOLEAN or self.type_of(e.operand) in _PLAIN_NUM:
+                return self.cond(e.operand)  # While Not done: the test is done itself
         if isinstance(e, A.Binary) and e.op in _INVERSE_CMP:
             lt, rt_ = self.type_of(e.left), self.type_of(e.right)
             if ((lt in _INTS and rt_ in _INTS) or (lt is t.STRING and rt_ is t.STRING)

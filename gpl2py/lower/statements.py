@@ -90,6 +90,7 @@ class ProcLowerer(ExprLowerer):
         # the first statement of a loop body that adds 1 to a variable the loop's test has just
         # found below an Integer: it cannot overflow (guarded_increment)
         self.guarded: set[A.Stmt] = set()
+        self.current: A.Stmt | None = None  # the statement being lowered
         self.plan: GotoPlan | None = None
         self.state_var: dict[A.Block, str] = {}
         self.entry_flag: dict[A.Stmt, str] = {}
@@ -409,7 +410,9 @@ class ProcLowerer(ExprLowerer):
         visit = _STMT_VISIT.get(type(s))
         if visit is None:  # a gap in gpl2py: GPL9000 at the statement, never a statement dropped
             raise InternalError(s.span, f"no lowering for the statement {type(s).__name__}")
+        outer_stmt, self.current = self.current, s
         visit(self, s)
+        self.current = outer_stmt
         if fits and not w.fits_python():
             self.too_deep(s, start)
         w.peak_level, w.peak_blocks = max(outer[0], w.peak_level), max(outer[1], w.peak_blocks)
@@ -480,11 +483,6 @@ class ProcLowerer(ExprLowerer):
 
     def s_Assign(self, s: A.Assign) -> None:
         tt = self.target_type(s.target)
-        if s in self.guarded:  # i = i + 1 right after the loop found i < n: no range check
-            value = self.conv(s.value, tt)[0] if s.op == "=" else self.binop(
-                "+", (*self.expr(s.target), tt), (*self.expr(s.value), tt), s.target, s.value)[0]
-            self.store(s.target, self.int_checks.get(value, value), s.value)
-            return
         if s.op == "=":
             value = self.conv(s.value, tt)[0]
             if tt is t.DOUBLE and _may_overflow_double(s.value, self):
@@ -559,6 +557,8 @@ class ProcLowerer(ExprLowerer):
         inner = self.int_checks.get(value)
         if inner is None or not isinstance(self.info(target), VarInfo):
             return value
+        if self.guarded and self.current in self.guarded:
+            return inner  # i = i + 1 right after the loop's test found i below an Integer
         return self.int_checked(inner, source)
 
     def int_checked(self, inner: str, source: A.Expr | None) -> str:
