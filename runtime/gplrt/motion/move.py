@@ -39,7 +39,6 @@ from typing import Any, Callable
 
 import numpy as np
 
-from gplrt.controller.state import POWER_ON_STATES
 from gplrt.geometry._checks import wrong_object
 from gplrt.geometry.location import Location
 from gplrt.geometry.transforms import matrix_to_pose
@@ -103,14 +102,9 @@ def _ready_now(s: Session, key: ThreadKey) -> RobotState:
 
     Why: ``Move.Loc`` runs this once per motion, and ``_ready``'s five calls cost about as much
     as a fifth of a bare Ruckig plan (``benchmarks/motion_speed.py``)."""
-    for robot in s.robots.values():
-        if robot.owner is key:
-            queue = robot.queue
-            if (queue.paths_pending or robot.async_error or queue.fault is not None or robot.special is not None
-                    or not robot.homed or len(queue.history) >= QUEUE_DEPTH
-                    or s.controller.power_state not in POWER_ON_STATES):
-                break
-            return robot
+    robot = registry.attached_robot(s, key)
+    if robot is not None and robot.free_to_move(key, registry.power_on(s)) and len(robot.queue.history) < QUEUE_DEPTH:
+        return robot
     return _ready(s, key)
 
 

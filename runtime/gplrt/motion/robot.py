@@ -280,11 +280,21 @@ class RobotState:
 
     # -- checks --------------------------------------------------------------------------------
 
-    def check_can_move(self, key: ThreadKey, power_on: bool) -> None:
-        """The controller's motion preconditions (gpl-classes §7): attached, power, homed.
+    def free_to_move(self, key: ThreadKey, power_on: bool) -> bool:
+        """Whether nothing :meth:`check_can_move` tests stands in the way: attached to ``key``,
+        powered, homed, in position mode, no stop to report and no path cycles still to run.
+        One look, for the case nearly every Move is (``move._ready_now``); a precondition added
+        to ``check_can_move`` belongs here too."""
+        queue = self.queue
+        return (self.owner is key and key is not None and power_on and self.homed and self.special is None
+                and not self.async_error and queue.fault is None and not queue.paths_pending)
 
-        ``move._ready_now`` reads the same state in one look for ``Move.Loc`` and comes here for
-        anything unusual: a precondition added here must be added to its test too."""
+    def check_can_move(self, key: ThreadKey, power_on: bool) -> None:
+        """The controller's motion preconditions (gpl-classes §7), raised in the controller's
+        order: attached, a stop to report, power, position mode, homed (:meth:`free_to_move` is
+        the same test as one question)."""
+        if self.free_to_move(key, power_on):
+            return
         if self.owner is None or self.owner is not key:
             raise GplException(NO_ROBOT_ATTACHED, robot_num=self.number,
                                detail=f"robot {self.number} is not attached to this thread")
