@@ -56,6 +56,9 @@ joint_vec = st.lists(st.floats(0.0, 1.0), min_size=5, max_size=5).map(lambda f: 
 @example(np.array([1.5, -93.0, 12.0, -960.0, 69.0]),
          LOWER + np.array([0.0, 0.0, 0.0, 0.8456194731082987, 1e-10]) * (UPPER - LOWER), 8.871559871988431, 36.0,
          18.874127743708986, 0.0234375)
+# a 1e-5 degree wrist move with a 1 µs ramp (found by hypothesis): Ruckig failed at jerk = accel / 1e-6
+@example(np.array([1.5, -93.0, 12.0, -960.0, 69.0]),
+         LOWER + np.array([0.0, 0.0, 0.0, 0.0, 5.960464477539063e-08]) * (UPPER - LOWER), 5.0, 10.0, 90.0, 1e-06)
 def test_joint_plans_respect_limits_and_end_on_target(q0: np.ndarray, q1: np.ndarray, speed: float, accel: float,
                                                       decel: float, ramp: float) -> None:
     prof = Profile()
