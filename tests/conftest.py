@@ -9,6 +9,7 @@ everything back afterwards, so that no test depends on which tests ran before it
 
 from __future__ import annotations
 
+import os
 import sys
 from collections.abc import Iterator
 from pathlib import Path
@@ -22,6 +23,18 @@ from gplrt.geometry import kinematics_provider, refframe
 from gplrt.lang.console import get_console_sink, set_console_sink
 from gplrt.session import active_session, set_active_session
 from gplrt.sim import Simulation
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_collection(session: pytest.Session) -> Iterator[object]:
+    """Marks the collection phase for ``gpltest.shared_dir``: the shared corpus and specs may be
+    looked for only while a test runs, because without them a skip at collection time ends the
+    whole session ("Interrupted: 1 error during collection") instead of skipping one test."""
+    os.environ["GPL2PY_TESTS_COLLECTING"] = "1"
+    try:
+        return (yield)
+    finally:
+        del os.environ["GPL2PY_TESTS_COLLECTING"]
 
 
 @pytest.fixture(autouse=True)

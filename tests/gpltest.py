@@ -59,22 +59,41 @@ def _main_checkout(repo: Path) -> Path:
     return root.parent
 
 
+def _shared_candidates(name: str, env: str) -> list[Path]:
+    given = os.environ.get(env)
+    return [Path(given)] if given else [REPO.parent / "shared" / name,
+                                        _main_checkout(REPO).parent / "shared" / name]
+
+
+def find_shared(name: str, env: str) -> Path | None:
+    """The folder :func:`shared_dir` finds, or None: for the one thing collection may do with the
+    shared material, choosing parameters (whose test then calls :func:`shared_dir` when None)."""
+    return next((path for path in _shared_candidates(name, env) if path.is_dir()), None)
+
+
 def shared_dir(name: str, env: str) -> Path:
     """A folder of the project's shared material (``corpus``, ``spec``): ``$<env>`` if set, else
     ``../shared/<name>`` next to the repository root (of the main checkout, for a worktree).
 
     CI always has it, so there a missing folder fails the test; elsewhere the test is skipped
-    with the reason.  (Tests read the material in place and never copy it into the project.)
+    with the reason, which names ``<env>``.  (Tests read the material in place and never copy it
+    into the project.)
+
+    Only a running test may ask, never the collection of tests (a parametrisation, a module's
+    top level): a user's fresh clone has no ``../shared``, and a skip raised while collecting
+    ends the whole session with "1 error during collection" and runs no test at all.  The
+    collection is refused here even where the material exists, so the mistake shows at once.
     """
     import pytest
 
-    given = os.environ.get(env)
-    candidates = [Path(given)] if given else [REPO.parent / "shared" / name,
-                                              _main_checkout(REPO).parent / "shared" / name]
-    for path in candidates:
-        if path.is_dir():
-            return path
-    reason = f"shared {name} not found (looked in {', '.join(map(str, candidates))}; set {env})"
+    if os.environ.get("GPL2PY_TESTS_COLLECTING"):
+        raise RuntimeError(f"shared {name} looked for while pytest collects tests: look for it inside "
+                           f"the test (a fresh clone without ../shared must still collect every test)")
+    path = find_shared(name, env)
+    if path is not None:
+        return path
+    candidates = ", ".join(map(str, dict.fromkeys(_shared_candidates(name, env))))
+    reason = f"shared {name} not found (looked in {candidates}; set {env})"
     if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
         pytest.fail(reason)
     pytest.skip(reason)

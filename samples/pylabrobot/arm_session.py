@@ -3,9 +3,11 @@
 The server is Precise Automation's TCP Command Server (TCS 3.0C1 with the PARobot plug-in),
 unchanged, run by gpl2py on a simulated PF400SX; the client is PyLabRobot's own
 ``PreciseFlex400Backend``, exactly as it drives a real arm.  From the repository root, with
-``.venv`` active (``bash scripts/test.sh`` or ``bash scripts/demo.sh`` make it):
+``.venv`` active (``bash scripts/test.sh`` or ``bash scripts/demo.sh`` make it), and ``TCS`` the
+folder of TCS with the PARobot plug-in (not in this repository: the README's *The real code the
+tests use* says where to get it; ``$GPL_CORPUS/tcs-3.0C1-pa`` where the tests find it):
 
-    gpl2py run ../shared/corpus/tcs-3.0C1-pa --robot PF400SX --clock fast
+    gpl2py run "$TCS" --robot PF400SX --clock fast
     python samples/pylabrobot/arm_session.py            # in a second terminal
 
 The first command serves robot 1 on port 10100 and the status port on 10000 (stop it with

@@ -62,12 +62,13 @@ def _report(argv: list[str]) -> tuple[int, list[tuple[object, ...]]]:
     return status, [(d["severity"], d["code"], d["file"], d["line"], d["column"], d["message"]) for d in diags]
 
 
+#: The vendor's TCS, found when the test runs: collection must not need the corpus (without it,
+#: a skip at collection time would end the whole session, not skip one test).
+CORPUS_TCS = "tcs-3.0C1-pa"
+
+
 def _projects() -> list[str]:
-    found = [*CASES, *(str(p) for p in sorted((REPO / "samples").iterdir()) if p.is_dir())]
-    corpus = corpus_dir() / "tcs-3.0C1-pa"
-    if corpus.is_dir():
-        found.append(str(corpus))
-    return found
+    return [*CASES, *(str(p) for p in sorted((REPO / "samples").iterdir()) if p.is_dir()), CORPUS_TCS]
 
 
 @pytest.mark.parametrize("strict", [False, True], ids=["plain", "strict"])
@@ -79,6 +80,8 @@ def test_check_reports_what_translate_reports(name: str, strict: bool, tmp_path:
         for file, text in CASES[name].items():
             (folder / file).write_bytes(text if isinstance(text, bytes) else text.encode("latin-1"))
         path = str(folder)
+    elif name == CORPUS_TCS:
+        path = str(corpus_dir() / CORPUS_TCS)  # skipped here (failed under CI=true) without it
     else:
         path = name
     extra = ["--strict"] if strict else []

@@ -41,12 +41,15 @@ def test_readme_starts_with_the_demo_and_test_commands() -> None:
 
 def test_ci_runs_exactly_the_readme_test_command() -> None:
     """CI runs the README's test command, after the dependency floors' check (scripts/floors.sh),
-    which the README names too."""
+    which the README names too; then it runs the same command again in a fresh clone with no
+    ``../shared`` beside it (scripts/fresh_clone.sh), as a user who has only the repository."""
     readme_test = _commands(_blocks("bash")[0])[1]
     ci = [line for line in _commands((REPO / ".ci/run").read_text())
           if not line.startswith(("set ", "cd "))]
-    assert ci == ["bash scripts/floors.sh", readme_test]
+    assert ci == ["bash scripts/floors.sh", readme_test, "bash scripts/fresh_clone.sh"]
     assert "bash scripts/floors.sh" in README
+    fresh = (REPO / "scripts/fresh_clone.sh").read_text()
+    assert re.search(rf"^env -u CI -u GPL_CORPUS -u GPL_SPEC -u GPL2PY_VENV {re.escape(readme_test)} ", fresh, re.M)
 
 
 def _sandbox(tmp_path: Path) -> tuple[Path, dict[str, str]]:
