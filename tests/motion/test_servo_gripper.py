@@ -4,8 +4,10 @@ transpiled GPL the way PARobot.gpl drives them (gplrt/motion/servo.py, gplrt/mot
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from gpltest import module_src, run_gpl
+from gplrt.sim import Simulation
 
 # A grip with a force limit, as a plug-in would write it: the joint-to-motor scale, the PID limit
 # written, a close narrower than the plate, then the PID torque read back (12304 - 12331).
@@ -50,22 +52,27 @@ GRIP = """
 """
 
 
-def _grip(tmp_path: Path, plate: float | None) -> list[str]:
+def _loaded(tmp_path: Path, source: str, start: str = "Main") -> tuple[Any, Simulation]:
+    """The transpiled project of one module ``source``, imported, and a Simulation for it (for a
+    test that acts on the simulated robot between the program's steps)."""
     from gpl2py.run import import_package  # noqa: F401 - (gpltest imports through it)
     from gpltest import transpile_to
     import importlib
     import sys
 
-    from gplrt.motion.servo import gripper_of
-    from gplrt.sim import Simulation
-
-    package, _, _ = transpile_to(tmp_path, module_src(GRIP))
+    package, _, _ = transpile_to(tmp_path, module_src(source), start=start)
     sys.path.insert(0, str(tmp_path / "out"))
     try:
         pkg = importlib.import_module(package)
     finally:
         sys.path.remove(str(tmp_path / "out"))
-    sim = Simulation(capture=True, project=package)
+    return pkg, Simulation(capture=True, project=package)
+
+
+def _grip(tmp_path: Path, plate: float | None) -> list[str]:
+    from gplrt.motion.servo import gripper_of
+
+    pkg, sim = _loaded(tmp_path, GRIP)
     with sim:
         gripper_of(sim).plate_width = plate
     assert pkg.main(sim) == 0, sim.console.log_text
@@ -170,20 +177,9 @@ def test_jog_axis_minus_one_frees_every_axis_until_jog_mode_ends(tmp_path: Path)
     free, so the hand moves all five; after ``StopSpecialModes`` the robot moves under program
     control again from where the hand left it (a joint jog of axis -1 is still -1002).  The
     simulator refused axis -1 with -1002."""
-    import importlib
-    import sys
-
-    from gpltest import transpile_to
     from gplrt.motion.special import push
-    from gplrt.sim import Simulation
 
-    package, _, _ = transpile_to(tmp_path, module_src(FREEDRIVE), start="FreeAll")
-    sys.path.insert(0, str(tmp_path / "out"))
-    try:
-        pkg = importlib.import_module(package)
-    finally:
-        sys.path.remove(str(tmp_path / "out"))
-    sim = Simulation(capture=True, project=package)
+    pkg, sim = _loaded(tmp_path, FREEDRIVE, start="FreeAll")
 
     def session() -> None:
         pkg.init()
