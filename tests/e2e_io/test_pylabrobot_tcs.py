@@ -58,10 +58,20 @@ async def session(cell: Cell, tmp_path: Path) -> None:
 
     sim = cell.sim
     arm = PreciseFlex400Backend("127.0.0.1", ROBOT_PORT)
-    await arm.setup()  # "mode 0", "hp 1 20", "attach 1", "home": each reply "0"
+    await arm.setup(skip_home=True)  # "mode 0", "hp 1 20", "attach 1": each reply "0"
     assert sim.controller.power_state in POWER_ON_STATES
     robot = sim.robots[1]
-    assert robot.homed and robot.owner is not None
+    assert robot.owner is not None and not robot.homed
+    # A client learns whether the robot is homed from DataID 2800 ("pd 2800"), on connect and
+    # after "home" (issue 20): 0, then 1
+    assert await arm.get_parameter(2800) == "0"
+    await arm.home()  # "home"
+    assert robot.homed
+    assert await arm.get_parameter(2800) == "1"
+    assert await arm.get_parameter(2800, 1, 0, 1) == "1"  # "pd 2800 1 0 1": robot 1, element 1
+    assert await arm.get_parameter(234) == "21"  # power on, robot attached by TCS
+    assert await arm.get_parameter(2002) == "PreciseFlex 400SX"  # robot01.pac
+    assert await arm.get_parameter(16050, 1, 0, 2) == "302"  # calib01.pac: the shoulder link
 
     version = await arm.get_version()  # "0 TCP Command Server 3.0C1 ..., PARobot Module 3.0C1 ..."
     assert version.startswith("TCP Command Server 3.0C1 05-27-2021"), version

@@ -51,6 +51,7 @@ from gpltest import (
     hand_rotation,
     private_network_module,
 )
+from gplrt.controller.pdb import DATA_DIR
 from gplrt.controller.services import POWER_ON_STATES
 from gplrt.geometry import kinematics_provider, refframe
 from gplrt.lang.console import get_console_sink, set_console_sink
@@ -379,10 +380,12 @@ def _attach(tcs: Tcs) -> None:
 
 
 @case("homeAll", TCS, "General", "power; robots not attached",
-      "homes the unhomed robot (sysState 28 while it does, 20 after); -1046 with power off")
+      "homes the unhomed robot (sysState 28 while it does, 20 after; DataID 2800 0 before, 1 after); "
+      "-1046 with power off")
 def _home_all(tcs: Tcs) -> None:
     tcs.ensure(power=False, attached=False, homed=False)
     assert not tcs.arm.homed  # the simulated PF400 starts unhomed
+    tcs.on_status("pd 2800", "0 0")  # DataID 2800, robot homed
     tcs.on_status("homeAll", "-1046")  # *Power not enabled*
     tcs.on_status("hp 1 20", "0")
     tcs.on_status("homeAll", "0")
@@ -392,17 +395,25 @@ def _home_all(tcs: Tcs) -> None:
         time.sleep(0.02)
     assert tcs.arm.homed
     tcs.on_status("sysState", "0 20")
+    tcs.on_status("pd 2800", "0 1")
 
 
 @case("home", TCS, "General", "power; robot attached",
-      "homes the robot; -1009 not attached, -1046 power off")
+      "homes the robot: DataID 2800 (robot homed) 0 before, 1 after, as a client reads it on connect "
+      "and after home; -1009 not attached, -1046 power off", robot=SXL)
 def _home(tcs: Tcs) -> None:
+    # The first case on the PF400SXL: its robot has not been homed since the controller started.
     tcs.ensure(power=True, attached=False, homed=False)
+    assert not tcs.arm.homed
+    tcs.expect("pd 2800", "0 0")
     tcs.expect("home", "-1009")  # *No robot attached*
     tcs.ok("attach 1", "hp 0")
     tcs.expect("home", "-1046")  # *Power not enabled*
+    tcs.expect("pd 2800", "0 0")
     tcs.ok("hp 1 20", "home")
     assert tcs.arm.homed
+    tcs.expect("pd 2800", "0 1")
+    tcs.on_status("pd 2800 1", "0 1")
 
 
 @case("mspeed", TCS, "General", "nothing", "the system speed (DataID 601) read and set")
@@ -431,7 +442,7 @@ def _payload(tcs: Tcs) -> None:
 
 @case("pc", TCS, "General", "nothing",
       "a numeric parameter changed with 2 and 5 arguments (DataID 241 turns power on and off), "
-      "a quoted string one; -2801, -2800, -1501")
+      "a quoted string one, saved to /flash/config by DataID 901; -2801, -2800, -1501")
 def _pc(tcs: Tcs) -> None:
     tcs.ensure(power=False, attached=False)
     name = tcs.ask("pd 2002").removeprefix("0 ")
@@ -444,6 +455,8 @@ def _pc(tcs: Tcs) -> None:
     try:
         tcs.ok('pc 2002 "Test arm 1"')  # the robot's name, a string parameter
         tcs.expect("pd 2002", "0 Test arm 1")
+        tcs.ok("pc 901 1")  # save to flash (the guide's pc): the name is kept in robot01.pac
+        assert pac_values(tcs.flash / "flash" / "config" / "robot01.pac", 2002) == ["Test arm 1"]
     finally:
         tcs.ok(f'pc 2002 "{name}"')
     tcs.expect("pc", "-2801 *Warning No Parameters")
@@ -452,8 +465,13 @@ def _pc(tcs: Tcs) -> None:
 
 
 @case("pd", TCS, "General", "nothing",
-      "parameters of the PF400 database: robot type, axes, links, soft limits; -2801, -1501")
+      "parameters of the PF400 database: robot type, axes, links, soft limits; every DataID of the "
+      "DataID table below, against its .pac file or the simulated controller; -2801, -1501")
 def _pd(tcs: Tcs) -> None:
+    tcs.ensure()  # power on, robot attached and homed: the state the live DataIDs' checks expect
+    for data_id in DATA_IDS:
+        reply = tcs.ask(f"pd {data_id.number}")
+        assert reply.startswith("0 ") and data_id.check(tcs, reply[2:]), (data_id.number, reply)
     tcs.expect("pd 2007", "0 400")  # robot type: PreciseFlex 400
     tcs.expect("pd 2000", "0 5")  # axes, the gripper included
     tcs.expect("pd 16050 1 0 2", f"0 {num(L1)}")  # the links the hand kinematics here use
@@ -462,6 +480,139 @@ def _pd(tcs: Tcs) -> None:
     tcs.expect("pd 16078 1 0 1", "0 1.5")
     tcs.expect("pd", "-2801 *Warning No Parameters")
     tcs.expect("pd 99999", "-1501")
+
+
+# ---- DataIDs: every one real clients and the guide name, as ``pd`` reads it (the DataID table)
+
+PF400SX_PAC = DATA_DIR / "pf400sx"  # the real PF400SX backup the simulated controller loads
+PLR, GUIDE, SOURCE = "PyLabRobot", "TCS guide", "TCS"
+LIVE_TESTS = "test_live_pdb.py"
+
+
+def pac_values(path: Path, data_id: int) -> list[str]:
+    """The values of ``data_id`` as a ``.pac`` file writes them (read here, not by gplrt): the
+    record's continuation lines joined, its values split at the commas, strings unquoted."""
+    text = re.sub(r",[ \t]*\n[ \t]+", ", ", path.read_text(encoding="ascii"))
+    found = re.search(rf'^DI: {data_id}, 0, 0, 0, "[^"]*" = (.*)$', text, re.MULTILINE)
+    assert found, f"DataID {data_id} is not in {path.name}"
+    return [v.strip().strip('"') for v in found.group(1).split(",")]
+
+
+@dataclass(frozen=True)
+class DataId:
+    number: int
+    meaning: str
+    reply: str  # the shape of what ``pd`` replies: a number, text, one number per axis, ...
+    value: str  # where the value comes from: stored (which .pac file), live, simulated, a command
+    readers: tuple[str, ...]  # who reads it: PyLabRobot's newest driver, the TCS guide, TCS itself
+    check: Callable[[Tcs, str], bool]  # the reply (after "0 ") is right on the PF400SX
+    tests: str = ""  # the tests besides this module's ``pd`` case that cover it
+
+
+def stored(file: str, number: int, meaning: str, reply: str, *readers: str, tests: str = "") -> DataId:
+    """A configuration DataID: ``pd`` replies the values of the PF400SX's ``file``, in order."""
+    def check(tcs: Tcs, got: str) -> bool:
+        want, parts = pac_values(PF400SX_PAC / file, number), got.split(",")
+        if len(parts) != len(want):
+            return False
+        try:
+            return [float(v) for v in parts] == [float(v) for v in want]
+        except ValueError:
+            return parts == want
+    return DataId(number, meaning, reply, f"stored: `{file}`", readers, check, tests)
+
+
+def live(number: int, meaning: str, reply: str, value: str, readers: tuple[str, ...],
+         expected: str | re.Pattern[str] | Callable[[Tcs], str], tests: str = "") -> DataId:
+    """A DataID the controller answers from its state: the reply is ``expected`` (text, a pattern
+    it matches, or worked out from the simulated controller)."""
+    def check(tcs: Tcs, got: str) -> bool:
+        if isinstance(expected, re.Pattern):
+            return expected.fullmatch(got) is not None
+        return got == (expected if isinstance(expected, str) else expected(tcs))
+    return DataId(number, meaning, reply, value, readers, check, tests)
+
+
+NUMBER, TEXT, PER_AXIS = "a number", "text", "one number per axis"
+LIVE, SIMULATED = "live", "live, simulated"
+DATA_IDS: list[DataId] = [
+    live(100, "controller manufacturer", TEXT, SIMULATED, (PLR,), "Precise Automation",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    live(101, "controller model", TEXT, SIMULATED, (PLR,), "gplrt simulated controller",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    live(102, "hardware version", TEXT, SIMULATED, (PLR,), "simulated (gplrt)",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    live(103, "software version", TEXT, LIVE, (PLR,), "GPL 4.2J2, Mar  6 2020, Release",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    live(104, "software major version", NUMBER, LIVE, (PLR, SOURCE), "4", f"{LIVE_TESTS}::test_version_robots_date_and_power_state"),
+    live(105, "software minor version", NUMBER, LIVE, (PLR, SOURCE), "2", f"{LIVE_TESTS}::test_version_robots_date_and_power_state"),
+    live(106, "software edit number", NUMBER, LIVE, (PLR, SOURCE), "1002", f"{LIVE_TESTS}::test_version_robots_date_and_power_state"),
+    live(107, "software date", TEXT, LIVE, (PLR,), "Mar  6 2020",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    live(108, "software qualifier", TEXT, LIVE, (PLR,), "Release",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    stored("controller.pac", 109, "controller name", TEXT, PLR),
+    live(110, "controller serial number", TEXT, SIMULATED, (PLR,), "0014FF-00000000",
+         f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    live(111, "number of robots", NUMBER, LIVE, (SOURCE,), "1", "`selectRobot` (-1001 for robot 2)"),
+    live(113, "number of configured robots", NUMBER, LIVE, (SOURCE,), "1", f"{LIVE_TESTS}::test_version_robots_date_and_power_state"),
+    stored("controller.pac", 116, "robot types (kinematic module per robot: 12 = PreciseFlex 400)",
+           "one number per robot (12)", PLR),
+    stored("controller.pac", 117, "safety mode", NUMBER, PLR),
+    live(121, "date and time", "text, MM-DD-YYYY HH:MM:SS", LIVE, (SOURCE,),
+         re.compile(r"\d\d-\d\d-\d{4} \d\d:\d\d:\d\d"), f"{LIVE_TESTS}::test_version_robots_date_and_power_state"),
+    live(136, "power-on hours (of the simulated controller's clock)", NUMBER, SIMULATED, (PLR,),
+         re.compile(r"\d+"), f"{LIVE_TESTS}::test_identity_text_and_power_on_hours"),
+    stored("controller.pac", 151, "servo network node identifiers", "text per node (16)", PLR),
+    live(213, "home all robots (write 1)", NUMBER, "command; reads 0", (SOURCE,), "0",
+         f"`homeAll`; {LIVE_TESTS}::test_241_starts_power_without_waiting_and_213_homes_all"),
+    live(230, "auto-execution state: 1 while a GPL project runs", NUMBER, LIVE, (PLR,), "1",
+         f"{LIVE_TESTS}::test_230_is_1_while_a_gpl_project_runs"),
+    live(234, "power state (sysState)", NUMBER, LIVE, (PLR, GUIDE, SOURCE), "21", "`sysState`, `homeAll`"),
+    live(241, "power request, do not wait (write 1 or 0)", NUMBER, LIVE, (SOURCE,), "1", "`hp`, `pc`"),
+    live(247, "reset fatal error (write 1; no fatal error is simulated)", NUMBER, "command; reads 0", (PLR,),
+         "0", f"{LIVE_TESTS}::test_247_resets_no_fatal_error_and_901_saves_the_database_to_flash"),
+    live(375, "controller status bits (&H100000: an unreported motion error)", NUMBER, LIVE, (SOURCE,), "0",
+         "`waitForEom`"),
+    live(420, "local IP address: where the simulated controller listens", TEXT, SIMULATED, (PLR,), "127.0.0.1",
+         f"{LIVE_TESTS}::test_420_is_the_address_the_controller_listens_on"),
+    live(601, "system speed in %", NUMBER, "live (boots from `controller.pac`)", (GUIDE, SOURCE),
+         lambda tcs: num(tcs.cell.sim.controller.system_speed), "`mspeed`"),
+    live(901, "save the parameters to flash (write 1)", NUMBER, "command; reads 0", (GUIDE,), "0",
+         f"`pc`; {LIVE_TESTS}::test_247_resets_no_fatal_error_and_901_saves_the_database_to_flash"),
+    stored("robot01.pac", 2000, "number of axes", NUMBER, PLR, SOURCE),
+    stored("robot01.pac", 2002, "robot name", TEXT, PLR, tests="`pc`"),
+    stored("robot01.pac", 2003, "axis mask", NUMBER, PLR, SOURCE),
+    stored("robot01.pac", 2004, "number of extra axes", NUMBER, PLR),
+    stored("robot01.pac", 2007, "robot model (TCS's RobType)", NUMBER, GUIDE, SOURCE),
+    stored("robot01.pac", 2700, "100 % joint speeds, mm or deg/s", PER_AXIS, PLR),
+    stored("robot01.pac", 2701, "100 % Cartesian speeds (linear, rotation, gripper)", "three numbers", PLR),
+    stored("robot01.pac", 2702, "100 % joint accelerations, mm or deg/s²", PER_AXIS, PLR),
+    stored("robot01.pac", 2703, "100 % Cartesian accelerations", "three numbers", PLR),
+    stored("robot01.pac", 2704, "max speed %", NUMBER, PLR),
+    stored("robot01.pac", 2705, "max acceleration %", NUMBER, PLR),
+    stored("robot01.pac", 2706, "max deceleration %", NUMBER, PLR),
+    live(2800, "robot homed: 1 every axis homed, 0 not", NUMBER, LIVE, (PLR,), "1",
+         f"`home` (0 before, 1 after), `homeAll`; {LIVE_TESTS}::test_2800_says_whether_the_robot_is_homed"),
+    live(3520, "trajectory state, as Robot.TrajState", NUMBER, LIVE, (SOURCE,), "1",
+         f"`MoveRail`; {LIVE_TESTS}::test_241_starts_power_without_waiting_and_213_homes_all"),
+    live(12304, "output torque, torque counts", PER_AXIS, LIVE, (SOURCE,),
+         re.compile(r"-?[0-9.E+-]+(,-?[0-9.E+-]+){4}"), "`GraspPlate`"),
+    live(12331, "filtered feedforward torque, torque counts", PER_AXIS, LIVE, (SOURCE,),
+         re.compile(r"-?[0-9.E+-]+(,-?[0-9.E+-]+){4}"), "`GraspPlate`"),
+    live(14002, "brake release of the axis 14500 names (write 1 or 0)", NUMBER, LIVE, (SOURCE,),
+         re.compile(r"[01]"), "`releaseBrake`, `setBrake`"),
+    live(14500, "the axis 14002 acts on", NUMBER, LIVE, (SOURCE,), re.compile(r"\d"), "`releaseBrake`"),
+    stored("calib01.pac", 16000, "robot serial number", TEXT, PLR),
+    stored("calib01.pac", 16050, "kinematic constants: [2], [3] link lengths, [5] rail angle", "16 numbers",
+           PLR, SOURCE),
+    stored("calib01.pac", 16051, "tool at restart: X Y Z yaw pitch roll", "six numbers", PLR, tests="`tool`"),
+    stored("calib01.pac", 16071, "payload feedforward default %", NUMBER, PLR),
+    stored("calib01.pac", 16075, "joint max hard-stop limits", PER_AXIS, PLR),
+    stored("calib01.pac", 16076, "joint min hard-stop limits", PER_AXIS, PLR),
+    stored("calib01.pac", 16077, "joint max soft limits", PER_AXIS, PLR, tests="`MoveJ` (-1012)"),
+    stored("calib01.pac", 16078, "joint min soft limits", PER_AXIS, PLR),
+]
 
 
 @case("reset", TCS, "General", "the status port",
@@ -1474,4 +1625,20 @@ def render_table() -> str:
             robot = "" if c.robot == SX else f" (on the {c.robot})"
             cell = result_text(c)[1].replace("|", "\\|")
             out.append(f"| `{c.command}` | {c.section} | {c.needs} | {cell} | {c.checks}{robot} |")
+    out += ["", "## DataIDs", "",
+            "Every DataID that PyLabRobot's newest PreciseFlex driver reads (as issue 20 lists them;",
+            "the pinned 0.2.2 reads none by number), that the TCS guide names, and that TCS itself",
+            "reads or writes, as `pd <DataID>` replies on the PF400SX (the robot's own DataIDs for",
+            "robot 1, the one TCS's robot port serves). The `pd` case checks each reply: a stored value against the",
+            "PF400SX's own `.pac` file (`runtime/gplrt/data/robots/pf400sx`, a real controller's",
+            "backup), a live one against the simulated controller's state (`gplrt/controller/live_pdb.py`",
+            "says what each one follows). *Simulated* marks a value a physical controller takes from",
+            "its hardware. Several values are separated by commas (`pd 2700` replies",
+            "`0 500,360,720,720,400`).",
+            "",
+            "| DataID | Meaning | `pd` replies | Value | Read by | Tests |",
+            "|---|---|---|---|---|---|"]
+    for d in sorted(DATA_IDS, key=lambda d: d.number):
+        tests = re.sub(r"(test_\w+\.py::\w+)", r"`\1`", "; ".join(filter(None, ["`pd`", d.tests])))
+        out.append(f"| {d.number} | {d.meaning} | {d.reply} | {d.value} | {', '.join(d.readers)} | {tests} |")
     return "\n".join(out) + "\n"

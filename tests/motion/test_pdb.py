@@ -211,6 +211,24 @@ def test_dump_round_trips_through_the_parser() -> None:
     assert len(again.entries) == len(db.entries)
 
 
+@pytest.mark.parametrize("model", ["PF400SX", "PF400SXL", "XYZT-GCU"])
+def test_pac_files_keep_each_dataid_in_its_controller_file(model: str, tmp_path: Path) -> None:
+    """What DataID 901 saves: every DataID in the file a real controller keeps it in (the file it
+    was loaded from: robot 2's records of the GCU set in robot02/calib02), and the folder loads
+    back into the same database."""
+    db = default_database(model)
+    files = db.pac_files()
+    for name, text in files.items():
+        (tmp_path / name).write_text(text, encoding="ascii")
+    loaded_from = {k: Path(e.origin.rsplit(":", 1)[0]).name for k, e in db.entries.items()}
+    saved_in = {k: Path(e.origin.rsplit(":", 1)[0]).name
+                for k, e in ParameterDatabase.load(tmp_path).entries.items()}
+    assert saved_in == loaded_from
+    again = ParameterDatabase.load(tmp_path)
+    assert {k: (e.label, e.values) for k, e in again.entries.items()} == \
+        {k: (e.label, e.values) for k, e in db.entries.items()}
+
+
 @pytest.mark.parametrize(
     ("text", "line", "words"),
     [

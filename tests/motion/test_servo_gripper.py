@@ -4,8 +4,10 @@ transpiled GPL the way PARobot.gpl drives them (gplrt/motion/servo.py, gplrt/mot
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 from gpltest import module_src, run_gpl
+from gplrt.sim import Simulation
 
 # A grip with a force limit, as a plug-in would write it: the joint-to-motor scale, the PID limit
 # written, a close narrower than the plate, then the PID torque read back (12304 - 12331).
@@ -50,22 +52,27 @@ GRIP = """
 """
 
 
-def _grip(tmp_path: Path, plate: float | None) -> list[str]:
+def _loaded(tmp_path: Path, source: str, start: str = "Main") -> tuple[Any, Simulation]:
+    """The transpiled project of one module ``source``, imported, and a Simulation for it (for a
+    test that acts on the simulated robot between the program's steps)."""
     from gpl2py.run import import_package  # noqa: F401 - (gpltest imports through it)
     from gpltest import transpile_to
     import importlib
     import sys
 
-    from gplrt.motion.servo import gripper_of
-    from gplrt.sim import Simulation
-
-    package, _, _ = transpile_to(tmp_path, module_src(GRIP))
+    package, _, _ = transpile_to(tmp_path, module_src(source), start=start)
     sys.path.insert(0, str(tmp_path / "out"))
     try:
         pkg = importlib.import_module(package)
     finally:
         sys.path.remove(str(tmp_path / "out"))
-    sim = Simulation(capture=True, project=package)
+    return pkg, Simulation(capture=True, project=package)
+
+
+def _grip(tmp_path: Path, plate: float | None) -> list[str]:
+    from gplrt.motion.servo import gripper_of
+
+    pkg, sim = _loaded(tmp_path, GRIP)
     with sim:
         gripper_of(sim).plate_width = plate
     assert pkg.main(sim) == 0, sim.console.log_text
@@ -124,6 +131,65 @@ def test_jog_free_and_torque_modes(tmp_path: Path) -> None:
     assert res.output.splitlines() == [
         "jog 10 z 31.5", "move in jog mode: -1017", "free z 31.5", "stopped 1",
         "zero torque 8 z 31.5", "drift z 24", "position mode z 100"], res.output + res.log
+
+
+# Real lab code (a "Freedrive" command added to TCS, issue 20) frees every axis at once with axis
+# -1; the hand (``push``) then moves each of them between the two procedures.
+FREEDRIVE = """
+    Public Sub FreeAll()
+        Dim p As New Profile
+        Dim start As New Location
+        Robot.Attached = 1
+        Controller.PowerEnabled = True
+        Robot.Home
+        start.Angles(300, 10, 90, -100, 90)
+        Move.Loc(start, p)
+        Move.WaitForEOM
+        Move.StartJogMode()
+        Move.SetJogCommand(4, -1, 1)
+        Console.WriteLine("free " & CStr(Robot.TrajState))
+    End Sub
+
+    Public Sub Back()
+        Dim p As New Profile
+        Dim ax As Integer
+        Dim text As String = "by hand"
+        For ax = 1 To 5
+            text = text & " " & CStr(Robot.WhereAngles.Angle(ax))
+        Next
+        Console.WriteLine(text)
+        Try
+            Move.SetJogCommand(1, -1, 50)
+        Catch ex As Exception
+            Console.WriteLine("jog axis -1: " & CStr(ex.ErrorCode))
+        End Try
+        Move.StopSpecialModes
+        Console.WriteLine("left " & CStr(Robot.TrajState))
+        Move.OneAxis(1, 200, False, p)
+        Move.WaitForEOM
+        Console.WriteLine("moved " & CStr(Robot.WhereAngles.Angle(1)) & " " & CStr(Robot.WhereAngles.Angle(3)))
+    End Sub
+"""
+
+
+def test_jog_axis_minus_one_frees_every_axis_until_jog_mode_ends(tmp_path: Path) -> None:
+    """``Move.SetJogCommand(4, -1, 1)`` (real lab code; docs/design/real-code.md): every axis is
+    free, so the hand moves all five; after ``StopSpecialModes`` the robot moves under program
+    control again from where the hand left it (a joint jog of axis -1 is still -1002).  The
+    simulator refused axis -1 with -1002."""
+    from gplrt.motion.special import push
+
+    pkg, sim = _loaded(tmp_path, FREEDRIVE, start="FreeAll")
+
+    def session() -> None:
+        pkg.init()
+        pkg.main_mod.FreeAll()
+        push(sim, 1, {1: 350.0, 2: 20.0, 3: 100.0, 4: -90.0, 5: 100.0})  # every axis, by hand
+        pkg.main_mod.Back()
+
+    sim.call(session)
+    assert sim.console.output.splitlines() == [
+        "free 10", "by hand 350 20 100 -90 100", "jog axis -1: -1002", "left 1", "moved 200 100"], sim.console.log_text
 
 
 def test_force_overlap_runs_two_axes_side_by_side(tmp_path: Path) -> None:

@@ -280,6 +280,36 @@ def _norm(n: int) -> int:
     return 1 if int(n) == 0 else int(n)
 
 
+def pac_file_of(data_id: int, unit: int) -> str:
+    """The ``/flash/config`` file a controller keeps ``data_id`` of ``unit`` in (robot-models.md
+    §1.1): ``controller.pac`` below 2000 but the GPL variables 1800-1899 (``gpl_vars.pac``); per
+    robot ``unit``: ``diomotionNN.pac`` for the MotionBlocks 6100-6199, ``calibNN.pac`` from 16000,
+    ``robotNN.pac`` for the rest."""
+    if 1800 <= data_id < 1900:
+        return "gpl_vars.pac"
+    if data_id < 2000:
+        return "controller.pac"
+    kind = "diomotion" if 6100 <= data_id < 6200 else "calib" if data_id >= 16000 else "robot"
+    return f"{kind}{_norm(unit):02d}.pac"
+
+
+def _file_unit(name: str) -> int:
+    """The unit a file's records default to: ``NN`` of a per-robot file, else 1."""
+    m = _PER_ROBOT_FILE.match(name)
+    return int(m.group(2)) if m else 1
+
+
+def _render(entries: Iterable[PdbEntry], unit_in_file: int) -> str:
+    """``entries`` in the ``.pac`` grammar; a unit equal to ``unit_in_file`` is written as 0."""
+    out = ["' Parameter data file written by gplrt", "", "Begin: 1.0", ""]
+    for e in entries:
+        unit = 0 if e.unit == unit_in_file else e.unit
+        vals = ", ".join(f'"{v}"' if isinstance(v, str) else format_number(v) for v in e.values)
+        out.append(f'DI: {e.data_id}, {unit}, {0 if e.unit2 == 1 else e.unit2}, 0, "{e.label}" = {vals}')
+    out += ["", "End:", "' End of file", ""]
+    return "\n".join(out)
+
+
 # -- the database -------------------------------------------------------------------------------
 
 
@@ -476,16 +506,18 @@ class ParameterDatabase:
     def dump_pac(self, data_ids: Iterable[int] | None = None, unit_in_file: int | None = None) -> str:
         """Re-emit entries in the ``.pac`` grammar (unit written as 0 when it is the file's unit)."""
         wanted = None if data_ids is None else set(data_ids)
-        out = ["' Parameter data file written by gplrt", "", "Begin: 1.0", ""]
+        return _render([self.entries[k] for k in sorted(self.entries) if wanted is None or k[0] in wanted],
+                       unit_in_file or 1)
+
+    def pac_files(self) -> dict[str, str]:
+        """The stored DataIDs as a controller saves them to ``/flash/config`` (DataID 901): file
+        name -> text, each DataID in the file :func:`pac_file_of` names, so that loading the folder
+        gives this database back."""
+        groups: dict[str, list[PdbEntry]] = {}
         for k in sorted(self.entries):
-            e = self.entries[k]
-            if wanted is not None and k[0] not in wanted:
-                continue
-            unit = 0 if e.unit == (unit_in_file or 1) else e.unit
-            vals = ", ".join(f'"{v}"' if isinstance(v, str) else format_number(v) for v in e.values)
-            out.append(f'DI: {e.data_id}, {unit}, {0 if e.unit2 == 1 else e.unit2}, 0, "{e.label}" = {vals}')
-        out += ["", "End:", "' End of file", ""]
-        return "\n".join(out)
+            entry = self.entries[k]
+            groups.setdefault(pac_file_of(entry.data_id, entry.unit), []).append(entry)
+        return {name: _render(entries, _file_unit(name)) for name, entries in sorted(groups.items())}
 
     # -- helpers --------------------------------------------------------------------------------
 

@@ -8,7 +8,8 @@ TCS and PARobot, shows how they are used):
   to end) puts the robot in jog mode (``Robot.TrajState`` 10) holding where it is.
   ``Move.SetJogCommand(mode, axis, speed)`` then sets what moves: mode 0 stops jogging (hold);
   1 jogs joint ``axis`` at ``speed`` % (signed) of its jog speed, DataID 2820 (max joint jog
-  speed, % of the 100 % speed 2700); 4 makes joint ``axis`` free (0: every joint; PARobot's
+  speed, % of the 100 % speed 2700); 4 makes joint ``axis`` free (0 or -1: every joint, until
+  the jog mode is left: real lab code frees them all with -1, docs/design/real-code.md; PARobot's
   FreeMode uses mode 4 one axis at a time): a free joint follows whoever pushes it — nobody in a
   simulation, so it holds, gravity compensated, until :func:`push` moves it (a notebook's hand).
   Modes 2 and 3 (world and tool jog) raise -204: their Cartesian set-up is not simulated.  A
@@ -166,7 +167,8 @@ def set_jog_command(s: Session, robot: RobotState, mode: int, axis: int, speed: 
                            detail="Move.SetJogCommand: world and tool jog are not simulated")
     if mode not in (JOG_STOP, JOG_JOINT, JOG_FREE):
         raise GplException(INVALID_ARGUMENT, robot_num=robot.number, detail=f"jog mode {mode}")
-    if mode != JOG_STOP and not (1 <= axis <= n or (mode == JOG_FREE and axis == 0)):
+    every_axis = mode == JOG_FREE and axis in (0, -1)
+    if mode != JOG_STOP and not (1 <= axis <= n or every_axis):
         raise GplException(INVALID_AXIS, robot_num=robot.number, axis=axis, detail=f"jog axis {axis}")
     velocity = np.zeros(n)
     if mode == JOG_JOINT:
@@ -174,7 +176,7 @@ def set_jog_command(s: Session, robot: RobotState, mode: int, axis: int, speed: 
         velocity[axis - 1] = robot.limits.joint_speed[axis - 1] * pct / 100.0 * max(-100.0, min(100.0, speed)) / 100.0
         special.free.clear()
     elif mode == JOG_FREE:
-        special.free.update(range(n) if axis == 0 else {axis - 1})
+        special.free.update(range(n) if every_axis else {axis - 1})
     else:
         special.free.clear()
     special.velocity = velocity
