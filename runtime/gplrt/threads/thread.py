@@ -71,7 +71,7 @@ from gplrt.lang.errors import (
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 from gplrt.lang.procedures import find_procedure, registered_procedures
-from gplrt.session import Session, current_session
+from gplrt.session import ProjectScope, Session, current_scope, current_session
 from gplrt.threads.scheduler import ThreadAbort, ThreadCtx, WaitQueue, current_ctx
 
 MAX_EVENT_MASK = 0xFFFF
@@ -143,6 +143,13 @@ def _calling_module(frame: FrameType | None) -> str | None:
     return module
 
 
+class _Inherit:
+    """``Thread(_project=...)``'s default: the thread belongs to its creator's project."""
+
+
+_INHERIT_PROJECT = _Inherit()
+
+
 class _Foreign(threading.local):
     thread: "Thread | None" = None
 
@@ -163,9 +170,13 @@ class Thread:
         _args: tuple[Any, ...] = (),
         _propagate: bool = False,
         _module: str | None = None,
+        _project: ProjectScope | None | _Inherit = _INHERIT_PROJECT,
     ) -> None:
         #: The session the thread runs in: the creating code's, unless given.
         self._session = _session if _session is not None else current_session()
+        #: The project it belongs to (``gplrt.session.ProjectScope``): the creating thread's, unless
+        #: given; None is the session's own project.
+        self._project: ProjectScope | None = current_scope() if isinstance(_project, _Inherit) else _project
         self._target: Callable[..., Any] | None
         if StartProcedure is None:
             self._target, self._start_name = None, ""
@@ -205,7 +216,8 @@ class Thread:
 
     @property
     def Project(self) -> String:
-        return str(self._session.project)  # type: ignore[return-value]
+        scope = self._project
+        return (scope.name if scope is not None else str(self._session.project))  # type: ignore[return-value]
 
     @property
     def StartProcedure(self) -> String:
