@@ -29,12 +29,14 @@ reaching the port is the permission, which is why it listens on loopback unless 
 from __future__ import annotations
 
 import errno
+import functools
 import io
 import logging
 import os
 import stat as _stat
 import threading
 import time
+from collections.abc import Callable
 from typing import Any, BinaryIO
 
 from pyftpdlib.authorizers import DummyAuthorizer
@@ -69,6 +71,20 @@ def _refused(exc: GplException) -> FilesystemError:
     return FilesystemError(f"{text} - {exc.detail}" if exc.detail else text)
 
 
+def _gpl_refusals(method: Callable[..., Any]) -> Callable[..., Any]:
+    """Any refusal of the sandbox below the method (a link on the way, -208) reaches pyftpdlib as
+    the FilesystemError it answers with ``550``, never as an internal error."""
+
+    @functools.wraps(method)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return method(*args, **kwargs)
+        except GplException as exc:
+            raise _refused(exc) from None
+
+    return checked
+
+
 class _Quota:
     """What uploads in progress may still write, shared by one server's connections."""
 
@@ -79,9 +95,10 @@ class _Quota:
 
 class _LimitedWriter(io.RawIOBase):
     """An upload's file: writes past ``allowed`` bytes fail with ENOSPC/EFBIG (pyftpdlib then
-    ends the transfer and calls ``on_incomplete_file_received``, which removes the file)."""
+    ends the transfer with ``426``), and the file is removed as it is closed."""
 
-    def __init__(self, file: BinaryIO, name: str, allowed: int, quota: _Quota, full: int) -> None:
+    def __init__(self, file: BinaryIO, name: str, allowed: int, quota: _Quota, full: int,
+                 discard: Callable[[], None]) -> None:
         super().__init__()
         self._file = file
         self.name = name
@@ -89,12 +106,15 @@ class _LimitedWriter(io.RawIOBase):
         self._written = 0
         self._quota = quota
         self._full = full  # errno for passing the limit
+        self._discard = discard  # removes the file: it passed a limit
+        self._over = False
 
     def writable(self) -> bool:
         return True
 
     def write(self, data: Any) -> int:
         if self._written + len(data) > self._allowed:
+            self._over = True
             raise OSError(self._full, "-323 *Device full*" if self._full == errno.ENOSPC
                           else f"a file on the controller is at most {MAX_FILE_BYTES} bytes")
         self._written += len(data)
@@ -105,6 +125,11 @@ class _LimitedWriter(io.RawIOBase):
             with self._quota.lock:
                 self._quota.in_flight -= self._allowed
             self._file.close()
+            if self._over:  # removed before pyftpdlib answers, so the client never sees it
+                try:
+                    self._discard()
+                except (OSError, GplException):
+                    pass
         super().close()
 
 
@@ -158,6 +183,7 @@ class ControllerFS(AbstractedFS):
 
     # -- queries ----------------------------------------------------------------------------------
 
+    @_gpl_refusals
     def lstat(self, path: str) -> os.stat_result:
         if path == "/":
             now = time.time()
@@ -204,17 +230,29 @@ class ControllerFS(AbstractedFS):
     def getmtime(self, path: str) -> float:
         return self.lstat(path).st_mtime
 
+    @_gpl_refusals
     def listdir(self, path: str) -> list[str]:
         if path == "/":
             return self._devices()
+        folder = self._file(path)
         try:
-            entries = self._file(path).entries()
+            entries = folder.entries()
         except GplException as exc:
             raise _refused(exc) from None
-        return sorted(n for n, kind in entries if kind is not Kind.OTHER and not n.startswith("."))
+        shown = []
+        for name, kind in entries:
+            if kind is Kind.OTHER or name.startswith("."):
+                continue
+            if kind is Kind.FILE:  # a file with several hard links may be one outside: not shown
+                found = SandboxPath(folder.box, (*folder.parts, name)).lstat()
+                if found is None or found.st_nlink != 1:
+                    continue
+            shown.append(name)
+        return sorted(shown)
 
     listdirinfo = listdir
 
+    @_gpl_refusals
     def chdir(self, path: str) -> None:
         if not self.isdir(path):
             raise FilesystemError(f"not a folder: {path}")
@@ -239,6 +277,7 @@ class ControllerFS(AbstractedFS):
             raise _refused(GplException(READ_ONLY, detail=f"/{where.device} is a device"))
         return where
 
+    @_gpl_refusals
     def open(self, filename: str, mode: str) -> Any:
         if "r" in mode and "+" not in mode:
             return self._open_read(filename)
@@ -255,7 +294,7 @@ class ControllerFS(AbstractedFS):
         except BaseException:
             self._release(allowed)
             raise
-        return _LimitedWriter(stream, filename, allowed, self.quota, full)
+        return _LimitedWriter(stream, filename, allowed, self.quota, full, where.file.unlink)
 
     def _open_read(self, filename: str) -> Any:
         where = self._where(filename)
@@ -294,6 +333,7 @@ class ControllerFS(AbstractedFS):
     def mkstemp(self, suffix: str = "", prefix: str = "", dir: str | None = None, mode: str = "wb") -> Any:
         raise FilesystemError("STOU is not supported: name the file")
 
+    @_gpl_refusals
     def mkdir(self, path: str) -> None:
         where = self._writable(path)
         assert where.file is not None
@@ -307,6 +347,7 @@ class ControllerFS(AbstractedFS):
         except GplException as exc:
             raise _refused(exc) from None
 
+    @_gpl_refusals
     def rmdir(self, path: str) -> None:
         where = self._writable(path)
         assert where.file is not None
@@ -315,6 +356,7 @@ class ControllerFS(AbstractedFS):
         except GplException as exc:
             raise _refused(exc) from None
 
+    @_gpl_refusals
     def remove(self, path: str) -> None:
         where = self._writable(path)
         assert where.file is not None
@@ -323,6 +365,7 @@ class ControllerFS(AbstractedFS):
         except GplException as exc:
             raise _refused(exc) from None
 
+    @_gpl_refusals
     def rename(self, src: str, dst: str) -> None:
         source, target = self._writable(src), self._writable(dst)
         assert source.file is not None and target.file is not None
@@ -408,7 +451,7 @@ class FtpService:
     def __init__(self, disks: Disks, port: int, host: str) -> None:
         handler = type("ControllerFtpHandler", (_Handler,), {"disks": disks, "quota": _Quota()})
         self._server = FTPServer((host, port), handler)
-        self._server.max_cons = MAX_CLIENTS
+        self._server.max_cons = MAX_CLIENTS + 1  # pyftpdlib counts its listening socket too
         self._server.max_cons_per_ip = MAX_CLIENTS
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._serve, name="gplrt-ftp", daemon=True)

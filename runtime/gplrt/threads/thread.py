@@ -19,8 +19,9 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
   parameters cannot be started (the thread passes none): ``New`` raises -741 *Argument mismatch*
   rather than the thread failing later with a Python TypeError.
   The thread name defaults to the procedure name (without module); starting a thread whose name
-  is already used by an active thread raises -749 *Thread already exists*, so several threads on
-  one procedure need explicit names.
+  is already used by an active thread of the same project raises -749 *Thread already exists*, so
+  several threads on one procedure need explicit names (two projects in memory may each run a
+  ``Main``: docs/design/console.md).
 * ``Start`` on an active thread raises -750; more than ``Simulation.max_threads`` (32, D0:4584)
   active threads raises -207 *Too many*.  Start clears pending events.  The starter keeps
   running; the new thread runs at the starter's next scheduling point.
@@ -250,7 +251,7 @@ class Thread:
             if self._active:
                 raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail=f"thread {self._name}")
             active = [t for t in session.threads if t._active]
-            if any(t._name.lower() == self._name.lower() for t in active):
+            if any(t._name.lower() == self._name.lower() and t._project is self._project for t in active):
                 raise GplException(THREAD_ALREADY_EXISTS, detail=f"thread {self._name}")
             if len(active) >= session.max_threads:
                 raise GplException(TOO_MANY, detail=f"more than {session.max_threads} threads")
