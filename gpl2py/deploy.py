@@ -2,7 +2,8 @@
 
 The runtime keeps the projects in the controller's memory (``gplrt.controller.projects``) and
 reads their files from its flash disk, but cannot translate GPL: ``gplrt`` never imports
-``gpl2py``.  ``gpl2py run`` hands its session :func:`compiler` (``Simulation(compiler=...)``);
+``gpl2py``.  ``gpl2py run`` hands its session :func:`compiler` (``Simulation(compiler=...)``), giving it its
+own ``build`` and ``import_built`` (this module cannot import ``gpl2py.run``, which imports it);
 the console's ``Compile`` (and ``Controller.Load``) then calls it with the project's name and
 files, and gets a ``gplrt.controller.projects.Program`` to start.
 
@@ -19,6 +20,7 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
+from typing import Any
 
 from gplrt.controller.projects import Program
 from gplrt.io.project_files import PROJECTS
@@ -27,8 +29,12 @@ from gplrt.lang.exceptions import gpl_entry
 from gplrt.lang.procedures import registry_for
 
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink
-from gpl2py.run import build, import_built
 from gpl2py.source import make_span
+
+#: ``gpl2py.run.build`` and ``gpl2py.run.import_built``, handed in by ``run`` (which imports this
+#: module): how a project folder is translated through the cache, and how its package is imported.
+Build = Callable[..., Any]
+Import = Callable[[Any], ModuleType]
 
 __all__ = ["compiler", "program_of"]
 
@@ -36,16 +42,19 @@ __all__ = ["compiler", "program_of"]
 MAX_QUOTED = 20
 
 
-def compiler(cache_dir: str | Path | None = None) -> Callable[[str, dict[str, bytes]], Program]:
-    """A compiler for ``Simulation(compiler=...)`` that caches in ``cache_dir`` (the run's)."""
+def compiler(build: Build, import_built: Import,
+             cache_dir: str | Path | None = None) -> Callable[[str, dict[str, bytes]], Program]:
+    """A compiler for ``Simulation(compiler=...)`` that translates with ``build`` through the
+    cache in ``cache_dir`` (the run's) and imports with ``import_built``."""
 
     def compile_project(name: str, files: dict[str, bytes]) -> Program:
-        return compile_files(name, files, cache_dir=cache_dir)
+        return compile_files(name, files, build, import_built, cache_dir=cache_dir)
 
     return compile_project
 
 
-def compile_files(name: str, files: dict[str, bytes], *, cache_dir: str | Path | None = None) -> Program:
+def compile_files(name: str, files: dict[str, bytes], build: Build, import_built: Import, *,
+                  cache_dir: str | Path | None = None) -> Program:
     """Translate the project ``name`` made of ``files`` and import it; -742 *Compilation errors*
     when it has errors (the detail quotes them), -743 when it has no Project.gpr."""
     if not any(n.lower() == "project.gpr" for n in files):

@@ -555,7 +555,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
     problem = _plot_problem(args.plot) if args.plot else None
     problem = problem or (_flash_problem(args.flash) if args.flash else None)
     problem = problem or (_listen_problem(args.listen) if args.listen is not None else None)
-    problem = problem or serve.problem(args)
+    problem = problem or (missing_extra("pyftpdlib", "ftp", "--ftp") if args.ftp is not None else None)
     if problem is not None:
         return _usage_after_emit(out, problem, display, stdout, stderr)
 
@@ -567,7 +567,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
                      project=project.name if project else "", robot=args.robot, listen=args.listen,
                      history=args.history, **({"signal_history": None} if args.history is None else {}),
-                     compiler=compiler(args.cache_dir))
+                     compiler=compiler(build, import_built, args.cache_dir))
     install_project_files(sim, args.path, project)
     sim.projects.adopt(sim.project, sim.project_folder, program_of(package))  # the console's Show, Stop ...
     if args.setup:

@@ -21,7 +21,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, TextIO
 
-__all__ = ["DEFAULT_CONSOLE_PORT", "DEFAULT_FTP_PORT", "Services", "add_options", "keep_running", "problem"]
+__all__ = ["DEFAULT_CONSOLE_PORT", "DEFAULT_FTP_PORT", "Services", "add_options", "keep_running", "wanted"]
 
 DEFAULT_CONSOLE_PORT = 2323
 DEFAULT_FTP_PORT = 2121
@@ -52,15 +52,6 @@ def add_options(parser: argparse.ArgumentParser) -> None:
 
 def wanted(args: argparse.Namespace) -> bool:
     return getattr(args, "console", None) is not None or getattr(args, "ftp", None) is not None
-
-
-def problem(args: argparse.Namespace) -> str | None:
-    """Why the services cannot start, checked before the program runs; None when they can."""
-    if getattr(args, "ftp", None) is not None:
-        from gpl2py.run import missing_extra
-
-        return missing_extra("pyftpdlib", "ftp", "--ftp")
-    return None
 
 
 @dataclass

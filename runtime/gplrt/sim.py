@@ -23,7 +23,8 @@ out.project`` makes a :class:`Simulation` (or lets :func:`current` make a defaul
   that wants the whole run);
 * ``trace(robot)``: the sampled motion of a robot (``gplrt.motion.trace``);
 * the projects in the controller's memory (``projects``, ``gplrt.controller.projects``), which the
-  console loads and starts (``Controller.Command``, :meth:`serve_console`, :meth:`serve_ftp`);
+  console loads and starts (``Controller.Command``; ``gplrt.controller.telnet`` and
+  ``gplrt.io.ftp`` serve the console and the disks to clients);
   ``compiler`` is what translates a project the console loads (``gpl2py run`` gives
   ``gpl2py.deploy.compile_project``: the runtime cannot translate GPL itself).
 

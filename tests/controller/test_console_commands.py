@@ -14,6 +14,7 @@ import pytest
 from gpltest import module_src, run_gpl
 
 from gpl2py.deploy import compiler
+from gpl2py.run import build, import_built
 from gplrt.controller.commands import ConsoleCommands
 from gplrt.lang.errors import GplException
 from gplrt.sim import Simulation
@@ -78,7 +79,7 @@ def test_controller_command_loads_starts_shows_stops_and_unloads_another_project
     End Sub""")
 
     def setup(sim: Simulation) -> None:
-        sim.projects.compiler = compiler(tmp_path / "cache")
+        sim.projects.compiler = compiler(build, import_built, tmp_path / "cache")
         deploy(sim, "Other", {"Work.gpl": WORKER}, extra={"data.txt": b"other data\r\n"})
 
     result = run_gpl(tmp_path, {"Main.gpl": main}, setup=setup)
@@ -100,7 +101,7 @@ def test_controller_command_loads_starts_shows_stops_and_unloads_another_project
 
 @pytest.fixture
 def console(tmp_path: Path) -> ConsoleCommands:
-    sim = Simulation(capture=True, compiler=compiler(tmp_path / "cache"))
+    sim = Simulation(capture=True, compiler=compiler(build, import_built, tmp_path / "cache"))
     sim.activate()
     yield ConsoleCommands(sim.projects)
     sim.close(1.0)
