@@ -337,3 +337,35 @@ def test_console_listens_on_loopback_unless_the_network_is_opened(tmp_path: Path
     finally:
         server.close()
         sim.close(0.5)
+
+
+# -- gpl2py run's options -------------------------------------------------------------------------------
+
+
+def test_ftp_without_pyftpdlib_names_the_extra(tmp_path: Path) -> None:
+    """--ftp needs the optional pyftpdlib: without it, one line naming the extra, status 2, before
+    the program runs (as --plot without matplotlib)."""
+    from gpltest import gpl2py
+
+    fake = tmp_path / "no_pyftpdlib" / "pyftpdlib"
+    fake.mkdir(parents=True)
+    (fake / "__init__.py").write_text("raise ModuleNotFoundError(\"No module named 'pyftpdlib'\", name='pyftpdlib')\n")
+    proj = write_project(tmp_path / "p", {"Main.gpl": BOOT})
+    r = gpl2py("run", proj, "--ftp", "--quiet", env={"PYTHONPATH": str(fake.parent)})
+    assert r.returncode == 2 and r.stdout == ""
+    assert r.stderr == "error GPL9001: --ftp needs pyftpdlib, which is not installed: pip install 'gpl2py[ftp]'\n"
+
+
+def test_a_console_port_in_use_is_a_command_line_error(tmp_path: Path) -> None:
+    from gpltest import gpl2py
+
+    proj = write_project(tmp_path / "p", {"Main.gpl": BOOT})
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        r = gpl2py("run", proj, "--console", str(taken.getsockname()[1]), "--quiet")
+    assert r.returncode == 2
+    assert r.stderr.startswith("error GPL9001: cannot serve the console or FTP: "), r.stderr
+    assert "boot project ran" not in r.stdout  # nothing ran
+    bad = gpl2py("run", proj, "--console", "70000")
+    assert bad.returncode == 2 and "a port is 0 to 65535" in bad.stderr

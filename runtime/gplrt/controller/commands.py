@@ -34,7 +34,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from gplrt.controller.projects import LoadedProject, ProjectTable
-from gplrt.io.files import _file_error
+from gplrt.io.files import _file_error, folder_entries
 from gplrt.io.sandbox import Kind
 from gplrt.lang.errors import (
     AMBIGUOUS_ABBREVIATION,
@@ -42,7 +42,6 @@ from gplrt.lang.errors import (
     INVALID_FILE_TYPE,
     MISSING_ARGUMENT,
     MISSING_QUOTE_MARK,
-    READ_ERROR,
     UNKNOWN_COMMAND,
     WRITE_ERROR,
     GplException,
@@ -183,14 +182,8 @@ class ConsoleCommands:
             raise GplException(INVALID_ARGUMENT, detail=f"Dir takes one folder, not {len(rest)}")
         path = rest[0] if rest else "/flash"
         where = self.session.files.root().resolve(path)
-        if where.file is None:
-            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a device")
-        try:
-            entries = where.file.entries()
-        except NotADirectoryError:
-            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a folder") from None
-        except OSError as exc:
-            raise _file_error(exc, path, READ_ERROR) from None
+        entries = folder_entries(where, path)
+        assert where.file is not None
         lines = [f"Directory of {where.text.rstrip('/') or '/'}"]
         files = total = 0
         for name, kind in sorted(entries, key=lambda e: e[0].lower()):
