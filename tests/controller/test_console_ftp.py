@@ -51,6 +51,7 @@ BOOT = """\
 Module Main
     Public Sub Main()
         Console.WriteLine("boot project ran")
+        Console.WriteLine(Controller.Command("Show Project"))
     End Sub
 End Module
 """
@@ -170,6 +171,9 @@ def test_deploy_by_ftp_then_load_start_show_stop_unload_from_the_console(tmp_pat
         out, err = proc.communicate(timeout=60)
     print(out, err)
     assert "boot project ran" in out
+    shown = out.splitlines()[out.splitlines().index("boot project ran") + 1:]
+    assert shown[0].split() == ["Project", "State", "Folder"]  # Controller.Command: the same console
+    assert shown[1].split()[1:] == ["Running", f"/flash/projects/{shown[1].split()[0]}"]
     assert proc.returncode == 130  # a controller stays on until interrupted
 
 
