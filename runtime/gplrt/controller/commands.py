@@ -46,7 +46,7 @@ from gplrt.lang.errors import (
     WRITE_ERROR,
     GplException,
 )
-from gplrt.threads.thread import ThreadStateValue
+from gplrt.threads.thread import Thread, ThreadStateValue
 
 __all__ = ["ConsoleCommands"]
 
@@ -151,15 +151,15 @@ class ConsoleCommands:
         """One line per thread: the latest thread of each name in each project in memory, and any
         other thread still running (a thread of the notebook, say)."""
         in_memory = {n.lower() for n in self.projects.names()}
-        latest: dict[tuple[str, str], object] = {}
+        latest: dict[tuple[str, str], Thread] = {}
         for t in self.projects.threads():
             project = str(t.Project)
             if project.lower() in in_memory or t._active:
                 latest[(project.lower(), str(t.Name).lower())] = t
         lines = [f"{'Project':<{_COLUMN}} {'Thread':<{_COLUMN}} State"]
         for t in latest.values():
-            state = ThreadStateValue(t.ThreadState).name.capitalize()  # type: ignore[attr-defined]
-            lines.append(f"{str(t.Project):<{_COLUMN}} {str(t.Name):<{_COLUMN}} {state}")  # type: ignore[attr-defined]
+            state = ThreadStateValue(t.ThreadState).name.capitalize()
+            lines.append(f"{str(t.Project):<{_COLUMN}} {str(t.Name):<{_COLUMN}} {state}")
         return "\n".join(lines)
 
     def _show_projects(self) -> str:
