@@ -55,6 +55,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Any, Callable, TextIO
 
 from gpl2py import messages as msg
+from gpl2py import serve
 from gpl2py.cache import Cache, Entry, cache_key
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, plural
 from gpl2py.formats import github_annotation, github_annotations, json_document
@@ -251,6 +252,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "$XDG_CACHE_HOME/gpl2py or ~/.cache/gpl2py)")
     parser.add_argument("--rebuild", action="store_true",
                         help="translate again even when the cache has this project")
+    serve.add_options(parser)
     add_project_options(parser)
 
 
@@ -389,8 +391,8 @@ class OutputClosed(Exception):
     """The reader of the console output went away (:func:`_drive` stops the run)."""
 
 
-def _drive(package: ModuleType, sim: Any, closed: threading.Event | None = None) -> threading.Thread:
-    """Run ``package.main(sim)`` on a helper thread; the calling (main) thread only waits for it.
+def _drive(main: Callable[[Any], Any], sim: Any, closed: threading.Event | None = None) -> threading.Thread:
+    """Run ``main(sim)`` (the package's ``main``) on a helper thread; the calling (main) thread only waits for it.
 
     A KeyboardInterrupt can then only arrive in this function's ``join`` (see module docstring),
     never inside the scheduler.  An exception of ``main`` itself is re-raised here, so a fault of
@@ -402,7 +404,7 @@ def _drive(package: ModuleType, sim: Any, closed: threading.Event | None = None)
 
     def target() -> None:
         try:
-            package.main(sim)
+            main(sim)
         except BaseException as exc:  # noqa: BLE001 - handed to the main thread below
             failure.append(exc)
 
@@ -417,13 +419,15 @@ def _drive(package: ModuleType, sim: Any, closed: threading.Event | None = None)
     return helper
 
 
-def execute(package: ModuleType, sim: Any, *, plot: str | None = None) -> RunReport:
-    """Run the package's ``main(sim)``; Ctrl-C stops every GPL thread (status 130)."""
+def execute(package: ModuleType, sim: Any, *, plot: str | None = None,
+            main: Callable[[Any], Any] | None = None) -> RunReport:
+    """Run the package's ``main(sim)`` (or ``main(sim)``: ``gpl2py.serve.keep_running``); Ctrl-C
+    stops every GPL thread (status 130)."""
     started = time.perf_counter()
     interrupted = closed = False
     stopped: tuple[int, list[str]] = (0, [])
     try:
-        _drive(package, sim, getattr(sim.console, "closed", None))
+        _drive(main or package.main, sim, getattr(sim.console, "closed", None))
     except KeyboardInterrupt:
         interrupted = True
         stopped = _stop_all(sim)
@@ -551,16 +555,21 @@ def run_command(args: argparse.Namespace) -> Outcome:
     problem = _plot_problem(args.plot) if args.plot else None
     problem = problem or (_flash_problem(args.flash) if args.flash else None)
     problem = problem or (_listen_problem(args.listen) if args.listen is not None else None)
+    problem = problem or (missing_extra("pyftpdlib", "ftp", "--ftp") if args.ftp is not None else None)
     if problem is not None:
         return _usage_after_emit(out, problem, display, stdout, stderr)
 
     from gplrt.sim import ConsoleSink, Simulation
 
+    from gpl2py.deploy import compiler, program_of
+
     console = ConsoleSink(capture=True) if args.json else ConsoleSink(stream=stdout, log_stream=stderr)
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
                      project=project.name if project else "", robot=args.robot, listen=args.listen,
-                     history=args.history, **({"signal_history": None} if args.history is None else {}))
+                     history=args.history, **({"signal_history": None} if args.history is None else {}),
+                     compiler=compiler(build, import_built, args.cache_dir))
     install_project_files(sim, args.path, project)
+    sim.projects.adopt(sim.project, sim.project_folder, program_of(package))  # the console's Show, Stop ...
     if args.setup:
         try:
             setup = _load_setup(args.setup)
@@ -577,7 +586,19 @@ def run_command(args: argparse.Namespace) -> Outcome:
     note = stubs_note(package)
     if note and not args.json and not args.quiet:
         stderr.write(note + "\n")
-    report = execute(package, sim, plot=args.plot)
+    services = None
+    if serve.wanted(args):
+        try:
+            services = serve.Services.start(sim, args, stderr)
+        except OSError as exc:
+            return _usage_after_emit(out, f"cannot serve the console or FTP: {exc.strerror or exc}", display,
+                                     stdout, stderr)
+    try:
+        report = execute(package, sim, plot=args.plot,
+                         main=serve.keep_running(sim.project) if services is not None else None)
+    finally:
+        if services is not None:
+            services.close()
     out.exit_status = report.status
     if report.output_closed:  # a closed pipe ends quietly: whatever is printed now is lost or noise
         return out

@@ -22,6 +22,8 @@ A :class:`Session` holds everything a running GPL program reads and changes, eac
                     String delegates: ``gplrt.lang.procedures.ProcedureRegistry``)
 ``console``         program output and controller reports (``gplrt.controller.console.ConsoleSink``)
 ``threads``         every GPL ``Thread`` started in it, and the hooks run as each one ends
+``projects``        the projects in its memory, loaded and started by the console
+                    (``gplrt.controller.projects.ProjectTable``; ``Controller.Command``, Telnet)
 ``history``         how many motions each robot's history keeps (None: all; :attr:`history`)
 ==================  ===========================================================================
 
@@ -54,6 +56,7 @@ from gplrt.thread_binding import current_ctx
 
 if TYPE_CHECKING:
     from gplrt.controller.console import ConsoleSink
+    from gplrt.controller.projects import ProjectTable
     from gplrt.controller.pdb import ParameterDatabase
     from gplrt.controller.signals import IoMap
     from gplrt.controller.state import ControllerState
@@ -65,8 +68,43 @@ if TYPE_CHECKING:
     from gplrt.threads.thread import Thread
 
 __all__ = [
-    "Session", "check_window", "current_session", "active_session", "set_active_session", "set_default_factory",
+    "ProjectScope", "Session", "check_window", "current_scope", "current_session", "active_session", "set_active_session", "set_default_factory",
 ]
+
+
+class ProjectScope:
+    """The project a GPL thread belongs to, when a session holds several (the console's ``Load``).
+
+    A controller keeps several projects in memory at once, each with its own threads
+    (D1 §18: "these threads allow simultaneous execution of multiple projects"); two of them may
+    both have a ``Main.Worker`` or a relative file name ``Tcs.gpo``.  A thread started for a loaded
+    project carries its scope, and the threads it starts inherit it: procedures named in a String
+    (``New Thread("Worker")``) resolve in ``procedures``, relative file names in ``folder``, and
+    ``Thread.Project`` reads ``name``.  A thread without a scope belongs to the session's own
+    project (``Session.project``, its ``procedures`` and ``files.working_folder``).
+    """
+
+    __slots__ = ("name", "folder", "procedures")
+
+    def __init__(self, name: str, folder: str | None, procedures: ProcedureRegistry | None = None) -> None:
+        self.name = name
+        #: The project's folder on the controller (``/flash/projects/X``): relative names resolve here.
+        self.folder = folder
+        #: Its procedure registry; None until its package's ``init()`` names it (``use_procedures``).
+        self.procedures = procedures
+
+    def __repr__(self) -> str:
+        return f"<ProjectScope {self.name!r} in {self.folder!r}>"
+
+
+def current_scope() -> ProjectScope | None:
+    """The project scope of the calling GPL thread (None: the session's own project, or not a
+    GPL thread)."""
+    ctx = current_ctx()
+    if ctx is None or ctx.owner is None:
+        return None
+    scope: ProjectScope | None = getattr(ctx.owner, "_project", None)
+    return scope
 
 
 class Session:
@@ -112,6 +150,8 @@ class Session:
         #: Called with each GPL Thread as it ends, on that thread (robots are released there).
         self.thread_exit_hooks: list[Callable[[Thread], None]] = []
         self._booted: ParameterDatabase | None = None
+        #: The projects in the controller's memory (the composer sets it: ``gplrt.sim``).
+        self.projects: ProjectTable | None = None
         scheduler.session = self
 
     # -- what the session keeps ----------------------------------------------------------------

@@ -21,7 +21,12 @@ out.project`` makes a :class:`Simulation` (or lets :func:`current` make a defaul
   ``gplrt.motion.queue.DEFAULT_HISTORY``; ``signal_history``: the signal changes of ``io.trace``,
   default ``gplrt.controller.signals.DEFAULT_SIGNAL_HISTORY``; None keeps everything, for a notebook
   that wants the whole run);
-* ``trace(robot)``: the sampled motion of a robot (``gplrt.motion.trace``).
+* ``trace(robot)``: the sampled motion of a robot (``gplrt.motion.trace``);
+* the projects in the controller's memory (``projects``, ``gplrt.controller.projects``), which the
+  console loads and starts (``Controller.Command``; ``gplrt.controller.telnet`` and
+  ``gplrt.io.ftp`` serve the console and the disks to clients);
+  ``compiler`` is what translates a project the console loads (``gpl2py run`` gives
+  ``gpl2py.deploy.compile_project``: the runtime cannot translate GPL itself).
 
 Two Simulations in one process are independent: each has its own clock, controller, robots,
 database, I/O, disks, network, procedure registry and console, and a GPL thread only ever sees the
@@ -48,6 +53,7 @@ from gplrt.controller import live_pdb
 from gplrt.controller.clock import RealClock, VirtualClock
 from gplrt.controller.console import ConsoleSink
 from gplrt.controller.pdb import ParameterDatabase, default_database
+from gplrt.controller.projects import Compiler, ProjectTable
 from gplrt.controller.signals import DEFAULT_SIGNAL_HISTORY, IoMap
 from gplrt.controller.state import ControllerState, LogEntry
 from gplrt.io.flashroot import Disks
@@ -126,6 +132,7 @@ class Simulation(Session):
         listen: str | None = None,
         history: int | None = DEFAULT_HISTORY,
         signal_history: int | None = DEFAULT_SIGNAL_HISTORY,
+        compiler: Compiler | None = None,
     ) -> None:
         # Checked first, before anything starts: a typo must not expose or break a run halfway.
         network = NetworkConfig(listen=listen_address(listen) if listen is not None else LOOPBACK)
@@ -158,6 +165,7 @@ class Simulation(Session):
         self.io.bind(self)
         self.flash_root = Path(flash_root) if flash_root is not None else None
         self.thread_exit_hooks.append(registry.release_on_exit)  # a thread's robots are freed as it ends
+        self.projects: ProjectTable = ProjectTable(self, compiler)
         self._previous: Session | None = None
         _sessions.add(self)
 

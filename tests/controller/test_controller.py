@@ -162,7 +162,16 @@ def test_pdb_before_any_motion_and_with_a_custom_database(vsim: Simulation) -> N
 
 
 def test_unemulated_members_raise_204(vsim: Simulation) -> None:
-    for call in (lambda: Controller.Command("show thread"), lambda: Controller.Load("/flash/projects/x")):
+    """Controller.Command is the console (tests/controller/test_console_commands.py); Controller.Load
+    compiles with the compiler ``gpl2py run`` gives the session, and a session without one (this
+    one) cannot: -204, as before.  The pendant's dialog has no hardware here."""
+    folder = vsim.files.resolve("/flash/projects/x/Project.gpr").file
+    assert folder is not None
+    folder.box.path(*folder.parts[:-1]).mkdir()
+    folder.replace(b'ProjectBegin\nProjectName="x"\nProjectEnd\n')
+    button = Box(0)
+    for call in (lambda: Controller.Load("/flash/projects/x"),
+                 lambda: Controller.ShowDialogMCP(1, "ready?", button)):
         with pytest.raises(GplException) as info:
             call()
         assert info.value.ErrorCode == -204

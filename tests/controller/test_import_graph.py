@@ -38,6 +38,8 @@ GPL2PY_USES_GPLRT = {
     "gpl2py.cli": "run's configuration: checks [tool.gpl2py] robot against the runtime's models",
     "gpl2py.cache": "the cache key includes the runtime's files (a translation is made for them)",
     "gpl2py.semantics.consts": "folds a Const with gplrt.lang's own operators, as the program would",
+    "gpl2py.deploy": "the compiler of the simulated controller's console: translates, imports, hands gplrt a Program",
+    "gpl2py.serve": "run --console/--ftp: starts the runtime's Telnet and FTP servers on the run's Simulation",
 }
 
 

@@ -86,9 +86,13 @@ def test_members_the_simulator_lacks_translate_and_raise_204_into_a_catch(tmp_pa
     assert res.status == 0, res.log
     lines = res.output.splitlines()
     assert lines[-1] == "done"
+    # Controller.Command is the console now (gplrt.controller.commands): Show Thread's table
+    assert lines[-3].split() == ["Project", "Thread", "State"]
+    assert lines[-2].split() == [res.sim.project, "Main", "Running"]
+    lines = lines[:-2]
     expected = [("SetSpeeds", "Move"), ("StartVelocityCntrl", "Move"), ("StartRealTimeMod", "Move"),
                 ("SetRealTimeMod", "Move"), ("StartSpeedDAC", "Move"), ("DefLinComp", "Robot"),
-                ("ShowDialogMCP", "Controller"), ("Command", "Controller")]
+                ("ShowDialogMCP", "Controller")]
     assert lines[:-1] == [f"{what} -204 *Not implemented*: not available in the simulated controller: {owner}.{what}"
                           for what, owner in expected], res.output
 

@@ -48,8 +48,14 @@ silent:
 * ``PDb``/``PDbNum`` — served by the session's database (``Session.database()``, a
   ``gplrt.controller.pdb.ParameterDatabase``: ``pdb_text``/``set_pdb_text``/``pdb_num``/
   ``set_pdb_num``); a session without one loads its robot model's shipped database on first use.
-* ``Command``, ``Load``, ``Unload``, ``ShowDialogMCP`` — not simulated (``@not_simulated``): -204
-  naming the member.
+* ``Command(cmd)`` runs a console command on the session's console
+  (``gplrt.controller.commands``, the one Telnet reaches) and returns its output, lines separated
+  by LF; a command that fails raises its error (``-753 *Project not compiled*``), catchable by the
+  program's ``Try``.  ``Load(path)`` loads and compiles a project (the console's ``Load`` then
+  ``Compile``: "Loads a GPL project into memory and compiles it", D0:2586), ``Unload(name)``
+  removes an idle one.  Compiling needs the compiler ``gpl2py run`` gives the session (-204
+  without one).  docs/design/console.md has the commands and their replies.
+* ``ShowDialogMCP`` — not simulated (``@not_simulated``): -204 naming the member.
 """
 
 from __future__ import annotations
@@ -57,6 +63,8 @@ from __future__ import annotations
 from typing import Any, overload
 
 from gplrt.controller import clock as _clock
+from gplrt.controller.commands import ConsoleCommands
+from gplrt.controller.projects import ProjectTable
 from gplrt.controller.pdb import ParameterDatabase
 from gplrt.lang.conversions import to_bool, to_double, to_int32, to_string
 from gplrt.lang.exceptions import not_simulated
@@ -227,17 +235,23 @@ class _ControllerClass:
     def ShowDialogMCP(self, button_mask: Integer, message: String, button_return: Ref[Integer]) -> None:
         """A dialog on the Manual Control Pendant (the simulation has none)."""
 
-    @not_simulated
     def Command(self, command: String) -> String:
-        """Run a console command."""
+        """Run a console command; its output (module docstring)."""
+        return ConsoleCommands(_projects()).execute(to_string(command))  # type: ignore[return-value]
 
-    @not_simulated
     def Load(self, project_path: String) -> None:
-        """Load and compile a GPL project."""
+        """Load a project folder into memory and compile it (module docstring)."""
+        table = _projects()
+        project = table.load(to_string(project_path))
+        try:
+            table.compile(project.name)
+        except GplException:
+            table.unload(project.name)  # a project that does not compile is not left half-loaded
+            raise
 
-    @not_simulated
     def Unload(self, project: String) -> None:
-        """Remove a project from memory."""
+        """Remove an idle project from memory (-750 while its threads run)."""
+        _projects().unload(to_string(project))
 
     # -- parameter database ------------------------------------------------------------------------
 
@@ -391,6 +405,14 @@ def _pdb_args(given: tuple[Any, ...], defaults: tuple[int, int, int, int]) -> tu
     """unit, unit2, array_index, key from the optional arguments that were given."""
     merged = _ints(*given[:4]) + list(defaults[len(given[:4]) :])
     return merged[0], merged[1], merged[2], merged[3]
+
+
+def _projects() -> ProjectTable:
+    """The session's project table (every ``gplrt.sim.Simulation`` has one)."""
+    table = current_session().projects
+    if table is None:
+        raise GplException(NOT_IMPLEMENTED, detail="this session keeps no projects")
+    return table
 
 
 def _pdb() -> ParameterDatabase:

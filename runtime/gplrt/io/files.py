@@ -219,17 +219,23 @@ class File:
     @staticmethod
     def _listing(path: str, kind: Kind) -> list[str]:
         """Sorted names of one kind; links and special files are neither files nor folders here."""
-        cp = resolve(path)
-        if cp.file is None:
-            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a device")
-        try:
-            entries = cp.file.entries()
-        except NotADirectoryError:
-            raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a directory") from None
-        except OSError as exc:
-            raise _file_error(exc, path, READ_ERROR) from None
+        entries = folder_entries(resolve(path), path)
         # No controller name starts with "." (the NVRAM's temporary files do).
         return sorted(name for name, found in entries if found is kind and not name.startswith("."))
+
+
+def folder_entries(cp: ControllerPath, path: str) -> list[tuple[str, Kind]]:
+    """The names and kinds in the controller folder ``cp`` (``path`` as the program wrote it),
+    unsorted, with the controller's codes for what cannot be listed: a device or a file -521, a
+    missing folder -508 (the console's ``Dir`` lists through it too)."""
+    if cp.file is None:
+        raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is a device")
+    try:
+        return cp.file.entries()
+    except NotADirectoryError:
+        raise GplException(INVALID_FILE_TYPE, detail=f"{path!r} is not a directory") from None
+    except OSError as exc:
+        raise _file_error(exc, path, READ_ERROR) from None
 
 
 class _SerialSource:

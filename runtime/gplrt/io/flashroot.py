@@ -52,7 +52,7 @@ from gplrt.lang.errors import (
     UNDEFINED_DEVICE,
     GplException,
 )
-from gplrt.session import current_session
+from gplrt.session import current_scope, current_session
 
 
 MAX_NAME = 43
@@ -220,5 +220,11 @@ def get_flash_root() -> FlashRoot:
 
 
 def resolve(path: str) -> ControllerPath:
-    """Check and map a controller path against the current session's disks."""
-    return current_session().files.resolve(path)
+    """Check and map a controller path against the current session's disks; a relative name is
+    relative to the calling thread's project folder (``gplrt.session.ProjectScope``: a project the
+    console loaded), else to the session's working folder."""
+    files = current_session().files
+    scope = current_scope()
+    if scope is not None:
+        return files.root().resolve(path, scope.folder)
+    return files.resolve(path)

@@ -25,11 +25,13 @@ from pathlib import Path
 
 from gplrt.io import flashroot
 from gplrt.io.sandbox import Kind, Sandbox, SandboxPath
-from gplrt.lang.errors import GplException
+from gplrt.lang.errors import FILE_NOT_FOUND, TOO_MANY, GplException
 from gplrt.session import current_session
 
 #: Files larger than this are not installed (a project folder is no place for bulk data).
 MAX_FILE_BYTES = 16 * 1024 * 1024
+#: All of a project's files loaded into memory by the console (``read_controller_folder``).
+MAX_PROJECT_BYTES = 4 * MAX_FILE_BYTES
 PROJECTS = "/flash/projects"
 
 
@@ -67,6 +69,38 @@ def _read_regular(file: SandboxPath) -> bytes | None:
     except (OSError, GplException):
         return None
     return data if len(data) <= MAX_FILE_BYTES else None
+
+
+def read_controller_folder(disks: flashroot.Disks, folder: str) -> dict[str, bytes]:
+    """The regular files directly in the controller folder ``folder`` (``/flash/projects/X``), by
+    name: what the console's ``Load`` puts in memory.
+
+    The folder is reached through the flash sandbox like every file of the program (no link
+    followed, on the way or at a file), and the same files are skipped as when a project is
+    installed (module docstring).  A folder that is not there is -508 *File not found*; a link on
+    the way -208; more than ``MAX_PROJECT_BYTES`` in all is -207 *Too many*."""
+    where = disks.root().resolve(folder)
+    if where.file is None or where.kind is not flashroot.DeviceKind.DISK:
+        raise GplException(FILE_NOT_FOUND, detail=f"{folder} is not a folder on a disk")
+    try:
+        entries = where.file.entries()
+    except (FileNotFoundError, NotADirectoryError):
+        raise GplException(FILE_NOT_FOUND, detail=f"no folder {folder}") from None
+    except OSError as exc:
+        raise GplException(FILE_NOT_FOUND, detail=f"{folder}: {exc.strerror or exc}") from None
+    out: dict[str, bytes] = {}
+    total = 0
+    for name, kind in sorted(entries):
+        if kind is not Kind.FILE or name.startswith(".") or len(name) > flashroot.MAX_NAME:
+            continue
+        data = _read_regular(SandboxPath(where.file.box, (*where.file.parts, name)))
+        if data is None:
+            continue
+        total += len(data)
+        if total > MAX_PROJECT_BYTES:
+            raise GplException(TOO_MANY, detail=f"{folder} holds more than {MAX_PROJECT_BYTES} bytes of files")
+        out[name] = data
+    return out
 
 
 def project_folder(name: str) -> str | None:

@@ -201,6 +201,27 @@ class SandboxPath:
         finally:
             os.close(folder)
 
+    def rename_to(self, target: SandboxPath) -> None:
+        """Rename this file or folder to ``target`` (same sandbox), both walked link-free: a link
+        here is refused (-208), never moved; a link waiting at ``target`` is replaced, as
+        ``renameat`` does, never followed (the FTP server's RNFR/RNTO)."""
+        if target.box is not self.box:
+            raise ValueError("a rename stays in one sandbox")
+        source = self._walk(self.parts[:-1])
+        try:
+            found = _lstat(source, self.name)
+            if found is None:
+                raise FileNotFoundError(errno.ENOENT, "No such file", str(self.host))
+            if not stat.S_ISDIR(found.st_mode):
+                _check_file(found, self)
+            destination = target._walk(target.parts[:-1])
+            try:
+                os.rename(self.name, target.name, src_dir_fd=source, dst_dir_fd=destination)
+            finally:
+                os.close(destination)
+        finally:
+            os.close(source)
+
     # -- folders ---------------------------------------------------------------------------------
 
     def mkdir(self) -> None:

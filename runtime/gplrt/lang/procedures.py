@@ -60,7 +60,7 @@ from gplrt.lang.errors import (
     UNDEFINED_SYMBOL,
     GplException,
 )
-from gplrt.session import current_session
+from gplrt.session import current_scope, current_session
 
 if TYPE_CHECKING:
     from gplrt.session import Session
@@ -228,8 +228,14 @@ def default_registry() -> ProcedureRegistry:
 
 
 def use_procedures(sim: Session, package: str) -> None:
-    """Make ``package``'s registry the one that names resolve in for ``sim`` (its ``init()``)."""
-    sim.procedures = registry_for(package)
+    """Make ``package``'s registry the one that names resolve in for ``sim`` (its ``init()``); on a
+    thread of a project the console loaded (``gplrt.session.ProjectScope``), for that project only,
+    so that the projects in one controller's memory never resolve in each other's registry."""
+    scope = current_scope()
+    if scope is not None:
+        scope.procedures = registry_for(package)
+    else:
+        sim.procedures = registry_for(package)
 
 
 def register_procedure(
@@ -257,7 +263,8 @@ def registered_procedures(package: str | None = None) -> list[ProcedureEntry]:
 
 def find_procedure_entry(name: str, module: str | None = None, nargs: int | None = None) -> ProcedureEntry:
     """Like ``find_procedure`` but returns the registry entry (name, access, qualifier)."""
-    active = current_session().procedures
+    scope = current_scope()
+    active = scope.procedures if scope is not None and scope.procedures is not None else current_session().procedures
     if active is _default:
         return _default.find(name, module, nargs)
     try:

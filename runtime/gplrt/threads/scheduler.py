@@ -361,17 +361,7 @@ def hold_real_time() -> Callable[[], None]:
     ctx = _tls.ctx
     if ctx is None:
         return _no_release
-    sched = ctx.sched
-    sched._hold_real_time(+1)
-    released = False
-
-    def release() -> None:
-        nonlocal released
-        if not released:
-            released = True
-            sched._hold_real_time(-1)
-
-    return release
+    return ctx.sched.hold_real_time()
 
 
 def _no_release() -> None:
@@ -450,6 +440,21 @@ class Scheduler:
     def is_stalled(self) -> bool:
         """True when no GPL thread can ever run again without help from outside."""
         return False
+
+    def hold_real_time(self) -> Callable[[], None]:
+        """Pace virtual time to real time until the returned function is called (once): a
+        connection of the program's (:func:`hold_real_time`) or a service of the controller's
+        that the outside world reaches (the console, FTP).  A no-op in real mode."""
+        self._hold_real_time(+1)
+        released = False
+
+        def release() -> None:
+            nonlocal released
+            if not released:
+                released = True
+                self._hold_real_time(-1)
+
+        return release
 
     def wait_until_quiet(self, threads: list[ThreadCtx] | None, timeout: float | None) -> bool:
         """Block a non-GPL caller until ``threads`` (default: all) ended or the scheduler stalled.

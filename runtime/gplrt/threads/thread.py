@@ -19,8 +19,9 @@ Decisions where the manuals are silent (documented here, tested in tests/threads
   parameters cannot be started (the thread passes none): ``New`` raises -741 *Argument mismatch*
   rather than the thread failing later with a Python TypeError.
   The thread name defaults to the procedure name (without module); starting a thread whose name
-  is already used by an active thread raises -749 *Thread already exists*, so several threads on
-  one procedure need explicit names.
+  is already used by an active thread of the same project raises -749 *Thread already exists*, so
+  several threads on one procedure need explicit names (two projects in memory may each run a
+  ``Main``: docs/design/console.md).
 * ``Start`` on an active thread raises -750; more than ``Simulation.max_threads`` (32, D0:4584)
   active threads raises -207 *Too many*.  Start clears pending events.  The starter keeps
   running; the new thread runs at the starter's next scheduling point.
@@ -71,7 +72,7 @@ from gplrt.lang.errors import (
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String
 from gplrt.lang.procedures import find_procedure, registered_procedures
-from gplrt.session import Session, current_session
+from gplrt.session import ProjectScope, Session, current_scope, current_session
 from gplrt.threads.scheduler import ThreadAbort, ThreadCtx, WaitQueue, current_ctx
 
 MAX_EVENT_MASK = 0xFFFF
@@ -143,6 +144,13 @@ def _calling_module(frame: FrameType | None) -> str | None:
     return module
 
 
+class _Inherit:
+    """``Thread(_project=...)``'s default: the thread belongs to its creator's project."""
+
+
+_INHERIT_PROJECT = _Inherit()
+
+
 class _Foreign(threading.local):
     thread: "Thread | None" = None
 
@@ -163,9 +171,13 @@ class Thread:
         _args: tuple[Any, ...] = (),
         _propagate: bool = False,
         _module: str | None = None,
+        _project: ProjectScope | None | _Inherit = _INHERIT_PROJECT,
     ) -> None:
         #: The session the thread runs in: the creating code's, unless given.
         self._session = _session if _session is not None else current_session()
+        #: The project it belongs to (``gplrt.session.ProjectScope``): the creating thread's, unless
+        #: given; None is the session's own project.
+        self._project: ProjectScope | None = current_scope() if isinstance(_project, _Inherit) else _project
         self._target: Callable[..., Any] | None
         if StartProcedure is None:
             self._target, self._start_name = None, ""
@@ -205,7 +217,8 @@ class Thread:
 
     @property
     def Project(self) -> String:
-        return str(self._session.project)  # type: ignore[return-value]
+        scope = self._project
+        return (scope.name if scope is not None else str(self._session.project))  # type: ignore[return-value]
 
     @property
     def StartProcedure(self) -> String:
@@ -238,7 +251,7 @@ class Thread:
             if self._active:
                 raise GplException(INVALID_WHEN_THREAD_ACTIVE, detail=f"thread {self._name}")
             active = [t for t in session.threads if t._active]
-            if any(t._name.lower() == self._name.lower() for t in active):
+            if any(t._name.lower() == self._name.lower() and t._project is self._project for t in active):
                 raise GplException(THREAD_ALREADY_EXISTS, detail=f"thread {self._name}")
             if len(active) >= session.max_threads:
                 raise GplException(TOO_MANY, detail=f"more than {session.max_threads} threads")
