@@ -12,23 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gpl2py.cli import main as cli_main
-from gpltest import REPO, gpl2py, module_src, write_project
-
-
-class _Result:
-    """What ``gpl2py`` run in this process printed, shaped like subprocess.CompletedProcess."""
-
-    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
-        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
-
-
-def in_process(capsys: pytest.CaptureFixture[str], *args: str) -> _Result:
-    """The command in this process (fast; for cases that need no separate interpreter)."""
-    capsys.readouterr()
-    status = cli_main(list(args))
-    out, err = capsys.readouterr()
-    return _Result(status, out, err)
+from gpltest import REPO, gpl2py, in_process, module_src, write_project
 
 TICKER = module_src("""\
     Function Inner(ByVal d As Integer) As Integer

@@ -6,7 +6,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from gpltest import gpl2py, module_src, write_project
+import pytest
+
+from gpltest import gpl2py, in_process, module_src, write_project
 
 # Two joint moves: the first is planned and run (the robot's history holds its Ruckig trajectory),
 # the second is refused (a PF400 flange must be horizontal), unhandled.
@@ -36,3 +38,51 @@ def test_an_unhandled_motion_error_leaves_json_stderr_clean(tmp_path: Path) -> N
     assert r.stderr == ""
     [error] = json.loads(r.stdout)["run"]["errors"]
     assert (error["code"], error["line"]) == (-1033, 12)
+
+
+# A fault of the GPL program that Python noticed first (a list index, an attribute of None, the
+# interpreter's recursion limit) is reported as the controller reports it: code, text, GPL line.
+PYTHON_NOTICED = {
+    "IndexError": (module_src("""\
+    Public Sub Main()
+        Dim a(3) As Integer
+        Dim i As Integer
+        i = 5
+        a(i) = 1
+    End Sub"""), "Main.gpl:6: error -767 in thread Main: *Invalid array index*"),
+    # the vendor's shape (TCS TcpComMain): a handler closes a socket that was never accepted
+    "AttributeError": (module_src("""\
+    Public Sub Main()
+        Dim TcpSock As Socket
+        Dim ex As Exception
+        Try
+            ex = New Exception
+            ex.ErrorCode = -1705
+            Throw ex
+        Catch ex
+            TcpSock.Close()
+        End Try
+    End Sub"""), "Main.gpl:10: error -757 in thread Main: *Object not instantiated*"),
+    "RecursionError": (module_src("""\
+    Function Down(ByVal n As Integer) As Integer
+        Return Down(n + 1) + 1
+    End Function
+    Public Sub Main()
+        Console.WriteLine(Down(0))
+    End Sub"""), "Main.gpl:3: error -755 in thread Main: *Thread stack too small*"),
+}
+
+
+@pytest.mark.parametrize("python_name", sorted(PYTHON_NOTICED))
+def test_a_fault_python_noticed_is_told_in_the_controllers_words(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], python_name: str) -> None:
+    """It was '*Invalid array index* - IndexError: list assignment index out of range' (and
+    "AttributeError: 'NoneType' object has no attribute 'Close'", 'RecursionError: maximum
+    recursion depth exceeded'): words about Python that name nothing in the user's GPL."""
+    source, expected = PYTHON_NOTICED[python_name]
+    proj = write_project(tmp_path, {"Main.gpl": source})
+    r = in_process(capsys, "run", proj)
+    assert r.returncode == 3
+    report = [line for line in r.stderr.splitlines() if line.startswith(proj)]
+    assert report == [f"{proj}/{expected}"], r.stderr
+    assert python_name not in r.stderr and "NoneType" not in r.stderr

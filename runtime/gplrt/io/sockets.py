@@ -79,6 +79,7 @@ from gplrt.lang.errors import (
     SOCKET_NOT_OPEN,
     VALUE_OUT_OF_RANGE,
     GplException,
+    host_reason,
 )
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
@@ -176,16 +177,16 @@ def _os_error(exc: OSError, what: str) -> GplException:
     if code == errno.ECONNREFUSED:
         return GplException(CONNECTION_REFUSED, detail=what)
     if code in (errno.ECONNRESET, errno.EPIPE, errno.ECONNABORTED, errno.ESHUTDOWN):
-        return GplException(CONNECTION_CLOSED, detail=f"{what}: {exc.strerror}")
+        return GplException(CONNECTION_CLOSED, detail=f"{what}: {host_reason(exc)}")
     if code == errno.EISCONN:
         return GplException(ALREADY_CONNECTED, detail=what)
     if code in (errno.ENOTCONN, errno.EBADF):
         return GplException(SOCKET_NOT_OPEN, detail=what)
     if code in (errno.EADDRNOTAVAIL, errno.EINVAL, errno.EAFNOSUPPORT):
-        return GplException(INVALID_ADDRESS, detail=f"{what}: {exc.strerror}")
+        return GplException(INVALID_ADDRESS, detail=f"{what}: {host_reason(exc)}")
     if code in (errno.ENETUNREACH, errno.EHOSTUNREACH):
-        return GplException(NO_CONNECTION, detail=f"{what}: {exc.strerror}")
-    return GplException(NO_CONNECTION, detail=f"{what}: {exc}")
+        return GplException(NO_CONNECTION, detail=f"{what}: {host_reason(exc)}")
+    return GplException(NO_CONNECTION, detail=f"{what}: {host_reason(exc)}")
 
 
 _DOTTED_QUAD = re.compile(r"(\d{1,3})\.(\d{1,3})\.(\d{1,3})\.(\d{1,3})", re.ASCII)
