@@ -86,3 +86,59 @@ def test_a_fault_python_noticed_is_told_in_the_controllers_words(
     report = [line for line in r.stderr.splitlines() if line.startswith(proj)]
     assert report == [f"{proj}/{expected}"], r.stderr
     assert python_name not in r.stderr and "NoneType" not in r.stderr
+
+
+# The issue's example: one Exception object thrown and caught at line 7, then given a new code and
+# thrown again, unhandled, at line 13 (TCS reuses its `ex` so: Main.gpl:215-216).
+THROWN_TWICE = module_src("""\
+    Public Sub Main()
+        Dim e2 As New Exception
+        Dim ex As Exception
+        e2.ErrorCode = -31000
+        Try
+            Throw e2
+        Catch ex
+            Console.WriteLine("caught " & CStr(ex.ErrorCode))
+        End Try
+        Console.WriteLine("thrown again")
+        e2.ErrorCode = -31001
+        Throw e2
+    End Sub""")
+
+# A fault in a procedure called through a delegate (its runtime wrapper records the GPL line) is
+# caught by the caller and thrown on from there.
+THROWN_ON_FROM_A_DELEGATES_FAULT = """\
+Module Main
+    Delegate Sub Action()
+    Public Sub Faulty()
+        Dim a(1) As Integer
+        a(2) = 1
+    End Sub
+    Public Sub Main()
+        Dim d As Action
+        Dim ex As Exception
+        d = New Action("Faulty")
+        Try
+            d()
+        Catch ex
+            Console.WriteLine("caught " & CStr(ex.ErrorCode))
+            Throw ex
+        End Try
+    End Sub
+End Module
+"""
+
+
+@pytest.mark.parametrize(("source", "expected"), [
+    (THROWN_TWICE, "Main.gpl:13: error -31001 in thread Main: *Error -31001*"),
+    (THROWN_ON_FROM_A_DELEGATES_FAULT, "Main.gpl:15: error -767 in thread Main: *Invalid array index*"),
+], ids=["thrown-twice", "thrown-on-from-a-delegate"])
+def test_an_exception_thrown_again_is_reported_where_it_was_thrown_this_time(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str], source: str, expected: str) -> None:
+    """An Exception object has no location member, so its last Throw is where the thread stopped;
+    the report named the first Throw's line (Python kept that raise's frames in the traceback)."""
+    proj = write_project(tmp_path, {"Main.gpl": source})
+    r = in_process(capsys, "run", proj)
+    assert r.returncode == 3
+    report = [line for line in r.stderr.splitlines() if line.startswith(proj)]
+    assert report == [f"{proj}/{expected}"], r.stderr

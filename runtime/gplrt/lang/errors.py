@@ -298,6 +298,18 @@ class GplException(Exception):
 
     # -- Python side ------------------------------------------------------------------------------
 
+    def forget_location(self) -> None:
+        """Drop where the exception was last raised (its ``gpl_location`` and Python traceback).
+
+        ``Catch`` calls it (``as_gpl_exception``): the GPL object carries no location (its members
+        are ErrorCode, Qualifier, RobotError, RobotNum, Axis, Message, Clone, UpdateErrorCode),
+        so a ``Throw`` of a caught object -- TCS reuses one (``ex.ErrorCode = -1708: Throw ex``) --
+        is reported where that Throw is.  Python would otherwise keep the first raise's frames at
+        the end of the new traceback, and the report would name the first Throw's line.
+        """
+        self.gpl_location = None
+        self.__traceback__ = None
+
     def __str__(self) -> str:
         text = self.Message()
         if self.detail:

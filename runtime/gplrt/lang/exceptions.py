@@ -108,7 +108,9 @@ class ExitTry(BaseException):
 def as_gpl_exception(exc: BaseException) -> GplException:
     """The GplException a ``Catch`` receives for ``exc``.
 
-    A GplException is returned as is (``Catch ex`` gets exactly the thrown object).  Other
+    A GplException is returned as is (``Catch ex`` gets exactly the thrown object), without the
+    place it was thrown from (:meth:`GplException.forget_location`): thrown again, it is reported
+    at that Throw, as the controller does (docs/design/real-code.md, "A reused Exception object").  Other
     ``Exception``s become a new GplException with the code from ``gpl_code_for`` and the original
     as ``__cause__``; only -201 (no GPL error describes the fault) has the Python message as
     ``detail`` (module docstring).  Non-``Exception`` BaseExceptions are
@@ -116,6 +118,7 @@ def as_gpl_exception(exc: BaseException) -> GplException:
     ex = as_gpl_exception(_e)``.
     """
     if isinstance(exc, GplException):
+        exc.forget_location()  # caught: a later Throw of it is reported where that Throw is
         return exc
     if not isinstance(exc, Exception):
         raise exc
