@@ -37,6 +37,12 @@ thread only waits for it (:func:`_drive`): Python raises KeyboardInterrupt in th
 whatever bytecode it is running, and were that the scheduler's own code (a dispatch half done under
 its lock), the threads could be left in a state no abort reaches.  A run started with SIGINT
 ignored (``nohup``, a background job of a shell script) keeps ignoring it, as POSIX programs do.
+
+Where the program listens (decision): each time one of its servers starts listening
+(``gplrt.io.sockets.NetworkConfig.on_listen``), stderr gets ``note: listening on 127.0.0.1:10100
+(thread TcpCom1)`` -- the address a client must use, once it may connect -- unless ``--quiet`` or
+``--json`` (whose stderr stays clean).  TCS serves one client per port and stops listening while it
+has one, so a user who probed the port to find out would take the real client's turn.
 """
 
 from __future__ import annotations
@@ -63,6 +69,8 @@ from gpl2py.progress import ProgressBar
 from gpl2py.project import Limits, Project, load_project
 
 if TYPE_CHECKING:
+    from gplrt.io.sockets import Listening
+
     from gpl2py.transpile import Progress
 
 EXIT_OK = 0
@@ -560,6 +568,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
     sim = Simulation(clock=args.clock, speed=args.speed, console=console, flash_root=args.flash,
                      project=project.name if project else "", robot=args.robot, listen=args.listen,
                      history=args.history, **({"signal_history": None} if args.history is None else {}))
+    if not args.json and not args.quiet:
+        sim.network.on_listen.append(lambda where: console.log(listening_note(where)))
     install_project_files(sim, args.path, project)
     if args.setup:
         try:
@@ -622,6 +632,18 @@ def install_project_files(sim: Any, path: str | Path, project: Project | None) -
 
         files = {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
         sim.install_project_files(files, project.name)
+
+
+def listening_note(where: Listening) -> str:
+    """``note: listening on 127.0.0.1:10100 (thread TcpCom1)``: where a client reaches a server of
+    the program, printed as it starts listening (module docstring)."""
+    return f"note: listening on {listening_place(where)}"
+
+
+def listening_place(where: Listening) -> str:
+    """``127.0.0.1:10100 (thread TcpCom1)``: a server's address and port, and the GPL thread that
+    opened it (none for Python code outside the GPL threads)."""
+    return f"{where} (thread {where.thread})" if where.thread else str(where)
 
 
 def stubs_note(package: ModuleType) -> str | None:

@@ -4,11 +4,12 @@ keeps its reports in the controller's words (issue 20, item 6)."""
 from __future__ import annotations
 
 import json
+import socket
 from pathlib import Path
 
 import pytest
 
-from gpltest import gpl2py, in_process, module_src, write_project
+from gpltest import free_port, gpl2py, in_process, module_src, write_project
 
 # Two joint moves: the first is planned and run (the robot's history holds its Ruckig trajectory),
 # the second is refused (a PF400 flange must be horizontal), unhandled.
@@ -142,3 +143,71 @@ def test_an_exception_thrown_again_is_reported_where_it_was_thrown_this_time(
     assert r.returncode == 3
     report = [line for line in r.stderr.splitlines() if line.startswith(proj)]
     assert report == [f"{proj}/{expected}"], r.stderr
+
+
+def udp_port() -> int:
+    """A UDP port on loopback that nothing is bound to right now."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def listeners(tcp: int, udp: int) -> str:
+    """A thread named Listener opens a TCP server twice (Start, Stop, Start, Stop) and a UDP one."""
+    return module_src(f"""\
+    Public Sub Serve()
+        Dim tl As New TcpListener(New IPEndPoint("", {tcp}))
+        Dim u As UdpClient
+        tl.Start()
+        tl.Stop()
+        tl.Start()
+        u = New UdpClient(New IPEndPoint("0.0.0.0", {udp}))
+        u.Close()
+        tl.Stop()
+    End Sub
+    Public Sub Main()
+        Dim t As New Thread("Serve", 0, "Listener")
+        t.Start()
+        t.Join()
+        Console.WriteLine("done")
+    End Sub""")
+
+
+def test_a_server_says_where_it_listens_each_time_it_starts(tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    """Without it a user cannot tell when to connect, and probing costs TCS's one client its turn.
+    The address is where a client must connect: loopback, though the program bound 0.0.0.0."""
+    tcp, udp = free_port(), udp_port()
+    proj = write_project(tmp_path, {"Main.gpl": listeners(tcp, udp)})
+    r = in_process(capsys, "run", proj)
+    assert r.returncode == 0 and r.stdout == "done\n"
+    notes = [line for line in r.stderr.splitlines() if line.startswith("note: listening")]
+    assert notes == [f"note: listening on 127.0.0.1:{tcp} (thread Listener)"] * 2 + [
+        f"note: listening on 127.0.0.1:{udp}/udp (thread Listener)"]
+
+
+@pytest.mark.parametrize("option", ["--quiet", "--json"])
+def test_quiet_and_json_runs_print_no_listening_note(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+                                                     option: str) -> None:
+    proj = write_project(tmp_path, {"Main.gpl": listeners(free_port(), udp_port())})
+    r = in_process(capsys, "run", proj, option)
+    assert r.returncode == 0
+    assert r.stderr == ""
+
+
+def test_a_port_in_use_is_reported_with_its_address_and_port(tmp_path: Path,
+                                                             capsys: pytest.CaptureFixture[str]) -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        proj = write_project(tmp_path, {"Main.gpl": module_src(f"""\
+    Public Sub Main()
+        Dim tl As New TcpListener(New IPEndPoint("", {port}))
+        tl.Start()
+    End Sub""")})
+        r = in_process(capsys, "run", proj)
+    assert r.returncode == 3
+    assert f"{proj}/Main.gpl:4: error -304 in thread Main: *Device already in use* - listen on " \
+           f"127.0.0.1:{port}: address already in use" in r.stderr.splitlines()
+    assert "note: listening" not in r.stderr
