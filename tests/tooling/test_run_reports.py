@@ -4,12 +4,19 @@ keeps its reports in the controller's words (issue 20, item 6)."""
 from __future__ import annotations
 
 import json
+import os
+import queue
+import signal
 import socket
+import subprocess
+import sys
+import threading
 from pathlib import Path
+from typing import IO
 
 import pytest
 
-from gpltest import free_port, gpl2py, in_process, module_src, write_project
+from gpltest import REPO, free_port, gpl2py, in_process, module_src, write_project
 
 # Two joint moves: the first is planned and run (the robot's history holds its Ruckig trajectory),
 # the second is refused (a PF400 flange must be horizontal), unhandled.
@@ -193,6 +200,91 @@ def test_quiet_and_json_runs_print_no_listening_note(tmp_path: Path, capsys: pyt
     r = in_process(capsys, "run", proj, option)
     assert r.returncode == 0
     assert r.stderr == ""
+
+
+class Lines:
+    """The lines a subprocess writes to one of its pipes, read on a helper thread so that a test can
+    wait for one without blocking forever on a program that never writes it."""
+
+    def __init__(self, stream: IO[str]) -> None:
+        self.seen: list[str] = []
+        self._queue: queue.Queue[str | None] = queue.Queue()
+        threading.Thread(target=self._read, args=(stream,), daemon=True).start()
+
+    def _read(self, stream: IO[str]) -> None:
+        for line in stream:
+            self._queue.put(line.rstrip("\n"))
+        self._queue.put(None)
+
+    def wait_for(self, wanted: str, timeout: float = 120.0) -> None:
+        """Return once the line ``wanted`` was written; fail, with every line seen, if the stream
+        ends (or ``timeout`` real seconds pass) first."""
+        while wanted not in self.seen:
+            try:
+                line = self._queue.get(timeout=timeout)
+            except queue.Empty:
+                line = None
+            if line is None:
+                pytest.fail(f"never wrote {wanted!r}; wrote:\n" + "\n".join(self.seen))
+            self.seen.append(line)
+
+    def rest(self) -> list[str]:
+        """Every line, once the stream has ended."""
+        while (line := self._queue.get(timeout=60)) is not None:
+            self.seen.append(line)
+        return self.seen
+
+
+def test_sigterm_stops_the_run_as_ctrl_c_does_and_exits_143(tmp_path: Path) -> None:
+    """docker stop, systemd and CI time-outs send SIGTERM: the run died at once, leaving its
+    temporary flash folder behind (and skipping the GPL threads' stop).  Now every GPL thread is
+    stopped, the servers close, the folder is removed, and the status is 143 (128 + SIGTERM)."""
+    port = free_port()
+    proj = write_project(tmp_path, {"Main.gpl": module_src(f"""\
+    Public Sub Serve()
+        Dim tl As New TcpListener(New IPEndPoint("", {port}))
+        Dim sock As Socket
+        tl.Start()
+        While True
+            sock = tl.AcceptSocket()
+            sock.Send("hello" & Chr(10))
+        End While
+    End Sub
+    Public Sub Main()
+        Dim t As New Thread("Serve", 0, "Server")
+        t.Start()
+        t.Join()
+    End Sub""")})
+    temp = tmp_path / "tmp"  # the run's temporary flash folder is made here (tempfile's TMPDIR)
+    temp.mkdir()
+    proc = subprocess.Popen([sys.executable, "-X", "faulthandler", "-m", "gpl2py", "run", proj,
+                             "--cache-dir", str(tmp_path / "cache")],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=REPO,
+                            env={**os.environ, "TMPDIR": str(temp)})
+    try:
+        assert proc.stderr is not None
+        err = Lines(proc.stderr)
+        err.wait_for(f"note: listening on 127.0.0.1:{port} (thread Server)")
+        with socket.create_connection(("127.0.0.1", port), timeout=30) as client:
+            assert client.makefile().readline() == "hello\n"  # the server serves
+        [flash] = temp.glob("gplrt-flash-*")
+        assert (flash / "flash" / "projects").is_dir()
+        proc.send_signal(signal.SIGTERM)
+        try:
+            proc.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            proc.send_signal(signal.SIGABRT)  # -X faulthandler: the stacks say where it was stuck
+            pytest.fail("still running 60 s after SIGTERM:\n" + "\n".join(err.rest()))
+        lines = err.rest()
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 143, lines
+    assert lines[-1] == "gpl2py: terminated; stopped 2 GPL threads"
+    assert not any("Traceback" in line or "KeyboardInterrupt" in line for line in lines), lines
+    assert list(temp.iterdir()) == []  # the flash folder is gone
+    with pytest.raises(ConnectionRefusedError):
+        socket.create_connection(("127.0.0.1", port), timeout=30)
 
 
 def test_a_port_in_use_is_reported_with_its_address_and_port(tmp_path: Path,
