@@ -369,8 +369,8 @@ COMMANDS: list[Command] = [
         description="Translate a GPL project (re-using the cached translation when nothing "
         "changed), then run its ProjectStart procedure on a simulated controller: console output "
         "goes to stdout, controller reports and gpl2py's own messages to stderr. Ctrl-C stops "
-        "every GPL thread and exits with status 130 (SIGTERM: 143). Example: gpl2py run samples/pick_and_place "
-        "--setup samples/notebook/cell_io.py --plot cell.png",
+        "every GPL thread and exits with status 130 (SIGTERM: 143). Example: gpl2py run "
+        "samples/pick_and_place --setup samples/notebook/cell_io.py --plot cell.png",
         configure=_configure_run,
         run=_run_run,
         epilog=_run_epilog,

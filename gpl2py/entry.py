@@ -16,10 +16,10 @@ once, with status 130.  A SIGINT that was ignored when gpl2py started stays igno
 background jobs, ``nohup``).
 
 SIGTERM (what ``docker stop``, systemd, ``kill`` and CI time-outs send) is treated as Ctrl-C is:
-its handler raises ``gpl2py.interrupts.Terminated``, a KeyboardInterrupt, so every place that stops cleanly on
-Ctrl-C does so on SIGTERM too -- ``gpl2py run`` stops the GPL threads, closes their servers and
-removes the temporary flash folder at exit -- and the status is 143 (128 + SIGTERM), the word
-"terminated".  Python's default for SIGTERM was to die at once, leaving the flash folder behind.
+its handler raises ``gpl2py.interrupts.Terminated``, a KeyboardInterrupt, so every place that
+stops cleanly on Ctrl-C does so on SIGTERM too -- ``gpl2py run`` stops the GPL threads, closes
+their servers and removes the temporary flash folder at exit -- and the status is 143 (128 +
+SIGTERM), the word "terminated".  Python's default for SIGTERM was to die at once, leaving the flash folder behind.
 """
 
 from __future__ import annotations

@@ -145,8 +145,9 @@ def test_a_port_in_use_names_the_address_this_computer_refused() -> None:
             udp_port = taken_udp.getsockname()[1]
             with pytest.raises(GplException) as udp:
                 UdpClient(IPEndPoint(FOREIGN, udp_port))
-    assert (tcp.value.ErrorCode, tcp.value.detail) == (-304, f"listen on 0.0.0.0:{port}: address already in use")
-    assert (udp.value.ErrorCode, udp.value.detail) == (-304, f"bind 0.0.0.0:{udp_port}: address already in use")
+    assert tcp.value.ErrorCode == udp.value.ErrorCode == -304
+    assert tcp.value.detail == f"listen on 0.0.0.0:{port}: address already in use"
+    assert udp.value.detail == f"bind 0.0.0.0:{udp_port}: address already in use"
 
 
 def test_one_sessions_opt_in_does_not_carry_over_to_the_next() -> None:

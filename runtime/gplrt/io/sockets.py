@@ -226,9 +226,7 @@ def _os_error(exc: OSError, what: str) -> GplException:
         return GplException(SOCKET_NOT_OPEN, detail=what)
     if code in (errno.EADDRNOTAVAIL, errno.EINVAL, errno.EAFNOSUPPORT):
         return GplException(INVALID_ADDRESS, detail=f"{what}: {host_reason(exc)}")
-    if code in (errno.ENETUNREACH, errno.EHOSTUNREACH):
-        return GplException(NO_CONNECTION, detail=f"{what}: {host_reason(exc)}")
-    return GplException(NO_CONNECTION, detail=f"{what}: {host_reason(exc)}")
+    return GplException(NO_CONNECTION, detail=f"{what}: {host_reason(exc)}")  # unreachable, and the rest
 
 
 _DOTTED_QUAD = re.compile(r"(\d{1,3})\.(\d{1,3})\.(\d{1,3})\.(\d{1,3})", re.ASCII)
