@@ -43,6 +43,7 @@ from gpl2py import messages as msg
 from gpl2py.config import FILE_NAME, Config, ConfigError, discover
 from gpl2py.diagnostics import DiagnosticSink, internal_error_span
 from gpl2py.formats import FORMATS, wants_colour
+from gpl2py.interrupts import stop_status
 from gpl2py.outcome import (  # the pieces ``run`` shares (gpl2py.outcome says why they live there)
     Display,
     Outcome,
@@ -70,7 +71,7 @@ exit status:
      or gpl2py failed internally (GPL9000: a bug in gpl2py, please report it)
   141 the output was closed by its reader (gpl2py ... | head): gpl2py stopped quietly
   gpl2py run adds 3 (a GPL thread ended with an unhandled error), 4 (the program
-  stalled) and 130 (Ctrl-C): see gpl2py run --help
+  stalled), 130 (Ctrl-C) and 143 (SIGTERM): see gpl2py run --help
 
 Every diagnostic has a stable code, e.g. "Main.gpl:12:5: error GPL1101: ...";
 docs/diagnostics.md explains each code.
@@ -368,8 +369,8 @@ COMMANDS: list[Command] = [
         description="Translate a GPL project (re-using the cached translation when nothing "
         "changed), then run its ProjectStart procedure on a simulated controller: console output "
         "goes to stdout, controller reports and gpl2py's own messages to stderr. Ctrl-C stops "
-        "every GPL thread and exits with status 130. Example: gpl2py run samples/pick_and_place "
-        "--setup samples/notebook/cell_io.py --plot cell.png",
+        "every GPL thread and exits with status 130 (SIGTERM: 143). Example: gpl2py run "
+        "samples/pick_and_place --setup samples/notebook/cell_io.py --plot cell.png",
         configure=_configure_run,
         run=_run_run,
         epilog=_run_epilog,
@@ -619,9 +620,10 @@ def _main(argv: list[str] | None) -> int:
         out = command.run(args)
     except BrokenPipeError:
         raise
-    except KeyboardInterrupt:
-        stderr.write("gpl2py: interrupted\n")
-        return 130
+    except KeyboardInterrupt as interrupt:  # Ctrl-C, or SIGTERM (gpl2py.entry)
+        status, word = stop_status(interrupt)
+        stderr.write(f"gpl2py: {word}\n")
+        return status
     except Exception as exc:  # noqa: BLE001 - the promise is: never a traceback
         if os.environ.get("GPL2PY_TRACEBACK"):
             raise

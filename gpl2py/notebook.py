@@ -54,11 +54,11 @@ from types import ModuleType
 from typing import Any, Literal
 
 from gpl2py.diagnostics import DiagnosticSink, Severity
-from gpl2py.run import Built, build, import_built, install_project_files
+from gpl2py.run import Built, build, import_built, install_project_files, listening_place
 from gplrt.controller.pdb import default_database
 from gplrt.controller.signals import DEFAULT_SIGNAL_HISTORY, IoMap
 from gplrt.display import Table
-from gplrt.io.sockets import listen_address
+from gplrt.io.sockets import Listening, listen_address
 from gplrt.lang.errors import (
     AMBIGUOUS_PUBLIC_REFERENCE,
     INVALID_ARGUMENT,
@@ -141,9 +141,17 @@ class Serving:
                 raise RuntimeError(f"the program ended (status {self.status}) before listening on "
                                    f"{sorted(wanted - listening_ports())}:\n{self.cell.log}")
             if time.monotonic() > end:
+                where = ", ".join(listening_place(w) for w in self.listening) or "nowhere"
                 raise TimeoutError(f"ports {sorted(wanted - listening_ports())} not listening after "
-                                   f"{timeout} s:\n{self.cell.log}")
+                                   f"{timeout} s; it listens on {where}:\n{self.cell.log}")
             time.sleep(self.POLL)
+
+    @property
+    def listening(self) -> list[Listening]:
+        """Where the program listens now, ordered by port: each server's address, port, protocol
+        and GPL thread (``gplrt.io.sockets.Listening``; ``str()`` of one is ``127.0.0.1:10100``).
+        The address is the one a client must use, which may differ from what the GPL code bound."""
+        return self.cell.sim.network.listening()
 
     def stop(self, grace: float = 5.0) -> StopReport:
         """Abort every GPL thread (``Simulation.stop``) and wait for ProjectStart's runner."""

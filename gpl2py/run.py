@@ -21,6 +21,7 @@ Exit status of ``run`` (also in ``gpl2py run --help`` and docs/cli.md):
 4     virtual clock only: the program stalled — every remaining thread waits for something
       that no thread, timer or I/O rule can ever provide (a controller would wait forever)
 130   interrupted with Ctrl-C (SIGINT): every GPL thread was stopped first
+143   terminated by SIGTERM (``docker stop``, systemd, a CI time-out): stopped as on Ctrl-C
 141   the output was closed by its reader (``gpl2py run X | head``): every GPL thread was stopped
       and nothing more is printed, as a program that SIGPIPE stops
 ====  ==========================================================================================
@@ -37,6 +38,13 @@ thread only waits for it (:func:`_drive`): Python raises KeyboardInterrupt in th
 whatever bytecode it is running, and were that the scheduler's own code (a dispatch half done under
 its lock), the threads could be left in a state no abort reaches.  A run started with SIGINT
 ignored (``nohup``, a background job of a shell script) keeps ignoring it, as POSIX programs do.
+SIGTERM is stopped the same way (``gpl2py.interrupts.Terminated`` is a KeyboardInterrupt), with 143.
+
+Where the program listens (decision): each time one of its servers starts listening
+(``gplrt.io.sockets.NetworkConfig.on_listen``), stderr gets ``note: listening on 127.0.0.1:10100
+(thread TcpCom1)`` -- the address a client must use, once it may connect -- unless ``--quiet`` or
+``--json`` (whose stderr stays clean).  TCS serves one client per port and stops listening while it
+has one, so a user who probed the port to find out would take the real client's turn.
 """
 
 from __future__ import annotations
@@ -59,11 +67,14 @@ from gpl2py import serve
 from gpl2py.cache import Cache, Entry, cache_key
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity, plural
 from gpl2py.formats import github_annotation, github_annotations, json_document
+from gpl2py.interrupts import EXIT_INTERRUPTED, stop_status
 from gpl2py.outcome import Display, Outcome, add_project_options, emit, limits_of, new_sink, remember
 from gpl2py.progress import ProgressBar
 from gpl2py.project import Limits, Project, load_project
 
 if TYPE_CHECKING:
+    from gplrt.io.sockets import Listening
+
     from gpl2py.transpile import Progress
 
 EXIT_OK = 0
@@ -71,7 +82,6 @@ EXIT_ERRORS = 1
 EXIT_USAGE = 2
 EXIT_GPL_ERROR = 3
 EXIT_STALLED = 4
-EXIT_INTERRUPTED = 130
 EXIT_OUTPUT_CLOSED = 141  # 128 + SIGPIPE: what a shell reports for a program a closed pipe stopped
 STOP_GRACE = 2.0  # real seconds the threads get to end after Ctrl-C
 
@@ -85,6 +95,8 @@ exit status:
   4    virtual clock: the program stalled (every thread waits for something that
        can never happen; a real controller would wait forever)
   130  interrupted with Ctrl-C; every GPL thread was stopped first
+  143  terminated by SIGTERM (docker stop, systemd, a CI time-out): stopped as
+       on Ctrl-C, and the temporary flash folder removed
   141  the output was closed (gpl2py run ... | head): stopped quietly
 
 The translation is cached (see --cache-dir): a second run of unchanged sources
@@ -295,7 +307,8 @@ class RunReport:
     wall_time: float
     errors: list[dict[str, Any]] = field(default_factory=list)
     stalled: list[str] = field(default_factory=list)
-    interrupted: bool = False
+    interrupted: bool = False  # by Ctrl-C or SIGTERM (``word`` says which)
+    word: str = "interrupted"
     output_closed: bool = False  # the console's reader went away: nothing more is printed
     stopped: int = 0  # threads aborted after Ctrl-C
     still_alive: list[str] = field(default_factory=list)  # of those, still running after STOP_GRACE
@@ -426,16 +439,18 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None,
     started = time.perf_counter()
     interrupted = closed = False
     stopped: tuple[int, list[str]] = (0, [])
+    status, word = EXIT_INTERRUPTED, "interrupted"
     try:
         _drive(main or package.main, sim, getattr(sim.console, "closed", None))
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as interrupt:  # Ctrl-C, or SIGTERM (gpl2py.entry)
         interrupted = True
+        status, word = stop_status(interrupt)
         stopped = _stop_all(sim)
     except OutputClosed:
         closed = True
         stopped = _stop_all(sim)
     report = RunReport(EXIT_OK, sim.now(), time.perf_counter() - started, interrupted=interrupted,
-                       output_closed=closed)
+                       word=word, output_closed=closed)
     report.stopped, report.still_alive = stopped
     report.errors = _unhandled_errors(sim)
     if not interrupted and not closed:
@@ -443,7 +458,7 @@ def execute(package: ModuleType, sim: Any, *, plot: str | None = None,
     if closed:
         report.status = EXIT_OUTPUT_CLOSED
     elif interrupted:
-        report.status = EXIT_INTERRUPTED
+        report.status = status
     elif report.errors:
         report.status = EXIT_GPL_ERROR
     elif report.stalled:
@@ -568,6 +583,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
                      project=project.name if project else "", robot=args.robot, listen=args.listen,
                      history=args.history, **({"signal_history": None} if args.history is None else {}),
                      compiler=compiler(build, import_built, args.cache_dir))
+    if not args.json and not args.quiet:
+        sim.network.on_listen.append(lambda where: console.log(listening_note(where)))
     install_project_files(sim, args.path, project)
     sim.projects.adopt(sim.project, sim.project_folder, program_of(package))  # the console's Show, Stop ...
     if args.setup:
@@ -621,7 +638,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
         if display.format == "github":
             stdout.write(github_annotation(Severity.ERROR, text, e["file"], e["line"], f"GPL error {e['code']}"))
     if report.interrupted:
-        text = f"gpl2py: interrupted; stopped {plural(report.stopped, 'GPL thread')}"
+        text = f"gpl2py: {report.word}; stopped {plural(report.stopped, 'GPL thread')}"
         if report.still_alive:
             text += f" ({', '.join(report.still_alive)} did not stop within {STOP_GRACE:g} s)"
         stderr.write(text + "\n")
@@ -643,6 +660,18 @@ def install_project_files(sim: Any, path: str | Path, project: Project | None) -
 
         files = {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
         sim.install_project_files(files, project.name)
+
+
+def listening_note(where: Listening) -> str:
+    """``note: listening on 127.0.0.1:10100 (thread TcpCom1)``: where a client reaches a server of
+    the program, printed as it starts listening (module docstring)."""
+    return f"note: listening on {listening_place(where)}"
+
+
+def listening_place(where: Listening) -> str:
+    """``127.0.0.1:10100 (thread TcpCom1)``: a server's address and port, and the GPL thread that
+    opened it (none for Python code outside the GPL threads)."""
+    return f"{where} (thread {where.thread})" if where.thread else str(where)
 
 
 def stubs_note(package: ModuleType) -> str | None:

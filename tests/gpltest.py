@@ -40,6 +40,7 @@ from gpl2py.transpile import write_package
 from gplrt.sim import Simulation
 
 if TYPE_CHECKING:
+    import pytest
     from gpl2py.semantics.check import Model
 
 REPO = Path(__file__).resolve().parents[1]
@@ -180,6 +181,23 @@ def gpl2py(*args: str, cwd: Path | None = None, timeout: float = 180, env: dict[
     not a TTY); ``env`` adds to this process's environment."""
     return subprocess.run([sys.executable, "-m", "gpl2py", *args], capture_output=True, text=True,
                           cwd=cwd or REPO, timeout=timeout, env={**os.environ, **(env or {})})
+
+
+class CommandResult:
+    """What ``gpl2py`` run in this process printed, shaped like subprocess.CompletedProcess."""
+
+    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
+        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
+
+
+def in_process(capsys: pytest.CaptureFixture[str], *args: str) -> CommandResult:
+    """The ``gpl2py`` command in this process (fast; for cases that need no separate interpreter)."""
+    from gpl2py.cli import main as cli_main
+
+    capsys.readouterr()
+    status = cli_main(list(args))
+    out, err = capsys.readouterr()
+    return CommandResult(status, out, err)
 
 
 @dataclass

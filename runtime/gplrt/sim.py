@@ -308,8 +308,16 @@ class Simulation(Session):
         """
         report = self.stop(grace)
         self.scheduler.release_timers(drop_pending=True)
-        self.robots.clear()
+        self._release_motion()
         return report
+
+    def _release_motion(self) -> None:
+        """Let go of every robot's planned motion: the robots, and the frames of the threads'
+        unhandled errors, which hold the robot the failing Move was using
+        (``Thread.release_frames``).  The errors' codes and lines stay readable."""
+        self.robots.clear()
+        for thread in list(self.threads):
+            thread.release_frames()
 
     def run_for(self, seconds: float) -> None:
         """Let the session's GPL threads run for ``seconds`` of controller time, then return."""
@@ -369,7 +377,7 @@ def _release_robots_at_exit() -> None:
     for a session that is done with earlier.
     """
     for sim in list(_sessions):
-        sim.robots.clear()
+        sim._release_motion()
 
 
 def current() -> Simulation:

@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 
 from gplrt.io.sockets import IPEndPoint, TcpListener, UdpClient
+from gplrt.lang.errors import GplException
 from gplrt.sim import Simulation
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -126,6 +127,27 @@ def test_listen_on_every_interface_keeps_the_programs_own_choice() -> None:
             assert bound(listener) == where, asked
         finally:
             listener.Stop()
+
+
+def test_a_port_in_use_names_the_address_this_computer_refused() -> None:
+    """With every interface open, a server written for its controller's own IP (which this computer
+    lacks) binds 0.0.0.0; when that port is taken, -304 named the controller's IP, where nothing
+    was ever tried."""
+    Simulation(listen="0.0.0.0").activate()
+    with socket.socket() as taken:
+        taken.bind(("0.0.0.0", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        with pytest.raises(GplException) as tcp:
+            TcpListener(IPEndPoint(FOREIGN, port)).Start()
+        with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as taken_udp:
+            taken_udp.bind(("0.0.0.0", 0))
+            udp_port = taken_udp.getsockname()[1]
+            with pytest.raises(GplException) as udp:
+                UdpClient(IPEndPoint(FOREIGN, udp_port))
+    assert tcp.value.ErrorCode == udp.value.ErrorCode == -304
+    assert tcp.value.detail == f"listen on 0.0.0.0:{port}: address already in use"
+    assert udp.value.detail == f"bind 0.0.0.0:{udp_port}: address already in use"
 
 
 def test_one_sessions_opt_in_does_not_carry_over_to_the_next() -> None:

@@ -264,6 +264,20 @@ def test_missing_file_and_unknown_model() -> None:
     assert _code(exc) == -221
 
 
+def test_a_file_that_cannot_be_read_says_why_without_pythons_words(tmp_path: Path) -> None:
+    """The detail was Python's rendering of the exception: "[Errno 2] No such file or directory:
+    '...'" and "'ascii' codec can't decode byte 0xe9 in position 17: ordinal not in range(128)"."""
+    with pytest.raises(GplException) as exc:
+        ParameterDatabase.load("/nonexistent/robot01.pac")
+    assert exc.value.detail == "/nonexistent/robot01.pac: No such file or directory"
+    accented = tmp_path / "robot01.pac"
+    accented.write_bytes('Begin: 1.0\nDI: 1, 0, 0, 0, "café" = 1\nEnd:\n'.encode("latin-1"))
+    with pytest.raises(GplException) as exc:
+        ParameterDatabase.load(accented)
+    assert _code(exc) == -1520
+    assert exc.value.detail == f"{accented}: not ASCII text (byte 0xE9 at offset 31)"
+
+
 @pytest.mark.parametrize("model", model_names())
 def test_every_default_model_loads(model: str) -> None:
     db = default_database(model)

@@ -88,3 +88,36 @@ def test_serve_reports_a_program_that_ends_or_never_listens(tmp_path: Path) -> N
     with pytest.raises(TimeoutError, match=r"ports \[1\] not listening after 0.2 s"):
         elsewhere.serve(ports=[1], timeout=0.2)
     assert elsewhere.sim.scheduler.live == []  # stopped, not left running
+
+
+def test_serve_tells_where_the_program_listens(tmp_path: Path) -> None:
+    """A server whose port the test cannot know (it asked for port 0) or that listens elsewhere
+    than asked: ``Serving.listening`` and the time-out's message say where it really listens."""
+    port = free_port()
+    cell_ = Cell.load(write_project(tmp_path, {"Main.gpl": module_src(
+        "Public Sub Serve()\n"
+        "    Dim chosen As New TcpListener(New IPEndPoint(\"0.0.0.0\", 0))\n"
+        f"    Dim known As New TcpListener(New IPEndPoint(\"\", {port}))\n"
+        "    chosen.Start()\n"
+        "    known.Start()\n"
+        "    While Not known.Pending()\n"
+        "        Thread.Sleep(100)\n"
+        "    End While\n"
+        "End Sub\n"
+        "Public Sub Main()\n"
+        "    Dim t As New Thread(\"Serve\", 0, \"Server\")\n"
+        "    t.Start()\n"
+        "End Sub")}), clock="fast", echo=False, cache_dir=tmp_path / "cache")
+    with cell_.serve(ports=[port], timeout=30.0) as serving:
+        where = serving.listening
+        assert [(w.protocol, w.thread) for w in where] == [("TCP", "Server")] * 2
+        assert f"127.0.0.1:{port}" in [str(w) for w in where]
+        [chosen] = [w for w in where if w.port != port]
+        assert chosen.address == "127.0.0.1" and chosen.port != 0  # the port it was given
+    assert serving.listening == []  # stopped: its listeners are closed
+    with pytest.raises(TimeoutError) as info:
+        cell_.serve(ports=[1], timeout=0.2)
+    said = str(info.value).splitlines()[0]
+    assert said.startswith("ports [1] not listening after 0.2 s; it listens on ") and said.endswith(":")
+    places = said.removeprefix("ports [1] not listening after 0.2 s; it listens on ")[:-1].split(", ")
+    assert f"127.0.0.1:{port} (thread Server)" in places and len(places) == 2

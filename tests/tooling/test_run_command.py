@@ -12,23 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gpl2py.cli import main as cli_main
-from gpltest import REPO, gpl2py, module_src, write_project
-
-
-class _Result:
-    """What ``gpl2py`` run in this process printed, shaped like subprocess.CompletedProcess."""
-
-    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
-        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
-
-
-def in_process(capsys: pytest.CaptureFixture[str], *args: str) -> _Result:
-    """The command in this process (fast; for cases that need no separate interpreter)."""
-    capsys.readouterr()
-    status = cli_main(list(args))
-    out, err = capsys.readouterr()
-    return _Result(status, out, err)
+from gpltest import REPO, gpl2py, in_process, module_src, write_project
 
 TICKER = module_src("""\
     Function Inner(ByVal d As Integer) As Integer
@@ -495,8 +479,9 @@ def test_cache_key_covers_sources_names_options_and_the_tools(tmp_path: Path, mo
 
 def test_a_server_run_ends_cleanly_with_nothing_but_its_own_output(tmp_path: Path) -> None:
     """samples/cell_server under `gpl2py run`, driven by a client until it shuts down: exit 0, and
-    stderr holds the summaries only (no interpreter-exit noise such as nanobind's "leaked" lines,
-    which a scheduler timer still pending at exit used to cause: gplrt.sim.Simulation.close)."""
+    stderr holds the summaries and where the server listened only (no interpreter-exit noise such
+    as nanobind's "leaked" lines, which a scheduler timer still pending at exit used to cause:
+    gplrt.sim.Simulation.close)."""
     from gpltest import SAMPLES, LineClient, copy_project, free_port
 
     port = free_port()
@@ -520,9 +505,10 @@ def test_a_server_run_ends_cleanly_with_nothing_but_its_own_output(tmp_path: Pat
     assert proc.returncode == 0, err
     assert out == "cell server stopped after 1 connections\n"
     lines = err.splitlines()
-    assert len(lines) == 2, err
+    assert len(lines) == 3, err
     assert lines[0].startswith("transpiled 5 files (") and lines[0].endswith(": 0 errors, 0 warnings")
-    assert lines[1].startswith("program ended after ") and lines[1].endswith(": 0 unhandled errors")
+    assert lines[1] == f"note: listening on 127.0.0.1:{port} (thread listener)"
+    assert lines[2].startswith("program ended after ") and lines[2].endswith(": 0 unhandled errors")
 
 
 def test_plot_without_matplotlib_names_the_extra(tmp_path: Path) -> None:

@@ -63,6 +63,7 @@ from gplrt.lang.errors import (
     READ_ONLY,
     UNKNOWN_DATA_ID,
     GplException,
+    host_reason,
 )
 
 
@@ -350,7 +351,7 @@ class ParameterDatabase:
         try:
             text = path.read_text(encoding="ascii")
         except (OSError, UnicodeDecodeError) as exc:
-            raise GplException(CANT_OPEN_PARAMETER_DB, detail=f"{path}: {exc}") from None
+            raise GplException(CANT_OPEN_PARAMETER_DB, detail=f"{path}: {host_reason(exc)}") from None
         self.load_text(text, str(path))
 
     def load_text(self, text: str, filename: str = "<pac>") -> None:

@@ -62,6 +62,7 @@ from gplrt.lang.errors import (
     UNEXPECTED_EOF,
     WRITE_ERROR,
     GplException,
+    host_reason,
 )
 from gplrt.lang.gpltypes import Boolean, Integer, String
 
@@ -94,7 +95,7 @@ def _file_error(exc: OSError, text: str, code: int) -> GplException:
         return GplException(FILE_NOT_FOUND, detail=text)
     if isinstance(exc, IsADirectoryError):
         return GplException(INVALID_FILE_TYPE, detail=f"{text!r} is a directory")
-    return GplException(code, detail=f"{text}: {exc.strerror or exc}")
+    return GplException(code, detail=f"{text}: {host_reason(exc)}")
 
 
 def _same_file(a: os.stat_result, b: os.stat_result) -> bool:
@@ -178,7 +179,7 @@ class File:
         except (FileExistsError, NotADirectoryError):
             raise GplException(CANT_CREATE_DIRECTORY, detail=f"{path!r}: a file is in the way") from None
         except OSError as exc:
-            raise GplException(CANT_CREATE_DIRECTORY, detail=f"{path}: {exc.strerror}") from None
+            raise GplException(CANT_CREATE_DIRECTORY, detail=f"{path}: {host_reason(exc)}") from None
 
     @staticmethod
     def DeleteDirectory(path: String) -> None:
@@ -390,7 +391,7 @@ def _open_sink(path: str, append: bool) -> tuple[_FileSink | _NvramSink | _Seria
     except (FileNotFoundError, NotADirectoryError):
         raise GplException(CANT_OPEN_FOR_WRITE, detail=f"no folder for {path!r}") from None
     except OSError as exc:
-        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{path}: {exc.strerror or exc}") from None
+        raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{path}: {host_reason(exc)}") from None
 
 
 def _flush_on_free(buffer: bytearray, sink: _FileSink | _NvramSink | _SerialSink) -> None:
@@ -493,4 +494,4 @@ class StreamWriter:
         try:
             self._sink.write(data)
         except OSError as exc:
-            raise GplException(WRITE_ERROR, detail=f"{self._path}: {exc.strerror}") from None
+            raise GplException(WRITE_ERROR, detail=f"{self._path}: {host_reason(exc)}") from None

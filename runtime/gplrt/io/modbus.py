@@ -49,6 +49,7 @@ from gplrt.lang.errors import (
     OBJECT_NOT_INSTANTIATED,
     VALUE_OUT_OF_RANGE,
     GplException,
+    host_reason,
 )
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 
@@ -198,7 +199,7 @@ class Modbus:
         except ConnectionRefusedError:
             raise GplException(CONNECTION_REFUSED, detail=f"Modbus slave {where}") from None
         except OSError as exc:
-            raise GplException(MODBUS_TIMEOUT, detail=f"{where}: {exc.strerror}") from None
+            raise GplException(MODBUS_TIMEOUT, detail=f"{where}: {host_reason(exc)}") from None
         sock.settimeout(None)
         sock.setsockopt(_socket.IPPROTO_TCP, _socket.TCP_NODELAY, 1)
         self._sock = sock
@@ -226,7 +227,7 @@ class Modbus:
                 raise
             except OSError as exc:
                 self._disconnect()
-                raise GplException(CONNECTION_CLOSED, detail=f"Modbus slave: {exc.strerror}") from None
+                raise GplException(CONNECTION_CLOSED, detail=f"Modbus slave: {host_reason(exc)}") from None
             except BaseException:  # Thread.Abort while waiting: the reply may still come
                 self._disconnect()
                 raise

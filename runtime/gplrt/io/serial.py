@@ -25,7 +25,7 @@ import tty
 from typing import Protocol
 
 from gplrt.io._blocking import blocking_call, wait_ready
-from gplrt.lang.errors import DEVICE_IO_ERROR, NO_DEVICE_MAPPED, GplException
+from gplrt.lang.errors import DEVICE_IO_ERROR, NO_DEVICE_MAPPED, GplException, host_reason
 
 
 class SerialPort(Protocol):
@@ -94,7 +94,8 @@ class PtyPort:
             try:
                 self._pending += os.read(self._master, 4096)
             except OSError as exc:
-                raise GplException(DEVICE_IO_ERROR, detail=f"{self.device_path}: {exc}") from None
+                detail = f"{self.device_path}: {host_reason(exc)}"
+                raise GplException(DEVICE_IO_ERROR, detail=detail) from None
 
     def write(self, data: bytes) -> None:
         os.write(self._master, data)

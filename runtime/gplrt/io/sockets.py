@@ -45,6 +45,13 @@ Error codes (gpl-dictionary.md §14; the mapping is ours, the manual gives none)
 
 A Socket or TcpListener whose object is freed without ``Close``/``Stop`` closes its connection then,
 as on a controller (otherwise virtual time would stay paced to real time for the rest of the run).
+
+Where a program listens (:class:`Listening`): a server -- a started ``TcpListener``, a ``UdpClient``
+bound to a local endpoint -- is announced to :attr:`NetworkConfig.on_listen` as soon as a client may
+reach it (``gpl2py run`` prints ``note: listening on 127.0.0.1:10100 (thread TcpCom1)``), and
+:meth:`NetworkConfig.listening` tells which servers are open now (``Cell.serve``).  Why announce
+rather than let a user probe the port: TCS serves one client per port and stops listening while it
+has one, so a probing connection costs the real client its turn.
 """
 
 from __future__ import annotations
@@ -60,6 +67,7 @@ import termios
 import threading
 import time
 import weakref
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -79,42 +87,77 @@ from gplrt.lang.errors import (
     SOCKET_NOT_OPEN,
     VALUE_OUT_OF_RANGE,
     GplException,
+    host_reason,
 )
 from gplrt.lang.conversions import to_int32
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 from gplrt.session import current_session
+from gplrt.thread_binding import current_ctx
 
 
 LOOPBACK = "127.0.0.1"
 ANY = "0.0.0.0"
 
 
+@dataclass(frozen=True)
+class Listening:
+    """A server of the program: where a client reaches it, and the GPL thread that opened it."""
+
+    address: str  # the address really bound (module docstring), e.g. "127.0.0.1"
+    port: int  # the port really bound (a program that asked for port 0 gets one chosen for it)
+    protocol: str  # "TCP" (a TcpListener) or "UDP" (a UdpClient bound to a local endpoint)
+    thread: str  # the GPL thread's name; "" when Python code outside any GPL thread opened it
+
+    def __str__(self) -> str:
+        """``127.0.0.1:10100`` for TCP, ``127.0.0.1:69/udp`` for UDP."""
+        where = f"{self.address}:{self.port}"
+        return where if self.protocol == "TCP" else f"{where}/{self.protocol.lower()}"
+
+
 @dataclass
 class NetworkConfig:
     """One session's network (``Session.network``): where its servers may listen (module
-    docstring), how long a connect waits, and the listeners its program has started."""
+    docstring), how long a connect waits, and the servers its program has opened."""
 
     listen: str = LOOPBACK  # the user's opt-in: an address of this computer, or ANY
     connect_timeout: float | None = 30.0  # seconds; a real controller's TCP gives up eventually
-    #: Every TcpListener the session's program started (``listening_ports``).
-    listeners: weakref.WeakSet[TcpListener] = field(default_factory=weakref.WeakSet, repr=False, compare=False)
+    #: Every server the session's program opened, TcpListener or bound UdpClient (``listening``).
+    servers: weakref.WeakSet[TcpListener | UdpClient] = field(default_factory=weakref.WeakSet, repr=False,
+                                                              compare=False)
+    #: Called with a :class:`Listening` each time a server starts listening (a TcpListener started
+    #: again after a Stop is announced again), on the GPL thread that opened it, once a client may
+    #: connect.  ``gpl2py run`` prints it.
+    on_listen: list[Callable[[Listening], None]] = field(default_factory=list, repr=False, compare=False)
+
+    def opened(self, server: TcpListener | UdpClient, where: Listening) -> None:
+        """A server of the program now listens at ``where``: keep it, and announce it."""
+        self.servers.add(server)
+        for hook in list(self.on_listen):
+            hook(where)
+
+    def listening(self) -> list[Listening]:
+        """Where the session's program listens now (a TcpListener from ``Start`` until ``Stop``, a
+        bound UdpClient until ``Close``), ordered by port."""
+        found = [where for server in list(self.servers) if (where := server._open_at()) is not None]
+        return sorted(found, key=lambda w: (w.port, w.protocol))
 
     def listening_ports(self) -> set[int]:
-        """The TCP ports the session's program listens on now (``Start`` until ``Stop``).
+        """The TCP ports the session's program listens on now (:meth:`listening`).
 
         For a Python client that must not connect before its server listens (``Cell.serve``): a
         probing connection would be a client of its own — TCS serves one connection per port and
         stops listening while it has it.
         """
-        ports = set()
-        for listener in list(self.listeners):
-            sock = listener._sock
-            try:
-                if sock is not None:
-                    ports.add(int(sock.getsockname()[1]))
-            except OSError:  # stopped meanwhile
-                pass
-        return ports
+        return {where.port for where in self.listening() if where.protocol == "TCP"}
+
+
+def _announce(server: TcpListener | UdpClient, sock: _socket.socket, protocol: str) -> Listening:
+    """Tell the session that ``server`` listens on ``sock`` now (:meth:`NetworkConfig.opened`)."""
+    address, port = sock.getsockname()[:2]
+    ctx = current_ctx()
+    where = Listening(str(address), int(port), protocol, ctx.name if ctx is not None else "")
+    current_session().network.opened(server, where)
+    return where
 
 
 def configure_network(listen: str | None = None, connect_timeout: float | None = -1.0) -> NetworkConfig:
@@ -176,16 +219,14 @@ def _os_error(exc: OSError, what: str) -> GplException:
     if code == errno.ECONNREFUSED:
         return GplException(CONNECTION_REFUSED, detail=what)
     if code in (errno.ECONNRESET, errno.EPIPE, errno.ECONNABORTED, errno.ESHUTDOWN):
-        return GplException(CONNECTION_CLOSED, detail=f"{what}: {exc.strerror}")
+        return GplException(CONNECTION_CLOSED, detail=f"{what}: {host_reason(exc)}")
     if code == errno.EISCONN:
         return GplException(ALREADY_CONNECTED, detail=what)
     if code in (errno.ENOTCONN, errno.EBADF):
         return GplException(SOCKET_NOT_OPEN, detail=what)
     if code in (errno.EADDRNOTAVAIL, errno.EINVAL, errno.EAFNOSUPPORT):
-        return GplException(INVALID_ADDRESS, detail=f"{what}: {exc.strerror}")
-    if code in (errno.ENETUNREACH, errno.EHOSTUNREACH):
-        return GplException(NO_CONNECTION, detail=f"{what}: {exc.strerror}")
-    return GplException(NO_CONNECTION, detail=f"{what}: {exc}")
+        return GplException(INVALID_ADDRESS, detail=f"{what}: {host_reason(exc)}")
+    return GplException(NO_CONNECTION, detail=f"{what}: {host_reason(exc)}")  # unreachable, and the rest
 
 
 _DOTTED_QUAD = re.compile(r"(\d{1,3})\.(\d{1,3})\.(\d{1,3})\.(\d{1,3})", re.ASCII)
@@ -559,17 +600,25 @@ def _ready(sock: _socket.socket, step: float, write: bool = False) -> bool:
     return bool(readable or writable)
 
 
-def _bind(sock: _socket.socket, endpoint: IPEndPoint) -> tuple[str, int]:
-    """Bind ``sock`` where ``endpoint`` may go (module docstring); returns the address bound."""
+def _bind(sock: _socket.socket, endpoint: IPEndPoint, verb: str) -> tuple[str, int]:
+    """Bind ``sock`` where ``endpoint`` may go (module docstring); returns the address bound.
+
+    A refusal is the controller's error naming the address this computer refused (``verb`` says
+    for what): -304 *Device already in use* ``- listen on 0.0.0.0:10100: address already in use``.
+    That is the address tried last, not the one the program wrote, which may be a controller's IP
+    this computer does not have."""
     address = (_bind_address(endpoint._ip), endpoint._port)
     try:
-        sock.bind(address)
+        try:
+            sock.bind(address)
+        except OSError as exc:
+            fallback = LOOPBACK if _is_loopback(address[0]) else current_session().network.listen
+            if exc.errno != errno.EADDRNOTAVAIL or address[0] == fallback:
+                raise
+            address = (fallback, address[1])  # the controller's own IP, which this PC does not have
+            sock.bind(address)
     except OSError as exc:
-        fallback = LOOPBACK if _is_loopback(address[0]) else current_session().network.listen
-        if exc.errno != errno.EADDRNOTAVAIL or address[0] == fallback:
-            raise
-        address = (fallback, address[1])  # the controller's own IP, which this PC does not have
-        sock.bind(address)
+        raise _os_error(exc, f"{verb} {address[0]}:{address[1]}") from None
     return address
 
 
@@ -630,6 +679,7 @@ class TcpListener:
             raise GplException(OBJECT_NOT_INSTANTIATED, detail="TcpListener needs an IPEndPoint")
         self._endpoint = local_endpoint.Clone()
         self._sock: _socket.socket | None = None
+        self._where: Listening | None = None
         self._stop_lock = threading.Lock()
 
     def Start(self) -> None:
@@ -640,18 +690,24 @@ class TcpListener:
         # Like a controller (and .NET), allow re-binding a port whose old connections linger in
         # TIME_WAIT; a port actively bound by another socket is still refused.
         sock.setsockopt(_socket.SOL_SOCKET, _socket.SO_REUSEADDR, 1)
-        address = (_bind_address(self._endpoint._ip), self._endpoint._port)
         try:
-            address = _bind(sock, self._endpoint)
+            address = _bind(sock, self._endpoint, "listen on")
             sock.listen(self.BACKLOG)
             sock.setblocking(False)  # AcceptSocket waits in select slices, never inside accept()
         except OSError as exc:
             sock.close()
             raise _os_error(exc, f"listen on {address[0]}:{address[1]}") from None
+        except GplException:
+            sock.close()
+            raise
         self._sock = sock
         self._release = _blocking.opened()  # paces virtual time while listening
         self._freed = weakref.finalize(self, _free_later, sock, self._release)
-        current_session().network.listeners.add(self)
+        self._where = _announce(self, sock, "TCP")
+
+    def _open_at(self) -> Listening | None:
+        """Where it listens now (``NetworkConfig.listening``), None when stopped."""
+        return self._where if self._sock is not None else None
 
     def _listening(self) -> _socket.socket:
         if self._sock is None:
@@ -718,13 +774,18 @@ class UdpClient:
 
     def __init__(self, local_endpoint: IPEndPoint | None = None) -> None:
         self._socket = Socket(_kind=_socket.SOCK_DGRAM)
+        self._where: Listening | None = None
         if local_endpoint is not None:
-            address = (_bind_address(local_endpoint._ip), local_endpoint._port)
             try:
-                _bind(self._socket._sock, local_endpoint)
-            except OSError as exc:
+                _bind(self._socket._sock, local_endpoint, "bind")
+            except GplException:
                 self._socket.Close()
-                raise _os_error(exc, f"bind {address[0]}:{address[1]}") from None
+                raise
+            self._where = _announce(self, self._socket._sock, "UDP")
+
+    def _open_at(self) -> Listening | None:
+        """Where it receives now (``NetworkConfig.listening``): bound to a local endpoint, not closed."""
+        return self._where if not self._socket._closed else None
 
     def Client(self) -> Socket:
         """The embedded Socket used for I/O."""
@@ -735,6 +796,6 @@ class UdpClient:
 
 
 __all__ = [
-    "IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "NetworkConfig", "configure_network",
-    "listen_address", "listening_ports",
+    "IPEndPoint", "Socket", "TcpClient", "TcpListener", "UdpClient", "Listening", "NetworkConfig",
+    "configure_network", "listen_address", "listening_ports",
 ]

@@ -51,6 +51,7 @@ from gplrt.lang.errors import (
     UNDEFINED_XML_NAME,
     XML_ERROR,
     GplException,
+    host_reason,
 )
 from gplrt.lang.gpltypes import Boolean, Integer, Ref, String
 
@@ -115,7 +116,7 @@ class XmlDoc:
         except (FileNotFoundError, NotADirectoryError, IsADirectoryError):
             raise GplException(FILE_NOT_FOUND, detail=input_file) from None
         except OSError as exc:
-            raise GplException(READ_ERROR, detail=f"{input_file}: {exc.strerror or exc}") from None
+            raise GplException(READ_ERROR, detail=f"{input_file}: {host_reason(exc)}") from None
         return XmlDoc._parse(data)
 
     @staticmethod
@@ -212,7 +213,7 @@ class XmlDoc:
             cp.file.write_bytes(self._serialize().encode("utf-8"))
         except OSError as exc:  # no folder, a folder of that name, the disk refused
             self._error, self._message = CANT_OPEN_FOR_WRITE, f"cannot create {output_file}"
-            raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{output_file}: {exc.strerror or exc}") from None
+            raise GplException(CANT_OPEN_FOR_WRITE, detail=f"{output_file}: {host_reason(exc)}") from None
         self._error, self._message = 0, ""
 
     # -- Python side -----------------------------------------------------------------------------

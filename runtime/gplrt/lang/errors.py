@@ -13,6 +13,7 @@ it is appended after `` - `` so that Python tracebacks say what went wrong.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 
 from gplrt.lang.error_codes import ERROR_MESSAGES
@@ -155,6 +156,26 @@ def error_text(code: int) -> str:
     return ERROR_MESSAGES.get(code, f"Error {code}")
 
 
+def host_reason(exc: BaseException) -> str:
+    """Why the host refused, in the host's own words, for a GPL error's ``detail``: the operating
+    system's text ("No such file or directory"), else the text of its errno, else a plain phrase.
+
+    Never Python's rendering of the exception ("[Errno 2] No such file or directory: 'x'", "'ascii'
+    codec can't decode byte 0xff ..."): a GPL error keeps the controller's words (issue 20), and
+    the file or address it is about is already in the detail the caller writes around this.
+    """
+    if isinstance(exc, UnicodeDecodeError):
+        return f"not {exc.encoding.upper()} text (byte 0x{exc.object[exc.start]:02X} at offset {exc.start})"
+    if isinstance(exc, OSError):
+        if exc.strerror:
+            return str(exc.strerror)
+        if exc.errno:
+            return os.strerror(exc.errno)
+        if isinstance(exc, TimeoutError):
+            return "timed out"
+    return "the operating system refused"
+
+
 def _not_installed(value: object) -> int:
     raise RuntimeError("gplrt.lang.conversions is not loaded (gplrt/__init__.py loads it)")
 
@@ -286,6 +307,18 @@ class GplException(Exception):
         """
 
     # -- Python side ------------------------------------------------------------------------------
+
+    def forget_location(self) -> None:
+        """Drop where the exception was last raised (its ``gpl_location`` and Python traceback).
+
+        ``Catch`` calls it (``as_gpl_exception``): the GPL object carries no location (its members
+        are ErrorCode, Qualifier, RobotError, RobotNum, Axis, Message, Clone, UpdateErrorCode),
+        so a ``Throw`` of a caught object -- TCS reuses one (``ex.ErrorCode = -1708: Throw ex``) --
+        is reported where that Throw is.  Python would otherwise keep the first raise's frames at
+        the end of the new traceback, and the report would name the first Throw's line.
+        """
+        self.gpl_location = None
+        self.__traceback__ = None
 
     def __str__(self) -> str:
         text = self.Message()

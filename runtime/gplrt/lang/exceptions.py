@@ -27,6 +27,13 @@ fault is a variable declared without ``New`` (``Dim loc As Location`` then ``loc
 an object that was never instantiated; -782 is kept for places that receive Nothing as a *value*
 where an object is required (e.g. ``CStr(Nothing)``).
 
+What the GPL error says (decision, issue 20): a Python fault that maps to a controller code *is* that
+GPL fault, so its error says only what the controller would -- ``*Invalid array index*`` at the GPL
+line, never ``- IndexError: list assignment index out of range`` (the user wrote GPL, and Python's
+words about lists or ``'NoneType'`` name nothing they can find in it).  Only -201, the catch-all for
+a fault no GPL error describes (a bug in a hand-written stub, or in gpl2py), keeps the Python text as
+its ``detail``: that report is about Python code, and its author needs the text to find the bug.
+
 Only ``Exception`` subclasses are converted: ``KeyboardInterrupt``, ``SystemExit``,
 ``GeneratorExit`` and the thread machinery's own ``BaseException`` signals (thread abort) are
 re-raised unchanged by ``as_gpl_exception`` so that a GPL Catch never swallows them.  The original
@@ -101,17 +108,22 @@ class ExitTry(BaseException):
 def as_gpl_exception(exc: BaseException) -> GplException:
     """The GplException a ``Catch`` receives for ``exc``.
 
-    A GplException is returned as is (``Catch ex`` gets exactly the thrown object).  Other
-    ``Exception``s become a new GplException with the code from ``gpl_code_for``, the Python
-    message as ``detail`` and the original as ``__cause__``.  Non-``Exception`` BaseExceptions are
+    A GplException is returned as is (``Catch ex`` gets exactly the thrown object), without the
+    place it was thrown from (:meth:`GplException.forget_location`): thrown again, it is reported
+    at that Throw, as the controller does (docs/design/real-code.md, "A reused Exception object").  Other
+    ``Exception``s become a new GplException with the code from ``gpl_code_for`` and the original
+    as ``__cause__``; only -201 (no GPL error describes the fault) has the Python message as
+    ``detail`` (module docstring).  Non-``Exception`` BaseExceptions are
     re-raised (see module docstring).  Lowering: ``except BaseException as _e:
     ex = as_gpl_exception(_e)``.
     """
     if isinstance(exc, GplException):
+        exc.forget_location()  # caught: a later Throw of it is reported where that Throw is
         return exc
     if not isinstance(exc, Exception):
         raise exc
-    gex = GplException(gpl_code_for(exc), detail=f"{type(exc).__name__}: {exc}")
+    code = gpl_code_for(exc)
+    gex = GplException(code, detail=f"{type(exc).__name__}: {exc}" if code == INTERNAL_ERROR else None)
     gex.__cause__ = exc
     return gex
 

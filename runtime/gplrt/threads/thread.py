@@ -55,6 +55,7 @@ import gc
 import inspect
 import sys
 import threading
+import traceback
 from enum import IntEnum
 from types import FrameType
 from typing import Any, Callable
@@ -381,6 +382,23 @@ class Thread:
         or None — while it runs, after a normal end or an Abort.  Usually a GplException; another
         Python exception means a bug in generated or hand-written code (reported as -201)."""
         return self._error if self._failed else None
+
+    def release_frames(self) -> None:
+        """Drop the local variables of the frames the thread's error passed through (the error's
+        traceback, and that of the Python fault it was made from).
+
+        Called when the session is done with (``Simulation.close``, interpreter exit): those
+        frames hold what the failing statement was using -- after a motion error, the robot with
+        its planned motion, whose Ruckig trajectories nanobind reports as "leaked" if they are
+        still alive when the ``ruckig`` module is torn down.  The error stays readable: its code,
+        message and the file:line of each frame (``gplrt.lang.sourcemap``) do not need the locals.
+        """
+        seen: set[int] = set()
+        exc = self._error
+        while exc is not None and id(exc) not in seen:
+            seen.add(id(exc))
+            traceback.clear_frames(exc.__traceback__)  # (an executing frame is left as it is)
+            exc = exc.__cause__ or exc.__context__
 
     def _body(self) -> None:
         ctx = self._ctx
