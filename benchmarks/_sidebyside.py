@@ -33,9 +33,9 @@ class Samples:
     def median(self) -> float:
         return statistics.median(self.values)
 
-    def text(self, unit: float = 1e-3, name: str = "ms") -> str:
+    def text(self, unit: float = 1e-3, name: str = "ms", digits: int = 1) -> str:
         lo, hi = min(self.values), max(self.values)
-        return f"{self.median / unit:9.1f} {name} (spread {lo / unit:.1f}-{hi / unit:.1f})"
+        return f"{self.median / unit:9.{digits}f} {name} (spread {lo / unit:.{digits}f}-{hi / unit:.{digits}f})"
 
 
 @dataclass

@@ -22,6 +22,10 @@ noisy; the motion time is the same in every run).
 
 ``--clock virtual`` runs the same session on the paced virtual clock, for comparison: there the
 wall time is about the motion time.
+
+After each session the reference workload R (``_reference``) runs once, and the wall time and the
+factor are printed once more normalised by R of the same turn: the wall time in R, the factor in
+seconds of simulated motion per R.  Those are the figures to compare between machines.
 """
 
 from __future__ import annotations
@@ -35,6 +39,8 @@ import statistics
 import tempfile
 import time
 from pathlib import Path
+
+from _reference import HOW_TO_COMPARE, Reference, per_r, times_r
 
 from gpl2py.notebook import Cell
 
@@ -115,6 +121,8 @@ def main() -> None:
     args = parser.parse_args()
     walls: list[float] = []
     motion = 0.0
+    ref = Reference()
+    ref.run(record=False)
     for _ in range(args.runs):
         with tempfile.TemporaryDirectory() as tmp:
             if args.server == "tcs":
@@ -122,12 +130,19 @@ def main() -> None:
             else:
                 wall, motion = run_sample(args.moves, args.speed, Path(tmp), args.clock)
         walls.append(wall)
-    walls.sort()
+        ref.run()
+    in_r = per_r(walls, ref.wall)
+    per_ref = times_r([motion / w for w in walls], ref.wall)
     median = statistics.median(walls)
     print(f"{args.server}, {args.clock} clock: {args.moves} moves at {args.speed:g} % speed, each waited for: "
           f"{motion:.1f} s of simulated motion; wall time over {args.runs} sessions: median {median:.3f} s "
-          f"(spread {walls[0]:.3f}-{walls[-1]:.3f} s): {motion / median:.1f}x faster than the robot "
-          f"({motion / walls[-1]:.1f}-{motion / walls[0]:.1f}x)")
+          f"(spread {min(walls):.3f}-{max(walls):.3f} s): {motion / median:.1f}x faster than the robot "
+          f"({motion / max(walls):.1f}-{motion / min(walls):.1f}x)")
+    print(f"normalised by R of the same turn: wall time {statistics.median(in_r):.2f} R "
+          f"(spread {min(in_r):.2f}-{max(in_r):.2f}); {statistics.median(per_ref):.2f} s of simulated motion "
+          f"per R (spread {min(per_ref):.2f}-{max(per_ref):.2f})")
+    print(ref.line())
+    print(HOW_TO_COMPARE)
 
 
 if __name__ == "__main__":
