@@ -1,6 +1,6 @@
 """Location speed against a bare numpy 4x4 product, measured side by side in one run.
 
-Times each operation (REPEATS samples of NUMBER calls, collector off as ``timeit`` runs them) and
+Times each operation (``--runs`` samples of ``--number`` calls, collector off as ``timeit`` runs them) and
 prints it as a ratio to the bare ``a @ b`` of two (4, 4) float arrays.  Target (issue "Geometry"):
 Mul <= 3x the bare product.
 
@@ -10,11 +10,12 @@ the median of the per-turn ratios, not a figure against one taken at the start. 
 workload R (``_reference``) runs in every turn too, and each time per call is printed once more
 in µR (millionths of R of its turn): the figures to compare between machines.
 
-    python benchmarks/geometry_speed.py
+    python benchmarks/geometry_speed.py [--number 50000] [--runs 7]
 """
 
 from __future__ import annotations
 
+import argparse
 import sys
 import timeit
 from pathlib import Path
@@ -35,17 +36,21 @@ REPEATS = 7
 BARE = "ma @ mb"
 
 
-def paired(stmt: str, env: dict[str, object], ref: Reference) -> Pair:
+def paired(stmt: str, env: dict[str, object], ref: Reference, number: int, runs: int) -> Pair:
     """Seconds per call of ``stmt`` (side a) and of the bare product (side b), in turns with R."""
     op, bare = timeit.Timer(stmt, globals=env), timeit.Timer(BARE, globals=env)
-    pair = side_by_side(lambda: op.timeit(NUMBER), lambda: bare.timeit(NUMBER), REPEATS,
+    pair = side_by_side(lambda: op.timeit(number), lambda: bare.timeit(number), runs,
                         gc_enabled=False, reference=ref)
     for side in (pair.a, pair.b):
-        side.values[:] = [v / NUMBER for v in side.values]
+        side.values[:] = [v / number for v in side.values]
     return pair
 
 
 def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--number", type=int, default=NUMBER, help=f"calls per sample (default {NUMBER:,})")
+    ap.add_argument("--runs", type=int, default=REPEATS, help=f"samples per side (default {REPEATS})")
+    args = ap.parse_args()
     a = Location.XYZValue(10, 25, -40, 30, 45, 60)
     b = Location.XYZValue(1, 2, 3, -20, 100, 5)
     frame = RefFrame()
@@ -69,12 +74,12 @@ def main() -> None:
         ("Yaw read after Mul", "a.Mul(b).Yaw"),
         ("Pos through a frame", "c.Pos"),
     ]
-    print(f"bare = numpy (4,4) a @ b, timed in turns with each operation (medians of {REPEATS} x {NUMBER} calls)")
+    print(f"bare = numpy (4,4) a @ b, timed in turns with each operation (medians of {args.runs} x {args.number} calls)")
     print(f"{'operation':36s} {'us/op':>8s} {'bare us':>8s} {'µR/op':>8s} {'bare µR':>8s}  ratio (spread)")
     ratios: dict[str, float] = {}
     ref = Reference()
     for name, stmt in cases:
-        pair = paired(stmt, env, ref)
+        pair = paired(stmt, env, ref, args.number, args.runs)
         ratios[name] = pair.ratio
         print(f"{name:36s} {pair.a.median * 1e6:8.3f} {pair.b.median * 1e6:8.3f} "
               f"{pair.a_in_r.median * 1e6:8.2f} {pair.b_in_r.median * 1e6:8.2f}  {pair.ratio_text()}")

@@ -30,7 +30,7 @@ Every absolute figure is printed twice: as measured, and normalised by the refer
 (``_reference``) run in the same turns -- times in µR (millionths of R), the cell's factors in
 controller seconds per R -- which is the figure to compare between machines.
 
-Run:  .venv/bin/python benchmarks/motion_speed.py [--runs 21] [--block 50] [--cell-runs 5]
+Run:  .venv/bin/python benchmarks/motion_speed.py [--runs 21] [--block 50] [--cell-runs 5] [--parts 200]
 """
 
 from __future__ import annotations
@@ -293,24 +293,24 @@ def motion_pairs(runs: int, block: int, ref: Reference) -> dict[str, Pair]:
     return pairs
 
 
-def _cell_project(folder: Path) -> Path:
-    """``samples/pick_and_place`` copied to ``folder`` with ``PARTS`` parts to place."""
+def _cell_project(folder: Path, parts: int) -> Path:
+    """``samples/pick_and_place`` copied to ``folder`` with ``parts`` parts to place."""
     import shutil
 
     dest = folder / "pick_and_place"
     shutil.copytree(ROOT / "samples" / "pick_and_place", dest)
     cell = dest / "Cell.gpl"
     text = cell.read_text(encoding="utf-8")
-    changed = text.replace("PARTS_TO_PLACE As Integer = 8", f"PARTS_TO_PLACE As Integer = {PARTS}")
+    changed = text.replace("PARTS_TO_PLACE As Integer = 8", f"PARTS_TO_PLACE As Integer = {parts}")
     if changed == text:
         raise SystemExit("samples/pick_and_place/Cell.gpl: PARTS_TO_PLACE not found")
     cell.write_text(changed, encoding="utf-8")
     return dest
 
 
-def cell_factors(runs: int, ref: Reference) -> tuple[list[float], list[float], float, str]:
+def cell_factors(runs: int, ref: Reference, parts: int = PARTS) -> tuple[list[float], list[float], float, str]:
     """(wall factors, CPU factors, controller seconds, last console line) of ``runs`` runs of
-    the 200-part cell, after one untimed run; R runs after each (``ref``)."""
+    the cell placing ``parts`` parts, after one untimed run; R runs after each (``ref``)."""
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.run import build, import_built
 
@@ -318,7 +318,7 @@ def cell_factors(runs: int, ref: Reference) -> tuple[list[float], list[float], f
     import cell_io
 
     with tempfile.TemporaryDirectory() as tmp:
-        project = _cell_project(Path(tmp))
+        project = _cell_project(Path(tmp), parts)
         sink = DiagnosticSink()
         built = build(project, sink, cache_dir=Path(tmp) / "cache")
         if built is None:
@@ -362,6 +362,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--runs", type=int, default=21, help="samples per side (>= 5)")
     ap.add_argument("--block", type=int, default=50, help="calls per sample")
     ap.add_argument("--cell-runs", type=int, default=5, help="runs of the 200-part cell (>= 5)")
+    ap.add_argument("--parts", type=int, default=PARTS, help=f"parts the cell places (default {PARTS})")
     args = ap.parse_args(argv)
     per = args.block
     ref = Reference()
@@ -374,13 +375,13 @@ def main(argv: list[str] | None = None) -> int:
     print(_row("Move.Loc straight line", pairs["line"], "Ruckig 1 axis + IK", 3.0))
     print(_row("straight line executed", pairs["line_run"], "numpy, all cycles at once", 3.0))
     load = os.getloadavg()[0]
-    walls, cpus, seconds, last = cell_factors(args.cell_runs, ref)
+    walls, cpus, seconds, last = cell_factors(args.cell_runs, ref, args.parts)
     load = max(load, os.getloadavg()[0])
     wall = statistics.median(walls)
     n = args.cell_runs
     wall_r = Samples(times_r(walls, ref.wall[-n:]))
     cpu_r = Samples(times_r(cpus, ref.cpu[-n:]))
-    print(f"pick-and-place, {PARTS} parts ({seconds:.1f} controller s; {last!r}):")
+    print(f"pick-and-place, {args.parts} parts ({seconds:.1f} controller s; {last!r}):")
     print(f"  wall-clock factor {wall:9,.0f}x (spread {min(walls):,.0f}-{max(walls):,.0f}, {len(walls)} runs)"
           f"   target >= 2,000x: {'met' if wall >= 2000 else 'NOT met'}")
     print(f"  CPU-time factor   {statistics.median(cpus):9,.0f}x (spread {min(cpus):,.0f}-{max(cpus):,.0f})"
