@@ -32,6 +32,8 @@ SMALLEST: dict[str, tuple[list[str], str]] = {
     "file_speed.py": (["--n", "3", "--runs", "1"], r"all five .* in R: [\d.]+ R, [\d.]+ R"),
     "geometry_speed.py": (["--number", "10", "--runs", "1"], r"µR/op(.|\n)*\nMul +[\d.]+ +[\d.]+ +[\d.]+ +[\d.]+ "),
     "kinematics_speed.py": (["5", "1"], r"PF400SX +forward .*\n +in R .*µR"),
+    "load_check.py": (["--parts", "1", "--runs", "1", "--spinners", "0,1", "--rounds", "1"],
+                      r"1 extra CPU-bound processes(.|\n)*normalised +[\d.]+ controller s per R"),
     "motion_speed.py": (["--runs", "1", "--block", "1", "--cell-runs", "1", "--parts", "1"],
                         r"normalised: wall .* controller s per R \(wall\).* controller s per R \(CPU\)"),
     "parse_speed.py": (["--lines", "800", "--runs", "1"], r"in R: +gpl2py .* R .*GPL lines per R"),
