@@ -22,8 +22,9 @@ attribute reads and writes on small objects, method and function calls, int and 
 arithmetic, dict and list operations, short strings built and split.  R is a loop of exactly
 those, with no I/O, no threads and no imports beyond the standard library's ``time`` and ``gc``
 (nothing like numpy whose build varies between installs).  It allocates few container objects,
-so the collector's state (a benchmark may run with it on or off) hardly changes its time, and it
-takes about 50 ms on the 2-core VM the figures in docs/design/performance.md come from: long
+so the collector's state (a benchmark may run with it on or off) hardly changes its time.  It
+takes 36-76 ms of CPU time on the 2-core VM the figures in docs/design/performance.md come from
+(the spread is the host's: on a busy KVM host the CPU time of the same work grows too): long
 against the clock's resolution and the scheduler's time slices, short enough to run in every
 turn.  It returns a checksum, checked at every run, so the work cannot change unnoticed.
 

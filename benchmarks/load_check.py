@@ -10,7 +10,9 @@ wall-clock figures.  Extra load is the one we can make here, so it stands in for
 for each number of *spinners* (``python -c "while True: pass"``, started before the condition's
 runs and ended after them, by their process ids) the script measures ``--runs`` turns of the
 figure, each followed by one run of R (as the benchmarks do), and prints per condition the median
-of the raw figure and of the normalised one, and how far each moved from the first condition.
+of the raw figure and of the normalised one (the median of the per-turn products, as the
+benchmarks print it, and for comparison the product of the two medians), and how far each moved
+from the first condition.
 The conditions run in ``--rounds`` passes, every other pass in reverse order (0, 1, 2, 2, 1, 0),
 so that a drift of the machine's own background load falls on all conditions alike.
 
@@ -121,9 +123,14 @@ def main() -> int:
             r, n = raw[k][clock], norm[k][clock]
             moved_r = statistics.median(r) / statistics.median(raw[base][clock])
             moved_n = statistics.median(n) / statistics.median(norm[base][clock])
+            ref_k = refs[k].cpu if clock == "cpu" else refs[k].wall
+            ref_0 = refs[base].cpu if clock == "cpu" else refs[base].wall
+            of_medians = statistics.median(r) * statistics.median(ref_k)
+            moved_m = of_medians / (statistics.median(raw[base][clock]) * statistics.median(ref_0))
             print(f"  {clock:4} raw {statistics.median(r):9,.1f} {unit} per s (spread {min(r):,.1f}-{max(r):,.1f}) "
                   f"moved {moved_r:5.2f}x   normalised {statistics.median(n):8.2f} {unit} per R "
-                  f"(spread {min(n):.2f}-{max(n):.2f}) moved {moved_n:5.2f}x")
+                  f"(spread {min(n):.2f}-{max(n):.2f}) moved {moved_n:5.2f}x   "
+                  f"median x median of R {of_medians:8.2f} moved {moved_m:5.2f}x")
     print(HOW_TO_COMPARE)
     return 0
 
