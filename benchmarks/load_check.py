@@ -21,7 +21,8 @@ The figures (``--what``):
 * ``cell``: the 200-part cell of ``benchmarks/motion_speed.py`` (``--parts``), controller seconds
   per wall-clock second and per CPU second; normalised: controller seconds per R (wall, CPU);
 * ``sample``: a 50-move session of ``benchmarks/client_session.py --server sample``, simulated
-  motion seconds per wall-clock second; normalised: motion seconds per R;
+  motion seconds per wall-clock second and per CPU second; normalised: motion seconds per R
+  (wall, CPU);
 * ``tcs``: the same with the vendor's TCS and PyLabRobot (``--server tcs``: fixed ports, so run
   it in a network of its own: ``unshare --net sh -c 'ip link set lo up && python ...'``).
 """
@@ -70,17 +71,18 @@ def session_turns(server: str, moves: int) -> Callable[[int, Reference], dict[st
     from client_session import run_sample, run_tcs
 
     def measure(runs: int, ref: Reference) -> dict[str, list[float]]:
-        factors: list[float] = []
+        factors: dict[str, list[float]] = {"wall": [], "cpu": []}
         ref.run(record=False)
         for _ in range(runs):
             with tempfile.TemporaryDirectory() as tmp:
                 if server == "tcs":
-                    wall, motion = run_tcs(moves, 50.0, False, Path(tmp), "fast")
+                    session = run_tcs(moves, 50.0, False, Path(tmp), "fast")
                 else:
-                    wall, motion = run_sample(moves, 50.0, Path(tmp), "fast")
+                    session = run_sample(moves, 50.0, Path(tmp), "fast")
             ref.run()
-            factors.append(motion / wall)
-        return {"wall": factors}
+            factors["wall"].append(session.motion / session.wall)
+            factors["cpu"].append(session.motion / session.cpu)
+        return factors
 
     return measure
 

@@ -28,7 +28,7 @@ from _sidebyside import Pair, Samples, side_by_side  # noqa: E402
 SMALLEST: dict[str, tuple[list[str], str]] = {
     "check_startup.py": (["--runs", "1"], r"gpl2py check, 5-line GPL file: .* ms .*\d R \(spread"),
     "client_session.py": (["--server", "sample", "--moves", "2", "--runs", "1"],
-                          r"wall time [\d.]+ R .*s of simulated motion per R"),
+                          r"CPU  time [\d.]+ R .*s of simulated motion per R"),
     "file_speed.py": (["--n", "3", "--runs", "1"], r"all five .* in R: [\d.]+ R, [\d.]+ R"),
     "geometry_speed.py": (["--number", "10", "--runs", "1"], r"µR/op(.|\n)*\nMul +[\d.]+ +[\d.]+ +[\d.]+ +[\d.]+ "),
     "kinematics_speed.py": (["5", "1"], r"PF400SX +forward .*\n +in R .*µR"),
