@@ -14,7 +14,9 @@ the same clock under the same collector state, and prints each figure once more 
   second) is printed as F × R, **per R** (lines per R, controller seconds per R).
 
 Each normalised figure is the median of the per-turn values (the figure of a turn against R of
-the same turn), with their spread.  The machine's speed and most of its load cancel out, as long
+the same turn), with their spread.  In each turn R runs for about a quarter (``SHARE``) of the
+time the turn's samples took, at least once, and its time is the mean of those runs: a long
+sample sees the machine's load over seconds, which a single run of R would catch at one moment.  The machine's speed and most of its load cancel out, as long
 as the two machines run the same Python minor version (the workload measures the interpreter).
 
 Why this workload: what the benchmarks time is CPython running generated or runtime code --
@@ -43,6 +45,8 @@ from dataclasses import dataclass, field
 
 VERSION = 1
 ITERATIONS = 60_000
+#: A turn's R runs for about this share of the turn's own samples (``Reference.run``'s ``match``).
+SHARE = 0.25
 #: What ``reference_workload()`` returns: any other value means the workload changed.
 CHECKSUM = 4_755_748_119
 
@@ -109,17 +113,26 @@ class Reference:
     wall: list[float] = field(default_factory=list)
     cpu: list[float] = field(default_factory=list)
 
-    def run(self, record: bool = True) -> None:
-        """One run of R, after a collection (the previous sample's garbage is not R's cost), as
-        ``_sidebyside.timed`` times a sample; ``record=False`` for a warm-up run."""
+    def run(self, record: bool = True, match: float = 0.0) -> None:
+        """R's time in one turn, after a collection (the previous sample's garbage is not R's
+        cost), as ``_sidebyside.timed`` times a sample; ``record=False`` for a warm-up.
+
+        R runs once, or again and again until it has run for ``SHARE`` of ``match``, the seconds
+        the turn's own samples took, and its time is the mean of those runs: a sample of seconds
+        sees the machine's load over seconds, which one run of R (tens of milliseconds) would
+        catch at a single moment."""
         gc.collect()
-        w0, c0 = time.perf_counter(), time.process_time()
-        result = reference_workload()
+        runs, w0, c0 = 0, time.perf_counter(), time.process_time()
+        while True:
+            result = reference_workload()
+            runs += 1
+            if time.perf_counter() - w0 >= SHARE * match:
+                break
         c1, w1 = time.process_time(), time.perf_counter()
         _check(result)
         if record:
-            self.wall.append(w1 - w0)
-            self.cpu.append(c1 - c0)
+            self.wall.append((w1 - w0) / runs)
+            self.cpu.append((c1 - c0) / runs)
 
     def times(self, clock: Callable[[], float]) -> list[float]:
         """R's times on ``clock``: ``time.process_time`` is CPU time, any other clock wall time."""

@@ -111,7 +111,7 @@ def side_by_side(a: Callable[[], object], b: Callable[[], object], runs: int, *,
             ta.append(timed(a, clock))
             tb.append(timed(b, clock))
             if reference is not None:
-                reference.run()
+                reference.run(match=ta[-1] + tb[-1])
     ref = Samples(reference.times(clock)[-runs:]) if reference is not None else None
     return Pair(Samples(ta), Samples(tb), ref)
 

@@ -130,7 +130,7 @@ def main() -> int:
         for _ in range(args.runs):
             ta.append(wall(check, env))
             tb.append(wall(compile_, env))
-            ref.run()
+            ref.run(match=ta[-1] + tb[-1])
         pair = Pair(Samples(ta), Samples(tb), Samples(ref.wall))
         print(f"gpl2py check, 5-line GPL file:         {pair.a.text()}  {pair.a_in_r.text(1, 'R', 2)}")
         print(f"python -m py_compile, 5-line Python:   {pair.b.text()}  {pair.b_in_r.text(1, 'R', 2)}")

@@ -24,9 +24,10 @@ noisy; the motion time is the same in every run).
 wall time is about the motion time.
 
 It also prints the CPU time the process spent in the session (the server's threads and the
-client share it).  After each session the reference workload R (``_reference``) runs once, and
-the times and the factor are printed once more normalised by R of the same turn: the times in R,
-the factor in seconds of simulated motion per R, once for the wall clock and once for CPU time.
+client share it).  After each session the reference workload R (``_reference``) runs (for a
+quarter of the session's time, at least once), and the times and the factor are printed once more
+normalised by R of the same turn: the times in R, the factor in seconds of simulated motion per R,
+once for the wall clock and once for CPU time.
 The CPU ones are the figures to compare between machines: load stretches the wall time of a
 session of short requests less than R's (``WAITING``).
 """
@@ -157,7 +158,7 @@ def main() -> None:
                 sessions.append(run_tcs(args.moves, args.speed, args.as_written, Path(tmp), args.clock))
             else:
                 sessions.append(run_sample(args.moves, args.speed, Path(tmp), args.clock))
-        ref.run()
+        ref.run(match=sessions[-1].wall)
     motion = sessions[-1].motion
     walls, cpus = [s.wall for s in sessions], [s.cpu for s in sessions]
     median = statistics.median(walls)

@@ -257,7 +257,7 @@ def turns(gpl: Callable[[int], object], py: Callable[[int], object], n: int, run
             reset()
             b = timed(lambda: out.append(py(n)))
             assert out[0] == out[1], out
-            ref.run(record=turn > 0)
+            ref.run(record=turn > 0, match=a + b)
             if turn:
                 ta.append(a)
                 tb.append(b)

@@ -79,7 +79,7 @@ def session_turns(server: str, moves: int) -> Callable[[int, Reference], dict[st
                     session = run_tcs(moves, 50.0, False, Path(tmp), "fast")
                 else:
                     session = run_sample(moves, 50.0, Path(tmp), "fast")
-            ref.run()
+            ref.run(match=session.wall)
             factors["wall"].append(session.motion / session.wall)
             factors["cpu"].append(session.motion / session.cpu)
         return factors

@@ -281,7 +281,7 @@ def motion_pairs(runs: int, block: int, ref: Reference) -> dict[str, Pair]:
                 a = executed(r * block)
                 gc.collect()
                 b = vectorised(r * block)
-                ref.run(record=r > 0)
+                ref.run(record=r > 0, match=a + b)
                 if r:
                     ta.append(a)
                     tb.append(b)
@@ -343,7 +343,7 @@ def cell_factors(runs: int, ref: Reference, parts: int = PARTS) -> tuple[list[fl
     seconds, last = 0.0, ""
     for _ in range(runs):
         seconds, wall, cpu, last = once()
-        ref.run()
+        ref.run(match=wall)
         walls.append(seconds / wall)
         cpus.append(seconds / cpu)
     return walls, cpus, seconds, last

@@ -91,3 +91,14 @@ def test_figures_in_r_are_taken_turn_by_turn() -> None:
     assert pair.a_in_r.values == [2.0, 3.0, 2.0]
     assert pair.b_in_r.values == [1.0, 1.0, 0.5]
     assert _reference.times_r([10.0, 20.0], [0.5, 0.25]) == [5.0, 5.0]
+
+
+def test_r_runs_for_a_share_of_a_long_turn_and_records_the_mean_run(monkeypatch: pytest.MonkeyPatch) -> None:
+    ticks = iter(range(100))  # a clock that moves one second each time it is read
+    monkeypatch.setattr(_reference.time, "perf_counter", lambda: float(next(ticks)))
+    runs: list[int] = []
+    monkeypatch.setattr(_reference, "reference_workload", lambda: runs.append(1) or _reference.CHECKSUM)
+    ref = Reference()
+    ref.run(match=3.0 / _reference.SHARE)  # R must run for 3 s: read at 0, then 1, 2, 3 after each run
+    assert len(runs) == 3
+    assert ref.wall == [4.0 / 3]  # the last read (4) ends the block: the mean of three runs
