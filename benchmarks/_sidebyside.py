@@ -5,6 +5,10 @@ is shared, so one side must never get the quiet moments and the other the busy o
 run in turns (A, B, A, B, ...), each sample after the same warm-up and under the same garbage
 collector state, and what is reported is the median of the samples with their spread (lowest and
 highest), never the best run.  The ratio is the median of the per-turn ratios, with its spread too.
+
+Given a ``Reference``, each turn also runs the reference workload R (``_reference``), so that the
+absolute times can be printed normalised by R of the same turn (``Pair.a_in_r``, ``Pair.b_in_r``)
+and compared between machines.
 """
 
 from __future__ import annotations
@@ -15,6 +19,8 @@ import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
+
+from _reference import Reference, per_r
 
 
 @dataclass
@@ -27,17 +33,34 @@ class Samples:
     def median(self) -> float:
         return statistics.median(self.values)
 
-    def text(self, unit: float = 1e-3, name: str = "ms") -> str:
+    def text(self, unit: float = 1e-3, name: str = "ms", digits: int = 1) -> str:
         lo, hi = min(self.values), max(self.values)
-        return f"{self.median / unit:9.1f} {name} (spread {lo / unit:.1f}-{hi / unit:.1f})"
+        return f"{self.median / unit:9.{digits}f} {name} (spread {lo / unit:.{digits}f}-{hi / unit:.{digits}f})"
 
 
 @dataclass
 class Pair:
-    """Two sides measured in turns; ``ratios[i] = a[i] / b[i]``."""
+    """Two sides measured in turns; ``ratios[i] = a[i] / b[i]``; ``ref[i]``, R's time in turn
+    ``i`` on the same clock, when a ``Reference`` was given."""
 
     a: Samples
     b: Samples
+    ref: Samples | None = None
+
+    def _in_r(self, side: Samples) -> Samples:
+        if self.ref is None:
+            raise ValueError("this pair was measured without the reference workload")
+        return Samples(per_r(side.values, self.ref.values))
+
+    @property
+    def a_in_r(self) -> Samples:
+        """Side a's times divided by R of the same turn (in R)."""
+        return self._in_r(self.a)
+
+    @property
+    def b_in_r(self) -> Samples:
+        """Side b's times divided by R of the same turn (in R)."""
+        return self._in_r(self.b)
 
     @property
     def ratios(self) -> list[float]:
@@ -71,19 +94,26 @@ def timed(fn: Callable[[], object], clock: Callable[[], float] = time.perf_count
 
 
 def side_by_side(a: Callable[[], object], b: Callable[[], object], runs: int, *, warmup: int = 1,
-                 gc_enabled: bool = True, clock: Callable[[], float] = time.perf_counter) -> Pair:
+                 gc_enabled: bool = True, clock: Callable[[], float] = time.perf_counter,
+                 reference: Reference | None = None) -> Pair:
     """``runs`` samples of each, in turns, after ``warmup`` untimed runs of each, both under the
-    same collector state (``gc_enabled``)."""
+    same collector state (``gc_enabled``); with a ``reference``, R runs in every turn too (A, B,
+    R), under the same state, and its times on ``clock`` are the pair's ``ref``."""
     with collector(gc_enabled):
         for _ in range(warmup):
             a()
             b()
+            if reference is not None:
+                reference.run(record=False)
         ta: list[float] = []
         tb: list[float] = []
         for _ in range(runs):
             ta.append(timed(a, clock))
             tb.append(timed(b, clock))
-    return Pair(Samples(ta), Samples(tb))
+            if reference is not None:
+                reference.run(match=ta[-1] + tb[-1])
+    ref = Samples(reference.times(clock)[-runs:]) if reference is not None else None
+    return Pair(Samples(ta), Samples(tb), ref)
 
 
 __all__ = ["Samples", "Pair", "collector", "timed", "side_by_side"]

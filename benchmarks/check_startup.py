@@ -10,6 +10,9 @@ gpl2py, loads the built-in catalogue, and checks one small file.  The baseline i
 Python: a new interpreter that byte-compiles one small file.  Interpreter start-up is in both.  The
 two commands run in turns (after two untimed runs of each), and the medians of their wall times
 are printed with the spread, then the median of the per-turn ratios.  Target: ratio <= 4.
+The reference workload R (``_reference``) runs in this process after each turn, and both medians
+are printed once more in R (each time divided by R of its turn), the figures to compare between
+machines.
 
 Both run with compiled bytecode cached, as an installed package and the standard library are (pip
 compiles them at install): the environment's ``PYTHONDONTWRITEBYTECODE`` is dropped and
@@ -35,6 +38,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _reference import HOW_TO_COMPARE, Reference  # noqa: E402
 from _sidebyside import Pair, Samples  # noqa: E402
 
 GPL = """Module Hello
@@ -116,18 +120,23 @@ def main() -> int:
         check = gpl2py_command() + ["check", str(gpl_file)]
         compile_ = [sys.executable, "-m", "py_compile", str(py_file)]
         env = environment(Path(tmp) / "pycache", not args.no_bytecode_cache)
+        ref = Reference()
         for _ in range(2):  # fills the bytecode cache of both (if there is one)
             wall(check, env)
             wall(compile_, env)
+            ref.run(record=False)
         ta: list[float] = []
         tb: list[float] = []
         for _ in range(args.runs):
             ta.append(wall(check, env))
             tb.append(wall(compile_, env))
-        pair = Pair(Samples(ta), Samples(tb))
-        print(f"gpl2py check, 5-line GPL file:         {pair.a.text()}")
-        print(f"python -m py_compile, 5-line Python:   {pair.b.text()}")
+            ref.run(match=ta[-1] + tb[-1])
+        pair = Pair(Samples(ta), Samples(tb), Samples(ref.wall))
+        print(f"gpl2py check, 5-line GPL file:         {pair.a.text()}  {pair.a_in_r.text(1, 'R', 2)}")
+        print(f"python -m py_compile, 5-line Python:   {pair.b.text()}  {pair.b_in_r.text(1, 'R', 2)}")
         print(f"ratio check / py_compile:              {pair.ratio_text()} (target <= 4)")
+        print(ref.line())
+        print(HOW_TO_COMPARE)
         print("bytecode:", "never written (PYTHONDONTWRITEBYTECODE=1)" if args.no_bytecode_cache else "cached")
         if args.importtime:
             importtime(check, env)

@@ -2,14 +2,18 @@
 
 Run::
 
-    python benchmarks/file_speed.py [--n 2000] [--repeat 7]
+    python benchmarks/file_speed.py [--n 2000] [--runs 7]
 
 A file-heavy GPL workload, in five kernels a cell program really has (a log appended one line per
 event, a location table read at every cycle, files written, copied, listed and deleted, an NVRAM
 record log, an XML configuration saved and loaded), is transpiled here with the real pipeline and
 run against a temporary flash root.  The same work written with Python's own ``open``/``shutil``/
-``os`` on a plain temporary folder runs interleaved with it; the best of ``--repeat`` runs of each
-is kept and ``transpiled / python`` printed.  Both sides must produce the same result (checked).
+``os`` on a plain temporary folder runs in turns with it, both from the same files at each turn,
+with the collector on; printed are the medians of ``--runs`` runs of each with their spread, and
+the median of the per-turn ratios ``transpiled / python``.  Both sides must produce the same result
+(checked).  The reference workload R (``_reference``) runs in every turn too, and each median is
+printed once more in R (the time divided by R of its turn): the figures to compare between
+machines.
 
 The ratio is what the sandbox costs on top of the host's file system: every GPL file operation
 walks the path from the root's descriptor without following links and checks the file before and
@@ -25,12 +29,15 @@ import os
 import shutil
 import sys
 import tempfile
-import time
 import xml.dom.minidom as minidom
 from collections.abc import Callable
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from _reference import HOW_TO_COMPARE, Reference  # noqa: E402
+from _sidebyside import Pair, Samples, collector, timed  # noqa: E402
 
 from gpl2py.diagnostics import DiagnosticSink  # noqa: E402
 from gpl2py.transpile import transpile, write_package  # noqa: E402
@@ -200,16 +207,10 @@ def fresh(flash: Path, plain: Path) -> None:
     (plain / "table.txt").write_bytes(table_text())
 
 
-def timed(func: Callable[[int], object], n: int) -> tuple[float, object]:
-    t0 = time.perf_counter()
-    result = func(n)
-    return time.perf_counter() - t0, result
-
-
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--n", type=int, default=2000)
-    ap.add_argument("--repeat", type=int, default=7)
+    ap.add_argument("--runs", "--repeat", type=int, default=7, help="samples per side (default 7)")
     args = ap.parse_args()
     from gplrt.io.flashroot import set_flash_root
 
@@ -225,22 +226,42 @@ def main() -> int:
             ("NVRAM record log", kernels.NvramLog, plain.nvram_log),
             ("XML save and load", kernels.XmlRoundTrip, plain.xml_round_trip),
         ]
-        print(f"{'kernel':32} {'transpiled':>11} {'python':>9} {'ratio':>6}")
-        total_gpl = total_py = 0.0
+        ref = Reference()
+        print(f"{'kernel':30} {'transpiled (median, spread)':>28} {'python (median, spread)':>28}  ratio (spread)")
+        pairs: list[Pair] = []
         for label, gpl, py in cases:
-            best_gpl = best_py = float("inf")
-            for _ in range(args.repeat):
-                fresh(flash, plain_root)
-                t, r_gpl = timed(gpl, args.n)
-                best_gpl = min(best_gpl, t)
-                t, r_py = timed(py, args.n)
-                best_py = min(best_py, t)
-                assert r_gpl == r_py, (label, r_gpl, r_py)
-            total_gpl += best_gpl
-            total_py += best_py
-            print(f"{label:32} {best_gpl * 1e3:9.1f}ms {best_py * 1e3:7.1f}ms {best_gpl / best_py:6.2f}")
-        print(f"{'all five':32} {total_gpl * 1e3:9.1f}ms {total_py * 1e3:7.1f}ms {total_gpl / total_py:6.2f}")
+            pair = turns(gpl, py, args.n, args.runs, lambda: fresh(flash, plain_root), ref)
+            pairs.append(pair)
+            print(f"{label:30} {pair.a.text()} {pair.b.text()}  {pair.ratio_text()}")
+            print(f"{'  in R':30} {pair.a_in_r.text(1, 'R', 3)} {pair.b_in_r.text(1, 'R', 3)}")
+        gpl_ms, py_ms = (sum(getattr(p, s).median for p in pairs) * 1e3 for s in "ab")
+        gpl_r, py_r = (sum(getattr(p, s).median for p in pairs) for s in ("a_in_r", "b_in_r"))
+        print(f"{'all five (sum of medians)':30} {gpl_ms:9.1f} ms {py_ms:9.1f} ms  {gpl_ms / py_ms:.2f}x   "
+              f"in R: {gpl_r:.3f} R, {py_r:.3f} R")
+        print(ref.line())
+        print(HOW_TO_COMPARE)
     return 0
+
+
+def turns(gpl: Callable[[int], object], py: Callable[[int], object], n: int, runs: int,
+          reset: Callable[[], None], ref: Reference) -> Pair:
+    """``runs`` turns of (reset, GPL side, reset, Python side, R) after an untimed one, with the
+    collector on; both sides' results are checked equal at every turn."""
+    ta: list[float] = []
+    tb: list[float] = []
+    with collector(True):
+        for turn in range(runs + 1):
+            out: list[object] = []
+            reset()
+            a = timed(lambda: out.append(gpl(n)))
+            reset()
+            b = timed(lambda: out.append(py(n)))
+            assert out[0] == out[1], out
+            ref.run(record=turn > 0, match=a + b)
+            if turn:
+                ta.append(a)
+                tb.append(b)
+    return Pair(Samples(ta), Samples(tb), Samples(ref.wall[-runs:]))
 
 
 if __name__ == "__main__":

@@ -26,6 +26,10 @@ The yardsticks:
 
 Each yardstick's answers are checked against the wrapper's (to 1e-9 mm/degrees, modulo a turn
 for the rotary axes whose turn the bare form does not choose), so both sides compute the same.
+
+The reference workload R (``_reference``) runs in every turn too, timed on the same CPU clock, and
+each time per call is printed once more in µR (millionths of R of its turn): the figures to
+compare between machines.
 """
 
 from __future__ import annotations
@@ -41,6 +45,7 @@ import pinocchio as pin
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _reference import HOW_TO_COMPARE, Reference  # noqa: E402
 from _sidebyside import Pair, side_by_side  # noqa: E402
 
 from gplrt.controller.pdb import default_database  # noqa: E402
@@ -169,11 +174,13 @@ def _line(name: str, what: str, pair: Pair, n: int) -> str:
     per = 1e-6 * n
     flag = "" if pair.ratio <= TARGET else "  <-- over target"
     return (f"{name:<10} {what:<8} {pair.a.text(per, 'µs')}  {pair.b.text(per, 'µs')}  "
-            f"{pair.ratio_text()}{flag}")
+            f"{pair.ratio_text()}{flag}\n"
+            f"{'':<10} {'in R':<8} {pair.a_in_r.text(per, 'µR')}  {pair.b_in_r.text(per, 'µR')}")
 
 
 def main(n: int = 500, runs: int = 21) -> None:
     rng = np.random.default_rng(0)
+    ref = Reference()
     print(f"{n} calls per sample, {runs} samples per side, in turns after a warm-up; target <= {TARGET:g}x")
     print(f"{'model':<10} {'call':<8} {'wrapper per call':>36}  {'yardstick per call':>36}  ratio")
     for name in MODELS:
@@ -188,15 +195,17 @@ def main(n: int = 500, runs: int = 21) -> None:
         bare_fwd = _forward_yardstick(model, qs)
         flanges = bare_fwd()
         _same([fwd(q) for q in qs], [model.base @ units_mm(F) @ model.tool for F in flanges], f"{name} forward")
-        pair = side_by_side(lambda: [fwd(q) for q in qs], bare_fwd, runs, warmup=2, clock=CLOCK)
+        pair = side_by_side(lambda: [fwd(q) for q in qs], bare_fwd, runs, warmup=2, clock=CLOCK, reference=ref)
         print(_line(name, "forward", pair, n))
 
         inv = model.inverse
         jobs = list(zip(Ts, configs, qs, strict=True))
         bare_inv = _inverse_yardstick(model, Ts, configs, qs)
         _same([inv(T, c, q) for T, c, q in jobs], bare_inv(), f"{name} inverse", rotary)
-        pair = side_by_side(lambda: [inv(T, c, q) for T, c, q in jobs], bare_inv, runs, warmup=2, clock=CLOCK)
+        pair = side_by_side(lambda: [inv(T, c, q) for T, c, q in jobs], bare_inv, runs, warmup=2, clock=CLOCK, reference=ref)
         print(_line(name, "inverse", pair, n))
+    print(ref.line())
+    print(HOW_TO_COMPARE)
 
 
 def units_mm(F: np.ndarray) -> np.ndarray:

@@ -26,7 +26,11 @@ program's motions are.
    seconds per wall-clock second (target >= 2,000x, median of ``--cell-runs``) and per CPU
    second of the process.
 
-Run:  .venv/bin/python benchmarks/motion_speed.py [--runs 21] [--block 50] [--cell-runs 5]
+Every absolute figure is printed twice: as measured, and normalised by the reference workload R
+(``_reference``) run in the same turns -- times in µR (millionths of R), the cell's factors in
+controller seconds per R -- which is the figure to compare between machines.
+
+Run:  .venv/bin/python benchmarks/motion_speed.py [--runs 21] [--block 50] [--cell-runs 5] [--parts 200]
 """
 
 from __future__ import annotations
@@ -45,6 +49,7 @@ import numpy as np
 from ruckig import InputParameter, Ruckig, Trajectory
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _reference import HOW_TO_COMPARE, Reference, times_r  # noqa: E402
 from _sidebyside import Pair, Samples, collector, side_by_side  # noqa: E402
 
 import gplrt.motion.robot as robot_module  # noqa: E402
@@ -114,8 +119,8 @@ def _numpy_cycles(plan: Plan, path: LinePath, q0: np.ndarray, model: RobotModel)
     return q
 
 
-def motion_pairs(runs: int, block: int) -> dict[str, Pair]:
-    """The (Move, floor) pairs of sections 1 and 2 of the module docstring."""
+def motion_pairs(runs: int, block: int, ref: Reference) -> dict[str, Pair]:
+    """The (Move, floor) pairs of sections 1 and 2 of the module docstring, R run in every turn."""
     sim = Simulation(capture=True)
     pairs: dict[str, Pair] = {}
 
@@ -198,8 +203,8 @@ def motion_pairs(runs: int, block: int) -> dict[str, Pair]:
 
             return run
 
-        pairs["joint"] = side_by_side(moves(joint_goals, joint), bare_joint(False), runs)
-        pairs["joint_cart"] = side_by_side(moves(cart_goals, joint), bare_joint(True), runs)
+        pairs["joint"] = side_by_side(moves(joint_goals, joint), bare_joint(False), runs, reference=ref)
+        pairs["joint_cart"] = side_by_side(moves(cart_goals, joint), bare_joint(True), runs, reference=ref)
 
         # -- straight lines: the plans' own 1-DOF limits and start joints, from an untimed pass -----
         recorded: list[tuple[float, float, float, float]] = []
@@ -244,7 +249,7 @@ def motion_pairs(runs: int, block: int) -> dict[str, Pair]:
 
             return run
 
-        pairs["line"] = side_by_side(moves(line_goals, straight, lines=True), bare_line(), runs)
+        pairs["line"] = side_by_side(moves(line_goals, straight, lines=True), bare_line(), runs, reference=ref)
 
         # -- executing the lines: the cycles as WaitForEOM runs them, against one numpy pass -------
         def executed(i0: int) -> float:
@@ -276,10 +281,11 @@ def motion_pairs(runs: int, block: int) -> dict[str, Pair]:
                 a = executed(r * block)
                 gc.collect()
                 b = vectorised(r * block)
+                ref.run(record=r > 0, match=a + b)
                 if r:
                     ta.append(a)
                     tb.append(b)
-        pairs["line_run"] = Pair(Samples(ta), Samples(tb))
+        pairs["line_run"] = Pair(Samples(ta), Samples(tb), Samples(ref.wall[-runs:]))
 
     sim.run_main(main)
     if sim.console.log_text:
@@ -287,24 +293,24 @@ def motion_pairs(runs: int, block: int) -> dict[str, Pair]:
     return pairs
 
 
-def _cell_project(folder: Path) -> Path:
-    """``samples/pick_and_place`` copied to ``folder`` with ``PARTS`` parts to place."""
+def _cell_project(folder: Path, parts: int) -> Path:
+    """``samples/pick_and_place`` copied to ``folder`` with ``parts`` parts to place."""
     import shutil
 
     dest = folder / "pick_and_place"
     shutil.copytree(ROOT / "samples" / "pick_and_place", dest)
     cell = dest / "Cell.gpl"
     text = cell.read_text(encoding="utf-8")
-    changed = text.replace("PARTS_TO_PLACE As Integer = 8", f"PARTS_TO_PLACE As Integer = {PARTS}")
+    changed = text.replace("PARTS_TO_PLACE As Integer = 8", f"PARTS_TO_PLACE As Integer = {parts}")
     if changed == text:
         raise SystemExit("samples/pick_and_place/Cell.gpl: PARTS_TO_PLACE not found")
     cell.write_text(changed, encoding="utf-8")
     return dest
 
 
-def cell_factors(runs: int) -> tuple[list[float], list[float], float, str]:
+def cell_factors(runs: int, ref: Reference, parts: int = PARTS) -> tuple[list[float], list[float], float, str]:
     """(wall factors, CPU factors, controller seconds, last console line) of ``runs`` runs of
-    the 200-part cell, after one untimed run."""
+    the cell placing ``parts`` parts, after one untimed run; R runs after each (``ref``)."""
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.run import build, import_built
 
@@ -312,7 +318,7 @@ def cell_factors(runs: int) -> tuple[list[float], list[float], float, str]:
     import cell_io
 
     with tempfile.TemporaryDirectory() as tmp:
-        project = _cell_project(Path(tmp))
+        project = _cell_project(Path(tmp), parts)
         sink = DiagnosticSink()
         built = build(project, sink, cache_dir=Path(tmp) / "cache")
         if built is None:
@@ -331,11 +337,13 @@ def cell_factors(runs: int) -> tuple[list[float], list[float], float, str]:
         return sim.now(), wall, cpu, lines[-1] if lines else ""
 
     once()
+    ref.run(record=False)
     walls: list[float] = []
     cpus: list[float] = []
     seconds, last = 0.0, ""
     for _ in range(runs):
         seconds, wall, cpu, last = once()
+        ref.run(match=wall)
         walls.append(seconds / wall)
         cpus.append(seconds / cpu)
     return walls, cpus, seconds, last
@@ -344,8 +352,8 @@ def cell_factors(runs: int) -> tuple[list[float], list[float], float, str]:
 def _row(label: str, pair: Pair, floor: str, target: float) -> str:
     ratio = pair.ratio
     verdict = "met" if ratio <= target else "NOT met"
-    return (f"{label:<34}{pair.a.text(1e-6, 'us')}\n"
-            f"{'  floor: ' + floor:<34}{pair.b.text(1e-6, 'us')}\n"
+    return (f"{label:<34}{pair.a.text(1e-6, 'us')}  {pair.a_in_r.text(1e-6, 'µR')}\n"
+            f"{'  floor: ' + floor:<34}{pair.b.text(1e-6, 'us')}  {pair.b_in_r.text(1e-6, 'µR')}\n"
             f"{'  ratio':<34}{pair.ratio_text()}   target <= {target:g}x: {verdict}")
 
 
@@ -354,9 +362,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--runs", type=int, default=21, help="samples per side (>= 5)")
     ap.add_argument("--block", type=int, default=50, help="calls per sample")
     ap.add_argument("--cell-runs", type=int, default=5, help="runs of the 200-part cell (>= 5)")
+    ap.add_argument("--parts", type=int, default=PARTS, help=f"parts the cell places (default {PARTS})")
     args = ap.parse_args(argv)
     per = args.block
-    pairs = motion_pairs(args.runs, args.block)
+    ref = Reference()
+    pairs = motion_pairs(args.runs, args.block, ref)
     for p in pairs.values():  # per call (per line), not per block
         p.a.values[:] = [v / per for v in p.a.values]
         p.b.values[:] = [v / per for v in p.b.values]
@@ -365,14 +375,21 @@ def main(argv: list[str] | None = None) -> int:
     print(_row("Move.Loc straight line", pairs["line"], "Ruckig 1 axis + IK", 3.0))
     print(_row("straight line executed", pairs["line_run"], "numpy, all cycles at once", 3.0))
     load = os.getloadavg()[0]
-    walls, cpus, seconds, last = cell_factors(args.cell_runs)
+    walls, cpus, seconds, last = cell_factors(args.cell_runs, ref, args.parts)
     load = max(load, os.getloadavg()[0])
     wall = statistics.median(walls)
-    print(f"pick-and-place, {PARTS} parts ({seconds:.1f} controller s; {last!r}):")
+    n = args.cell_runs
+    wall_r = Samples(times_r(walls, ref.wall[-n:]))
+    cpu_r = Samples(times_r(cpus, ref.cpu[-n:]))
+    print(f"pick-and-place, {args.parts} parts ({seconds:.1f} controller s; {last!r}):")
     print(f"  wall-clock factor {wall:9,.0f}x (spread {min(walls):,.0f}-{max(walls):,.0f}, {len(walls)} runs)"
           f"   target >= 2,000x: {'met' if wall >= 2000 else 'NOT met'}")
     print(f"  CPU-time factor   {statistics.median(cpus):9,.0f}x (spread {min(cpus):,.0f}-{max(cpus):,.0f})"
           f"   (load average {load:.1f} on {os.cpu_count()} CPUs: the wall clock is shared, the CPU time is not)")
+    print(f"  normalised: wall {wall_r.text(1, 'controller s per R (wall)')}, "
+          f"CPU {cpu_r.text(1, 'controller s per R (CPU)')}")
+    print(ref.line())
+    print(HOW_TO_COMPARE)
     return 0
 
 

@@ -24,7 +24,10 @@ Only lex+parse is timed (the files are read once, before timing).  Both sides ru
 in turns, under the same garbage-collector state: off, the state gpl2py parses in
 (``gpl2py.syntax.lexer.gc_paused``), so ``ast.parse`` does not pay for collections the GPL side
 skips.  Printed: the median of ``--runs`` runs of each with the spread, and the median of the
-per-turn ratios ``gpl / python``.  Target: <= 3x.
+per-turn ratios ``gpl / python``.  Target: <= 3x.  The reference workload R (``_reference``) runs
+in every turn too, under the same collector state and clock, and each time is printed once more
+in R and each rate in lines per R (against R of its turn): the figures to compare between
+machines.
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ import ast
 import cProfile
 import pstats
 import random
+import statistics
 import sys
 import tempfile
 import time
@@ -44,6 +48,7 @@ sys.path[:0] = [str(ROOT), str(ROOT / "runtime")]  # this checkout's gpl2py and 
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _reference import HOW_TO_COMPARE, Reference, times_r  # noqa: E402
 from _sidebyside import side_by_side  # noqa: E402
 
 from gpl2py.diagnostics import DiagnosticSink  # noqa: E402
@@ -333,14 +338,22 @@ def main() -> None:
         prof.disable()
         pstats.Stats(prof).sort_stats("tottime").print_stats(15)
 
+    ref = Reference()
     pair = side_by_side(parse_gpl, parse_python, args.runs, gc_enabled=False,
-                        clock=time.process_time if args.cpu else time.perf_counter)
+                        clock=time.process_time if args.cpu else time.perf_counter, reference=ref)
+    assert pair.ref is not None
+    gpl_rate = statistics.median(times_r([args.lines / t for t in pair.a.values], pair.ref.values))
+    py_rate = statistics.median(times_r([args.lines / t for t in pair.b.values], pair.ref.values))
     print(f"lines:            {args.lines} GPL and {args.lines} Python, in {len(sources)} modules each "
           f"(about {args.lines // len(sources)} lines a module)")
     print("collector:        off on both sides (gpl2py parses with it paused)")
     print(f"gpl2py lex+parse: {pair.a.text()}  ({args.lines / pair.a.median:,.0f} GPL lines/s)")
     print(f"ast.parse:        {pair.b.text()}  ({args.lines / pair.b.median:,.0f} Python lines/s)")
     print(f"ratio gpl/python: {pair.ratio_text()}  (target <= 3x)")
+    print(f"in R:             gpl2py {pair.a_in_r.text(1, 'R', 3)}  ({gpl_rate:,.0f} GPL lines per R); "
+          f"ast.parse {pair.b_in_r.text(1, 'R', 3)}  ({py_rate:,.0f} Python lines per R)")
+    print(ref.line())
+    print(HOW_TO_COMPARE)
 
 
 if __name__ == "__main__":

@@ -23,6 +23,10 @@ Where the kernels run (``--on``, both by default): on a GPL thread of a simulate
 slice is a scheduling point), and called directly from Python, as a notebook or a test calls a
 transpiled procedure (no scheduler: checkpoints cost nothing).  The hand-written side runs in the
 same place as the transpiled one.
+
+The reference workload R (``_reference``) runs in every turn too, on the same clock, and each
+median is printed once more in R (each time divided by R of its turn): the figures to compare
+between machines.
 """
 
 from __future__ import annotations
@@ -41,6 +45,7 @@ sys.path[:0] = [str(ROOT), str(ROOT / "runtime")]  # this checkout's gpl2py and 
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _reference import HOW_TO_COMPARE, Reference  # noqa: E402
 from _sidebyside import side_by_side  # noqa: E402
 
 from gpl2py.diagnostics import DiagnosticSink  # noqa: E402
@@ -330,8 +335,8 @@ def build(tmp: Path):  # type: ignore[no-untyped-def]
     return pkg.kernels, out.files[f"{out.package}/kernels.py"]
 
 
-def run_kernels(mod, args: argparse.Namespace) -> float:  # type: ignore[no-untyped-def]
-    """Time every kernel side by side, print a line each; the worst median ratio."""
+def run_kernels(mod, args: argparse.Namespace, ref: Reference) -> float:  # type: ignore[no-untyped-def]
+    """Time every kernel side by side (R in every turn), print a line each; the worst median ratio."""
     worst = 0.0
     print(f"{'kernel':30} {'transpiled (median, spread)':>31} {'python (median, spread)':>31}  ratio (spread)")
     for label, gpl_name, py_func, arg in KERNELS:
@@ -340,7 +345,7 @@ def run_kernels(mod, args: argparse.Namespace) -> float:  # type: ignore[no-unty
         results: dict[str, object] = {}
         pair = side_by_side(lambda: results.__setitem__("gpl", gpl_func(n)),
                             lambda: results.__setitem__("py", py_func(n)), args.runs,
-                            clock=time.process_time if args.cpu else time.perf_counter)
+                            clock=time.process_time if args.cpu else time.perf_counter, reference=ref)
         r_gpl, r_py = results["gpl"], results["py"]
         if isinstance(r_py, float):
             assert math.isclose(r_gpl, r_py, rel_tol=1e-12), (label, r_gpl, r_py)  # type: ignore[arg-type]
@@ -348,6 +353,7 @@ def run_kernels(mod, args: argparse.Namespace) -> float:  # type: ignore[no-unty
             assert r_gpl == r_py, (label, r_gpl, r_py)
         worst = max(worst, pair.ratio)
         print(f"{label:30} {pair.a.text()} {pair.b.text()}  {pair.ratio_text()}")
+        print(f"{'  in R':30} {pair.a_in_r.text(1, 'R', 3)}  {pair.b_in_r.text(1, 'R', 3)}")
     return worst
 
 
@@ -369,15 +375,18 @@ def main() -> int:
         if args.show:
             print(text)
         worst = 0.0
+        ref = Reference()
         for where in (["thread", "direct"] if args.on == "both" else [args.on]):
             if where == "thread":
                 print("on a GPL thread (as `gpl2py run` runs a program):")
                 with Simulation(capture=True) as sim, sim.as_gpl_thread():
-                    worst = max(worst, run_kernels(mod, args))
+                    worst = max(worst, run_kernels(mod, args, ref))
             else:
                 print("called directly (as a notebook or a test calls a procedure):")
-                worst = max(worst, run_kernels(mod, args))
+                worst = max(worst, run_kernels(mod, args, ref))
         print(f"worst median ratio {worst:.2f} (target <= 1.5)")
+        print(ref.line())
+        print(HOW_TO_COMPARE)
     return 0
 
 

@@ -44,6 +44,11 @@ output (docs/design/lowering.md, "Output text", explains why we emit text and ke
 checker): ``parse_module`` of the generated Python, rendering the trees with ``Module.code``, and
 rebuilding every node with an identity ``CSTTransformer`` -- the nearest stand-in for constructing
 the tree node by node -- each as a ratio to ``compile()`` (medians of three runs).
+
+The reference workload R (``_reference``) runs in this process after each turn (a translate and
+a check), and each median is printed once more in R: the wall times divided by R's wall time of
+the turn, the per-line CPU times by its CPU time (in mR per line).  Those are the figures to
+compare between machines.
 """
 
 from __future__ import annotations
@@ -68,6 +73,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "runtime")]  # this checkout's gpl2py and gplrt
 
+from _reference import HOW_TO_COMPARE, Reference, per_r  # noqa: E402
 from _sidebyside import Samples, timed  # noqa: E402
 
 from gpl2py import cli  # noqa: E402
@@ -243,7 +249,7 @@ def _run_child(what: str, proj: Path) -> dict[str, float]:
     return json.loads(done.stdout.splitlines()[-1])  # type: ignore[no-any-return]
 
 
-def measure(lines: int, runs: int, profile: bool, libcst: bool) -> dict[str, object]:
+def measure(lines: int, runs: int, profile: bool, libcst: bool, ref: Reference) -> dict[str, object]:
     files = generate(lines)
     n_lines = sum(text.count("\n") for text in files.values())
     wall: dict[str, list[float]] = {"translate": [], "compile": [], "check": []}
@@ -256,6 +262,7 @@ def measure(lines: int, runs: int, profile: bool, libcst: bool) -> dict[str, obj
             pstats.Stats("/tmp/transpile.prof").sort_stats("tottime").print_stats(25)
         py_lines = _run_child("translate", proj)["py_lines"]  # untimed runs: the file system's caches
         _run_child("check", proj)
+        ref.run(record=False)
         for _ in range(runs):
             for what in ("translate", "check"):
                 times = _run_child(what, proj)
@@ -263,12 +270,16 @@ def measure(lines: int, runs: int, profile: bool, libcst: bool) -> dict[str, obj
                 cpu[what].append(times["cpu"])
                 if "compile" in times:
                     wall["compile"].append(times["compile"])
+            ref.run(match=wall["translate"][-1] + wall["compile"][-1] + wall["check"][-1])
         if libcst:
             _libcst_costs(translate(proj), statistics.median(wall["compile"]))
     ratios = [a / b for a, b in zip(wall["translate"], wall["compile"])]
+    ref_wall, ref_cpu = ref.wall[-runs:], ref.cpu[-runs:]
     return {
         "lines": n_lines, "files": len(files), "py_lines": int(py_lines),
         "wall": {k: Samples(v) for k, v in wall.items()}, "ratios": ratios,
+        "wall_in_r": {k: Samples(per_r(v, ref_wall)) for k, v in wall.items()},
+        "cpu_per_line_in_r": {k: Samples([x / n_lines for x in per_r(v, ref_cpu)]) for k, v in cpu.items()},
         "cpu_per_line": {k: statistics.median(v) / n_lines for k, v in cpu.items()},
         "cpu_spread": {k: (min(v) / n_lines, max(v) / n_lines) for k, v in cpu.items()},
     }
@@ -288,15 +299,16 @@ def main() -> int:
         return 0
     sizes = [int(s) for s in args.lines.split(",")]
     results = []
+    ref = Reference()
     for i, lines in enumerate(sizes):
-        res = measure(lines, args.runs, args.profile, args.libcst and i == 0)
+        res = measure(lines, args.runs, args.profile, args.libcst and i == 0, ref)
         results.append(res)
-        w = res["wall"]
+        w, w_r = res["wall"], res["wall_in_r"]
         r = res["ratios"]
         print(f"{res['lines']:,} GPL lines in {res['files']:,} files; {res['py_lines']:,} Python lines generated")
-        print(f"  transpile:              {w['translate'].text()}")  # type: ignore[index]
-        print(f"  compile() of the output:{w['compile'].text()}")  # type: ignore[index]
-        print(f"  check:                  {w['check'].text()}")  # type: ignore[index]
+        for key, label in (("translate", "transpile:              "), ("compile", "compile() of the output:"),
+                           ("check", "check:                  ")):
+            print(f"  {label}{w[key].text()}  {w_r[key].text(1, 'R', 2)}")  # type: ignore[index]
         print(f"  ratio transpile / compile: {statistics.median(r):.2f}x "  # type: ignore[arg-type]
               f"(spread {min(r):.2f}-{max(r):.2f}, {args.runs} runs each; target <= 8 at 100k and 300k)", flush=True)
     base = results[0]
@@ -308,8 +320,11 @@ def main() -> int:
             per = res["cpu_per_line"][k]  # type: ignore[index]
             lo, hi = res["cpu_spread"][k]  # type: ignore[index]
             cells.append(f"{k} {per * 1e6:6.1f} us/line ({lo * 1e6:.1f}-{hi * 1e6:.1f}) "
+                         f"{res['cpu_per_line_in_r'][k].text(1e-3, 'mR/line', 2)} "  # type: ignore[index]
                          f"{per / base['cpu_per_line'][k]:5.2f}x")  # type: ignore[index]
         print(f"  {res['lines']:>9,} lines: " + "   ".join(cells))
+    print(ref.line())
+    print(HOW_TO_COMPARE)
     return 0
 
 
