@@ -117,7 +117,8 @@ LEX_LITERAL_SUFFIX = _error(
 LEX_LITERAL_RANGE = _error(
     "GPL1007",
     "numeric literal {text} is out of range",
-    "Hex and octal literals are 32-bit; reals must fit in a Double.",
+    "Hex and octal literals are 32-bit; reals, and decimal integers (one past the Integer range is "
+    "a Double), must fit in a Double.  A translation that ignores it reads the literal as 0.",
 )
 LEX_CONDITIONAL_DIRECTIVE = _warning(
     "GPL1008",
