@@ -221,12 +221,12 @@ def _run_explain(args: argparse.Namespace) -> Outcome:
         return out
     if len(found) == 1 and found[0].code == code:
         m = found[0]
-        notes = m.doc or "No notes: the message says it all."
+        notes = m.notes or "No notes: the message says it all."
         out.product = f"{m.code} ({m.severity_name}): {m.template}\n\n" + textwrap.fill(notes, width=78)
-        out.product_json = {"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.doc}
+        out.product_json = {"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.notes}
     else:
         out.product = "\n".join(f"{m.code} ({m.severity_name}): {m.template}" for m in found)
-        out.product_json = [{"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.doc}
+        out.product_json = [{"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.notes}
                             for m in found]
     return out
 

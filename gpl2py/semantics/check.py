@@ -168,8 +168,8 @@ class Model:
     # procedure declares the same variable (_declare_locals), a rejected duplicate is absent
     local_of: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
     stubs: StubTable | None = None  # names defined in protected code / missing built-in members
-    # errors were reported before lowering (it runs then for --keep-going only): an expression
-    # without a meaning is one of them, not a gap in gpl2py
+    # errors were reported before lowering, kept or ignored (it runs then for --keep-going or
+    # ignored errors only): an expression without a meaning is one of them, not a gap in gpl2py
     errors_reported: bool = False
     # module and class Consts whose value translation computed (semantics/consts.py)
     const_values: dict[VarSym, object] = field(default_factory=dict)
@@ -303,7 +303,7 @@ class Checker:
             self._start(start, start_span)
         else:
             self._assume_main()
-        self.model.errors_reported = self.sink.has_errors()
+        self.model.errors_reported = self.sink.found_errors()
         return self.model
 
     def _assume_main(self) -> None:
@@ -559,8 +559,8 @@ class Checker:
                                      given=len(s.bounds))
             elif tt is not t.ERROR:
                 self.sink.report(M.NOT_AN_ARRAY, s.target.span, name=_text(s.target))
-        elif isinstance(s, (A.Label,)):
-            pass
+        elif isinstance(s, (A.Label, A.ErrorStmt)):
+            pass  # (an ErrorStmt: the parser reported the line)
         elif isinstance(s, (A.ProcDecl, A.ClassDecl, A.ModuleDecl, A.PropertyDecl, A.DelegateDecl)):
             pass  # misplaced; the parser reported it
 

@@ -453,7 +453,8 @@ def test_explain_prints_a_codes_documentation_from_the_installed_package(tmp_pat
     assert isinstance(entry, m)
     first, blank, *notes = done.stdout.splitlines()
     assert first == f"GPL2014 (error): {entry.template}" and blank == ""
-    assert " ".join(notes) == entry.doc
+    assert " ".join(notes) == entry.notes
+    assert entry.notes.startswith(entry.doc) and "raises error -738 *Invalid data type*" in entry.notes
 
 
 def test_explain_lists_a_range_and_suggests_a_code(capsys: pytest.CaptureFixture[str]) -> None:
@@ -462,7 +463,9 @@ def test_explain_lists_a_range_and_suggests_a_code(capsys: pytest.CaptureFixture
     assert [line.split(" ")[0] for line in out.splitlines()] == ["GPL3501", "GPL3502", "GPL3503"]
     code, out, _ = run(capsys, "explain", "--json", "1101")
     assert code == 0
-    assert json.loads(out)["explain"] == {"code": "GPL1101", "severity": "error",
-                                          "message": "expected an expression, found {found}", "notes": ""}
+    assert json.loads(out)["explain"] == {
+        "code": "GPL1101", "severity": "error", "message": "expected an expression, found {found}",
+        "notes": "Translated anyway (--keep-going, or the error ignored), the code it affects raises error "
+                 "-712 *Invalid syntax* when the program reaches it."}
     code, _, err = run(capsys, "explain", "GPL9O01")
     assert code == 2 and "error GPL9001: gpl2py explain: no diagnostic code 'GPL9O01'; did you mean GPL9001?" in err
