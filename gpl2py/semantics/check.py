@@ -372,7 +372,10 @@ class Checker:
         if cls is not None and v.shared:
             ctx = _Ctx(mod, cls, None)
             ctx.cls = cls
-        self._declarator_exprs(d, v, ctx)
+        try:
+            self._declarator_exprs(d, v, ctx)
+        except RecursionError:  # as for a statement (_block): an initializer nested past Python's stack
+            self._too_deep(d.span)
 
     def _declarator_exprs(self, d: A.VarDeclarator, v: VarSym, ctx: _Ctx) -> None:
         if d.bounds:
@@ -400,7 +403,10 @@ class Checker:
         if isinstance(decl, A.ProcDecl):
             for v in p.params:  # (a duplicate parameter was reported and left out of p.params)
                 if v.default is not None:
-                    self._store_value(v.default, v.type, ctx)
+                    try:
+                        self._store_value(v.default, v.type, ctx)
+                    except RecursionError:
+                        self._too_deep(v.default.span)
         # locals are visible in the whole procedure (§6.2): declare them all first
         self._declare_locals(decl.body, p, ctx, [], {})
         self._block(decl.body, ctx)
@@ -473,8 +479,14 @@ class Checker:
         for s in block.statements:
             try:
                 self._stmt(s, ctx)
-            except RecursionError:  # pragma: no cover - absurdly deep expressions
-                self.sink.report(M.NOT_SUPPORTED, s.span, what="an expression this deeply nested")
+            except RecursionError:
+                self._too_deep(s.span)
+
+    def _too_deep(self, span: Span) -> None:
+        """A statement, a module-level initializer or a parameter's default whose expression nests
+        deeper than the checker's recursion reaches (500 chained calls or members, which the parser's
+        depth limit does not count): GPL3005 at it, never a RecursionError out of the analysis."""
+        self.sink.report(M.NOT_SUPPORTED, span, what="an expression this deeply nested")
 
     def _stmt(self, s: A.Stmt, ctx: _Ctx) -> None:
         p = ctx.proc

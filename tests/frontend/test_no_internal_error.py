@@ -7,11 +7,17 @@
   error for the fault (``messages.RUNTIME_CODES``; what the program then does is
   tests/e2e/test_kept_errors.py).  ``test_every_error_code_has_a_case`` keeps the table complete:
   a new error code needs a case here and a decision in ``RUNTIME_CODES``.
+* **Deep nesting in module-level initialisers** (a Const of 478 nested parentheses, 500 chained
+  calls or members, a parameter's default) is GPL1117 / GPL3005 at its line, as inside a
+  procedure, never a RecursionError.
 """
 
 from __future__ import annotations
 
+import contextlib
 import importlib
+import io
+import json
 import re
 import sys
 from pathlib import Path
@@ -19,6 +25,7 @@ from pathlib import Path
 import pytest
 
 from gpl2py import messages as M
+from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink, Severity
 from gpl2py.run import import_package
 from gpl2py.selection import Selection
@@ -230,4 +237,54 @@ def test_every_error_code_has_a_case_and_a_run_time_decision() -> None:
     assert set(M.RUNTIME_CODES) <= errors
     for runtime in {*M.RUNTIME_CODES.values(), M.COMPILATION_ERRORS}:  # the controller's own codes and texts
         assert ERROR_MESSAGES[runtime] == M.RUNTIME_TEXTS[runtime], runtime
+
+
+# --------------------------------------------------------------------------------------------------
+# Deep nesting in module-level initialisers
+
+
+def report(tmp_path: Path, command: str, folder: Path) -> tuple[int, list[tuple[str, str, int]]]:
+    """``gpl2py check --json`` or ``translate --json``: the exit status and (code, file, line) of
+    every diagnostic."""
+    argv = [command, "--json", str(folder)] + (["-o", str(tmp_path / "out")] if command == "translate" else [])
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
+        status = cli_main(argv)
+    diags = json.loads(out.getvalue())["diagnostics"]
+    return status, [(d["code"], Path(d["file"]).name if d["file"] else "", d["line"] or 0) for d in diags]
+
+
+OTHER = "Module Other\n    Public Sub Work()\n        Dim s As String\n        s = undeclared\n    End Sub\nEnd Module\n"
+DEEP = {
+    "parentheses": "(" * 478 + "1" + ")" * 478,
+    "calls": "a" + "(1)" * 500,
+    "members": "a" + ".b" * 500,
+}
+
+
+@pytest.mark.parametrize("shape", sorted(DEEP))
+@pytest.mark.parametrize("where", ["Public Const X As Integer = {}", "Public X As Integer = {}",
+                                   "Public Class K\n        Public Shared Y As Integer = {}\n    End Class",
+                                   "Sub P(Optional ByVal q As Integer = {})\n    End Sub"])
+def test_deep_nesting_in_a_module_level_initialiser_is_reported_at_its_line(
+        shape: str, where: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Once a RecursionError in the semantic pass: GPL9000 with no position, and "checked 0
+    files" -- every other diagnostic of the project gone.  Inside a procedure the same was
+    already GPL1117 / GPL3005."""
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    folder = tmp_path / "P"
+    folder.mkdir()
+    main = f"Module Main\n    {where.format(DEEP[shape])}\n    Public Sub Main()\n    End Sub\nEnd Module\n"
+    (folder / "Main.gpl").write_text(main)
+    (folder / "Other.gpl").write_text(OTHER)
+    checked = report(tmp_path, "check", folder)
+    assert checked == report(tmp_path, "translate", folder)
+    status, diags = checked
+    assert status == 1 and "GPL9000" not in {c for c, _, _ in diags}, diags
+    assert ("GPL2001", "Other.gpl", 4) in diags  # the other file's error is still reported
+    deep = [(c, f, line) for c, f, line in diags if f == "Main.gpl"]
+    assert deep and {c for c, _, _ in deep} <= {"GPL1117", "GPL3005", "GPL2001"}, diags
+    line = next(i for i, text in enumerate(main.splitlines(), 1) if DEEP[shape] in text)
+    assert {line for _, _, line in deep} == {line}  # at the initialiser's line
+    assert {"GPL1117", "GPL3005"} & {c for c, _, _ in deep}
 
