@@ -8,10 +8,12 @@ reports every problem.  The codes and their wording live in :mod:`gpl2py.message
 from __future__ import annotations
 
 import json
+import os
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Iterable, Iterator, Protocol, Sequence
 
-from gpl2py.messages import Message, Severity  # Severity is defined with the messages that carry one
+from gpl2py.messages import INTERNAL_ERROR, Message, Severity  # (Severity lives with the messages)
 from gpl2py.source import Position, SourceFile, Span
 
 
@@ -94,6 +96,21 @@ class InternalError(Exception):
 def internal_error_span(exc: BaseException) -> Span | None:
     """Where an unexpected exception happened in the input, when the pass that raised it knew."""
     return exc.span if isinstance(exc, InternalError) else None
+
+
+@contextmanager
+def contained(sink: DiagnosticSink, where: Span | None) -> Iterator[None]:
+    """Run one part of a pass -- one file's parse, one module's analysis or lowering, a whole
+    translation -- so that an unexpected exception in it (a bug in gpl2py) is internal error
+    GPL9000 at ``where`` (or where the pass said it failed), and the caller goes on with the next
+    part: a bug met in one file never hides the diagnostics of the others.  ``GPL2PY_TRACEBACK=1``
+    lets the exception through instead, for a gpl2py developer (and the fuzz tests)."""
+    try:
+        yield
+    except Exception as exc:
+        if os.environ.get("GPL2PY_TRACEBACK"):
+            raise
+        sink.report(INTERNAL_ERROR, internal_error_span(exc) or where, detail=f"{type(exc).__name__}: {exc}")
 
 
 def one_line(text: str) -> str:

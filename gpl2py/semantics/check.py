@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 from sys import intern
 
 from gpl2py import messages as M
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import DiagnosticSink, contained
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, Catalogue, Member, Param
 from gpl2py.semantics.consts import fold_constants
@@ -267,6 +267,7 @@ class Checker:
         self.r = Resolver(project, catalogue, sink, self.stubs)
         self.model = Model(project, self.r, stubs=self.stubs)
         self.cat = catalogue
+        self.sources_missing = False  # a source failed to load (analyze)
         # Infos that only say "a variable" or "an operator's result of this type" are shared by
         # every expression they describe (most expressions of dense code: docs/security.md,
         # "Input size"); nothing changes an Info of these kinds once made
@@ -297,7 +298,8 @@ class Checker:
         col.check_overloads()
         project = self.model.project
         for mod in list(project.modules.values()):
-            self._module(mod)
+            with contained(self.sink, mod.span):  # a bug met in one module: the others are checked
+                self._module(mod)
         self.model.const_values = fold_constants(project, self.model.info, self.sink)
         if start:
             self._start(start, start_span)
@@ -330,6 +332,8 @@ class Checker:
             proc = cands[0] if len(cands) == 1 else None
         if isinstance(proc, OverloadSet):  # the thread starts it without arguments
             proc = _parameterless(proc) or proc.procs[0]
+        if not isinstance(proc, ProcSym) and self.sources_missing:
+            return  # perhaps in the file that failed to load: its error says what is wrong
         if not declared and self.stubs.protected:
             # not declared anywhere readable: in a project with protected files that is where it
             # lives, and saying so beats "not a Sub of this project" (the user sees the file)
@@ -1391,16 +1395,18 @@ def _text(e: A.Expr) -> str:
 def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogue,
             project_name: str = "", start: str | None = None, *, protected: bool = False,
             strict: bool = False, stub_provider: Callable[[Stub], str | None] | None = None,
-            start_span: Span | None = None) -> Model:
+            start_span: Span | None = None, sources_missing: bool = False) -> Model:
     """Semantic analysis of a parsed project (units in ProjectSource order).
 
     ``protected``: the project has protected (.gpp) files, so unknown names become stubs
     (``gpl2py.semantics.stubs``); ``strict`` reports every stub as an error; ``stub_provider``
     names the stand-in that implements a stub, for its warning.  ``start_span``: where ``start``
     is written (the ProjectStart value in Project.gpr), where a start procedure that does not
-    exist is reported."""
+    exist is reported -- unless ``sources_missing``: a source failed to load (reported) and may be
+    where it is, so its absence says nothing more."""
     checker = Checker(ProjectSyms(project_name), catalogue, sink,
                       StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
+    checker.sources_missing = sources_missing
     return checker.run(units, start, start_span)
 
 

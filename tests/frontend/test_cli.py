@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import gpl2py.cli as cli
+import gpl2py.transpile as transpile_module
 from gpl2py import messages
 from gpl2py.cli import main
 
@@ -250,7 +251,7 @@ def test_internal_error_becomes_gpl9000(monkeypatch: pytest.MonkeyPatch, tmp_pat
         raise RuntimeError("simulated bug")
 
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(cli, "load_project", boom)
+    monkeypatch.setattr(transpile_module, "load_project", boom)  # (check runs translate's pipeline)
     code, out, err = run(capsys, "check", str(tmp_path))
     assert code == 2  # gpl2py failed, not the input: ruff's and mypy's status for a crash
     assert "error GPL9000: internal error in gpl2py while processing this input: RuntimeError: simulated bug" in err
@@ -267,7 +268,7 @@ def test_internal_error_in_the_parser_becomes_gpl9000(monkeypatch: pytest.Monkey
 
     (tmp_path / "Main.gpl").write_bytes(GOOD_MODULE)
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(cli, "_parse", broken_parse)
+    monkeypatch.setattr(transpile_module, "parse", broken_parse)
     code, _, err = run(capsys, "check", str(tmp_path))
     assert code == 2 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
 

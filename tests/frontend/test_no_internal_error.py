@@ -10,6 +10,9 @@
 * **Deep nesting in module-level initialisers** (a Const of 478 nested parentheses, 500 chained
   calls or members, a parameter's default) is GPL1117 / GPL3005 at its line, as inside a
   procedure, never a RecursionError.
+* **A GPL9000 stays in its file**: a bug met while parsing, analysing or lowering one file (planted
+  here, as a future bug would be) is reported at that file, and the other files' diagnostics are
+  all reported, by ``check`` and ``translate`` alike.
 """
 
 from __future__ import annotations
@@ -24,6 +27,8 @@ from pathlib import Path
 
 import pytest
 
+import gpl2py.semantics.check as check_module
+import gpl2py.transpile as transpile_module
 from gpl2py import messages as M
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink, Severity
@@ -288,3 +293,78 @@ def test_deep_nesting_in_a_module_level_initialiser_is_reported_at_its_line(
     assert {line for _, _, line in deep} == {line}  # at the initialiser's line
     assert {"GPL1117", "GPL3005"} & {c for c, _, _ in deep}
 
+
+# --------------------------------------------------------------------------------------------------
+# A GPL9000 stays in its file
+
+
+BUG = "Module Bug\n    Public Sub Main()\n        Console.WriteLine(\"bug\")\n    End Sub\nEnd Module\n"
+CLEAN = "Module Other\n    Public Sub Work()\n        Dim s As String\n        s = 5\n    End Sub\nEnd Module\n"
+
+
+def _project(tmp_path: Path, other: str) -> Path:
+    folder = tmp_path / "P"
+    folder.mkdir()
+    (folder / "Bug.gpl").write_text(BUG)
+    (folder / "Other.gpl").write_text(other)
+    (folder / "Project.gpr").write_text(gpr('ProjectSource="Bug.gpl"\nProjectSource="Other.gpl"\n', "Bug.Main"))
+    return folder
+
+
+def _planted(kind: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A bug in gpl2py that only file Bug.gpl meets, in ``kind`` (parse, analysis, lowering)."""
+    if kind == "parse":
+        real_parse = transpile_module.parse
+
+        def parse(src, sink):  # type: ignore[no-untyped-def]
+            if src.path.endswith("Bug.gpl"):
+                raise ValueError("planted parser bug")
+            return real_parse(src, sink)
+
+        monkeypatch.setattr(transpile_module, "parse", parse)
+    elif kind == "analysis":
+        real_module = check_module.Checker._module
+
+        def _module(self, mod):  # type: ignore[no-untyped-def]
+            if mod.name == "Bug":
+                raise KeyError("planted analysis bug")
+            return real_module(self, mod)
+
+        monkeypatch.setattr(check_module.Checker, "_module", _module)
+    else:
+        real_lower = transpile_module.lower_module
+
+        def lower_module(model, names, mod, sink):  # type: ignore[no-untyped-def]
+            if mod.name == "Bug":
+                raise IndexError("planted lowering bug")
+            return real_lower(model, names, mod, sink)
+
+        monkeypatch.setattr(transpile_module, "lower_module", lower_module)
+
+
+@pytest.mark.parametrize("kind", ["parse", "analysis", "lowering"])
+def test_an_internal_error_in_one_file_keeps_the_other_files_diagnostics(
+        kind: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Once a GPL9000 anywhere ended the whole run: no position, the files after it never
+    parsed, and ``check`` said "checked 0 files" with nothing else."""
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    # the lowering runs only on a project without errors: the other file has a warning only
+    other = CLEAN if kind == "lowering" else CLEAN + "x = \"\x93\"\n"  # (GPL2031 at s = 5)
+    folder = _project(tmp_path, other)
+    _planted(kind, monkeypatch)
+    checked = report(tmp_path, "check", folder)
+    assert checked == report(tmp_path, "translate", folder)
+    status, diags = checked
+    assert status == 2  # an internal error: gpl2py could not do its job
+    found = [(c, f) for c, f, _ in diags]
+    assert found.count(("GPL9000", "Bug.gpl")) == 1 and ("GPL9000", "Bug.gpl", 1) in diags  # at the file
+    # every diagnostic of the other file, and no knock-on error (the start is in Bug.gpl)
+    if kind == "lowering":
+        assert found == [("GPL9000", "Bug.gpl"), ("GPL2031", "Other.gpl")]
+    else:
+        assert found == [("GPL9000", "Bug.gpl"), ("GPL2031", "Other.gpl"), ("GPL1109", "Other.gpl"),
+                         ("GPL1004", "Other.gpl")]
+    out = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(out):
+        cli_main(["check", str(folder)])
+    assert "checked 2 files" in out.getvalue()
