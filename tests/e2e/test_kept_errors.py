@@ -14,6 +14,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from gpl2py.cli import main as cli_main
 from gpltest import run_gpl
 
@@ -89,7 +91,8 @@ def test_keep_going_translates_the_same_errors_the_same_way(tmp_path: Path) -> N
     assert r.output == CAUGHT and r.status == 1
 
 
-def test_an_ignore_comment_on_the_line_and_the_command_line(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+def test_an_ignore_comment_on_the_line_and_the_command_line(tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
     """The issue's own example, through ``gpl2py run``: ``x = 1`` with ``x`` undeclared and its
     GPL2001 ignored by a comment runs, and raises -729 at its line; a Catch handles it."""
     source = tmp_path / "Main.gpl"
