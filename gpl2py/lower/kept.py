@@ -42,9 +42,13 @@ class KeptErrors:
         runtime = M.message(found.code).runtime
         return runtime if runtime is not None else M.COMPILATION_ERRORS, f"{found.code}: {found.message}"
 
+    def any(self) -> bool:
+        """Whether any error was reported (an ordinary translation has none)."""
+        return bool(self._index())
+
     def on_lines(self, span: Span, whole: bool) -> bool:
         """Whether an error was reported on the lines of ``span`` (``whole``), or on its first."""
-        return bool(self._index()) and self._first(span, whole) is not None
+        return self._first(span, whole) is not None
 
     def _first(self, span: Span, whole: bool) -> Diagnostic | None:
         index = self._index()

@@ -425,7 +425,7 @@ class ProcLowerer(ExprLowerer):
         call alone (returns True); a statement with blocks raises before it runs when its first
         line has an error, and its blocks are lowered as usual (a GoTo may enter them).  A label
         stays what it is, the target of a GoTo."""
-        if isinstance(s, A.Label):
+        if isinstance(s, A.Label) or not self.ctx.kept.any():
             return False
         simple = not child_blocks(s)
         if not self.ctx.kept.on_lines(s.span, whole=simple):
@@ -451,16 +451,11 @@ class ProcLowerer(ExprLowerer):
         w.peak_level, w.peak_blocks = w.level, w.blocks
 
     def s_misplaced(self, s: A.Stmt) -> None:
-        """A declaration inside a procedure body: the parser reported it; the statement raises
-        the controller's error for it when reached (lower/kept.py)."""
+        """A line of a procedure body the parser reported -- a declaration that cannot be there, or
+        a line it could not read (an ErrorStmt) --: it raises the controller's error for it when
+        reached (lower/kept.py)."""
         if not self.model.errors_reported:
             raise InternalError(s.span, f"a {type(s).__name__} inside a procedure body was not reported")
-        self.w.line(self.fault(s))
-
-    def s_ErrorStmt(self, s: A.ErrorStmt) -> None:
-        """A line the parser could not read (reported): it raises the error when reached."""
-        if not self.model.errors_reported:
-            raise InternalError(s.span, "a line that failed to parse was not reported")
         self.w.line(self.fault(s))
 
     def s_Label(self, s: A.Label) -> None:
@@ -1500,7 +1495,7 @@ def _exits(block: A.Block, kind: str) -> bool:
 #: The lowering of each kind of statement (ProcLowerer.stmt); a kind without one raises.
 _STMT_VISIT: dict[type[A.Stmt], Callable[[ProcLowerer, Any], None]] = {
     A.Label: ProcLowerer.s_Label,
-    A.ErrorStmt: ProcLowerer.s_ErrorStmt,
+    A.ErrorStmt: ProcLowerer.s_misplaced,
     A.VarDecl: ProcLowerer.s_VarDecl,
     A.Assign: ProcLowerer.s_Assign,
     A.CallStmt: ProcLowerer.s_CallStmt,
