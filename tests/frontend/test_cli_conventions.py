@@ -332,6 +332,9 @@ def test_sarif_validates_against_the_schema(tmp_path: Path, capsys: pytest.Captu
     rules = run_["tool"]["driver"]["rules"]
     assert [r["id"] for r in rules] == sorted(r["id"] for r in rules)
     assert all(rules[r["ruleIndex"]]["id"] == r["ruleId"] for r in results)
+    # a rule's description is gpl2py explain's: what a line that keeps the error raises included
+    rule = next(r for r in rules if r["id"] == "GPL2014")
+    assert rule["fullDescription"]["text"].endswith("raises error -738 *Invalid data type* when the program reaches it.")
     assert run_["invocations"] == [{"executionSuccessful": True}]
 
 
