@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import gc
 import os
+import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -77,11 +78,39 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     default from the environment).  ``keep_modules=False`` (``gpl2py check``): the diagnostics
     only, each module's text dropped once made (:func:`lower`) and no project files read.
 
-    The cyclic garbage collector is paused meanwhile (:func:`collector_paused`).
+    The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
+    has the same stack whoever calls it (:func:`recursion_budget`).
     """
-    with collector_paused(), contained(sink, None):  # a bug in gpl2py: a diagnostic, never a traceback
+    with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
         return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules)
     return None
+
+
+#: The Python frames a translation may use below its entry: what one from the command line had
+#: under Python's default recursion limit of 1,000 (the CLI calls the pipeline 7 to 9 frames deep).
+PIPELINE_FRAMES = 990
+
+
+@contextmanager
+def recursion_budget(frames: int) -> Iterator[None]:
+    """Python's recursion limit is the current depth plus ``frames`` meanwhile (restored after).
+
+    The analysis reports an expression nested past its recursion as GPL3005, and the limit is
+    global, counted from the bottom of the stack: without a budget of its own, the same project
+    gave GPL3005 from ``gpl2py check`` (one frame deeper) and nothing from ``translate``, and an
+    internal error when a library caller (a test, a notebook) called it a few hundred frames deep.
+    """
+    depth = 0
+    frame = sys._getframe()
+    while frame is not None:
+        depth += 1
+        frame = frame.f_back
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(depth + frames)
+    try:
+        yield
+    finally:
+        sys.setrecursionlimit(limit)
 
 
 @contextmanager

@@ -368,3 +368,38 @@ def test_an_internal_error_in_one_file_keeps_the_other_files_diagnostics(
     with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(out):
         cli_main(["check", str(folder)])
     assert "checked 2 files" in out.getvalue()
+
+
+# --------------------------------------------------------------------------------------------------
+# The caller's stack depth
+
+
+NEAR_THE_LIMIT = {
+    "calls": "CInt(" * 149 + "1" + ")" * 149,
+    "negations": "-" * 149 + "1",
+    "members": "Console" + ".X" * 200,
+    "subscripts": "a" + "(1)" * 200,
+}
+
+
+def _at_depth(frames: int, path: Path) -> list[tuple[str, int]]:
+    if frames > 0:
+        return _at_depth(frames - 1, path)
+    sink = DiagnosticSink()
+    transpile(path, sink)
+    return sorted((d.code, d.span.line if d.span else 0) for d in sink)
+
+
+@pytest.mark.parametrize("shape", sorted(NEAR_THE_LIMIT))
+def test_a_translation_does_not_depend_on_how_deep_it_is_called(
+        shape: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The analysis and the lowering recurse on expressions, under Python's recursion limit, which
+    counts from the bottom of the stack: the same project gave nothing from ``translate``, GPL3005
+    from ``check`` (one frame deeper: the pipeline fuzz found it) and an internal error GPL9000
+    from a caller a few hundred frames deep.  The pipeline now has a budget of its own."""
+    monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
+    main = f"Module Main\n    Public Sub Main()\n        Dim i As Integer\n        i = {NEAR_THE_LIMIT[shape]}\n    End Sub\nEnd Module\n"
+    (tmp_path / "Main.gpl").write_text(main)
+    found = {frames: _at_depth(frames, tmp_path) for frames in (0, 150, 300, 600)}  # (under the limit of 1,000)
+    assert all(codes == found[0] for codes in found.values()), found
+    assert "GPL9000" not in {c for c, _ in found[0]}
