@@ -8,10 +8,12 @@ reports every problem.  The codes and their wording live in :mod:`gpl2py.message
 from __future__ import annotations
 
 import json
+import os
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Iterable, Iterator, Protocol, Sequence
 
-from gpl2py.messages import Message, Severity  # Severity is defined with the messages that carry one
+from gpl2py.messages import INTERNAL_ERROR, Message, Severity  # (Severity lives with the messages)
 from gpl2py.source import Position, SourceFile, Span
 
 
@@ -96,6 +98,21 @@ def internal_error_span(exc: BaseException) -> Span | None:
     return exc.span if isinstance(exc, InternalError) else None
 
 
+@contextmanager
+def contained(sink: DiagnosticSink, where: Span | None) -> Iterator[None]:
+    """Run one part of a pass -- one file's parse, one module's analysis or lowering, a whole
+    translation -- so that an unexpected exception in it (a bug in gpl2py) is internal error
+    GPL9000 at ``where`` (or where the pass said it failed), and the caller goes on with the next
+    part: a bug met in one file never hides the diagnostics of the others.  ``GPL2PY_TRACEBACK=1``
+    lets the exception through instead, for a gpl2py developer (and the fuzz tests)."""
+    try:
+        yield
+    except Exception as exc:
+        if os.environ.get("GPL2PY_TRACEBACK"):
+            raise
+        sink.report(INTERNAL_ERROR, internal_error_span(exc) or where, detail=f"{type(exc).__name__}: {exc}")
+
+
 def one_line(text: str) -> str:
     """``text`` with every character Python does not call printable -- line breaks, other
     controls, bidirectional overrides, other separators than the space -- as ``\\xNN``,
@@ -125,11 +142,16 @@ class DiagnosticSink:
 
     With a ``filter`` (``gpl2py.selection.Selection``), a diagnostic it does not keep is dropped
     as it arrives, so every later question (errors? how many warnings?) sees the filtered set.
+    The errors it drops are kept aside (:attr:`ignored_errors`): an ignored error still means that
+    the input has no meaning there, which the translation must know (it raises the controller's
+    error at that line, ``gpl2py.lower``) though the user asked not to hear of it.
     """
 
     def __init__(self, filter: DiagnosticFilter | None = None) -> None:
         self._items: list[Diagnostic] = []
         self.filter = filter
+        #: errors the filter dropped, in the order they were reported
+        self.ignored_errors: list[Diagnostic] = []
 
     def child(self) -> DiagnosticSink:
         """An empty sink with the same filter (a pipeline stage that decides on its own errors)."""
@@ -138,19 +160,21 @@ class DiagnosticSink:
     def report(self, message: Message, span: Span | None, **args: object) -> Diagnostic:
         """Report ``message`` (a registry entry) formatted with ``args`` at ``span``."""
         diag = Diagnostic(message.severity, message.code, message.format(**args), span)
-        if self.filter is None or self.filter(diag):
-            self._items.append(diag)
+        self.add(diag)
         return diag
 
     def add(self, diag: Diagnostic) -> None:
         if self.filter is None or self.filter(diag):
             self._items.append(diag)
+        elif diag.severity is Severity.ERROR:
+            self.ignored_errors.append(diag)
 
     def extend(self, diags: Iterable[Diagnostic]) -> None:
         if self.filter is None:
             self._items.extend(diags)
         else:
-            self._items.extend(d for d in diags if self.filter(d))
+            for d in diags:
+                self.add(d)
 
     def __iter__(self) -> Iterator[Diagnostic]:
         return iter(self._items)
@@ -168,6 +192,11 @@ class DiagnosticSink:
 
     def has_errors(self) -> bool:
         return any(d.severity is Severity.ERROR for d in self._items)
+
+    def found_errors(self) -> bool:
+        """Errors reported, kept or ignored: whether some input has no meaning (not whether the
+        run failed, which :meth:`has_errors` answers)."""
+        return bool(self.ignored_errors) or self.has_errors()
 
     def sorted(self) -> list[Diagnostic]:
         """Diagnostics ordered by file, line and column (stable for equal positions)."""

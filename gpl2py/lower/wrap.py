@@ -54,9 +54,11 @@ def _wrap_nested(indent: int, text: str, limit: int, depth: int, inside: bool) -
     out: list[tuple[int, str]] = []
     for i, (ind, txt) in enumerate(lines):
         # the first line too, when it is a piece of the text (an operand packed without brackets
-        # of its own) rather than the text's unchanged opening
+        # of its own) rather than the text's unchanged opening.  Every line of a text inside
+        # brackets is inside them, its last one too (a piece "or f(x) != y" of a condition packed
+        # without brackets of its own: in brackets of its own it would not be Python)
         if (i > 0 or txt != text) and 4 * ind + len(txt) > limit:
-            out.extend(_wrap_nested(ind, txt, limit, depth + 1, inside=i < len(lines) - 1))
+            out.extend(_wrap_nested(ind, txt, limit, depth + 1, inside=inside or i < len(lines) - 1))
         else:
             out.append((ind, txt))
     return out

@@ -205,11 +205,11 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
             if "." in t or "e" in t or "E" in t:
                 value: object = float(t)
                 if value == float("inf"):
-                    sink.report(M.LEX_LITERAL_RANGE, span, text=t)
+                    sink.report(M.LEX_LITERAL_RANGE, span, text=_shown_number(t))
                     value = 0.0
                 append((_K.REAL, t, value, span))
             else:
-                append((_K.INTEGER, t, int(t), span))
+                append((_K.INTEGER, t, int(t) if len(t) < _LONG_DECIMAL else _long_decimal(t, span, sink), span))
             has_tokens = True
             _check_suffix(text, m.end(g), t, span, sink)
         elif g == 6:  # S
@@ -237,7 +237,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
             span = _span(path, line, col, col + len(t))
             raw = int(t[2:], 16 if t[1] in "Hh" else 8)
             if raw > 0xFFFFFFFF:
-                sink.report(M.LEX_LITERAL_RANGE, span, text=t)
+                sink.report(M.LEX_LITERAL_RANGE, span, text=_shown_number(t))
                 raw = 0
             elif raw >= 0x80000000:
                 raw -= 0x100000000
@@ -302,6 +302,35 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         append((NEWLINE, "", None, (path, line, col, line, col)))
     append((_K.EOF, "", None, (path, line, col, line, col)))
     yield toks
+
+
+#: Decimal integer literals this long may pass the Double range (1.8E+308 has 309 digits); shorter
+#: ones are read with ``int`` directly.
+_LONG_DECIMAL = 309
+
+
+def _long_decimal(t: str, span: Span, sink: DiagnosticSink) -> int:
+    """The value of a long decimal literal, or 0 after GPL1007 when it is beyond the Double range.
+
+    A decimal literal past the Integer range is a Double (semantics), so one past the Double range
+    is out of range like ``1E+400``.  Deciding that before ``int(t)`` also keeps Python's limit on
+    converting strings of over 4,300 digits (a ValueError) away from the input; leading zeros
+    count for nothing."""
+    digits = t.lstrip("0")
+    if len(digits) <= _LONG_DECIMAL:
+        value = int(digits or "0")
+        try:
+            float(value)
+            return value
+        except OverflowError:
+            pass
+    sink.report(M.LEX_LITERAL_RANGE, span, text=_shown_number(t))
+    return 0
+
+
+def _shown_number(t: str) -> str:
+    """A numeric literal as a message quotes it: a very long one is cut, with its length."""
+    return t if len(t) <= 40 else f"{t[:20]}... ({len(t)} characters)"
 
 
 def _show(chars: str) -> str:

@@ -109,6 +109,23 @@ def test_hex_literal_out_of_range_is_reported() -> None:
     assert codes(sink) == ["GPL1007"]
 
 
+def test_decimal_literal_past_the_double_range_is_reported() -> None:
+    # a decimal literal past the Integer range is a Double, so one past the Double range is out of
+    # range like 1E+400: 310 digits (once an OverflowError in the lowering of a Double store) and
+    # 4,301 (once Python's ValueError for long int() strings in the lexer, a GPL9000)
+    for digits in (310, 4301, 100_000):
+        toks, sink = lex(f"x = {'9' * digits}\n")
+        assert codes(sink) == ["GPL1007"], digits
+        assert toks[2].kind is K.INTEGER and toks[2].value == 0
+        assert f"({digits} characters)" in sink.errors[0].message and len(sink.errors[0].message) < 100
+    toks, sink = lex(f"x = {'9' * 308}\n")  # within the range: the exact value
+    assert codes(sink) == [] and toks[2].value == int("9" * 308)
+    toks, sink = lex(f"x = {'0' * 5000}17\n")  # leading zeros count for nothing
+    assert codes(sink) == [] and toks[2].value == 17
+    toks, sink = lex(f"x = {'1' + '0' * 5000}.5\n")  # a real literal the same
+    assert codes(sink) == ["GPL1007"] and "(5003 characters)" in sink.errors[0].message
+
+
 def test_literal_suffix_is_reported() -> None:
     _, sink = lex("x = 725L\n")
     assert codes(sink) == ["GPL1006"]
