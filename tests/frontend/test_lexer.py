@@ -250,6 +250,16 @@ def test_string_limits_and_errors() -> None:
     assert codes(sink) == ["GPL1004"]
 
 
+def test_an_unterminated_string_holding_doubled_quotes_is_reported_at_its_opening_quote() -> None:
+    # '"ab""' has no closing quote: the '""' is a quote inside the string, so the string that
+    # is not closed is the one that starts at column 5 (it was reported at the last quote)
+    toks, sink = lex('s = "ab""\n')
+    assert codes(sink) == ["GPL1002"] and sink.errors[0].span.col == 5
+    assert [(t.kind, t.value) for t in toks[2:4]] == [(K.STRING, 'ab"'), (K.NEWLINE, None)]
+    toks, sink = lex('s = "ab""" & "c""d"\n')  # closed strings are unchanged
+    assert len(sink) == 0 and [t.value for t in toks if t.kind is K.STRING] == ['ab"', 'c"d']
+
+
 def test_non_ascii_outside_comments_is_an_error_inside_comments_fine() -> None:
     _, sink = lex("x = 1 ' café – ok\n")
     assert len(sink) == 0
