@@ -116,9 +116,10 @@ CHUNK = 4096
 
 def token_chunks(source: SourceFile, sink: DiagnosticSink, chunk: int = CHUNK) -> Iterator[list[RawToken]]:
     """The tokens of ``source`` as the parser reads them, plain tuples ``(kind, text, value, span)``
-    (:data:`~gpl2py.syntax.tokens.KIND`), in consecutive lists of about ``chunk`` tokens (a list
-    ends at a line break, so one logical line may make it longer).  Diagnostics are reported as
-    the tokens are made."""
+    (:data:`~gpl2py.syntax.tokens.KIND`), in consecutive lists of ``chunk`` tokens, a few more at
+    most (a line continued with a comment adds its comments), wherever they fall in a line: a file of
+    one line of a million terms is handed out in pieces too.  Diagnostics are reported as the tokens
+    are made."""
     return _tokenize(source, sink, chunk)
 
 
@@ -169,6 +170,10 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         stop -= 1
     base = begin - 1  # a column is the offset minus this: the offset where its line starts, less one
     for m in _MASTER.finditer(text, begin, stop):
+        if len(toks) >= chunk:  # (tested per token, not per line: one line can be the whole file)
+            yield toks
+            toks = []
+            append = toks.append
         g = m.lastindex
         if g == 1:  # word
             t = m.group(1)
@@ -198,10 +203,6 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 has_tokens = False
             line += 1
             base = m.end() - 1
-            if len(toks) >= chunk:
-                yield toks
-                toks = []
-                append = toks.append
         elif g == 2:  # number
             start = m.start(g)
             t = intern(m.group(g))  # a literal keeps its text: one string per spelling, like names
