@@ -79,6 +79,7 @@ _MASTER = re.compile(
 
 # characters that can be part of a name: a '_' right after one of these is not a continuation
 _NAME_CHAR = re.compile(r"[A-Za-z0-9_]").fullmatch
+_WORD_RUN = re.compile(r"\w*").match
 _CONDITIONAL = re.compile(r"#\s*(if|else|elseif|end\s+if|const)\b", re.IGNORECASE)
 _MAX_NAME = 128
 _MAX_STRING = 128
@@ -331,7 +332,5 @@ def _check_suffix(text: str, end: int, number: str, span: Span, sink: Diagnostic
     if end < len(text):
         c = text[end]
         if c.isalpha() or c == "_":
-            stop = end
-            while stop < len(text) and (text[stop].isalnum() or text[stop] == "_"):
-                stop += 1
+            stop = _WORD_RUN(text, end).end()  # (letters, digits, '_': isalnum() or '_', in C)
             sink.report(M.LEX_LITERAL_SUFFIX, span, suffix=text[end:stop], number=number)
