@@ -22,6 +22,8 @@ from typing import Any
 import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.lower.expressions import LONG_CHAIN
+from gpl2py.lower.wrap import wrap
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.transpile import Output, transpile
 
@@ -93,3 +95,22 @@ def test_one_long_token_takes_at_most_30_times_the_source(shape: str, tmp_path: 
     assert peak / size <= LIMIT, f"{shape}: peak {peak / 2**20:.1f} MB for {size / 2**20:.2f} MB of source: " \
                                  f"{peak / size:.1f}x (limit {LIMIT:.0f}x)"
 
+
+
+def test_breaking_a_long_generated_line_keeps_its_tokens_small() -> None:
+    """A GPL expression of many terms is one Python line of steps (ExprLowerer.chunked) that
+    ``wrap`` breaks: it keeps the line's tokens, which cost 199 bytes per character of the line
+    (tokenize's records, and a second list of the top-level ones); 93 now.  A guard, not the
+    30x bound: the syntax tree of ``1+1+...`` alone is 135 times its source (a node per operand)."""
+    steps = ["_chain1 := 1" + " + 1" * LONG_CHAIN]
+    steps += ["_chain1 := _chain1" + " + 1" * LONG_CHAIN] * 99
+    line = "d = (" + ", ".join(steps) + ")[-1]"
+    gc.collect()
+    tracemalloc.start()
+    try:
+        lines = wrap(2, line)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert len(lines) == 502 and max(4 * indent + len(text) for indent, text in lines) <= 99
+    assert peak / len(line) <= 100, f"peak {peak / len(line):.1f}x the line"
