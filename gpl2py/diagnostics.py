@@ -41,21 +41,26 @@ class Diagnostic:
         return f"{where} {what}: {one_line(self.message)}" if where else f"{what}: {one_line(self.message)}"
 
     def render(self, source: SourceFile | None = None, colour: bool = False) -> str:
-        """The header line, followed by the source line and a caret when the text is known."""
+        """The header line, followed by the source line and a caret when the text is known.
+
+        A line longer than :data:`EXCERPT` characters is shown as a window of that many around
+        the column, its cut ends marked ``...``: a line can be a whole file (a 7 MB string literal
+        was 14.7 MB of output, and the caret under it as much again)."""
         text = self.header(colour)
         if source is None or self.span is None:
             return text
         line = source.line_text(self.span.line)
         if not line:
             return text
-        shown = line.expandtabs(1)  # tabs count as one column, as in Position
-        if not shown.isprintable():  # a control character (a form feed, a bidi override) shows as '?'
-            shown = "".join(ch if ch.isprintable() else "?" for ch in shown)
         col = max(self.span.col, 1)
         if self.span.end_line == self.span.line and self.span.end_col > col:
             width = self.span.end_col - col
         else:
             width = 1
+        shown, col = excerpt(line, col)
+        shown = shown.expandtabs(1)  # tabs count as one column, as in Position
+        if not shown.isprintable():  # a control character (a form feed, a bidi override) shows as '?'
+            shown = "".join(ch if ch.isprintable() else "?" for ch in shown)
         width = max(1, min(width, len(shown) - col + 1))
         caret = "^" * width
         if colour:
@@ -72,6 +77,29 @@ class Diagnostic:
             "line": pos.line if pos else None,
             "column": pos.col if pos else None,
         }
+
+
+#: The longest source line a diagnostic shows whole; a longer one is shown as a window of this
+#: many characters around the column (:func:`excerpt`).  Real code's lines are shorter (the
+#: corpus's longest is 113), so its diagnostics show their lines whole.
+EXCERPT = 200
+#: How many characters of a long line the window shows before the column.
+EXCERPT_BEFORE = 60
+_CUT = "..."
+
+
+def excerpt(line: str, col: int) -> tuple[str, int]:
+    """``line`` and the 1-based column ``col`` in it, or, for a line over :data:`EXCERPT`
+    characters, the window of it a diagnostic shows: :data:`EXCERPT` characters from
+    :data:`EXCERPT_BEFORE` before the column (fewer at the line's end), a cut end marked with
+    ``...``, and where the column falls in that text."""
+    if len(line) <= EXCERPT:
+        return line, col
+    start = max(0, min(col - 1 - EXCERPT_BEFORE, len(line) - EXCERPT))
+    end = start + EXCERPT
+    head = _CUT if start > 0 else ""
+    tail = _CUT if end < len(line) else ""
+    return f"{head}{line[start:end]}{tail}", col - start + len(head)
 
 
 _BOLD, _RESET = "\x1b[1m", "\x1b[0m"

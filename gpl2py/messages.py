@@ -68,15 +68,31 @@ class Message:
     def format(self, **args: object) -> str:
         """The template filled in.  Templates say "a {src} value"; when the inserted word starts
         with a vowel the article becomes "an" ("an Integer value", "an Exception"), so callers
-        pass bare type names."""
+        pass bare type names.  A value longer than :data:`MAX_QUOTED` characters is cut
+        (:func:`quoted`)."""
         if not args:
             return self.template
+        args = {k: quoted(v) if isinstance(v, str) else v for k, v in args.items()}
 
         def article(m: re.Match[str]) -> str:
             value = str(args.get(m.group(2), ""))
             return f"{m.group(1)}n {{{m.group(2)}}}" if value[:1] in _VOWELS else m.group(0)
 
         return _A_FIELD.sub(article, self.template).format(**args)
+
+
+#: The longest value a message inserts whole: a name, a literal's text, a token, a path.  A token
+#: can be a whole file (a number of a million digits was quoted whole, a megabyte of message).
+MAX_QUOTED = 200
+_QUOTED_HEAD, _QUOTED_TAIL = 120, 60
+
+
+def quoted(value: str) -> str:
+    """``value``, or, when it is longer than :data:`MAX_QUOTED`, its first 120 and last 60
+    characters around ``...`` (a path keeps its file name, a literal both its ends)."""
+    if len(value) <= MAX_QUOTED:
+        return value
+    return f"{value[:_QUOTED_HEAD]}...{value[-_QUOTED_TAIL:]}"
 
 
 def _error(code: str, template: str, doc: str = "") -> Message:
@@ -787,6 +803,8 @@ def markdown() -> str:
         "Generated from `gpl2py/messages.py` by `python -m gpl2py.messages > docs/diagnostics.md`;",
         "do not edit by hand. Codes are stable. Each diagnostic prints as",
         "`path:line:col: severity GPLnnnn: message`, followed by the source line and a caret.",
+        "A source line over 200 characters is shown as a window of 200 around the column, a value",
+        "a message quotes (a name, a literal) as its first 120 and last 60 characters when over 200.",
         "",
         "| Code | Severity | Message | Notes |",
         "|---|---|---|---|",

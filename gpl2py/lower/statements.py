@@ -1367,6 +1367,7 @@ def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
     if not cands:
         return set()
     out = set(cands)
+    declared = {v.decl: v for v in cands}  # (one look-up per declarator: a Dim can list 60,000 names)
 
     def target(e: A.Expr | None) -> VarSym | None:
         i = info.get(e) if e is not None else None
@@ -1396,8 +1397,8 @@ def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
                 out.discard(v)
         elif isinstance(s, A.VarDecl):
             for d in s.declarators:
-                v = next((c for c in out if c.decl is d), None)
-                if v is not None and d.initializer is not None and not keeps_sign(v, "=", d.initializer):
+                v = declared.get(d)
+                if v is not None and v in out and d.initializer is not None and not keeps_sign(v, "=", d.initializer):
                     out.discard(v)
     return out
 

@@ -411,11 +411,11 @@ class Parser:
 
     def _trailing_comment(self) -> A.Comment:
         first = self.next()
-        comment = A.Comment(_at(first), first[VALUE])  # type: ignore[arg-type]
+        texts = [first[VALUE]]
         while self.kind is K.COMMENT:  # several (a continuation comment + the line's own)
-            more = self.next()
-            comment = A.Comment(_at(first), f"{comment.text} {more[VALUE]}")
-        return comment
+            texts.append(self.next()[VALUE])
+        # (joined once: a statement continued over 50,000 commented lines copied its text as often)
+        return A.Comment(_at(first), " ".join(texts))  # type: ignore[arg-type]
 
     def skip_line(self) -> A.Comment | None:
         self.failed = True

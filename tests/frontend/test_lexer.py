@@ -9,7 +9,7 @@ import pytest
 from gpl2py.diagnostics import DiagnosticSink, Severity
 from gpl2py.project import load_project
 from gpl2py.source import SourceFile
-from gpl2py.syntax.lexer import tokenize
+from gpl2py.syntax.lexer import CHUNK, token_chunks, tokenize
 from gpl2py.syntax.parser import parse
 from gpl2py.syntax.tokens import Token, TokenKind as K
 
@@ -267,6 +267,16 @@ def test_string_limits_and_errors() -> None:
     assert codes(sink) == ["GPL1004"]
 
 
+def test_an_unterminated_string_holding_doubled_quotes_is_reported_at_its_opening_quote() -> None:
+    # '"ab""' has no closing quote: the '""' is a quote inside the string, so the string that
+    # is not closed is the one that starts at column 5 (it was reported at the last quote)
+    toks, sink = lex('s = "ab""\n')
+    assert codes(sink) == ["GPL1002"] and sink.errors[0].span.col == 5
+    assert [(t.kind, t.value) for t in toks[2:4]] == [(K.STRING, 'ab"'), (K.NEWLINE, None)]
+    toks, sink = lex('s = "ab""" & "c""d"\n')  # closed strings are unchanged
+    assert len(sink) == 0 and [t.value for t in toks if t.kind is K.STRING] == ['ab"', 'c"d']
+
+
 def test_non_ascii_outside_comments_is_an_error_inside_comments_fine() -> None:
     _, sink = lex("x = 1 ' café – ok\n")
     assert len(sink) == 0
@@ -341,3 +351,13 @@ def test_source_lines_are_the_lexers_lines_so_excerpts_match_positions() -> None
     parse(src, sink)
     assert [d.code for d in sink.errors] == ["GPL1101"]
     assert sink.errors[0].render(src).splitlines()[1:] == ["    x = (1 +", "            ^"]
+
+
+def test_one_long_line_is_handed_to_the_parser_in_chunks() -> None:
+    # the parser holds one or two chunks at a time; a chunk used to end only at a line break, so
+    # a file of one line of 100,000 terms was 200,000 tokens at once (~200 bytes each, 100 times
+    # the two bytes of source they come from)
+    text = "x = 1" + " + 1" * 100_000 + "\n"
+    chunks = list(token_chunks(SourceFile("long.gpl", text), DiagnosticSink()))
+    assert sum(map(len, chunks)) == 200_005  # x = 1, a '+' and a 1 per term, NEWLINE, EOF
+    assert max(map(len, chunks)) <= CHUNK + 1
