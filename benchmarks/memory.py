@@ -141,8 +141,8 @@ def _declared_names(texts: dict[str, str]) -> tuple[set[str], set[str]]:
     Consts and Shared fields of top-level classes (visible without qualification too)."""
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.source import SourceFile
-    from gpl2py.syntax import ast as A
-    from gpl2py.syntax.parser import parse
+    from gpl2py.gpl.syntax import ast as A
+    from gpl2py.gpl.syntax.parser import parse
 
     modules: set[str] = set()
     names: set[str] = set()
@@ -170,8 +170,8 @@ def _rename(text: str, renamed: tuple[set[str], set[str]], k: int) -> str:
     ``Module.`` / ``Class.`` (a member reached through its module or class)."""
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.source import SourceFile
-    from gpl2py.syntax.lexer import tokenize
-    from gpl2py.syntax.tokens import TokenKind as K
+    from gpl2py.gpl.syntax.lexer import tokenize
+    from gpl2py.gpl.syntax.tokens import TokenKind as K
 
     modules, names = renamed
     lines = text.split("\n")
