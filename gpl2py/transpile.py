@@ -36,7 +36,7 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
               strict: bool = False, loaded: Callable[[Project], None] | None = None,
               limits: Limits | None = None, keep_modules: bool = True,
-              language: str | None = None) -> Output | None:
+              language: str | None = None, start: str | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.gpl.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.gpl.semantics.stubs``).
@@ -44,14 +44,16 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     when the translation fails.  ``limits``: how much input may be read (``project.Limits``;
     default from the environment).  ``keep_modules=False`` (``gpl2py check``): the diagnostics
     only, each module's text dropped once made and no project files read.  ``language``: the
-    front end's name (``--language``); by default recognised from the files.
+    front end's name (``--language``); by default recognised from the files.  ``start``: the
+    program to run (``--start``), given to the pipeline only when set.
 
     The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
     has the same stack whoever calls it (:func:`recursion_budget`).
     """
     with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
         pipeline = frontend_for(path, language).pipeline()
-        return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules)
+        extra = {"start": start} if start is not None else {}
+        return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules, **extra)
     return None
 
 
