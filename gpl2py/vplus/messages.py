@@ -102,4 +102,9 @@ START_NOT_FOUND = _error("GPL4311", "--start {name}: no such program in this pro
 NO_PROGRAM = _error("GPL4312", "no .PROGRAM in this project: nothing to run")
 
 # --- lowering ------------------------------------------------------------------------------------
-GOTO_UNSUPPORTED = _error("GPL4700", "GOTO {label} jumps into a block, which gpl2py does not translate yet")
+GOTO_UNSUPPORTED = _error("GPL4700", "GOTO {label} jumps into a block, which gpl2py does not translate yet",
+                          "A GOTO to a step label of the program's top level is translated from anywhere "
+                          "in the program; a label inside an IF, CASE or loop is not yet.")
+EXIT_COUNT = _error("GPL4701", "{word} with a count is not translated yet",
+                    "EXIT n and NEXT n (leave n nested loops) are in the V+ Reference Guide, which the "
+                    "User's Guide defers to; gpl2py translates EXIT and NEXT of the innermost loop.")

@@ -235,7 +235,7 @@ class _Analysis:
                                      line=first.span.line)
                 else:
                     info.labels[s.label] = s
-            for sub in _blocks(s):
+            for sub in blocks(s):
                 self._labels(info, sub)
 
     def block(self, body: list[A.Stmt]) -> None:
@@ -393,6 +393,9 @@ class _Analysis:
             return
         if len(args) > len(callee.params) and self.report:
             self.sink.report(M.ARGUMENT_COUNT, span, name=name, expected=len(callee.params), given=len(args))
+        for arg in args[len(callee.params):]:
+            if arg is not None:
+                self.expr(arg)
         for arg, param in zip(args, callee.params, strict=False):
             if arg is None:
                 continue
@@ -510,7 +513,7 @@ def _is_belt(e: A.Expr) -> bool:
     return isinstance(e, A.Var) and e.sigil == "%"
 
 
-def _blocks(s: A.Stmt) -> list[list[A.Stmt]]:
+def blocks(s: A.Stmt) -> list[list[A.Stmt]]:
     """The statement lists nested in ``s``."""
     if isinstance(s, A.If):
         return [s.then] + ([s.orelse] if s.orelse is not None else [])

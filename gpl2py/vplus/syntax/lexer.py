@@ -9,6 +9,7 @@ character or an unclosed string is a diagnostic at its exact column, and lexing 
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 
@@ -91,7 +92,11 @@ def _lex_line(path: str, n: int, line: str, out: Lexed, sink: DiagnosticSink) ->
                 toks.append(Token(Kind.NUMBER, line[i:k], span(i, k), 0.0, spaced=spaced))
                 i = k
             else:
-                toks.append(Token(Kind.NUMBER, m.group(), span(i, j), float(m.group()), spaced=spaced))
+                value = float(m.group())
+                if math.isinf(value):  # past the double range (User's Guide L3887-3889)
+                    sink.report(M.BAD_NUMBER, span(i, j), text=m.group())
+                    value = 0.0
+                toks.append(Token(Kind.NUMBER, m.group(), span(i, j), value, spaced=spaced))
                 i = j
         elif c == "^":
             i = _based(path, n, line, i, toks, sink, spaced)
@@ -146,6 +151,12 @@ def _based(path: str, n: int, line: str, i: int, toks: list[Token], sink: Diagno
         sink.report(M.BAD_NUMBER, sp, text=text or "^")
         value = 0.0
     else:
-        value = float(m.group()) if base == 10 else float(int(m.group(), base))
+        try:
+            value = float(m.group()) if base == 10 else float(int(m.group(), base))
+        except (OverflowError, ValueError):
+            value = math.inf
+        if math.isinf(value):
+            sink.report(M.BAD_NUMBER, sp, text=text)
+            value = 0.0
     toks.append(Token(Kind.NUMBER, text, sp, value, spaced=spaced))
     return max(stop, i + 1)

@@ -320,8 +320,9 @@ class _Parser:
             label = self._label()
             word = self.tok.upper if self.tok.kind is Kind.NAME and not self.tok.sigil else ""
             if word in stop and not (word in ("END",) and self._peek().is_op("=", "[")):
-                if label is not None:  # a label on the closing line: a labelled no-op ends the block
-                    body.append(A.Instr(self.tok.span, "", label=label))
+                if label is not None or self.pending:  # a label on the closing line, comments above
+                    body.append(A.Instr(self.tok.span, "", label=label, comments=self.pending))
+                    self.pending = []
                 return body, self.tok
             if word in ("END", "ELSE", "UNTIL", "VALUE", "ANY", "ELSEIF", "ELIF") and not self._peek().is_op("=", "["):
                 self._error(M.NO_BLOCK, self.tok.span, word=word,
