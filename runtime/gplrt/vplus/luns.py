@@ -7,7 +7,7 @@ LUNs are per task (L7452-7454) and detached when the task ends (L7476-7489).
 Devices, on the core's I/O:
 
 * ``"DISK"``: files in the session's sandboxed flash disk, through ``gplrt.io.files`` (a V+ unit
-  prefix ``A:``/``C:``/``D:`` is dropped, ``\\`` becomes ``/``).  Records end in CR/LF; READ strips
+  prefix ``A:``/``C:``/``D:`` is dropped, ``\\`` becomes ``/``, a relative name is under ``/flash``).  Records end in CR/LF; READ strips
   it; at the end of the file -504.
 * ``"TCP"``: a server (``FOPEN (lun, 16) "/LOCAL_PORT p /CLIENTS k"``) or a client
   (``FOPEN (lun) "/REMOTE_IP a /REMOTE_PORT p"``) over ``gplrt.io.sockets`` (loopback unless the
@@ -149,7 +149,8 @@ def _file_name(name: str) -> str:
     name = name.strip().replace("\\", "/")
     if re.match(r"^[A-Za-z]:", name):
         name = name[2:]
-    return name
+    # the V+ disk is the controller's flash disk: a bare name lives at its root
+    return name if name.startswith("/") else "/flash/" + name
 
 
 def _exists(name: str) -> bool:
@@ -307,7 +308,8 @@ def getc(lun: Any, mode: Any = 0) -> float:
     except GplException as exc:
         return float(_set(entry, E.from_core(exc).ErrorCode))
     if got == E.CLIENT_CLOSED:
-        return float(_set(entry, E.END_OF_FILE))
+        _set(entry, E.CLIENT_CLOSED)
+        return float(E.END_OF_FILE)
     if got != 1:
         return float(_set(entry, got))
     byte = entry.inbuf.pop(0)
