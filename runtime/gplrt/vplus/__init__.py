@@ -5,7 +5,8 @@ alone; geometry, motion, threads, sockets and files are the shared core's.  Noth
 path imports it.
 """
 
-from gplrt.vplus.errors import VError, error_text
+from gplrt.vplus import errors
+from gplrt.vplus.errors import UNDEFINED_VALUE, VError, error_text
 from gplrt.vplus.values import (
     G, Cell, ElementRef, Ref, VArray, calls, defined, find_program, last, local_store, program, byval,
 )
@@ -25,7 +26,7 @@ from gplrt.vplus.transforms import (
 from gplrt.vplus.system import disable, enable, parameter, parameter_set, switch, switch_set
 from gplrt.vplus.tasks import (
     abort, cas, clear_event, error, execute, get_event, halt, ignore, lock, pause, priority, react,
-    reacte, reacti, release, run, safepoint, set_event, step, stop, tas, task_status, timer,
+    reacte, reacti, release, run, s_time, safepoint, set_event, step, stop, tas, task_status, timer,
     timer_set, tps, wait, wait_event, wait_for,
 )
 from gplrt.vplus.signals import bits, bits_set, reset, sig, sig_ins, signal

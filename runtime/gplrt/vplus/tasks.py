@@ -275,6 +275,13 @@ def timer_set(n: Any, value: Any) -> None:
     _timers()[to_int(n)] = current_session().now() - float(value)
 
 
+def s_time() -> str:
+    """``$TIME``: the date and time, [D] the virtual clock counted from 01-JAN-2026 00:00:00."""
+    import datetime
+    t = datetime.datetime(2026, 1, 1) + datetime.timedelta(seconds=current_session().now())
+    return t.strftime("%d-%b-%Y %H:%M:%S").upper()
+
+
 def tps() -> float:
     """``TPS``: ticks per second (the 16 ms cycle counts 62.5 ticks)."""
     return 1.0 / CYCLE
