@@ -15,11 +15,11 @@ from gplrt.lang.console import Console
 from gplrt.vplus.errors import END_OF_FILE, VError
 from gplrt.vplus.strings import render, val
 from gplrt.vplus.system import switch
+from gplrt.vplus.taskstate import safepoint
 from gplrt.vplus.values import session_data
 
 
 def type_(*items: Any) -> None:
-    from gplrt.vplus.tasks import safepoint
     text, end = render(items)
     if switch("MESSAGES"):
         Console.Write(text + ("\n" if end else ""))

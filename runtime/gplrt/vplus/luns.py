@@ -33,7 +33,9 @@ from gplrt.lang.byref import Box
 from gplrt.lang.errors import GplException
 from gplrt.vplus import errors as E
 from gplrt.vplus.operators import to_int
-from gplrt.vplus.strings import render
+from gplrt.vplus.motion import attach_robot, detach_robot
+from gplrt.vplus.strings import render, val
+from gplrt.vplus.taskstate import current_task, safepoint
 from gplrt.vplus.values import MAX_STRING
 
 FREE_LUNS = range(5, 32)  # [D] where ATTACH mode 4 looks for a free LUN
@@ -57,7 +59,6 @@ class Lun:
 
 
 def _task() -> Any:
-    from gplrt.vplus.tasks import current_task
     return current_task()
 
 
@@ -93,7 +94,6 @@ def attach(lun: Any, mode: Any = 0, device: str = "") -> None:
     else:
         number = to_int(lun.v if hasattr(lun, "v") else lun)
     if number == 0:
-        from gplrt.vplus.motion import attach_robot
         attach_robot()
         return
     if number in task.luns:
@@ -108,7 +108,6 @@ def attach(lun: Any, mode: Any = 0, device: str = "") -> None:
 def detach(lun: Any = 0) -> None:
     number = to_int(lun.v if hasattr(lun, "v") else lun)
     if number == 0:
-        from gplrt.vplus.motion import detach_robot
         detach_robot()
         return
     entry = _task().luns.pop(number, None)
@@ -293,7 +292,6 @@ def _fill(entry: Lun, wait: bool) -> int:
 
 def getc(lun: Any, mode: Any = 0) -> float:
     """``GETC(lun[, mode])``: the next byte (mode bit 1: do not wait, -526 when none)."""
-    from gplrt.vplus.tasks import safepoint
     safepoint()
     try:
         entry = _attached(lun)
@@ -323,7 +321,6 @@ def getc(lun: Any, mode: Any = 0) -> float:
 
 def read(lun: Any, *refs: Any, mode: Any = 0) -> None:
     """``READ (lun) var``: one record into a string variable (CR/LF stripped), or numbers."""
-    from gplrt.vplus.tasks import safepoint
     safepoint()
     try:
         entry = _attached(lun)
@@ -369,7 +366,6 @@ def _store(entry: Lun, refs: tuple[Any, ...], line: str, status: int = 1) -> Non
         if getattr(first, "name", "").startswith("$") or (first.defined and isinstance(first.v, str)):
             first.v = line[:MAX_STRING]
         else:
-            from gplrt.vplus.strings import val
             first.v = val(line)
     _set(entry, status)
 
@@ -378,7 +374,6 @@ def _store(entry: Lun, refs: tuple[Any, ...], line: str, status: int = 1) -> Non
 
 def write(lun: Any, *items: Any) -> None:
     """``WRITE (lun) items``: a record (CR/LF appended unless /S)."""
-    from gplrt.vplus.tasks import safepoint
     safepoint()
     try:
         entry = _attached(lun)

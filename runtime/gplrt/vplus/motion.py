@@ -26,7 +26,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
+from gplrt.controller.services import Controller
 from gplrt.geometry.location import Location
+from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import GplException
 from gplrt.motion import registry
 from gplrt.motion.move import Move
@@ -36,7 +40,11 @@ from gplrt.session import current_session
 from gplrt.threads.scheduler import controller_wait
 from gplrt.vplus.errors import ILLEGAL_VALUE, VError, from_core
 from gplrt.vplus.operators import to_int
-from gplrt.vplus.transforms import compose, trans
+from gplrt.vplus.signals import signal
+from gplrt.vplus.system import parameter, switch, switch_set
+from gplrt.vplus.taskstate import _sleep, current_task, safepoint
+from gplrt.vplus.transforms import compose, inverse, trans
+from gplrt.vplus.values import session_data
 
 #: LEFTY, RIGHTY, ... -> the core's configuration bits (``Location.Config``; the kinematics provider
 #: interprets them): 1 righty, 2 lefty, 4 above, 8 below, 16 flip, 32 noflip [D].
@@ -59,7 +67,6 @@ class MotionState:
 
 
 def _state() -> MotionState:
-    from gplrt.vplus.tasks import current_task
     task = current_task()
     if task.motion is None:
         task.motion = MotionState()
@@ -83,7 +90,6 @@ def attach_robot(number: int = 1) -> None:
     _core(lambda: setattr(Robot, "Attached", number))
     robot = s.robot(number)
     if not registry.power_on(s):
-        from gplrt.controller.services import Controller
         _core(lambda: setattr(Controller, "PowerEnabled", True))
     robot.homed = True
 
@@ -102,7 +108,6 @@ def select_robot(number: Any) -> None:
 
 
 def _robot() -> Any:
-    from gplrt.vplus.tasks import current_task, safepoint
     safepoint()
     s = current_session()
     robot = registry.attached_robot(s, registry.thread_key())
@@ -166,7 +171,6 @@ def config(name: str) -> None:
 def cp(on: bool, always: bool = False) -> None:
     """CPON/CPOFF: for the next motion, or the CP switch with ``always``; CPOFF breaks CP."""
     if always:
-        from gplrt.vplus.system import switch_set
         switch_set("CP", -1.0 if on else 0.0)
     else:
         _state().cp_once = on
@@ -175,7 +179,6 @@ def cp(on: bool, always: bool = False) -> None:
 
 
 def _profile(straight: bool, speed_override: float | None = None) -> Profile:
-    from gplrt.vplus.system import switch
     st = _state()
     prof = Profile()
     prof.Speed = speed_override if speed_override is not None else (st.speed_once or st.speed)
@@ -235,8 +238,6 @@ def moves(target: Location) -> None:
 def _cartesian_target(t: Location) -> Location:
     if t._type == 1:
         robot = _robot()
-        import numpy as np
-        from gplrt.geometry.transforms import matrix_to_pose
         q = np.array(t.axis_values()[:robot.axis_count], dtype=float)
         return Location.from_pose(matrix_to_pose(robot.forward(q)))
     return t
@@ -328,7 +329,6 @@ def here_into(target: Any, *prefix: Location) -> None:
         return
     now = here()
     if prefix:
-        from gplrt.vplus.transforms import inverse
         now = compose(inverse(compose(*prefix)), now)
     target.v = Location.from_pose(now.total_pose())
 
@@ -373,7 +373,6 @@ def base_value() -> Location:
 # -- the hand ----------------------------------------------------------------------------------------
 
 def _hand_now(kind: str) -> None:
-    from gplrt.vplus.signals import signal
     open_sig, close_sig = HAND_SIGNALS
     if kind == "OPEN":
         signal(open_sig, -close_sig)
@@ -381,13 +380,10 @@ def _hand_now(kind: str) -> None:
         signal(-open_sig, close_sig)
     else:
         signal(-open_sig, -close_sig)
-    from gplrt.vplus.values import session_data
     session_data().extra["hand"] = kind
 
 
 def _hand_immediate(kind: str) -> None:
-    from gplrt.vplus.system import parameter
-    from gplrt.vplus.tasks import _sleep
     break_()
     _hand_now(kind)
     _sleep(parameter("HAND.TIME"))
@@ -419,5 +415,4 @@ def relaxi() -> None:
 
 def hand() -> float:
     """``HAND``: -1 when the hand is open [D], else 0."""
-    from gplrt.vplus.values import session_data
     return -1.0 if session_data().extra.get("hand", "OPEN") == "OPEN" else 0.0

@@ -14,6 +14,7 @@ import random as _random
 from typing import Any
 
 from gplrt.vplus.errors import DIVIDE_BY_ZERO, ILLEGAL_VALUE, STRING_TOO_LONG, VError
+from gplrt.vplus.system import switch
 from gplrt.vplus.values import MAX_STRING, round_half_away
 
 TRUE = -1.0
@@ -77,7 +78,6 @@ def neg(a: Any) -> float:
 
 def _cmp_operands(a: Any, b: Any) -> tuple[Any, Any]:
     if isinstance(a, str) and isinstance(b, str):
-        from gplrt.vplus.system import switch
         if switch("UPPER"):
             return a.upper(), b.upper()
     return a, b

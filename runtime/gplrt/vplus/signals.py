@@ -44,7 +44,6 @@ def vplus_number(core: int) -> int:
 
 def signal(*signals: Any) -> None:
     """``SIGNAL n, -m, ...``: outputs or soft signals on (positive) or off (negative)."""
-    from gplrt.vplus.tasks import safepoint
     io = current_session().io
     for s in signals:
         core = core_number(s)
@@ -52,7 +51,6 @@ def signal(*signals: Any) -> None:
             io.write_dio(abs(core), core > 0)
         except GplException as exc:
             raise from_core(exc) from None
-    safepoint()
 
 
 def sig(*signals: Any) -> float:

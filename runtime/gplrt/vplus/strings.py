@@ -23,6 +23,7 @@ from typing import Any
 from gplrt.geometry.location import Location
 from gplrt.vplus.errors import ILLEGAL_VALUE, STRING_TOO_LONG, VError, error_text
 from gplrt.vplus.operators import to_int
+from gplrt.vplus.transforms import trans
 from gplrt.vplus.values import MAX_STRING
 
 
@@ -153,7 +154,6 @@ def s_transb(t: Location) -> str:
 
 
 def transb(s: str, start: Any = 1) -> Location:
-    from gplrt.vplus.transforms import trans
     raw = _bytes_of(s[to_int(start) - 1:], 24, "TRANSB")
     return trans(*struct.unpack(">6f", raw))
 

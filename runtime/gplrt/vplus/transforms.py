@@ -17,6 +17,7 @@ from gplrt.geometry import transforms as tf
 from gplrt.geometry.location import Location
 from gplrt.lang.errors import GplException
 from gplrt.vplus.errors import ILLEGAL_VALUE, NOT_PRECISION_POINT, VError, from_core
+from gplrt.vplus.operators import to_int
 
 
 def _cartesian(t: Any, what: str) -> Location:
@@ -161,7 +162,6 @@ def components(t: Location) -> tuple[float, ...]:
 
 def decompose(array: Any, start: Any, t: Location) -> float:
     """``DECOMPOSE a[i] = t``: components into a[i], a[i+1], ...; returns how many."""
-    from gplrt.vplus.operators import to_int
     i0 = to_int(start)
     values = components(t)
     for k, v in enumerate(values):
