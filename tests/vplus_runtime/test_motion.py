@@ -1,0 +1,157 @@
+"""V+ motion on the shared planner (ARM6 model until the Viper s650 lands): forward processing,
+APPRO/DEPART along tool Z, one-shot vs ALWAYS speed, BREAK, OPENI/CLOSE and HERE/DEST."""
+
+from __future__ import annotations
+
+import pytest
+
+from gplrt import vplus as vp
+from gplrt.sim import Simulation
+from gplrt.vplus.transforms import components
+
+TOL = 1e-6
+
+
+@pytest.fixture
+def arm() -> Simulation:
+    s = Simulation(robot="ARM6", capture=True)
+    yield s
+    s.close()
+
+
+def _start_pose() -> object:
+    return vp.p_ppoint(0, -30, 60, 0, 60, 0)
+
+
+def test_move_break_here_matches_target(arm: Simulation) -> None:
+    got: dict[str, object] = {}
+
+    def main() -> None:
+        vp.move(_start_pose())
+        vp.break_()
+        p = vp.here()
+        target = vp.shift(p, 50, 20, -30)
+        vp.moves(target)
+        vp.break_()
+        got["target"], got["here"], got["dest"] = target, vp.here(), vp.dest()
+
+    with arm:
+        assert arm.run_main(main) == []
+    for key in ("here", "dest"):
+        assert components(got[key]) == pytest.approx(components(got["target"]), abs=TOL)
+
+
+def test_appro_and_depart_work_along_tool_z(arm: Simulation) -> None:
+    got: dict[str, object] = {}
+
+    def main() -> None:
+        vp.move(_start_pose())
+        vp.break_()
+        place = vp.here()
+        vp.appro(place, 50)
+        vp.break_()
+        got["appro"] = vp.here()
+        vp.moves(place)
+        vp.departs(30)
+        vp.break_()
+        got["depart"] = vp.here()
+        got["place"] = place
+
+    with arm:
+        assert arm.run_main(main) == []
+    place = got["place"]
+    assert components(got["appro"]) == pytest.approx(components(vp.compose(place, vp.trans(0, 0, -50))), abs=TOL)
+    assert components(got["depart"]) == pytest.approx(components(vp.compose(place, vp.trans(0, 0, -30))), abs=TOL)
+
+
+def test_forward_processing_signal_after_move_fires_at_motion_start(arm: Simulation) -> None:
+    """L6309-6325: MOVE a; SIGNAL 1; MOVE b; SIGNAL 2."""
+    times: dict[str, float] = {}
+
+    def main() -> None:
+        vp.move(_start_pose())
+        vp.break_()
+        t0 = arm.now()
+        vp.move(vp.p_ppoint(30, -20, 50, 0, 60, 0))
+        vp.signal(1)
+        times["sig1"] = arm.now() - t0
+        vp.move(vp.p_ppoint(-30, -20, 50, 0, 60, 0))
+        vp.signal(2)
+        times["sig2"] = arm.now() - t0
+        vp.break_()
+        times["end"] = arm.now() - t0
+
+    with arm:
+        assert arm.run_main(main) == []
+    assert times["sig1"] == 0.0  # at once: the robot was still
+    assert 0.0 < times["sig2"] < times["end"]  # when the second motion began, before the end
+    assert arm.io.read_dio(1) and arm.io.read_dio(2)
+
+
+def test_one_shot_speed_applies_to_the_next_motion_only(arm: Simulation) -> None:
+    durations: list[float] = []
+
+    def timed(target: object) -> None:
+        t0 = arm.now()
+        vp.move(target)
+        vp.break_()
+        durations.append(arm.now() - t0)
+
+    a, b = vp.p_ppoint(0, -30, 60, 0, 60, 0), vp.p_ppoint(40, -30, 60, 0, 60, 0)
+
+    def main() -> None:
+        vp.move(a)
+        vp.break_()
+        timed(b)           # program speed 100
+        vp.speed(25)       # one shot
+        timed(a)
+        timed(b)           # back to 100
+        vp.speed(25, always=True)
+        timed(a)
+        timed(b)
+
+    with arm:
+        assert arm.run_main(main) == []
+    fast, slow_once, fast_again, slow1, slow2 = durations
+    assert fast_again == pytest.approx(fast, rel=1e-6)
+    assert slow_once > 1.5 * fast and slow1 == pytest.approx(slow_once, rel=1e-6)
+    assert slow2 == pytest.approx(slow1, rel=1e-6)
+
+
+def test_closei_waits_hand_time_and_close_waits_for_the_next_motion(arm: Simulation) -> None:
+    seen: dict[str, object] = {}
+
+    def main() -> None:
+        vp.move(_start_pose())
+        vp.parameter_set("HAND.TIME", 0.16)
+        t0 = arm.now()
+        vp.closei()
+        seen["closei"] = arm.now() - t0
+        seen["closed"] = (arm.io.read_dio(1), arm.io.read_dio(2))
+        vp.open_()
+        seen["before"] = (arm.io.read_dio(1), arm.io.read_dio(2))
+        vp.move(vp.p_ppoint(10, -30, 60, 0, 60, 0))
+        seen["after"] = (arm.io.read_dio(1), arm.io.read_dio(2))
+
+    with arm:
+        assert arm.run_main(main) == []
+    assert seen["closed"] == (False, True) and seen["before"] == (False, True) and seen["after"] == (True, False)
+    assert seen["closei"] > 0.16  # the motion ended first (CLOSEI breaks CP), then HAND.TIME
+
+
+def test_unreachable_target_is_a_vplus_error_reacte_can_trap(arm: Simulation) -> None:
+    @vp.program("m.trouble")
+    def trouble() -> None:
+        vp.type_("trapped ", vp.error(-1))
+
+    def main() -> None:
+        vp.reacte(trouble)
+        with vp.step(1):
+            vp.move(vp.trans(5000, 0, 0))
+        with vp.step(2):
+            vp.type_("went on")
+
+    with arm:
+        assert arm.run_main(main) == []
+    lines = arm.console.output.splitlines()
+    assert lines[0].startswith("trapped -") and lines[1] == "went on"
