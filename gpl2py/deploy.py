@@ -84,7 +84,8 @@ def program_of(package: ModuleType, warnings: tuple[str, ...] = ()) -> Program:
     start = package.PROJECT.get("start")
     if not start:
         return Program(None, "", warnings)
-    procedure = registry_for(package.__name__).find(start).func
+    # a front end whose package names its start itself (V+: the start program, run as task 0)
+    procedure = getattr(package, "start_program", None) or registry_for(package.__name__).find(start).func
     init = package.init
 
     def run_project() -> None:

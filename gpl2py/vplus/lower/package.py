@@ -163,7 +163,7 @@ def _package_init(project: Project, model: Model, module_of: dict[str, str], pro
         "",
         f"from . import {', '.join(mods)}" if mods else "",
         "",
-        f"__all__ = [{', '.join(py_string(n) for n in ['PROJECT', *mods, 'init', 'main'])}]",
+        f"__all__ = [{', '.join(py_string(n) for n in ['PROJECT', *mods, 'init', 'main', 'start_program'])}]",
         "",
         "PROJECT = {",
         f"    \"name\": {py_string(project.name)},",
@@ -192,17 +192,21 @@ def _package_init(project: Project, model: Model, module_of: dict[str, str], pro
     if start_key is None:
         lines.append(f"    raise SystemExit({py_string(f'V+ project {project.name} has no program to run')})")
     else:
-        call = f"{program_module[start_key]}.{function[start_key]}"
         lines += [
             "    if sim is None:",
             f"        sim = Simulation(project={py_string(project.name)})",
             "",
             "    def _start() -> None:",
             "        init()",
-            f"        {call}()",
+            "        start_program()",
             "",
-            f"    vp.run(_start, sim=sim)",
+            "    vp.run(_start, sim=sim)",
             "    return 1 if sim.controller.error_log else 0",
+            "",
+            "",
+            "def start_program() -> None:",
+            f'    """The start program, {escape(start.program.name, "docstring")}, as V+ task 0 runs it (EXECUTE of the main program)."""',
+            f"    {program_module[start_key]}.{function[start_key]}()",
         ]
     lines += ["", "", "register_package(__file__)"]
     return "\n".join(lines) + "\n"
