@@ -65,7 +65,7 @@ PRECEDENCE = _warning("GPL4123", "{op} binds tighter than {rel} in V+: this read
                       "after them (User's Guide, Order of Operator Evaluation): 'a OR b > c' is "
                       "'(a OR b) > c'.")
 UNSUPPORTED_INSTRUCTION = _warning("GPL4124", "{name} is not supported by gpl2py (tier 3 of the V+ spec): "
-                                   "it raises V+ error -204 when the program reaches it",
+                                   "it raises *Not implemented* when the program reaches it",
                                    "Graphics, vision, VME and monitor-command instructions parse, and raise "
                                    "*Not implemented* if reached at run time.")
 DIALECT_SPEED_STRING = _warning("GPL4125", "a string as SPEED's second value is the robot-sandbox dialect: "

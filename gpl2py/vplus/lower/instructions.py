@@ -19,6 +19,8 @@ _BARE = {
     "CLOSE": "close", "CLOSEI": "closei", "RELAX": "relax", "RELAXI": "relaxi", "RESET": "reset",
     "HALT": "halt", "STOP": "stop", "PAUSE": "pause", "WAIT.START": "wait_start", "PROCEED": "proceed",
 }
+#: gplrt.vplus.errors.NOT_IMPLEMENTED (the translator does not import the runtime).
+NOT_IMPLEMENTED = -430
 _CONFIG = frozenset("ABOVE BELOW LEFTY RIGHTY FLIP NOFLIP".split())
 _MODIFIER = frozenset("COARSE FINE NULL NONULL OVERLAP NOOVERLAP SINGLE MULTIPLE".split())
 
@@ -26,8 +28,8 @@ _MODIFIER = frozenset("COARSE FINE NULL NONULL OVERLAP NOOVERLAP SINGLE MULTIPLE
 def instruction(s: A.Instr, x: Exprs) -> str:  # noqa: C901 (one table of keywords)
     """The Python statement of ``s``."""
     word = s.word
-    if s.tier3:
-        return f"vp.unsupported({py_string(word)})"
+    if s.tier3:  # (the runtime's *Not implemented*: gplrt.vplus.errors.NOT_IMPLEMENTED)
+        return f"raise vp.VError({NOT_IMPLEMENTED}, {py_string(word + ' is not supported by gpl2py')})"
     if word in ("ENABLE", "DISABLE"):  # (switch names, not variables)
         names = ", ".join(py_string(_system_name(a)) for a in s.args)
         return f"vp.{word.lower()}({names})"
@@ -98,6 +100,10 @@ def instruction(s: A.Instr, x: Exprs) -> str:  # noqa: C901 (one table of keywor
         return f"vp.fopen({', '.join(unit[:1] + args + mode)})"
     if word in ("WRITE", "FOPENR", "FOPENW", "FOPENA", "FOPEND", "FDELETE", "FCMND", "FSEEK", "SETDEVICE"):
         return f"vp.{runtime_name(word)}({', '.join(unit + args)})"
+    if word in ("MOVET", "MOVEST"):  # MOVE/MOVES with the hand set as the motion starts
+        hand = x.condition(s.args[1]) if len(s.args) > 1 and s.args[1] is not None else "False"
+        set_hand = {"True": "vp.open_()", "False": "vp.close()"}.get(hand, f"vp.open_() if {hand} else vp.close()")
+        return f"{set_hand}\nvp.{word[:-1].lower()}({args[0]})"
     if word == "TOOL" and s.args:
         return f"vp.tool({args[0]})"
     fn = runtime_name(word)

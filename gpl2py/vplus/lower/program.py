@@ -215,7 +215,8 @@ class ProgramLowerer:
             self._react(s)
         elif isinstance(s, A.Instr):
             if s.word:
-                w.line(instruction(s, x))
+                for text in instruction(s, x).split("\n"):
+                    w.line(text)
             elif s.label is not None:
                 w.line("pass")
         if s.label is not None and w.mark() > start:
