@@ -169,6 +169,36 @@ def test_no_bits_keep_the_current_configuration(name: str) -> None:
         assert np.allclose(sol, q, atol=1e-7)
 
 
+@pytest.mark.parametrize("name", ALL)
+def test_the_zero_pose_solves_back_whatever_the_bits(name: str) -> None:
+    """All joints 0 (where Robot.Home leaves these arms) sits on branch boundaries: the TMs
+    stand straight up, with the wrist point on the edge of the J1 solutions and J5 = 0.  Its
+    pose must solve back, with no bits, with the bits Where reports, and moved 10 mm down."""
+    model = robot_model(name)
+    zero = model.ready_joints()
+    T = model.forward(zero)
+    for bits in (0, model.config_of(zero)):
+        _round_trip(model, zero, bits, zero)
+    lower = T.copy()
+    lower[2, 3] -= 10.0
+    sol = model.inverse(lower, 0, zero)
+    assert np.abs(model.forward(sol) - lower).max() < 1e-9
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_tool_and_base_apply_as_on_every_robot(name: str) -> None:
+    model = robot_model(name)
+    tool = np.eye(4)
+    tool[:3, 3] = [0.0, 0.0, 120.0]
+    base = _shift(50.0, -30.0)
+    model.tool, model.base = tool, base
+    rng = np.random.default_rng(25)
+    for _ in range(10):
+        q = _random_joints(model, rng)
+        assert np.allclose(model.forward(q), base @ model.flange(q) @ tool, atol=1e-9)
+        _round_trip(model, q, model.config_of(q), _random_joints(model, rng))
+
+
 def test_cobra_round_trips_lefty_and_righty() -> None:
     cobra = robot_model("COBRA-S600")
     rng = np.random.default_rng(24)

@@ -84,9 +84,10 @@ from gplrt.motion.kinematics.config import (
     wrap_pi,
 )
 
-#: Within this of a branch boundary (a measure of ``_measures``: m or sin of an angle) the arm is
-#: in both branches of the pair.
-BRANCH_EDGE = 1e-9
+#: Within this of a branch boundary (a measure of ``_measures``: m, m² or rad) the arm is in both
+#: branches of the pair.  A micrometre, not 1e-9: the TM files' π/2 (1.570796) leaves their
+#: straight-up zero pose 3e-7 m off the J1 axis, and that pose is on every boundary.
+BRANCH_EDGE = 1e-6
 #: Allowed tilt of a SCARA flange's vertical axis: 1e-6 degree (as the PF400's, pf400.py).
 ORIENTATION_TOLERANCE = math.sin(math.radians(1e-6))
 #: Slack on reach checks (m) so that poses computed at full stretch are not refused.
@@ -440,7 +441,7 @@ class OffsetWrist(_Solver):
             raise self.too_far(f"wrist {np.linalg.norm(W - self.c[1]) * 1000:.3f} mm from the shoulder")
         d = W - self.c[0]
         r = math.hypot(d[0], d[1])
-        if r < abs(self.k) + _REACH_SLACK:
+        if r < abs(self.k) - _REACH_SLACK:  # (exactly |k|: the arm straight up, one J1 for both)
             raise self.too_close(f"wrist {r * 1000:.3f} mm from the J1 axis")
         psi = math.atan2(d[1], d[0])
         across = math.acos(max(-1.0, min(1.0, self.k / r)))
@@ -458,7 +459,8 @@ class OffsetWrist(_Solver):
                 # J6: the J2 axis seen from the flange, against the same seen at J6 = 0
                 v = self.M.rotation @ R.T @ n1  # = R(w6, -q6) · R5ᵀ n
                 u = R5.T @ self.n
-                q6 = -_rotation_angle(self.w[5], u, v) if abs(math.sin(q5)) > 1e-9 else current[5]
+                # (J5 near 0 or 180°: J6 ∥ J4, only their sum counts; the polish settles it)
+                q6 = -_rotation_angle(self.w[5], u, v) if abs(math.sin(q5)) > BRANCH_EDGE else current[5]
                 R6 = pin.AngleAxis(q6, self.w[5]).matrix()
                 R234 = R1.T @ R @ self.M.rotation.T @ R6.T @ R5.T  # a rotation about n
                 theta = _rotation_angle(self.n, self.e1, R234 @ self.e1)
