@@ -199,6 +199,18 @@ def test_tool_and_base_apply_as_on_every_robot(name: str) -> None:
         _round_trip(model, q, model.config_of(q), _random_joints(model, rng))
 
 
+def test_the_viper_branches_by_hand_are_the_geometric_ones() -> None:
+    """The Viper's solver measures its branches in the arm's plane by hand; they must be the
+    geometric rule on Pinocchio's joint frames (wrist point, elbow, J5) that the TMs use."""
+    from gplrt.motion.kinematics.urdf import _arm_measures
+
+    viper = robot_model("VIPER-S650")
+    rng = np.random.default_rng(26)
+    for _ in range(100):
+        q = [math.radians(v) for v in _random_joints(viper, rng)]
+        assert np.allclose(viper._measures(q), _arm_measures(viper.joint_origins(q), q), atol=1e-12)
+
+
 def test_cobra_round_trips_lefty_and_righty() -> None:
     cobra = robot_model("COBRA-S600")
     rng = np.random.default_rng(24)

@@ -126,7 +126,8 @@ class UrdfModel(RobotModel):
         model.name = name
         if not model.existFrame(spec.flange):
             raise ValueError(f"{spec.file}: no frame {spec.flange!r}")
-        self._finish_pin_model(model, [model.getJointId(j.name) for j in chain.axes], model.getFrameId(spec.flange))
+        self._axis_ids = [model.getJointId(j.name) for j in chain.axes]
+        self._finish_pin_model(model, self._axis_ids, model.getFrameId(spec.flange))
         self.single_axis = n - 1
         self._pairs = 1 if spec.solver == SCARA else 3
         self._solver: Callable[[np.ndarray, np.ndarray, list[float]], list[Candidate]] = {
@@ -187,6 +188,8 @@ class UrdfModel(RobotModel):
 
         candidates, error = self._solver(R, p, current, fits)
         found = [self._turns(q, current, single) for q in candidates if fits(q)]
+        if len(found) > 1:  # (the solver may have returned the same solution twice)
+            found = [q for k, q in enumerate(found) if q not in found[:k]]
         if not found:
             if error is not None:  # the branch asked for is out of reach, the others not
                 raise error
@@ -207,8 +210,7 @@ class UrdfModel(RobotModel):
         assert self.pin_model is not None and self.pin_data is not None
         with self.lock:
             pin.forwardKinematics(self.pin_model, self.pin_data, self.q_pin(q))
-            ids = [self.pin_model.getJointId(j.name) for j in self.chain.axes]
-            return [self.pin_data.oMi[i].copy() for i in ids]
+            return [self.pin_data.oMi[i].copy() for i in self._axis_ids]
 
 
 class _Solver:
@@ -275,7 +277,15 @@ class SphericalWrist(_Solver):
         self.phi = math.atan2(ux * vz - uz * vx, ux * vx + uz * vz)
 
     def measures(self, q: Sequence[float]) -> tuple[float, ...]:
-        return _arm_measures(self.model.joint_origins(q), q)
+        """``_arm_measures`` in the arm's plane by hand (each IK weighs eight candidates): the
+        elbow is the shoulder + Ry(J2)·u, the wrist centre the elbow + Ry(J2 + J3)·v."""
+        (ux, uz), (vx, vz) = self.u, self.v
+        c2, s2 = math.cos(q[1]), math.sin(q[1])
+        c23, s23 = math.cos(q[1] + q[2]), math.sin(q[1] + q[2])
+        fx, fz = ux * c2 + uz * s2, -ux * s2 + uz * c2  # shoulder → elbow
+        dx, dz = fx + vx * c23 + vz * s23, fz - vx * s23 + vz * c23  # shoulder → wrist centre
+        wx = self.a1 + dx
+        return wx, (1.0 if wx >= 0.0 else -1.0) * (dx * fz - dz * fx), wrap_pi(q[4])
 
     def __call__(self, R: np.ndarray, p: np.ndarray, current: list[float],
                  fits: Callable[[Candidate], bool]) -> Solutions:
