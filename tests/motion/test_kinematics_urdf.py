@@ -394,6 +394,64 @@ def test_a_gpl_program_moves_each_robot(name: str, tmp_path: Path, capsys: pytes
     assert re.search(r"^cart ", r.stdout, re.M)
 
 
+CONFIG_PROGRAM = module_src("""\
+    Public Sub Main()
+        Dim prof As New Profile
+        Dim c As New Location
+        Dim a As Location
+        Dim k As Integer
+        Dim configs(1) As Integer
+        Controller.PowerEnabled = True
+        While Not Controller.PowerEnabled
+            Thread.Sleep(10)
+        End While
+        Robot.Attached = 1
+        Robot.Home
+        configs(0) = CONFIG_A
+        configs(1) = CONFIG_B
+        For k = 0 To 1
+            c.XYZ(GOAL)
+            c.Config = configs(k)
+            Move.Loc(c, prof)
+            Move.WaitForEOM
+            a = Robot.WhereAngles
+            Console.WriteLine(CStr(Robot.Where.Config) & " " & Format(a.Angle(1), "0.000000000") & " " & Format(a.Angle(2), "0.000000000") & " " & Format(a.Angle(3), "0.000000000") & " " & Format(a.Angle(4), "0.000000000") & " " & Format(a.Angle(NLAST1), "0.000000000") & " " & Format(a.Angle(NLAST), "0.000000000"))
+        Next
+    End Sub""")
+
+
+@pytest.mark.parametrize(("name", "joints", "configs"), [
+    ("COBRA-S600", [-30.0, 70.0, -120.0, -60.0], (GPL_RIGHTY, GPL_LEFTY)),
+    ("VIPER-S650", [-25.0, -60.0, 140.0, -30.0, 50.0, 10.0], (GPL_RIGHTY | GPL_ABOVE | GPL_NOFLIP,
+                                                            GPL_RIGHTY | GPL_ABOVE | GPL_FLIP)),
+    ("TM5-900", [-40.0, 10.0, 60.0, 20.0, 70.0, -30.0], (GPL_RIGHTY | GPL_BELOW | GPL_NOFLIP,
+                                                        GPL_LEFTY | GPL_ABOVE | GPL_FLIP)),
+])
+def test_a_gpl_location_config_chooses_the_branch(name: str, joints: list[float], configs: tuple[int, int],
+                                                  tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """``Location.Config`` reaches the URDF robot's inverse: one Cartesian goal, two configurations,
+    two joint solutions, each reporting its configuration and reaching the goal."""
+    model = robot_model(name)
+    goal = model.forward(joints)
+    n = model.axis_count
+    src = (CONFIG_PROGRAM.replace("GOAL", ", ".join(repr(v) for v in matrix_to_xyzypr(goal)))
+           .replace("CONFIG_A", str(configs[0])).replace("CONFIG_B", str(configs[1]))
+           .replace("NLAST1", str(n - 1)).replace("NLAST", str(n)))
+    proj = write_project(tmp_path, {"Main.gpl": src})
+    r = in_process(capsys, "run", proj, "--robot", name, "-q")
+    assert r.returncode == 0, r.stdout + r.stderr
+    rows = [line.split() for line in r.stdout.splitlines()]
+    assert len(rows) == 2
+    solutions = []
+    for row, bits in zip(rows, configs, strict=True):
+        assert int(row[0]) == bits
+        angles = [float(v) for v in row[1:5]] + ([float(v) for v in row[5:7]] if n == 6 else [])
+        assert model.config_of(angles) == bits
+        assert np.abs(model.forward(angles) - goal).max() < 1e-6
+        solutions.append(angles)
+    assert not np.allclose(solutions[0], solutions[1], atol=1e-3)
+
+
 def test_run_help_lists_the_urdf_robots(capsys: pytest.CaptureFixture[str]) -> None:
     out = in_process(capsys, "run", "--help").stdout
     for name in ALL:
