@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import shutil
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -39,7 +40,7 @@ def trans(x: float, y: float, z: float, yaw: float = 0, pitch: float = 0, roll: 
     return t @ rz(yaw) @ ry(pitch) @ rz(roll)
 
 
-def _run_demo(tmp_path: Path, demo: str, data: str) -> Cell:
+def _run_demo(tmp_path: Path, demo: str, data: str, io: Callable[[Cell], None] | None = None) -> Cell:
     folder = tmp_path / "demo"
     folder.mkdir()
     src = corpus_dir() / "vplus" / "robot-sandbox" / "robot-programs" / demo
@@ -48,6 +49,8 @@ def _run_demo(tmp_path: Path, demo: str, data: str) -> Cell:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (the dialect warnings)
         cell = Cell.load(folder, robot=ROBOT, echo=False, cache_dir=tmp_path / "cache")
+    if io is not None:
+        io(cell)
     assert cell.run_main() == 0, cell.sim.console.output
     return cell
 
@@ -105,3 +108,48 @@ def test_hanoi_moves_every_disc_to_the_poses_the_recursion_computes(tmp_path: Pa
     assert len(expected) == 2 * (2 ** n - 1)
     safe = robot_model(ROBOT).forward([0, -30, 150, 0, 60, 0])
     _assert_visits_in_order(_reached(cell), [safe, *expected, safe])
+
+
+SAFE = "#safe   0 -30 150 0 60 0\n"
+
+
+def test_pick_and_place_stacks_the_pallet_where_the_program_computes(tmp_path: Path) -> None:
+    st, pal = (450.0, -200.0, 200.0), (450.0, 150.0, 200.0)
+    dx, dy, dz = 40.0, 40.0, 15.0
+    data = (f".LOCATIONS\nst {st[0]} {st[1]} {st[2]} 0 180 0\npal {pal[0]} {pal[1]} {pal[2]} 0 180 0\n{SAFE}.END\n"
+            f".REALS\ndx {dx}\ndy {dy}\ndz {dz}\n.END\n")
+    cell = _run_demo(tmp_path, "pickplace/pal.ideal.v2", data)
+    nl, nc, nn = 3, 2, 2
+    total = nl * nc * nn
+    expected = []
+    for p in range(1, total + 1):  # the program's own arithmetic (order L-C-N)
+        r = total - p + 1
+        i, j, k = (p - 1) // (nc * nn), ((p - 1) // nn) % nc, (p - 1) % nn
+        expected.append(trans(st[0], st[1], st[2] + (r - 1) * dz, 0, 180, 0))
+        expected.append(trans(pal[0] + i * dx, pal[1] + j * dy, pal[2] + k * dz, 0, 180, 0))
+    assert cell.sim.console.output.splitlines()[:3] == ["0, 0, 0", "0, 0, 1", "0, 1, 0"]  # TYPE i, ", ", j ...
+    safe = robot_model(ROBOT).forward([0, -30, 150, 0, 60, 0])
+    _assert_visits_in_order(_reached(cell), [safe, *expected, safe])
+
+
+def test_belt_demo_waits_for_the_pallet_sensor_and_places_each_part(tmp_path: Path) -> None:
+    st, conv = (450.0, -200.0, 200.0), (450.0, 200.0, 200.0)
+    d, h = 50.0, 10.0
+    data = (f".LOCATIONS\nst {st[0]} {st[1]} {st[2]} 0 180 0\nconv {conv[0]} {conv[1]} {conv[2]} 0 180 0\n"
+            f"{SAFE}.END\n.REALS\nd {d}\nh {h}\n.END\n")
+
+    def conveyor(cell: Cell) -> None:  # the belt (output 1) brings a pallet to the sensor (input 1001)
+        cell.io.when_output(1, True).set_input(10001, True, after=3.0)
+        cell.io.when_output(1, False).set_input(10001, False)
+
+    cell = _run_demo(tmp_path, "demos/belt.v2", data, conveyor)
+    n = 12
+    expected = []
+    for i in range(1, n // 4 + 1):
+        for j in range(1, 5):
+            p = 4 * (i - 1) + j
+            expected.append(trans(st[0], st[1], st[2] + h * (n - p), 0, 180, 0))
+            expected.append(trans(conv[0], conv[1] + (j % 2) * d - d / 2, conv[2] + (j // 2) * h, 0, 180, 0))
+    out = cell.sim.console.output.splitlines()
+    assert out.count("Pallet detected.") == 3 and out[-1] == "Done."
+    _assert_visits_in_order(_reached(cell), expected)
