@@ -107,6 +107,12 @@ def select_robot(number: Any) -> None:
         raise VError(ILLEGAL_VALUE, detail=f"robot {to_int(number)}")
 
 
+def _number() -> int:
+    """The robot HERE/DEST read: the task's own, else robot 1 (any task may read where it is)."""
+    robot = registry.attached_robot(current_session(), registry.thread_key())
+    return robot.number if robot is not None else 1
+
+
 def _robot() -> Any:
     safepoint()
     s = current_session()
@@ -301,24 +307,24 @@ def brake() -> None:
 
 def here() -> Location:
     """``HERE``: where the tool is now (world)."""
-    _robot()
-    return _core(lambda: Robot.Where())
+    safepoint()
+    return _core(lambda: Robot.Where(_number()))
 
 
 def dest() -> Location:
     """``DEST``: the destination of the last motion."""
-    _robot()
-    return _core(lambda: Robot.Dest())
+    safepoint()
+    return _core(lambda: Robot.Dest(_number()))
 
 
 def p_phere() -> Location:
-    _robot()
-    return _core(lambda: Robot.WhereAngles())
+    safepoint()
+    return _core(lambda: Robot.WhereAngles(_number()))
 
 
 def p_pdest() -> Location:
-    _robot()
-    return _core(lambda: Robot.DestAngles())
+    safepoint()
+    return _core(lambda: Robot.DestAngles(_number()))
 
 
 def here_into(target: Any, *prefix: Location) -> None:
