@@ -37,7 +37,7 @@ from gplrt.vplus.luns import (
 from gplrt.vplus.motion import (
     HAND_SIGNALS, accel, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
     delay, depart, departs, dest, drive, duration, hand, here, here_into, inrange, modifier, move,
-    moves, open_, openi, p_pdest, p_phere, ready, relax, relaxi, select_robot, speed, speed_value,
+    movest, movet, moves, open_, openi, p_pdest, p_phere, ready, relax, relaxi, select_robot, speed, speed_value,
     tool, tool_value,
 )
 

@@ -366,13 +366,18 @@ def read(lun: Any, *refs: Any, mode: Any = 0) -> None:
 
 
 def _store(entry: Lun, refs: tuple[Any, ...], line: str, status: int = 1) -> None:
+    """A record into READ's variables: a string variable takes the whole record; real variables
+    take the record's numbers in order (separated by spaces or commas) [D: the Guide shows only
+    string READs; the corpus reads ``READ (lun) x, y`` from a text file]."""
     entry.last_length = len(line)
     if refs:
         first = refs[0]
         if getattr(first, "name", "").startswith("$") or (first.defined and isinstance(first.v, str)):
             first.v = line[:MAX_STRING]
         else:
-            first.v = val(line)
+            fields = [f for f in re.split(r"[\s,]+", line.strip()) if f]
+            for k, ref in enumerate(refs):
+                ref.v = val(fields[k]) if k < len(fields) else 0.0
     _set(entry, status)
 
 

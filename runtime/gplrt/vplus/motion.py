@@ -241,6 +241,19 @@ def moves(target: Location) -> None:
     _go(target, True)
 
 
+def movet(target: Location, hand_open: Any) -> None:
+    """``MOVET t, hand``: MOVE with the hand opened (nonzero) or closed (0) as the motion starts
+    [D: the Guide gives MOVET's name only; the corpus writes ``MOVET #safe, TRUE``]."""
+    _state().hand_once = "OPEN" if hand_open != 0 else "CLOSE"
+    _go(target, False)
+
+
+def movest(target: Location, hand_open: Any) -> None:
+    """``MOVEST t, hand``: MOVES with the hand change of MOVET."""
+    _state().hand_once = "OPEN" if hand_open != 0 else "CLOSE"
+    _go(target, True)
+
+
 def _cartesian_target(t: Location) -> Location:
     if t._type == 1:
         robot = _robot()
