@@ -1,5 +1,6 @@
-"""ros.v2 (hand-lowered onto gplrt.vplus: ros_v2_lowered.py) on a simulated 6-axis arm, in two
-tasks, served to a simple_message client written from REP-I0006 over loopback on the virtual clock.
+"""ros.v2 (hand-lowered onto gplrt.vplus: ros_v2_lowered.py) in two tasks on a simulated Adept
+Viper s650, served to a simple_message client written from REP-I0006 over loopback on the virtual
+clock.
 
 What the client sees is what the file does under the runtime's decisions (docs/design/vplus.md):
 the command server reads a four-byte connect notice before the first message, each JOINT_POSITION
@@ -52,7 +53,7 @@ def _feedback(conn: socket.socket) -> tuple[tuple[int, ...], tuple[float, ...]]:
 
 @pytest.fixture
 def server():  # type: ignore[no-untyped-def]
-    sim = Simulation(robot="ARM6", capture=True)
+    sim = Simulation(robot="VIPER-S650", capture=True)
     cmd_port, fdb_port = free_port(), free_port()
     with sim:
         # run_main drives the virtual clock (paced to real time while the servers listen) until

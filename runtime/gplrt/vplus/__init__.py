@@ -35,7 +35,7 @@ from gplrt.vplus.luns import (
     attach, detach, fclose, fdelete, fopen, fopena, fopenr, fopenw, getc, iostat, read, write,
 )
 from gplrt.vplus.motion import (
-    HAND_SIGNALS, accel, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
+    HAND_SIGNALS, above, accel, below, flip, lefty, noflip, righty, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
     delay, depart, departs, dest, drive, duration, hand, here, here_into, inrange, modifier, move,
     movest, movet, moves, open_, openi, p_pdest, p_phere, ready, relax, relaxi, select_robot, speed, speed_value,
     tool, tool_value,

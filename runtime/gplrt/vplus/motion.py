@@ -33,6 +33,7 @@ from gplrt.geometry.location import Location
 from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import GplException
 from gplrt.motion import registry
+from gplrt.motion.kinematics.config import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY
 from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
@@ -46,9 +47,10 @@ from gplrt.vplus.taskstate import _sleep, current_task, safepoint
 from gplrt.vplus.transforms import compose, inverse, trans
 from gplrt.vplus.values import session_data
 
-#: LEFTY, RIGHTY, ... -> the core's configuration bits (``Location.Config``; the kinematics provider
-#: interprets them): 1 righty, 2 lefty, 4 above, 8 below, 16 flip, 32 noflip [D].
-CONFIG_BITS = {"RIGHTY": 1, "LEFTY": 2, "ABOVE": 4, "BELOW": 8, "NOFLIP": 16, "FLIP": 32}
+#: LEFTY, RIGHTY, ... -> the core's configuration bits (``Location.Config``), which the robots'
+#: kinematics interpret (the Cobra's elbow by Righty/Lefty, the Viper's wrist by Flip/NoFlip).
+CONFIG_BITS = {"RIGHTY": GPL_RIGHTY, "LEFTY": GPL_LEFTY, "ABOVE": GPL_ABOVE, "BELOW": GPL_BELOW,
+               "NOFLIP": GPL_NOFLIP, "FLIP": GPL_FLIP}
 HAND_SIGNALS = (1, 2)  # (open, close) [D]
 
 
@@ -172,6 +174,30 @@ def config(name: str) -> None:
     if key not in CONFIG_BITS:
         raise VError(ILLEGAL_VALUE, detail=name)
     _state().config_once |= CONFIG_BITS[key]
+
+
+def lefty() -> None:
+    config("LEFTY")
+
+
+def righty() -> None:
+    config("RIGHTY")
+
+
+def above() -> None:
+    config("ABOVE")
+
+
+def below() -> None:
+    config("BELOW")
+
+
+def flip() -> None:
+    config("FLIP")
+
+
+def noflip() -> None:
+    config("NOFLIP")
 
 
 def cp(on: bool, always: bool = False) -> None:
