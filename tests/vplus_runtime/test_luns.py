@@ -116,3 +116,25 @@ def test_getc_no_wait_reports_no_data() -> None:
         assert sim.run_main(main) == []
     assert sim.console.output == "-526 -526 *No data received*\n"
     sim.close()
+
+
+def test_read_numbers_from_a_text_file(tmp_path: Path) -> None:
+    """robot-sandbox desen.v2: ATTACH (lun, 4) "NFS"; FOPENR (lun) "desen.txt"; READ (lun) x, y."""
+    (tmp_path / "flash").mkdir()
+    (tmp_path / "flash" / "desen.txt").write_bytes(b"2\r\n10.5, -3\r\n4 5\r\n")
+    sim = Simulation(capture=True, flash_root=tmp_path)
+
+    def main() -> None:
+        lun, n, x, y = vp.Cell("lun"), vp.Cell("n"), vp.Cell("x"), vp.Cell("y")
+        vp.attach(lun, 4, "NFS")
+        vp.fopenr(lun, "desen.txt")
+        vp.read(lun, n)
+        for _ in range(int(n.v)):
+            vp.read(lun, x, y)
+            vp.type_(x.v, " ", y.v)
+        vp.fclose(lun)
+
+    with sim:
+        assert sim.run_main(main) == []
+    assert sim.console.output == "10.5 -3\n4 5\n", sim.console.log_text
+    sim.close()

@@ -1,11 +1,12 @@
-"""V+ motion on the shared planner (ARM6 model until the Viper s650 lands): forward processing,
-APPRO/DEPART along tool Z, one-shot vs ALWAYS speed, BREAK, OPENI/CLOSE and HERE/DEST."""
+"""V+ motion on the shared planner (the ARM6 model, and the Cobra s600 SCARA): forward processing,
+APPRO/DEPART along tool Z, one-shot vs ALWAYS speed, BREAK, OPENI/CLOSE, HERE/DEST, LEFTY/RIGHTY."""
 
 from __future__ import annotations
 
 import pytest
 
 from gplrt import vplus as vp
+from gplrt.motion.kinematics.config import GPL_LEFTY, GPL_RIGHTY
 from gplrt.sim import Simulation
 from gplrt.vplus.transforms import components
 
@@ -155,3 +156,46 @@ def test_unreachable_target_is_a_vplus_error_reacte_can_trap(arm: Simulation) ->
         assert arm.run_main(main) == []
     lines = arm.console.output.splitlines()
     assert lines[0].startswith("trapped -") and lines[1] == "went on"
+
+
+@pytest.fixture
+def cobra() -> Simulation:
+    s = Simulation(robot="COBRA-S600", capture=True)
+    yield s
+    s.close()
+
+
+def test_scara_appro_is_straight_up_and_lefty_righty_choose_the_arm(cobra: Simulation) -> None:
+    """On a SCARA the tool points down (pitch 180, L6033-6046), so APPRO's tool -Z is world up;
+    RIGHTY/LEFTY ask for the elbow's side during the next motion."""
+    got: dict[str, object] = {}
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, 40, -50, 30))
+        vp.break_()
+        place = vp.here()
+        got["place"] = place
+        vp.righty()
+        vp.move(place)
+        vp.break_()
+        got["righty"] = vp.p_phere()
+        got["righty_config"] = vp.here().Config
+        vp.lefty()
+        vp.move(place)
+        vp.break_()
+        got["lefty"] = vp.p_phere()
+        got["lefty_config"] = vp.here().Config
+        got["lefty_here"] = vp.here()
+        vp.appro(place, 50)
+        vp.break_()
+        got["appro"] = vp.here()
+
+    with cobra:
+        assert cobra.run_main(main) == [], cobra.console.log_text
+    x, y, z, yaw, pitch, roll = components(got["place"])
+    assert (yaw, pitch) == (0.0, 180.0)
+    assert components(got["appro"]) == pytest.approx((x, y, z + 50, yaw, pitch, roll), abs=TOL)
+    assert components(got["lefty_here"]) == pytest.approx(components(got["place"]), abs=TOL)
+    j_right, j_left = components(got["righty"]), components(got["lefty"])
+    assert j_right[1] * j_left[1] < 0  # the elbow on either side
+    assert got["righty_config"] & GPL_RIGHTY and got["lefty_config"] & GPL_LEFTY

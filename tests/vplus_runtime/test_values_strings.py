@@ -148,3 +148,9 @@ def test_type_output(sim: Simulation) -> None:
     vp.type_("no end", vp.fmt("/S"))
     vp.type_(vp.fmt("/C1"), "x")
     assert sim.console.output == "The value of x is 27.\nAll done. 100 pieces processed.\nno end\nx\n"
+
+
+def test_tier3_keyword_is_not_implemented_naming_it() -> None:
+    with pytest.raises(vp.VError) as info:
+        vp.unsupported("VPICTURE", 1)
+    assert info.value.Message() == "*Not implemented*" and "VPICTURE" in str(info.value)

@@ -6,7 +6,7 @@ path imports it.
 """
 
 from gplrt.vplus import errors
-from gplrt.vplus.errors import UNDEFINED_VALUE, VError, error_text
+from gplrt.vplus.errors import UNDEFINED_VALUE, VError, error_text, unsupported
 from gplrt.vplus.values import (
     G, Cell, ElementRef, Ref, VArray, calls, defined, find_program, last, local_store, program, byval,
 )
@@ -35,9 +35,9 @@ from gplrt.vplus.luns import (
     attach, detach, fclose, fdelete, fopen, fopena, fopenr, fopenw, getc, iostat, read, write,
 )
 from gplrt.vplus.motion import (
-    HAND_SIGNALS, accel, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
+    HAND_SIGNALS, above, accel, below, flip, lefty, noflip, righty, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
     delay, depart, departs, dest, drive, duration, hand, here, here_into, inrange, modifier, move,
-    moves, open_, openi, p_pdest, p_phere, ready, relax, relaxi, select_robot, speed, speed_value,
+    movest, movet, moves, open_, openi, p_pdest, p_phere, ready, relax, relaxi, select_robot, speed, speed_value,
     tool, tool_value,
 )
 

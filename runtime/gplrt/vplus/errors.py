@@ -124,6 +124,12 @@ class VError(GplException):
         return f"{text} - {self.detail}" if self.detail else text
 
 
+def unsupported(keyword: str, *args: object) -> None:
+    """A tier-3 instruction or function (graphics, vision, VME, protocols: spec §2.6) reached at
+    run time: V+'s *Not implemented* naming it."""
+    raise VError(NOT_IMPLEMENTED, detail=f"{keyword} is not simulated")
+
+
 # GPL codes the shared core raises -> the V+ code a V+ program sees (the same condition).
 _FROM_CORE: dict[int, int] = {
     core_errors.NO_ROBOT_ATTACHED: ROBOT_NOT_ATTACHED,

@@ -15,7 +15,8 @@ Devices, on the core's I/O:
   the connection arrives as a **connect notice** of four bytes (the client's handle, a 32-bit
   integer most significant byte first) ahead of the client's data, which READ consumes whole
   (returning "" with IOSTAT 100) and GETC byte by byte; when the client closes, READ returns ""
-  with IOSTAT 101 and GETC returns -504, and the next read waits for the next client.
+  with IOSTAT 101 and GETC returns -504, and the next read waits for the next client.  A server
+  that only writes takes a waiting client at its next WRITE (without waiting for one).
   docs/design/vplus.md ("the four bytes GETC reads after a client connects") gives the reasons.
   [D] ``/CLIENTS k`` is accepted; clients are served one after another.
 """
@@ -267,10 +268,7 @@ def _fill(entry: Lun, wait: bool) -> int:
     if entry.listener is not None and entry.sock is None:
         if not wait and not entry.listener.Pending():
             return E.NO_DATA
-        entry.sock = entry.listener.AcceptSocket()
-        entry.handles += 1
-        entry.inbuf += struct.pack(">i", entry.handles)  # the connect notice
-        entry.notice = 4
+        _accept(entry)
         return 1
     sock = entry.sock
     if sock is None:
@@ -288,6 +286,14 @@ def _fill(entry: Lun, wait: bool) -> int:
         return E.CLIENT_CLOSED
     entry.inbuf += str(box.value).encode("latin-1")
     return 1
+
+
+def _accept(entry: Lun) -> None:
+    assert entry.listener is not None
+    entry.sock = entry.listener.AcceptSocket()
+    entry.handles += 1
+    entry.inbuf += struct.pack(">i", entry.handles)  # the connect notice
+    entry.notice = 4
 
 
 def getc(lun: Any, mode: Any = 0) -> float:
@@ -360,13 +366,18 @@ def read(lun: Any, *refs: Any, mode: Any = 0) -> None:
 
 
 def _store(entry: Lun, refs: tuple[Any, ...], line: str, status: int = 1) -> None:
+    """A record into READ's variables: a string variable takes the whole record; real variables
+    take the record's numbers in order (separated by spaces or commas) [D: the Guide shows only
+    string READs; the corpus reads ``READ (lun) x, y`` from a text file]."""
     entry.last_length = len(line)
     if refs:
         first = refs[0]
         if getattr(first, "name", "").startswith("$") or (first.defined and isinstance(first.v, str)):
             first.v = line[:MAX_STRING]
         else:
-            first.v = val(line)
+            fields = [f for f in re.split(r"[\s,]+", line.strip()) if f]
+            for k, ref in enumerate(refs):
+                ref.v = val(fields[k]) if k < len(fields) else 0.0
     _set(entry, status)
 
 
@@ -384,12 +395,26 @@ def write(lun: Any, *items: Any) -> None:
     try:
         if entry.writer is not None:
             entry.writer.Write(data)
-        elif entry.sock is not None:
-            entry.sock.Send(data)
-        else:
+            _set(entry, 1)
+            return
+        if entry.listener is not None and entry.sock is None:
+            _accept_pending(entry)
+        if entry.sock is None:
             _set(entry, E.CONNECTION_CLOSED if entry.device == "TCP" else E.FILE_NOT_OPEN)
             return
+        entry.sock.Send(data)
     except GplException as exc:
+        if entry.listener is not None and entry.sock is not None:
+            entry.sock.Close()  # the client left: the server waits for the next one
+            entry.sock = None
         _set(entry, E.CONNECTION_CLOSED if exc.ErrorCode == -1708 else E.from_core(exc).ErrorCode)
         return
     _set(entry, 1)
+
+
+def _accept_pending(entry: Lun) -> None:
+    """A server LUN takes a client that is waiting, without waiting itself (WRITE to a server that
+    never reads, like ros.v2's feedback server, serves whoever connects)."""
+    assert entry.listener is not None
+    if entry.listener.Pending():
+        _accept(entry)

@@ -33,6 +33,7 @@ from gplrt.geometry.location import Location
 from gplrt.geometry.transforms import matrix_to_pose
 from gplrt.lang.errors import GplException
 from gplrt.motion import registry
+from gplrt.motion.kinematics.config import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY
 from gplrt.motion.move import Move
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
@@ -46,9 +47,10 @@ from gplrt.vplus.taskstate import _sleep, current_task, safepoint
 from gplrt.vplus.transforms import compose, inverse, trans
 from gplrt.vplus.values import session_data
 
-#: LEFTY, RIGHTY, ... -> the core's configuration bits (``Location.Config``; the kinematics provider
-#: interprets them): 1 righty, 2 lefty, 4 above, 8 below, 16 flip, 32 noflip [D].
-CONFIG_BITS = {"RIGHTY": 1, "LEFTY": 2, "ABOVE": 4, "BELOW": 8, "NOFLIP": 16, "FLIP": 32}
+#: LEFTY, RIGHTY, ... -> the core's configuration bits (``Location.Config``), which the robots'
+#: kinematics interpret (the Cobra's elbow by Righty/Lefty, the Viper's wrist by Flip/NoFlip).
+CONFIG_BITS = {"RIGHTY": GPL_RIGHTY, "LEFTY": GPL_LEFTY, "ABOVE": GPL_ABOVE, "BELOW": GPL_BELOW,
+               "NOFLIP": GPL_NOFLIP, "FLIP": GPL_FLIP}
 HAND_SIGNALS = (1, 2)  # (open, close) [D]
 
 
@@ -105,6 +107,12 @@ def select_robot(number: Any) -> None:
     """``SELECT ROBOT = n``: [D] the simulation has one robot: only 1 is accepted."""
     if to_int(number) != 1:
         raise VError(ILLEGAL_VALUE, detail=f"robot {to_int(number)}")
+
+
+def _number() -> int:
+    """The robot HERE/DEST read: the task's own, else robot 1 (any task may read where it is)."""
+    robot = registry.attached_robot(current_session(), registry.thread_key())
+    return robot.number if robot is not None else 1
 
 
 def _robot() -> Any:
@@ -166,6 +174,30 @@ def config(name: str) -> None:
     if key not in CONFIG_BITS:
         raise VError(ILLEGAL_VALUE, detail=name)
     _state().config_once |= CONFIG_BITS[key]
+
+
+def lefty() -> None:
+    config("LEFTY")
+
+
+def righty() -> None:
+    config("RIGHTY")
+
+
+def above() -> None:
+    config("ABOVE")
+
+
+def below() -> None:
+    config("BELOW")
+
+
+def flip() -> None:
+    config("FLIP")
+
+
+def noflip() -> None:
+    config("NOFLIP")
 
 
 def cp(on: bool, always: bool = False) -> None:
@@ -235,6 +267,19 @@ def moves(target: Location) -> None:
     _go(target, True)
 
 
+def movet(target: Location, hand_open: Any) -> None:
+    """``MOVET t, hand``: MOVE with the hand opened (nonzero) or closed (0) as the motion starts
+    [D: the Guide gives MOVET's name only; the corpus writes ``MOVET #safe, TRUE``]."""
+    _state().hand_once = "OPEN" if hand_open != 0 else "CLOSE"
+    _go(target, False)
+
+
+def movest(target: Location, hand_open: Any) -> None:
+    """``MOVEST t, hand``: MOVES with the hand change of MOVET."""
+    _state().hand_once = "OPEN" if hand_open != 0 else "CLOSE"
+    _go(target, True)
+
+
 def _cartesian_target(t: Location) -> Location:
     if t._type == 1:
         robot = _robot()
@@ -301,24 +346,24 @@ def brake() -> None:
 
 def here() -> Location:
     """``HERE``: where the tool is now (world)."""
-    _robot()
-    return _core(lambda: Robot.Where())
+    safepoint()
+    return _core(lambda: Robot.Where(_number()))
 
 
 def dest() -> Location:
     """``DEST``: the destination of the last motion."""
-    _robot()
-    return _core(lambda: Robot.Dest())
+    safepoint()
+    return _core(lambda: Robot.Dest(_number()))
 
 
 def p_phere() -> Location:
-    _robot()
-    return _core(lambda: Robot.WhereAngles())
+    safepoint()
+    return _core(lambda: Robot.WhereAngles(_number()))
 
 
 def p_pdest() -> Location:
-    _robot()
-    return _core(lambda: Robot.DestAngles())
+    safepoint()
+    return _core(lambda: Robot.DestAngles(_number()))
 
 
 def here_into(target: Any, *prefix: Location) -> None:
