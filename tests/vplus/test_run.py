@@ -157,3 +157,12 @@ def test_generated_python_keeps_names_comments_and_lines(tmp_path: Path) -> None
             assert source_lines[v_line(n) - 1].strip() == "WRITE (lun) $msg, /S"
             seen += 1
     assert seen == 3  # (two servers write)
+
+
+def test_a_tier_3_instruction_parses_and_raises_not_implemented_when_reached(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".PROGRAM main()\n  TYPE \"before\"\n  GCLEAR (20)\n  TYPE \"after\"\n.END\n")
+    r = _run(src)
+    assert "warning GPL4124: GCLEAR is not supported by gpl2py" not in r.stderr  # (--quiet: errors only)
+    assert r.stdout == "before\n"
+    assert r.returncode == 3
+    assert f"{src}:3: error -430 in thread task 0: *Not implemented* - GCLEAR is not simulated" in r.stderr

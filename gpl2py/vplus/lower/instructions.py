@@ -19,8 +19,6 @@ _BARE = {
     "CLOSE": "close", "CLOSEI": "closei", "RELAX": "relax", "RELAXI": "relaxi", "RESET": "reset",
     "HALT": "halt", "STOP": "stop", "PAUSE": "pause", "WAIT.START": "wait_start", "PROCEED": "proceed",
 }
-#: gplrt.vplus.errors.NOT_IMPLEMENTED (the translator does not import the runtime).
-NOT_IMPLEMENTED = -430
 _CONFIG = frozenset("ABOVE BELOW LEFTY RIGHTY FLIP NOFLIP".split())
 _MODIFIER = frozenset("COARSE FINE NULL NONULL OVERLAP NOOVERLAP SINGLE MULTIPLE".split())
 
@@ -28,8 +26,8 @@ _MODIFIER = frozenset("COARSE FINE NULL NONULL OVERLAP NOOVERLAP SINGLE MULTIPLE
 def instruction(s: A.Instr, x: Exprs) -> str:  # noqa: C901 (one table of keywords)
     """The Python statement of ``s``."""
     word = s.word
-    if s.tier3:  # (the runtime's *Not implemented*: gplrt.vplus.errors.NOT_IMPLEMENTED)
-        return f"raise vp.VError({NOT_IMPLEMENTED}, {py_string(word + ' is not supported by gpl2py')})"
+    if s.tier3:  # the runtime's *Not implemented*, naming it
+        return f"vp.unsupported({py_string(word)})"
     if word in ("ENABLE", "DISABLE"):  # (switch names, not variables)
         names = ", ".join(py_string(_system_name(a)) for a in s.args)
         return f"vp.{word.lower()}({names})"
