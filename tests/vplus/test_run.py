@@ -166,3 +166,43 @@ def test_a_tier_3_instruction_parses_and_raises_not_implemented_when_reached(tmp
     assert r.stdout == "before\n"
     assert r.returncode == 3
     assert f"{src}:3: error -430 in thread task 0: *Not implemented* - GCLEAR is not simulated" in r.stderr
+
+
+def test_reacte_traps_an_error_and_returne_goes_on_after_the_failing_statement(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    REACTE trouble\n"
+        "    TYPE \"before\"\n"
+        "    x = 1 / 0\n"
+        "    TYPE \"after, x defined: \", DEFINED(x)\n"
+        ".END\n"
+        ".PROGRAM trouble()\n"
+        "    TYPE \"trapped \", ERROR(-1)\n"
+        "    RETURNE\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "before\ntrapped -406\nafter, x defined: 0\n"
+
+
+def test_react_runs_its_program_when_the_signal_comes_on_during_a_loop(tmp_path: Path) -> None:
+    folder = tmp_path / "react"
+    folder.mkdir()
+    _write(folder, (
+        ".PROGRAM main()\n"
+        "    REACT 1001, alarm\n"
+        "    SIGNAL 1\n"
+        "    FOR i = 1 TO 3\n"
+        "        TYPE \"tick \", i\n"
+        "        WAIT.EVENT , 1\n"
+        "    END\n"
+        ".END\n"
+        ".PROGRAM alarm()\n"
+        "    TYPE \"alarm at \", i\n"
+        ".END\n"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cell = Cell.load(folder, echo=False, cache_dir=tmp_path / "cache")
+    cell.io.when_output(1, True).set_input(10001, True, after=1.5)  # the input 1001 comes on at 1.5 s
+    assert cell.run_main() == 0
+    assert cell.sim.console.output == "tick 1\ntick 2\nalarm at 2\ntick 3\n"

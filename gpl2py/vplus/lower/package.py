@@ -91,13 +91,31 @@ def _module_text(mod: A.Module, m: str, model: Model, program_module: dict[str, 
         for ln in _GOTO_CLASS:
             w.line(ln, 0)
     calls = {k: (function[k] if program_module[k] == m else f"{program_module[k]}.{function[k]}") for k in function}
+    reactions = _reactions(model)
     for info in mine:
         w.blank(2)
         with contained(sink, info.program.span):
-            w.extend(ProgramLowerer(model, info, calls, sink).lower())
+            w.extend(ProgramLowerer(model, info, calls, sink, reactions).lower())
     w.blank(2)
     _data_function(w, mod, model)
     return w.render()
+
+
+def _reactions(model: Model) -> frozenset[str]:
+    """Which of REACT, REACTI and REACTE the project uses (the lowering adds what they need)."""
+    from gpl2py.vplus.semantics.check import blocks
+
+    found: set[str] = set()
+
+    def walk(body: list[A.Stmt]) -> None:
+        for s in body:
+            if isinstance(s, A.React):
+                found.add(s.word)
+            for b in blocks(s):
+                walk(b)
+    for info in model.programs.values():
+        walk(info.program.body)
+    return frozenset(found)
 
 
 def _called(info: ProgramInfo) -> set[str]:

@@ -29,8 +29,13 @@ class ProgramLowerer:
     """Writes one program.  ``functions`` maps a program's V+ key to the Python expression that
     calls it from this module (``ros_rev_bytes`` or ``other_module.ros_rev_bytes``)."""
 
-    def __init__(self, model: Model, info: ProgramInfo, functions: dict[str, str], sink: DiagnosticSink) -> None:
+    def __init__(self, model: Model, info: ProgramInfo, functions: dict[str, str], sink: DiagnosticSink,
+                 reactions: frozenset[str] = frozenset()) -> None:
         self.model = model
+        #: REACTE in the project: each statement that can fail is a resumable unit (vp.step), so
+        #: that RETURNE goes on after it; REACT/REACTI: loops pass a safepoint each time round
+        self.steps = "REACTE" in reactions
+        self.safepoints = bool(reactions & {"REACT", "REACTI"})
         self.info = info
         self.functions = functions
         self.sink = sink
@@ -170,6 +175,21 @@ class ProgramLowerer:
         after = [c for c in s.comments if c.span.line >= s.span.line]
         w.comments(before)
         start = w.mark()
+        if self.steps and isinstance(s, _RESUMABLE) and (not isinstance(s, A.Instr) or s.word):
+            w.line(f"with vp.step({s.span.line}):")
+            w.indent()
+            self._simple(s)
+            w.dedent()
+        else:
+            self._simple(s)
+        if s.label is not None and w.mark() > start:
+            first = w.lines[start]
+            first.attach(f"# step {s.label}")
+        for c in after:
+            w.trailing(c, start)
+
+    def _simple(self, s: A.Stmt) -> None:  # noqa: C901 (one dispatch over the statement kinds)
+        w, x = self.w, self.x
         if isinstance(s, A.Assign | A.SetLoc):
             w.line(f"{self._target(s.target)} = {x.value(s.value)}")
         elif isinstance(s, A.Here):
@@ -219,11 +239,6 @@ class ProgramLowerer:
                     w.line(text)
             elif s.label is not None:
                 w.line("pass")
-        if s.label is not None and w.mark() > start:
-            first = w.lines[start]
-            first.attach(f"# step {s.label}")
-        for c in after:
-            w.trailing(c, start)
 
     def _target(self, v: A.Var) -> str:
         sym = self.model.symbol_of[id(v)]
@@ -287,6 +302,8 @@ class ProgramLowerer:
         self.loops.append((kind, s))
         w.indent(blocks=1)
         start = w.mark()
+        if self.safepoints:  # a reaction armed by REACT runs here, once per time round
+            w.line("vp.safepoint()")
         self.block(body)
         if until is not None:
             w.gpl_line = until.span.line
@@ -362,6 +379,10 @@ class ProgramLowerer:
         assert s.signal is not None
         call = [x.value(s.signal), self._program(s.program)] + args + extra
         w.line(f"vp.{s.word.lower()}({', '.join(call)})")
+
+
+#: The statements a REACTE handler resumes after (RETURNE): everything but blocks and jumps.
+_RESUMABLE = (A.Assign, A.SetLoc, A.Here, A.CallStmt, A.Execute, A.React, A.Instr)
 
 
 def _constant(e: A.Expr | None) -> bool:
