@@ -88,14 +88,15 @@ def analyze(modules: list[A.Module], sink: DiagnosticSink, start: str | None = N
     for section, _path in model.data:
         for datum in section.data:
             a.datum(datum)
-    for _ in range(20):  # types flow between programs: to a fixed point
-        a.changed = False
+    for _ in range(20):  # types flow between programs, to a fixed point: the pass that changes
+        a.changed = False  # nothing saw the final types, and its diagnostics are the ones to keep
+        a.sink = sink.child()
         for info in model.programs.values():
-            a.program(info, report=False)
+            a.program(info, report=True)
         if not a.changed:
             break
-    for info in model.programs.values():
-        a.program(info, report=True)
+    sink.extend(a.sink)
+    a.sink = sink
     for sym in a.all_symbols():
         if sym.type is T.UNKNOWN:
             sym.type = T.REAL
