@@ -105,27 +105,43 @@ class ProgramLowerer:
         return body
 
     def _declarations(self) -> None:
-        """AUTO cells, LOCAL and GLOBAL bindings for every symbol the body uses."""
+        """The program's AUTO, LOCAL and GLOBAL lines, in their order and with their comments,
+        then a binding for every other global the body uses (in the order it uses them)."""
         w = self.w
-        prog = self.info.program
-        params = set(self.info.params)
+        done = set(self.info.params)
+        for decl in self.info.program.decls:
+            w.gpl_line = decl.span.line
+            w.comments([c for c in decl.comments if c.span.line < decl.span.line])
+            start = w.mark()
+            for item in decl.items:
+                sym = self.model.symbol_of.get(id(item.var))
+                if sym is not None and sym not in done:
+                    done.add(sym)
+                    self._declare(sym)
+            for c in decl.comments:
+                if c.span.line >= decl.span.line:
+                    w.trailing(c, start)
         for sym in list(self.names.of):
-            if not isinstance(sym, Symbol) or sym in params:
-                continue
-            name = self.names.of[sym]
-            w.gpl_line = sym.span.line if sym.span.file == self.info.path else prog.span.line
-            vname = py_string(sym.name)
-            if sym.scope == "AUTO":
-                if sym.array:
-                    sizes = [self.x.value(d) for d in sym.dims or []]
-                    w.line(f"{name} = vp.VArray({', '.join([vname] + sizes)})")
-                else:
-                    w.line(f"{name} = vp.Cell({vname})")
-            elif sym.scope == "LOCAL":
-                store = f"vp.local_store({py_string(prog.name)})"
-                w.line(f"{name} = {store}.array({vname})" if sym.array else f"{name} = {store}[{vname}]")
-            elif sym.scope == "GLOBAL":
-                w.line(f"{name} = vp.G.array({vname})" if sym.array else f"{name} = vp.G[{vname}]")
+            if isinstance(sym, Symbol) and sym not in done:
+                done.add(sym)
+                w.gpl_line = sym.span.line if sym.span.file == self.info.path else self.info.program.span.line
+                self._declare(sym)
+
+    def _declare(self, sym: Symbol) -> None:
+        w = self.w
+        name = self.var(sym)
+        vname = py_string(sym.name)
+        if sym.scope == "AUTO":
+            if sym.array:
+                sizes = [self.x.value(d) for d in sym.dims or []]
+                w.line(f"{name} = vp.VArray({', '.join([vname] + sizes)})")
+            else:
+                w.line(f"{name} = vp.Cell({vname})")
+        elif sym.scope == "LOCAL":
+            store = f"vp.local_store({py_string(self.info.program.name)})"
+            w.line(f"{name} = {store}.array({vname})" if sym.array else f"{name} = {store}[{vname}]")
+        elif sym.scope == "GLOBAL":
+            w.line(f"{name} = vp.G.array({vname})" if sym.array else f"{name} = vp.G[{vname}]")
 
     def _dispatch(self, body: list[A.Stmt]) -> None:
         """A body with GOTOs: segments at its top-level labels, run from ``_at`` on; a GOTO raises
