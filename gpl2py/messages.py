@@ -112,8 +112,11 @@ def _register(message: Message) -> Message:
 
 def message(code: str) -> Message:
     """The registry entry of ``code`` (``"GPL2001"``)."""
-    _frontend_messages()
-    return _REGISTRY[code]
+    found = _REGISTRY.get(code)
+    if found is None:  # another front end's: its messages are imported on first need
+        _frontend_messages()
+        found = _REGISTRY[code]
+    return found
 
 
 def all_messages() -> list[Message]:
