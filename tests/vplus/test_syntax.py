@@ -218,3 +218,27 @@ def test_random_mutations_of_the_corpus_never_give_an_internal_error(tmp_path: P
             if name.endswith(".py"):
                 compile(code, name, "exec")  # the translation, even with errors kept, is Python
     assert inputs == 150
+
+
+def test_the_users_guide_programs_in_the_spec_parse() -> None:
+    """Appendix B of the spec (bodies copied verbatim from the User's Guide) parses without an
+    error; of the complete programs of Appendix A, those the PDF extraction left whole do too (the
+    others have comments and strings wrapped onto the next line: spec §0)."""
+    import re
+
+    from gpltest import spec_dir
+
+    text = (spec_dir() / "vplus-language.md").read_text()
+    appendix = text[text.index("## Appendix: example programs"):]
+    part_b = appendix[appendix.index("### Appendix B"):appendix.index("### Appendix C")]
+    bodies = re.findall(r"```[a-z]*\n(.*?)```", part_b, re.S)
+    assert len(bodies) >= 6
+    for body in bodies:
+        if ".PROGRAM" not in body.upper():
+            body = ".PROGRAM body()\n" + body + ("" if ".END" in body.upper() else "\n.END\n")
+        _, diags = _parse(body)
+        assert [d for d in diags if " error " in d] == [], diags
+    programs = [b for b in re.findall(r"```[a-z]*\n(.*?)```", appendix[:appendix.index("### Appendix B")], re.S)
+                if ".PROGRAM" in b.upper()]
+    clean = [i for i, b in enumerate(programs) if not [d for d in _parse(b)[1] if " error " in d]]
+    assert clean == [0, 1, 2, 4, 5], clean
