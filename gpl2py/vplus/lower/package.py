@@ -52,10 +52,11 @@ def lower_project(project: Project, modules: list[A.Module], model: Model, sink:
         program_module[key] = m
         function[key] = fn_names[m].name(key, "", info.program.name)
     smap: dict[str, tuple[str, str]] = {}
+    reactions = _reactions(model)
     for mod in modules:
         m = module_of[mod.path]
         with contained(sink, _file_span(mod.path)):
-            text, gmap = _module_text(mod, m, model, program_module, function, sink)
+            text, gmap = _module_text(mod, m, model, program_module, function, sink, reactions)
             if keep_modules:
                 out.files[f"{package}/{m}.py"] = text
                 smap[f"{m}.py"] = (mod.path, runs_json(gmap))
@@ -72,7 +73,7 @@ def _file_span(path: str):  # type: ignore[no-untyped-def]
 
 
 def _module_text(mod: A.Module, m: str, model: Model, program_module: dict[str, str], function: dict[str, str],
-                 sink: DiagnosticSink) -> tuple[str, list[int]]:
+                 sink: DiagnosticSink, reactions: frozenset[str]) -> tuple[str, list[int]]:
     w = Writer()
     mine = [info for info in model.programs.values() if info.path == mod.path]
     others = sorted({program_module[k] for info in mine for k in _called(info) if program_module.get(k, m) != m})
@@ -91,7 +92,6 @@ def _module_text(mod: A.Module, m: str, model: Model, program_module: dict[str, 
         for ln in _GOTO_CLASS:
             w.line(ln, 0)
     calls = {k: (function[k] if program_module[k] == m else f"{program_module[k]}.{function[k]}") for k in function}
-    reactions = _reactions(model)
     for info in mine:
         w.blank(2)
         with contained(sink, info.program.span):
