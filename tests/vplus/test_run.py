@@ -206,3 +206,31 @@ def test_react_runs_its_program_when_the_signal_comes_on_during_a_loop(tmp_path:
     cell.io.when_output(1, True).set_input(10001, True, after=1.5)  # the input 1001 comes on at 1.5 s
     assert cell.run_main() == 0
     assert cell.sim.console.output == "tick 1\ntick 2\nalarm at 2\ntick 3\n"
+
+
+def test_scopes_local_keeps_its_value_auto_is_new_per_call_global_is_shared(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    shared = 0\n"
+        "    FOR k = 1 TO 3\n"
+        "        CALL count()\n"
+        "    END\n"
+        "    TYPE \"shared \", shared\n"
+        "    IF \"abc\" == \"ABC\" THEN\n"  # UPPER is on: strings compare ignoring case
+        "        TYPE \"same\"\n"
+        "    END\n"
+        ".END\n"
+        ".PROGRAM count()\n"
+        "    LOCAL calls\n"
+        "    AUTO fresh\n"
+        "    IF NOT DEFINED(calls) THEN\n"
+        "        calls = 0\n"
+        "    END\n"
+        "    calls = calls + 1\n"
+        "    TYPE \"calls \", calls, \" fresh \", DEFINED(fresh)\n"
+        "    fresh = 1\n"
+        "    shared = shared + 10\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "calls 1 fresh 0\ncalls 2 fresh 0\ncalls 3 fresh 0\nshared 30\nsame\n"
