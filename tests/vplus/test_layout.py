@@ -32,3 +32,21 @@ def test_the_registry_lists_the_v_plus_messages() -> None:
     codes = {m.code for m in messages.all_messages()}
     assert {"GPL4001", "GPL4100", "GPL4120", "GPL4302", "GPL4700"} <= codes
     assert messages.message("GPL4123").severity_name == "warning"
+
+
+_V_PROBE = """
+import sys
+from gpl2py.cli import main
+status = main(["check", sys.argv[1], "--quiet"])
+status2 = main(["translate", sys.argv[1], "-o", sys.argv[2], "--quiet"])
+loaded = sorted(m for m in sys.modules if m.startswith(("gplrt", "numpy", "pinocchio", "gpl2py.gpl.")))
+print(status, status2, loaded)
+"""
+
+
+def test_a_v_plus_check_and_translation_import_neither_the_runtime_nor_the_gpl_front_end(tmp_path: Path) -> None:
+    src = tmp_path / "main.v2"
+    src.write_text('.PROGRAM main()\n    SET p = TRANS(1, 2, 3)\n    MOVE p\n    TYPE "hi"\n.END\n')
+    r = subprocess.run([sys.executable, "-c", _V_PROBE, str(src), str(tmp_path / "out")],
+                       capture_output=True, text=True, timeout=120)
+    assert r.stdout.strip() == "0 0 []", r.stdout + r.stderr

@@ -242,3 +242,13 @@ def test_the_users_guide_programs_in_the_spec_parse() -> None:
                 if ".PROGRAM" in b.upper()]
     clean = [i for i, b in enumerate(programs) if not [d for d in _parse(b)[1] if " error " in d]]
     assert clean == [0, 1, 2, 4, 5], clean
+
+
+def test_a_v_plus_comment_ignores_a_diagnostic_on_its_line(tmp_path: Path) -> None:
+    from gpl2py.selection import Selection
+
+    src = tmp_path / "m.v2"
+    src.write_text(".PROGRAM main()\n  x = 'A + 1\n  FROB 3 ; gpl2py: ignore[GPL4101]\n  FROB 4\n.END\n")
+    sink = DiagnosticSink(Selection(None, ()))
+    transpile(src, sink, keep_modules=False, loaded=lambda p: sink.filter.add_sources(p.sources, sink))
+    assert [d.header() for d in sink.errors] == [f"{src}:4:3: error GPL4101: unknown V+ instruction FROB"]
