@@ -14,6 +14,8 @@ Errors never raise: a bad line is reported at its column, skipped, and the parse
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.messages import Message
 from gpl2py.source import SourceFile, Span
@@ -826,18 +828,17 @@ class _Parser:
         return None
 
     def _additive(self) -> A.Expr:
-        left = self._multiplicative()
-        while (op := self._binop(_ADD)) is not None:
-            self._next()
-            right = self._multiplicative()
-            left = A.Binary(left.span.to(right.span), op, left, right)
-        return left
+        return self._level(_ADD, self._multiplicative)
 
     def _multiplicative(self) -> A.Expr:
-        left = self._unary()
-        while (op := self._binop(_MUL)) is not None:
+        return self._level(_MUL, self._unary)
+
+    def _level(self, ops: frozenset[str], operand: Callable[[], A.Expr]) -> A.Expr:
+        """One level of the precedence table: operands joined left to right by ``ops``."""
+        left = operand()
+        while (op := self._binop(ops)) is not None:
             self._next()
-            right = self._unary()
+            right = operand()
             left = A.Binary(left.span.to(right.span), op, left, right)
         return left
 
