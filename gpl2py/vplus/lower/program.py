@@ -79,9 +79,7 @@ class ProgramLowerer:
         w.line(f"def {self.functions[prog.key]}({', '.join(params)}) -> None:")
         w.indent()
         start = w.mark()
-        doc = [c for c in prog.comments if c.span.line > prog.span.line]
-        w.comments([c for c in prog.comments if c.span.line <= prog.span.line])
-        del doc
+        w.comments(prog.comments)  # (those above .PROGRAM and on its line)
         body = self._body_text()
         self._declarations()
         w.extend(body)
