@@ -252,3 +252,18 @@ def test_a_v_plus_comment_ignores_a_diagnostic_on_its_line(tmp_path: Path) -> No
     sink = DiagnosticSink(Selection(None, ()))
     transpile(src, sink, keep_modules=False, loaded=lambda p: sink.filter.add_sources(p.sources, sink))
     assert [d.header() for d in sink.errors] == [f"{src}:4:3: error GPL4101: unknown V+ instruction FROB"]
+
+
+def test_a_case_with_a_bad_value_list_and_an_arm_after_any_is_an_error_and_still_python(tmp_path: Path) -> None:
+    src = tmp_path / "m.v2"
+    src.write_text(".PROGRAM main()\n  CASE x OF\n  VALUE ]2:\n    TYPE 1\n  ANY\n    TYPE 2\n  ANY\n    TYPE 3\n  END\n.END\n")
+    sink = DiagnosticSink()
+    out = transpile(src, sink, keep_going=True)
+    assert [d.header() for d in sink.errors] == [
+        f"{src}:3:9: error GPL4100: expected a value, found ']'",
+        f"{src}:7:3: error GPL4100: expected END after ANY, found 'ANY'",
+    ]
+    assert out is not None
+    for name, code in out.files.items():
+        if name.endswith(".py"):
+            compile(code, name, "exec")  # (two ANY arms gave 'else:' twice: a SyntaxError)

@@ -296,7 +296,11 @@ class ProgramLowerer:
         first = True
         for arm in s.arms:
             w.gpl_line = arm.span.line
-            if arm.values is None:
+            if not first and s.arms[s.arms.index(arm) - 1].values is None:
+                break  # (an arm after ANY: an error, translated with --keep-going as never reached)
+            if arm.values == []:  # (a VALUE list that did not parse: never matches)
+                w.line("if False:" if first else "elif False:")
+            elif arm.values is None:
                 if first:
                     w.line("if True:  # ANY")
                 else:

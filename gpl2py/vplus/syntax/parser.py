@@ -594,7 +594,9 @@ class _Parser:
             self._error(M.EXPECTED, s.span, what="VALUE, ANY or END", found="an instruction")
         while end is not None and end.kind is not Kind.DIRECTIVE and end.upper != "END":
             arm_head = self._next()
-            values: list[A.Expr] | None = None
+            values: list[A.Expr] | None = [] if arm_head.upper == "VALUE" else None
+            if stmt.arms and stmt.arms[-1].values is None:  # after ANY
+                self._error(M.EXPECTED, arm_head.span, what="END after ANY", found=arm_head.shown())
             try:
                 if arm_head.upper == "VALUE":  # (the ':' ends the list: no location composition)
                     self.no_compose = True
