@@ -267,3 +267,15 @@ def test_a_case_with_a_bad_value_list_and_an_arm_after_any_is_an_error_and_still
     for name, code in out.files.items():
         if name.endswith(".py"):
             compile(code, name, "exec")  # (two ANY arms gave 'else:' twice: a SyntaxError)
+
+
+def test_check_reports_what_translate_reports_and_every_corpus_translation_compiles() -> None:
+    for folder in _vplus_folders():
+        checked = _check(folder)
+        sink = DiagnosticSink()
+        out = transpile(folder, sink)
+        assert [d.header() for d in checked] == [d.header() for d in sink], folder
+        assert out is not None, folder
+        for name, code in out.files.items():
+            if name.endswith(".py"):
+                compile(code, name, "exec")
