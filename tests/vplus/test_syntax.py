@@ -279,3 +279,13 @@ def test_check_reports_what_translate_reports_and_every_corpus_translation_compi
         for name, code in out.files.items():
             if name.endswith(".py"):
                 compile(code, name, "exec")
+
+
+def test_names_spelled_like_block_words_are_variables_where_an_assignment_is() -> None:
+    text = (".PROGRAM p()\n  CASE x OF\n  VALUE 1:\n    value = 3\n    any = 4\n    end = 5\n  END\n"
+            "  DO\n    until = 1\n  UNTIL until\n.END\n")
+    module, diags = _parse(text)
+    assert diags == []
+    case, do = module.programs[0].body
+    assert isinstance(case, A.Case) and [type(s).__name__ for s in case.arms[0].body] == ["Assign"] * 3
+    assert isinstance(do, A.DoUntil) and isinstance(do.body[0], A.Assign)

@@ -321,7 +321,7 @@ class _Parser:
             self._begin(self.n)
             label = self._label()
             word = self.tok.upper if self.tok.kind is Kind.NAME and not self.tok.sigil else ""
-            if word in stop and not (word in ("END",) and self._peek().is_op("=", "[")):
+            if word in stop and not self._peek().is_op("=", "["):  # (value = 3 is an assignment)
                 if label is not None or self.pending:  # a label on the closing line, comments above
                     body.append(A.Instr(self.tok.span, "", label=label, comments=self.pending))
                     self.pending = []
