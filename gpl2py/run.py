@@ -563,8 +563,9 @@ def run_command(args: argparse.Namespace) -> Outcome:
         return out
     package = import_built(built)
     if package.PROJECT.get("start") is None:
-        out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs "
-                        "a Project.gpr with ProjectStart=\"Module.Proc\", or a single Public Sub Main")
+        needs = ("a .PROGRAM" if package.PROJECT.get("language") == "vplus" else
+                 "a Project.gpr with ProjectStart=\"Module.Proc\", or a single Public Sub Main")
+        out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs {needs}")
         out.emitted, out.usage_error = False, True
         return out
     if not args.json:

@@ -99,7 +99,6 @@ UNKNOWN_LABEL = _error("GPL4308", "no step label {label} in program {program}")
 EXIT_OUTSIDE_LOOP = _error("GPL4309", "{word} outside a FOR, DO or WHILE loop")
 REDECLARED = _warning("GPL4310", "{name} is declared again{detail}")
 START_NOT_FOUND = _error("GPL4311", "--start {name}: no such program in this project")
-NO_PROGRAM = _error("GPL4312", "no .PROGRAM in this project: nothing to run")
 
 # --- lowering ------------------------------------------------------------------------------------
 GOTO_UNSUPPORTED = _error("GPL4700", "GOTO {label} jumps into a block, which gpl2py does not translate yet",

@@ -234,3 +234,10 @@ def test_scopes_local_keeps_its_value_auto_is_new_per_call_global_is_shared(tmp_
     r = _run(src)
     assert r.returncode == 0, r.stderr
     assert r.stdout == "calls 1 fresh 0\ncalls 2 fresh 0\ncalls 3 fresh 0\nshared 30\nsame\n"
+
+
+def test_running_a_file_without_a_program_is_a_usage_error_that_says_what_is_missing(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".REALS\nx 1\n.END\n")
+    r = _run(src)
+    assert r.returncode == 2
+    assert f"error GPL9001: {src} has no start procedure: run needs a .PROGRAM" in r.stderr
