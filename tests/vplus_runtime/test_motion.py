@@ -199,3 +199,22 @@ def test_scara_appro_is_straight_up_and_lefty_righty_choose_the_arm(cobra: Simul
     j_right, j_left = components(got["righty"]), components(got["lefty"])
     assert j_right[1] * j_left[1] < 0  # the elbow on either side
     assert got["righty_config"] & GPL_RIGHTY and got["lefty_config"] & GPL_LEFTY
+
+
+def test_viper_unreachable_and_out_of_range_goals_are_vplus_errors() -> None:
+    sim = Simulation(robot="VIPER-S650", capture=True)
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        vp.type_(vp.inrange(vp.here()), " ", vp.inrange(vp.trans(5000, 0, 0)))
+        for target in (vp.trans(5000, 0, 0), vp.p_ppoint(500, 0, 0, 0, 0, 0)):
+            try:
+                vp.move(target)
+            except vp.VError as e:
+                vp.type_(e.ErrorCode, " ", e.Message())
+
+    with sim:
+        assert sim.run_main(main) == []
+    assert sim.console.output.splitlines() == ["0 -1005", "-1005 *Location too far*", "-1002 *Joint out of range*"]
+    sim.close()
