@@ -218,3 +218,28 @@ def test_viper_unreachable_and_out_of_range_goals_are_vplus_errors() -> None:
         assert sim.run_main(main) == []
     assert sim.console.output.splitlines() == ["0 -1005", "-1005 *Location too far*", "-1002 *Joint out of range*"]
     sim.close()
+
+
+def test_reacti_stops_the_robot_and_brake_likewise(arm: Simulation) -> None:
+    """REACTI also brakes (L4498-4500): the arm stops short of the goal when the input comes."""
+    seen: dict[str, object] = {}
+
+    @vp.program("m.stopper")
+    def stopper() -> None:
+        seen["reacted"] = arm.now()
+
+    def main() -> None:
+        vp.move(_start_pose())
+        vp.break_()
+        vp.reacti(1001, "m.stopper")
+        vp.move(vp.p_ppoint(90, -30, 60, 0, 60, 0))
+        vp.wait_for(lambda: vp.sig(1001))
+        vp.break_()
+        seen["joints"] = components(vp.p_phere())
+
+    arm.io.schedule_input(10001, True, 1.3)
+    with arm:
+        assert arm.run_main(main) == []
+    assert "reacted" in seen
+    j1 = seen["joints"][0]  # type: ignore[index]
+    assert 0.0 < j1 < 89.0  # stopped on the way

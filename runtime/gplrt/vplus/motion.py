@@ -339,7 +339,7 @@ def break_() -> None:
 
 def brake() -> None:
     """``BRAKE``: stop the robot now (any task may)."""
-    _core(lambda: Robot.RapidDecel(1))
+    _core(lambda: Robot.do_RapidDecel(1))
 
 
 # -- where the robot is ------------------------------------------------------------------------------

@@ -117,7 +117,7 @@ def _run_reactions(task: TaskState) -> None:
         r = max(ready, key=lambda x: x.priority)
         task.pending.remove(r)
         if r.immediate:
-            Robot.RapidDecel(1)  # REACTI also stops the robot (L4498-4500)
+            Robot.do_RapidDecel(1)  # REACTI also stops the robot (L4498-4500)
         saved = task.priority
         task.priority = r.priority
         try:
