@@ -7,6 +7,7 @@ import pytest
 
 from gplrt import vplus as vp
 from gplrt.motion.kinematics.config import GPL_LEFTY, GPL_RIGHTY
+from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 from gplrt.vplus.transforms import components
 
@@ -243,3 +244,30 @@ def test_reacti_stops_the_robot_and_brake_likewise(arm: Simulation) -> None:
     assert "reacted" in seen
     j1 = seen["joints"][0]  # type: ignore[index]
     assert 0.0 < j1 < 89.0  # stopped on the way
+
+
+def test_tool_moves_the_point_here_reports_and_base_shifts_the_world() -> None:
+    """On the Viper s650 (the ARM6 model ignores a Tool in its forward kinematics, on main too)."""
+    arm = Simulation(robot="VIPER-S650", capture=True)
+    got: dict[str, object] = {}
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        flange = vp.here()
+        vp.tool(vp.trans(0, 0, 100))
+        got["tool"] = vp.tool_value()
+        got["tip"], got["flange"] = vp.here(), flange
+        vp.tool(vp.null())
+        vp.base(0, 0, 300)
+        got["based"] = vp.here()
+
+    with arm:
+        assert arm.run_main(main) == [], arm.console.log_text
+    arm.close()
+    assert callable(Robot.Tool)  # the shared Robot object is left as it was
+    assert components(got["tool"]) == pytest.approx((0, 0, 100, 0, 0, 0), abs=TOL)
+    assert components(got["tip"]) == pytest.approx(
+        components(vp.compose(got["flange"], vp.trans(0, 0, 100))), abs=TOL)  # type: ignore[arg-type]
+    x, y, z, *ypr = components(got["flange"])
+    assert components(got["based"]) == pytest.approx((x, y, z + 300, *ypr), abs=TOL)

@@ -395,7 +395,7 @@ def tool(t: Location) -> None:
     """``TOOL t``: breaks CP, then the tool transformation."""
     break_()
     _robot()
-    _core(lambda: setattr(Robot, "Tool", t))
+    _core(lambda: Robot.set_Tool(t))
 
 
 def tool_value() -> Location:
@@ -407,7 +407,7 @@ def base(dx: Any = 0.0, dy: Any = 0.0, dz: Any = 0.0, rz: Any = 0.0) -> None:
     """``BASE dx, dy, dz, rz``: breaks CP, then shifts and turns the world frame (L283-299)."""
     break_()
     _robot()
-    _core(lambda: setattr(Robot, "Base", trans(float(dx), float(dy), float(dz), float(rz))))
+    _core(lambda: Robot.set_Base(trans(float(dx), float(dy), float(dz), float(rz))))
 
 
 def base_value() -> Location:
