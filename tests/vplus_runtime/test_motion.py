@@ -260,7 +260,7 @@ def test_tool_moves_the_point_here_reports_and_base_shifts_the_world() -> None:
         got["tip"], got["flange"] = vp.here(), flange
         vp.tool(vp.null())
         vp.base(0, 0, 300)
-        got["based"] = vp.here()
+        got["based"], got["base"] = vp.here(), vp.base_value()
 
     with arm:
         assert arm.run_main(main) == [], arm.console.log_text
@@ -270,4 +270,6 @@ def test_tool_moves_the_point_here_reports_and_base_shifts_the_world() -> None:
     assert components(got["tip"]) == pytest.approx(
         components(vp.compose(got["flange"], vp.trans(0, 0, 100))), abs=TOL)  # type: ignore[arg-type]
     x, y, z, *ypr = components(got["flange"])
-    assert components(got["based"]) == pytest.approx((x, y, z + 300, *ypr), abs=TOL)
+    # the world frame moved 300 mm up relative to the robot: the tool reads 300 mm lower
+    assert components(got["based"]) == pytest.approx((x, y, z - 300, *ypr), abs=TOL)
+    assert components(got["base"]) == pytest.approx((0, 0, 300, 0, 0, 0), abs=TOL)

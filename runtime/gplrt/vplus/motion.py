@@ -404,15 +404,19 @@ def tool_value() -> Location:
 
 
 def base(dx: Any = 0.0, dy: Any = 0.0, dz: Any = 0.0, rz: Any = 0.0) -> None:
-    """``BASE dx, dy, dz, rz``: breaks CP, then shifts and turns the world frame (L283-299)."""
+    """``BASE dx, dy, dz, rz``: breaks CP, then "translate and rotate the world reference frame
+    relative to the robot" (L6764-6765): the world frame sits at TRANS(dx,dy,dz,rz) in the robot's
+    frame, so the robot's base in the world (the core's ``Robot.Base``) is its inverse [D: the
+    literal reading of L6764; BASE 0,0,300 makes HERE read 300 mm lower]."""
     break_()
     _robot()
-    _core(lambda: Robot.set_Base(trans(float(dx), float(dy), float(dz), float(rz))))
+    _core(lambda: Robot.set_Base(inverse(trans(float(dx), float(dy), float(dz), float(rz)))))
 
 
 def base_value() -> Location:
-    _robot()
-    return _core(lambda: Robot.Base())
+    """``BASE`` (function): the transformation the last BASE set (L6768-6769)."""
+    safepoint()
+    return inverse(_core(lambda: Robot.Base(_number())))
 
 
 # -- the hand ----------------------------------------------------------------------------------------
