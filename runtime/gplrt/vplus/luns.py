@@ -237,7 +237,7 @@ def fopen(lun: Any, text: str, mode: Any = 0) -> None:
             port = int(options.get("REMOTE_PORT") or options.get("PORT") or 0)
             client = TcpClient()
             client.Connect(IPEndPoint(address, port))
-            entry.sock = client.Client
+            entry.sock = client.Client()
     except (KeyError, ValueError):
         _set(entry, E.ILLEGAL_VALUE)
         return
