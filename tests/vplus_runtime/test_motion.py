@@ -273,3 +273,32 @@ def test_tool_moves_the_point_here_reports_and_base_shifts_the_world() -> None:
     # the world frame moved 300 mm up relative to the robot: the tool reads 300 mm lower
     assert components(got["based"]) == pytest.approx((x, y, z - 300, *ypr), abs=TOL)
     assert components(got["base"]) == pytest.approx((0, 0, 300, 0, 0, 0), abs=TOL)
+
+
+def test_duration_makes_a_joint_motion_last_at_least_that_long(arm: Simulation) -> None:
+    times: list[float] = []
+
+    def timed(target: object) -> None:
+        t0 = arm.now()
+        vp.move(target)
+        vp.break_()
+        times.append(arm.now() - t0)
+
+    a, b = vp.p_ppoint(0, -30, 60, 0, 60, 0), vp.p_ppoint(40, -30, 60, 0, 60, 0)
+
+    def main() -> None:
+        vp.move(a)
+        vp.break_()
+        timed(b)                  # as fast as the profile allows
+        vp.duration(3.0)          # one shot
+        timed(a)
+        timed(b)
+        vp.duration(0.01, always=True)  # shorter than the motion: no effect
+        timed(a)
+
+    with arm:
+        assert arm.run_main(main) == []
+    fast, stretched, again, short = times
+    assert fast < 3.0
+    assert stretched == pytest.approx(3.0, abs=0.02)  # (the settle after the motion)
+    assert again == pytest.approx(fast, rel=1e-6) and short == pytest.approx(fast, rel=1e-6)

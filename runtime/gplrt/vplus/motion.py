@@ -16,8 +16,9 @@ RELAX apply to the next motion only and are consumed by it.
 at start-up; a program cannot press the power button).  Task 0 attaches robot 1 by itself
 (L719-751).  ``READY`` is every joint at 0.  The hand is two digital outputs (``HAND_SIGNALS``:
 open, close), changed when the next motion starts (OPEN/CLOSE) or at once (OPENI/CLOSEI, which
-then wait HAND.TIME).  Not yet honoured: DURATION (accepted and kept), MMPS/IPS speeds (taken as
-percent), COARSE/FINE, SINGLE/MULTIPLE, OVERLAP.
+then wait HAND.TIME).  DURATION stretches joint motions (``_stretch``).  Not yet honoured:
+DURATION on straight lines, MMPS/IPS speeds (taken as percent), COARSE/FINE, SINGLE/MULTIPLE,
+OVERLAP.
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from gplrt.lang.errors import GplException
 from gplrt.motion import registry
 from gplrt.motion.kinematics.config import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY
 from gplrt.motion.move import Move
+from gplrt.motion.planner import plan_axes
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
 from gplrt.session import current_session
@@ -249,12 +251,37 @@ def _go(target: Location, straight: bool) -> None:
         raise VError(ILLEGAL_VALUE, detail="motion target is not a location")
     robot = _robot()
     prof = _profile(straight)
+    st = _state()
+    minimum = st.duration_once if st.duration_once is not None else st.duration
     cfg, hand = _consume()
     if cfg and target._type == 0:
         target = target._copy()
         target._config = cfg
+    if minimum > 0.0 and not straight:
+        _core(lambda: _stretch(robot, prof, target, minimum))
     _core(lambda: Move.Loc(target, prof))
     _begin(robot, hand)
+
+
+def _stretch(robot: Any, prof: Profile, target: Location, minimum: float) -> None:
+    """``DURATION t``: a joint motion that would take less than t seconds is slowed to take t, by
+    scaling its profile in time (speed × k, accelerations × k², ramps ÷ k, k = planned / t), which
+    scales a Ruckig trajectory's duration by exactly 1/k.  [D] Planned from rest at the previous
+    destination (a blend may shorten it slightly); straight lines are not stretched yet."""
+    q0 = robot.queue.final_joints()
+    if target._type == 1:
+        q1 = [float(v) for v in target.axis_values()[:robot.axis_count]]
+    else:
+        q1 = robot.inverse(target.matrix(), int(target._config), q0).tolist()
+    lim = robot.limits.joint_limits(prof, current_session().controller.system_speed)
+    planned = plan_axes(q0, None, None, q1, lim).duration
+    if 0.0 < planned < minimum:
+        k = planned / minimum
+        prof.Speed = prof.Speed * k
+        prof.Accel = prof.Accel * k * k
+        prof.Decel = prof.Decel * k * k
+        prof.AccelRamp = prof.AccelRamp / k
+        prof.DecelRamp = prof.DecelRamp / k
 
 
 def move(target: Location) -> None:
