@@ -302,3 +302,30 @@ def test_duration_makes_a_joint_motion_last_at_least_that_long(arm: Simulation) 
     assert fast < 3.0
     assert stretched == pytest.approx(3.0, abs=0.02)  # (the settle after the motion)
     assert again == pytest.approx(fast, rel=1e-6) and short == pytest.approx(fast, rel=1e-6)
+
+
+def test_speed_mmps_limits_the_tool_speed_on_a_straight_line() -> None:
+    sim = Simulation(robot="VIPER-S650", capture=True)
+    times: list[float] = []
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        start = vp.here()
+        vp.speed(100, unit="MONITOR")  # an absolute speed needs monitor speed 100 (L6583-6594)
+        for speed, unit in ((100, "MMPS"), (50, "MMPS"), (2, "IPS")):
+            vp.speed(speed, unit=unit, always=True)
+            t0 = sim.now()
+            vp.moves(vp.shift(start, 0, 200, 0))
+            vp.break_()
+            times.append(sim.now() - t0)
+            vp.moves(start)
+            vp.break_()
+
+    with sim:
+        assert sim.run_main(main) == [], sim.console.log_text
+    sim.close()
+    at100, at50, at2ips = times
+    # 200 mm at 100 mm/s takes at least 2 s (more for the ramps), at 50 mm/s at least 4 s
+    assert 2.0 <= at100 < 3.0 and 4.0 <= at50 < 5.0
+    assert 200 / 50.8 <= at2ips < 200 / 50.8 + 1.0  # 2 in/s = 50.8 mm/s

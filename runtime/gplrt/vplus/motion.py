@@ -17,8 +17,8 @@ at start-up; a program cannot press the power button).  Task 0 attaches robot 1 
 (L719-751).  ``READY`` is every joint at 0.  The hand is two digital outputs (``HAND_SIGNALS``:
 open, close), changed when the next motion starts (OPEN/CLOSE) or at once (OPENI/CLOSEI, which
 then wait HAND.TIME).  DURATION stretches joint motions (``_stretch``).  Not yet honoured:
-DURATION on straight lines, MMPS/IPS speeds (taken as percent), COARSE/FINE, SINGLE/MULTIPLE,
-OVERLAP.
+DURATION on straight lines, COARSE/FINE, SINGLE/MULTIPLE, OVERLAP.  ``SPEED v MMPS|IPS`` is the
+percent of the robot's nominal Cartesian speed that gives v on straight lines.
 """
 
 from __future__ import annotations
@@ -134,9 +134,15 @@ def speed(value: Any, rotation: Any = None, unit: str | None = None, always: boo
     v = float(value)
     if v <= 0:
         raise VError(ILLEGAL_VALUE, detail=f"SPEED {v}")
-    if unit is not None and unit.upper() == "MONITOR":
+    u = (unit or "").upper()
+    if u == "MONITOR":
         current_session().controller.system_speed = min(v, 100.0)
         return
+    if u in ("MMPS", "IPS"):
+        # an absolute tool speed (L6583-6594): the percent of the robot's nominal Cartesian speed
+        # (DataID 2701) that gives it; like V+, it assumes monitor speed 100
+        mm_per_s = v * 25.4 if u == "IPS" else v
+        v = 100.0 * mm_per_s / current_session().robot(_number()).limits.cart_speed[0]
     st = _state()
     if always:
         st.speed, st.speed_once = v, None
