@@ -295,13 +295,23 @@ def test_duration_makes_a_joint_motion_last_at_least_that_long(arm: Simulation) 
         timed(b)
         vp.duration(0.01, always=True)  # shorter than the motion: no effect
         timed(a)
+        vp.move(a)
+        vp.break_()
+        start = vp.here()
+        timed(vp.shift(start, 0, 0, -50))  # 50 mm away ...
+        vp.duration(2.5)
+        t0 = arm.now()
+        vp.moves(start)                    # ... and back on a straight line stretched to 2.5 s
+        vp.break_()
+        times.append(arm.now() - t0)
 
     with arm:
         assert arm.run_main(main) == []
-    fast, stretched, again, short = times
+    fast, stretched, again, short = times[:4]
     assert fast < 3.0
     assert stretched == pytest.approx(3.0, abs=0.02)  # (the settle after the motion)
     assert again == pytest.approx(fast, rel=1e-6) and short == pytest.approx(fast, rel=1e-6)
+    assert times[5] == pytest.approx(2.5, abs=0.02) and times[4] < 2.5
 
 
 def test_speed_mmps_limits_the_tool_speed_on_a_straight_line() -> None:

@@ -16,8 +16,8 @@ RELAX apply to the next motion only and are consumed by it.
 at start-up; a program cannot press the power button).  Task 0 attaches robot 1 by itself
 (L719-751).  ``READY`` is every joint at 0.  The hand is two digital outputs (``HAND_SIGNALS``:
 open, close), changed when the next motion starts (OPEN/CLOSE) or at once (OPENI/CLOSEI, which
-then wait HAND.TIME).  DURATION stretches joint motions (``_stretch``).  Not yet honoured:
-DURATION on straight lines, COARSE/FINE, SINGLE/MULTIPLE, OVERLAP.  ``SPEED v MMPS|IPS`` is the
+then wait HAND.TIME).  DURATION stretches motions (``_stretch``).  Not yet honoured: COARSE/FINE,
+SINGLE/MULTIPLE, OVERLAP.  ``SPEED v MMPS|IPS`` is the
 percent of the robot's nominal Cartesian speed that gives v on straight lines.
 """
 
@@ -36,9 +36,11 @@ from gplrt.lang.errors import GplException
 from gplrt.motion import registry
 from gplrt.motion.kinematics.config import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY
 from gplrt.motion.move import Move
-from gplrt.motion.planner import plan_axes
+from gplrt.motion.path_run import path_limits
+from gplrt.motion.planner import plan_axes, plan_scalar
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
+from gplrt.motion.straight import LinePath
 from gplrt.session import current_session
 from gplrt.threads.scheduler import controller_wait
 from gplrt.vplus.errors import ILLEGAL_VALUE, VError, from_core
@@ -263,24 +265,33 @@ def _go(target: Location, straight: bool) -> None:
     if cfg and target._type == 0:
         target = target._copy()
         target._config = cfg
-    if minimum > 0.0 and not straight:
-        _core(lambda: _stretch(robot, prof, target, minimum))
+    if minimum > 0.0:
+        _core(lambda: _stretch(robot, prof, target, minimum, straight))
     _core(lambda: Move.Loc(target, prof))
     _begin(robot, hand)
 
 
-def _stretch(robot: Any, prof: Profile, target: Location, minimum: float) -> None:
-    """``DURATION t``: a joint motion that would take less than t seconds is slowed to take t, by
-    scaling its profile in time (speed × k, accelerations × k², ramps ÷ k, k = planned / t), which
-    scales a Ruckig trajectory's duration by exactly 1/k.  [D] Planned from rest at the previous
-    destination (a blend may shorten it slightly); straight lines are not stretched yet."""
+def _stretch(robot: Any, prof: Profile, target: Location, minimum: float, straight: bool) -> None:
+    """``DURATION t``: a motion that would take less than t seconds is slowed to take t, by scaling
+    its profile in time (speed × k, accelerations × k², ramps ÷ k, k = planned / t), which scales a
+    Ruckig trajectory's duration by exactly 1/k.  The planned time is the core's own plan of the
+    motion (``plan_axes`` for a joint motion, the path's 1-D plan for a straight line), [D] from
+    rest at the previous destination: a blend may shorten the motion slightly."""
+    system_speed = current_session().controller.system_speed
     q0 = robot.queue.final_joints()
     if target._type == 1:
         q1 = [float(v) for v in target.axis_values()[:robot.axis_count]]
+        end_pose = matrix_to_pose(robot.forward(q1))
     else:
+        end_pose = target.total_pose()
         q1 = robot.inverse(target.matrix(), int(target._config), q0).tolist()
-    lim = robot.limits.joint_limits(prof, current_session().controller.system_speed)
-    planned = plan_axes(q0, None, None, q1, lim).duration
+    if straight:
+        path = LinePath(robot.pose_of(q0), end_pose)
+        v, acc, dec, jerk = path_limits(path.length, path.turn, q0.tolist(), q1,
+                                        robot.limits.line_limits(prof, system_speed))
+        planned = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk).duration
+    else:
+        planned = plan_axes(q0, None, None, q1, robot.limits.joint_limits(prof, system_speed)).duration
     if 0.0 < planned < minimum:
         k = planned / minimum
         prof.Speed = prof.Speed * k
