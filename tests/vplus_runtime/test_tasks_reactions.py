@@ -183,3 +183,20 @@ def test_prompt_reads_a_string_or_a_number(sim: Simulation) -> None:
         vp.prompt("More? ", n)
     assert info.value.ErrorCode == -504
     assert sim.console.output == "May I have your name please? Ada\nHow many? 42\nMore? "
+
+
+def test_prompt_reads_standard_input_by_default(sim: Simulation, monkeypatch: pytest.MonkeyPatch) -> None:
+    import io
+    monkeypatch.setattr("sys.stdin", io.StringIO("3\n"))
+
+    def main() -> None:
+        choice = vp.Cell("choice")
+        vp.prompt("Enter selection and press RETURN: ", choice)
+        vp.type_("choice ", choice.v)
+        try:
+            vp.prompt("again: ", choice)
+        except vp.VError as e:
+            vp.type_(e.Message())
+
+    assert sim.run_main(main) == []
+    assert sim.console.output == "Enter selection and press RETURN: choice 3\nagain: *Unexpected end of file*\n"
