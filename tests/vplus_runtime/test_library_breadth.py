@@ -129,3 +129,24 @@ def test_here_compound_drive_delay_ready_depart_and_monitor_speed() -> None:
     assert got["delay"] == pytest.approx(0.5, abs=1e-6)
     assert got["monitor"] == 50.0
     assert components(got["ready"]) == pytest.approx((0, 0, 0, 0, 0, 0), abs=TOL)
+
+
+def test_functions_that_share_an_instruction_name() -> None:
+    sim = Simulation(robot="VIPER-S650", capture=True)
+    got: list[float] = []
+
+    def main() -> None:
+        vp.speed(30, always=True)
+        vp.speed(40, unit="MONITOR")
+        vp.accel(80, 60)
+        vp.duration(1.5, always=True)
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        got.extend([vp.speed_value(1), vp.speed_value(2), vp.accel_value(1), vp.accel_value(2),
+                    vp.duration_value(), vp.select_value("ROBOT"), vp.config_value()])
+
+    with sim:
+        assert sim.run_main(main) == [], sim.console.log_text
+    sim.close()
+    assert got[:6] == [40.0, 30.0, 80.0, 60.0, 1.5, 1.0]
+    assert got[6] > 0  # some configuration bits

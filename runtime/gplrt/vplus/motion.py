@@ -138,7 +138,7 @@ def speed(value: Any, rotation: Any = None, unit: str | None = None, always: boo
         raise VError(ILLEGAL_VALUE, detail=f"SPEED {v}")
     u = (unit or "").upper()
     if u == "MONITOR":
-        current_session().controller.system_speed = min(v, 100.0)
+        Controller.SystemSpeed = min(v, 100.0)  # (the core's property: kept when its database boots)
         return
     if u in ("MMPS", "IPS"):
         # an absolute tool speed (L6583-6594): the percent of the robot's nominal Cartesian speed
@@ -155,8 +155,30 @@ def speed(value: Any, rotation: Any = None, unit: str | None = None, always: boo
 def speed_value(which: Any = 1) -> float:
     """``SPEED(n)``: 1 monitor speed, 2 program speed [D]."""
     if to_int(which) == 1:
-        return float(current_session().controller.system_speed)
+        return float(Controller.SystemSpeed)
     return _state().speed
+
+
+def accel_value(which: Any = 1) -> float:
+    """``ACCEL(n)`` (function): 1 the program's acceleration, 2 its deceleration, in percent [D]."""
+    st = _state()
+    return st.decel if to_int(which) == 2 else st.accel
+
+
+def duration_value(which: Any = 0) -> float:
+    """``DURATION(n)`` (function): the minimum motion time in force (the ALWAYS one) [D]."""
+    return _state().duration
+
+
+def config_value(which: Any = 0) -> float:
+    """``CONFIG(n)`` (function): [D] the robot's present configuration as the core's bits
+    (Righty 1, Lefty 2, Above 4, Below 8, Flip 16, NoFlip 32)."""
+    return float(here().Config)
+
+
+def select_value(name: str = "ROBOT") -> float:
+    """``SELECT(ROBOT)`` (function): the selected robot; the simulation has robot 1."""
+    return 1.0
 
 
 def accel(a: Any, d: Any = None) -> None:
