@@ -150,3 +150,33 @@ def test_functions_that_share_an_instruction_name() -> None:
     sim.close()
     assert got[:6] == [40.0, 30.0, 80.0, 60.0, 1.5, 1.0]
     assert got[6] > 0  # some configuration bits
+
+
+def test_fopend_reads_directory_records(tmp_path: Path) -> None:
+    """FOPEND then READ: one DOS-layout record per entry (L7936-7993), -504 after the last."""
+    (tmp_path / "flash" / "sub").mkdir(parents=True)
+    (tmp_path / "flash" / "data.tst").write_bytes(b"x" * 1000)
+    (tmp_path / "flash" / "a.v2").write_bytes(b"")
+    sim = Simulation(capture=True, flash_root=tmp_path)
+
+    def main() -> None:
+        lun, rec = vp.Cell("lun"), vp.Cell("$rec")
+        vp.attach(lun, 4, "DISK")
+        vp.fopend(lun, "D:\\*.*")
+        vp.read(lun, rec)
+        while vp.iostat(lun) > 0:
+            vp.type_("[", rec.v, "]")
+            vp.read(lun, rec)
+        vp.type_(vp.iostat(lun))
+
+    with sim:
+        assert sim.run_main(main) == [], sim.console.log_text
+    sim.close()
+    def record(name: str, ext: str, sectors: int, attributes: str) -> str:
+        # bytes 1-8 name, 9 '.', 10-12 extension, 13-20 size, 21 ' ', 22-28 attributes, 29-37 date,
+        # 38 ' ', 39-46 time (blank: the simulated system date was never set)
+        return f"[{name:<8}.{ext:<3}{sectors:>8} {attributes:<7}{'':9} {'':8}]"
+
+    lines = sim.console.output.splitlines()
+    assert lines == [record("a", "v2", 0, ""), record("data", "tst", 2, ""), record("sub", "", 0, "D"), "-504"]
+    assert all(len(line) == 46 + 2 for line in lines[:3])

@@ -32,7 +32,7 @@ from gplrt.vplus.tasks import (
 from gplrt.vplus.signals import bits, bits_set, reset, sig, sig_ins, signal
 from gplrt.vplus.console import prompt, set_prompt_input, type_
 from gplrt.vplus.luns import (
-    attach, detach, fclose, fdelete, fopen, fopena, fopenr, fopenw, getc, iostat, read, write,
+    attach, detach, fclose, fdelete, fopen, fopena, fopend, fopenr, fopenw, getc, iostat, read, write,
 )
 from gplrt.vplus.motion import (
     HAND_SIGNALS, above, accel, accel_value, below, config_value, duration_value, select_value, flip, lefty, noflip, righty, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
