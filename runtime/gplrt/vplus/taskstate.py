@@ -22,12 +22,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from gplrt.lang.errors import GplException
 from gplrt.controller.signals import SignalChange
 from gplrt.motion import registry
 from gplrt.motion.robot_class import Robot
 from gplrt.session import current_session
-from gplrt.threads.scheduler import current_ctx
 from gplrt.threads.thread import Thread
 from gplrt.vplus.signals import vplus_number
 from gplrt.vplus.values import session_data
