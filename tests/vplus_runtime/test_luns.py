@@ -138,3 +138,45 @@ def test_read_numbers_from_a_text_file(tmp_path: Path) -> None:
         assert sim.run_main(main) == []
     assert sim.console.output == "10.5 -3\n4 5\n", sim.console.log_text
     sim.close()
+
+
+def test_tcp_client_lun_writes_and_reads_records() -> None:
+    """FOPEN (lun) "/REMOTE_IP a /REMOTE_PORT p" connects out; WRITE sends a record with CR/LF,
+    READ returns the next one without it; the peer's close is -504 on the next READ."""
+    import threading
+
+    listener = socket.create_server(("127.0.0.1", 0))
+    port = listener.getsockname()[1]
+    received: list[bytes] = []
+
+    def peer() -> None:
+        conn, _ = listener.accept()
+        with conn:
+            data = b""
+            while not data.endswith(b"\r\n"):
+                data += conn.recv(100)
+            received.append(data)
+            conn.sendall(b"pong 7\r\n")
+
+    t = threading.Thread(target=peer, daemon=True)
+    t.start()
+    sim = Simulation(capture=True)
+
+    def main() -> None:
+        lun, reply = vp.Cell("lun"), vp.Cell("$reply")
+        vp.attach(lun, 4, "TCP")
+        vp.fopen(lun, vp.add("/REMOTE_IP 127.0.0.1 /REMOTE_PORT ", vp.s_encode(port)))
+        vp.type_("open ", vp.iostat(lun))
+        vp.write(lun, "ping ", 7)
+        vp.read(lun, reply)
+        vp.type_(reply.v, " ", vp.iostat(lun), " ", vp.iostat(lun, 2))
+        vp.read(lun, reply)
+        vp.type_(vp.iostat(lun))
+
+    with sim:
+        assert sim.run_main(main) == []
+    t.join(10)
+    listener.close()
+    assert received == [b"ping 7\r\n"], sim.console.output + sim.console.log_text
+    assert sim.console.output.splitlines() == ["open 1", "pong 7 1 6", "-504"]
+    sim.close()

@@ -7,6 +7,7 @@ import pytest
 
 from gplrt import vplus as vp
 from gplrt.motion.kinematics.config import GPL_LEFTY, GPL_RIGHTY
+from gplrt.motion.robot_class import Robot
 from gplrt.sim import Simulation
 from gplrt.vplus.transforms import components
 
@@ -199,3 +200,142 @@ def test_scara_appro_is_straight_up_and_lefty_righty_choose_the_arm(cobra: Simul
     j_right, j_left = components(got["righty"]), components(got["lefty"])
     assert j_right[1] * j_left[1] < 0  # the elbow on either side
     assert got["righty_config"] & GPL_RIGHTY and got["lefty_config"] & GPL_LEFTY
+
+
+def test_viper_unreachable_and_out_of_range_goals_are_vplus_errors() -> None:
+    sim = Simulation(robot="VIPER-S650", capture=True)
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        vp.type_(vp.inrange(vp.here()), " ", vp.inrange(vp.trans(5000, 0, 0)))
+        for target in (vp.trans(5000, 0, 0), vp.p_ppoint(500, 0, 0, 0, 0, 0)):
+            try:
+                vp.move(target)
+            except vp.VError as e:
+                vp.type_(e.ErrorCode, " ", e.Message())
+
+    with sim:
+        assert sim.run_main(main) == []
+    assert sim.console.output.splitlines() == ["0 -1005", "-1005 *Location too far*", "-1002 *Joint out of range*"]
+    sim.close()
+
+
+def test_reacti_stops_the_robot_and_brake_likewise(arm: Simulation) -> None:
+    """REACTI also brakes (L4498-4500): the arm stops short of the goal when the input comes."""
+    seen: dict[str, object] = {}
+
+    @vp.program("m.stopper")
+    def stopper() -> None:
+        seen["reacted"] = arm.now()
+
+    def main() -> None:
+        vp.move(_start_pose())
+        vp.break_()
+        vp.reacti(1001, "m.stopper")
+        vp.move(vp.p_ppoint(90, -30, 60, 0, 60, 0))
+        vp.wait_for(lambda: vp.sig(1001))
+        vp.break_()
+        seen["joints"] = components(vp.p_phere())
+
+    arm.io.schedule_input(10001, True, 1.3)
+    with arm:
+        assert arm.run_main(main) == []
+    assert "reacted" in seen
+    j1 = seen["joints"][0]  # type: ignore[index]
+    assert 0.0 < j1 < 89.0  # stopped on the way
+
+
+def test_tool_moves_the_point_here_reports_and_base_shifts_the_world() -> None:
+    """On the Viper s650 (the ARM6 model ignores a Tool in its forward kinematics, on main too)."""
+    arm = Simulation(robot="VIPER-S650", capture=True)
+    got: dict[str, object] = {}
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        flange = vp.here()
+        vp.tool(vp.trans(0, 0, 100))
+        got["tool"] = vp.tool_value()
+        got["tip"], got["flange"] = vp.here(), flange
+        vp.tool(vp.null())
+        vp.base(0, 0, 300)
+        got["based"], got["base"] = vp.here(), vp.base_value()
+
+    with arm:
+        assert arm.run_main(main) == [], arm.console.log_text
+    arm.close()
+    assert callable(Robot.Tool)  # the shared Robot object is left as it was
+    assert components(got["tool"]) == pytest.approx((0, 0, 100, 0, 0, 0), abs=TOL)
+    assert components(got["tip"]) == pytest.approx(
+        components(vp.compose(got["flange"], vp.trans(0, 0, 100))), abs=TOL)  # type: ignore[arg-type]
+    x, y, z, *ypr = components(got["flange"])
+    # the world frame moved 300 mm up relative to the robot: the tool reads 300 mm lower
+    assert components(got["based"]) == pytest.approx((x, y, z - 300, *ypr), abs=TOL)
+    assert components(got["base"]) == pytest.approx((0, 0, 300, 0, 0, 0), abs=TOL)
+
+
+def test_duration_makes_a_joint_motion_last_at_least_that_long(arm: Simulation) -> None:
+    times: list[float] = []
+
+    def timed(target: object) -> None:
+        t0 = arm.now()
+        vp.move(target)
+        vp.break_()
+        times.append(arm.now() - t0)
+
+    a, b = vp.p_ppoint(0, -30, 60, 0, 60, 0), vp.p_ppoint(40, -30, 60, 0, 60, 0)
+
+    def main() -> None:
+        vp.move(a)
+        vp.break_()
+        timed(b)                  # as fast as the profile allows
+        vp.duration(3.0)          # one shot
+        timed(a)
+        timed(b)
+        vp.duration(0.01, always=True)  # shorter than the motion: no effect
+        timed(a)
+        vp.move(a)
+        vp.break_()
+        start = vp.here()
+        timed(vp.shift(start, 0, 0, -50))  # 50 mm away ...
+        vp.duration(2.5)
+        t0 = arm.now()
+        vp.moves(start)                    # ... and back on a straight line stretched to 2.5 s
+        vp.break_()
+        times.append(arm.now() - t0)
+
+    with arm:
+        assert arm.run_main(main) == []
+    fast, stretched, again, short = times[:4]
+    assert fast < 3.0
+    assert stretched == pytest.approx(3.0, abs=0.02)  # (the settle after the motion)
+    assert again == pytest.approx(fast, rel=1e-6) and short == pytest.approx(fast, rel=1e-6)
+    assert times[5] == pytest.approx(2.5, abs=0.02) and times[4] < 2.5
+
+
+def test_speed_mmps_limits_the_tool_speed_on_a_straight_line() -> None:
+    sim = Simulation(robot="VIPER-S650", capture=True)
+    times: list[float] = []
+
+    def main() -> None:
+        vp.move(vp.p_ppoint(10, -20, 40, 5, 50, -10))
+        vp.break_()
+        start = vp.here()
+        vp.speed(100, unit="MONITOR")  # an absolute speed needs monitor speed 100 (L6583-6594)
+        for speed, unit in ((100, "MMPS"), (50, "MMPS"), (2, "IPS")):
+            vp.speed(speed, unit=unit, always=True)
+            t0 = sim.now()
+            vp.moves(vp.shift(start, 0, 200, 0))
+            vp.break_()
+            times.append(sim.now() - t0)
+            vp.moves(start)
+            vp.break_()
+
+    with sim:
+        assert sim.run_main(main) == [], sim.console.log_text
+    sim.close()
+    at100, at50, at2ips = times
+    # 200 mm at 100 mm/s takes at least 2 s (more for the ramps), at 50 mm/s at least 4 s
+    assert 2.0 <= at100 < 3.0 and 4.0 <= at50 < 5.0
+    assert 200 / 50.8 <= at2ips < 200 / 50.8 + 1.0  # 2 in/s = 50.8 mm/s

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import pytest
+
 from gplrt import vplus as vp
 from gplrt.sim import Simulation
 
@@ -149,3 +151,52 @@ def test_react_calls_program_on_signal_edge_and_lock_defers(sim: Simulation) -> 
     assert sim.run_main(main) == []
     lines = sim.console.output.splitlines()
     assert lines[0] == "unlocking" and lines[1].startswith("alarm at 0.7") and lines[2] == "done"
+
+
+def test_stop_restarts_the_program_while_cycles_remain(sim: Simulation) -> None:
+    @vp.program("t.cycle")
+    def cycle() -> None:
+        vp.G["k"].v = vp.add(vp.G["k"].v, 1)
+        vp.type_("cycle ", vp.G["k"].v)
+        sub()
+        vp.type_("not reached")
+
+    @vp.program("t.sub")
+    def sub() -> None:
+        vp.stop()  # STOP ends the cycle even from a subroutine (L1082-1085)
+
+    def main() -> None:
+        vp.G["k"].v = 0
+        vp.execute(1, cycle, cycles=3)
+
+    assert sim.run_main(main) == []
+    assert sim.console.output.splitlines() == ["cycle 1", "cycle 2", "cycle 3"]
+
+
+def test_prompt_reads_a_string_or_a_number(sim: Simulation) -> None:
+    vp.set_prompt_input(["Ada", "42"])
+    name, n = vp.Cell("$ans"), vp.Cell("n")
+    vp.prompt("May I have your name please? ", name)
+    vp.prompt("How many? ", n)
+    assert (name.v, n.v) == ("Ada", 42.0)
+    with pytest.raises(vp.VError) as info:
+        vp.prompt("More? ", n)
+    assert info.value.ErrorCode == -504
+    assert sim.console.output == "May I have your name please? Ada\nHow many? 42\nMore? "
+
+
+def test_prompt_reads_standard_input_by_default(sim: Simulation, monkeypatch: pytest.MonkeyPatch) -> None:
+    import io
+    monkeypatch.setattr("sys.stdin", io.StringIO("3\n"))
+
+    def main() -> None:
+        choice = vp.Cell("choice")
+        vp.prompt("Enter selection and press RETURN: ", choice)
+        vp.type_("choice ", choice.v)
+        try:
+            vp.prompt("again: ", choice)
+        except vp.VError as e:
+            vp.type_(e.Message())
+
+    assert sim.run_main(main) == []
+    assert sim.console.output == "Enter selection and press RETURN: choice 3\nagain: *Unexpected end of file*\n"

@@ -154,3 +154,10 @@ def test_tier3_keyword_is_not_implemented_naming_it() -> None:
     with pytest.raises(vp.VError) as info:
         vp.unsupported("VPICTURE", 1)
     assert info.value.Message() == "*Not implemented*" and "VPICTURE" in str(info.value)
+
+
+def test_wrong_operand_types_are_vplus_errors() -> None:
+    for call in (lambda: vp.sub("a", 1), lambda: vp.add("a", 1), lambda: vp.mul(vp.trans(1), 2),
+                 lambda: vp.to_int("3")):
+        with pytest.raises(vp.VError):
+            call()

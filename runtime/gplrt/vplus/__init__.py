@@ -26,16 +26,16 @@ from gplrt.vplus.transforms import (
 from gplrt.vplus.system import disable, enable, parameter, parameter_set, switch, switch_set
 from gplrt.vplus.tasks import (
     abort, cas, clear_event, error, execute, get_event, halt, ignore, lock, pause, priority, react,
-    reacte, reacti, release, run, s_time, safepoint, set_event, step, stop, tas, task_status, timer,
+    reacte, reacti, release, run, s_time, safepoint, time_, set_event, step, stop, tas, task_status, timer,
     timer_set, tps, wait, wait_event, wait_for,
 )
 from gplrt.vplus.signals import bits, bits_set, reset, sig, sig_ins, signal
 from gplrt.vplus.console import prompt, set_prompt_input, type_
 from gplrt.vplus.luns import (
-    attach, detach, fclose, fdelete, fopen, fopena, fopenr, fopenw, getc, iostat, read, write,
+    attach, detach, fclose, fdelete, fopen, fopena, fopend, fopenr, fopenw, getc, iostat, read, write,
 )
 from gplrt.vplus.motion import (
-    HAND_SIGNALS, above, accel, below, flip, lefty, noflip, righty, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
+    HAND_SIGNALS, above, accel, accel_value, below, config_value, duration_value, select_value, flip, lefty, noflip, righty, appro, appros, base, base_value, brake, break_, close, closei, config, cp,
     delay, depart, departs, dest, drive, duration, hand, here, here_into, inrange, modifier, move,
     movest, movet, moves, open_, openi, p_pdest, p_phere, ready, relax, relaxi, select_robot, speed, speed_value,
     tool, tool_value,

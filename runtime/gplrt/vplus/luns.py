@@ -23,6 +23,7 @@ Devices, on the core's I/O:
 
 from __future__ import annotations
 
+import fnmatch
 import re
 import struct
 from dataclasses import dataclass, field
@@ -57,6 +58,7 @@ class Lun:
     handles: int = 0
     buffer_size: int = 1024
     notice: int = 0  # bytes of the connect notice still unread
+    directory: list[str] | None = None  # FOPEND: the directory records still to READ
 
 
 def _task() -> Any:
@@ -124,6 +126,7 @@ def detach_all(task: Any) -> None:
 
 
 def _close(entry: Lun) -> None:
+    entry.directory = None
     for thing in (entry.reader, entry.writer, entry.sock, entry.listener):
         if thing is not None:
             try:
@@ -201,6 +204,37 @@ def fopena(lun: Any, name: str) -> None:
     _disk_open(lun, name, "A")
 
 
+def fopend(lun: Any, spec: str = "") -> None:
+    """``FOPEND (lun) "path"``: open a directory; each READ then returns one record in the DOS
+    layout of L7936-7993 (name, extension, size in 512-byte sectors, attributes, date, time).
+    [D] A ``*``/``?`` pattern in the last part selects names; the date and time fields are blank,
+    as the Guide says they are when the system date was never set (L7991-7993)."""
+    try:
+        entry = _attached(lun)
+    except _NotAttached:
+        return
+    path = _file_name(spec or "")
+    folder, _, pattern = path.rpartition("/")
+    if not any(c in pattern for c in "*?"):
+        folder, pattern = path.rstrip("/"), "*"
+    folder = folder or "/flash"
+    try:
+        files = [str(n) for n in File.GetFiles(folder)]
+        dirs = [str(n) for n in File.GetDirectories(folder)]
+    except GplException:
+        _set(entry, E.NONEXISTENT_FILE)
+        return
+    records = []
+    for name, is_dir in sorted([(n, False) for n in files] + [(n, True) for n in dirs]):
+        stem, _, ext = name.partition(".")
+        if not fnmatch.fnmatch(f"{stem}.{ext}".upper(), pattern.upper()) and not fnmatch.fnmatch(name.upper(), pattern.upper()):
+            continue  # (as in DOS, *.* also matches a name without an extension)
+        sectors = 0 if is_dir else (int(File.Length(f"{folder}/{name}")) + 511) // 512
+        records.append(f"{stem[:8]:<8}.{ext[:3]:<3}{sectors:>8} {'D' if is_dir else '':<7}{'':9} {'':8}")
+    entry.directory = records
+    _set(entry, 1)
+
+
 def fdelete(lun: Any, name: str) -> None:
     try:
         entry = _attached(lun)
@@ -237,7 +271,7 @@ def fopen(lun: Any, text: str, mode: Any = 0) -> None:
             port = int(options.get("REMOTE_PORT") or options.get("PORT") or 0)
             client = TcpClient()
             client.Connect(IPEndPoint(address, port))
-            entry.sock = client.Client
+            entry.sock = client.Client()
     except (KeyError, ValueError):
         _set(entry, E.ILLEGAL_VALUE)
         return
@@ -333,6 +367,12 @@ def read(lun: Any, *refs: Any, mode: Any = 0) -> None:
     except _NotAttached:
         return
     wait = not (to_int(mode) & 1)
+    if entry.directory is not None:
+        if not entry.directory:
+            _set(entry, E.END_OF_FILE)
+            return
+        _store(entry, refs, entry.directory.pop(0))
+        return
     if entry.reader is not None:
         try:
             line = str(entry.reader.ReadLine())

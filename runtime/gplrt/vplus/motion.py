@@ -16,8 +16,9 @@ RELAX apply to the next motion only and are consumed by it.
 at start-up; a program cannot press the power button).  Task 0 attaches robot 1 by itself
 (L719-751).  ``READY`` is every joint at 0.  The hand is two digital outputs (``HAND_SIGNALS``:
 open, close), changed when the next motion starts (OPEN/CLOSE) or at once (OPENI/CLOSEI, which
-then wait HAND.TIME).  Not yet honoured: DURATION (accepted and kept), MMPS/IPS speeds (taken as
-percent), COARSE/FINE, SINGLE/MULTIPLE, OVERLAP.
+then wait HAND.TIME).  DURATION stretches motions (``_stretch``).  Not yet honoured: COARSE/FINE,
+SINGLE/MULTIPLE, OVERLAP.  ``SPEED v MMPS|IPS`` is the
+percent of the robot's nominal Cartesian speed that gives v on straight lines.
 """
 
 from __future__ import annotations
@@ -35,8 +36,11 @@ from gplrt.lang.errors import GplException
 from gplrt.motion import registry
 from gplrt.motion.kinematics.config import GPL_ABOVE, GPL_BELOW, GPL_FLIP, GPL_LEFTY, GPL_NOFLIP, GPL_RIGHTY
 from gplrt.motion.move import Move
+from gplrt.motion.path_run import path_limits
+from gplrt.motion.planner import plan_axes, plan_scalar
 from gplrt.motion.profile import Profile
 from gplrt.motion.robot_class import Robot
+from gplrt.motion.straight import LinePath
 from gplrt.session import current_session
 from gplrt.threads.scheduler import controller_wait
 from gplrt.vplus.errors import ILLEGAL_VALUE, VError, from_core
@@ -132,9 +136,15 @@ def speed(value: Any, rotation: Any = None, unit: str | None = None, always: boo
     v = float(value)
     if v <= 0:
         raise VError(ILLEGAL_VALUE, detail=f"SPEED {v}")
-    if unit is not None and unit.upper() == "MONITOR":
-        current_session().controller.system_speed = min(v, 100.0)
+    u = (unit or "").upper()
+    if u == "MONITOR":
+        Controller.SystemSpeed = min(v, 100.0)  # (the core's property: kept when its database boots)
         return
+    if u in ("MMPS", "IPS"):
+        # an absolute tool speed (L6583-6594): the percent of the robot's nominal Cartesian speed
+        # (DataID 2701) that gives it; like V+, it assumes monitor speed 100
+        mm_per_s = v * 25.4 if u == "IPS" else v
+        v = 100.0 * mm_per_s / current_session().robot(_number()).limits.cart_speed[0]
     st = _state()
     if always:
         st.speed, st.speed_once = v, None
@@ -145,8 +155,30 @@ def speed(value: Any, rotation: Any = None, unit: str | None = None, always: boo
 def speed_value(which: Any = 1) -> float:
     """``SPEED(n)``: 1 monitor speed, 2 program speed [D]."""
     if to_int(which) == 1:
-        return float(current_session().controller.system_speed)
+        return float(Controller.SystemSpeed)
     return _state().speed
+
+
+def accel_value(which: Any = 1) -> float:
+    """``ACCEL(n)`` (function): 1 the program's acceleration, 2 its deceleration, in percent [D]."""
+    st = _state()
+    return st.decel if to_int(which) == 2 else st.accel
+
+
+def duration_value(which: Any = 0) -> float:
+    """``DURATION(n)`` (function): the minimum motion time in force (the ALWAYS one) [D]."""
+    return _state().duration
+
+
+def config_value(which: Any = 0) -> float:
+    """``CONFIG(n)`` (function): [D] the robot's present configuration as the core's bits
+    (Righty 1, Lefty 2, Above 4, Below 8, Flip 16, NoFlip 32)."""
+    return float(here().Config)
+
+
+def select_value(name: str = "ROBOT") -> float:
+    """``SELECT(ROBOT)`` (function): the selected robot; the simulation has robot 1."""
+    return 1.0
 
 
 def accel(a: Any, d: Any = None) -> None:
@@ -249,12 +281,46 @@ def _go(target: Location, straight: bool) -> None:
         raise VError(ILLEGAL_VALUE, detail="motion target is not a location")
     robot = _robot()
     prof = _profile(straight)
+    st = _state()
+    minimum = st.duration_once if st.duration_once is not None else st.duration
     cfg, hand = _consume()
     if cfg and target._type == 0:
         target = target._copy()
         target._config = cfg
+    if minimum > 0.0:
+        _core(lambda: _stretch(robot, prof, target, minimum, straight))
     _core(lambda: Move.Loc(target, prof))
     _begin(robot, hand)
+
+
+def _stretch(robot: Any, prof: Profile, target: Location, minimum: float, straight: bool) -> None:
+    """``DURATION t``: a motion that would take less than t seconds is slowed to take t, by scaling
+    its profile in time (speed × k, accelerations × k², ramps ÷ k, k = planned / t), which scales a
+    Ruckig trajectory's duration by exactly 1/k.  The planned time is the core's own plan of the
+    motion (``plan_axes`` for a joint motion, the path's 1-D plan for a straight line), [D] from
+    rest at the previous destination: a blend may shorten the motion slightly."""
+    system_speed = current_session().controller.system_speed
+    q0 = robot.queue.final_joints()
+    if target._type == 1:
+        q1 = [float(v) for v in target.axis_values()[:robot.axis_count]]
+        end_pose = matrix_to_pose(robot.forward(q1))
+    else:
+        end_pose = target.total_pose()
+        q1 = robot.inverse(target.matrix(), int(target._config), q0).tolist()
+    if straight:
+        path = LinePath(robot.pose_of(q0), end_pose)
+        v, acc, dec, jerk = path_limits(path.length, path.turn, q0.tolist(), q1,
+                                        robot.limits.line_limits(prof, system_speed))
+        planned = plan_scalar(0.0, 0.0, 0.0, 1.0, v, acc, dec, jerk).duration
+    else:
+        planned = plan_axes(q0, None, None, q1, robot.limits.joint_limits(prof, system_speed)).duration
+    if 0.0 < planned < minimum:
+        k = planned / minimum
+        prof.Speed = prof.Speed * k
+        prof.Accel = prof.Accel * k * k
+        prof.Decel = prof.Decel * k * k
+        prof.AccelRamp = prof.AccelRamp / k
+        prof.DecelRamp = prof.DecelRamp / k
 
 
 def move(target: Location) -> None:
@@ -339,7 +405,7 @@ def break_() -> None:
 
 def brake() -> None:
     """``BRAKE``: stop the robot now (any task may)."""
-    _core(lambda: Robot.RapidDecel(1))
+    _core(lambda: Robot.do_RapidDecel(1))
 
 
 # -- where the robot is ------------------------------------------------------------------------------
@@ -395,7 +461,7 @@ def tool(t: Location) -> None:
     """``TOOL t``: breaks CP, then the tool transformation."""
     break_()
     _robot()
-    _core(lambda: setattr(Robot, "Tool", t))
+    _core(lambda: Robot.set_Tool(t))
 
 
 def tool_value() -> Location:
@@ -404,15 +470,19 @@ def tool_value() -> Location:
 
 
 def base(dx: Any = 0.0, dy: Any = 0.0, dz: Any = 0.0, rz: Any = 0.0) -> None:
-    """``BASE dx, dy, dz, rz``: breaks CP, then shifts and turns the world frame (L283-299)."""
+    """``BASE dx, dy, dz, rz``: breaks CP, then "translate and rotate the world reference frame
+    relative to the robot" (L6764-6765): the world frame sits at TRANS(dx,dy,dz,rz) in the robot's
+    frame, so the robot's base in the world (the core's ``Robot.Base``) is its inverse [D: the
+    literal reading of L6764; BASE 0,0,300 makes HERE read 300 mm lower]."""
     break_()
     _robot()
-    _core(lambda: setattr(Robot, "Base", trans(float(dx), float(dy), float(dz), float(rz))))
+    _core(lambda: Robot.set_Base(inverse(trans(float(dx), float(dy), float(dz), float(rz)))))
 
 
 def base_value() -> Location:
-    _robot()
-    return _core(lambda: Robot.Base())
+    """``BASE`` (function): the transformation the last BASE set (L6768-6769)."""
+    safepoint()
+    return inverse(_core(lambda: Robot.Base(_number())))
 
 
 # -- the hand ----------------------------------------------------------------------------------------

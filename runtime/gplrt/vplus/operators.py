@@ -13,13 +13,25 @@ import math
 import random as _random
 from typing import Any
 
-from gplrt.vplus.errors import DIVIDE_BY_ZERO, ILLEGAL_VALUE, STRING_TOO_LONG, VError
+from gplrt.vplus.errors import DIVIDE_BY_ZERO, ILLEGAL_VALUE, STRING_TOO_LONG, TYPE_MISMATCH, VError
 from gplrt.vplus.system import switch
 from gplrt.vplus.values import MAX_STRING, round_half_away
 
 TRUE = -1.0
 FALSE = 0.0
 PI = math.pi
+
+
+def num(x: Any) -> float:
+    """A real operand: a string or location where a number is needed is *Data type mismatch*
+    (a V+ error REACTE can trap, never a Python TypeError)."""
+    if type(x) is float:
+        return x
+    if isinstance(x, (int, float)) and not isinstance(x, bool):
+        return float(x)
+    if isinstance(x, bool):
+        return -1.0 if x else 0.0
+    raise VError(TYPE_MISMATCH, detail=f"a number was needed, not {type(x).__name__}")
 
 
 def truth(x: Any) -> bool:
@@ -32,7 +44,7 @@ def _b(flag: bool) -> float:
 
 def to_int(x: Any) -> int:
     """An integer argument: rounded half away from zero (L333-335)."""
-    return int(round_half_away(float(x)))
+    return int(round_half_away(num(x)))
 
 
 def _i32(x: Any) -> int:
@@ -48,32 +60,34 @@ def add(a: Any, b: Any) -> Any:
         if len(s) > MAX_STRING:
             raise VError(STRING_TOO_LONG, detail=f"{len(s)} characters")
         return s
-    return float(a) + float(b)
+    return num(a) + num(b)
 
 
 def sub(a: Any, b: Any) -> float:
-    return float(a) - float(b)
+    return num(a) - num(b)
 
 
 def mul(a: Any, b: Any) -> float:
-    return float(a) * float(b)
+    return num(a) * num(b)
 
 
 def div(a: Any, b: Any) -> float:
+    a, b = num(a), num(b)
     if b == 0:
         raise VError(DIVIDE_BY_ZERO)
-    return float(a) / float(b)
+    return a / b
 
 
 def mod(a: Any, b: Any) -> float:
     """Remainder with the sign of the dividend ([D] as C fmod; ``9 MOD 6`` = 3, L3929)."""
+    a, b = num(a), num(b)
     if b == 0:
         raise VError(DIVIDE_BY_ZERO)
-    return math.fmod(float(a), float(b))
+    return math.fmod(a, b)
 
 
 def neg(a: Any) -> float:
-    return -float(a)
+    return -num(a)
 
 
 def _cmp_operands(a: Any, b: Any) -> tuple[Any, Any]:

@@ -15,7 +15,7 @@ from gplrt.motion import registry
 from gplrt.session import current_session
 from gplrt.sim import current as current_sim
 from gplrt.threads.thread import Thread
-from gplrt.vplus.errors import ILLEGAL_VALUE, TASK_IN_USE, VError, from_core
+from gplrt.vplus.errors import ILLEGAL_VALUE, NOT_IMPLEMENTED, TASK_IN_USE, VError, from_core
 from gplrt.vplus.luns import detach_all
 from gplrt.vplus.operators import to_int
 from gplrt.vplus.signals import core_number
@@ -25,7 +25,7 @@ from gplrt.vplus.taskstate import (
 )
 from gplrt.vplus.values import find_program, session_data
 
-__all__ = ["CYCLE", "TaskEnd", "TaskState", "current_task", "safepoint"]
+__all__ = ["CYCLE", "TaskEnd", "TaskState", "current_task", "safepoint", "time_"]
 
 
 # -- EXECUTE / ABORT --------------------------------------------------------------------------------
@@ -205,6 +205,14 @@ def s_time() -> str:
     """``$TIME``: the date and time, [D] the virtual clock counted from 01-JAN-2026 00:00:00."""
     t = datetime.datetime(2026, 1, 1) + datetime.timedelta(seconds=current_session().now())
     return t.strftime("%d-%b-%Y %H:%M:%S").upper()
+
+
+def time_(text: Any = None) -> float:
+    """``TIME(...)`` (function): [D] seconds since the virtual clock's midnight of 01-JAN-2026 (the
+    same clock as ``$TIME``); a date string argument is not interpreted yet (*Not implemented*)."""
+    if text is not None:
+        raise VError(NOT_IMPLEMENTED, detail="TIME of a date string")
+    return current_session().now() % 86400.0
 
 
 def tps() -> float:

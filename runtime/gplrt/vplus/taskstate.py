@@ -22,12 +22,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from gplrt.lang.errors import GplException
 from gplrt.controller.signals import SignalChange
 from gplrt.motion import registry
 from gplrt.motion.robot_class import Robot
 from gplrt.session import current_session
-from gplrt.threads.scheduler import current_ctx
 from gplrt.threads.thread import Thread
 from gplrt.vplus.signals import vplus_number
 from gplrt.vplus.values import session_data
@@ -117,7 +115,7 @@ def _run_reactions(task: TaskState) -> None:
         r = max(ready, key=lambda x: x.priority)
         task.pending.remove(r)
         if r.immediate:
-            Robot.RapidDecel(1)  # REACTI also stops the robot (L4498-4500)
+            Robot.do_RapidDecel(1)  # REACTI also stops the robot (L4498-4500)
         saved = task.priority
         task.priority = r.priority
         try:
