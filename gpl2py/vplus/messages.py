@@ -68,6 +68,11 @@ UNSUPPORTED_INSTRUCTION = _warning("GPL4124", "{name} is not supported by gpl2py
                                    "it raises *Not implemented* when the program reaches it",
                                    "Graphics, vision, VME and monitor-command instructions parse, and raise "
                                    "*Not implemented* if reached at run time.")
+UNSIMULATED = _warning("GPL4126", "{name} is not simulated by gpl2py yet: it raises *Not implemented* when the "
+                       "program reaches it",
+                       "V+ instructions and functions of the spec's tiers 1 and 2 that the runtime layer "
+                       "does not have yet (belts, analog I/O, the pendant, ALTER, SOLVE ...): the program "
+                       "is checked and translated, and stops there with the runtime's error.")
 DIALECT_SPEED_STRING = _warning("GPL4125", "a string as SPEED's second value is the robot-sandbox dialect: "
                                 "read as SPEED ... MONITOR",
                                 "V+ writes SPEED value MONITOR; the robot-sandbox simulator took "

@@ -17,6 +17,7 @@ from gpl2py.vplus.lower.names import runtime_name
 from gpl2py.vplus.semantics.check import Model, Symbol
 from gpl2py.vplus.semantics.types import T
 from gpl2py.vplus.syntax import ast as A
+from gpl2py.vplus.syntax.keywords import UNSIMULATED
 
 _REL = {"==": "eq", "<>": "ne", "<": "lt", ">": "gt", "<=": "le", "=<": "le", ">=": "ge", "=>": "ge"}
 _PY_REL = {"==": "==", "<>": "!=", "<": "<", ">": ">", "<=": "<=", "=<": "<=", ">=": ">=", "=>": ">="}
@@ -25,6 +26,9 @@ _CALLS = {"MOD": "mod", "AND": "and_", "OR": "or_", "XOR": "xor_", "BAND": "band
 _FUNCTION_NAMES = {
     "TOOL": "tool_value", "BASE": "base_value", "PPOINT": "p_ppoint", "STATUS": "task_status",
     "TIME": "time_", "$TIME": "s_time", "ERROR": "error",
+    # functions that share an instruction's name take _value (docs/design/vplus-runtime.md)
+    "SPEED": "speed_value", "ACCEL": "accel_value", "DURATION": "duration_value", "CONFIG": "config_value",
+    "SELECT": "select_value",
 }
 _CONSTANTS = {"TRUE": "vp.TRUE", "FALSE": "vp.FALSE", "ON": "vp.TRUE", "OFF": "vp.FALSE", "PI": "vp.PI"}
 #: Functions that take a variable itself (its cell or array), not its value.
@@ -128,6 +132,8 @@ class Exprs:
         word = e.upper
         if word in _CONSTANTS and not e.args:
             return _CONSTANTS[word]
+        if word in UNSIMULATED:
+            return f"vp.unsupported({py_string(word)})"
         fn = "vp." + _FUNCTION_NAMES.get(word, runtime_name(e.sigil + e.name.upper()).lower())
         if word in _BY_NAME:
             args = [py_string(a.shown.upper()) if isinstance(a, A.Var) else self.value(a) if a is not None else "None"

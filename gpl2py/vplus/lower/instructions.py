@@ -12,6 +12,7 @@ from gpl2py.pywriter.text import py_string
 from gpl2py.vplus.lower.expressions import Exprs
 from gpl2py.vplus.lower.names import runtime_name
 from gpl2py.vplus.syntax import ast as A
+from gpl2py.vplus.syntax.keywords import UNSIMULATED
 
 #: Keywords whose call takes no arguments, by runtime name.
 _BARE = {
@@ -26,8 +27,10 @@ _MODIFIER = frozenset("COARSE FINE NULL NONULL OVERLAP NOOVERLAP SINGLE MULTIPLE
 def instruction(s: A.Instr, x: Exprs) -> str:  # noqa: C901 (one table of keywords)
     """The Python statement of ``s``."""
     word = s.word
-    if s.tier3:  # the runtime's *Not implemented*, naming it
+    if s.tier3 or word in UNSIMULATED:  # the runtime's *Not implemented*, naming it
         return f"vp.unsupported({py_string(word)})"
+    if word == "SELECT" and s.target and _system_name(s.target[0]) != "ROBOT":
+        return f"vp.unsupported({py_string('SELECT ' + _system_name(s.target[0]))})"
     if word in ("ENABLE", "DISABLE"):  # (switch names, not variables)
         names = ", ".join(py_string(_system_name(a)) for a in s.args)
         return f"vp.{word.lower()}({names})"

@@ -27,6 +27,7 @@ from gpl2py.source import Span
 from gpl2py.vplus import messages as M
 from gpl2py.vplus.semantics.types import FUNCTIONS, LOCATION_FIRST, REAL_VALUES, T, of_sigil
 from gpl2py.vplus.syntax import ast as A
+from gpl2py.vplus.syntax.keywords import UNSIMULATED
 
 
 @dataclass(eq=False)
@@ -333,6 +334,8 @@ class _Analysis:
 
     def instr(self, s: A.Instr) -> None:
         word = s.word
+        if word in UNSIMULATED and self.report:
+            self.sink.report(M.UNSIMULATED, s.span, name=word)
         for e in s.unit or ():
             if e is not None:
                 if word == "ATTACH" and isinstance(e, A.Var):  # ATTACH (lun, 4) returns the LUN in lun
@@ -476,6 +479,8 @@ class _Analysis:
 
     def function(self, e: A.Call) -> T:
         name = e.upper
+        if name in UNSIMULATED and self.report:
+            self.sink.report(M.UNSIMULATED, e.span, name=e.sigil + e.name)
         sig = FUNCTIONS.get(name)
         if sig is None:
             if self.report:

@@ -39,15 +39,13 @@ FUNCTIONS: dict[str, tuple[T, tuple[T, ...]]] = {
     "ABS": (R, (R,)), "ATAN2": (R, (R, R)), "COS": (R, (R,)), "SIN": (R, (R,)), "TAN": (R, (R,)),
     "SQRT": (R, (R,)), "SQR": (R, (R,)), "CUBRT": (R, (R,)), "FRACT": (R, (R,)), "INT": (R, (R,)),
     "SIGN": (R, (R,)), "MAX": (R, (R,)), "MIN": (R, (R,)), "OUTSIDE": (R, (R, R, R)), "PI": (R, ()),
-    "RANDOM": (R, ()), "BCD": (R, (R,)), "DCB": (R, (R,)), "BMASK": (R, (R,)), "ASIN": (R, (R,)),
-    "ACOS": (R, (R,)), "TRUE": (R, ()), "FALSE": (R, ()), "ON": (R, ()), "OFF": (R, ()),
+    "RANDOM": (R, ()), "BCD": (R, (R,)), "DCB": (R, (R,)), "BMASK": (R, (R,)), "TRUE": (R, ()), "FALSE": (R, ()), "ON": (R, ()), "OFF": (R, ()),
     # strings
     "ASC": (R, (S, R)), "$CHR": (S, (R,)), "LEN": (R, (S,)), "$MID": (S, (S, R, R)), "POS": (R, (S, S, R)),
     "VAL": (R, (S,)), "$ERROR": (S, (R,)), "$ENCODE": (S, (U,)), "$DECODE": (S, (S, S, R)),
     "$LNGB": (S, (R,)), "$INTB": (S, (R,)), "$FLTB": (S, (R,)), "$DBLB": (S, (R,)), "LNGB": (R, (S, R)),
     "INTB": (R, (S, R)), "FLTB": (R, (S, R)), "DBLB": (R, (S, R)), "$TRANSB": (S, (L,)), "$TRUNCATE": (S, (S,)),
-    "$UNPACK": (S, (S, R, R)), "$TIME": (S, (R,)), "$ID": (S, ()), "$DEFAULT": (S, ()), "$LEFT": (S, (S, R)),
-    "$RIGHT": (S, (S, R)), "$TOUPPER": (S, (S,)), "$TOLOWER": (S, (S,)),
+    "$UNPACK": (S, (S, R, R)), "$TIME": (S, (R,)), "$ID": (S, ()), "$DEFAULT": (S, ()),
     # system
     "DEFINED": (R, (U,)), "ERROR": (R, (R, R)), "FREE": (R, ()), "GET.EVENT": (R, (R,)), "ID": (R, ()),
     "LAST": (R, (U,)), "PARAMETER": (R, (U,)), "PRIORITY": (R, ()), "SELECT": (R, (U,)), "STATUS": (R, (S,)),

@@ -46,3 +46,13 @@ ZERO_ARG = frozenset("""
 HERE DEST TOOL BASE NULL PI RANDOM TRUE FALSE ON OFF #PHERE #PDEST #PLATCH LATCH HAND ID FREE TPS
 PRIORITY $ID $DEFAULT STATE
 """.split())
+
+#: Instructions and functions of V+ that gpl2py reads and checks but the runtime layer does not
+#: simulate yet (docs/design/vplus-runtime.md lists what it has): each is warning GPL4126 and
+#: raises *Not implemented* naming it if the program reaches it.
+UNSIMULATED = frozenset("""
+AIO.OUT ALIGN ALTER ALTOFF ALTON AMOVE CALIBRATE CYCLE.END DEFBELT FCMND FEMPTY FSEEK KEYMODE MOVEF MOVESF
+PAYLOAD PROCEED RUNSIG SETBELT SETDEVICE SOLVE.ANGLES SOLVE.TRANS TIME WAIT.START WINDOW
+BCD DCB $UNPACK $ID $DEFAULT FREE ID TASK PENDANT AIO.IN AIO.INS DEVICE STATE LATCHED LATCH #PLATCH BELT
+BSTATUS
+""".split())
