@@ -195,7 +195,8 @@ class UrdfModel(RobotModel):
                 raise error
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail=f"{self.name}: no solution in the configuration asked for")
-        pool = [q for q in found if self._limits_hold(np.array([q]))] or found
+        lower, upper = self._slack_lower_si, self._slack_upper_si
+        pool = [q for q in found if all(a <= v <= b for v, a, b in zip(q, lower, upper))] or found
         return min(pool, key=lambda q: sum((a - b) ** 2 for a, b in zip(q, current)))  # first of equals
 
     def _turns(self, q: Candidate, current: list[float], single: bool) -> Candidate:
@@ -353,8 +354,8 @@ class Scara(_Solver):
                 raise ValueError(f"{model.spec.file}: axis {k + 1} is not vertical")
             signs.append(1.0 if axis[2] > 0 else -1.0)
         self.s1, self.s2, self.s3, self.s4 = signs
-        self.c = o[0].translation[:2].copy()  # J1 axis (m)
-        e = o[1].translation[:2] - self.c  # J1 → J2 at zero
+        self.c = (float(o[0].translation[0]), float(o[0].translation[1]))  # J1 axis (m)
+        e = o[1].translation[:2] - o[0].translation[:2]  # J1 → J2 at zero
         h = f0.translation[:2] - o[1].translation[:2]  # J2 → flange at zero
         if np.linalg.norm(f0.translation[:2] - o[3].translation[:2]) > 1e-12:
             raise ValueError(f"{model.spec.file}: the flange is not on the roll axis")
@@ -362,7 +363,7 @@ class Scara(_Solver):
         self.t1 = math.atan2(e[1], e[0])  # direction of the inner link at zero
         self.t2 = math.atan2(h[1], h[0]) - self.t1  # outer link's angle to the inner one at zero
         self.z0 = float(f0.translation[2])
-        self.axis0 = f0.rotation[:, 2].copy()  # the flange's vertical axis (the Cobra's: down)
+        self.axis0 = tuple(f0.rotation[:, 2].tolist())  # the flange's vertical axis (the Cobra's: down)
         self.R0 = f0.rotation.copy()
 
     def measures(self, q: Sequence[float]) -> tuple[float, ...]:
@@ -370,13 +371,15 @@ class Scara(_Solver):
 
     def __call__(self, R: np.ndarray, p: np.ndarray, current: list[float],
                  fits: Callable[[Candidate], bool]) -> Solutions:
-        if float(np.dot(R[:, 2], self.axis0)) < 1.0 - ORIENTATION_TOLERANCE ** 2 / 2:
+        (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R.tolist()
+        a0, a1, a2 = self.axis0
+        if r02 * a0 + r12 * a1 + r22 * a2 < 1.0 - ORIENTATION_TOLERANCE ** 2 / 2:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail=f"{self.model.name}: the flange axis must stay vertical")
-        # yaw of the target about the vertical, relative to the flange at zero
-        Rrel = R @ self.R0.T
-        yaw = math.atan2(Rrel[1, 0], Rrel[0, 0])
-        x, y = float(p[0] - self.c[0]), float(p[1] - self.c[1])
+        # yaw of the target about the vertical, relative to the flange at zero: R · R0ᵀ's first column
+        (b00, b01, b02), (b10, b11, b12), _ = self.R0.tolist()
+        yaw = math.atan2(r10 * b00 + r11 * b01 + r12 * b02, r00 * b00 + r01 * b01 + r02 * b02)
+        x, y = float(p[0]) - self.c[0], float(p[1]) - self.c[1]
         rho = math.hypot(x, y)
         big, small = self.l1 + self.l2, abs(self.l1 - self.l2)
         if rho > big + _REACH_SLACK:
