@@ -52,7 +52,6 @@ configuration asked for, -1012 (with the axis) for a solution outside the soft l
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Callable, Sequence
 
@@ -79,7 +78,6 @@ from gplrt.motion.kinematics.config import (
     GPL_NOFLIP,
     GPL_RIGHTY,
     GPL_SINGLE,
-    TWO_PI,
     preference,
     wrap_pi,
 )
@@ -92,8 +90,8 @@ BRANCH_EDGE = 1e-6
 ORIENTATION_TOLERANCE = math.sin(math.radians(1e-6))
 #: Slack on reach checks (m) so that poses computed at full stretch are not refused.
 _REACH_SLACK = 1e-12
-#: The numeric solver's acceptance: the pose error (log6 norm, m and rad) of a solution.
-NUMERIC_TOLERANCE = 1e-10
+#: The polish's acceptance (``OffsetWrist``): the pose error (log6 norm, m and rad) of a solution.
+POLISH_TOLERANCE = 1e-10
 #: Config pairs (yes, no) in the order of ``_measures``.
 _PAIRS = ((GPL_RIGHTY, GPL_LEFTY), (GPL_ABOVE, GPL_BELOW), (GPL_NOFLIP, GPL_FLIP))
 
@@ -129,8 +127,7 @@ class UrdfModel(RobotModel):
         self._axis_ids = [model.getJointId(j.name) for j in chain.axes]
         self._finish_pin_model(model, self._axis_ids, model.getFrameId(spec.flange))
         self.single_axis = n - 1
-        self._pairs = 1 if spec.solver == SCARA else 3
-        self._solver: Callable[[np.ndarray, np.ndarray, list[float]], list[Candidate]] = {
+        self._solver: _Solver = {
             SPHERICAL_WRIST: SphericalWrist, SCARA: Scara, OFFSET_WRIST: OffsetWrist}[spec.solver](self)
 
     # -- the whole URDF -------------------------------------------------------------------------
@@ -206,8 +203,8 @@ class UrdfModel(RobotModel):
 
     # -- Pinocchio helpers for the solvers -----------------------------------------------------
 
-    def joint_origins(self, q: Sequence[float]) -> list[np.ndarray]:
-        """World positions (m) of the joint frames J1 … Jn (SI joints, no Base or Tool)."""
+    def joint_origins(self, q: Sequence[float]) -> list[pin.SE3]:
+        """The joint frames J1 … Jn in the world (m) for SI joints ``q``, no Base or Tool."""
         assert self.pin_model is not None and self.pin_data is not None
         with self.lock:
             pin.forwardKinematics(self.pin_model, self.pin_data, self.q_pin(q))
@@ -497,7 +494,7 @@ class OffsetWrist(_Solver):
             for seed in group:
                 with model.lock:
                     q, err, _ = solve_dls(model.pin_model, model.pin_data, model.flange_frame, target, model.q_pin(seed))
-                if err <= NUMERIC_TOLERANCE:
+                if err <= POLISH_TOLERANCE:
                     polished.append(model.q_gpl(q).tolist())
             if any(fits(q) for q in polished):
                 break
