@@ -230,6 +230,38 @@ def test_cobra_round_trips_lefty_and_righty() -> None:
             assert cobra.config_of(flipped) == other
 
 
+def test_the_cobras_plain_path_is_the_general_steps_to_the_bit() -> None:
+    """``UrdfModel._plain_inverse`` (the Cobra's usual case in one method) answers what the
+    general steps answer, bit for bit, and leaves them every other case."""
+    from gplrt.geometry.transforms import matrix_to_pose
+
+    cobra = robot_model("COBRA-S600")
+    rng = np.random.default_rng(27)
+    plain = 0
+    for k in range(400):
+        if k == 200:  # the second half with a gripper offset as Tool
+            tool = np.eye(4)
+            tool[:3, 3] = [10.0, -5.0, 60.0]
+            cobra.tool = tool
+        q = _random_joints(cobra, rng)
+        current = _random_joints(cobra, rng) if k % 2 else [v + rng.uniform(-5.0, 5.0) for v in q]
+        bits = (0, GPL_RIGHTY, GPL_LEFTY, GPL_SINGLE)[k % 4]
+        pose = matrix_to_pose(cobra.forward(q))
+        for check in (True, False):
+            fast = cobra._plain_inverse(pose, bits, current, check)
+            try:
+                general = cobra._general_inverse(pose, bits, current, check)
+            except GplException:
+                assert fast is None
+                continue
+            if fast is not None:
+                plain += 1
+                assert fast == general
+    assert plain > 300  # the usual case takes the plain path
+    tilted = matrix_to_pose(cobra.forward([10, 20, -50, 0]) @ _rot_x(5.0))
+    assert cobra._plain_inverse(tilted, 0, [10, 20, -50, 0], True) is None
+
+
 def test_viper_configuration_words_choose_the_branch() -> None:
     """One pose, every branch: each one inside the limits lands in its own bits; the others are
     refused with the controller's code (here Lefty: J1 = 180°, outside ±170°)."""

@@ -60,6 +60,7 @@ import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
 from gplrt.controller.urdf_catalogue import BY_MODULE, OFFSET_WRIST, SCARA, SPHERICAL_WRIST, UrdfChain, UrdfRobot, read_chain
+from gplrt.geometry.transforms import Pose
 from gplrt.lang.errors import (
     INVALID_AXIS_COUNT,
     INVALID_CARTESIAN,
@@ -94,6 +95,10 @@ _REACH_SLACK = 1e-12
 POLISH_TOLERANCE = 1e-10
 #: Config pairs (yes, no) in the order of ``_measures``.
 _PAIRS = ((GPL_RIGHTY, GPL_LEFTY), (GPL_ABOVE, GPL_BELOW), (GPL_NOFLIP, GPL_FLIP))
+
+_TWO_PI = 2.0 * math.pi
+#: Config bits the SCARA's ``plain`` leaves to the general steps (all but the elbow's).
+_NOT_ELBOW = ~(GPL_RIGHTY | GPL_LEFTY)
 
 Candidate = list[float]  # GPL-ordered SI joints
 #: A solver's answer: its candidates (every branch it reaches), and why it missed the others.
@@ -196,6 +201,23 @@ class UrdfModel(RobotModel):
         pool = [q for q in found if all(a <= v <= b for v, a, b in zip(q, lower, upper))] or found
         return min(pool, key=lambda q: sum((a - b) ** 2 for a, b in zip(q, current)))  # first of equals
 
+    def _plain_inverse(self, pose: Pose, bits: int, current: list[float], check: bool) -> list[float] | None:
+        """The solver's one-method path for the usual case (``Scara.plain``), or None: Base the
+        identity, Tool none or a pure offset, applied with the general steps' arithmetic."""
+        plain = self._solver.plain
+        if plain is None or not self._base_is_identity or len(current) != len(self.joints):
+            return None
+        r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z = pose
+        if not self._tool_is_identity:
+            shift = self._tool_inv_shift
+            if shift is None:
+                return None
+            tx, ty, tz = shift
+            x, y, z = (r11 * tx + r12 * ty + r13 * tz + x, r21 * tx + r22 * ty + r23 * tz + y,
+                       r31 * tx + r32 * ty + r33 * tz + z)
+        mm = units.MM_PER_M
+        return plain((r11, r12, r13, r21, r22, r23, r31, r32, r33), (x / mm, y / mm, z / mm), bits, current, check)
+
     def _turns(self, q: Candidate, current: list[float], single: bool) -> Candidate:
         """Each rotary axis on the turn nearest its current value (``RobotModel._unwind``)."""
         return [self._unwind(i, v, current, single) if not j.linear else v
@@ -213,6 +235,9 @@ class UrdfModel(RobotModel):
 
 class _Solver:
     """What a solver family knows of the model it was built for."""
+
+    #: The one-method inverse of the usual case (``Scara.plain``), where the family has one.
+    plain: Callable[[Sequence[float], Sequence[float], int, list[float], bool], list[float] | None] | None = None
 
     def __init__(self, model: UrdfModel) -> None:
         self.model = model
@@ -361,22 +386,28 @@ class Scara(_Solver):
         self.t2 = math.atan2(h[1], h[0]) - self.t1  # outer link's angle to the inner one at zero
         self.z0 = float(f0.translation[2])
         self.axis0 = tuple(f0.rotation[:, 2].tolist())  # the flange's vertical axis (the Cobra's: down)
-        self.R0 = f0.rotation.copy()
+        self.r0_x = tuple(f0.rotation[:, 0].tolist())  # the flange's x axis at zero (R0ᵀ's first row)
 
     def measures(self, q: Sequence[float]) -> tuple[float, ...]:
         return (math.sin(self.t2 + self.s2 * q[1]),)
 
     def __call__(self, R: np.ndarray, p: np.ndarray, current: list[float],
                  fits: Callable[[Candidate], bool]) -> Solutions:
-        (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = R.tolist()
+        yaw, x, y, bend, d3 = self._target(R.ravel().tolist(), p.tolist())
+        return [self._branch(yaw, x, y, bend, d3, righty) for righty in (True, False)], None
+
+    def _target(self, rotation: Sequence[float], position: Sequence[float]) -> tuple[float, float, float, float, float]:
+        """(yaw, x and y from the J1 axis, the elbow's bend, J3) of a flange target (row-major
+        rotation, position in m); -1033 for a tilted flange, -1040 / -1039 beyond the reach."""
+        r00, r01, r02, r10, r11, r12, _, _, r22 = rotation
         a0, a1, a2 = self.axis0
         if r02 * a0 + r12 * a1 + r22 * a2 < 1.0 - ORIENTATION_TOLERANCE ** 2 / 2:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail=f"{self.model.name}: the flange axis must stay vertical")
         # yaw of the target about the vertical, relative to the flange at zero: R · R0ᵀ's first column
-        (b00, b01, b02), (b10, b11, b12), _ = self.R0.tolist()
+        b00, b01, b02 = self.r0_x
         yaw = math.atan2(r10 * b00 + r11 * b01 + r12 * b02, r00 * b00 + r01 * b01 + r02 * b02)
-        x, y = float(p[0]) - self.c[0], float(p[1]) - self.c[1]
+        x, y = position[0] - self.c[0], position[1] - self.c[1]
         rho = math.hypot(x, y)
         big, small = self.l1 + self.l2, abs(self.l1 - self.l2)
         if rho > big + _REACH_SLACK:
@@ -386,15 +417,56 @@ class Scara(_Solver):
         # half-angle law of cosines (pf400.py): full precision near stretched and folded
         bend = 2.0 * math.atan2(math.sqrt(max(0.0, (big - rho) * (big + rho))),
                                 math.sqrt(max(0.0, (rho - small) * (rho + small))))
-        d3 = (float(p[2]) - self.z0) / self.s3
-        out: list[Candidate] = []
-        for beta in (bend, -bend):  # Righty (counter-clockwise outer link), then Lefty
-            inner = math.atan2(y, x) - math.atan2(self.l2 * math.sin(beta), self.l1 + self.l2 * math.cos(beta))
-            q1 = wrap_pi((inner - self.t1) / self.s1)
-            q2 = wrap_pi((beta - self.t2) / self.s2)
-            q4 = wrap_pi((yaw - self.s1 * q1 - self.s2 * q2) / self.s4)
-            out.append([q1, q2, d3, q4])
-        return out, None
+        return yaw, x, y, bend, (position[2] - self.z0) / self.s3
+
+    def _branch(self, yaw: float, x: float, y: float, bend: float, d3: float, righty: bool) -> Candidate:
+        """The solution (SI) with the outer link turning counter-clockwise (Righty) or not."""
+        beta = bend if righty else -bend
+        inner = math.atan2(y, x) - math.atan2(self.l2 * math.sin(beta), self.l1 + self.l2 * math.cos(beta))
+        q1 = wrap_pi((inner - self.t1) / self.s1)
+        q2 = wrap_pi((beta - self.t2) / self.s2)
+        return [q1, q2, d3, wrap_pi((yaw - self.s1 * q1 - self.s2 * q2) / self.s4)]
+
+    def plain(self, rotation: Sequence[float], position: Sequence[float], bits: int, current: list[float],
+              check: bool) -> list[float] | None:
+        """``UrdfModel.inverse`` for the case nearly every call is, in GPL units (``current`` too),
+        or None for the general steps: no bits but the elbow's, the elbow off its boundary (now
+        and at the target), the target reachable, every rotary axis's nearest turn inside its
+        limits, the result inside the soft limits.  The arithmetic is the general steps', so
+        the answer is theirs to the bit (tests/motion/test_kinematics_urdf.py).
+
+        Why: a straight line solves a pose per trajectory cycle, and the general steps weigh two
+        candidates around a closed form of a few dozen operations (benchmarks/kinematics_speed.py)."""
+        if bits & _NOT_ELBOW:
+            return None
+        if bits == GPL_RIGHTY or bits == GPL_LEFTY:
+            righty = bits == GPL_RIGHTY
+        else:
+            now = math.sin(self.t2 + self.s2 * math.radians(current[1]))
+            if abs(now) <= BRANCH_EDGE:
+                return None
+            righty = now >= 0.0
+        try:
+            yaw, x, y, bend, d3 = self._target(rotation, position)
+        except GplException:
+            return None  # (the general steps raise it)
+        if abs(math.sin(bend)) <= BRANCH_EDGE:
+            return None
+        q = self._branch(yaw, x, y, bend, d3, righty)
+        model = self.model
+        lo, hi = model._slack_lower_si, model._slack_upper_si
+        for i in (0, 1, 3):  # each angle the turn nearest its current value (``_unwind``'s first case)
+            now_i = math.radians(current[i])
+            near = q[i] + round((now_i - q[i]) / _TWO_PI) * _TWO_PI
+            if not (abs(near - now_i) < math.pi and lo[i] <= near <= hi[i]):
+                return None
+            q[i] = near
+        joints = [math.degrees(q[0]), math.degrees(q[1]), q[2] * units.MM_PER_M, math.degrees(q[3])]
+        if check:
+            for v, (a, b) in zip(joints, model._joint_bounds):
+                if not a <= v <= b:
+                    return None
+        return joints
 
 
 class OffsetWrist(_Solver):
