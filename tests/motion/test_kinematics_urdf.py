@@ -199,16 +199,18 @@ def test_tool_and_base_apply_as_on_every_robot(name: str) -> None:
         _round_trip(model, q, model.config_of(q), _random_joints(model, rng))
 
 
-def test_the_viper_branches_by_hand_are_the_geometric_ones() -> None:
-    """The Viper's solver measures its branches in the arm's plane by hand; they must be the
-    geometric rule on Pinocchio's joint frames (wrist point, elbow, J5) that the TMs use."""
+@pytest.mark.parametrize("name", SIX_AXES)
+def test_the_branches_measured_by_hand_are_the_geometric_ones(name: str) -> None:
+    """The solvers measure the branches by hand (the Viper in its arm's plane, the TMs on the
+    product of exponentials); they must be the geometric rule on Pinocchio's joint frames (wrist
+    point, elbow, J5) of the module docstring."""
     from gplrt.motion.kinematics.urdf import _arm_measures
 
-    viper = robot_model("VIPER-S650")
+    model = robot_model(name)
     rng = np.random.default_rng(26)
     for _ in range(100):
-        q = [math.radians(v) for v in _random_joints(viper, rng)]
-        assert np.allclose(viper._measures(q), _arm_measures(viper.joint_origins(q), q), atol=1e-12)
+        q = [math.radians(v) for v in _random_joints(model, rng)]
+        assert np.allclose(model._measures(q), _arm_measures(model.joint_origins(q), q), atol=1e-12)
 
 
 def test_cobra_round_trips_lefty_and_righty() -> None:

@@ -185,8 +185,15 @@ class UrdfModel(RobotModel):
             wanted.append(pref if pref is not None else None if abs(m) <= BRANCH_EDGE else m >= 0.0)
         single = bool(bits & GPL_SINGLE)
 
+        seen: dict[tuple[float, ...], bool] = {}
+
         def fits(q: Candidate) -> bool:
-            return all(w is None or abs(m) <= BRANCH_EDGE or (m >= 0.0) == w for w, m in zip(wanted, self._measures(q)))
+            key = tuple(q)
+            ok = seen.get(key)
+            if ok is None:
+                ok = seen[key] = all(w is None or abs(m) <= BRANCH_EDGE or (m >= 0.0) == w
+                                     for w, m in zip(wanted, self._measures(q)))
+            return ok
 
         candidates, error = self._solver(R, p, current, fits)
         found = [self._turns(q, current, single) for q in candidates if fits(q)]
@@ -508,11 +515,29 @@ class OffsetWrist(_Solver):
         self.e2 = _cross(n, self.e1)
         self.A = float(np.dot(self.w[5], n))
         self.B = float(np.dot(_cross(self.w[4], self.w[5]), n))
+        # ``measures``' constants: the J1 frame at zero, the shoulder in it, the links at zero
+        j1 = o[0]
+        self._to_j1 = j1.rotation.T.tolist()
+        self._links = (tuple(j1.actInv(self.c[1]).tolist()), *(tuple((self.c[k + 1] - self.c[k]).tolist()) for k in (1, 2, 3)))
+        self._axes234 = tuple(tuple(self.w[k].tolist()) for k in (1, 2, 3))
         self.reach = float(np.linalg.norm(self.c[2] - self.c[1]) + np.linalg.norm(self.P0 - self.c[2])
                            + np.linalg.norm(self.W0 - self.P0) + np.linalg.norm(self.M.translation - self.W0))
 
     def measures(self, q: Sequence[float]) -> tuple[float, ...]:
-        return _arm_measures(self.model.joint_origins(q), q)
+        """``_arm_measures`` on the product of exponentials (every IK weighs eight candidates):
+        the elbow (J3's origin) and the wrist point (J5's) turned about the J2, J3, J4 axes as
+        the model has them at zero, in the J1 frame, where J1 itself changes nothing."""
+        s, arm3, arm4, arm5 = self._links
+        (w2, w3, w4) = self._axes234
+        v = _turn(w4, q[3], arm5)
+        v = _turn(w3, q[2], (arm4[0] + v[0], arm4[1] + v[1], arm4[2] + v[2]))
+        f = _turn(w2, q[1], arm3)  # shoulder → elbow
+        d = _turn(w2, q[1], (arm3[0] + v[0], arm3[1] + v[1], arm3[2] + v[2]))  # shoulder → wrist point
+        to_j1 = self._to_j1
+        e = [sum(to_j1[r][k] * f[k] for k in range(3)) for r in range(3)]
+        w = [sum(to_j1[r][k] * d[k] for k in range(3)) for r in range(3)]
+        wx = s[0] + w[0]
+        return wx, (1.0 if wx >= 0.0 else -1.0) * (w[0] * e[2] - w[2] * e[0]), wrap_pi(q[4])
 
     def __call__(self, R: np.ndarray, p: np.ndarray, current: list[float],
                  fits: Callable[[Candidate], bool]) -> Solutions:
@@ -596,6 +621,16 @@ class OffsetWrist(_Solver):
             rot2 = math.atan2((t - a).imag, (t - a).real) - math.atan2(m.imag, m.real)
             out.append((rot2 / self.s[0], gamma / self.s[1]))
         return out
+
+
+def _turn(axis: tuple[float, float, float], angle: float, v: Sequence[float]) -> tuple[float, float, float]:
+    """``v`` turned by ``angle`` about the unit ``axis`` (Rodrigues), in Python floats."""
+    c, s = math.cos(angle), math.sin(angle)
+    kx, ky, kz = axis
+    vx, vy, vz = v
+    dot = (kx * vx + ky * vy + kz * vz) * (1.0 - c)
+    return (vx * c + (ky * vz - kz * vy) * s + kx * dot, vy * c + (kz * vx - kx * vz) * s + ky * dot,
+            vz * c + (kx * vy - ky * vx) * s + kz * dot)
 
 
 def _meet(c1: np.ndarray, w1: np.ndarray, c2: np.ndarray, w2: np.ndarray) -> np.ndarray:
