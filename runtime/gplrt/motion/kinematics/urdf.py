@@ -38,7 +38,9 @@ forward kinematics to 1e-9 (tests/motion/test_kinematics_urdf.py):
   centre; the wrist centre gives J1 (Righty/Lefty) and J2, J3 (a two-link law of cosines,
   Above/Below), the orientation left for the wrist gives J4, J5, J6 (ZYZ, Flip/NoFlip).
 * ``Scara`` (Cobra): two parallel vertical revolutes, the vertical quill, the roll about it; the
-  flange must keep its vertical axis (else -1033).
+  flange must keep its vertical axis (else -1033).  Its usual case also has a one-method path
+  (``Scara.plain``, through ``_plain_inverse``), bit for bit the general steps' answer, as the
+  PF400's: a straight line solves a pose per cycle.
 * ``OffsetWrist`` (TM: J2 ∥ J3 ∥ J4 and an offset wrist, like a UR): a closed form on the
   product of exponentials read from the model (J1 from the wrist point's offset across the arm's
   plane, J5 and J6 from the approach, J2/J3 by the law of cosines, J4 the rest), each candidate
@@ -46,8 +48,8 @@ forward kinematics to 1e-9 (tests/motion/test_kinematics_urdf.py):
   as 1.570796 and the structure holds only to 3e-7.
 
 Errors are the controller's (as the PF400 and ARM6 models): -1040 / -1039 for a position beyond
-or inside the reach, -1033 for an orientation the arm cannot take (SCARA) or a pose with no solution in the
-configuration asked for, -1012 (with the axis) for a solution outside the soft limits.
+or inside the reach, -1033 for an orientation the arm cannot take (SCARA) or a pose with no
+solution in the configuration asked for, -1012 (with the axis) for a solution outside the soft limits.
 """
 
 from __future__ import annotations
