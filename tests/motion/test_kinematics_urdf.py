@@ -199,16 +199,18 @@ def test_tool_and_base_apply_as_on_every_robot(name: str) -> None:
         _round_trip(model, q, model.config_of(q), _random_joints(model, rng))
 
 
-def test_the_viper_branches_by_hand_are_the_geometric_ones() -> None:
-    """The Viper's solver measures its branches in the arm's plane by hand; they must be the
-    geometric rule on Pinocchio's joint frames (wrist point, elbow, J5) that the TMs use."""
+@pytest.mark.parametrize("name", SIX_AXES)
+def test_the_branches_measured_by_hand_are_the_geometric_ones(name: str) -> None:
+    """The solvers measure the branches by hand (the Viper in its arm's plane, the TMs on the
+    product of exponentials); they must be the geometric rule on Pinocchio's joint frames (wrist
+    point, elbow, J5) of the module docstring."""
     from gplrt.motion.kinematics.urdf import _arm_measures
 
-    viper = robot_model("VIPER-S650")
+    model = robot_model(name)
     rng = np.random.default_rng(26)
     for _ in range(100):
-        q = [math.radians(v) for v in _random_joints(viper, rng)]
-        assert np.allclose(viper._measures(q), _arm_measures(viper.joint_origins(q), q), atol=1e-12)
+        q = [math.radians(v) for v in _random_joints(model, rng)]
+        assert np.allclose(model._measures(q), _arm_measures(model.joint_origins(q), q), atol=1e-12)
 
 
 def test_cobra_round_trips_lefty_and_righty() -> None:
@@ -228,6 +230,38 @@ def test_cobra_round_trips_lefty_and_righty() -> None:
             assert exc.ErrorCode == JOINT_OUT_OF_RANGE  # the mirror branch may leave the limits
         else:
             assert cobra.config_of(flipped) == other
+
+
+def test_the_cobras_plain_path_is_the_general_steps_to_the_bit() -> None:
+    """``UrdfModel._plain_inverse`` (the Cobra's usual case in one method) answers what the
+    general steps answer, bit for bit, and leaves them every other case."""
+    from gplrt.geometry.transforms import matrix_to_pose
+
+    cobra = robot_model("COBRA-S600")
+    rng = np.random.default_rng(27)
+    plain = 0
+    for k in range(400):
+        if k == 200:  # the second half with a gripper offset as Tool
+            tool = np.eye(4)
+            tool[:3, 3] = [10.0, -5.0, 60.0]
+            cobra.tool = tool
+        q = _random_joints(cobra, rng)
+        current = _random_joints(cobra, rng) if k % 2 else [v + rng.uniform(-5.0, 5.0) for v in q]
+        bits = (0, GPL_RIGHTY, GPL_LEFTY, GPL_SINGLE)[k % 4]
+        pose = matrix_to_pose(cobra.forward(q))
+        for check in (True, False):
+            fast = cobra._plain_inverse(pose, bits, current, check)
+            try:
+                general = cobra._general_inverse(pose, bits, current, check)
+            except GplException:
+                assert fast is None
+                continue
+            if fast is not None:
+                plain += 1
+                assert fast == general
+    assert plain > 300  # the usual case takes the plain path
+    tilted = matrix_to_pose(cobra.forward([10, 20, -50, 0]) @ _rot_x(5.0))
+    assert cobra._plain_inverse(tilted, 0, [10, 20, -50, 0], True) is None
 
 
 def test_viper_configuration_words_choose_the_branch() -> None:

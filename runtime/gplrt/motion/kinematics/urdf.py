@@ -38,7 +38,9 @@ forward kinematics to 1e-9 (tests/motion/test_kinematics_urdf.py):
   centre; the wrist centre gives J1 (Righty/Lefty) and J2, J3 (a two-link law of cosines,
   Above/Below), the orientation left for the wrist gives J4, J5, J6 (ZYZ, Flip/NoFlip).
 * ``Scara`` (Cobra): two parallel vertical revolutes, the vertical quill, the roll about it; the
-  flange must keep its vertical axis (else -1033).
+  flange must keep its vertical axis (else -1033).  Its usual case also has a one-method path
+  (``Scara.plain``, through ``_plain_inverse``), bit for bit the general steps' answer, as the
+  PF400's: a straight line solves a pose per cycle.
 * ``OffsetWrist`` (TM: J2 ∥ J3 ∥ J4 and an offset wrist, like a UR): a closed form on the
   product of exponentials read from the model (J1 from the wrist point's offset across the arm's
   plane, J5 and J6 from the approach, J2/J3 by the law of cosines, J4 the rest), each candidate
@@ -46,13 +48,12 @@ forward kinematics to 1e-9 (tests/motion/test_kinematics_urdf.py):
   as 1.570796 and the structure holds only to 3e-7.
 
 Errors are the controller's (as the PF400 and ARM6 models): -1040 / -1039 for a position beyond
-or inside the reach, -1033 for an orientation the arm cannot take (SCARA) or a pose with no solution in the
-configuration asked for, -1012 (with the axis) for a solution outside the soft limits.
+or inside the reach, -1033 for an orientation the arm cannot take (SCARA) or a pose with no
+solution in the configuration asked for, -1012 (with the axis) for a solution outside the soft limits.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Callable, Sequence
 
@@ -61,6 +62,7 @@ import pinocchio as pin
 
 from gplrt.controller.pdb import ParameterDatabase
 from gplrt.controller.urdf_catalogue import BY_MODULE, OFFSET_WRIST, SCARA, SPHERICAL_WRIST, UrdfChain, UrdfRobot, read_chain
+from gplrt.geometry.transforms import Pose
 from gplrt.lang.errors import (
     INVALID_AXIS_COUNT,
     INVALID_CARTESIAN,
@@ -79,7 +81,6 @@ from gplrt.motion.kinematics.config import (
     GPL_NOFLIP,
     GPL_RIGHTY,
     GPL_SINGLE,
-    TWO_PI,
     preference,
     wrap_pi,
 )
@@ -92,10 +93,14 @@ BRANCH_EDGE = 1e-6
 ORIENTATION_TOLERANCE = math.sin(math.radians(1e-6))
 #: Slack on reach checks (m) so that poses computed at full stretch are not refused.
 _REACH_SLACK = 1e-12
-#: The numeric solver's acceptance: the pose error (log6 norm, m and rad) of a solution.
-NUMERIC_TOLERANCE = 1e-10
+#: The polish's acceptance (``OffsetWrist``): the pose error (log6 norm, m and rad) of a solution.
+POLISH_TOLERANCE = 1e-10
 #: Config pairs (yes, no) in the order of ``_measures``.
 _PAIRS = ((GPL_RIGHTY, GPL_LEFTY), (GPL_ABOVE, GPL_BELOW), (GPL_NOFLIP, GPL_FLIP))
+
+_TWO_PI = 2.0 * math.pi
+#: Config bits the SCARA's ``plain`` leaves to the general steps (all but the elbow's).
+_NOT_ELBOW = ~(GPL_RIGHTY | GPL_LEFTY)
 
 Candidate = list[float]  # GPL-ordered SI joints
 #: A solver's answer: its candidates (every branch it reaches), and why it missed the others.
@@ -129,8 +134,7 @@ class UrdfModel(RobotModel):
         self._axis_ids = [model.getJointId(j.name) for j in chain.axes]
         self._finish_pin_model(model, self._axis_ids, model.getFrameId(spec.flange))
         self.single_axis = n - 1
-        self._pairs = 1 if spec.solver == SCARA else 3
-        self._solver: Callable[[np.ndarray, np.ndarray, list[float]], list[Candidate]] = {
+        self._solver: _Solver = {
             SPHERICAL_WRIST: SphericalWrist, SCARA: Scara, OFFSET_WRIST: OffsetWrist}[spec.solver](self)
 
     # -- the whole URDF -------------------------------------------------------------------------
@@ -183,8 +187,15 @@ class UrdfModel(RobotModel):
             wanted.append(pref if pref is not None else None if abs(m) <= BRANCH_EDGE else m >= 0.0)
         single = bool(bits & GPL_SINGLE)
 
+        seen: dict[tuple[float, ...], bool] = {}
+
         def fits(q: Candidate) -> bool:
-            return all(w is None or abs(m) <= BRANCH_EDGE or (m >= 0.0) == w for w, m in zip(wanted, self._measures(q)))
+            key = tuple(q)
+            ok = seen.get(key)
+            if ok is None:
+                ok = seen[key] = all(w is None or abs(m) <= BRANCH_EDGE or (m >= 0.0) == w
+                                     for w, m in zip(wanted, self._measures(q)))
+            return ok
 
         candidates, error = self._solver(R, p, current, fits)
         found = [self._turns(q, current, single) for q in candidates if fits(q)]
@@ -195,8 +206,26 @@ class UrdfModel(RobotModel):
                 raise error
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail=f"{self.name}: no solution in the configuration asked for")
-        pool = [q for q in found if self._limits_hold(np.array([q]))] or found
+        lower, upper = self._slack_lower_si, self._slack_upper_si
+        pool = [q for q in found if all(a <= v <= b for v, a, b in zip(q, lower, upper))] or found
         return min(pool, key=lambda q: sum((a - b) ** 2 for a, b in zip(q, current)))  # first of equals
+
+    def _plain_inverse(self, pose: Pose, bits: int, current: list[float], check: bool) -> list[float] | None:
+        """The solver's one-method path for the usual case (``Scara.plain``), or None: Base the
+        identity, Tool none or a pure offset, applied with the general steps' arithmetic."""
+        plain = self._solver.plain
+        if plain is None or not self._base_is_identity or len(current) != len(self.joints):
+            return None
+        r11, r12, r13, r21, r22, r23, r31, r32, r33, x, y, z = pose
+        if not self._tool_is_identity:
+            shift = self._tool_inv_shift
+            if shift is None:
+                return None
+            tx, ty, tz = shift
+            x, y, z = (r11 * tx + r12 * ty + r13 * tz + x, r21 * tx + r22 * ty + r23 * tz + y,
+                       r31 * tx + r32 * ty + r33 * tz + z)
+        mm = units.MM_PER_M
+        return plain((r11, r12, r13, r21, r22, r23, r31, r32, r33), (x / mm, y / mm, z / mm), bits, current, check)
 
     def _turns(self, q: Candidate, current: list[float], single: bool) -> Candidate:
         """Each rotary axis on the turn nearest its current value (``RobotModel._unwind``)."""
@@ -205,8 +234,8 @@ class UrdfModel(RobotModel):
 
     # -- Pinocchio helpers for the solvers -----------------------------------------------------
 
-    def joint_origins(self, q: Sequence[float]) -> list[np.ndarray]:
-        """World positions (m) of the joint frames J1 … Jn (SI joints, no Base or Tool)."""
+    def joint_origins(self, q: Sequence[float]) -> list[pin.SE3]:
+        """The joint frames J1 … Jn in the world (m) for SI joints ``q``, no Base or Tool."""
         assert self.pin_model is not None and self.pin_data is not None
         with self.lock:
             pin.forwardKinematics(self.pin_model, self.pin_data, self.q_pin(q))
@@ -215,6 +244,9 @@ class UrdfModel(RobotModel):
 
 class _Solver:
     """What a solver family knows of the model it was built for."""
+
+    #: The one-method inverse of the usual case (``Scara.plain``), where the family has one.
+    plain: Callable[[Sequence[float], Sequence[float], int, list[float], bool], list[float] | None] | None = None
 
     def __init__(self, model: UrdfModel) -> None:
         self.model = model
@@ -353,8 +385,8 @@ class Scara(_Solver):
                 raise ValueError(f"{model.spec.file}: axis {k + 1} is not vertical")
             signs.append(1.0 if axis[2] > 0 else -1.0)
         self.s1, self.s2, self.s3, self.s4 = signs
-        self.c = o[0].translation[:2].copy()  # J1 axis (m)
-        e = o[1].translation[:2] - self.c  # J1 → J2 at zero
+        self.c = (float(o[0].translation[0]), float(o[0].translation[1]))  # J1 axis (m)
+        e = o[1].translation[:2] - o[0].translation[:2]  # J1 → J2 at zero
         h = f0.translation[:2] - o[1].translation[:2]  # J2 → flange at zero
         if np.linalg.norm(f0.translation[:2] - o[3].translation[:2]) > 1e-12:
             raise ValueError(f"{model.spec.file}: the flange is not on the roll axis")
@@ -362,21 +394,29 @@ class Scara(_Solver):
         self.t1 = math.atan2(e[1], e[0])  # direction of the inner link at zero
         self.t2 = math.atan2(h[1], h[0]) - self.t1  # outer link's angle to the inner one at zero
         self.z0 = float(f0.translation[2])
-        self.axis0 = f0.rotation[:, 2].copy()  # the flange's vertical axis (the Cobra's: down)
-        self.R0 = f0.rotation.copy()
+        self.axis0 = tuple(f0.rotation[:, 2].tolist())  # the flange's vertical axis (the Cobra's: down)
+        self.r0_x = tuple(f0.rotation[:, 0].tolist())  # the flange's x axis at zero (R0ᵀ's first row)
 
     def measures(self, q: Sequence[float]) -> tuple[float, ...]:
         return (math.sin(self.t2 + self.s2 * q[1]),)
 
     def __call__(self, R: np.ndarray, p: np.ndarray, current: list[float],
                  fits: Callable[[Candidate], bool]) -> Solutions:
-        if float(np.dot(R[:, 2], self.axis0)) < 1.0 - ORIENTATION_TOLERANCE ** 2 / 2:
+        yaw, x, y, bend, d3 = self._target(R.ravel().tolist(), p.tolist())
+        return [self._branch(yaw, x, y, bend, d3, righty) for righty in (True, False)], None
+
+    def _target(self, rotation: Sequence[float], position: Sequence[float]) -> tuple[float, float, float, float, float]:
+        """(yaw, x and y from the J1 axis, the elbow's bend, J3) of a flange target (row-major
+        rotation, position in m); -1033 for a tilted flange, -1040 / -1039 beyond the reach."""
+        r00, r01, r02, r10, r11, r12, _, _, r22 = rotation
+        a0, a1, a2 = self.axis0
+        if r02 * a0 + r12 * a1 + r22 * a2 < 1.0 - ORIENTATION_TOLERANCE ** 2 / 2:
             raise GplException(INVALID_CARTESIAN, robot_num=self.robot,
                                detail=f"{self.model.name}: the flange axis must stay vertical")
-        # yaw of the target about the vertical, relative to the flange at zero
-        Rrel = R @ self.R0.T
-        yaw = math.atan2(Rrel[1, 0], Rrel[0, 0])
-        x, y = float(p[0] - self.c[0]), float(p[1] - self.c[1])
+        # yaw of the target about the vertical, relative to the flange at zero: R · R0ᵀ's first column
+        b00, b01, b02 = self.r0_x
+        yaw = math.atan2(r10 * b00 + r11 * b01 + r12 * b02, r00 * b00 + r01 * b01 + r02 * b02)
+        x, y = position[0] - self.c[0], position[1] - self.c[1]
         rho = math.hypot(x, y)
         big, small = self.l1 + self.l2, abs(self.l1 - self.l2)
         if rho > big + _REACH_SLACK:
@@ -386,15 +426,56 @@ class Scara(_Solver):
         # half-angle law of cosines (pf400.py): full precision near stretched and folded
         bend = 2.0 * math.atan2(math.sqrt(max(0.0, (big - rho) * (big + rho))),
                                 math.sqrt(max(0.0, (rho - small) * (rho + small))))
-        d3 = (float(p[2]) - self.z0) / self.s3
-        out: list[Candidate] = []
-        for beta in (bend, -bend):  # Righty (counter-clockwise outer link), then Lefty
-            inner = math.atan2(y, x) - math.atan2(self.l2 * math.sin(beta), self.l1 + self.l2 * math.cos(beta))
-            q1 = wrap_pi((inner - self.t1) / self.s1)
-            q2 = wrap_pi((beta - self.t2) / self.s2)
-            q4 = wrap_pi((yaw - self.s1 * q1 - self.s2 * q2) / self.s4)
-            out.append([q1, q2, d3, q4])
-        return out, None
+        return yaw, x, y, bend, (position[2] - self.z0) / self.s3
+
+    def _branch(self, yaw: float, x: float, y: float, bend: float, d3: float, righty: bool) -> Candidate:
+        """The solution (SI) with the outer link turning counter-clockwise (Righty) or not."""
+        beta = bend if righty else -bend
+        inner = math.atan2(y, x) - math.atan2(self.l2 * math.sin(beta), self.l1 + self.l2 * math.cos(beta))
+        q1 = wrap_pi((inner - self.t1) / self.s1)
+        q2 = wrap_pi((beta - self.t2) / self.s2)
+        return [q1, q2, d3, wrap_pi((yaw - self.s1 * q1 - self.s2 * q2) / self.s4)]
+
+    def plain(self, rotation: Sequence[float], position: Sequence[float], bits: int, current: list[float],
+              check: bool) -> list[float] | None:
+        """``UrdfModel.inverse`` for the case nearly every call is, in GPL units (``current`` too),
+        or None for the general steps: no bits but the elbow's, the elbow off its boundary (now
+        and at the target), the target reachable, every rotary axis's nearest turn inside its
+        limits, the result inside the soft limits.  The arithmetic is the general steps', so
+        the answer is theirs to the bit (tests/motion/test_kinematics_urdf.py).
+
+        Why: a straight line solves a pose per trajectory cycle, and the general steps weigh two
+        candidates around a closed form of a few dozen operations (benchmarks/kinematics_speed.py)."""
+        if bits & _NOT_ELBOW:
+            return None
+        if bits == GPL_RIGHTY or bits == GPL_LEFTY:
+            righty = bits == GPL_RIGHTY
+        else:
+            now = math.sin(self.t2 + self.s2 * math.radians(current[1]))
+            if abs(now) <= BRANCH_EDGE:
+                return None
+            righty = now >= 0.0
+        try:
+            yaw, x, y, bend, d3 = self._target(rotation, position)
+        except GplException:
+            return None  # (the general steps raise it)
+        if abs(math.sin(bend)) <= BRANCH_EDGE:
+            return None
+        q = self._branch(yaw, x, y, bend, d3, righty)
+        model = self.model
+        lo, hi = model._slack_lower_si, model._slack_upper_si
+        for i in (0, 1, 3):  # each angle the turn nearest its current value (``_unwind``'s first case)
+            now_i = math.radians(current[i])
+            near = q[i] + round((now_i - q[i]) / _TWO_PI) * _TWO_PI
+            if not (abs(near - now_i) < math.pi and lo[i] <= near <= hi[i]):
+                return None
+            q[i] = near
+        joints = [math.degrees(q[0]), math.degrees(q[1]), q[2] * units.MM_PER_M, math.degrees(q[3])]
+        if check:
+            for v, (a, b) in zip(joints, model._joint_bounds):
+                if not a <= v <= b:
+                    return None
+        return joints
 
 
 class OffsetWrist(_Solver):
@@ -436,11 +517,29 @@ class OffsetWrist(_Solver):
         self.e2 = _cross(n, self.e1)
         self.A = float(np.dot(self.w[5], n))
         self.B = float(np.dot(_cross(self.w[4], self.w[5]), n))
+        # ``measures``' constants: the J1 frame at zero, the shoulder in it, the links at zero
+        j1 = o[0]
+        self._to_j1 = j1.rotation.T.tolist()
+        self._links = (tuple(j1.actInv(self.c[1]).tolist()), *(tuple((self.c[k + 1] - self.c[k]).tolist()) for k in (1, 2, 3)))
+        self._axes234 = tuple(tuple(self.w[k].tolist()) for k in (1, 2, 3))
         self.reach = float(np.linalg.norm(self.c[2] - self.c[1]) + np.linalg.norm(self.P0 - self.c[2])
                            + np.linalg.norm(self.W0 - self.P0) + np.linalg.norm(self.M.translation - self.W0))
 
     def measures(self, q: Sequence[float]) -> tuple[float, ...]:
-        return _arm_measures(self.model.joint_origins(q), q)
+        """``_arm_measures`` on the product of exponentials (every IK weighs eight candidates):
+        the elbow (J3's origin) and the wrist point (J5's) turned about the J2, J3, J4 axes as
+        the model has them at zero, in the J1 frame, where J1 itself changes nothing."""
+        s, arm3, arm4, arm5 = self._links
+        (w2, w3, w4) = self._axes234
+        v = _turn(w4, q[3], arm5)
+        v = _turn(w3, q[2], (arm4[0] + v[0], arm4[1] + v[1], arm4[2] + v[2]))
+        f = _turn(w2, q[1], arm3)  # shoulder → elbow
+        d = _turn(w2, q[1], (arm3[0] + v[0], arm3[1] + v[1], arm3[2] + v[2]))  # shoulder → wrist point
+        to_j1 = self._to_j1
+        e = [sum(to_j1[r][k] * f[k] for k in range(3)) for r in range(3)]
+        w = [sum(to_j1[r][k] * d[k] for k in range(3)) for r in range(3)]
+        wx = s[0] + w[0]
+        return wx, (1.0 if wx >= 0.0 else -1.0) * (w[0] * e[2] - w[2] * e[0]), wrap_pi(q[4])
 
     def __call__(self, R: np.ndarray, p: np.ndarray, current: list[float],
                  fits: Callable[[Candidate], bool]) -> Solutions:
@@ -494,7 +593,7 @@ class OffsetWrist(_Solver):
             for seed in group:
                 with model.lock:
                     q, err, _ = solve_dls(model.pin_model, model.pin_data, model.flange_frame, target, model.q_pin(seed))
-                if err <= NUMERIC_TOLERANCE:
+                if err <= POLISH_TOLERANCE:
                     polished.append(model.q_gpl(q).tolist())
             if any(fits(q) for q in polished):
                 break
@@ -524,6 +623,16 @@ class OffsetWrist(_Solver):
             rot2 = math.atan2((t - a).imag, (t - a).real) - math.atan2(m.imag, m.real)
             out.append((rot2 / self.s[0], gamma / self.s[1]))
         return out
+
+
+def _turn(axis: tuple[float, float, float], angle: float, v: Sequence[float]) -> tuple[float, float, float]:
+    """``v`` turned by ``angle`` about the unit ``axis`` (Rodrigues), in Python floats."""
+    c, s = math.cos(angle), math.sin(angle)
+    kx, ky, kz = axis
+    vx, vy, vz = v
+    dot = (kx * vx + ky * vy + kz * vz) * (1.0 - c)
+    return (vx * c + (ky * vz - kz * vy) * s + kx * dot, vy * c + (kz * vx - kx * vz) * s + ky * dot,
+            vz * c + (kx * vy - ky * vx) * s + kz * dot)
 
 
 def _meet(c1: np.ndarray, w1: np.ndarray, c2: np.ndarray, w2: np.ndarray) -> np.ndarray:
