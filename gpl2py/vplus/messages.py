@@ -99,7 +99,6 @@ NAME_TRUNCATED = _warning("GPL4305", "{name} has more than 15 characters: V+ kno
                           "Only the first 15 characters of a V+ name are significant (User's Guide "
                           "L3798-3806).")
 UNKNOWN_FUNCTION = _error("GPL4306", "unknown V+ function {name}")
-NOT_A_VARIABLE = _error("GPL4307", "{what} cannot be assigned")
 UNKNOWN_LABEL = _error("GPL4308", "no step label {label} in program {program}")
 EXIT_OUTSIDE_LOOP = _error("GPL4309", "{word} outside a FOR, DO or WHILE loop")
 REDECLARED = _warning("GPL4310", "{name} is declared again{detail}")
