@@ -241,3 +241,27 @@ def test_running_a_file_without_a_program_is_a_usage_error_that_says_what_is_mis
     r = _run(src)
     assert r.returncode == 2
     assert f"error GPL9001: {src} has no start procedure: run needs a .PROGRAM" in r.stderr
+
+
+def test_under_reacte_an_error_in_a_block_header_resumes_as_if_the_test_were_false(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    REACTE trouble\n"
+        "    IF 1 / 0 THEN\n"
+        "        TYPE \"then\"\n"
+        "    ELSE\n"
+        "        TYPE \"else\"\n"
+        "    END\n"
+        "    n = 0\n"
+        "    WHILE n < 3 DO\n"
+        "        n = n + 1\n"
+        "    END\n"
+        "    TYPE \"n \", n\n"
+        ".END\n"
+        ".PROGRAM trouble()\n"
+        "    TYPE \"trapped \", ERROR(-1)\n"
+        "    RETURNE\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "trapped -406\nelse\nn 3\n"

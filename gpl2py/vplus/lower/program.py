@@ -212,7 +212,7 @@ class ProgramLowerer:
         elif isinstance(s, A.If):
             self._if(s)
         elif isinstance(s, A.IfGoto):
-            w.line(f"if {x.condition(s.cond)}:")
+            w.line(f"if {self._guarded(s.cond, s.span.line)}:")
             w.indent()
             self._goto(s.target, s)
             w.dedent()
@@ -220,6 +220,9 @@ class ProgramLowerer:
             self._goto(s.target, s)
         elif isinstance(s, A.Case):
             self._case(s)
+        elif isinstance(s, A.While) and self.steps:  # the test a resumable unit of its own
+            w.line("while True:  # WHILE ... DO")
+            self._loop_body("while", s, s.body, test=s.cond)
         elif isinstance(s, A.While):
             w.line(f"while {x.condition(s.cond)}:")
             self._loop_body("while", s, s.body)
@@ -261,13 +264,28 @@ class ProgramLowerer:
             return f"{name}[{', '.join(self.x.value(i) for i in v.index)}]"
         return f"{name}.v"
 
+    def _guarded(self, cond: A.Expr, line: int) -> str:
+        """The condition of a block's header; under REACTE its evaluation is a resumable unit of
+        its own, into a temporary that is false if the handler resumes after it
+        (docs/design/vplus-runtime.md §7)."""
+        if not self.steps:
+            return self.x.condition(cond)
+        temp = self._temp("c")
+        self.w.line(f"{temp} = False")
+        self.w.line(f"with vp.step({line}):")
+        self.w.indent()
+        self.w.line(f"{temp} = {self.x.condition(cond)}")
+        self.w.dedent()
+        return temp
+
     def _if(self, s: A.If) -> None:
         w = self.w
-        w.line(f"if {self.x.condition(s.cond)}:")
+        w.line(f"if {self._guarded(s.cond, s.span.line)}:")
         self._suite(s.then)
         orelse = s.orelse
         while orelse is not None:
-            if len(orelse) == 1 and isinstance(orelse[0], A.If) and not orelse[0].comments and orelse[0].label is None:
+            if len(orelse) == 1 and isinstance(orelse[0], A.If) and not orelse[0].comments and orelse[0].label is None \
+                    and not self.steps:
                 inner = orelse[0]
                 w.gpl_line = inner.span.line
                 w.line(f"elif {self.x.condition(inner.cond)}:")
@@ -315,17 +333,22 @@ class ProgramLowerer:
             first = False
 
     def _loop_body(self, kind: str, s: A.Stmt, body: list[A.Stmt], until: A.Expr | None = None,
-                   step: str | None = None) -> None:
+                   step: str | None = None, test: A.Expr | None = None) -> None:
         w = self.w
         self.loops.append((kind, s))
         w.indent(blocks=1)
         start = w.mark()
+        if test is not None:  # WHILE's test at the top of the body (under REACTE)
+            w.line(f"if not {self._guarded(test, s.span.line)}:")
+            w.indent()
+            w.line("break")
+            w.dedent()
         if self.safepoints:  # a reaction armed by REACT runs here, once per time round
             w.line("vp.safepoint()")
         self.block(body)
         if until is not None:
             w.gpl_line = until.span.line
-            w.line(f"if {self.x.condition(until)}:  # UNTIL")
+            w.line(f"if {self._guarded(until, until.span.line)}:  # UNTIL")
             w.indent()
             w.line("break")
             w.dedent()
