@@ -1,0 +1,58 @@
+"""TMscript's runtime layer (docs/design/frontends.md): what generated TMscript code calls as
+``tm.<name>`` -- the values and operators (``values``), the built-in library (``library``), the
+parameterized objects ``Robot[0]`` and ``IO[...]`` (``objects``) -- on a simulated TM robot
+(``motion``, ``robot``); the Listen node (``listen``) and the Ethernet Slave (``slave``).
+"""
+
+from __future__ import annotations
+
+from gplrt.tm.library import *  # noqa: F401,F403 (the TMscript names generated code calls)
+from gplrt.tm.library import ProjectExit
+from gplrt.tm.objects import IO, Robot
+from gplrt.tm.values import (  # noqa: F401
+    BINARY, Array, TMError, add, bit_and, bit_or, bit_xor, cast, div, eq, format_value, i32, invert, mod,
+    mul, neg, shl, shr, store, sub, to_bool, to_byte, to_double, to_float, to_int, to_string, truth,
+)
+
+
+def assign(obj: object, name: str, value: object) -> object:
+    """``obj.name = value`` as an expression (an assignment used as a value, L2035)."""
+    setattr(obj, name, value)
+    return value
+
+
+def setitem(obj: object, index: object, value: object) -> object:
+    obj[index] = value  # type: ignore[index]
+    return obj[index]  # type: ignore[index]
+
+
+def run_project(main: object, closestop: object = None, errorstop: object = None) -> int:
+    """Run a script project as TMflow does: ``main``, then ``closestop`` when it ends without error
+    or by ``Exit(code >= 0)``, ``errorstop`` after an error (L1045-L1148); 0 or 1."""
+    from gplrt.tm import context
+
+    failed = False
+    try:
+        if callable(main):
+            main()
+        context.robot().wait_idle()
+    except ProjectExit as exc:
+        failed = exc.code < 0
+    except TMError as exc:
+        print(f"error: {exc}", flush=True)
+        failed = True
+    handler = errorstop if failed else closestop
+    if callable(handler):
+        try:
+            handler()
+        except (TMError, ProjectExit):
+            failed = True
+    return 1 if failed else 0
+
+
+def run_module(module: object, sim: object = None) -> int:
+    """Run a translated script module (``<package>.main()``)."""
+    return int(module.run() or 0)  # type: ignore[attr-defined]
+
+
+__all__ = ["IO", "Robot", "assign", "run_module", "run_project", "setitem"]
