@@ -132,8 +132,41 @@ class Lowerer:
         if kind == "user":
             return f"{pyname(callee.name)}({', '.join(args)})"
         if args and (callee.name in DEFERRED or (callee.name in DEFERRED_WITH_TWO and len(args) == 2)):
-            args[0] = f"lambda: {args[0]}"
+            args[0] = self.deferred(e.args[0], args[0])
         return f"tm.{callee.name}({', '.join(args)})"
+
+    def deferred(self, node: A.Node, text: str) -> str:
+        """A deferred argument: a ``lambda``, or, when it assigns a variable of the function
+        (``WaitFor((st = ThreadState(t)) == 2, 1000)``, L2035), a nested ``def`` declaring it
+        ``nonlocal``/``global`` so that the assignment reaches the variable and not the lambda."""
+        assigned = sorted({(v.storage, v.pyname) for v in self.assigned_vars(node) if v.storage != "node"})
+        if not assigned:
+            return f"lambda: {text}"
+        name = self.temp("deferred")
+        self.line(f"def {name}():", node)
+        self.w.indent()
+        for storage, words in (("local", "nonlocal"), ("global", "global")):
+            names = [n for s, n in assigned if s == storage]
+            if names:
+                self.line(f"{words} {', '.join(names)}", node)
+        self.line(f"return {text}", node)
+        self.w.dedent()
+        return name
+
+    def assigned_vars(self, node: A.Node) -> list[Var]:
+        out: list[Var] = []
+        stack = [node]
+        while stack:
+            n = stack.pop()
+            target = n.target if isinstance(n, A.Assign) else n.operand if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--") else None
+            var = self.target_var(target) if target is not None else None
+            if var is not None:
+                out.append(var)
+            stack.extend(v for v in vars(n).values() if isinstance(v, A.Node))
+            for v in vars(n).values():
+                if isinstance(v, list):
+                    stack.extend(x for x in v if isinstance(x, A.Node))
+        return out
 
     def convert(self, var: Var, value: str, node: A.Node | None = None) -> str:
         """``value`` converted for a store into ``var`` (nothing to convert for a literal of its type)."""

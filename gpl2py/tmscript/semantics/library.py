@@ -25,13 +25,25 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     # Ethernet Slave (L19694-L20556)
     "svr_read": (1, 1), "svr_write": (2, 2),
     # conversions, strings, arrays, checksums, time (L2066-L7446)
-    "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetNowStamp": (0, 2),
+    "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetBytes": (1, 3), "GetNowStamp": (0, 2),
+    "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5),
+    "String_ToInteger": (1, 2), "String_ToFloat": (1, 2), "String_ToDouble": (1, 2),
+    "String_IndexOf": (2, 3), "String_LastIndexOf": (2, 3), "String_Substring": (2, 4),
+    "String_Split": (2, 3), "String_Replace": (3, 3), "String_Trim": (1, 3), "String_ToLower": (1, 1),
+    "String_ToUpper": (1, 1), "String_ToByte": (1, 2), "Byte_ToString": (1, 2),
+    "Byte_ToInt16": (1, 3), "Byte_ToInt32": (1, 2), "Byte_ToFloat": (1, 2), "Byte_ToDouble": (1, 2),
+    "Byte_Concat": (2, None),
+    "Array_Append": (2, 2), "Array_Insert": (3, 3), "Array_Remove": (2, 3), "Array_Equals": (2, 5),
+    "Array_IndexOf": (2, 3), "Array_LastIndexOf": (2, 3), "Array_Reverse": (1, 2), "Array_Sort": (1, 2),
+    "Array_SubElements": (2, 3),
+    "XOR8": (1, 3), "SUM8": (1, 3), "SUM16": (1, 3), "SUM32": (1, 3), "CRC16": (1, 4), "CRC32": (1, 3),
     # math in degrees (L8033-L9400) and pose math (L9393-L9900)
     "abs": (1, 1), "pow": (2, 2), "sqrt": (1, 1), "ceil": (1, 1), "floor": (1, 1), "round": (1, 2),
     "random": (0, 2), "sum": (1, None), "average": (1, None), "min": (1, None), "max": (1, None),
     "d2r": (1, 1), "r2d": (1, 1), "sin": (1, 1), "cos": (1, 1), "tan": (1, 1), "asin": (1, 1),
     "acos": (1, 1), "atan": (1, 1), "atan2": (2, 2), "log": (1, 2), "log10": (1, 1), "norm2": (1, 1),
-    "dist": (2, 2),
+    "dist": (2, 2), "trans": (2, 3), "inversetrans": (1, 2), "applytrans": (2, 3), "changeref": (2, 3),
+    "interpoint": (3, 3),
 }
 
 #: Built-ins whose first argument is a deferred statement or condition (spec §2).

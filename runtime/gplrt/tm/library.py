@@ -25,8 +25,11 @@ from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, t
 
 # --- script control (L7707-L8032) ---------------------------------------------------------------
 def Display(*args: object) -> bool:
-    """Show text on the dashboard (L7950): the last argument is the text."""
+    """Show text on the dashboard (L7950): ``(text)``, ``(title, text)``, ``(bg, fg, title, text)``;
+    printed as ``text``, or ``[title] text`` when there is a title (colours are not shown)."""
     text = to_string(args[-1])
+    if len(args) in (2, 4):
+        text = f"[{to_string(args[-2])}] {text}"
     cb = context.display_callback()
     if cb is not None:
         cb(text)
@@ -35,15 +38,29 @@ def Display(*args: object) -> bool:
     return True
 
 
+class ThreadStopped(Exception):
+    """``ThreadExit(id)`` asked this thread to stop: raised at its next wait (L1967-L1999)."""
+
+
 def _cancelled() -> bool:
+    """Whether a wait must end now: the Listen node abandons the script (raises), or this
+    thread was asked to stop by ``ThreadExit`` (raises :class:`ThreadStopped`)."""
+    entry = _threads.get(getattr(_local, "id", 0))
+    if entry is not None and entry[1] == 1:
+        raise ThreadStopped
     n = context.node()
     return bool(n is not None and n.cancelled())
 
 
+def _wall(ms: int) -> float:
+    """Wall seconds that ``ms`` of the robot's time last (its clock's speed; none on the fast clock)."""
+    speed = context.robot().speed
+    return 0.0 if math.isinf(speed) else builtins.max(0, ms) / 1000.0 / speed
+
+
 def Sleep(ms: object) -> bool:
-    """Wait ``ms`` of simulated time (L7926); false when interrupted."""
-    r = context.robot()
-    end = time.monotonic() + builtins.max(0, to_int(ms)) / 1000.0 / (r.speed if not math.isinf(r.speed) else 1e9)
+    """Wait ``ms`` of the robot's time (L7926); false when interrupted."""
+    end = time.monotonic() + _wall(to_int(ms))
     while time.monotonic() < end:
         if _cancelled():
             return False
@@ -60,12 +77,15 @@ def WaitFor(cond: object, ms: object = None) -> bool:
     from gplrt.tm.values import truth
 
     limit = to_int(ms)
-    start = time.monotonic()
+    end = time.monotonic() + _wall(limit)
     while not truth(cond()):
-        if _cancelled() or (limit >= 0 and (time.monotonic() - start) * 1000 >= limit):
+        if _cancelled() or (limit >= 0 and time.monotonic() >= end):
             return False
         time.sleep(0.001)
     return True
+
+
+
 
 
 def Pause() -> bool:
@@ -116,6 +136,8 @@ def ThreadRun(stmt: Callable[[], object], non_pausable: object = False) -> int:
         _local.id = tid
         try:
             stmt()
+        except ThreadStopped:
+            pass
         finally:
             entry[1] = 2
     t = threading.Thread(target=body, name=f"tm-thread-{tid}", daemon=True)
@@ -126,10 +148,17 @@ def ThreadRun(stmt: Callable[[], object], non_pausable: object = False) -> int:
 
 
 def ThreadID() -> int:
-    return int(getattr(_local, "id", 0))
+    """The current thread's id (L1867); the first thread that asks (``main``) gets one as well."""
+    tid = getattr(_local, "id", None)
+    if tid is None:
+        tid = builtins.max(_threads, default=0) + 1
+        _threads[tid] = [threading.current_thread(), 0]
+        _local.id = tid
+    return int(tid)
 
 
 def ThreadState(tid: object = None) -> int:
+    """-1 no such thread, 0 running, 1 asked to stop, 2 stopped (L1931)."""
     entry = _threads.get(ThreadID() if tid is None else to_int(tid))
     return -1 if entry is None else int(entry[1])  # type: ignore[call-overload]
 

@@ -104,7 +104,7 @@ class ListenNode:
     # --- life -----------------------------------------------------------------------------------
     def serve(self, enter: bool = True) -> ListenNode:
         """Start listening (in the background); ``enter``: the flow is in the node now."""
-        threading.Thread(target=self.server.serve_forever, name="tm-listen-server", daemon=True).start()
+        threading.Thread(target=self.server.serve_forever, args=(0.05,), name="tm-listen-server", daemon=True).start()
         self._executor.start()
         if enter:
             self.enter()

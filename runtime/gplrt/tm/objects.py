@@ -81,6 +81,21 @@ class _Channels:
 
 
 class _Module:
+    """``IO["ControlBox"]``: its tables; assigning a whole array (``IO[m].DO = {0,0,…}``, L1112)
+    writes every channel (queued for DO/AO)."""
+
+    def __setattr__(self, name: str, value: object) -> None:
+        current = self.__dict__.get(name)
+        if isinstance(current, _Channels) and isinstance(value, (list, tuple)):
+            if not current.writable:
+                return  # read only: an invalid operation, ignored (L14433)
+            if len(value) > len(current):
+                raise TMError(f'IO["{self.name}"].{name} has {len(current)} channels, not {len(value)}')
+            for i, v in enumerate(value):
+                current[i] = v
+            return
+        object.__setattr__(self, name, value)
+
     def __init__(self, name: str) -> None:
         self.name = name
         prefix = "ctrl" if name == "ControlBox" else "end"

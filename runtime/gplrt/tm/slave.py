@@ -166,7 +166,7 @@ class EthernetSlave:
         self.port = self.server.server_address[1]
 
     def serve(self) -> EthernetSlave:
-        threading.Thread(target=self.server.serve_forever, name="tm-svr", daemon=True).start()
+        threading.Thread(target=self.server.serve_forever, args=(0.05,), name="tm-svr", daemon=True).start()
         return self
 
     def close(self) -> None:
