@@ -108,7 +108,7 @@ def test_language_option_and_recognition(tmp_path: Path) -> None:
 @pytest.mark.parametrize("text", [
     "", "\x00\x01", "{{{{", ")))", "int", "int[", "(int)", "a = = b", "for(;;", "switch (x) { case", "\\",
     "/* never closed", '"never closed', "x" * 5000, "(" * 3000, "-" * 3000 + "1", "do {", "}", "0x", "1e",
-    "int a = {1,,2}", "x = " + "1+" * 5000 + "1", "x = " + "a[" * 400 + "0" + "]" * 400, "if (1) else", "Robot[0].Joint = 1", "case 1", "main { }", "byte b = -100",
+    "int a = {1,,2}", "x = " + "1+" * 5000 + "1", "x = " + "a[" * 400 + "0" + "]" * 400, "if (1) else", "Robot[0].Joint = 1", "case 1", "main { }", "byte b = -100", "int é = 1", "達明 = 2",
 ])
 def test_any_packet_text_gives_diagnostics_never_an_exception(text: str) -> None:
     p = translate_packet(text)

@@ -9,6 +9,7 @@ never raises on input.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 from gpl2py.diagnostics import DiagnosticSink
@@ -24,6 +25,9 @@ PRIMITIVE_TYPES = ("byte", "int", "float", "double", "bool", "string")
 #: Longest first: the lexer takes the longest operator that matches.
 OPERATORS = sorted("""<<= >>= ++ -- += -= *= /= %= &= ^= |= << >> <= >= == != && || + - * / % < > = ! ~ & ^ | ? :
 ( ) [ ] { } , ; .""".split(), key=len, reverse=True)
+
+_OPERATOR = re.compile("|".join(re.escape(op) for op in OPERATORS))
+_WORD = re.compile(r"[A-Za-z0-9_]+")
 
 
 @dataclass(slots=True)
@@ -132,21 +136,22 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1) ->
                 value = 0
             toks.append(Token("num", raw, span(start, sline, scol0), value))
             continue
-        if c.isalpha() or c == "_":
-            while i < n and (text[i].isalnum() or text[i] == "_") and text[i].isascii():
-                i += 1
+        if c.isascii() and (c.isalpha() or c == "_"):  # identifiers are ASCII (L467-L470)
+            m = _WORD.match(text, i)
+            assert m is not None
+            i = m.end()
             word = text[start:i]
             toks.append(Token("kw" if word in KEYWORDS else "id", word, span(start, sline, scol0)))
             continue
-        for op in OPERATORS:
-            if text.startswith(op, i):
-                i += len(op)
-                if op in "([":
-                    depth += 1
-                elif op in ")]" and depth:
-                    depth -= 1
-                toks.append(Token("op", op, span(start, sline, scol0)))
-                break
+        m = _OPERATOR.match(text, i)
+        if m is not None:
+            op = m.group()
+            i += len(op)
+            if op in "([":
+                depth += 1
+            elif op in ")]" and depth:
+                depth -= 1
+            toks.append(Token("op", op, span(start, sline, scol0)))
         else:
             i += 1
             sink.report(M.TM_INVALID_CHAR, span(start, sline, scol0), char=repr(c))

@@ -20,6 +20,7 @@ LEVELS: tuple[tuple[str, ...], ...] = (
     ("||",), ("&&",), ("|",), ("^",), ("&",), ("==", "!="), ("<", "<=", ">", ">="), ("<<", ">>"),
     ("+", "-"), ("*", "/", "%"),
 )
+PRECEDENCE = {op: level for level, ops in enumerate(LEVELS) for op in ops}
 RELATIONAL = frozenset({"<", "<=", ">", ">=", "==", "!="})
 #: How deep parentheses, unary operators and blocks may nest, and how many binary operators one
 #: chain may have, before the parser refuses: the later phases recurse on the tree, and a
@@ -360,19 +361,22 @@ class Parser:
         return cond
 
     def binary(self, level: int) -> A.Node:
-        if level == len(LEVELS):
-            return self.unary()
-        left = self.binary(level + 1)
-        ops = LEVELS[level]
-        while self.tok.kind == "op" and self.tok.text in ops:
-            op_tok = self.next()
-            op = op_tok.text
+        """Operators of ``level`` (an index of LEVELS) and tighter, by precedence climbing: one
+        call per operand, not one per level (11 levels: the parser's cost was mostly these)."""
+        left = self.unary()
+        while True:
+            t = self.tok
+            if t.kind != "op":
+                return left
+            op_level = PRECEDENCE.get(t.text, -1)
+            if op_level < level:
+                return left
+            self.next()
             self.chain += 1
             if self.chain > MAX_CHAIN:
-                self.fail(M.TM_NOT_HERE, op_tok.span, what="an expression this long", where=f"(more than {MAX_CHAIN} operators)")
-            right = self.binary(level + 1)
-            left = A.Binary(left.span.to(right.span), op, left, right)
-        return left
+                self.fail(M.TM_NOT_HERE, t.span, what="an expression this long", where=f"(more than {MAX_CHAIN} operators)")
+            right = self.binary(op_level + 1)
+            left = A.Binary(left.span.to(right.span), t.text, left, right)
 
     def unary(self) -> A.Node:
         t = self.tok

@@ -153,6 +153,9 @@ class ListenNode:
 
     # --- connections ----------------------------------------------------------------------------
     def _serve_conn(self, sock: socket.socket) -> None:
+        # a reply often follows a push (a tag's TMSTA, then the script's OK): without NODELAY,
+        # Nagle holds the second until the client's delayed ACK, 40 ms a motion
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         conn = _Conn(sock)
         with self.cv:
             self.conns.append(conn)

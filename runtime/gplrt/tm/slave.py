@@ -174,6 +174,9 @@ class EthernetSlave:
         self.server.server_close()
 
     def _serve_conn(self, sock: socket.socket) -> None:
+        # a reply often follows a push (a tag's TMSTA, then the script's OK): without NODELAY,
+        # Nagle holds the second until the client's delayed ACK, 40 ms a motion
+        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         buf = bytearray()
         while True:
             try:
