@@ -45,7 +45,8 @@ def load_project(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Lim
     if not exists:
         sink.report(GM.PATH_NOT_FOUND, None, path=str(p))
         return None
-    project = Project(name=p.stem if not is_dir else p.resolve().name, start="main", root=p if is_dir else p.parent, limits=limits)
+    project = Project(name=p.stem if not is_dir else p.resolve().name, start="main",
+                      root=p if is_dir else p.parent, limits=limits)
     files = sorted((e for e in p.iterdir() if e.suffix.lower() in SUFFIXES and e.is_file()),
                    key=lambda e: e.name.lower()) if is_dir else [p]
     if not files:
@@ -95,13 +96,15 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     imports = "".join(f"from . import {m}\n" for m in modules)
     first = modules[0] if modules else None
     out.files[f"{package}/__init__.py"] = (
-        f'"""TMscript project {title}, translated by gpl2py.  ``main()`` runs it on a simulated TM robot."""\n\n'
+        f'"""TMscript project {title}, translated by gpl2py.\n\n``main()`` runs it on a simulated TM robot.\n"""\n\n'
         f"{imports}\n\n"
         "def main(sim: object = None) -> int:\n"
         '    """Run the project\'s (first) script; 0 when it ended without error."""\n'
-        + (f"    from gplrt import tm\n\n    return tm.run_module({first}, sim)\n" if first else "    return 0\n")
+        + (f"    from gplrt import tm\n\n    return tm.run_module({first}, sim)\n"
+           if first else "    return 0\n")
     )
-    out.files[f"{package}/__main__.py"] = '"""``python -m <package>``: run the project."""\n\nfrom . import main\n\nraise SystemExit(main())\n'
+    out.files[f"{package}/__main__.py"] = (
+        '"""``python -m <package>``: run the project."""\n\nfrom . import main\n\nraise SystemExit(main())\n')
     out.files[f"{package}/_sourcemap.json"] = sourcemap_json(smap)
     return out
 

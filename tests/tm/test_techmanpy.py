@@ -93,3 +93,25 @@ def test_techmanpy_session(tm_robot, monkeypatch) -> None:  # type: ignore[no-un
                 assert await sta.is_listen_node_active() is False
 
     asyncio.run(asyncio.wait_for(session(), 60))
+
+
+def test_serve_from_a_notebook(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """``gplrt.tm.serve()``: the notebook's way to what ``gpl2py run --listen-node`` starts."""
+    import gplrt.tm as tm
+
+    node, slave = tm.serve("TM12", port=0, svr_port=0)
+    try:
+        ports(node, slave, monkeypatch)
+
+        async def session() -> None:
+            async with techmanpy.connect_svr(robot_ip="127.0.0.1") as svr:
+                assert await svr.get_value("Robot_Model") == "TM12"
+            async with techmanpy.connect_sct(robot_ip="127.0.0.1") as sct:
+                await sct.move_to_joint_angles_ptp([5, 5, 80, 5, 85, 5], 1.0, 100)
+                await sct.set_queue_tag(1, wait_for_completion=True)
+            async with techmanpy.connect_svr(robot_ip="127.0.0.1") as svr:
+                assert near(await svr.get_value("Joint_Angle"), [5, 5, 80, 5, 85, 5])
+        asyncio.run(asyncio.wait_for(session(), 60))
+    finally:
+        node.close()
+        slave.close()

@@ -143,6 +143,7 @@ class Lowerer:
         if not assigned:
             return f"lambda: {text}"
         name = self.temp("deferred")
+        self.w.blank()
         self.line(f"def {name}():", node)
         self.w.indent()
         for storage, words in (("local", "nonlocal"), ("global", "global")):
@@ -151,6 +152,7 @@ class Lowerer:
                 self.line(f"{words} {', '.join(names)}", node)
         self.line(f"return {text}", node)
         self.w.dedent()
+        self.w.blank()
         return name
 
     def assigned_vars(self, node: A.Node) -> list[Var]:
@@ -158,7 +160,11 @@ class Lowerer:
         stack = [node]
         while stack:
             n = stack.pop()
-            target = n.target if isinstance(n, A.Assign) else n.operand if isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--") else None
+            target = None
+            if isinstance(n, A.Assign):
+                target = n.target
+            elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+                target = n.operand
             var = self.target_var(target) if target is not None else None
             if var is not None:
                 out.append(var)

@@ -49,7 +49,8 @@ class Info:
 
 
 #: Python names a TMscript name must not become (the generated code's own names and Python's).
-RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | {"tm", "v", "print", "len", "list", "str", "int", "float", "bool", "range", "object", "type"}
+RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | {
+    "tm", "v", "print", "len", "list", "str", "int", "float", "bool", "range", "object", "type"}
 
 
 def pyname(name: str) -> str:
@@ -290,7 +291,8 @@ class Checker:
             self.info.calls[id(e)] = "user"
             if len(e.args) != len(fn.params):
                 n = len(fn.params)
-                self.sink.report(M.TM_ARGUMENT_COUNT, e.span, name=fn.name, expected=n, s="" if n == 1 else "s", given=len(e.args))
+                self.sink.report(M.TM_ARGUMENT_COUNT, e.span, name=fn.name, expected=n,
+                                 s="" if n == 1 else "s", given=len(e.args))
             if fn.ret != "void":
                 self.info.types[id(e)] = fn.ret + ("[]" if fn.ret_array else "")
             return

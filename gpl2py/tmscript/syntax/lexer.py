@@ -3,7 +3,8 @@
 Statements end at the end of a line (a trailing ``\\`` joins the next one, manual L1351-L1377);
 ``//`` and ``/* */`` are comments (L1196-L1224); strings have no backslash escapes, ``""`` is a
 quote (L580-L600); numbers are decimal, ``0x``/``0b`` integers or decimals with an exponent
-(L498-L512).  A newline inside ``( )`` or ``[ ]`` does not end the statement (multi-line argument lists in the manual's examples).  Errors are diagnostics; the lexer
+(L498-L512).  A newline inside ``( )`` or ``[ ]`` does not end the statement (multi-line
+argument lists in the manual's examples).  Errors are diagnostics; the lexer
 never raises on input.
 """
 

@@ -55,4 +55,19 @@ def run_module(module: object, sim: object = None) -> int:
     return int(module.run() or 0)  # type: ignore[attr-defined]
 
 
-__all__ = ["IO", "Robot", "assign", "run_module", "run_project", "setitem"]
+__all__ = ["IO", "Robot", "assign", "run_module", "run_project", "serve", "setitem"]
+
+
+def serve(robot: str = "TM5-900", host: str = "127.0.0.1", port: int = 5890, svr_port: int = 5891,
+          speed: float = float("inf")) -> tuple[object, object]:
+    """A simulated TM robot in a Listen node, from a notebook or a script (what ``gpl2py run
+    --robot TM5-900 --listen-node`` starts): ``(node, slave)``, serving in the background until
+    ``node.close()`` and ``slave.close()``.  Port 0 takes a free port (``node.port``)."""
+    from gplrt.tm import context
+    from gplrt.tm.listen import ListenNode
+    from gplrt.tm.slave import EthernetSlave
+
+    r = context.use_robot(robot, speed)
+    node = ListenNode(r, host, port).serve()
+    slave = EthernetSlave(r, host, svr_port).serve()
+    return node, slave

@@ -85,9 +85,6 @@ def WaitFor(cond: object, ms: object = None) -> bool:
     return True
 
 
-
-
-
 def Pause() -> bool:
     r = context.robot()
     with r.lock:

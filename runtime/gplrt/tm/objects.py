@@ -99,7 +99,7 @@ class _Module:
     def __init__(self, name: str) -> None:
         self.name = name
         prefix = "ctrl" if name == "ControlBox" else "end"
-        r = lambda: context.robot()  # noqa: E731
+        r = context.robot
         self.DI = _Channels(lambda: getattr(r(), f"{prefix}_di"), to_byte, False, False, "DI")
         self.InstantDI = self.DI
         self.AI = _Channels(lambda: getattr(r(), f"{prefix}_ai"), to_float, False, False, "AI")

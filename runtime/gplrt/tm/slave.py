@@ -280,6 +280,6 @@ class EthernetSlave:
         elif mode == 13:
             body = json.dumps([{"Item": n, "Value": v} for n, _, v in values]).encode("utf-8")
         else:
-            body = b"".join(struct.pack("<H", len(n.encode())) + n.encode() + struct.pack("<H", len(b := _binary_value(it, v))) + b
-                            for n, it, v in values)
+            body = b"".join(struct.pack("<H", len(n.encode())) + n.encode()
+                            + struct.pack("<H", len(b := _binary_value(it, v))) + b for n, it, v in values)
         return encode("TMSVR", f"{tid},{mode},".encode() + body)
