@@ -130,3 +130,19 @@ def test_listen_send_pushes_the_manuals_bytes(client) -> None:  # type: ignore[n
     assert frame == b"$TMSTA,19,91," + bytes.fromhex("0000803F000000400000404000008040") + b",*60\r\n"
     assert client.reply() == b"$TMSTA,7,92,\x10\x11\x12\x13,*63\r\n"
     assert client.reply() == encode("TMSCT", b"1,OK")
+
+
+def test_a_priority_command_ends_a_script_that_loops_forever(tm_robot) -> None:  # type: ignore[no-untyped-def]
+    _, node, _ = tm_robot
+    c = Client(node.port)
+    other = Client(node.port)
+    try:
+        c.send(script("1", "int n = 0\r\nwhile (true)\r\n{\r\n  n++\r\n}"))
+        c.send(script("2", "int m = 5"))  # queued behind the looping script
+        assert other.ask(script("3", "StopAndClearBuffer(1)")) == encode("TMSCT", b"3,OK")
+        assert c.reply() == encode("TMSCT", b"1,OK")  # abandoned (L18252: it answers OK)
+        assert c.reply() == encode("TMSCT", b"2,OK")  # and the next script runs
+        assert other.ask(script("4", "m++")) == encode("TMSCT", b"4,OK")
+    finally:
+        c.close()
+        other.close()

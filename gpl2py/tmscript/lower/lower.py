@@ -345,6 +345,8 @@ class Lowerer:
         self.steps.append(step)
         self.in_switch.append(False)
         start = self.w.mark()
+        if self.packet:  # a Listen node's priority commands must be able to end a looping script
+            self.line("tm.tick()", body)
         self.statements(body.body if isinstance(body, A.Block) else [body])
         for s in step or []:
             self.expr_statement(s)

@@ -58,6 +58,12 @@ def _wall(ms: int) -> float:
     return 0.0 if math.isinf(speed) else builtins.max(0, ms) / 1000.0 / speed
 
 
+def tick() -> None:
+    """A loop's turn in a Listen-node script: ends the script when a priority command abandons
+    it (``StopAndClearBuffer(1|2)``, ``ScriptExit(0|1)``, L18127) or its thread was stopped."""
+    _cancelled()
+
+
 def Sleep(ms: object) -> bool:
     """Wait ``ms`` of the robot's time (L7926); false when interrupted."""
     end = time.monotonic() + _wall(to_int(ms))
