@@ -46,6 +46,10 @@ TM_BYTE_LITERAL = _error("GPL5308", "{value} is out of the range of a byte (0 to
 TM_INCREMENT = _error("GPL5309", "'{op}' needs an integer variable (manual L785-L790)")
 TM_MAIN_MISSING = _error("GPL5310", "the script project has no 'main' section")
 TM_SECTION_TWICE = _error("GPL5311", "the '{name}' section is given twice")
+TM_INTERPOLATION = _warning(
+    "GPL5315", "'{name}' inside the string is replaced by the value of the variable {name} (deprecated)",
+    "A variable's name in single quotes inside a string is its value, for compatibility (manual L628-L656); "
+    "write \"...\" + {name} + \"...\" instead.")
 TM_UNSUPPORTED = _error("GPL5314", "{what} is not supported yet by gpl2py")
 
 # --- lowering and loading (GPL5700-GPL5999) --------------------------------------------------

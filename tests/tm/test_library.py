@@ -124,3 +124,14 @@ def test_pose_math_round_trip_e63() -> None:
     for text in got:
         nums = [float(x) for x in text.strip("{}").split(",")]
         assert all(abs(a - b) < 1e-3 for a, b in zip(nums, [150, 180, 320, -5, 45, 60]))
+
+
+def test_e04_e05_single_quoted_variables_in_strings() -> None:
+    p = translate_packet('string s = "TM5"\nstring a = "Hi, \'s\' Robot"\nstring b = "Hi, \'x\' Robot"\n'
+                         'string[] ss = {"Techman", "Robot"}\nstring c = "Hi, \'s\' \'ss[0]\' Robot"\n'
+                         'string d = "Hi, s Robot"\nstring e = "Hi, \'" + "s" + "\' Robot"')
+    assert [(w.code, w.span.line) for w in p.warnings] == [("GPL5315", 2), ("GPL5315", 5)]
+    got = values('string s = "TM5"\nstring a = "Hi, \'s\' Robot"\nstring b = "Hi, \'x\' Robot"\n'
+                 'string[] ss = {"Techman", "Robot"}\nstring c = "Hi, \'s\' \'ss[0]\' Robot"\n'
+                 'string d = "Hi, s Robot"\nstring e = "Hi, \'" + "s" + "\' Robot"', "a", "b", "c", "d", "e")
+    assert got == ["Hi, TM5 Robot", "Hi, 'x' Robot", "Hi, TM5 'ss[0]' Robot", "Hi, s Robot", "Hi, 's' Robot"]

@@ -55,7 +55,16 @@ class Lowerer:
         if isinstance(e, A.Num):
             return repr(e.value) if isinstance(e.value, int) else repr(float(e.value))
         if isinstance(e, A.Str):
-            return py_string(e.value)
+            parts = self.info.interpolations.get(id(e))
+            if not parts:
+                return py_string(e.value)
+            out, pos = "", 0  # 'name' inside the string: its value (L628-L656)
+            for start, end, var in parts:
+                piece = py_string(e.value[pos:start])
+                out = piece if not out else f"tm.add({out}, {piece})"
+                out = f"tm.add({out}, {self.var_ref(var)})"
+                pos = end
+            return f"tm.add({out}, {py_string(e.value[pos:])})"
         if isinstance(e, A.Bool):
             return "True" if e.value else "False"
         if isinstance(e, A.ArrayLit):

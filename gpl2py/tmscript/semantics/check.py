@@ -13,6 +13,7 @@ word), each call's kind, each function's assigned globals.
 from __future__ import annotations
 
 import keyword
+import re
 from dataclasses import dataclass, field
 
 from gpl2py.diagnostics import DiagnosticSink
@@ -21,6 +22,7 @@ from gpl2py.tmscript.semantics.library import BUILTINS, CLASSES, OBJECTS, RETURN
 from gpl2py.tmscript.syntax import ast as A
 
 INTEGER = frozenset({"byte", "int"})
+_QUOTED_NAME = re.compile(r"'([A-Za-z_][A-Za-z0-9_]*)'")
 #: The Listen node's priority commands take a literal only (L18185-L18190).
 PRIORITY = {"ScriptExit": "0 or 1", "StopAndClearBuffer": "0, 1 or 2"}
 
@@ -46,6 +48,8 @@ class Info:
     declared: dict[str, Var] = field(default_factory=dict)  # a packet's new node variables
     functions: dict[str, A.Function] = field(default_factory=dict)
     types: dict[int, str] = field(default_factory=dict)  # static types known (decls, literals)
+    #: a string literal's single-quoted variable names: (start, end, variable) in its text (L628)
+    interpolations: dict[int, list[tuple[int, int, Var]]] = field(default_factory=dict)
 
 
 #: Python names a TMscript name must not become (the generated code's own names and Python's).
@@ -219,7 +223,16 @@ class Checker:
 
     # --- expressions ----------------------------------------------------------------------------
     def expr(self, e: A.Node) -> None:
-        if isinstance(e, A.Name):
+        if isinstance(e, A.Str):
+            found = []
+            for m in _QUOTED_NAME.finditer(e.value):
+                var = self.lookup(m.group(1))
+                if var is not None and not var.array and var.cls is None:
+                    found.append((m.start(), m.end(), var))
+                    self.sink.report(M.TM_INTERPOLATION, e.span, name=var.name)
+            if found:
+                self.info.interpolations[id(e)] = found
+        elif isinstance(e, A.Name):
             var = self.lookup(e.name)
             self.info.names[id(e)] = var
             if var is None and e.name not in OBJECTS:
