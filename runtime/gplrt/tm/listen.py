@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import re
 import socket
-import socketserver
 import sys
 import threading
 from collections import deque
@@ -30,7 +29,7 @@ from types import TracebackType
 
 from gplrt.tm import context
 from gplrt.tm.motion import Robot
-from gplrt.tm.packets import encode, split
+from gplrt.tm.packets import encode, split, start, tcp_server
 from gplrt.tm.values import TMError
 
 PORT = 5890
@@ -87,24 +86,14 @@ class ListenNode:
         self.exited = threading.Event()
         self.result: str | None = None  # "pass" / "fail" once left
         robot.on_tag = self._tag_done
-        node = self
-
-        class Handler(socketserver.BaseRequestHandler):
-            def handle(self) -> None:
-                node._serve_conn(self.request)
-
-        class Server(socketserver.ThreadingTCPServer):
-            allow_reuse_address = True
-            daemon_threads = True
-
-        self.server = Server((host, port), Handler)
+        self.server = tcp_server(host, port, self._serve_conn)
         self.port = self.server.server_address[1]
         self._executor = threading.Thread(target=self._execute, name="tm-listen", daemon=True)
 
     # --- life -----------------------------------------------------------------------------------
     def serve(self, enter: bool = True) -> ListenNode:
         """Start listening (in the background); ``enter``: the flow is in the node now."""
-        threading.Thread(target=self.server.serve_forever, args=(0.05,), name="tm-listen-server", daemon=True).start()
+        start(self.server, "tm-listen-server")
         self._executor.start()
         if enter:
             self.enter()
@@ -153,9 +142,6 @@ class ListenNode:
 
     # --- connections ----------------------------------------------------------------------------
     def _serve_conn(self, sock: socket.socket) -> None:
-        # a reply often follows a push (a tag's TMSTA, then the script's OK): without NODELAY,
-        # Nagle holds the second until the client's delayed ACK, 40 ms a motion
-        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         conn = _Conn(sock)
         with self.cv:
             self.conns.append(conn)

@@ -14,15 +14,13 @@ from __future__ import annotations
 
 import json
 import socket
-import socketserver
 import struct
-import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from gplrt.tm import context
 from gplrt.tm.motion import Robot
-from gplrt.tm.packets import encode, split
+from gplrt.tm.packets import encode, split, start, tcp_server
 from gplrt.tm.values import TMError, format_value
 
 PORT = 5891
@@ -152,21 +150,11 @@ class EthernetSlave:
         self.robot = robot
         self.table = Table(robot)
         robot._svr_table = self.table  # type: ignore[attr-defined]
-        slave = self
-
-        class Handler(socketserver.BaseRequestHandler):
-            def handle(self) -> None:
-                slave._serve_conn(self.request)
-
-        class Server(socketserver.ThreadingTCPServer):
-            allow_reuse_address = True
-            daemon_threads = True
-
-        self.server = Server((host, port), Handler)
+        self.server = tcp_server(host, port, self._serve_conn)
         self.port = self.server.server_address[1]
 
     def serve(self) -> EthernetSlave:
-        threading.Thread(target=self.server.serve_forever, args=(0.05,), name="tm-svr", daemon=True).start()
+        start(self.server, "tm-svr")
         return self
 
     def close(self) -> None:
@@ -174,9 +162,6 @@ class EthernetSlave:
         self.server.server_close()
 
     def _serve_conn(self, sock: socket.socket) -> None:
-        # a reply often follows a push (a tag's TMSTA, then the script's OK): without NODELAY,
-        # Nagle holds the second until the client's delayed ACK, 40 ms a motion
-        sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
         buf = bytearray()
         while True:
             try:
