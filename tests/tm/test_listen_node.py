@@ -43,6 +43,16 @@ def client(tm_robot):  # type: ignore[no-untyped-def]
     c.close()
 
 
+def wait_until(condition, limit: float = 30.0) -> None:  # type: ignore[no-untyped-def]
+    """Wait for the node to reach a state (not a timing assertion: the limit only ends a hang)."""
+    import time
+
+    end = time.monotonic() + limit
+    while not condition():
+        assert time.monotonic() < end, "the node never reached the state"
+        time.sleep(0.005)
+
+
 def script(ident: str, text: str) -> bytes:
     return encode("TMSCT", f"{ident},{text}".encode())
 
@@ -139,6 +149,7 @@ def test_a_priority_command_ends_a_script_that_loops_forever(tm_robot) -> None: 
     try:
         c.send(script("1", "int n = 0\r\nwhile (true)\r\n{\r\n  n++\r\n}"))
         c.send(script("2", "int m = 5"))  # queued behind the looping script
+        wait_until(lambda: node.running is not None and len(node.jobs) == 1)
         assert other.ask(script("3", "StopAndClearBuffer(1)")) == encode("TMSCT", b"3,OK")
         assert c.reply() == encode("TMSCT", b"1,OK")  # abandoned (L18252: it answers OK)
         assert c.reply() == encode("TMSCT", b"2,OK")  # and the next script runs

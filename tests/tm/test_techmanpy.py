@@ -115,3 +115,48 @@ def test_serve_from_a_notebook(monkeypatch) -> None:  # type: ignore[no-untyped-
     finally:
         node.close()
         slave.close()
+
+
+def test_declared_base_tcp_and_point_in_listen_node_scripts(tm_robot, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    """TBase/TTCP/TPoint declared in one packet are used by name in the next (L15065, L16706)."""
+    robot, node, slave = tm_robot
+    ports(node, slave, monkeypatch)
+    base = [100.0, 50.0, 20.0, 0.0, 0.0, 30.0]
+    tool = [0.0, 0.0, 120.0, 0.0, 0.0, 0.0]
+
+    async def session() -> None:
+        async with techmanpy.connect_sct(robot_ip="127.0.0.1") as sct:
+            tx = sct.start_transaction()
+            tx.move_to_joint_angles_ptp([0, 10, 80, 0, 90, 0], 0.5, 200)
+            tx.set_queue_tag(1, wait_for_completion=True)
+            await tx.submit()
+        # techmanpy sends only calls: the declarations go as a raw packet of the manual's form
+        from gplrt.tm.packets import encode
+        reader, writer = await asyncio.open_connection("127.0.0.1", node.port)
+        script = ("TBase b1 = {" + ",".join(map(str, base)) + "}\r\nTTCP t1 = {" + ",".join(map(str, tool))
+                  + "}, 1.5\r\nChangeBase(\"b1\")\r\nChangeTCP(\"t1\")\r\nTPoint p1 = 400, 0, 300, 180, 0, 90\r\n"
+                  "Line(\"CAP\", Point[\"p1\"].Value, 200, 100, 0, false)\r\nQueueTag(2, 1)")
+        writer.write(encode("TMSCT", b"7," + script.encode()))
+        await writer.drain()
+        reply = b""
+        while b"7,OK" not in reply:
+            reply += await asyncio.wait_for(reader.read(1000), 10)
+        writer.close()
+        async with techmanpy.connect_svr(robot_ip="127.0.0.1") as svr:
+            assert near(await svr.get_value("Coord_Base_Tool"), [400, 0, 300, 180, 0, 90])
+            joints = await svr.get_value("Joint_Angle")
+            flange = pin.SE3(*_se3(urdf_flange(joints)))
+            want = _pose_se3(base) * _pose_se3([400, 0, 300, 180, 0, 90]) * _pose_se3(tool).inverse()
+            assert np.allclose(flange.homogeneous, want.homogeneous, atol=1e-8)
+            assert await svr.get_value("TCP_Mass") == 1.5
+    asyncio.run(asyncio.wait_for(session(), 60))
+
+
+def _pose_se3(p: list[float]) -> pin.SE3:
+    r = pin.rpy.rpyToMatrix(*np.radians(p[3:]))
+    return pin.SE3(r, np.array(p[:3]) / 1000.0)
+
+
+def _se3(p: list[float]) -> tuple[np.ndarray, np.ndarray]:
+    m = _pose_se3(p)
+    return m.rotation, m.translation

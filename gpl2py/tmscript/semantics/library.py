@@ -53,7 +53,7 @@ DEFERRED_WITH_TWO = frozenset({"WaitFor"})
 
 #: Class types (L12376-L25700) the runtime has; a declaration of another is reported as not
 #: supported yet, never translated to a call that fails at run time.
-CLASSES: frozenset[str] = frozenset()
+CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP"})
 
 #: Parameterized objects: ``Item[index].Attribute`` without a declaration (L14355-L14860).
 OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})

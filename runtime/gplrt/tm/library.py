@@ -20,6 +20,7 @@ import numpy as np
 from gplrt.tm import context
 from gplrt.tm.motion import CARTESIAN_SPEED, Command, arc_path, line_path
 from gplrt.tm.robot import pose_to_se3, se3_to_pose
+from gplrt.tm.teach import Base, Point, TBase, TCP, TPoint, TTCP, frame_of  # noqa: F401 (TMscript's names)
 from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, to_float, to_int, to_string
 
 
@@ -254,7 +255,7 @@ def Line(fmt: object, *args: object) -> bool:
     if len(rest) < 4:
         raise TMError("Line: speed, acceleration time, blending and precise positioning are needed")
     r = context.robot()
-    goal = r.cartesian_target(target)
+    goal = lambda: r.cartesian_target(target)  # noqa: E731 (in the base in effect when it starts)
     return r.enqueue(r.path_move(line_path(goal), _line_speed(f, rest[0]), float(to_double(rest[1]))))
 
 
@@ -265,7 +266,7 @@ def Circle(fmt: object, *args: object) -> bool:
     if len(rest) < 5:
         raise TMError("Circle: speed, acceleration time, blending, arc angle and precise positioning are needed")
     r = context.robot()
-    path = arc_path(r.cartesian_target(via), r.cartesian_target(end), float(to_double(rest[3])))
+    path = arc_path(lambda: (r.cartesian_target(via), r.cartesian_target(end)), float(to_double(rest[3])))
     return r.enqueue(r.path_move(path, _line_speed(f, rest[0]), float(to_double(rest[1]))))
 
 
@@ -281,7 +282,7 @@ def PLine(fmt: object, *args: object) -> bool:
         r._check_joints(target)
         goal = r.arm.fk_se3(target)
     else:
-        goal = r.cartesian_target(target)
+        goal = lambda: r.cartesian_target(target)  # noqa: E731
     return r.enqueue(r.path_move(line_path(goal), float(to_double(rest[0])), float(to_double(rest[1]))))
 
 
@@ -351,9 +352,10 @@ def ChangeBase(*args: object) -> bool:
     r = context.robot()
     if len(args) in (1, 2) and isinstance(args[0], str):
         name = args[0]
-        if name != "RobotBase":
+        declared = frame_of("base", name)
+        if name != "RobotBase" and declared is None:
             raise TMError(f"ChangeBase: no base named {name!r}")
-        frame, label = pose_to_se3([0] * 6), name
+        frame, label = (pose_to_se3([0] * 6) if declared is None else declared[0]), name
     else:
         (pose,), _ = _split(args, 1)
         frame, label = pose_to_se3(pose), ""
@@ -368,9 +370,12 @@ def ChangeTCP(*args: object) -> bool:
     r = context.robot()
     mass = 0.0
     if isinstance(args[0], str):
-        if args[0] != "NOTOOL":
+        declared = frame_of("tcp", args[0])
+        if args[0] != "NOTOOL" and declared is None:
             raise TMError(f"ChangeTCP: no TCP named {args[0]!r}")
-        frame, label = pose_to_se3([0] * 6), "NOTOOL"
+        frame, label = (pose_to_se3([0] * 6), "NOTOOL") if declared is None else (declared[0], args[0])
+        if declared is not None:
+            mass = declared[1]
     else:
         (pose,), rest = _split(args, 1)
         frame, label = pose_to_se3(pose), ""
@@ -412,7 +417,7 @@ def PVTPoint(*args: object) -> bool:
     if _pvt["mode"] == 0:
         cmd = r.joint_move(pos, 100.0, builtins.max(1.0, seconds * 1000.0 / 2))
     else:
-        cmd = r.path_move(line_path(r.cartesian_target(pos)), CARTESIAN_SPEED, builtins.max(1.0, seconds * 1000.0 / 2))
+        cmd = r.path_move(line_path(lambda: r.cartesian_target(pos)), CARTESIAN_SPEED, builtins.max(1.0, seconds * 1000.0 / 2))
     return r.enqueue(cmd)
 
 

@@ -54,6 +54,7 @@ class _Job:
     conn: _Conn
     ident: str
     script: str
+    pushes: list[bytes] = field(default_factory=list)  # tag pushes held until the reply is sent
 
 
 @dataclass
@@ -136,9 +137,19 @@ class ListenNode:
             c.send(encode(header, data))
 
     def _tag_done(self, tag: int) -> None:
+        """Push ``$TMSTA 01,NN,true`` to the connection that queued the tag -- after the reply of
+        the script that queued it, as in the manual's exchanges (L18262-L18269): on the fast
+        clock a motion can end before its script has been answered."""
         conn = self.tag_owner.get(tag)
-        if conn is not None:
-            conn.send(encode("TMSTA", f"01,{tag:02d},true".encode()))
+        if conn is None:
+            return
+        frame = encode("TMSTA", f"01,{tag:02d},true".encode())
+        with self.cv:
+            job = self.running
+            if job is not None and job.conn is conn:
+                job.pushes.append(frame)
+                return
+        conn.send(frame)
 
     # --- connections ----------------------------------------------------------------------------
     def _serve_conn(self, sock: socket.socket) -> None:
@@ -213,11 +224,17 @@ class ListenNode:
         return exits[0] if exits else stops[0] if stops else None
 
     def _run_priority(self, conn: _Conn, ident: str, name: str, mode: int) -> None:
+        dropped: list[_Job] = []
         with self.cv:
+            if name == "ScriptExit" or mode >= 1:
+                if self.running is not None:
+                    self.abort = True
+                elif self.jobs:  # the current script has not started yet: it is the one abandoned
+                    dropped.append(self.jobs.popleft())
             if name == "ScriptExit" or mode == 2:
                 self.jobs.clear()
-            if name == "ScriptExit" or mode >= 1:
-                self.abort = self.running is not None
+        for job in dropped:
+            job.conn.send(encode("TMSCT", f"{job.ident},OK".encode()))
         self.robot.stop_and_clear()
         with self.cv:
             self.cv.wait_for(lambda: self.running is None or not self.abort, timeout=5.0)
@@ -244,12 +261,16 @@ class ListenNode:
                 self.abort = False
             try:
                 reply, leave = self._run_job(job)
+            except Exception:  # a fault of the simulator itself: the script fails, the node goes on
+                reply, leave = "ERROR;1", False
             finally:
                 with self.cv:
+                    job.conn.send(encode("TMSCT", f"{job.ident},{reply}".encode()))
+                    for frame in job.pushes:
+                        job.conn.send(frame)
                     self.running = None
                     self.abort = False
                     self.cv.notify_all()
-            job.conn.send(encode("TMSCT", f"{job.ident},{reply}".encode()))
             if leave:
                 self.robot.wait_idle()
                 self._leave("pass")

@@ -268,11 +268,12 @@ class Robot:
         return self.base * pose_to_se3(pose) * self.tcp.inverse()
 
     def ptp_pose(self, pose: list[float], speed_pct: float, accel_ms: float) -> Command:
-        target = self.cartesian_target(pose)
+        """A PTP to a TCP pose in the base and with the TCP in effect when it starts: base and TCP
+        changes are queued with the motions (L16706, L16814)."""
         lim = self.limits(speed_pct, accel_ms)
 
         def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
-            end = self.arm.ik_se3(target, start)
+            end = self.arm.ik_se3(self.cartesian_target(pose), start)
             p = plan_axes(start, None, None, end, lim)
             return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), end
         return Command("move", plan=plan)
@@ -309,9 +310,12 @@ def _path_length(f: Callable[[float], pin.SE3], n: int = 32) -> float:
     return max(lin, rot)
 
 
-def line_path(target: pin.SE3) -> Callable[[pin.SE3], Callable[[float], pin.SE3]]:
-    """A straight line to ``target``, orientation interpolated on the shortest rotation."""
+def line_path(goal: pin.SE3 | Callable[[], pin.SE3]) -> Callable[[pin.SE3], Callable[[float], pin.SE3]]:
+    """A straight line to ``goal`` (or to what ``goal()`` gives when the motion starts: a pose in
+    the base then in effect), orientation interpolated on the shortest rotation."""
     def path(start: pin.SE3) -> Callable[[float], pin.SE3]:
+        target = goal() if callable(goal) else goal
+
         def at(s: float) -> pin.SE3:
             if s >= 1.0:
                 return target
@@ -325,10 +329,12 @@ def _interp(a: pin.SE3, b: pin.SE3, s: float) -> pin.SE3:
     return pin.SE3(rot, a.translation + s * (b.translation - a.translation))
 
 
-def arc_path(via: pin.SE3, end: pin.SE3, arc_deg: float) -> Callable[[pin.SE3], Callable[[float], pin.SE3]]:
-    """A circular arc from the start through ``via`` to ``end`` (``arc_deg`` = 0); with ``arc_deg``
-    ≠ 0, that many degrees along the same circle at constant orientation (L16114)."""
+def arc_path(points: Callable[[], tuple[pin.SE3, pin.SE3]], arc_deg: float) -> Callable[[pin.SE3], Callable[[float], pin.SE3]]:
+    """A circular arc from the start through ``via`` to ``end`` (``points()`` when the motion
+    starts, ``arc_deg`` = 0); with ``arc_deg`` ≠ 0, that many degrees along the same circle at
+    constant orientation (L16114)."""
     def path(start: pin.SE3) -> Callable[[float], pin.SE3]:
+        via, end = points()
         p0, p1, p2 = start.translation, via.translation, end.translation
         centre, normal, radius = _circle(p0, p1, p2)
         u = (p0 - centre) / radius
