@@ -97,7 +97,9 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     first = modules[0] if modules else None
     out.files[f"{package}/__init__.py"] = (
         f'"""TMscript project {title}, translated by gpl2py.\n\n``main()`` runs it on a simulated TM robot.\n"""\n\n'
-        f"{imports}\n\n"
+        "from gplrt.lang.sourcemap import register_package\n\n"
+        f"{imports}\n"
+        "register_package(__file__)  # (a run-time error names the script's file and line)\n\n\n"
         "def main(sim: object = None) -> int:\n"
         '    """Run the project\'s (first) script; 0 when it ended without error."""\n'
         + (f"    from gplrt import tm\n\n    return tm.run_module({first}, sim)\n"

@@ -115,3 +115,14 @@ def test_any_packet_text_gives_diagnostics_never_an_exception(text: str) -> None
     assert not any(d.message.startswith("internal error") for d in p.errors), [d.message for d in p.errors]
     if not p.errors:
         compile(p.python, "<packet>", "exec")
+
+
+def test_a_run_time_error_names_the_script_line_never_a_traceback(tmp_path: Path) -> None:
+    src = tmp_path / "demo.tms"
+    src.write_text('main\n{\n  PTP("JPP",0,0,90,0,90,0,50,200,0,false)\n  QueueTag(1, 1)\n  Display("J " + Robot[0].Joint)\n'
+                   '  int z = 0\n  Display(1 / z)\n}\nerrorstop\n{\n  Display("errorstop ran")\n}\n')
+    r = gpl2py("run", str(src), "--robot", "TM5-900", cwd=tmp_path)
+    assert r.returncode == 1
+    assert r.stdout.splitlines()[:2] == ["J {0,0,90,0,90,0}", "errorstop ran"]
+    assert "demo.tms:7: error: division by zero" in r.stderr
+    assert "Traceback" not in r.stderr

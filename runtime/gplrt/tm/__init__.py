@@ -39,15 +39,28 @@ def run_project(main: object, closestop: object = None, errorstop: object = None
     except ProjectExit as exc:
         failed = exc.code < 0
     except TMError as exc:
-        print(f"error: {exc}", flush=True)
+        _report(exc)
         failed = True
     handler = errorstop if failed else closestop
     if callable(handler):
         try:
             handler()
-        except (TMError, ProjectExit):
+        except TMError as exc:  # an error in closestop/errorstop ends the project (L1070, L1125)
+            _report(exc)
+            failed = True
+        except ProjectExit:
             failed = True
     return 1 if failed else 0
+
+
+def _report(exc: TMError) -> None:
+    """A run-time error as a TM user reads it: the script's file and line, then the message."""
+    import sys
+
+    from gplrt.lang.sourcemap import locate
+
+    where = locate(exc)
+    print(f"{where + ': ' if where else ''}error: {exc}", file=sys.stderr, flush=True)
 
 
 def run_module(module: object, sim: object = None) -> int:
