@@ -157,3 +157,28 @@ def test_a_priority_command_ends_a_script_that_loops_forever(tm_robot) -> None: 
     finally:
         c.close()
         other.close()
+
+
+def test_garbage_and_hostile_scripts_leave_the_node_serving(client) -> None:  # type: ignore[no-untyped-def]
+    import random
+
+    rng = random.Random(22)
+    client.send(bytes(rng.randrange(256) for _ in range(5000)) + b"\r\n")
+    client.send(script("99", "int sync = 1"))
+    while (frame := client.reply()) != encode("TMSCT", b"99,OK"):
+        assert frame.startswith(b"$CPERR,2,0"), frame  # what the garbage earned, if anything
+    hostile = [
+        '__import__("os").system("echo owned")', "int x = 1\r\nx = x" + " + 1" * 2000, '"\\x00\\"""',
+        "while (true)", "string s = \"" + "a" * 100000 + "\"", "Display(" * 500, "int a[] = 1",
+        "Robot[1].Joint", "IO[\"Nope\"].DO[0] = 1", 'PTP("JPP",0,0,900,0,90,0,50,200,0,false)',
+        'PTP("CPP",5000,0,0,0,0,0,50,200,0,false)\r\nQueueTag(3, 1)',
+    ]
+    for i, text in enumerate(hostile):
+        client.send(script(str(100 + i), text))
+        while (reply := client.reply()).startswith(b"$TMSTA,"):
+            pass  # (the tag the last script queued)
+        assert reply.startswith(f"$TMSCT,".encode()) and (b",OK" in reply or b",ERROR;" in reply), reply[:200]
+    client.send(script("1", "int alive = 1"))
+    while (reply := client.reply()).startswith(b"$TMSTA,"):
+        pass
+    assert reply == encode("TMSCT", b"1,OK")

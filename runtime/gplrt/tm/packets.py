@@ -58,9 +58,30 @@ def _drop_bad(buf: bytearray, frm: int, header: bytes, out: list[Frame], at_end:
     m = _END.search(buf, frm)
     if m is None or (at_end and m.end() != len(buf)):
         return False
+    # a well-formed frame inside what is dropped (a client's packet after garbage) is kept
+    k = buf.rfind(b"$", 1, m.start())
+    while k > 0:
+        if _whole(bytes(buf[k:m.end()])):
+            del buf[:k]
+            out.append(Frame(header, b"", 1))
+            return True
+        k = buf.rfind(b"$", 1, k)
     del buf[:m.end()]
     out.append(Frame(header, b"", 1))
     return True
+
+
+def _whole(frame: bytes) -> bool:
+    """Whether ``frame`` (from ``$`` to ``\r\n``) is one frame whose length and checksum agree."""
+    c1 = frame.find(b",")
+    c2 = frame.find(b",", c1 + 1) if c1 > 0 else -1
+    n = _length(frame[c1 + 1:c2]) if c2 > 0 else None
+    if n is None or len(frame) != c2 + 1 + n + 6:
+        return False
+    try:
+        return int(frame[-4:-2], 16) == checksum(frame[1:-5])
+    except ValueError:
+        return False
 
 
 def split(buf: bytearray) -> list[Frame]:
