@@ -62,10 +62,12 @@ GPL = Frontend("gpl", "GPL", (".gpl", ".gpo", ".gpr"), "gpl2py.gpl.pipeline", "g
 #: nor a ``;`` comment is ``.PROGRAM`` (a V+ program, whatever the extension).
 VPLUS = Frontend("vplus", "V+", (".v2", ".pg"), "gpl2py.vplus.pipeline", "gpl2py.vplus.loader",
                  first_line=r"(?:[ \t\x1a]*(?:;[^\r\n]*)?(?:\r\n|\r|\n))*[ \t]*\.PROGRAM\b")
+TMSCRIPT = Frontend("tmscript", "TMscript", (".tms", ".tmscript"), "gpl2py.tmscript.pipeline",
+                    "gpl2py.tmscript.pipeline")
 
 #: Every front end, GPL first: a folder or file no other front end claims is GPL (its loader
 #: reports what it cannot read in the project's form).
-FRONTENDS: tuple[Frontend, ...] = (GPL, VPLUS)
+FRONTENDS: tuple[Frontend, ...] = (GPL, VPLUS, TMSCRIPT)
 
 #: How much of a file is read to recognise its first line.
 _HEAD = 4096
@@ -121,4 +123,4 @@ def _by_first_line(p: Path) -> Frontend | None:
     return next((f for f in FRONTENDS if f.first_line and re.match(f.first_line, head, re.IGNORECASE)), None)
 
 
-__all__ = ["FRONTENDS", "GPL", "VPLUS", "Frontend", "Pipeline", "by_name", "frontend_for", "names"]
+__all__ = ["FRONTENDS", "GPL", "TMSCRIPT", "VPLUS", "Frontend", "Pipeline", "by_name", "frontend_for", "names"]

@@ -112,28 +112,22 @@ def _register(message: Message) -> Message:
 
 def message(code: str) -> Message:
     """The registry entry of ``code`` (``"GPL2001"``)."""
-    found = _REGISTRY.get(code)
-    if found is None:  # another front end's: its messages are imported on first need
-        _frontend_messages()
-        found = _REGISTRY[code]
-    return found
+    if code not in _REGISTRY:
+        all_messages()  # (a front end's code: its module registers it)
+    return _REGISTRY[code]
+
+
+#: The front ends' own message modules (docs/design/frontends.md, "Diagnostics"): imported when
+#: every message is listed, so explain and docs/diagnostics.md show them too.
+FRONTEND_MESSAGES = ("gpl2py.vplus.messages", "gpl2py.tmscript.messages")
 
 
 def all_messages() -> list[Message]:
-    _frontend_messages()
-    return sorted(_REGISTRY.values(), key=lambda m: m.code)
-
-
-#: The modules where the other front ends register their messages (docs/design/frontends.md),
-#: imported when every message is listed, so that a GPL check never imports them.
-FRONTEND_MESSAGES = ("gpl2py.vplus.messages",)
-
-
-def _frontend_messages() -> None:
     import importlib
 
     for name in FRONTEND_MESSAGES:
         importlib.import_module(name)
+    return sorted(_REGISTRY.values(), key=lambda m: m.code)
 
 
 # --- lexer (GPL1000-GPL1099) -------------------------------------------------------------------
@@ -834,7 +828,7 @@ def markdown() -> str:
 
 
 if __name__ == "__main__":
-    # (the front ends register into gpl2py.messages, which under -m is another module than this one)
+    # (run as __main__, this module is a second copy; the front ends register into gpl2py.messages)
     from gpl2py.messages import markdown as _markdown
 
     sys.stdout.write(_markdown())
