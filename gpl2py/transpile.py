@@ -21,6 +21,7 @@ so it reports exactly what ``translate`` reports, in every case.
 from __future__ import annotations
 
 import gc
+import inspect
 import os
 import sys
 from collections.abc import Callable, Iterator
@@ -28,6 +29,7 @@ from contextlib import contextmanager
 
 from gpl2py.diagnostics import DiagnosticSink, contained
 from gpl2py.languages import frontend_for
+from gpl2py.messages import USAGE_ERROR
 from gpl2py.output import DATA_FOLDER, Output, Progress, write_package
 from gpl2py.project import Limits, Project
 
@@ -51,8 +53,12 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     has the same stack whoever calls it (:func:`recursion_budget`).
     """
     with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
-        pipeline = frontend_for(path, language).pipeline()
+        frontend = frontend_for(path, language)
+        pipeline = frontend.pipeline()
         extra = {"start": start} if start is not None else {}
+        if extra and "start" not in inspect.signature(pipeline).parameters:  # (a language without it)
+            sink.report(USAGE_ERROR, None, detail=f"--start: a {frontend.title} project has no start to choose")
+            return None
         return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules, **extra)
     return None
 

@@ -36,3 +36,12 @@ def test_start_naming_no_procedure_is_the_project_start_error(tmp_path: Path) ->
     r = _gpl2py("check", proj, "--start", "Main.Nothing")
     assert r.returncode == 1
     assert "Main.Nothing" in r.stderr
+
+
+def test_start_for_a_language_without_one_is_refused_not_an_internal_error(tmp_path: Path) -> None:
+    src = tmp_path / "x.tms"
+    src.write_text("main\n{\n}\n")
+    r = _gpl2py("check", str(src), "--start", "foo")
+    assert r.returncode == 1
+    assert "error GPL9001: --start: a TMscript project has no start to choose" in r.stderr
+    assert "GPL9000" not in r.stderr
