@@ -27,6 +27,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _reference import HOW_TO_COMPARE, Reference, per_r  # noqa: E402
 from transpile_speed import generate, write_project  # noqa: E402
 
 from gpl2py.diagnostics import DiagnosticSink  # noqa: E402
@@ -116,21 +117,30 @@ def main() -> int:
         vlines = sum(t.count("\n") + 1 for t in vfiles.values())
         glines = sum(len(p.read_text().splitlines()) for p in gdir.glob("*.gpl"))
         samples: dict[tuple[str, str], list[float]] = {}
+        ref = Reference()  # R in every turn, beside the samples, for figures that travel between machines
         for run in range(args.runs + 1):
+            turn = 0.0
             for lang, path, n in (("V+", vdir, vlines), ("GPL", gdir, glines)):
                 for command, keep in (("translate", True), ("check", False)):
-                    per_line = _cpu(path, keep) / n * 1e6
+                    spent = _cpu(path, keep)
+                    turn += spent
                     if run:  # (the first run of each is untimed: imports, caches)
-                        samples.setdefault((lang, command), []).append(per_line)
+                        samples.setdefault((lang, command), []).append(spent / n * 1e6)
+            ref.run(record=bool(run), match=turn)
+        print(ref.line())
         print(f"V+ {vlines} lines in {len(vfiles)} files, GPL {glines} lines; {args.runs} runs each, "
-              "CPU us per line: median (min-max)")
+              "CPU us per line: median (min-max); in R: CPU time per line divided by R's CPU time "
+              "of its turn, in µR")
         for command in ("translate", "check"):
             med = {}
             for lang in ("V+", "GPL"):
                 s = samples[(lang, command)]
                 med[lang] = statistics.median(s)
-                print(f"  {command:9} {lang:3}: {med[lang]:7.1f} ({min(s):.1f}-{max(s):.1f})")
+                in_r = per_r(s, ref.cpu)
+                print(f"  {command:9} {lang:3}: {med[lang]:7.1f} ({min(s):.1f}-{max(s):.1f}) us/line, "
+                      f"{statistics.median(in_r):.1f} µR/line (spread {min(in_r):.1f}-{max(in_r):.1f})")
             print(f"  {command:9} V+/GPL: {med['V+'] / med['GPL']:.2f}")
+        print(HOW_TO_COMPARE)
     return 0
 
 
