@@ -267,13 +267,15 @@ class Robot:
         """The flange transform for a TCP ``pose`` given in the current base."""
         return self.base * pose_to_se3(pose) * self.tcp.inverse()
 
-    def ptp_pose(self, pose: list[float], speed_pct: float, accel_ms: float) -> Command:
+    def ptp_pose(self, pose: list[float], speed_pct: float, accel_ms: float,
+                 config: list[int] | None = None) -> Command:
         """A PTP to a TCP pose in the base and with the TCP in effect when it starts: base and TCP
-        changes are queued with the motions (L16706, L16814)."""
+        changes are queued with the motions (L16706, L16814); ``config`` TM's pose configuration
+        triplet (L17206), else the branch the robot is in."""
         lim = self.limits(speed_pct, accel_ms)
 
         def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
-            end = self.arm.ik_se3(self.cartesian_target(pose), start)
+            end = self.arm.ik_se3(self.cartesian_target(pose), start, config)
             p = plan_axes(start, None, None, end, lim)
             return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), end
         return Command("move", plan=plan)
