@@ -3,6 +3,8 @@ core's closed-form branch; an out-of-reach target stops the project (L1095)."""
 
 from __future__ import annotations
 
+import socket
+
 import numpy as np
 import pytest
 
@@ -10,6 +12,7 @@ from gplrt.motion.kinematics import robot_model
 from gpl2py.tmscript.pipeline import translate_packet
 from gplrt.tm import context
 from gplrt.tm.listen import Vars
+from gplrt.tm.packets import encode
 from gplrt.tm.robot import arm, config_bits
 from gplrt.tm.values import TMError
 
@@ -67,3 +70,50 @@ def test_home_is_config_0_2_4_and_a_bad_triplet_is_refused() -> None:
     context.use_robot("TM5-900")
     with pytest.raises(TMError):
         run('PTP("CPP", 400, 0, 500, 180, 0, 90, 50, 200, 0, false, 2, 2, 4)')
+
+
+FAR = 'PTP("CPP", 3000, 0, 500, 180, 0, 90, 50, 200, 0, false)'  # 3 m: beyond a TM5-900's reach
+
+
+def test_an_unreachable_target_stops_the_listen_node_project(tm_robot) -> None:  # type: ignore[no-untyped-def]
+    """The script is answered OK (the motion is only queued), then the motion cannot start: the
+    project stops by error -- Error_Code set, Project_Run false, the node left, so the next
+    script draws CPERR F1 and the status says the node is not active; entering anew clears it."""
+    robot, node, slave = tm_robot
+    with socket.create_connection(("127.0.0.1", node.port)) as s:
+        f = s.makefile("rb")
+        s.sendall(encode("TMSCT", ("1," + FAR).encode()))
+        assert f.readline() == encode("TMSCT", b"1,OK")
+        robot.wait_idle()
+        s.sendall(encode("TMSCT", b"2,int after = 1"))
+        assert f.readline() == encode("CPERR", b"F1")
+    assert robot.error_code != 0 and robot.project_running is False
+    assert node.result == "fail" and not node.active
+    with socket.create_connection(("127.0.0.1", node.port)) as s:
+        f = s.makefile("rb")
+        s.sendall(encode("TMSCT", b"3,int after = 1"))
+        assert f.readline() == encode("CPERR", b"F1")
+        s.sendall(encode("TMSTA", b"00"))
+        assert f.readline() == encode("TMSTA", b"00,false,")
+    node.enter()
+    assert robot.error_code == 0 and robot.project_running
+    with socket.create_connection(("127.0.0.1", node.port)) as s:
+        f = s.makefile("rb")
+        s.sendall(encode("TMSCT", b"4,int after = 1"))
+        assert f.readline() == encode("TMSCT", b"4,OK")
+
+
+def test_an_unreachable_target_stops_the_project_like_the_robot(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    import subprocess
+    import sys
+
+    src = tmp_path / "far.tms"
+    src.write_text('main\n{\n  PTP("JPP",0,0,90,0,90,0,50,200,0,false)\n  ' + FAR + '\n'
+                   '  QueueTag(1, 1)\n  WaitQueueTag(1)\n  Display("after")\n}\n'
+                   'errorstop\n{\n  Display("errorstop ran")\n}\n')
+    r = subprocess.run([sys.executable, "-m", "gpl2py", "run", str(src), "--robot", "TM5-900"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert r.returncode == 1
+    assert r.stdout.splitlines() == ["errorstop ran"]
+    assert "far.tms:4: error:" in r.stderr and "out of reach" in r.stderr
+    assert "Traceback" not in r.stderr
