@@ -110,10 +110,10 @@ def test_an_unreachable_target_stops_the_project_like_the_robot(tmp_path) -> Non
     src = tmp_path / "far.tms"
     src.write_text('main\n{\n  PTP("JPP",0,0,90,0,90,0,50,200,0,false)\n  ' + FAR + '\n'
                    '  QueueTag(1, 1)\n  WaitQueueTag(1)\n  Display("after")\n}\n'
-                   'errorstop\n{\n  Display("errorstop ran")\n}\n')
+                   'errorstop\n{\n  IO["ControlBox"].DO[3] = 1\n  QueueTag(2, 1)\n  Display("errorstop ran " + IO["ControlBox"].DO[3])\n}\n')
     r = subprocess.run([sys.executable, "-m", "gpl2py", "run", str(src), "--robot", "TM5-900"],
                        capture_output=True, text=True, cwd=tmp_path, timeout=120)
     assert r.returncode == 1
-    assert r.stdout.splitlines() == ["errorstop ran"]
+    assert r.stdout.splitlines() == ["errorstop ran 1"]  # (errorstop's queued I/O still runs)
     assert "far.tms:4: error:" in r.stderr and "out of reach" in r.stderr
     assert "Traceback" not in r.stderr

@@ -42,6 +42,7 @@ def run_project(main: object, closestop: object = None, errorstop: object = None
     except TMError as exc:
         _report(exc)
         failed = True
+        context.robot().acknowledge_fault()
     handler = errorstop if failed else closestop
     if callable(handler):
         try:

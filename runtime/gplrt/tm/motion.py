@@ -165,6 +165,12 @@ class Robot:
         with self.lock:
             self._raise_fault()
 
+    def acknowledge_fault(self) -> None:
+        """The project has been stopped by its error: ``errorstop`` may queue I/O again (L1097);
+        ``Error_Code`` stays until ``restart``."""
+        with self.lock:
+            self.fault = None
+
     def restart(self) -> None:
         """The error is cleared and the project runs again (a Listen node entered anew)."""
         with self.lock:
