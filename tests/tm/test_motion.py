@@ -117,3 +117,15 @@ def test_an_unreachable_target_stops_the_project_like_the_robot(tmp_path) -> Non
     assert r.stdout.splitlines() == ["errorstop ran 1"]  # (errorstop's queued I/O still runs)
     assert "far.tms:4: error:" in r.stderr and "out of reach" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_a_points_pose_configuration_reads_and_chooses_its_joints() -> None:
+    """``Point[...].Pose`` (L14419): the triplet of the point's joints; setting it recomputes them."""
+    context.use_robot("TM5-900")
+    v = run('TPoint p2 = 400, -120, 300, 180, 0, 90\r\nint[] c0 = Point["p2"].Pose\r\n'
+            'Point["p2"].Pose = {0, 3, 5}\r\nfloat[] j = Point["p2"].Joint\r\nint[] c = Point["p2"].Pose')
+    assert list(v.c0) == [0, 2, 4] and list(v.c) == [0, 3, 5]
+    a = arm("TM5-900")
+    assert v.j[2] < 0 and v.j[4] < 0
+    # (a float[] holds binary32: 1e-5 degree of a joint is ~1e-2 mm at the flange)
+    assert np.allclose(a.fk([float(x) for x in v.j])[:3], [400, -120, 300], atol=0.05)
