@@ -36,11 +36,13 @@ def run_project(main: object, closestop: object = None, errorstop: object = None
         if callable(main):
             main()
         context.robot().wait_idle()
+        context.robot().check_fault()  # (a motion queued last may have stopped the project)
     except ProjectExit as exc:
         failed = exc.code < 0
     except TMError as exc:
         _report(exc)
         failed = True
+        context.robot().acknowledge_fault()
     handler = errorstop if failed else closestop
     if callable(handler):
         try:
@@ -59,7 +61,7 @@ def _report(exc: TMError) -> None:
 
     from gplrt.lang.sourcemap import locate
 
-    where = locate(exc)
+    where = getattr(exc, "where", None) or locate(exc)
     print(f"{where + ': ' if where else ''}error: {exc}", file=sys.stderr, flush=True)
 
 

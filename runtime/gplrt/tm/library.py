@@ -19,7 +19,7 @@ import numpy as np
 
 from gplrt.tm import context
 from gplrt.tm.motion import CARTESIAN_SPEED, Command, arc_path, line_path
-from gplrt.tm.robot import pose_to_se3, se3_to_pose
+from gplrt.tm.robot import config_bits, pose_to_se3, se3_to_pose
 from gplrt.tm.teach import Base, Point, TBase, TCP, TPoint, TTCP, frame_of  # noqa: F401 (TMscript's names)
 from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, to_float, to_int, to_string
 
@@ -242,10 +242,25 @@ def PTP(fmt: object, *args: object) -> bool:
     if len(rest) < 4:
         raise TMError("PTP: speed, acceleration time, blending and precise positioning are needed")
     speed, accel = rest[0], rest[1]
+    config = _pose_config(rest[4:])
+    if config is not None and f != "CPP":
+        raise TMError('PTP: a pose configuration goes only with "CPP" (L15773)')
     r = context.robot()
     cmd = r.joint_move(target, float(to_double(speed)), float(to_double(accel))) if f == "JPP" \
-        else r.ptp_pose(target, float(to_double(speed)), float(to_double(accel)))
+        else r.ptp_pose(target, float(to_double(speed)), float(to_double(accel)), config)
     return r.enqueue(cmd)
+
+
+def _pose_config(extra: Sequence[object]) -> list[int] | None:
+    """The ``int[3] pose`` (or three ints) after PTP's precise-positioning flag, or None."""
+    if not extra:
+        return None
+    vals = list(extra[0]) if len(extra) == 1 and isinstance(extra[0], (list, tuple, np.ndarray)) else list(extra)  # type: ignore[arg-type]
+    if len(vals) != 3:
+        raise TMError(f"PTP: the pose configuration has 3 values, not {len(vals)}")
+    triplet = [int(to_int(v)) for v in vals]
+    config_bits(triplet)  # (a value outside {0|1, 2|3, 4|5} is refused when queued)
+    return triplet
 
 
 def Line(fmt: object, *args: object) -> bool:

@@ -87,6 +87,7 @@ class ListenNode:
         self.exited = threading.Event()
         self.result: str | None = None  # "pass" / "fail" once left
         robot.on_tag = self._tag_done
+        robot.on_error = self._project_error
         self.server = tcp_server(host, port, self._serve_conn)
         self.port = self.server.server_address[1]
         self._executor = threading.Thread(target=self._execute, name="tm-listen", daemon=True)
@@ -102,6 +103,7 @@ class ListenNode:
 
     def enter(self) -> None:
         """The flow enters the node: greet every connected client (``$TMSCT,n,0,Listen1``, L17795)."""
+        self.robot.restart()
         with self.cv:
             self.active = True
             self.result = None
@@ -150,6 +152,21 @@ class ListenNode:
                 job.pushes.append(frame)
                 return
         conn.send(frame)
+
+    def _project_error(self, exc: TMError) -> None:
+        """A motion stopped the project by error (``Robot._stop_by_error``): the flow leaves the
+        node, the running script is stopped, the scripts waiting are not run (they are answered
+        ``CPERR F1``, as every later one: no external script mode now, L18121)."""
+        with self.cv:
+            if not self.active:
+                return
+            if self.running is not None:
+                self.abort = True
+            dropped = list(self.jobs)
+            self.jobs.clear()
+        for job in dropped:
+            job.conn.send(encode("CPERR", b"F1"))
+        self._leave("fail")
 
     # --- connections ----------------------------------------------------------------------------
     def _serve_conn(self, sock: socket.socket) -> None:
@@ -273,7 +290,8 @@ class ListenNode:
                     self.cv.notify_all()
             if leave:
                 self.robot.wait_idle()
-                self._leave("pass")
+                if self.robot.fault is None:  # (else the error has left the node already)
+                    self._leave("pass")
 
     def _run_job(self, job: _Job) -> tuple[str, bool]:
         from gpl2py.tmscript.pipeline import translate_packet
@@ -297,7 +315,9 @@ class ListenNode:
             namespace["script"](self.vars)  # type: ignore[operator]
         except _Exit:
             return ok, True
-        except ScriptAborted:
+        except ScriptAborted as exc:
+            if self.robot.fault is not None:  # stopped by the project's error, not by a command
+                return f"ERROR;{_script_line(exc.__traceback__, filename, packet.lines)}", False
             return ok, False
         except (TMError, ArithmeticError, ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
             return f"ERROR;{_script_line(exc.__traceback__, filename, packet.lines)}", False

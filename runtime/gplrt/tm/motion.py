@@ -16,6 +16,7 @@ differs from a blended one, their end points do not.
 from __future__ import annotations
 
 import math
+import sys
 import threading
 import time
 from collections import deque
@@ -45,6 +46,9 @@ class Command:
     run: Callable[[], None] | None = None
     tag: int = 0
     plan: Callable[[list[float]], tuple[float, Callable[[float], list[float]], list[float]]] | None = None
+    #: (file, line) of the frames that queued a motion, innermost first: the script line named
+    #: when it fails (``Robot.fault``).
+    origin: tuple[tuple[str, int], ...] = ()
 
 
 @dataclass
@@ -76,6 +80,8 @@ class Robot:
     paused: bool = False
     project_running: bool = True
     on_tag: Callable[[int], None] | None = None
+    #: Called (on the executor's thread) when a motion fails and the project stops by error.
+    on_error: Callable[[TMError], None] | None = None
 
     def __post_init__(self) -> None:
         self.queue: deque[Command] = deque()
@@ -92,6 +98,8 @@ class Robot:
         self.end_ai = [0.0]
         self.busy = False
         self.stopped = False
+        #: The error that stopped the project (a motion that could not start), until ``restart``.
+        self.fault: TMError | None = None
         self._thread = threading.Thread(target=self._execute, name="tm-motion", daemon=True)
         self._thread.start()
 
@@ -130,7 +138,10 @@ class Robot:
 
     # --- queue ----------------------------------------------------------------------------------
     def enqueue(self, cmd: Command) -> bool:
+        if cmd.kind == "move":
+            cmd.origin = _origin(sys._getframe(1))
         with self.lock:
+            self._raise_fault()
             if cmd.kind == "tag":
                 self.tags[cmd.tag] = False
                 self.tags.pop(cmd.tag)
@@ -141,6 +152,32 @@ class Robot:
             self.lock.notify_all()
         return True
 
+    def _raise_fault(self) -> None:
+        """The project has stopped by error: the script that goes on talking to the robot stops
+        with that error (called with the lock held)."""
+        if self.fault is not None:
+            err = TMError(str(self.fault))
+            err.where = self.fault.where
+            raise err
+
+    def check_fault(self) -> None:
+        """TMError if a motion has stopped the project (``run_project`` after ``main``)."""
+        with self.lock:
+            self._raise_fault()
+
+    def acknowledge_fault(self) -> None:
+        """The project has been stopped by its error: ``errorstop`` may queue I/O again (L1097);
+        ``Error_Code`` stays until ``restart``."""
+        with self.lock:
+            self.fault = None
+
+    def restart(self) -> None:
+        """The error is cleared and the project runs again (a Listen node entered anew)."""
+        with self.lock:
+            self.fault = None
+            self.error_code = 0
+            self.project_running = True
+
     def tag_status(self, tag: int) -> bool | None:
         with self.lock:
             return self.tags.get(tag)
@@ -150,6 +187,7 @@ class Robot:
         deadline = None if timeout_ms < 0 else time.monotonic() + timeout_ms / 1000.0 / max(1.0, min(self.speed, 1e9))
         with self.lock:
             while True:
+                self._raise_fault()
                 if tag not in self.tags:
                     return -1 if tag != 0 else 0
                 if self.tags[tag]:
@@ -195,12 +233,29 @@ class Robot:
             try:
                 self._run(cmd)
             except TMError as exc:
-                self.error_code = 1
-                self.last_error = str(exc)
+                self._stop_by_error(cmd, exc)
             finally:
                 with self.lock:
                     self.busy = False
                     self.lock.notify_all()
+
+    def _stop_by_error(self, cmd: Command, exc: TMError) -> None:
+        """A motion that cannot start (a Cartesian target out of reach, a joint beyond its limit)
+        stops the project by error, as on the robot (L1095-L1148, L14427): the queue is cleared
+        (its tags forgotten), ``Error_Code``/``Robot_Error`` are set and ``Project_Run`` is false;
+        the script is stopped by this error at its next motion, wait or end."""
+        exc.where = _where(cmd.origin)
+        with self.lock:
+            self.error_code = 1
+            self.last_error = str(exc)
+            self.fault = exc
+            self.project_running = False
+            self.queue.clear()
+            for tag in [t for t, done in self.tags.items() if not done]:
+                del self.tags[tag]
+            self.lock.notify_all()
+        if self.on_error is not None:
+            self.on_error(exc)
 
     def _run(self, cmd: Command) -> None:
         if cmd.kind == "tag":
@@ -267,13 +322,15 @@ class Robot:
         """The flange transform for a TCP ``pose`` given in the current base."""
         return self.base * pose_to_se3(pose) * self.tcp.inverse()
 
-    def ptp_pose(self, pose: list[float], speed_pct: float, accel_ms: float) -> Command:
+    def ptp_pose(self, pose: list[float], speed_pct: float, accel_ms: float,
+                 config: list[int] | None = None) -> Command:
         """A PTP to a TCP pose in the base and with the TCP in effect when it starts: base and TCP
-        changes are queued with the motions (L16706, L16814)."""
+        changes are queued with the motions (L16706, L16814); ``config`` TM's pose configuration
+        triplet (L17206), else the branch the robot is in."""
         lim = self.limits(speed_pct, accel_ms)
 
         def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
-            end = self.arm.ik_se3(self.cartesian_target(pose), start)
+            end = self.arm.ik_se3(self.cartesian_target(pose), start, config)
             p = plan_axes(start, None, None, end, lim)
             return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), end
         return Command("move", plan=plan)
@@ -300,6 +357,27 @@ class Robot:
                 return q
             return p.duration, at, end
         return Command("move", plan=plan)
+
+
+def _origin(frame: object, depth: int = 8) -> tuple[tuple[str, int], ...]:
+    """(file, line) of ``frame`` and its callers (a few: the script's line is near)."""
+    out = []
+    f = frame
+    while f is not None and len(out) < depth:
+        out.append((f.f_code.co_filename, f.f_lineno))
+        f = f.f_back
+    return tuple(out)
+
+
+def _where(origin: tuple[tuple[str, int], ...]) -> str | None:
+    """``"file.tms:line"`` of the innermost transpiled frame of ``origin`` (the source map)."""
+    from gplrt.lang.sourcemap import gpl_line_of
+
+    for file, line in origin:
+        found = gpl_line_of(file, line)
+        if found is not None:
+            return f"{found[0]}:{found[1]}"
+    return None
 
 
 def _path_length(f: Callable[[float], pin.SE3], n: int = 32) -> float:

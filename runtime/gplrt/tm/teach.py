@@ -10,7 +10,7 @@ are accepted and not written back (there is no TMflow point file).
 from __future__ import annotations
 
 from gplrt.tm import context
-from gplrt.tm.robot import pose_to_se3, se3_to_pose
+from gplrt.tm.robot import config_bits, pose_to_se3, se3_to_pose
 from gplrt.tm.values import Array, TMError, to_double, to_string
 
 KINDS = ("C", "D", "J", "JD", "V")
@@ -49,6 +49,7 @@ class TPoint:
         self.TCPName = to_string(rest.pop(0)) if rest else ""
         self._joint: list[float] | None = first if self.kind.startswith("J") else joints
         self._value: list[float] | None = None if self.kind.startswith("J") else first
+        self._pose: list[int] | None = None  # the configuration asked for, when one was set
         _registry("point")[name] = self
 
     @property
@@ -67,12 +68,27 @@ class TPoint:
         if self._joint is None:
             r = context.robot()
             assert self._value is not None
-            self._joint = r.arm.ik(self._value, r.current_joints())  # an error when unreachable (L14427)
+            self._joint = r.arm.ik(self._value, r.current_joints(), self._pose)  # an error when unreachable (L14427)
         return Array("float", self._joint)
+
+    @property
+    def Pose(self) -> Array:
+        """The pose configuration ``{Config1, Config2, Config3}`` of the point's joints (L14419,
+        L17206)."""
+        return Array("int", context.robot().arm.config(list(self.Joint)))
+
+    @Pose.setter
+    def Pose(self, v: object) -> None:
+        """Setting the configuration recomputes the joints in it (an error when unreachable)."""
+        triplet = [int(to_double(x)) for x in (v if isinstance(v, (list, tuple, Array)) else [v])]  # type: ignore[union-attr]
+        config_bits(triplet)
+        if self._value is None:
+            self._value = list(self.Value)
+        self._pose, self._joint = triplet, None
 
     @Joint.setter
     def Joint(self, v: object) -> None:
-        self._joint, self._value = _values([v], "Point.Joint"), None
+        self._joint, self._value, self._pose = _values([v], "Point.Joint"), None, None
 
 
 class TBase:

@@ -24,6 +24,9 @@ MAX_ARRAY = 2048
 class TMError(Exception):
     """A run-time error of a TMscript program (the project stops by error)."""
 
+    #: ``"file.tms:line"`` when known otherwise than from the traceback (a queued motion's line).
+    where: str | None = None
+
 
 # --- conversions --------------------------------------------------------------------------------
 def _parse_number(text: str) -> int | float:
