@@ -23,7 +23,7 @@ from __future__ import annotations
 import gc
 import os
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping, MutableMapping
 from contextlib import contextmanager
 
 from gpl2py.diagnostics import DiagnosticSink, contained
@@ -36,7 +36,8 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
               strict: bool = False, loaded: Callable[[Project], None] | None = None,
               limits: Limits | None = None, keep_modules: bool = True,
-              language: str | None = None) -> Output | None:
+              language: str | None = None, texts: Mapping[str, str] | None = None,
+              memo: MutableMapping[object, object] | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.gpl.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.gpl.semantics.stubs``).
@@ -44,14 +45,19 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     when the translation fails.  ``limits``: how much input may be read (``project.Limits``;
     default from the environment).  ``keep_modules=False`` (``gpl2py check``): the diagnostics
     only, each module's text dropped once made and no project files read.  ``language``: the
-    front end's name (``--language``); by default recognised from the files.
+    front end's name (``--language``); by default recognised from the files.  ``texts``: the text
+    of some sources by absolute path, in place of the files' (an editor's unsaved buffers);
+    ``memo``: a mapping the front end keeps its per-file work in between calls (the language
+    server's warm state: docs/design/lsp.md); both are passed only when given, so a front end
+    that has not learnt them yet is called as before.
 
     The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
     has the same stack whoever calls it (:func:`recursion_budget`).
     """
     with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
         pipeline = frontend_for(path, language).pipeline()
-        return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules)
+        extra = {k: v for k, v in (("texts", texts), ("memo", memo)) if v is not None}
+        return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules, **extra)
     return None
 
 

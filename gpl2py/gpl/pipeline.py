@@ -11,7 +11,7 @@ calls for GPL.  Each file is parsed and each module analysed and lowered inside
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, MutableMapping
 from pathlib import Path
 
 from gpl2py import messages as M
@@ -35,16 +35,34 @@ from gpl2py.gpl.syntax.parser import parse
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
-from gpl2py.source import make_span
+from gpl2py.gpl.syntax import ast as A
+from gpl2py.source import SourceFile, make_span
+
+
+#: Where :func:`transpile_project` leaves the analysed project in ``memo``: (project, units, model).
+MODEL_KEY = "gpl-model"
 
 
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                       progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
                       strict: bool = False, loaded: Callable[[Project], None] | None = None,
-                      limits: Limits | None = None, keep_modules: bool = True) -> Output | None:
-    """The GPL translation of ``path``; the arguments are :func:`gpl2py.transpile.transpile`'s."""
+                      limits: Limits | None = None, keep_modules: bool = True, *,
+                      texts: Mapping[str, str] | None = None,
+                      memo: MutableMapping[object, object] | None = None) -> Output | None:
+    """The GPL translation of ``path``; the arguments are :func:`gpl2py.transpile.transpile`'s.
+
+    ``texts``: the text of some sources by absolute path, in place of what the files hold (an
+    editor's unsaved buffers); ``memo``: where the parsed tree of each source is kept between
+    calls, keyed by its path and text, so that a caller checking again after an edit (the
+    language server) parses only the files that changed.  A tree is reused with the diagnostics
+    its parse reported, replayed into ``sink``: the result is the same as a cold run's."""
     loading = DiagnosticSink()  # unfiltered: whether a file failed to load, reported or ignored
     project = load_project(path, loading, limits)
+    if project is not None and texts:
+        for src in project.sources:
+            text = texts.get(os.path.abspath(src.path))
+            if text is not None:
+                src.text, src._lines = text, None
     if project is not None and loaded is not None:
         loaded(project)  # (before the loading's diagnostics pass the sink's filter: its comments)
     sink.extend(loading)
@@ -57,7 +75,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     units = []
     for i, src in enumerate(project.sources):
         with contained(sink, make_span(src.path, 1, 1, 1, 1)):  # a bug in one file: the others go on
-            units.append(parse(src, sink))
+            units.append(parse(src, sink) if memo is None else _parse_memo(src, sink, memo))
         if progress is not None:
             progress("parsing", i + 1, len(project.sources))
     # the semantic pass runs even after syntax errors, so every error is reported in one run; a
@@ -66,6 +84,8 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
                     strict=strict, stub_provider=user.provider if user is not None else None,
                     start_span=project.start_span, sources_missing=missing)
+    if memo is not None:  # what the language server's navigation reads (gpl2py/lsp/gpl.py)
+        memo[MODEL_KEY] = (project, units, model)
     if sink.has_errors() and not keep_going:
         return None
     output = lower(project, model, sink, progress, user, keep_modules=keep_modules)
@@ -74,6 +94,22 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     if keep_modules:
         output.data_files = _project_data(Path(path), project)
     return output
+
+
+def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[object, object]) -> A.SourceUnit:
+    """``parse(src, sink)``, or the tree an earlier call parsed from the same path and text, its
+    diagnostics reported again.  Only the last text of each path is kept."""
+    key = ("gpl-parse", src.path)
+    kept = memo.get(key)
+    if isinstance(kept, tuple) and kept[0] == src.text:
+        unit, diags = kept[1], kept[2]
+    else:
+        parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+        unit = parse(src, parsed)
+        diags = list(parsed)
+        memo[key] = (src.text, unit, diags)
+    sink.extend(diags)
+    return unit
 
 
 def _project_data(given: Path, project: Project) -> dict[str, bytes]:

@@ -1,0 +1,55 @@
+"""The door's ``texts`` and ``memo`` (what the language server keeps warm): the same diagnostics as
+a cold check, with only the changed file parsed again."""
+
+from __future__ import annotations
+
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.gpl import pipeline
+from gpl2py.transpile import transpile
+from gpltest import corpus_dir
+
+
+def headers(sink: DiagnosticSink) -> list[str]:
+    return [d.header() for d in sink.sorted()]
+
+
+def cold(path: Path) -> list[str]:
+    sink = DiagnosticSink()
+    transpile(path, sink, keep_modules=False)
+    return headers(sink)
+
+
+def test_warm_checks_equal_cold_ones_and_parse_only_what_changed(tmp_path: Path,
+                                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
+    memo: dict[object, object] = {}
+    parsed: list[str] = []
+    real = pipeline.parse
+    monkeypatch.setattr(pipeline, "parse", lambda src, sink: parsed.append(Path(src.path).name) or real(src, sink))
+
+    def warm(texts: dict[str, str] | None = None) -> list[str]:
+        sink = DiagnosticSink()
+        transpile(tcs, sink, keep_modules=False, texts=texts or {}, memo=memo)
+        return headers(sink)
+
+    expected = cold(tcs)
+    parsed.clear()
+    assert warm() == expected and len(parsed) == 15
+    parsed.clear()
+    assert warm() == expected and parsed == []  # every tree reused, the analysis run again
+    cmd = tcs / "Cmd.gpl"
+    edited = cmd.read_text().replace("Public Sub", "Public Sub Broken(\nPublic Sub", 1)
+    got = warm({os.path.abspath(cmd): edited})
+    assert parsed == ["Cmd.gpl"] and got != expected
+    cmd.write_text(edited)  # what a cold check of the edited text says
+    assert got == cold(tcs)
+    parsed.clear()
+    memo_before = len(memo)
+    cmd.write_text(edited.replace("Public Sub Broken(\n", "", 1))
+    assert warm() == expected and parsed == ["Cmd.gpl"] and len(memo) == memo_before
