@@ -111,11 +111,11 @@ class Session:
         self.run(poll())
 
     def wait_diagnostics(self, path: Path, after: int | None = None, timeout: float = 60.0) -> list[T.Diagnostic]:
-        """The next diagnostics published for ``path`` (after ``after`` publications in all); for
-        an open document, those of the version last sent."""
+        """The diagnostics of ``path``: for an open document, those of the version last sent
+        (whenever they came); else the next ones published (after ``after`` publications)."""
         u = uri(path)
-        start = len(self.published) if after is None else after
         version = self.versions.get(u)
+        start = 0 if version is not None else len(self.published) if after is None else after
         self.wait(lambda: any(p == u and (version is None or (v or 0) >= version)
                               for _, p, v in self.published[start:]), timeout)
         return self.diagnostics[u]

@@ -31,6 +31,7 @@ from gpl2py.gpl.lower.user_stubs import (
 from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.gpl.semantics.check import Model, analyze
 from gpl2py.gpl.semantics.resolve import TOP_MODULE
+from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files
@@ -88,7 +89,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
         memo[MODEL_KEY] = (project, units, model)
     if sink.has_errors() and not keep_going:
         return None
-    output = lower(project, model, sink, progress, user, keep_modules=keep_modules)
+    output = lower(project, model, sink, progress, user, keep_modules=keep_modules, memo=memo)
     if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
         return None
     if keep_modules:
@@ -112,6 +113,26 @@ def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[obje
     return unit
 
 
+def _lower_memo(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink,
+                memo: MutableMapping[object, object], entries: dict[str, frozenset[str]]) -> None:
+    """Lower ``mod`` for its diagnostics, or replay those of the last lowering of the same tree."""
+    key = ("gpl-lower", mod.path, mod.name.lower())
+    kept = memo.get(key)
+    # the module's trees: its declaration, or the top-level classes of the synthetic module
+    trees = (mod.decl,) if mod.decl is not None else tuple(
+        c.decl for c in mod.members.values() if isinstance(c, ClassSym))
+    if isinstance(kept, tuple) and len(kept[0]) == len(trees) and all(a is b for a, b in zip(kept[0], trees)):
+        diags, entries[mod.py_name] = kept[1], kept[2]
+    else:
+        own = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+        entries[mod.py_name] = frozenset()
+        with contained(own, mod.span):
+            entries[mod.py_name] = lower_module(model, names, mod, own)[2]
+        diags = list(own)
+        memo[key] = (trees, diags, entries[mod.py_name])
+    sink.extend(diags)
+
+
 def _project_data(given: Path, project: Project) -> dict[str, bytes]:
     """The files the controller's project folder holds: every regular file of a project folder
     (read without following links: ``project.read_data_files``); for one source file, that file."""
@@ -122,10 +143,17 @@ def _project_data(given: Path, project: Project) -> dict[str, bytes]:
 
 def lower(project: Project, model: Model, sink: DiagnosticSink,
           progress: Progress | None = None, user: UserStubs | None = None, *,
-          keep_modules: bool = True) -> Output:
+          keep_modules: bool = True, memo: MutableMapping[object, object] | None = None) -> Output:
     """The generated files of an analysed project.  ``gpl2py check`` runs it for the lowering's
     diagnostics only, with ``keep_modules=False``: each module's text is dropped as soon as it is
-    made (with the whole analysis alive, holding every module's text was a tenth of the memory)."""
+    made (with the whole analysis alive, holding every module's text was a tenth of the memory).
+
+    With a ``memo`` (the language server) and no error reported or ignored so far, a module whose
+    tree is the one lowered last time is not lowered again: its diagnostics are those it had.  The
+    lowering's own diagnostics (a GoTo it cannot translate, nesting Python cannot compile) are
+    about the module's own statements, and which errors a construct keeps matters only when some
+    error was reported or ignored, when every module is lowered."""
+    reuse = memo is not None and not keep_modules and not sink.has_errors() and not sink.ignored_errors
     start = model.start
     if project.start is None and start is not None and start.module is not None:
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
@@ -141,6 +169,9 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
         extra.append(top)
     entries: dict[str, frozenset[str]] = {}
     for i, mod in enumerate(extra + modules):
+        if reuse:
+            _lower_memo(model, names, mod, sink, memo, entries)  # type: ignore[arg-type]
+            continue
         with contained(sink, mod.span):  # a bug in one module: the others are still lowered
             text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
             if keep_modules:

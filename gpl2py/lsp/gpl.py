@@ -75,38 +75,62 @@ class Occ:
 
 @dataclass
 class Index:
-    """Every occurrence of the last analysis, by file, and each symbol's declaration."""
+    """The occurrences of the last analysis, file by file as requests need them (a hover walks
+    the one file it is in), and each symbol's declaration, found from the symbol itself."""
 
     model: Model
     files: dict[str, list[Occ]] = field(default_factory=dict)
-    decls: dict[int, Occ] = field(default_factory=dict)
+    decls: dict[int, Occ | None] = field(default_factory=dict)
     uses: dict[int, list[Occ]] = field(default_factory=dict)
     procs: dict[str, list[tuple[int, int, ProcSym, ClassSym | None, ModuleSym]]] = field(default_factory=dict)
     classes: dict[str, ClassSym] = field(default_factory=dict)  # ClassType key -> class
     units: dict[str, A.SourceUnit] = field(default_factory=dict)
     texts: dict[str, str] = field(default_factory=dict)  # the text each file was analysed with
+    _lines: dict[str, list[str]] = field(default_factory=dict)
+
+    def lines(self, path: str) -> list[str]:
+        found = self._lines.get(path)
+        if found is None:
+            found = self._lines[path] = convert.lines_of(self.texts.get(path, ""))
+        return found
+
+    def occs(self, path: str) -> list[Occ]:
+        """The occurrences of ``path``, walked on first use."""
+        found = self.files.get(path)
+        if found is None:
+            unit = self.units.get(path)
+            found = self.files[path] = _walk_file(self, path, unit) if unit is not None else []
+        return found
 
     def at(self, path: str, line: int, col: int) -> Occ | None:
-        for o in self.files.get(path, ()):
+        for o in self.occs(path):
             if o.line == line and o.col <= col <= o.end:
                 return o
         return None
 
     def occurrences(self, sym: object) -> list[Occ]:
+        """Every occurrence of ``sym`` in the project (walks every file once)."""
+        for path in self.units:
+            self.occs(path)
         return self.uses.get(id(sym), [])
+
+    def declaration(self, sym: object) -> Occ | None:
+        """Where ``sym``'s name is written in its declaration."""
+        key = id(sym)
+        if key not in self.decls:
+            self.decls[key] = _declaration(self, sym)
+        return self.decls[key]
 
     def scope(self, path: str, line: int) -> tuple[ProcSym | None, ClassSym | None, ModuleSym | None]:
         """The procedure, class and module around ``line`` of ``path`` (from the last analysis)."""
-        best: tuple[ProcSym | None, ClassSym | None, ModuleSym | None] = (None, None, None)
+        self.occs(path)
         for first, last, proc, cls, mod in self.procs.get(path, ()):
             if first <= line <= last:
                 return proc, cls, mod
-            if best[2] is None:
-                best = (None, None, mod)
         for mod in self.model.project.module_list:
             if _abspath(mod.path) == path and mod.decl is not None and mod.decl.span.line <= line <= mod.decl.span.end_line:
-                return best[0], best[1], mod
-        return best
+                return None, None, mod
+        return None, None, None
 
 
 def _abspath(p: str) -> str:
@@ -127,11 +151,6 @@ def index_of(state: ProjectState) -> Index | None:
     index = _build(units, model, state.last.files if state.last is not None else {})
     state.memo["lsp-index"] = index
     return index
-
-
-def prepare(state: ProjectState) -> None:
-    """Build the index of the check just made, before the next request needs it."""
-    index_of(state)
 
 
 def _symbol(sym: object) -> object:
@@ -159,8 +178,6 @@ class _Builder:
         self.out.append(o)
         if not isinstance(sym, (BuiltinMember, BuiltinFunction, BuiltinConstant, BuiltinClass)):
             self.index.uses.setdefault(id(sym), []).append(o)
-            if decl and id(sym) not in self.index.decls:
-                self.index.decls[id(sym)] = o
 
     def find(self, node: A.Node, name: str, from_end: bool = False) -> tuple[int, int] | None:
         """Where ``name`` is written inside ``node`` (the first whole word; the last with
@@ -204,8 +221,6 @@ class _Builder:
                 cls = self.model.class_of_decl.get(node)
                 if cls is not None:
                     self.name(node, node.name, cls, decl=True)
-                    if cls.type is not None:
-                        self.index.classes[cls.type.key] = cls
             elif isinstance(node, (A.ProcDecl, A.Accessor)):
                 proc = self.model.proc_of_decl.get(node)
                 if proc is not None and mod is not None:
@@ -277,11 +292,37 @@ def _build(units: list[A.SourceUnit], model: Model, texts: dict[str, str]) -> In
         path = _abspath(unit.path)
         index.units[path] = unit
         index.texts[path] = texts.get(path, "")
-        b = _Builder(model, index, path, convert.lines_of(index.texts[path]))
-        b.walk(unit)
-        _calls(unit, b)
-        index.files[path] = sorted(b.out, key=lambda o: (o.line, o.col))
+    for cls in model.class_of_decl.values():
+        if cls.type is not None:
+            index.classes[cls.type.key] = cls
     return index
+
+
+def _walk_file(index: Index, path: str, unit: A.SourceUnit) -> list[Occ]:
+    b = _Builder(index.model, index, path, index.lines(path))
+    b.walk(unit)
+    _calls(unit, b)
+    return sorted(b.out, key=lambda o: (o.line, o.col))
+
+
+def _declaration(index: Index, sym: object) -> Occ | None:
+    """The occurrence of ``sym``'s name in its declaration, from the node that declares it."""
+    node: object = None
+    name = getattr(sym, "name", "")
+    if isinstance(sym, VarSym):
+        node = sym.declared_at
+    elif isinstance(sym, (ProcSym, PropSym, ClassSym, ModuleSym, DelegateSym)):
+        node = sym.decl
+        if isinstance(node, A.Accessor) and isinstance(sym, ProcSym) and sym.prop is not None:
+            node, name = sym.prop.decl, sym.prop.name
+    elif isinstance(sym, A.Label):
+        node = sym
+    if not isinstance(node, A.Node) or not name:
+        return None
+    path = _abspath(node._file)
+    b = _Builder(index.model, index, path, index.lines(path))
+    where = b.find(node, name)
+    return Occ(path, where[0], where[1], where[1] + len(name), sym, True) if where is not None else None
 
 
 def _calls(unit: A.SourceUnit, b: _Builder) -> None:
@@ -390,7 +431,7 @@ def describe(o: Occ, index: Index, state: ProjectState) -> str:
     if isinstance(sym, BuiltinClass):
         return _code(f"Class {sym.name}") + "\n\nbuilt-in class"
     text = _code(declaration(sym, index.model))
-    decl = index.decls.get(id(sym))
+    decl = index.declaration(sym)
     if decl is not None:
         text += f"\n\ndeclared at {_shown(decl.path)}:{decl.line}:{decl.col}"
     return text
@@ -531,7 +572,7 @@ def definition(ls: Any, state: ProjectState, path: str, params: Any) -> list[T.L
     if found is None or found[2] is None:
         return None
     index, _, o = found
-    decl = index.decls.get(id(o.sym))
+    decl = index.declaration(o.sym)
     return [_location(ls, state, decl)] if decl is not None else None
 
 
@@ -593,7 +634,7 @@ def document_symbols(ls: Any, state: ProjectState, path: str, params: Any) -> li
     index, lines = ready
     nodes: dict[int, T.DocumentSymbol] = {}
     top: list[T.DocumentSymbol] = []
-    for o in index.files.get(path, []):
+    for o in index.occs(path):
         kind = _kind(o.sym) if o.decl else None
         if kind is None:
             continue
@@ -623,6 +664,8 @@ def _detail(sym: object) -> str | None:
 
 
 def workspace_symbols(ls: Any, state: ProjectState, query: str) -> list[T.WorkspaceSymbol]:
+    """Modules, classes, procedures, properties, Consts and module variables whose name holds
+    ``query`` (case-insensitive), from the symbol tables: no file is walked."""
     if state.last is None:
         return []
     index = index_of(state)
@@ -630,17 +673,33 @@ def workspace_symbols(ls: Any, state: ProjectState, query: str) -> list[T.Worksp
         return []
     q = query.lower()
     out = []
-    for path, occs in index.files.items():
-        lines = convert.lines_of(state.last.files.get(path, ""))
-        for o in occs:
-            kind = _kind(o.sym) if o.decl else None
-            name = getattr(o.sym, "name", "")
-            if kind is None or q not in name.lower():
-                continue
-            container = _container(o.sym)
-            out.append(T.WorkspaceSymbol(name=name, kind=kind, location=_location_in(ls, lines, o),
+    for sym, container in _declared(index.model):
+        name = getattr(sym, "name", "")
+        kind = _kind(sym)
+        if kind is None or q not in name.lower():
+            continue
+        o = index.declaration(sym)
+        if o is not None:
+            out.append(T.WorkspaceSymbol(name=name, kind=kind, location=_location_in(ls, index.lines(o.path), o),
                                          container_name=getattr(container, "name", None)))
     return out
+
+
+def _declared(model: Model) -> Iterator[tuple[object, object]]:
+    """Every module, its members, and the members of its classes, with what holds them."""
+    project = model.project
+    for mod in [*project.module_list, *([project.top] if project.top is not None else [])]:
+        if mod is not project.top:
+            yield mod, None
+        stack: list[tuple[object, object]] = [(m, mod if mod is not project.top else None) for m in mod.members.values()]
+        while stack:
+            sym, owner = stack.pop()
+            if isinstance(sym, OverloadSet):
+                stack.extend((p, owner) for p in sym.procs)
+                continue
+            yield sym, owner
+            if isinstance(sym, ClassSym):
+                stack.extend((m, sym) for m in sym.members.values())
 
 
 def _location_in(ls: Any, lines: list[str], o: Occ) -> T.Location:
@@ -670,17 +729,23 @@ def _current_lines(ls: Any, path: str, state: ProjectState) -> list[str]:
     return convert.lines_of(state.last.files.get(path, "")) if state.last else []
 
 
-def completion(ls: Any, state: ProjectState, path: str, params: T.CompletionParams) -> T.CompletionList | None:
+def _typing(ls: Any, state: ProjectState, path: str, params: Any) -> tuple[Index, int, str] | None:
+    """The index, the cursor's line and the code before the cursor in the text being typed;
+    None inside a comment or a string, or before the first check."""
     ready = _ready(ls, state, path)
     if ready is None:
         return None
-    index = ready[0]
     lines = _current_lines(ls, path, state)
     line, col = convert.from_client(lines, params.position, ls.workspace.position_codec)
-    before = (lines[line - 1] if 0 < line <= len(lines) else "")[:col - 1]
-    before = _code_part(before)
-    if before is None:
-        return None  # inside a comment or a string
+    before = _code_part((lines[line - 1] if 0 < line <= len(lines) else "")[:col - 1])
+    return (ready[0], line, before) if before is not None else None
+
+
+def completion(ls: Any, state: ProjectState, path: str, params: T.CompletionParams) -> T.CompletionList | None:
+    typing = _typing(ls, state, path, params)
+    if typing is None:
+        return None
+    index, line, before = typing
     proc, cls, mod = index.scope(path, line)
     chain = _CHAIN.search(before)
     items: list[T.CompletionItem] = []
@@ -840,15 +905,10 @@ def members_of(target: object, index: Index, here: ModuleSym | None) -> list[tup
 
 
 def signature_help(ls: Any, state: ProjectState, path: str, params: Any) -> T.SignatureHelp | None:
-    ready = _ready(ls, state, path)
-    if ready is None:
+    typing = _typing(ls, state, path, params)
+    if typing is None:
         return None
-    index = ready[0]
-    lines = _current_lines(ls, path, state)
-    line, col = convert.from_client(lines, params.position, ls.workspace.position_codec)
-    before = _code_part((lines[line - 1] if 0 < line <= len(lines) else "")[:col - 1])
-    if before is None:
-        return None
+    index, line, before = typing
     call = _open_call(before)
     if call is None:
         return None
@@ -958,6 +1018,7 @@ def collision(sym: object, new: str, index: Index) -> str | None:
         return None
     project = index.model.project
     if isinstance(sym, A.Label):
+        index.occurrences(sym)  # (every file's procedures known)
         for proc in (p for lst in index.procs.values() for _, _, p, _, _ in lst):
             if proc.labels.get(sym.name.lower()) is sym and key in proc.labels:
                 return f"the procedure already has a label '{new}'"
@@ -994,6 +1055,7 @@ def collision(sym: object, new: str, index: Index) -> str | None:
 
 
 def _scope_of_proc(index: Index, proc: ProcSym) -> tuple[ClassSym | None, ModuleSym | None]:
+    index.occurrences(proc)  # (every file's procedures known)
     for lst in index.procs.values():
         for _, _, p, cls, mod in lst:
             if p is proc:

@@ -92,9 +92,6 @@ class GplServer(LanguageServer):
             self.text_document_publish_diagnostics(T.PublishDiagnosticsParams(
                 uri=uri, diagnostics=items, version=doc.version if doc is not None else None))
         self.published[state.path] = now
-        name = FEATURES.get(state.frontend.name)
-        if name is not None:  # the navigation index, built now that the diagnostics are out
-            guarded(self, "indexing " + state.path, lambda: importlib.import_module(name).prepare(state))
 
     def log(self, kind: T.MessageType, text: str) -> None:
         self.window_log_message(T.LogMessageParams(type=kind, message=text))

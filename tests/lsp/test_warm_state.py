@@ -53,3 +53,34 @@ def test_warm_checks_equal_cold_ones_and_parse_only_what_changed(tmp_path: Path,
     memo_before = len(memo)
     cmd.write_text(edited.replace("Public Sub Broken(\n", "", 1))
     assert warm() == expected and parsed == ["Cmd.gpl"] and len(memo) == memo_before
+
+
+def test_a_body_edit_lowers_only_its_module_and_reports_what_cold_lowering_does(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
+    memo: dict[object, object] = {}
+    lowered: list[str] = []
+    real = pipeline.lower_module
+    monkeypatch.setattr(pipeline, "lower_module",
+                        lambda model, names, mod, sink: lowered.append(mod.name) or real(model, names, mod, sink))
+
+    def warm(texts: dict[str, str]) -> list[str]:
+        sink = DiagnosticSink()
+        transpile(tcs, sink, keep_modules=False, texts=texts, memo=memo)
+        return headers(sink)
+
+    expected = cold(tcs)
+    assert warm({}) == expected
+    lowered.clear()
+    cmd = tcs / "Cmd.gpl"
+    # a GoTo into a Try: an error only the lowering reports (GPL3002)
+    edited = cmd.read_text().replace(
+        "        Dim ii As Integer\n        If bTelnetMode Then\n",
+        "        Dim ii As Integer\n        Dim ex As Exception\n        GoTo inside\n        Try\ninside:\n        Catch ex\n        End Try\n"
+        "        If bTelnetMode Then\n", 1)
+    got = warm({os.path.abspath(cmd): edited})
+    assert lowered == ["Cmd"] and any("GPL3002" in h for h in got)
+    cmd.write_text(edited)
+    assert got == cold(tcs)
+    lowered.clear()
+    assert warm({}) == got and lowered == []  # nothing changed: every module's diagnostics replayed
