@@ -194,6 +194,8 @@ def test_quick_fixes_for_an_undeclared_name(tmp_path: Path) -> None:
         s.open(main)
         diags = s.wait_diagnostics(main)
         assert [d.message for d in diags] == ["'totl' is not declared", "'ratio' is not declared"]
+        explained = s.hover(main, diags[0].range.start.line, diags[0].range.start.character).contents.value
+        assert "**GPL2001** (error): '{name}' is not declared" in explained  # gpl2py explain's text
         [fix, dim] = s.code_actions(main, diags[0].range.start.line, [diags[0]])
         assert fix.title == "Change 'totl' to 'total'"
         assert dim.title == "Declare 'Dim totl As Integer'"
