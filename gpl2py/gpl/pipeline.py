@@ -85,7 +85,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
                     strict=strict, stub_provider=user.provider if user is not None else None,
                     start_span=project.start_span, sources_missing=missing)
-    if memo is not None:  # what the language server's navigation reads (gpl2py/lsp/gpl.py)
+    if memo is not None:  # what the language server's navigation reads (gpl2py/lsp/gpl/)
         memo[MODEL_KEY] = (project, units, model)
     if sink.has_errors() and not keep_going:
         return None

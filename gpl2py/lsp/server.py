@@ -3,7 +3,7 @@
 This module is the wiring only: the protocol's requests and notifications in, the workspace's
 checks (:mod:`gpl2py.lsp.projects`) and a language's features (:data:`FEATURES`) called, the
 answers converted to the protocol's types (:mod:`gpl2py.lsp.convert`).  What a feature knows of a
-language lives in that language's module: ``gpl2py.lsp.gpl`` for GPL; V+ and TMscript get
+language lives in that language's module: ``gpl2py.lsp.gpl`` (a package) for GPL; V+ and TMscript get
 diagnostics through the door as their front ends land, and their navigation by adding a module
 to :data:`FEATURES` with the same functions.
 
