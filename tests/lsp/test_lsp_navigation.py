@@ -205,3 +205,28 @@ def test_quick_fixes_for_an_undeclared_name(tmp_path: Path) -> None:
         assert "        Dim ratio As Double\n        Dim loc As New Location\n" in fixed
         s.change(main, fixed)
         assert s.wait_diagnostics(main) == []
+
+
+def test_typing_a_file_character_by_character_never_breaks_the_server(tmp_path: Path) -> None:
+    """Every prefix of a file, as typed (every 5th character), checked and asked everything at
+    the cursor: no internal error is logged, every request is answered, and the finished text is
+    clean again."""
+    folder = write(tmp_path, {"Main.gpl": MAIN, "Helper.gpl": HELPER, "Tools.gpl": TOOLS})
+    main = folder / "Main.gpl"
+    with Session(tmp_path) as s:
+        s.open(main, "")
+        for end in list(range(0, len(MAIN), 5)) + [len(MAIN)]:
+            text = MAIN[:end]
+            s.change(main, text)
+            diags = s.wait_diagnostics(main)
+            line = text.count("\n")
+            col = len(text) - (text.rfind("\n") + 1)
+            s.completion(main, line, col)
+            s.signature_help(main, line, col)
+            s.hover(main, line, max(col - 1, 0))
+            s.definition(main, line, max(col - 1, 0))
+            s.highlight(main, line, max(col - 1, 0))
+            s.document_symbols(main)
+            s.code_actions(main, line, diags)
+        assert s.wait_diagnostics(main) == []
+        assert not [log for log in s.logs if "internal error" in log], s.logs
