@@ -172,6 +172,26 @@ def test_rename_project_wide_and_refused_on_collision(tmp_path: Path) -> None:
         assert gpl2py("check", str(folder), cwd=tmp_path).returncode == 0
         s.change(main, renamed_main)
         s.wait_diagnostics(main)
+        # a class: its declaration, New, and every As of a variable, parameter or result
+        tools = folder / "Tools.gpl"
+        helper.write_text(helper.read_text().replace(
+            "End Module", "    Public Function Make(ByVal g As Gripper) As Tools.Gripper\n        Return g\n"
+                          "    End Function\nEnd Module"))
+        s.change(main, renamed_main + " ")  # (a check, which reads Helper from disk)
+        s.wait_diagnostics(main)
+        edit = s.rename(main, *at(renamed_main, "New Gripper", 0, 4), "Holder")
+        assert {u.rsplit("/", 1)[-1]: len(e) for u, e in edit.changes.items()} == \
+            {"Main.gpl": 1, "Helper.gpl": 2, "Tools.gpl": 1}
+        for u, edits in edit.changes.items():
+            target = folder / u.rsplit("/", 1)[-1]
+            text = renamed_main if target == main else target.read_text()
+            target.write_text(apply_edits(text, edits))
+        renamed_main = main.read_text()
+        assert "Dim g As New Holder" in renamed_main and "As Tools.Holder" in helper.read_text()
+        assert "Public Class Holder" in tools.read_text()
+        assert gpl2py("check", str(folder), cwd=tmp_path).returncode == 0
+        s.change(main, renamed_main)
+        s.wait_diagnostics(main)
         edit = s.rename(main, *at(renamed_main, "total", 1), "count")
         assert len(edit.changes[uri(main)]) == 5
         for new, reason in [("loc", "'loc' is already declared in Main"),

@@ -73,6 +73,8 @@ def collision(sym: object, new: str, index: Index) -> str | None:
     if key == getattr(sym, "name", "").lower():
         return None
     project = index.model.project
+    if isinstance(sym, ClassSym) and len(index.class_names.get(sym.name.lower(), [])) > 1:
+        return f"the project has several classes named '{sym.name}': their type names cannot be told apart"
     if isinstance(sym, A.Label):
         index.occurrences(sym)  # (every file's procedures known)
         for proc in (p for lst in index.procs.values() for _, _, p, _, _ in lst):

@@ -78,6 +78,7 @@ class Index:
     uses: dict[int, list[Occ]] = field(default_factory=dict)
     procs: dict[str, list[tuple[int, int, ProcSym, ClassSym | None, ModuleSym]]] = field(default_factory=dict)
     classes: dict[str, ClassSym] = field(default_factory=dict)  # ClassType key -> class
+    class_names: dict[str, list[ClassSym]] = field(default_factory=dict)  # lower-case name -> classes
     units: dict[str, A.SourceUnit] = field(default_factory=dict)
     texts: dict[str, str] = field(default_factory=dict)  # the text each file was analysed with
     _lines: dict[str, list[str]] = field(default_factory=dict)
@@ -165,6 +166,7 @@ class _Builder:
     def __init__(self, model: Model, index: Index, path: str, lines: list[str]) -> None:
         self.model, self.index, self.path, self.lines = model, index, path, lines
         self.out: list[Occ] = []
+        self.typed: set[int] = set()  # the TypeRefs of New expressions, indexed with their class
 
     def add(self, line: int, col: int, name: str, sym: object, decl: bool = False, owner: object = None) -> None:
         sym = _symbol(sym)
@@ -248,6 +250,12 @@ class _Builder:
                 target = proc.labels.get(node.label.lower())
                 if target is not None:
                     self.name(node, node.label, target, from_end=True)
+            elif isinstance(node, A.TypeRef) and id(node) not in self.typed:
+                # ``As Gripper``: the project's one class of that name (none is not a user class;
+                # several: rename refuses, see edits.collision)
+                named = self.index.class_names.get(node.parts[-1].lower(), [])
+                if len(named) == 1:
+                    self.name(node, node.parts[-1], named[0], from_end=True)
             elif isinstance(node, A.Expr):
                 self.expr(node)
             for child in reversed(list(node.children())):
@@ -256,6 +264,7 @@ class _Builder:
     def expr(self, e: A.Expr) -> None:
         info = e._info
         if isinstance(e, A.New) and isinstance(info, NewInfo) and isinstance(info.sym, ClassSym):
+            self.typed.add(id(e.type))  # (the class the checker chose, not one found by name)
             self.name(e.type, e.type.parts[-1], info.sym, from_end=True)
             return
         if not isinstance(e, (A.Name, A.MemberAccess)) or info is None:
@@ -289,6 +298,7 @@ def _build(units: list[A.SourceUnit], model: Model, texts: dict[str, str]) -> In
     for cls in model.class_of_decl.values():
         if cls.type is not None:
             index.classes[cls.type.key] = cls
+        index.class_names.setdefault(cls.name.lower(), []).append(cls)
     return index
 
 
