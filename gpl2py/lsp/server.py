@@ -39,6 +39,8 @@ FEATURES: dict[str, str] = {"gpl": "gpl2py.lsp.gpl"}
 #: How long after the last change a file is checked (seconds); ``initializationOptions``'s
 #: ``debounceMs`` changes it (0: at once, what the latency benchmark measures).
 DEBOUNCE = 0.15
+#: The features that read the text being typed rather than the last check.
+TYPING = ("completion", "signature_help")
 
 R = TypeVar("R")
 
@@ -98,15 +100,21 @@ class GplServer(LanguageServer):
 
     # -- features ---------------------------------------------------------------------------------
 
-    def features(self, uri: str) -> tuple[ModuleType, ProjectState, str] | None:
+    def features(self, uri: str, fresh: bool = True) -> tuple[ModuleType, ProjectState, str] | None:
         """The feature module, project and path of the document ``uri``, when its language has
-        features and its project has been checked."""
+        features.  ``fresh``: a check still waiting for the edits to pause is made now, so that
+        positions are those of the text the editor shows (not for completion and signature help,
+        which read the text being typed and come right after a keystroke)."""
         path = fs_path(uri)
         state = self.gpl.project_of(path)
         name = FEATURES.get(state.frontend.name)
         if name is None:
             return None
-        if state.last is None:
+        waiting = self.pending.get(state.path)
+        if state.last is None or (fresh and waiting is not None):
+            if waiting is not None:
+                waiting.cancel()
+                self.pending.pop(state.path, None)
             self.check_now(state)
         return importlib.import_module(name), state, path
 
@@ -174,7 +182,7 @@ def _register_features(server: GplServer) -> None:
     def route(method: str, name: str, options: Any = None) -> None:
         def handler(ls: GplServer, params: Any) -> Any:
             def work() -> Any:
-                found = ls.features(params.text_document.uri)
+                found = ls.features(params.text_document.uri, fresh=name not in TYPING)
                 if found is None:
                     return None
                 module, state, path = found

@@ -250,3 +250,19 @@ def test_typing_a_file_character_by_character_never_breaks_the_server(tmp_path: 
             s.code_actions(main, line, diags)
         assert s.wait_diagnostics(main) == []
         assert not [log for log in s.logs if "internal error" in log], s.logs
+
+
+def test_a_request_right_after_an_edit_sees_the_edited_text(tmp_path: Path) -> None:
+    """With the check still waiting for typing to pause, hover and rename answer for the text the
+    editor shows: the waiting check is made first."""
+    folder = write(tmp_path, {"Main.gpl": MAIN, "Helper.gpl": HELPER, "Tools.gpl": TOOLS})
+    main = folder / "Main.gpl"
+    with Session(tmp_path, debounce_ms=10_000) as s:
+        s.open(main)
+        s.wait_diagnostics(main)
+        shifted = "' a comment line typed above everything\n" + MAIN
+        s.change(main, shifted)
+        hover = s.hover(main, *at(shifted, "total", 2))
+        assert hover is not None and "Dim total As Integer" in hover.contents.value
+        edit = s.rename(main, *at(shifted, "total", 1), "count")
+        assert apply_edits(shifted, edit.changes[uri(main)]).count("count") == 5

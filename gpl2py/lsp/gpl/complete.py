@@ -224,9 +224,9 @@ def members_of(target: object, index: Index, here: ModuleSym | None) -> list[tup
     if isinstance(target, ClassSym):  # the class's name: its Shared members, Consts and nested classes
         return [(getattr(m, "name", k), m, None) for k, m in target.members.items()
                 if getattr(m, "shared", False) or getattr(m, "const", False) or isinstance(m, ClassSym)]
-    if isinstance(target, BuiltinClass):
-        static = target.is_global or target is not cat.type_members.get("string")
-        return [(m.name, m, target) for m in target.members.values() if m.shared or target.is_global or not static]
+    if isinstance(target, BuiltinClass):  # the class's name: its Shared members (a global class's: all)
+        every = target.is_global or target is cat.type_members.get("string")
+        return [(m.name, m, target) for m in target.members.values() if every or m.shared]
     if isinstance(target, t.ClassType):
         if target.builtin:
             b = cat.classes.get(target.key)
