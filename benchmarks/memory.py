@@ -50,15 +50,16 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
-CORPUS = Path(os.environ.get("GPL2PY_CORPUS", ROOT.parent.parent / "shared" / "corpus"))
+#: The real code (``$GPL_CORPUS``, else ``../shared/corpus`` beside the repository), as the tests
+#: and the other benchmarks find it.
+CORPUS = Path(os.environ.get("GPL_CORPUS") or ROOT.parent / "shared" / "corpus")
 TARGET = 30.0
 
 
 def _corpus_dir() -> Path:
-    for base in (CORPUS, Path("/work/shared/corpus")):
-        if (base / "tcs-3.0C1-pa").is_dir():
-            return base / "tcs-3.0C1-pa"
-    raise SystemExit("corpus not found: set GPL2PY_CORPUS to the folder holding tcs-3.0C1-pa")
+    if (CORPUS / "tcs-3.0C1-pa").is_dir():
+        return CORPUS / "tcs-3.0C1-pa"
+    raise SystemExit(f"corpus not found at {CORPUS}: set GPL_CORPUS to the folder holding tcs-3.0C1-pa")
 
 
 # ------------------------------------------------------------------------------------ inputs
