@@ -45,13 +45,12 @@ from lspclient import Session  # noqa: E402  (the tests' client: pygls's, over s
 
 
 def corpus() -> Path:
-    env = os.environ.get("GPL_CORPUS")
-    base = Path(env) if env else HERE.parent.parent / "shared" / "corpus"
-    if not (base / "tcs-3.0C1-pa").is_dir():
-        base = Path("/work/shared/corpus")
+    """The TCS project of the real code (``$GPL_CORPUS``, else ``../shared/corpus`` beside the
+    repository), as the tests find it."""
+    base = Path(os.environ.get("GPL_CORPUS") or HERE.parent.parent / "shared" / "corpus")
     found = base / "tcs-3.0C1-pa"
     if not found.is_dir():
-        raise SystemExit("lsp_latency.py: the TCS corpus is not found: set GPL_CORPUS to ../shared/corpus")
+        raise SystemExit(f"lsp_latency.py: {found} not found: set GPL_CORPUS to the folder holding tcs-3.0C1-pa")
     return found
 
 
