@@ -21,6 +21,7 @@ so it reports exactly what ``translate`` reports, in every case.
 from __future__ import annotations
 
 import gc
+import inspect
 import os
 import sys
 from collections.abc import Callable, Iterator, Mapping, MutableMapping
@@ -48,17 +49,24 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     front end's name (``--language``); by default recognised from the files.  ``texts``: the text
     of some sources by absolute path, in place of the files' (an editor's unsaved buffers);
     ``memo``: a mapping the front end keeps its per-file work in between calls (the language
-    server's warm state: docs/design/lsp.md); both are passed only when given, so a front end
-    that has not learnt them yet is called as before.
+    server's warm state: docs/design/lsp.md); each is passed only when given and when the front
+    end's pipeline takes it, so a front end that has not learnt them yet is called as before.
 
     The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
     has the same stack whoever calls it (:func:`recursion_budget`).
     """
     with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
         pipeline = frontend_for(path, language).pipeline()
-        extra = {k: v for k, v in (("texts", texts), ("memo", memo)) if v is not None}
+        extra = {k: v for k, v in (("texts", texts), ("memo", memo)) if v is not None and _accepts(pipeline, k)}
         return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules, **extra)
     return None
+
+
+def _accepts(fn: Callable[..., object], name: str) -> bool:
+    """Whether ``fn`` takes the keyword ``name``: a front end that has not learnt ``texts`` or
+    ``memo`` yet is called without them (it checks the files on disk, and from scratch)."""
+    params = inspect.signature(fn).parameters
+    return name in params or any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values())
 
 
 #: The Python frames a translation may use below its entry: what one from the command line had

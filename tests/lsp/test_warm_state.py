@@ -84,3 +84,24 @@ def test_a_body_edit_lowers_only_its_module_and_reports_what_cold_lowering_does(
     assert got == cold(tcs)
     lowered.clear()
     assert warm({}) == got and lowered == []  # nothing changed: every module's diagnostics replayed
+
+
+def test_a_front_end_without_texts_and_memo_is_called_as_before(tmp_path: Path,
+                                                                monkeypatch: pytest.MonkeyPatch) -> None:
+    """A pipeline whose signature lacks ``texts`` and ``memo`` (V+ and TMscript before they learn
+    them) gets the door's other arguments, not a TypeError reported as GPL9000."""
+    from gpl2py import languages
+    from gpl2py import transpile as door
+
+    calls: list[tuple[object, ...]] = []
+
+    def old_pipeline(path: object, sink: object, keep_going: object, progress: object, stubs_dir: object,
+                     strict: object, loaded: object, limits: object, keep_modules: object) -> None:
+        calls.append((path, keep_modules))
+
+    front = languages.Frontend("old", "Old", (".old",), "x", "x")
+    monkeypatch.setattr(front.__class__, "pipeline", lambda self: old_pipeline)
+    monkeypatch.setattr(door, "frontend_for", lambda path, language=None: front)
+    sink = DiagnosticSink()
+    assert door.transpile(tmp_path, sink, keep_modules=False, texts={"a": "b"}, memo={}) is None
+    assert calls == [(tmp_path, False)] and list(sink) == []
