@@ -32,13 +32,15 @@ class Session:
     """One server, initialised for ``root``; ``diagnostics[uri]`` holds the last ones published
     for each file and ``logs`` what the server logged."""
 
-    def __init__(self, root: Path, debounce_ms: int = 0, env: dict[str, str] | None = None) -> None:
+    def __init__(self, root: Path, debounce_ms: int = 0, env: dict[str, str] | None = None,
+                 capabilities: T.ClientCapabilities | None = None) -> None:
         self.loop = asyncio.new_event_loop()
         self.client = LanguageClient("gpl2py-tests", "1")
         self.diagnostics: dict[str, list[T.Diagnostic]] = {}
         self.published: list[tuple[float, str, int | None]] = []
         self.logs: list[str] = []
         self.versions: dict[str, int] = {}
+        self.registrations: list[T.Registration] = []
 
         @self.client.feature(T.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
         def on_diagnostics(params: T.PublishDiagnosticsParams) -> None:
@@ -49,11 +51,15 @@ class Session:
         def on_log(params: T.LogMessageParams) -> None:
             self.logs.append(params.message)
 
+        @self.client.feature(T.CLIENT_REGISTER_CAPABILITY)
+        def on_register(params: T.RegistrationParams) -> None:
+            self.registrations.extend(params.registrations)
+
         environ = {**os.environ, **(env or {})}
         environ.pop("GPL2PY_TRACEBACK", None)
         self.run(self.client.start_io(sys.executable, "-m", "gpl2py", "lsp", cwd=str(root), env=environ))
         self.run(self.client.initialize_async(T.InitializeParams(
-            capabilities=T.ClientCapabilities(), root_uri=uri(root),
+            capabilities=capabilities or T.ClientCapabilities(), root_uri=uri(root),
             initialization_options={"debounceMs": debounce_ms})))
         self.client.initialized(T.InitializedParams())
 

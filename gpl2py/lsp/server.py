@@ -39,6 +39,8 @@ FEATURES: dict[str, str] = {"gpl": "gpl2py.lsp.gpl"}
 #: How long after the last change a file is checked (seconds); ``initializationOptions``'s
 #: ``debounceMs`` changes it (0: at once, what the latency benchmark measures).
 DEBOUNCE = 0.15
+#: The extensions of the files the editor is asked to watch (each spelling a controller may use).
+WATCHED = ("gpl", "gpo", "gpr", "GPL", "GPO", "GPR", "Gpl", "Gpr")
 #: The features that read the text being typed rather than the last check.
 TYPING = ("completion", "signature_help")
 
@@ -148,6 +150,27 @@ def build() -> GplServer:
         options = params.initialization_options if isinstance(params.initialization_options, dict) else {}
         if isinstance(options.get("debounceMs"), (int, float)):
             ls.debounce = max(0.0, float(options["debounceMs"]) / 1000)
+
+    @server.feature(T.INITIALIZED)
+    def initialized(ls: GplServer, params: T.InitializedParams) -> None:
+        """Ask the editor to tell about sources changed on disk (a git checkout, another tool), when
+        it can register watchers: the projects that hold them are checked again."""
+        caps = ls.client_capabilities.workspace
+        watched = caps.did_change_watched_files if caps is not None else None
+        if watched is not None and watched.dynamic_registration:
+            ls.client_register_capability(T.RegistrationParams(registrations=[T.Registration(
+                id="gpl2py-sources", method=T.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+                register_options=T.DidChangeWatchedFilesRegistrationOptions(watchers=[
+                    T.FileSystemWatcher(glob_pattern=f"**/*.{ext}") for ext in WATCHED]))]))
+
+    @server.feature(T.WORKSPACE_DID_CHANGE_WATCHED_FILES)
+    def watched_files(ls: GplServer, params: T.DidChangeWatchedFilesParams) -> None:
+        for change in params.changes:
+            path = fs_path(change.uri)
+            if path in ls.gpl.texts:
+                continue  # open in the editor: its text there is the one checked
+            if any(k == path or k == os.path.dirname(path) for k in ls.gpl.projects):
+                ls.schedule(path)  # (a project already held: its folder, or the file alone)
 
     @server.feature(T.TEXT_DOCUMENT_DID_OPEN)
     def did_open(ls: GplServer, params: T.DidOpenTextDocumentParams) -> None:

@@ -148,3 +148,25 @@ class _Codec:
 
     position_codec = PositionCodec()
     text_documents: dict[str, object] = {}
+
+
+def test_a_source_changed_on_disk_is_checked_again(tmp_path: Path) -> None:
+    """A file not open in the editor changes on disk (a git checkout): the editor's
+    didChangeWatchedFiles makes the server check its project again."""
+    from lsprotocol import types as T
+
+    folder = project(tmp_path, {"Main.gpl": MAIN, "Helper.gpl": HELPER})
+    helper = folder / "Helper.gpl"
+    watching = T.ClientCapabilities(workspace=T.WorkspaceClientCapabilities(
+        did_change_watched_files=T.DidChangeWatchedFilesClientCapabilities(dynamic_registration=True)))
+    with Session(tmp_path, capabilities=watching) as s:
+        s.open(folder / "Main.gpl")
+        assert s.wait_diagnostics(helper) == []
+        [watch] = s.registrations  # the server asked to be told about the sources on disk
+        assert watch.method == "workspace/didChangeWatchedFiles"
+        assert {"globPattern": "**/*.gpl"} in watch.register_options["watchers"]
+        mark = len(s.published)
+        helper.write_text(HELPER.replace("Return x * 2", "Return y * 2"))
+        s.client.workspace_did_change_watched_files(T.DidChangeWatchedFilesParams(
+            changes=[T.FileEvent(uri=uri(helper), type=T.FileChangeType.Changed)]))
+        assert [d.message for d in s.wait_diagnostics(helper, after=mark)] == ["'y' is not declared"]
