@@ -31,7 +31,7 @@ from pygls.uris import from_fs_path, to_fs_path
 from gpl2py import __version__
 from gpl2py.config import Config, ConfigError
 from gpl2py.lsp import convert
-from gpl2py.lsp.projects import ProjectState, Workspace
+from gpl2py.lsp.projects import CheckResult, ProjectState, Workspace
 
 #: The module of each language's navigation features (hover, definition, completion ...), by the
 #: front end's name (gpl2py.languages); a language without one gets diagnostics only.
@@ -83,8 +83,10 @@ class GplServer(LanguageServer):
     def check_now(self, state: ProjectState) -> None:
         """Check ``state``'s project and publish every file's diagnostics."""
         result = guarded(self, "checking " + state.path, lambda: state.check(self.gpl.texts, self.config()))
-        if result is None:
-            return
+        if result is not None:
+            guarded(self, "publishing the diagnostics of " + state.path, lambda: self._publish(state, result))
+
+    def _publish(self, state: ProjectState, result: CheckResult) -> None:
         before = self.published.get(state.path, set())
         now = set(result.by_file)
         for path in sorted(now | before):
