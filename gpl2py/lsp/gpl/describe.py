@@ -4,6 +4,7 @@ it, a built-in's signature and the runtime's description of it, a code's explana
 from __future__ import annotations
 
 import importlib
+import os
 from functools import lru_cache
 from typing import Any
 
@@ -20,8 +21,9 @@ from gpl2py.lsp.projects import ProjectState
 
 def explain(code: str) -> str:
     """``gpl2py explain CODE``'s text."""
-    m = next((x for x in M.all_messages() if x.code == code), None)
-    if m is None:
+    try:
+        m = M.message(code)
+    except KeyError:
         return ""
     return f"**{m.code}** ({m.severity_name}): {m.template}\n\n{m.notes or ''}".strip()
 
@@ -48,8 +50,6 @@ def describe(o: Occ, index: Index, state: ProjectState) -> str:
 
 
 def _shown(path: str) -> str:
-    import os
-
     return os.path.basename(path)
 
 

@@ -9,6 +9,7 @@ here resolves a name the checker resolved: what ``check`` decided is what the ed
 
 from __future__ import annotations
 
+import os
 import re
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -129,8 +130,7 @@ class Index:
 
 
 def abspath(p: str) -> str:
-    import os
-
+    """The absolute path a diagnostic's or a node's file name stands for (the server's key)."""
     return os.path.abspath(p)
 
 
