@@ -170,3 +170,19 @@ def test_a_source_changed_on_disk_is_checked_again(tmp_path: Path) -> None:
         s.client.workspace_did_change_watched_files(T.DidChangeWatchedFilesParams(
             changes=[T.FileEvent(uri=uri(helper), type=T.FileChangeType.Changed)]))
         assert [d.message for d in s.wait_diagnostics(helper, after=mark)] == ["'y' is not declared"]
+
+
+def test_a_tmscript_file_gets_checks_diagnostics_through_the_same_door(tmp_path: Path) -> None:
+    """The place left for the other front ends: a TMscript project (whose pipeline has not learnt
+    the editor's unsaved texts yet) gets what check reports for its files as saved."""
+    folder = tmp_path / "tm"
+    folder.mkdir()
+    script = folder / "Main.tms"
+    script.write_text("main\n{\n}\nint F()\n{\n  return\n}\n")
+    expected = check_json(folder, tmp_path)
+    assert {e[3] for e in expected} == {"GPL5306"}
+    with Session(tmp_path) as s:
+        s.open(script)
+        s.wait_diagnostics(script)
+        assert published(s) == expected
+        assert "internal error" not in " ".join(s.logs)
