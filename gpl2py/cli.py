@@ -298,6 +298,29 @@ def _run_run(args: argparse.Namespace) -> Outcome:
     return run_command(args)
 
 
+def _configure_lsp(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--stdio", action="store_true",
+                        help="talk the protocol on stdin/stdout (the default and only transport)")
+
+
+def _run_lsp(args: argparse.Namespace) -> Outcome:
+    """Serve the Language Server Protocol on stdin/stdout until the editor says exit."""
+    from gpl2py.run import missing_extra
+
+    out = Outcome(counts=False)
+    problem = missing_extra("pygls", "lsp", "gpl2py lsp")
+    if problem is not None:
+        out.sink.report(msg.USAGE_ERROR, None, detail=problem)
+        out.usage_error = True
+        return out
+    from gpl2py.lsp.server import serve
+
+    serve()
+    out.emitted = True
+    out.exit_status = EXIT_OK
+    return out
+
+
 def _run_epilog() -> str:
     from gpl2py.run import RUN_EPILOG
 
@@ -353,6 +376,15 @@ COMMANDS: list[Command] = [
         configure=_configure_run,
         run=_run_run,
         epilog=_run_epilog,
+    ),
+    Command(
+        name="lsp",
+        help="serve diagnostics, types and navigation to an editor (Language Server Protocol)",
+        description="Run gpl2py's language server on stdin/stdout: the diagnostics of gpl2py check "
+        "as you type, hover, go to definition, references, symbols, completion, signature help, "
+        "rename and quick fixes (docs/editors.md). Needs the lsp extra: pip install 'gpl2py[lsp]'.",
+        configure=_configure_lsp,
+        run=_run_lsp,
     ),
 ]
 

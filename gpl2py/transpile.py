@@ -24,7 +24,7 @@ import gc
 import inspect
 import os
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping, MutableMapping
 from contextlib import contextmanager
 
 from gpl2py.diagnostics import DiagnosticSink, contained
@@ -38,7 +38,9 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
               strict: bool = False, loaded: Callable[[Project], None] | None = None,
               limits: Limits | None = None, keep_modules: bool = True,
-              language: str | None = None, start: str | None = None) -> Output | None:
+              language: str | None = None, start: str | None = None,
+              texts: Mapping[str, str] | None = None,
+              memo: MutableMapping[object, object] | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.gpl.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.gpl.semantics.stubs``).
@@ -47,7 +49,11 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     default from the environment).  ``keep_modules=False`` (``gpl2py check``): the diagnostics
     only, each module's text dropped once made and no project files read.  ``language``: the
     front end's name (``--language``); by default recognised from the files.  ``start``: the
-    program to run (``--start``), given to the pipeline only when set.
+    program to run (``--start``), given to the pipeline only when set.  ``texts``: the text
+    of some sources by absolute path, in place of the files' (an editor's unsaved buffers);
+    ``memo``: a mapping the front end keeps its per-file work in between calls (the language
+    server's warm state: docs/design/lsp.md); each is passed only when given and when the front
+    end's pipeline takes it, so a front end that has not learnt them yet is called as before.
 
     The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
     has the same stack whoever calls it (:func:`recursion_budget`).
@@ -55,12 +61,20 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
         frontend = frontend_for(path, language)
         pipeline = frontend.pipeline()
-        extra = {"start": start} if start is not None else {}
-        if extra and "start" not in inspect.signature(pipeline).parameters:  # (a language without it)
+        extra: dict[str, object] = {"start": start} if start is not None else {}
+        if extra and not _accepts(pipeline, "start"):  # (a language without it)
             sink.report(USAGE_ERROR, None, detail=f"--start: a {frontend.title} project has no start to choose")
             return None
+        extra.update({k: v for k, v in (("texts", texts), ("memo", memo)) if v is not None and _accepts(pipeline, k)})
         return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules, **extra)
     return None
+
+
+def _accepts(fn: Callable[..., object], name: str) -> bool:
+    """Whether ``fn`` takes the keyword ``name``: a front end that has not learnt ``texts`` or
+    ``memo`` yet is called without them (it checks the files on disk, and from scratch)."""
+    params = inspect.signature(fn).parameters
+    return name in params or any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values())
 
 
 #: The Python frames a translation may use below its entry: what one from the command line had

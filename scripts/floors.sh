@@ -9,10 +9,10 @@ VENV="${GPL2PY_FLOORS_VENV:-$ROOT/.venv-floors}"
 PY="${PYTHON:-python3}"
 started=$SECONDS
 "$PY" -m venv --clear "$VENV"
-"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot > "$VENV/floors.txt"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot lsp > "$VENV/floors.txt"
 # Not editable: the wheel a user would get, with its package data.
-"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot]"
-"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot
+"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot,lsp]"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot lsp
 
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
@@ -28,4 +28,15 @@ head -c 4 "$WORK/cell.png" | grep -q PNG
 "$G" "$ROOT/samples/pick_and_place" -o "$WORK/out" --quiet
 (cd "$WORK/out" && "$VENV/bin/python" -m pick_and_place > "$WORK/plain.txt" || test $? -eq 1)
 grep -q "palletising cell" "$WORK/plain.txt"
+# the language server at its floors: initialize, a file's diagnostics, shutdown, exit
+lsp_message() { printf 'Content-Length: %d\r\n\r\n%s' "${#1}" "$1"; }
+mkdir "$WORK/lsp" && printf 'Module Main\n    Sub Main()\n    End Sub\nEnd Module\n' > "$WORK/lsp/Main.gpl"
+MAIN_URI="file://$WORK/lsp/Main.gpl"
+{ lsp_message '{"jsonrpc":"2.0","id":1,"method":"initialize","params":{"capabilities":{},"initializationOptions":{"debounceMs":0}}}'
+  lsp_message '{"jsonrpc":"2.0","method":"initialized","params":{}}'
+  lsp_message '{"jsonrpc":"2.0","method":"textDocument/didOpen","params":{"textDocument":{"uri":"'"$MAIN_URI"'","languageId":"gpl","version":1,"text":"Module Main\n    Sub Main()\n        x = 1\n    End Sub\nEnd Module\n"}}}'
+  sleep 5
+  lsp_message '{"jsonrpc":"2.0","id":2,"method":"shutdown"}'
+  lsp_message '{"jsonrpc":"2.0","method":"exit"}'; } | "$G" lsp > "$WORK/lsp.txt"
+grep -q "GPL2001" "$WORK/lsp.txt"
 echo "floors: smoke test passed in $((SECONDS - started)) s"

@@ -11,7 +11,8 @@
 set -euo pipefail
 SUBSET=(tests/realworld tests/semantics tests/samples tests/e2e_io tests/frontend/test_corpus_syntax.py
         tests/frontend/test_check_matches_translate.py tests/frontend/test_cli.py
-        tests/tooling/test_transpiler_imports.py)
+        tests/tooling/test_transpiler_imports.py tests/lsp/test_lsp_tcs.py tests/lsp/test_warm_state.py
+        tests/lsp/test_lsp_diagnostics.py)
 [ "$#" -gt 0 ] && SUBSET=("$@")
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 WORK="$(mktemp -d)"

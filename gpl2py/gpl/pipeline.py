@@ -11,7 +11,7 @@ calls for GPL.  Each file is parsed and each module analysed and lowered inside
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, MutableMapping
 from pathlib import Path
 
 from gpl2py import messages as M
@@ -31,22 +31,41 @@ from gpl2py.gpl.lower.user_stubs import (
 from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.gpl.semantics.check import Model, analyze
 from gpl2py.gpl.semantics.resolve import TOP_MODULE
+from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
-from gpl2py.source import make_span
+from gpl2py.gpl.syntax import ast as A
+from gpl2py.source import SourceFile, make_span
+
+
+#: Where :func:`transpile_project` leaves the analysed project in ``memo``: (project, units, model).
+MODEL_KEY = "gpl-model"
 
 
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                       progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
                       strict: bool = False, loaded: Callable[[Project], None] | None = None,
                       limits: Limits | None = None, keep_modules: bool = True,
-                      start: str | None = None) -> Output | None:
+                      start: str | None = None, *,
+                      texts: Mapping[str, str] | None = None,
+                      memo: MutableMapping[object, object] | None = None) -> Output | None:
     """The GPL translation of ``path``; the arguments are :func:`gpl2py.transpile.transpile`'s
-    (``start``, from ``--start``, replaces Project.gpr's ProjectStart)."""
+    (``start``, from ``--start``, replaces Project.gpr's ProjectStart).
+
+    ``texts``: the text of some sources by absolute path, in place of what the files hold (an
+    editor's unsaved buffers); ``memo``: where the parsed tree of each source is kept between
+    calls, keyed by its path and text, so that a caller checking again after an edit (the
+    language server) parses only the files that changed.  A tree is reused with the diagnostics
+    its parse reported, replayed into ``sink``: the result is the same as a cold run's."""
     loading = DiagnosticSink()  # unfiltered: whether a file failed to load, reported or ignored
     project = load_project(path, loading, limits)
+    if project is not None and texts:
+        for src in project.sources:
+            text = texts.get(os.path.abspath(src.path))
+            if text is not None:
+                src.text, src._lines = text, None
     if project is not None and start is not None:
         project.start, project.start_span = start, None
     if project is not None and loaded is not None:
@@ -61,7 +80,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     units = []
     for i, src in enumerate(project.sources):
         with contained(sink, make_span(src.path, 1, 1, 1, 1)):  # a bug in one file: the others go on
-            units.append(parse(src, sink))
+            units.append(parse(src, sink) if memo is None else _parse_memo(src, sink, memo))
         if progress is not None:
             progress("parsing", i + 1, len(project.sources))
     # the semantic pass runs even after syntax errors, so every error is reported in one run; a
@@ -70,14 +89,52 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
                     strict=strict, stub_provider=user.provider if user is not None else None,
                     start_span=project.start_span, sources_missing=missing)
+    if memo is not None:  # what the language server's navigation reads (gpl2py/lsp/gpl/)
+        memo[MODEL_KEY] = (project, units, model)
     if sink.has_errors() and not keep_going:
         return None
-    output = lower(project, model, sink, progress, user, keep_modules=keep_modules)
+    output = lower(project, model, sink, progress, user, keep_modules=keep_modules, memo=memo)
     if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
         return None
     if keep_modules:
         output.data_files = _project_data(Path(path), project)
     return output
+
+
+def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[object, object]) -> A.SourceUnit:
+    """``parse(src, sink)``, or the tree an earlier call parsed from the same path and text, its
+    diagnostics reported again.  Only the last text of each path is kept."""
+    key = ("gpl-parse", src.path)
+    kept = memo.get(key)
+    if isinstance(kept, tuple) and kept[0] == src.text:
+        unit, diags = kept[1], kept[2]
+    else:
+        parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+        unit = parse(src, parsed)
+        diags = list(parsed)
+        memo[key] = (src.text, unit, diags)
+    sink.extend(diags)
+    return unit
+
+
+def _lower_memo(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink,
+                memo: MutableMapping[object, object], entries: dict[str, frozenset[str]]) -> None:
+    """Lower ``mod`` for its diagnostics, or replay those of the last lowering of the same tree."""
+    key = ("gpl-lower", mod.path, mod.name.lower())
+    kept = memo.get(key)
+    # the module's trees: its declaration, or the top-level classes of the synthetic module
+    trees = (mod.decl,) if mod.decl is not None else tuple(
+        c.decl for c in mod.members.values() if isinstance(c, ClassSym))
+    if isinstance(kept, tuple) and len(kept[0]) == len(trees) and all(a is b for a, b in zip(kept[0], trees)):
+        diags, entries[mod.py_name] = kept[1], kept[2]
+    else:
+        own = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+        entries[mod.py_name] = frozenset()
+        with contained(own, mod.span):
+            entries[mod.py_name] = lower_module(model, names, mod, own)[2]
+        diags = list(own)
+        memo[key] = (trees, diags, entries[mod.py_name])
+    sink.extend(diags)
 
 
 def _project_data(given: Path, project: Project) -> dict[str, bytes]:
@@ -90,10 +147,17 @@ def _project_data(given: Path, project: Project) -> dict[str, bytes]:
 
 def lower(project: Project, model: Model, sink: DiagnosticSink,
           progress: Progress | None = None, user: UserStubs | None = None, *,
-          keep_modules: bool = True) -> Output:
+          keep_modules: bool = True, memo: MutableMapping[object, object] | None = None) -> Output:
     """The generated files of an analysed project.  ``gpl2py check`` runs it for the lowering's
     diagnostics only, with ``keep_modules=False``: each module's text is dropped as soon as it is
-    made (with the whole analysis alive, holding every module's text was a tenth of the memory)."""
+    made (with the whole analysis alive, holding every module's text was a tenth of the memory).
+
+    With a ``memo`` (the language server) and no error reported or ignored so far, a module whose
+    tree is the one lowered last time is not lowered again: its diagnostics are those it had.  The
+    lowering's own diagnostics (a GoTo it cannot translate, nesting Python cannot compile) are
+    about the module's own statements, and which errors a construct keeps matters only when some
+    error was reported or ignored, when every module is lowered."""
+    reuse = memo is not None and not keep_modules and not sink.has_errors() and not sink.ignored_errors
     start = model.start
     if project.start is None and start is not None and start.module is not None:
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
@@ -109,6 +173,9 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
         extra.append(top)
     entries: dict[str, frozenset[str]] = {}
     for i, mod in enumerate(extra + modules):
+        if reuse:
+            _lower_memo(model, names, mod, sink, memo, entries)  # type: ignore[arg-type]
+            continue
         with contained(sink, mod.span):  # a bug in one module: the others are still lowered
             text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
             if keep_modules:
