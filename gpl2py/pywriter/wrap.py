@@ -24,8 +24,9 @@ from __future__ import annotations
 import io
 import keyword
 import tokenize
+from array import array
 from collections.abc import Iterator
-from typing import NamedTuple
+from typing import NamedTuple, overload
 
 LIMIT = 99
 _OPS = {"+", "and", "or", "&", "|"}
@@ -42,14 +43,69 @@ _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^
 
 
 class _Tok(NamedTuple):
-    """A token of the line being broken: what ``tokenize`` gives, less what one line does not need
-    (its line number, its text, two tuples of positions), so a line of a million operands keeps
-    half the memory for its tokens (issue 20: a GPL expression of a million terms is one line)."""
+    """A token of the line being broken, as :class:`_Tokens` hands it out."""
 
     type: int
     string: str
     start: int  # (columns: the text is one line)
     end: int
+
+
+class _Tokens:
+    """The tokens of one line, kept as three compact arrays (type, start, end; the text of a token
+    is cut from the line when asked) rather than a record per token.
+
+    A GPL expression of a million terms is one generated line of ~4 MB (issue 20): a record per
+    token (a tuple, two column numbers and its text) cost 93 bytes per character of that line, 186
+    times the GPL source; these arrays cost ~5.  A slice is a view of the same arrays, and
+    ``toks[i]`` builds the :class:`_Tok` it names, so the code that breaks the line reads tokens as
+    it did."""
+
+    __slots__ = ("_text", "_types", "_starts", "_ends", "_lo", "_hi")
+
+    def __init__(self, text: str, types: array[int], starts: array[int], ends: array[int],
+                 lo: int = 0, hi: int | None = None) -> None:
+        self._text, self._types, self._starts, self._ends = text, types, starts, ends
+        self._lo, self._hi = lo, len(types) if hi is None else hi
+
+    @classmethod
+    def of(cls, text: str) -> _Tokens:
+        """The tokens of ``text`` (one line) but its NEWLINE, NL and ENDMARKER; raises what
+        ``tokenize`` raises on text that is not Python."""
+        types, starts, ends = array("B"), array("i"), array("i")
+        for t in tokenize.generate_tokens(io.StringIO(text).readline):
+            if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER):
+                types.append(t.type)
+                starts.append(t.start[1])
+                ends.append(t.end[1])
+        return cls(text, types, starts, ends)
+
+    def __len__(self) -> int:
+        return self._hi - self._lo
+
+    @overload
+    def __getitem__(self, i: int) -> _Tok: ...
+    @overload
+    def __getitem__(self, i: slice) -> _Tokens: ...
+    def __getitem__(self, i: int | slice) -> _Tok | _Tokens:
+        if isinstance(i, slice):
+            lo, hi, _ = i.indices(len(self))
+            return _Tokens(self._text, self._types, self._starts, self._ends, self._lo + lo,
+                           self._lo + max(lo, hi))
+        if i < 0:
+            i += len(self)
+        if not 0 <= i < len(self):
+            raise IndexError(i)
+        k = self._lo + i
+        start, end = self._starts[k], self._ends[k]
+        return _Tok(self._types[k], self._text[start:end], start, end)
+
+    def __iter__(self) -> Iterator[_Tok]:
+        for i in range(len(self)):
+            yield self[i]
+
+    def __bool__(self) -> bool:
+        return self._hi > self._lo
 
 
 def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tuple[int, str]]:
@@ -91,9 +147,7 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         out.append((indent, "global " + ", ".join(cur)))
         return out
     try:
-        toks = [_Tok(t.type, t.string, t.start[1], t.end[1])
-                for t in tokenize.generate_tokens(io.StringIO(text).readline)
-                if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER)]
+        toks = _Tokens.of(text)
     except (tokenize.TokenError, IndentationError, SyntaxError):
         return [(indent, text)]
     comment = ""
@@ -181,7 +235,7 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
     return [(indent, text)]
 
 
-def _chain_steps(body: str, expr: list[_Tok]) -> list[list[str]] | None:
+def _chain_steps(body: str, expr: _Tokens) -> list[list[str]] | None:
     """The steps of the tuple that lowers a long operator chain (ExprLowerer.chunked), each as
     its pieces cut before top-level operators; None for any other text.  Only that tuple is
     recognised (its elements assign with ``:=``) so that no other output changes shape."""
@@ -206,7 +260,7 @@ def _chain_steps(body: str, expr: list[_Tok]) -> list[list[str]] | None:
     return steps
 
 
-def _loosest_cuts(expr: list[_Tok]) -> list[int]:
+def _loosest_cuts(expr: _Tokens) -> list[int]:
     """The top-level binary operators of ``expr`` that bind loosest (``a * f(x) * g(y)``: both
     ``*``; ``a - 3 * b``: the ``-``), the places a line may be broken before."""
     ops = [i for i, tok in _top_level(expr) if i > 0 and _binary_at(expr, i)]
@@ -215,7 +269,7 @@ def _loosest_cuts(expr: list[_Tok]) -> list[int]:
 
 
 def _operator_lines(indent: int, cont: int, prefix: str, suffix: str, comment: str, body: str,
-                    expr: list[_Tok], cuts: list[int], limit: int,
+                    expr: _Tokens, cuts: list[int], limit: int,
                     inside: bool) -> list[tuple[int, str]]:
     """Rule 1's shape for any operator: parenthesised, broken before the operators at ``cuts``."""
     pieces = _pieces(body, expr, cuts)
@@ -224,7 +278,7 @@ def _operator_lines(indent: int, cont: int, prefix: str, suffix: str, comment: s
     return [(indent, prefix + "(" + comment), *_pack(cont, "", pieces, cont, limit, " "), (indent, ")" + suffix)]
 
 
-def _binary_at(toks: list[_Tok], i: int) -> bool:
+def _binary_at(toks: _Tokens, i: int) -> bool:
     """Whether ``toks[i]`` is a binary operator a chain step may be broken before: any of the
     arithmetic, bitwise and Boolean ones (a step is one operator repeated, ``-`` and ``*`` as
     often as ``+``), but not a sign (``x - -1``: the token before a sign is not an operand)."""
@@ -249,7 +303,7 @@ def _step_lines(indent: int, steps: list[list[str]], limit: int) -> list[tuple[i
     return lines
 
 
-def _top_level(toks: list[_Tok]) -> Iterator[tuple[int, _Tok]]:
+def _top_level(toks: _Tokens) -> Iterator[tuple[int, _Tok]]:
     """The tokens outside every bracket pair (brackets themselves excluded), with their index:
     the only places a line may be cut or an assignment found without changing its meaning."""
     depth = 0
@@ -262,13 +316,13 @@ def _top_level(toks: list[_Tok]) -> Iterator[tuple[int, _Tok]]:
             yield i, tok
 
 
-def _balanced(toks: list[_Tok]) -> bool:
+def _balanced(toks: _Tokens) -> bool:
     """Every bracket opened in ``toks`` is closed there (a slice of a line may cut a group)."""
     opened = sum(1 for t in toks if t.type == tokenize.OP and t.string in "([{")
     return opened == sum(1 for t in toks if t.type == tokenize.OP and t.string in ")]}")
 
 
-def _longest_group(toks: list[_Tok]) -> tuple[int, int] | None:
+def _longest_group(toks: _Tokens) -> tuple[int, int] | None:
     """Indices of the opening and closing token of the longest depth-0 bracket pair with
     something inside, or None."""
     best: tuple[int, int] | None = None
@@ -291,7 +345,7 @@ def _longest_group(toks: list[_Tok]) -> tuple[int, int] | None:
     return best
 
 
-def _pieces(body: str, expr: list[_Tok], cuts: list[int]) -> list[str]:
+def _pieces(body: str, expr: _Tokens, cuts: list[int]) -> list[str]:
     bounds = [0, *cuts, len(expr)]
     out = []
     for a, b in zip(bounds, bounds[1:]):

@@ -234,13 +234,24 @@ def _scalar(typ: t.GplType) -> bool:
     return isinstance(typ, t.PrimitiveType) or t.permissive(typ)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)
 class _LocalDecl:
-    """One declaration of a local, with the blocks around it (innermost last)."""
+    """One declaration of a local, with the blocks around it (innermost last) and the procedure's
+    previous declaration of the same name (``None`` for the first).  Slots and a link rather than a
+    list per name: a ``Dim`` of 66,666 names kept a dict and a list for each while the procedure
+    was declared, a third of its peak memory (issue 20)."""
 
     var: VarSym
     keyword: str | None
     chain: list[A.Block]
+    earlier: _LocalDecl | None
+
+    def previous(self) -> Iterator[_LocalDecl]:
+        """The earlier declarations of the name, latest first."""
+        prev = self.earlier
+        while prev is not None:
+            yield prev
+            prev = prev.earlier
 
 
 class _Ctx:
@@ -416,12 +427,12 @@ class Checker:
         self._block(decl.body, ctx)
 
     def _declare_locals(self, block: A.Block, p: ProcSym, ctx: _Ctx, outer: list[A.Block],
-                        seen: dict[str, list[_LocalDecl]]) -> None:
+                        seen: dict[str, _LocalDecl]) -> None:
         """Declare the locals of ``block`` and the blocks inside it in ``p.locals``.
 
         A declaration inside an If/Select/For/While/Try block (real code, docs/design/real-code.md)
         has procedure scope like any other.  ``outer`` is the chain of blocks around ``block``;
-        ``seen`` the declarations made so far, by lower-cased name (see :meth:`_redeclares`)."""
+        ``seen`` the latest declaration made so far of each lower-cased name (see :meth:`_redeclares`)."""
         chain = [*outer, block]
         for s in block.statements:
             if isinstance(s, A.VarDecl):
@@ -434,10 +445,10 @@ class Checker:
                         typ = t.ArrayType(typ, len(d.bounds))
                     v = VarSym(d.name, d, typ, storage, owner=p, const=s.is_const, decl=d)
                     key = intern(d.name.lower())  # (one string per name, not one per local)
-                    here = _LocalDecl(v, s.keyword, chain)
+                    here = _LocalDecl(v, s.keyword, chain, seen.get(key))
                     if key in p.locals:
                         prev = p.locals[key]
-                        if self._redeclares(here, seen.get(key, [])):
+                        if self._redeclares(here):
                             self.model.local_of[d] = prev
                         else:
                             self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
@@ -445,7 +456,7 @@ class Checker:
                     else:
                         p.locals[key] = v
                         self.model.local_of[d] = v
-                    seen.setdefault(key, []).append(here)
+                    seen[key] = here
             elif isinstance(s, A.Label):
                 key = s.name.lower()
                 if key in p.labels:
@@ -460,7 +471,7 @@ class Checker:
                     p.locals[key] = VarSym(s.catch.variable, s.catch, typ, "local", owner=p)
 
     @staticmethod
-    def _redeclares(here: _LocalDecl, earlier: list[_LocalDecl]) -> bool:
+    def _redeclares(here: _LocalDecl) -> bool:
         """Whether a Dim of a name the procedure already declares is the same variable again.
 
         VB accepts one name declared in two blocks that do not contain one another (the Then and
@@ -468,9 +479,9 @@ class Checker:
         one variable, which is sound only when they agree on its type.  Anything else stays a
         duplicate (GPL2002): two declarations in one block or in nested blocks, a Static or Const,
         another type (docs/design/real-code.md)."""
-        if here.keyword != "Dim" or not earlier:
+        if here.keyword != "Dim" or here.earlier is None:
             return False
-        for prev in earlier:
+        for prev in here.previous():
             if prev.keyword != "Dim" or prev.var.type != here.var.type or t.ERROR in (prev.var.type, here.var.type):
                 return False
             if any(b is prev.chain[-1] for b in here.chain) or any(b is here.chain[-1] for b in prev.chain):
