@@ -1,0 +1,89 @@
+"""Where the runs of a sweep run: Dask (a local cluster, or an existing scheduler), or a plain loop.
+
+Why Dask (dask.distributed) rather than Ray or a process pool: a sweep's runs are independent
+tasks of a fraction of a second to minutes, which is what Dask's scheduler is built for; the same
+code runs on a laptop (``LocalCluster``: processes on this machine, started and closed here) and
+on any existing Dask cluster (``--scheduler tcp://host:8786``: Kubernetes, HPC job queues and
+cloud deployments all start one); a worker that dies has its tasks rescheduled on the others
+(``distributed.scheduler.allowed-failures``) without code of ours; and it is a pure-Python
+install with nothing else to run.  Ray brings its own object store and raylet processes and its
+own cluster manager, more than independent tasks need; ``concurrent.futures`` and
+``multiprocessing`` stop at one machine and lose the task of a killed process
+(``BrokenProcessPool``) instead of retrying it.
+
+The package reaches the workers through a worker plugin (:class:`ShipPackage`): the scheduler
+keeps it and hands it to every worker, also one that joins or is restarted after the sweep
+began, which unpacks the package's bytes into its own local folder.  Tasks carry only the
+parameter set.  A run whose worker died more often than the cluster allows (a run that crashes
+its process every time) becomes a row with status ``lost``; the others go on.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Iterator
+from typing import Any
+
+from distributed import Client, LocalCluster, WorkerPlugin, as_completed
+
+from gpl2py.sweep.engine import lost_row, row_of
+from gpl2py.sweep.metrics import Metric
+from gpl2py.sweep.params import ParamSet, run_id
+from gpl2py.sweep.worker import Setup, SetupSource, Shipment, install, installed, run_one
+
+__all__ = ["Client", "ShipPackage", "local_cluster", "on_dask"]
+
+
+class ShipPackage(WorkerPlugin):
+    """A Dask worker plugin carrying the shipment: ``setup(worker)`` unpacks and imports the
+    package in the worker's local folder, on every worker, present or future."""
+
+    def __init__(self, shipment: Shipment) -> None:
+        self.shipment = shipment
+        self.name = f"gpl2py-sweep-{shipment.digest}"
+
+    def setup(self, worker: Any) -> None:
+        install(self.shipment, worker.local_directory)
+
+
+def _task(digest: str, setup: Setup | SetupSource | None, params: ParamSet, metrics: list[Metric],
+          timeout: float | None) -> dict[str, Any]:
+    """What a Dask task runs: one run, with the package the plugin installed in this process."""
+    return run_one(installed(digest), setup, params, metrics, timeout)
+
+
+def local_cluster(workers: int) -> Any:
+    """A Dask cluster of ``workers`` processes on this machine, one thread each (a run holds the
+    GIL: two runs in one process would take turns, not run side by side)."""
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                        silence_logs=logging.ERROR)
+
+
+def on_dask(client: Any, shipment: Shipment, setup: Setup | SetupSource | None, sets: list[ParamSet],
+            metrics: list[Metric], timeout: float | None,
+            progress: Callable[[int, int], None] | None = None) -> Iterator[dict[str, Any]]:
+    """Submit every set to ``client``'s cluster and yield the rows as the runs end."""
+    plugin = ShipPackage(shipment)
+    client.register_plugin(plugin, name=plugin.name)
+    try:
+        futures = {}
+        for params in sets:
+            future = client.submit(_task, shipment.digest, setup, params, metrics, timeout,
+                                   key=f"gpl2py-run-{shipment.digest}-{run_id(params)}", pure=False)
+            futures[future] = params
+        done = 0
+        for future in as_completed(futures):
+            params = futures.pop(future)
+            try:
+                yield row_of(params, future.result())
+            except Exception as exc:  # KilledWorker (the run killed every worker it ran on), ...
+                yield lost_row(params, f"{type(exc).__name__}: {exc}")
+            future.release()
+            done += 1
+            if progress is not None:
+                progress(done, len(sets))
+    finally:
+        try:
+            client.unregister_worker_plugin(plugin.name)
+        except Exception:  # noqa: BLE001 - the cluster may be gone already; nothing to undo then
+            pass
