@@ -30,16 +30,16 @@ from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.run import Built, build, project_files
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.run import Built, build, project_files
 from gpl2py.sweep.metrics import Count, EndTime, EventTime, Metric, MotionTime, PeakJointSpeeds, default_metrics
 from gpl2py.sweep.params import ParamsError, ParamSet, draws, grid, read_params, run_id, unique
 from gpl2py.sweep.worker import Setup, SetupSource, Shipment, pack
 
 __all__ = ["Count", "EndTime", "EventTime", "Metric", "MotionTime", "PeakJointSpeeds", "ParamsError", "Sweep",
            "SweepError", "draws", "grid", "read_params", "run_id"]
-
-#: The extras a sweep needs, and the pip line that brings them (``gpl2py.run.missing_extra``).
-NEEDS = ("distributed", "pandas", "pyarrow")
-
 
 class SweepError(Exception):
     """The sweep cannot start: the project has errors, or the setup file cannot be read."""
@@ -51,15 +51,16 @@ class Sweep:
     def __init__(self, project: str | Path, setup: Setup | str | Path | None,
                  params: Iterable[Mapping[str, Any]], *, metrics: Iterable[Metric] | None = None,
                  timeout: float | None = None, cache_dir: str | Path | None = None,
-                 stubs: str | Path | None = None) -> None:
+                 stubs: str | Path | None = None, sink: DiagnosticSink | None = None) -> None:
         """Translate ``project`` (through the cache) and prepare its shipment.
 
         ``setup`` is a function ``setup(sim, params)`` (or ``setup(sim, params, cell)``), or the
         path of a Python file defining one, shipped as text; ``params`` the parameter sets
         (``grid``, ``draws``, a list of dicts; a set given twice runs once); ``metrics`` the
         columns beyond the outcome (default: ``default_metrics()``, which a list given here
-        replaces -- add them to it to keep them); ``timeout`` in controller seconds.  Raises
-        SweepError when the project has errors, ParamsError for unusable parameter sets.
+        replaces -- add them to it to keep them); ``timeout`` in controller seconds; ``sink``
+        receives the translation's diagnostics.  Raises SweepError when the project has errors
+        or the setup file cannot be read, ParamsError for unusable parameter sets.
         """
         self.sets: list[ParamSet] = unique(params)
         self.metrics: list[Metric] = list(metrics) if metrics is not None else default_metrics()
@@ -67,7 +68,9 @@ class Sweep:
             raise ValueError(f"timeout must be a number of controller seconds > 0, not {timeout!r}")
         self.timeout = timeout
         self.setup: Setup | SetupSource | None = _setup_of(setup)
-        self.shipment: Shipment = _translate(project, cache_dir, stubs)
+        self.built: Built = _translate(project, cache_dir, stubs, sink if sink is not None else DiagnosticSink())
+        self.shipment: Shipment = pack(self.built.package_dir, self.built.project.name,
+                                       project_files(project, self.built.project))
         self.names: list[str] = list(dict.fromkeys(name for params in self.sets for name in params))
         #: What a parameter file's ``[plot]`` asks for (``metric``, ``x``, ``y``), else empty.
         self.plot_spec: dict[str, Any] = {}
@@ -106,7 +109,7 @@ class Sweep:
         try:
             if client is None:
                 if scheduler is None:
-                    owned.append(local_cluster(workers or _cores()))
+                    owned.append(local_cluster(workers or default_workers()))
                     client = Client(owned[0])
                 else:
                     client = Client(scheduler)
@@ -151,7 +154,8 @@ class Sweep:
         return plot(table, metric, x, y)
 
 
-def _cores() -> int:
+def default_workers() -> int:
+    """The local cluster's processes by default: one per core this process may use."""
     import os
 
     return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
@@ -175,13 +179,10 @@ def _setup_of(setup: Setup | str | Path | None) -> Setup | SetupSource | None:
     return source
 
 
-def _translate(project: str | Path, cache_dir: str | Path | None, stubs: str | Path | None) -> Shipment:
-    """Translate once (through the cache) and pack the package and the project's files."""
-    from gpl2py.diagnostics import DiagnosticSink
-    from gpl2py.run import build, project_files
-
-    sink = DiagnosticSink()
+def _translate(project: str | Path, cache_dir: str | Path | None, stubs: str | Path | None,
+               sink: DiagnosticSink) -> Built:
+    """Translate once, here (through the cache, as ``gpl2py run``)."""
     built = build(project, sink, cache_dir=cache_dir, stubs_dir=stubs)
     if built is None:
         raise SweepError(f"{project} could not be translated:\n" + "\n".join(d.render(None) for d in sink.sorted()))
-    return pack(built.package_dir, built.project.name, project_files(project, built.project))
+    return built

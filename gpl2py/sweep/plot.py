@@ -41,8 +41,10 @@ def plot(table: Any, metric: str, x: str, y: str | None = None) -> Any:
         ax.set_xlabel(x)
         ax.set_ylabel(y)
         figure.colorbar(image, ax=ax, label=metric)
+        middle = (image.norm.vmin + image.norm.vmax) / 2
         for (i, j), value in _cells(grid):
-            ax.text(j, i, _label(value), ha="center", va="center", color="white", fontsize=8)
+            ax.text(j, i, _label(value), ha="center", va="center", fontsize=8,
+                    color="black" if value > middle else "white")
     ax.set_title(f"{metric} ({len(data)} runs)")
     return figure
 
