@@ -136,6 +136,14 @@ class Sweep:
                 results.flush()
         return results.finish()
 
+    def already_done(self, output: str | Path) -> int:
+        """How many of this sweep's sets have a row in ``output`` (or its parts): what ``resume``
+        would skip."""
+        from gpl2py.sweep.results import done
+
+        found = done(Path(output))
+        return sum(1 for p in self.sets if run_id(p) in found)
+
     def _open(self, output: str | Path | None, resume: bool) -> tuple[Any, list[ParamSet]]:
         from gpl2py.sweep.results import Results
 

@@ -59,12 +59,13 @@ def grid(**axes: Scalar | Sequence[Scalar]) -> list[ParamSet]:
     return [dict(zip(names, combo)) for combo in itertools.product(*values)]
 
 
-def draws(count: int, seed: int, **spec: Any) -> list[ParamSet]:
+def draws(count: int, seed: int, /, **spec: Any) -> list[ParamSet]:
     """``count`` sets drawn at random, the same ones for the same ``seed`` on any machine.
 
     Each name gets ``{"uniform": [lo, hi]}``, ``{"integers": [lo, hi]}`` (both ends included),
     ``{"choice": [...]}`` or a scalar held fixed; draws go name by name, set by set, from one
-    ``random.Random(seed)``, so adding a set at the end keeps the others."""
+    ``random.Random(seed)``, so adding a set at the end keeps the others.  (``count`` and ``seed``
+    are positional: a parameter may be called ``seed`` too, for a setup's own random numbers.)"""
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise ParamsError(f"random: count must be a whole number >= 1, not {count!r}")
     if isinstance(seed, bool) or not isinstance(seed, int):
@@ -163,7 +164,11 @@ def read_params(path: str | Path) -> ParamsFile:
             sets = doc["run"]
         else:
             spec = dict(doc["random"])
-            sets = draws(spec.pop("count", 0), spec.pop("seed", None), **spec)
+            unknown = set(spec) - {"count", "seed", "params"}
+            if unknown or not isinstance(spec.get("params"), dict):
+                raise ParamsError("[random] holds count, seed and a [random.params] table of draws"
+                                  + (f", not {', '.join(sorted(unknown))}" if unknown else ""))
+            sets = draws(spec.get("count", 0), spec.get("seed"), **spec["params"])
         found = unique(sets)
     except ParamsError as exc:
         raise ParamsError(f"{path}: {exc}") from None

@@ -29,7 +29,7 @@ from typing import Any
 
 from gpl2py.sweep.metrics import OUTCOME
 
-__all__ = ["Results", "frame", "parts_folder"]
+__all__ = ["Results", "done", "frame", "parts_folder", "written"]
 
 #: Seconds between two parts: the rows a crash can lose at most are those of the last second.
 FLUSH_EVERY = 1.0
@@ -44,6 +44,7 @@ def frame(rows: Iterable[dict[str, Any]], names: list[str], order: list[str] | N
     """The rows as a pandas DataFrame: the parameters ``names`` first, then the outcome, then the
     metrics, then ``run_id``; ordered by ``order`` (run ids) when given; one row per run id."""
     import pandas as pd
+    import pyarrow
 
     rows = list({row["run_id"]: row for row in rows}.values())
     if order is not None:
@@ -58,9 +59,26 @@ def frame(rows: Iterable[dict[str, Any]], names: list[str], order: list[str] | N
     for c in ("status", "error_message", "error_file", "error_thread", "stalled_threads", "run_id"):
         types[c] = object
     df = df.astype({c: t for c, t in types.items() if c in df.columns})
-    for c in ("error_message", "error_file", "error_thread", "stalled_threads"):
-        df[c] = df[c].where(df[c].notna(), None)
-    return df.reset_index(drop=True)
+    # The types a Parquet file gives back (text columns differ between pandas versions): the table
+    # a sweep returns is the one a later read_parquet of its output gives.
+    return pyarrow.Table.from_pandas(df, preserve_index=False).to_pandas()
+
+
+def written(output: Path) -> list[Path]:
+    """The files that hold rows of a sweep writing ``output``: ``output`` itself and its parts."""
+    parts = parts_folder(output)
+    return ([output] if output.exists() else []) + (sorted(parts.glob("part-*.parquet")) if parts.is_dir() else [])
+
+
+def done(output: Path) -> set[str]:
+    """The run ids that have a row in ``output`` or its parts (what ``--resume`` skips)."""
+    return {row["run_id"] for path in written(output) for row in _read(path)}
+
+
+def _read(path: Path) -> list[dict[str, Any]]:
+    import pandas as pd
+
+    return list(pd.read_parquet(path).to_dict("records"))
 
 
 class Results:
@@ -79,18 +97,14 @@ class Results:
         """Prepare the output; returns the run ids already done (resuming), else an empty set."""
         if self.output is None:
             return set()
-        parts = parts_folder(self.output)
         if not resume:
             if self.output.exists():
                 self.output.unlink()
-            shutil.rmtree(parts, ignore_errors=True)
+            shutil.rmtree(parts_folder(self.output), ignore_errors=True)
             return set()
-        import pandas as pd
-
-        found = [self.output] if self.output.exists() else []
-        found += sorted(parts.glob("part-*.parquet")) if parts.is_dir() else []
+        found = written(self.output)
         for path in found:
-            self.rows.extend(pd.read_parquet(path).to_dict("records"))
+            self.rows.extend(_read(path))
         self._serial = len(found)
         return {row["run_id"] for row in self.rows}
 
