@@ -9,10 +9,10 @@ VENV="${GPL2PY_FLOORS_VENV:-$ROOT/.venv-floors}"
 PY="${PYTHON:-python3}"
 started=$SECONDS
 "$PY" -m venv --clear "$VENV"
-"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot > "$VENV/floors.txt"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot sweep > "$VENV/floors.txt"
 # Not editable: the wheel a user would get, with its package data.
-"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot]"
-"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot
+"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot,sweep]"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot sweep
 
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
@@ -28,4 +28,9 @@ head -c 4 "$WORK/cell.png" | grep -q PNG
 "$G" "$ROOT/samples/pick_and_place" -o "$WORK/out" --quiet
 (cd "$WORK/out" && "$VENV/bin/python" -m pick_and_place > "$WORK/plain.txt" || test $? -eq 1)
 grep -q "palletising cell" "$WORK/plain.txt"
+printf 'interval,speed\n0.2,80\n6.0,80\n' > "$WORK/params.csv"
+"$G" sweep "$ROOT/samples/pick_and_place" --params "$WORK/params.csv" --setup "$ROOT/samples/sweep/setup.py" \
+    --workers 2 -o "$WORK/sweep.parquet" --quiet
+"$VENV/bin/python" -c "import pandas as pd, sys; df = pd.read_parquet(sys.argv[1]); \
+assert list(df['status']) == ['ok', 'ok'] and df['end_time'][0] > df['end_time'][1], df" "$WORK/sweep.parquet"
 echo "floors: smoke test passed in $((SECONDS - started)) s"

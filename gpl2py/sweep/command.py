@@ -115,7 +115,10 @@ def run_command(args: argparse.Namespace) -> Outcome:
     where = f"the Dask cluster at {args.scheduler}" if args.scheduler else \
         f"a local cluster of {plural(args.workers or default_workers(), 'worker')}"
     if not args.quiet:
-        stderr.write(f"sweeping {plural(len(sweep.sets), 'parameter set')} on {where}\n")
+        total = plural(len(sweep.sets), "parameter set")
+        kept = sweep.already_done(args.output) if args.resume else 0
+        what = f"{len(sweep.sets) - kept} of {total} ({kept} already in {args.output})" if kept else total
+        stderr.write(f"sweeping {what} on {where}\n")
     bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, False), min_files=0)
     try:
         table = sweep.run(scheduler=args.scheduler, workers=args.workers, output=args.output, resume=args.resume,

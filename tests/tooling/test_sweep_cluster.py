@@ -1,0 +1,118 @@
+"""gpl2py sweep on a real Dask cluster (``distributed.LocalCluster``, worker processes on this
+machine): runs that fail or stall are rows, a worker killed mid-run has its run retried on
+another, an interrupted sweep resumes from its parts (``gpl2py sweep --resume``), no row is lost
+or duplicated; the workers never import the translator; and a parameter set gives the same row on
+one worker, on two and in a plain loop in this process."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+distributed = pytest.importorskip("distributed")
+
+from gpltest import SAMPLES, gpl2py  # noqa: E402
+from sweepkit import THROW_LINE, tiny_project  # noqa: E402
+
+from gpl2py.sweep import Count, EndTime, EventTime, Sweep, run_id  # noqa: E402
+from gpl2py.sweep.results import parts_folder  # noqa: E402
+
+TRANSLATOR = ("gpl2py.transpile", "gpl2py.lower", "gpl2py.semantics", "gpl2py.syntax")
+
+
+@pytest.fixture(scope="module")
+def client() -> Iterator[distributed.Client]:
+    """Two worker processes, one thread each (a test kills one: processes=True)."""
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+                                  silence_logs=50) as cluster, distributed.Client(cluster) as c:
+        yield c
+
+
+def _sweep(project: str, setup: Path, sets: list[dict[str, object]], **options: object) -> Sweep:
+    metrics = [EndTime(), Count("parts", "^part "), Count("grips", signal=1), EventTime("done_at", "^done")]
+    return Sweep(project, setup, sets, metrics=metrics, **options)  # type: ignore[arg-type]
+
+
+def _translator_on_workers(client: distributed.Client) -> dict[str, list[str]]:
+    def loaded() -> list[str]:
+        return sorted(m for m in sys.modules if m.startswith(TRANSLATOR))
+
+    return client.run(loaded)
+
+
+def test_faults_are_rows_a_killed_worker_loses_nothing_and_no_worker_translates(
+        client: distributed.Client, tmp_path: Path) -> None:
+    project, setup = tiny_project(tmp_path)
+    marker = tmp_path / "killed-once"
+    sets: list[dict[str, object]] = [{"mode": "ok", "parts": n} for n in range(1, 5)]
+    sets += [{"mode": "fail", "parts": 1}, {"mode": "stall", "parts": 1}, {"mode": "loop", "parts": 1},
+             {"mode": "kill", "parts": 3, "marker": str(marker)}]
+    before = set(client.scheduler_info()["workers"])
+    out = tmp_path / "results.parquet"
+    df = _sweep(project, setup, sets, timeout=5.0).run(client=client, output=out)
+
+    assert marker.exists()  # the worker that took the "kill" set died in it ...
+    assert set(client.scheduler_info()["workers"]) != before  # ... and its nanny started another
+    assert len(df) == len(sets) and df["run_id"].is_unique
+    assert list(df["run_id"]) == [run_id(p) for p in sets]  # the sets' order, not the order runs ended
+    by_mode = df.groupby("mode")["status"].agg(list).to_dict()
+    assert by_mode == {"ok": ["ok"] * 4, "fail": ["error"], "stall": ["stalled"], "loop": ["timeout"],
+                       "kill": ["ok"]}  # retried on another worker, where it ran to the end
+    fail = df[df["mode"] == "fail"].iloc[0]
+    assert (fail["error_code"], fail["error_file"], fail["error_line"]) == (-3100, "Main.gpl", THROW_LINE)
+    assert df[df["mode"] == "stall"].iloc[0]["stalled_threads"] == "Main"
+    assert list(df[df["mode"] != "kill"]["parts"]) == [1, 2, 3, 4, 0, 0, 0]
+    assert df[df["mode"] == "kill"].iloc[0]["parts"] == 3
+    pd.testing.assert_frame_equal(pd.read_parquet(out), df)
+    assert _translator_on_workers(client) == {w: [] for w in client.scheduler_info()["workers"]}
+
+
+def test_an_interrupted_sweep_resumes_from_its_parts_with_the_command(client: distributed.Client,
+                                                                      tmp_path: Path) -> None:
+    project, setup = tiny_project(tmp_path)
+    params = tmp_path / "params.toml"
+    params.write_text('[grid]\nmode = ["ok"]\nparts = [1, 2, 3, 4, 5, 6, 7, 8]\n'
+                      '[metrics]\nparts_done = { count = "^part " }\n')
+    sweep = Sweep.from_file(project, params, setup)
+    out = tmp_path / "results.parquet"
+
+    def interrupt_after_three(done: int, total: int) -> None:
+        if done == 3:
+            raise KeyboardInterrupt  # Ctrl-C while the other runs are still on the cluster
+
+    with pytest.raises(KeyboardInterrupt):
+        sweep.run(client=client, output=out, progress=interrupt_after_three)
+    kept = sweep.already_done(out)
+    assert kept >= 3 and not out.exists()  # the rows that had arrived are in the parts
+
+    address = client.scheduler.address
+    done = gpl2py("sweep", project, "--params", str(params), "--setup", str(setup), "-o", str(out),
+                  "--scheduler", address, "--resume", cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert f"sweeping {8 - kept} of 8 parameter sets ({kept} already in {out})" in done.stderr
+    assert f"swept 8 parameter sets in" in done.stderr and ": 8 ok; results in" in done.stderr
+    df = pd.read_parquet(out)
+    assert list(df["parts"]) == list(df["parts_done"]) == [1, 2, 3, 4, 5, 6, 7, 8]
+    assert df["run_id"].is_unique and not parts_folder(out).exists()
+
+
+def test_the_same_sets_give_the_same_rows_on_one_worker_on_two_and_in_a_plain_loop(
+        client: distributed.Client, tmp_path: Path) -> None:
+    cell = Sweep.from_file(SAMPLES / "pick_and_place", SAMPLES / "sweep" / "params.toml",
+                           SAMPLES / "sweep" / "setup.py", timeout=60.0)
+    cell.sets = [{"interval": i, "speed": s} for i, s in ((0.2, 20), (1.0, 100), (6.0, 60), (0.5, 80))]
+    loop = cell.run_in_process()
+    assert list(loop["status"]) == ["timeout", "timeout", "ok", "timeout"]  # the cell takes > 60 s
+    one = cell.run(workers=1)  # a local cluster of its own, started and closed by the sweep
+    two = cell.run(client=client)
+    pd.testing.assert_frame_equal(one, loop)
+    pd.testing.assert_frame_equal(two, loop)
+
+    project, setup = tiny_project(tmp_path)
+    tiny = _sweep(project, setup, [{"mode": m, "parts": 2} for m in ("ok", "fail", "stall", "loop", "setup")],
+                  timeout=5.0)
+    pd.testing.assert_frame_equal(tiny.run(client=client), tiny.run_in_process())
