@@ -39,7 +39,7 @@ from gpl2py.sweep.params import ParamsError, ParamSet, draws, grid, read_params,
 from gpl2py.sweep.worker import Setup, SetupSource, Shipment, pack
 
 __all__ = ["Count", "EndTime", "EventTime", "Metric", "MotionTime", "PeakJointSpeeds", "ParamsError", "Sweep",
-           "SweepError", "draws", "grid", "read_params", "run_id"]
+           "SweepError", "default_metrics", "default_workers", "draws", "grid", "read_params", "run_id"]
 
 class SweepError(Exception):
     """The sweep cannot start: the project has errors, or the setup file cannot be read."""

@@ -34,7 +34,7 @@ def plot(table: Any, metric: str, x: str, y: str | None = None) -> Any:
         ax.set_xlabel(x)
         ax.set_ylabel(metric)
     else:
-        grid = data.pivot_table(index=y, columns=x, values=metric, aggfunc="mean").sort_index()
+        grid = table.pivot_table(index=y, columns=x, values=metric, aggfunc="mean", dropna=False).sort_index()
         image = ax.imshow(grid.to_numpy(dtype=float), origin="lower", aspect="auto", cmap="viridis")
         ax.set_xticks(range(len(grid.columns)), [_label(v) for v in grid.columns])
         ax.set_yticks(range(len(grid.index)), [_label(v) for v in grid.index])
@@ -45,7 +45,8 @@ def plot(table: Any, metric: str, x: str, y: str | None = None) -> Any:
         for (i, j), value in _cells(grid):
             ax.text(j, i, _label(value), ha="center", va="center", fontsize=8,
                     color="black" if value > middle else "white")
-    ax.set_title(f"{metric} ({len(data)} runs)")
+    missing = len(table) - len(data)
+    ax.set_title(f"{metric} ({len(data)} runs" + (f"; {missing} without a value)" if missing else ")"))
     return figure
 
 
