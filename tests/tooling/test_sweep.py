@@ -189,3 +189,48 @@ def test_the_plot_is_a_line_for_one_parameter_and_a_heat_map_for_two() -> None:
     assert heat.__class__.__module__ == "matplotlib.figure"  # not pyplot's: a notebook shows it once
     with pytest.raises(KeyError, match="no column 'cycle'"):
         Sweep.plot(df, "cycle", "interval")
+
+
+# -- the command's refusals (before any cluster starts) ------------------------------------------------
+
+
+def test_the_command_refuses_what_it_cannot_use_before_any_run(tiny: tuple[str, Path], tmp_path: Path,
+                                                               capsys: pytest.CaptureFixture[str],
+                                                               monkeypatch: pytest.MonkeyPatch) -> None:
+    import sys
+
+    from gpltest import in_process
+
+    project, setup = tiny
+    params = tmp_path / "p.toml"
+    params.write_text('[grid]\nmode = ["ok"]\nparts = [1, 2]\n')
+    out = str(tmp_path / "r.parquet")
+    missing = in_process(capsys, "sweep", project, "--params", str(tmp_path / "none.toml"), "-o", out)
+    assert missing.returncode == 2 and "error GPL9001" in missing.stderr and "none.toml: No such file" in missing.stderr
+    bad_setup = tmp_path / "bad.py"
+    bad_setup.write_text("def setup(sim, params):\n    return (\n")
+    broken = in_process(capsys, "sweep", project, "--params", str(params), "--setup", str(bad_setup), "-o", out)
+    assert broken.returncode == 2 and f"setup {bad_setup}:2:" in broken.stderr
+    plot = in_process(capsys, "sweep", project, "--params", str(params), "--setup", str(setup), "-o", out,
+                      "--plot", str(tmp_path / "p.png"), "--quiet")
+    assert plot.returncode == 0 and (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+    params.write_text('[grid]\nmode = ["ok"]\nparts = [1, 2]\n[plot]\nx = "speed"\n')
+    wrong = in_process(capsys, "sweep", project, "--params", str(params), "-o", out, "--plot", str(tmp_path / "p.png"))
+    assert wrong.returncode == 2 and "--plot: 'speed' is not a parameter (the parameters: mode, parts)" in wrong.stderr
+    monkeypatch.setitem(sys.modules, "pyarrow", None)  # as if gpl2py[sweep] were not installed
+    extra = in_process(capsys, "sweep", project, "--params", str(params), "-o", out)
+    assert extra.returncode == 2
+    assert "gpl2py sweep needs pyarrow, which is not installed: pip install 'gpl2py[sweep]'" in extra.stderr
+
+
+def test_a_project_with_errors_is_status_1_with_its_diagnostics(tmp_path: Path,
+                                                                capsys: pytest.CaptureFixture[str]) -> None:
+    from gpltest import in_process, write_project
+
+    project = write_project(tmp_path, {"Main.gpl": "Module Main\n    Public Sub Main()\n        x = \n"
+                                                   "    End Sub\nEnd Module\n"})
+    params = tmp_path / "p.csv"
+    params.write_text("a\n1\n")
+    done = in_process(capsys, "sweep", project, "--params", str(params), "-o", str(tmp_path / "r.parquet"))
+    assert done.returncode == 1 and "Main.gpl:3:" in done.stderr and "error GPL" in done.stderr
+    assert not (tmp_path / "r.parquet").exists()
