@@ -32,14 +32,13 @@ from typing import Any
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import Built, build, project_files
-from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.run import Built, build, project_files
 from gpl2py.sweep.metrics import Count, EndTime, EventTime, Metric, MotionTime, PeakJointSpeeds, default_metrics
 from gpl2py.sweep.params import ParamsError, ParamSet, draws, grid, read_params, run_id, unique
 from gpl2py.sweep.worker import Setup, SetupSource, Shipment, pack
 
 __all__ = ["Count", "EndTime", "EventTime", "Metric", "MotionTime", "PeakJointSpeeds", "ParamsError", "Sweep",
            "SweepError", "default_metrics", "default_workers", "draws", "grid", "read_params", "run_id"]
+
 
 class SweepError(Exception):
     """The sweep cannot start: the project has errors, or the setup file cannot be read."""

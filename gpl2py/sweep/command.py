@@ -20,6 +20,7 @@ from typing import Any
 from gpl2py import messages as msg
 from gpl2py.diagnostics import plural
 from gpl2py.outcome import Outcome, add_project_options, new_sink
+from gpl2py.run import _positive_float  # (--speed's: a finite number > 0)
 
 #: What ``gpl2py sweep`` needs beyond gpl2py's own dependencies (the ``sweep`` extra).
 NEEDS = ("distributed", "pandas", "pyarrow")
@@ -42,7 +43,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="run on this existing Dask cluster (tcp://host:8786) instead of a local one")
     parser.add_argument("--workers", metavar="N", type=_whole, default=None,
                         help="processes of the local cluster (default: one per core)")
-    parser.add_argument("--timeout", metavar="S", type=_seconds, default=None,
+    parser.add_argument("--timeout", metavar="S", type=_positive_float, default=None,
                         help="stop a run after S seconds of controller time (the same on any machine); "
                         "its row says timeout")
     parser.add_argument("--resume", action="store_true",
@@ -62,16 +63,6 @@ def _whole(text: str) -> int:
         raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
-    return value
-
-
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not 0 < value < float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a number of seconds > 0: {text!r}")
     return value
 
 

@@ -94,7 +94,7 @@ def test_an_interrupted_sweep_resumes_from_its_parts_with_the_command(client: di
                   "--scheduler", address, "--resume", cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert f"sweeping {8 - kept} of 8 parameter sets ({kept} already in {out})" in done.stderr
-    assert f"swept 8 parameter sets in" in done.stderr and ": 8 ok; results in" in done.stderr
+    assert "swept 8 parameter sets in" in done.stderr and ": 8 ok; results in" in done.stderr
     df = pd.read_parquet(out)
     assert list(df["parts"]) == list(df["parts_done"]) == [1, 2, 3, 4, 5, 6, 7, 8]
     assert df["run_id"].is_unique and not parts_folder(out).exists()
