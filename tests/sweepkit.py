@@ -59,6 +59,8 @@ def setup(sim, params, cell):
     elif mode == "kill" and not os.path.exists(params["marker"]):
         open(params["marker"], "w").close()
         os.kill(os.getpid(), signal.SIGKILL)  # the worker dies mid-run, the first time only
+    elif mode == "killall":
+        os.kill(os.getpid(), signal.SIGKILL)  # every worker that tries it dies
     cell.module("Main").parts = params["parts"]
 '''
 

@@ -32,9 +32,10 @@ from typing import Any
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import Built, build, project_files
-from gpl2py.sweep.metrics import Count, EndTime, EventTime, Metric, MotionTime, PeakJointSpeeds, default_metrics
+from gpl2py.sweep.metrics import OUTCOME, Count, EndTime, EventTime, Metric, MotionTime, PeakJointSpeeds, default_metrics
 from gpl2py.sweep.params import ParamsError, ParamSet, draws, grid, read_params, run_id, unique
 from gpl2py.sweep.worker import Setup, SetupSource, Shipment, pack
+from gplrt.controller.pdb import model_names
 
 __all__ = ["Count", "EndTime", "EventTime", "Metric", "MotionTime", "PeakJointSpeeds", "ParamsError", "Sweep",
            "SweepError", "default_metrics", "default_workers", "draws", "grid", "read_params", "run_id"]
@@ -55,14 +56,15 @@ class Sweep:
 
         ``setup`` is a function ``setup(sim, params)`` (or ``setup(sim, params, cell)``), or the
         path of a Python file defining one, shipped as text; ``params`` the parameter sets
-        (``grid``, ``draws``, a list of dicts; a set given twice runs once); ``metrics`` the
+        (``grid``, ``draws``, a list of dicts; a set given twice runs once; a parameter ``robot``
+        is the robot model of its run); ``metrics`` the
         columns beyond the outcome (default: ``default_metrics()``, which a list given here
         replaces -- add them to it to keep them); ``timeout`` in controller seconds; ``sink``
         receives the translation's diagnostics.  Raises SweepError when the project has errors
         or the setup file cannot be read, ParamsError for unusable parameter sets.
         """
-        self.sets: list[ParamSet] = unique(params)
         self.metrics: list[Metric] = list(metrics) if metrics is not None else default_metrics()
+        self.sets = params  # type: ignore[assignment]
         if timeout is not None and not timeout > 0:
             raise ValueError(f"timeout must be a number of controller seconds > 0, not {timeout!r}")
         self.timeout = timeout
@@ -70,9 +72,30 @@ class Sweep:
         self.built: Built = _translate(project, cache_dir, stubs, sink if sink is not None else DiagnosticSink())
         self.shipment: Shipment = pack(self.built.package_dir, self.built.project.name,
                                        project_files(project, self.built.project))
-        self.names: list[str] = list(dict.fromkeys(name for params in self.sets for name in params))
         #: What a parameter file's ``[plot]`` asks for (``metric``, ``x``, ``y``), else empty.
         self.plot_spec: dict[str, Any] = {}
+
+    @property
+    def sets(self) -> list[ParamSet]:
+        """The parameter sets, each once; assigning checks them as the constructor does."""
+        return self._sets
+
+    @sets.setter
+    def sets(self, sets: Iterable[Mapping[str, Any]]) -> None:
+        found = unique(sets)
+        for name in dict.fromkeys(n for params in found for n in params):
+            if name in (*OUTCOME, "run_id") or any(m.claims(name) for m in getattr(self, "metrics", ())):
+                raise ParamsError(f"parameter {name!r} has the name of a column of the results: rename it")
+        for params in found:
+            robot = params.get("robot")
+            if robot is not None and str(robot).upper() not in model_names():
+                raise ParamsError(f"robot {robot!r} is not a robot model; one of {', '.join(model_names())}")
+        self._sets = found
+
+    @property
+    def names(self) -> list[str]:
+        """The parameters' names, in the order the sets first give them: the table's first columns."""
+        return list(dict.fromkeys(name for params in self.sets for name in params))
 
     @classmethod
     def from_file(cls, project: str | Path, params_file: str | Path, setup: Setup | str | Path | None = None,

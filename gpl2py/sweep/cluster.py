@@ -83,7 +83,7 @@ def on_dask(client: Any, shipment: Shipment, setup: Setup | SetupSource | None, 
             try:
                 yield row_of(params, future.result())
             except Exception as exc:  # KilledWorker (the run killed every worker it ran on), ...
-                yield lost_row(params, f"{type(exc).__name__}: {exc}")
+                yield lost_row(params, f"{type(exc).__name__}: {exc}", metrics)
             future.release()
             done += 1
             if progress is not None:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from typing import Any
 
-from gpl2py.sweep.metrics import OUTCOME, Metric
+from gpl2py.sweep.metrics import OUTCOME, Metric, RunRecord
 from gpl2py.sweep.params import ParamSet, run_id
 from gpl2py.sweep.worker import Setup, SetupSource, Shipment, install, run_one
 
@@ -22,9 +22,11 @@ def row_of(params: ParamSet, result: dict[str, Any]) -> dict[str, Any]:
     return {**params, **result, "run_id": run_id(params)}
 
 
-def lost_row(params: ParamSet, why: str) -> dict[str, Any]:
-    """The row of a run that never reported back (its worker died, every time it was tried)."""
-    return row_of(params, {**dict.fromkeys(OUTCOME), "status": "lost", "error_message": why})
+def lost_row(params: ParamSet, why: str, metrics: list[Metric]) -> dict[str, Any]:
+    """The row of a run that never reported back (its worker died, every time it was tried):
+    its metrics' columns are there, with no value."""
+    unmeasured = {c: None for m in metrics for c in m.columns(RunRecord())}
+    return row_of(params, {**dict.fromkeys(OUTCOME), "status": "lost", "error_message": why, **unmeasured})
 
 
 def in_process(shipment: Shipment, setup: Setup | SetupSource | None, sets: list[ParamSet],

@@ -53,9 +53,14 @@ class RunRecord:
 
 
 class Metric:
-    """A metric: ``columns(record)`` names its columns and values (NaN when not measured)."""
+    """A metric: ``columns(record)`` names its columns and values (NaN when not measured);
+    ``claims(name)`` says whether a column of that name may be one of them (a parameter must not
+    have that name: its column would be overwritten)."""
 
     def columns(self, record: RunRecord) -> dict[str, Any]:
+        raise NotImplementedError
+
+    def claims(self, name: str) -> bool:
         raise NotImplementedError
 
 
@@ -68,6 +73,9 @@ class EndTime(Metric):
     def columns(self, record: RunRecord) -> dict[str, Any]:
         return {self.name: record.end_time}
 
+    def claims(self, name: str) -> bool:
+        return name == self.name
+
 
 @dataclass(frozen=True)
 class MotionTime(Metric):
@@ -78,6 +86,9 @@ class MotionTime(Metric):
     def columns(self, record: RunRecord) -> dict[str, Any]:
         found = record.motion.get(self.robot)
         return {_robot_name("motion_time", self.robot): found.motion_time if found else 0.0}
+
+    def claims(self, name: str) -> bool:
+        return name == _robot_name("motion_time", self.robot)
 
 
 @dataclass(frozen=True)
@@ -92,6 +103,9 @@ class PeakJointSpeeds(Metric):
         if found is None:
             return {}
         return {_robot_name(f"peak_speed_{j}", self.robot): v for j, v in zip(found.joints, found.peak_speeds)}
+
+    def claims(self, name: str) -> bool:
+        return name.startswith("peak_speed_") and (self.robot == 1 or name.endswith(f"_r{self.robot}"))
 
 
 def _robot_name(column: str, robot: int) -> str:
@@ -123,6 +137,9 @@ class _Source:
             pattern = re.compile(self.console)
             return [t for t, line in record.console if pattern.search(line)]
         return [t for t, n, v in record.signals if n == self.signal and v == self.value]
+
+    def claims(self, name: str) -> bool:
+        return name == self.name
 
 
 @dataclass(frozen=True)

@@ -172,7 +172,7 @@ def _run(project: Installed, setup: Setup | SetupSource | None, params: Mapping[
     outcome: dict[str, Any] = dict.fromkeys(OUTCOME)
     record = RunRecord()
     sim = Simulation(clock="virtual", console=console, project=project.project, history=None,
-                     signal_history=1, **({"robot": str(robot)} if robot is not None else {}))
+                     signal_history=1, **({"robot": str(robot).upper()} if robot is not None else {}))
     console.sim = sim
     sim.io.on_change(lambda c: record.signals.append((round(c.time, 9), c.signal, bool(c.value)))
                      if c.kind == "DIO" else None)

@@ -87,7 +87,7 @@ def tiny(tmp_path: Path) -> tuple[str, Path]:
 
 def _sweep(tiny: tuple[str, Path], sets: list[dict[str, object]], **options: object) -> Sweep:
     project, setup = tiny
-    metrics = [EndTime(), Count("parts", "^part "), Count("grips", signal=1), EventTime("done_at", "^done")]
+    metrics = [EndTime(), Count("made", "^part "), Count("grips", signal=1), EventTime("done_at", "^done")]
     return Sweep(project, setup, sets, metrics=metrics, **options)  # type: ignore[arg-type]
 
 
@@ -96,10 +96,10 @@ def test_every_way_a_run_ends_is_a_row_and_the_others_go_on(tiny: tuple[str, Pat
     df = _sweep(tiny, sets, timeout=5.0).run_in_process().set_index("mode")
     assert list(df["status"]) == ["ok", "error", "stalled", "timeout", "setup error"]
     ok, fail, stall, loop, setup = (df.loc[m] for m in ("ok", "fail", "stall", "loop", "setup"))
-    assert (ok["parts"], ok["grips"], ok["done_at"], ok["end_time"]) == (2, 2, 0.5, 0.5)
+    assert (ok["made"], ok["grips"], ok["done_at"], ok["end_time"]) == (2, 2, 0.5, 0.5)
     assert (fail["error_code"], fail["error_file"], fail["error_line"], fail["error_thread"]) == \
         (-3100, "Main.gpl", THROW_LINE, "Main")
-    assert fail["parts"] == 0 and math.isnan(fail["done_at"])
+    assert fail["made"] == 0 and math.isnan(fail["done_at"])
     assert stall["stalled_threads"] == "Main" and pd.isna(stall["error_code"])
     assert loop["end_time"] == 5.0 and "time-out, 5 s of controller time" in loop["error_message"]
     assert (setup["error_file"], setup["error_line"]) == ("tiny_setup.py", RAISE_LINE)
@@ -109,9 +109,19 @@ def test_every_way_a_run_ends_is_a_row_and_the_others_go_on(tiny: tuple[str, Pat
 def test_the_rows_hold_the_parameters_as_columns_in_the_sets_order(tiny: tuple[str, Path]) -> None:
     df = _sweep(tiny, [{"mode": "ok", "parts": n} for n in (3, 1, 2)]).run_in_process()
     assert list(df.columns[:3]) == ["mode", "parts", "status"]
-    assert list(df["parts"]) == [3, 1, 2]
+    assert list(df["parts"]) == list(df["made"]) == [3, 1, 2]
     assert list(df["end_time"]) == [0.75, 0.25, 0.5]
     assert list(df["run_id"]) == [run_id({"mode": "ok", "parts": n}) for n in (3, 1, 2)]
+
+
+def test_a_parameter_named_as_a_column_of_the_metrics_is_refused(tiny: tuple[str, Path]) -> None:
+    for name in ("made", "done_at", "status", "end_time", "run_id"):
+        with pytest.raises(ParamsError, match=f"parameter {name!r} has the name of a column"):
+            _sweep(tiny, [{"mode": "ok", name: 1}])
+    with pytest.raises(ParamsError, match="parameter 'peak_speed_Z' has the name of a column"):
+        Sweep(tiny[0], tiny[1], [{"peak_speed_Z": 1}])  # the default metrics
+    with pytest.raises(ParamsError, match="robot 'PF9' is not a robot model; one of ARM6, "):
+        _sweep(tiny, [{"mode": "ok", "robot": "PF9"}])
 
 
 def test_a_project_with_errors_is_refused_before_any_run(tmp_path: Path) -> None:

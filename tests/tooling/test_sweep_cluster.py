@@ -33,7 +33,7 @@ def client() -> Iterator[distributed.Client]:
 
 
 def _sweep(project: str, setup: Path, sets: list[dict[str, object]], **options: object) -> Sweep:
-    metrics = [EndTime(), Count("parts", "^part "), Count("grips", signal=1), EventTime("done_at", "^done")]
+    metrics = [EndTime(), Count("made", "^part "), Count("grips", signal=1), EventTime("done_at", "^done")]
     return Sweep(project, setup, sets, metrics=metrics, **options)  # type: ignore[arg-type]
 
 
@@ -65,10 +65,27 @@ def test_faults_are_rows_a_killed_worker_loses_nothing_and_no_worker_translates(
     fail = df[df["mode"] == "fail"].iloc[0]
     assert (fail["error_code"], fail["error_file"], fail["error_line"]) == (-3100, "Main.gpl", THROW_LINE)
     assert df[df["mode"] == "stall"].iloc[0]["stalled_threads"] == "Main"
-    assert list(df[df["mode"] != "kill"]["parts"]) == [1, 2, 3, 4, 0, 0, 0]
-    assert df[df["mode"] == "kill"].iloc[0]["parts"] == 3
+    assert list(df[df["mode"] != "kill"]["made"]) == [1, 2, 3, 4, 0, 0, 0]
+    assert df[df["mode"] == "kill"].iloc[0]["made"] == 3
     pd.testing.assert_frame_equal(pd.read_parquet(out), df)
     assert _translator_on_workers(client) == {w: [] for w in client.scheduler_info()["workers"]}
+
+
+def test_a_run_that_kills_every_worker_it_is_tried_on_is_a_lost_row(client: distributed.Client,
+                                                                   tmp_path: Path) -> None:
+    project, setup = tiny_project(tmp_path)
+
+    def allow(failures: int) -> None:
+        client.run_on_scheduler(lambda dask_scheduler: setattr(dask_scheduler, "allowed_failures", failures))
+
+    allow(1)  # (default 3) one retry, so that the test kills two workers, not four
+    try:
+        df = _sweep(project, setup, [{"mode": "killall", "parts": 1}]).run(client=client)
+    finally:
+        allow(3)
+    [row] = df.to_dict("records")
+    assert row["status"] == "lost" and row["error_message"].startswith("KilledWorker")
+    assert row["parts"] == 1 and pd.isna(row["made"]) and row["run_id"] == run_id({"mode": "killall", "parts": 1})
 
 
 def test_an_interrupted_sweep_resumes_from_its_parts_with_the_command(client: distributed.Client,
