@@ -123,48 +123,26 @@ def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
     """Load the project, parse every source and run the semantic pass (names, types, calls: what a
     porting engineer wants to know), collecting all diagnostics in one run.  Nothing is written.
 
-    When those find no error, the translation's own checks run too (GoTo targets, nesting that
-    Python cannot compile: lowering, in memory), so a project ``check`` passes translates.
-
-    Names that only protected (.gpp) files define are reported as stub warnings, as the
-    translation would (GPL3501); ``--strict`` makes them errors.  ``--stubs DIR`` is read as
-    ``translate`` and ``run`` read it, so a folder or file they would refuse (GPL3503) is
-    reported here too: the three commands take the same stub options.  The project's own
-    diagnostics decide (a sink of its own), so the errors of another project checked in the same
-    call change nothing here."""
-    from gpl2py.transpile import collector_paused
-
-    with collector_paused():  # translate's policy, from loading on (gpl2py.transpile)
-        _check(path, args, out)  # its locals (trees, model) go before the collector comes back
-
-
-def _check(path: str, args: argparse.Namespace, out: Outcome) -> None:
-    from gpl2py.lower.user_stubs import load_user_stubs, with_shipped_standins
-    from gpl2py.semantics.catalogue import load_catalogue
-    from gpl2py.semantics.check import analyze
-    from gpl2py.transpile import lower
+    It is the translation's own pipeline (``gpl2py.transpile``) without keeping the generated
+    text, so ``check`` reports exactly what ``translate`` reports: when the analysis finds no
+    error, the translation's own checks run too (GoTo targets, nesting that Python cannot
+    compile: lowering, in memory), names that only protected (.gpp) files define are stub
+    warnings (GPL3501; ``--strict`` makes them errors), ``--stubs DIR`` is read and refused
+    (GPL3503) alike, and an internal error in one file leaves the others' diagnostics reported.
+    The project's own diagnostics decide (a sink of its own), so the errors of another project
+    checked in the same call change nothing here."""
+    from gpl2py.transpile import transpile
 
     sink = out.sink.child()
-    try:
-        project = load_project(path, sink, limits_of(args))
-        if project is None:
-            return
+
+    def on_load(project: Project) -> None:
         _remember(out, project)
         watch_sources(project, sink)
-        user = load_user_stubs(args.stubs, sink) if args.stubs is not None else None
-        if args.stubs is None or user is not None:  # (a bad --stubs folder is already an error)
-            user = with_shipped_standins(user, sink)
-        incomplete = sink.has_errors()  # a source could not be loaded: it may declare the start
-        units = []
-        for source in project.sources:
-            units.append(_parse(source, sink))
-            out.checked += 1
-        model = analyze(units, sink, load_catalogue(), project.name,  # type: ignore[arg-type]
-                        None if incomplete else project.start, protected=bool(project.protected),
-                        strict=args.strict, stub_provider=user.provider if user is not None else None,
-                        start_span=project.start_span)
-        if not sink.has_errors():
-            lower(project, model, sink, user=user, keep_modules=False)
+        out.checked += len(project.sources)
+
+    try:
+        transpile(path, sink, stubs_dir=args.stubs, strict=args.strict, loaded=on_load,
+                  limits=limits_of(args), keep_modules=False)
     finally:
         out.sink.extend(sink)
 
@@ -222,12 +200,12 @@ def _run_explain(args: argparse.Namespace) -> Outcome:
         return out
     if len(found) == 1 and found[0].code == code:
         m = found[0]
-        notes = m.doc or "No notes: the message says it all."
+        notes = m.notes or "No notes: the message says it all."
         out.product = f"{m.code} ({m.severity_name}): {m.template}\n\n" + textwrap.fill(notes, width=78)
-        out.product_json = {"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.doc}
+        out.product_json = {"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.notes}
     else:
         out.product = "\n".join(f"{m.code} ({m.severity_name}): {m.template}" for m in found)
-        out.product_json = [{"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.doc}
+        out.product_json = [{"code": m.code, "severity": m.severity_name, "message": m.template, "notes": m.notes}
                             for m in found]
     return out
 

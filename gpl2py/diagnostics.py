@@ -8,10 +8,12 @@ reports every problem.  The codes and their wording live in :mod:`gpl2py.message
 from __future__ import annotations
 
 import json
+import os
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Iterable, Iterator, Protocol, Sequence
 
-from gpl2py.messages import Message, Severity  # Severity is defined with the messages that carry one
+from gpl2py.messages import INTERNAL_ERROR, Message, Severity  # (Severity lives with the messages)
 from gpl2py.source import Position, SourceFile, Span
 
 
@@ -39,21 +41,26 @@ class Diagnostic:
         return f"{where} {what}: {one_line(self.message)}" if where else f"{what}: {one_line(self.message)}"
 
     def render(self, source: SourceFile | None = None, colour: bool = False) -> str:
-        """The header line, followed by the source line and a caret when the text is known."""
+        """The header line, followed by the source line and a caret when the text is known.
+
+        A line longer than :data:`EXCERPT` characters is shown as a window of that many around
+        the column, its cut ends marked ``...``: a line can be a whole file (a 7 MB string literal
+        was 14.7 MB of output, and the caret under it as much again)."""
         text = self.header(colour)
         if source is None or self.span is None:
             return text
         line = source.line_text(self.span.line)
         if not line:
             return text
-        shown = line.expandtabs(1)  # tabs count as one column, as in Position
-        if not shown.isprintable():  # a control character (a form feed, a bidi override) shows as '?'
-            shown = "".join(ch if ch.isprintable() else "?" for ch in shown)
         col = max(self.span.col, 1)
         if self.span.end_line == self.span.line and self.span.end_col > col:
             width = self.span.end_col - col
         else:
             width = 1
+        shown, col = excerpt(line, col)
+        shown = shown.expandtabs(1)  # tabs count as one column, as in Position
+        if not shown.isprintable():  # a control character (a form feed, a bidi override) shows as '?'
+            shown = "".join(ch if ch.isprintable() else "?" for ch in shown)
         width = max(1, min(width, len(shown) - col + 1))
         caret = "^" * width
         if colour:
@@ -70,6 +77,29 @@ class Diagnostic:
             "line": pos.line if pos else None,
             "column": pos.col if pos else None,
         }
+
+
+#: The longest source line a diagnostic shows whole; a longer one is shown as a window of this
+#: many characters around the column (:func:`excerpt`).  Real code's lines are shorter (the
+#: corpus's longest is 113), so its diagnostics show their lines whole.
+EXCERPT = 200
+#: How many characters of a long line the window shows before the column.
+EXCERPT_BEFORE = 60
+_CUT = "..."
+
+
+def excerpt(line: str, col: int) -> tuple[str, int]:
+    """``line`` and the 1-based column ``col`` in it, or, for a line over :data:`EXCERPT`
+    characters, the window of it a diagnostic shows: :data:`EXCERPT` characters from
+    :data:`EXCERPT_BEFORE` before the column (fewer at the line's end), a cut end marked with
+    ``...``, and where the column falls in that text."""
+    if len(line) <= EXCERPT:
+        return line, col
+    start = max(0, min(col - 1 - EXCERPT_BEFORE, len(line) - EXCERPT))
+    end = start + EXCERPT
+    head = _CUT if start > 0 else ""
+    tail = _CUT if end < len(line) else ""
+    return f"{head}{line[start:end]}{tail}", col - start + len(head)
 
 
 _BOLD, _RESET = "\x1b[1m", "\x1b[0m"
@@ -94,6 +124,21 @@ class InternalError(Exception):
 def internal_error_span(exc: BaseException) -> Span | None:
     """Where an unexpected exception happened in the input, when the pass that raised it knew."""
     return exc.span if isinstance(exc, InternalError) else None
+
+
+@contextmanager
+def contained(sink: DiagnosticSink, where: Span | None) -> Iterator[None]:
+    """Run one part of a pass -- one file's parse, one module's analysis or lowering, a whole
+    translation -- so that an unexpected exception in it (a bug in gpl2py) is internal error
+    GPL9000 at ``where`` (or where the pass said it failed), and the caller goes on with the next
+    part: a bug met in one file never hides the diagnostics of the others.  ``GPL2PY_TRACEBACK=1``
+    lets the exception through instead, for a gpl2py developer (and the fuzz tests)."""
+    try:
+        yield
+    except Exception as exc:
+        if os.environ.get("GPL2PY_TRACEBACK"):
+            raise
+        sink.report(INTERNAL_ERROR, internal_error_span(exc) or where, detail=f"{type(exc).__name__}: {exc}")
 
 
 def one_line(text: str) -> str:
@@ -125,11 +170,16 @@ class DiagnosticSink:
 
     With a ``filter`` (``gpl2py.selection.Selection``), a diagnostic it does not keep is dropped
     as it arrives, so every later question (errors? how many warnings?) sees the filtered set.
+    The errors it drops are kept aside (:attr:`ignored_errors`): an ignored error still means that
+    the input has no meaning there, which the translation must know (it raises the controller's
+    error at that line, ``gpl2py.lower``) though the user asked not to hear of it.
     """
 
     def __init__(self, filter: DiagnosticFilter | None = None) -> None:
         self._items: list[Diagnostic] = []
         self.filter = filter
+        #: errors the filter dropped, in the order they were reported
+        self.ignored_errors: list[Diagnostic] = []
 
     def child(self) -> DiagnosticSink:
         """An empty sink with the same filter (a pipeline stage that decides on its own errors)."""
@@ -138,19 +188,21 @@ class DiagnosticSink:
     def report(self, message: Message, span: Span | None, **args: object) -> Diagnostic:
         """Report ``message`` (a registry entry) formatted with ``args`` at ``span``."""
         diag = Diagnostic(message.severity, message.code, message.format(**args), span)
-        if self.filter is None or self.filter(diag):
-            self._items.append(diag)
+        self.add(diag)
         return diag
 
     def add(self, diag: Diagnostic) -> None:
         if self.filter is None or self.filter(diag):
             self._items.append(diag)
+        elif diag.severity is Severity.ERROR:
+            self.ignored_errors.append(diag)
 
     def extend(self, diags: Iterable[Diagnostic]) -> None:
         if self.filter is None:
             self._items.extend(diags)
         else:
-            self._items.extend(d for d in diags if self.filter(d))
+            for d in diags:
+                self.add(d)
 
     def __iter__(self) -> Iterator[Diagnostic]:
         return iter(self._items)
@@ -168,6 +220,11 @@ class DiagnosticSink:
 
     def has_errors(self) -> bool:
         return any(d.severity is Severity.ERROR for d in self._items)
+
+    def found_errors(self) -> bool:
+        """Errors reported, kept or ignored: whether some input has no meaning (not whether the
+        run failed, which :meth:`has_errors` answers)."""
+        return bool(self.ignored_errors) or self.has_errors()
 
     def sorted(self) -> list[Diagnostic]:
         """Diagnostics ordered by file, line and column (stable for equal positions)."""

@@ -87,8 +87,8 @@ def sarif_log(diags: Sequence[Diagnostic], cwd: Path | None = None, *, succeeded
         rule: dict[str, object] = {"id": code}
         if m is not None:
             rule["shortDescription"] = {"text": m.template}
-            if m.doc:
-                rule["fullDescription"] = {"text": m.doc}
+            if m.notes:
+                rule["fullDescription"] = {"text": m.notes}
             rule["defaultConfiguration"] = {"level": "error" if m.severity_name == "error" else "warning"}
         rules.append(rule)
     index = {code: i for i, code in enumerate(codes)}

@@ -48,18 +48,51 @@ class Message:
     def severity(self) -> Severity:
         return Severity(self.severity_name)
 
+    @property
+    def runtime(self) -> int | None:
+        """The controller's error code that a line translated despite this error raises when it
+        is reached (:data:`RUNTIME_CODES`), or None for an error that is not about a line the
+        program runs (a project file, the command line)."""
+        return RUNTIME_CODES.get(self.code)
+
+    @property
+    def notes(self) -> str:
+        """``doc``, and what the translation does with a line that keeps the error."""
+        runtime = self.runtime
+        if runtime is None:
+            return self.doc
+        kept = (f"Translated anyway (--keep-going, or the error ignored), the code it affects raises "
+                f"error {runtime} *{RUNTIME_TEXTS[runtime]}* when the program reaches it.")
+        return f"{self.doc} {kept}" if self.doc else kept
+
     def format(self, **args: object) -> str:
         """The template filled in.  Templates say "a {src} value"; when the inserted word starts
         with a vowel the article becomes "an" ("an Integer value", "an Exception"), so callers
-        pass bare type names."""
+        pass bare type names.  A value longer than :data:`MAX_QUOTED` characters is cut
+        (:func:`quoted`)."""
         if not args:
             return self.template
+        args = {k: quoted(v) if isinstance(v, str) else v for k, v in args.items()}
 
         def article(m: re.Match[str]) -> str:
             value = str(args.get(m.group(2), ""))
             return f"{m.group(1)}n {{{m.group(2)}}}" if value[:1] in _VOWELS else m.group(0)
 
         return _A_FIELD.sub(article, self.template).format(**args)
+
+
+#: The longest value a message inserts whole: a name, a literal's text, a token, a path.  A token
+#: can be a whole file (a number of a million digits was quoted whole, a megabyte of message).
+MAX_QUOTED = 200
+_QUOTED_HEAD, _QUOTED_TAIL = 120, 60
+
+
+def quoted(value: str) -> str:
+    """``value``, or, when it is longer than :data:`MAX_QUOTED`, its first 120 and last 60
+    characters around ``...`` (a path keeps its file name, a literal both its ends)."""
+    if len(value) <= MAX_QUOTED:
+        return value
+    return f"{value[:_QUOTED_HEAD]}...{value[-_QUOTED_TAIL:]}"
 
 
 def _error(code: str, template: str, doc: str = "") -> Message:
@@ -75,6 +108,11 @@ def _register(message: Message) -> Message:
         raise AssertionError(f"duplicate diagnostic code {message.code}")
     _REGISTRY[message.code] = message
     return message
+
+
+def message(code: str) -> Message:
+    """The registry entry of ``code`` (``"GPL2001"``)."""
+    return _REGISTRY[code]
 
 
 def all_messages() -> list[Message]:
@@ -117,7 +155,8 @@ LEX_LITERAL_SUFFIX = _error(
 LEX_LITERAL_RANGE = _error(
     "GPL1007",
     "numeric literal {text} is out of range",
-    "Hex and octal literals are 32-bit; reals must fit in a Double.",
+    "Hex and octal literals are 32-bit; reals, and decimal integers (one past the Integer range is "
+    "a Double), must fit in a Double.",
 )
 LEX_CONDITIONAL_DIRECTIVE = _warning(
     "GPL1008",
@@ -704,6 +743,58 @@ BAD_SUPPRESSION = _warning(
 )
 
 
+# --- what a line translated despite an error raises ------------------------------------------
+
+#: The run-time error of code translated despite its error (``--keep-going``, ``--ignore``, a
+#: ``gpl2py: ignore`` comment): the controller's own error for the same fault, from its error
+#: table (spec/gpl-dictionary.md §8; the numbers are the controller's, the texts its messages), so
+#: that the program's Try/Catch can handle it as it would handle any GPL error.  The controller
+#: itself refuses to start a project that does not compile (-742 *Compilation errors*); gpl2py
+#: runs the rest of it, and the line that did not compile raises the error the controller's
+#: compiler names.  An error with no code here (a Project.gpr line, the command line) is about no
+#: line the program runs.  docs/design/lowering.md, "Code that keeps an error".
+RUNTIME_CODES: dict[str, int] = {
+    "GPL1001": -720, "GPL1002": -704, "GPL1004": -720, "GPL1006": -717, "GPL1007": -706,
+    "GPL1009": -713, "GPL1010": -720,
+    "GPL1100": -712, "GPL1101": -712, "GPL1102": -722, "GPL1103": -712, "GPL1104": -724,
+    "GPL1105": -748, "GPL1107": -726, "GPL1108": -712, "GPL1109": -733, "GPL1110": -733,
+    "GPL1111": -722, "GPL1112": -761, "GPL1113": -790, "GPL1114": -766, "GPL1115": -748,
+    "GPL1116": -712, "GPL1117": -735, "GPL1119": -712, "GPL1120": -726, "GPL1121": -784,
+    "GPL1122": -712, "GPL1123": -733, "GPL1124": -748, "GPL1125": -719,
+    "GPL2001": -729, "GPL2002": -727, "GPL2003": -725, "GPL2004": -741, "GPL2005": -738,
+    "GPL2006": -772, "GPL2007": -729, "GPL2008": -760, "GPL2009": -730, "GPL2010": -729,
+    "GPL2012": -730, "GPL2013": -741, "GPL2014": -738, "GPL2015": -712, "GPL2016": -748,
+    "GPL2017": -723, "GPL2018": -736, "GPL2021": -787, "GPL2022": -784, "GPL2023": -730,
+    "GPL2024": -766, "GPL2026": -730, "GPL2027": -760, "GPL2028": -729, "GPL2029": -780,
+    "GPL2030": -721, "GPL2033": -741, "GPL2035": -725, "GPL2036": -778, "GPL2040": -764,
+    "GPL2041": -741, "GPL2042": -790,
+    # GoTo and Exit Try: a branch the controller does not permit
+    "GPL3001": -785, "GPL3002": -785, "GPL3003": -785,
+    # what gpl2py cannot translate (the controller runs it): as a stub, -204 Not implemented
+    "GPL3005": -204, "GPL3007": -204,
+}
+#: The controller's texts of the codes above (gplrt.lang.error_codes has them all; the
+#: translator does not import the runtime).
+RUNTIME_TEXTS: dict[int, str] = {
+    -204: "Not implemented", -704: "Missing quote mark", -706: "Value too large",
+    -712: "Invalid syntax", -713: "Symbol too long", -717: "Invalid number format",
+    -719: "Illegal use of keyword", -720: "Unexpected character in expression",
+    -721: "Conflict with reserved keyword", -722: "Unexpected text at end of line",
+    -723: "Invalid statement label", -724: "Invalid End keyword", -725: "Unknown data type",
+    -726: "Data type required", -727: "Cannot redefine symbol", -729: "Undefined symbol",
+    -730: "Invalid symbol type", -733: "Not a top-level statement", -735: "Too many nested blocks",
+    -736: "Duplicate statement label", -738: "Invalid data type", -741: "Argument mismatch",
+    -742: "Compilation errors", -748: "No matching control structure",
+    -760: "Invalid assignment", -761: "Cannot have list of variables", -764: "Invalid procedure overload",
+    -766: "Array index mismatch", -772: "Ambiguous Public reference", -778: "Objects not allowed for class",
+    -780: "Unsupported procedure reference", -784: "Invalid property", -785: "Branch not permitted",
+    -787: "Invalid in shared procedure", -790: "Invalid static initializer",
+}
+#: What code raises when the error that took its meaning is not known (an error reported on
+#: another line of a continued statement): the controller's refusal of a project that does not compile.
+COMPILATION_ERRORS = -742
+
+
 def markdown() -> str:
     """The text of docs/diagnostics.md."""
     out = [
@@ -712,13 +803,15 @@ def markdown() -> str:
         "Generated from `gpl2py/messages.py` by `python -m gpl2py.messages > docs/diagnostics.md`;",
         "do not edit by hand. Codes are stable. Each diagnostic prints as",
         "`path:line:col: severity GPLnnnn: message`, followed by the source line and a caret.",
+        "A source line over 200 characters is shown as a window of 200 around the column, a value",
+        "a message quotes (a name, a literal) as its first 120 and last 60 characters when over 200.",
         "",
         "| Code | Severity | Message | Notes |",
         "|---|---|---|---|",
     ]
     for m in all_messages():
         text = m.template.replace("|", "\\|")
-        doc = m.doc.replace("|", "\\|")
+        doc = m.notes.replace("|", "\\|")
         out.append(f"| {m.code} | {m.severity_name} | {text} | {doc} |")
     return "\n".join(out) + "\n"
 

@@ -7,21 +7,27 @@ is deterministic: identical input gives byte-identical files.
 
 A library caller (a notebook, the test harness) gets the promise the command line gives: an
 unexpected exception in any phase -- loading, parsing, semantics or lowering -- is a GPL9000
-internal-error diagnostic and ``None``, never a traceback.  ``GPL2PY_TRACEBACK=1`` re-raises it,
-as it does for the CLI, so a gpl2py developer can still see where it came from.
+internal-error diagnostic and ``None``, never a traceback.  It is contained to the file or module
+where it happened (``diagnostics.contained``): each file is parsed, each module analysed and
+lowered on its own, so the other files' diagnostics are all reported.  ``GPL2PY_TRACEBACK=1``
+re-raises it, as it does for the CLI, so a gpl2py developer can still see where it came from.
+
+``gpl2py check`` runs this same pipeline without keeping the generated text (``keep_modules``),
+so it reports exactly what ``translate`` reports, in every case.
 """
 
 from __future__ import annotations
 
 import gc
 import os
+import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from gpl2py import messages as M
-from gpl2py.diagnostics import DiagnosticSink, internal_error_span
+from gpl2py.diagnostics import DiagnosticSink, contained
 from gpl2py.lower.context import ProjectNames
 from gpl2py.lower.module import lower_module
 from gpl2py.lower.names import package_name
@@ -39,6 +45,7 @@ from gpl2py.project import Limits, Project, load_project, read_data_files
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model, analyze
 from gpl2py.semantics.resolve import TOP_MODULE
+from gpl2py.source import make_span
 from gpl2py.syntax.parser import parse
 
 
@@ -62,24 +69,48 @@ DATA_FOLDER = "_project_files"
 def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool = False,
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
               strict: bool = False, loaded: Callable[[Project], None] | None = None,
-              limits: Limits | None = None) -> Output | None:
+              limits: Limits | None = None, keep_modules: bool = True) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.semantics.stubs``).
     ``loaded(project)`` is called once the project is loaded, so a caller can count its files even
     when the translation fails.  ``limits``: how much input may be read (``project.Limits``;
-    default from the environment).
+    default from the environment).  ``keep_modules=False`` (``gpl2py check``): the diagnostics
+    only, each module's text dropped once made (:func:`lower`) and no project files read.
 
-    The cyclic garbage collector is paused meanwhile (:func:`collector_paused`).
+    The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
+    has the same stack whoever calls it (:func:`recursion_budget`).
     """
-    with collector_paused():
-        try:
-            return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits)
-        except Exception as exc:  # a bug in gpl2py, in any phase: a diagnostic, never a traceback
-            if os.environ.get("GPL2PY_TRACEBACK"):
-                raise
-            sink.report(M.INTERNAL_ERROR, internal_error_span(exc), detail=f"{type(exc).__name__}: {exc}")
-            return None
+    with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
+        return _transpile(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules)
+    return None
+
+
+#: The Python frames a translation may use below its entry: what one from the command line had
+#: under Python's default recursion limit of 1,000 (the CLI calls the pipeline 7 to 9 frames deep).
+PIPELINE_FRAMES = 990
+
+
+@contextmanager
+def recursion_budget(frames: int) -> Iterator[None]:
+    """Python's recursion limit is the current depth plus ``frames`` meanwhile (restored after).
+
+    The analysis reports an expression nested past its recursion as GPL3005, and the limit is
+    global, counted from the bottom of the stack: without a budget of its own, the same project
+    gave GPL3005 from ``gpl2py check`` (one frame deeper) and nothing from ``translate``, and an
+    internal error when a library caller (a test, a notebook) called it a few hundred frames deep.
+    """
+    depth = 0
+    frame = sys._getframe()
+    while frame is not None:
+        depth += 1
+        frame = frame.f_back
+    limit = sys.getrecursionlimit()
+    sys.setrecursionlimit(depth + frames)
+    try:
+        yield
+    finally:
+        sys.setrecursionlimit(limit)
 
 
 @contextmanager
@@ -105,31 +136,37 @@ def collector_paused() -> Iterator[None]:
 def _transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
                strict: bool = False, loaded: Callable[[Project], None] | None = None,
-               limits: Limits | None = None) -> Output | None:
-    project = load_project(path, sink, limits)
+               limits: Limits | None = None, keep_modules: bool = True) -> Output | None:
+    loading = DiagnosticSink()  # unfiltered: whether a file failed to load, reported or ignored
+    project = load_project(path, loading, limits)
+    if project is not None and loaded is not None:
+        loaded(project)  # (before the loading's diagnostics pass the sink's filter: its comments)
+    sink.extend(loading)
     if project is None:
         return None
-    if loaded is not None:
-        loaded(project)
     user = load_user_stubs(stubs_dir, sink) if stubs_dir is not None else None
     if stubs_dir is None or user is not None:  # (a bad --stubs folder is already an error)
         user = with_shipped_standins(user, sink)
     protected = bool(project.protected)
     units = []
     for i, src in enumerate(project.sources):
-        units.append(parse(src, sink))
+        with contained(sink, make_span(src.path, 1, 1, 1, 1)):  # a bug in one file: the others go on
+            units.append(parse(src, sink))
         if progress is not None:
             progress("parsing", i + 1, len(project.sources))
-    # the semantic pass runs even after syntax errors, so every error is reported in one run
+    # the semantic pass runs even after syntax errors, so every error is reported in one run; a
+    # file that failed to load (or to parse) may declare the start procedure, not looked for then
+    missing = loading.has_errors() or len(units) < len(project.sources)
     model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
                     strict=strict, stub_provider=user.provider if user is not None else None,
-                    start_span=project.start_span)
+                    start_span=project.start_span, sources_missing=missing)
     if sink.has_errors() and not keep_going:
         return None
-    output = lower(project, model, sink, progress, user)
+    output = lower(project, model, sink, progress, user, keep_modules=keep_modules)
     if sink.has_errors() and not keep_going:  # lowering errors (illegal GoTo ...)
         return None
-    output.data_files = _project_data(Path(path), project)
+    if keep_modules:
+        output.data_files = _project_data(Path(path), project)
     return output
 
 
@@ -162,14 +199,15 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
         extra.append(top)
     entries: dict[str, frozenset[str]] = {}
     for i, mod in enumerate(extra + modules):
-        text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
+        with contained(sink, mod.span):  # a bug in one module: the others are still lowered
+            text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
+            if keep_modules:
+                fname = f"{mod.py_name}.py"
+                out.files[f"{package}/{fname}"] = text
+                smap[fname] = (mod.path, runs_json(gmap))
+            del text, gmap
         if progress is not None:
             progress("writing", i + 1, len(extra) + len(modules))
-        if keep_modules:
-            fname = f"{mod.py_name}.py"
-            out.files[f"{package}/{fname}"] = text
-            smap[fname] = (mod.path, runs_json(gmap))
-        del text, gmap
     stub_texts, records = stub_files(model.stubs, names.stub_module_py, names.stub_attr_py, package, user) \
         if model.stubs is not None and model.stubs.stubs else ({}, [])
     out.files.update(stub_texts)

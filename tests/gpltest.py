@@ -35,6 +35,7 @@ import numpy as np
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import import_package
+from gpl2py.selection import Selection
 from gpl2py.transpile import transpile as transpile_project
 from gpl2py.transpile import write_package
 from gplrt.sim import Simulation
@@ -138,12 +139,15 @@ def write_project(root: Path, sources: dict[str, str], start: str = "Main", name
     return str(proj)
 
 
-def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main") -> tuple[str, dict[str, str], DiagnosticSink]:
+def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main", ignore: tuple[str, ...] = (),
+                 keep_going: bool = False) -> tuple[str, dict[str, str], DiagnosticSink]:
+    """``ignore``: codes or prefixes ignored as ``--ignore`` ignores them; ``keep_going``: as
+    ``--keep-going``."""
     if isinstance(sources, str):
         sources = {"Main.gpl": sources}
     proj = write_project(root, sources, start)
-    sink = DiagnosticSink()
-    out = transpile_project(proj, sink)
+    sink = DiagnosticSink(Selection(None, ignore) if ignore else None)
+    out = transpile_project(proj, sink, keep_going=keep_going)
     if out is None:
         raise TranspileFailed("\n".join(f"{d.header()}" for d in sink.sorted()))
     out_dir = root / "out"
@@ -152,11 +156,13 @@ def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main")
 
 
 def run_gpl(root: Path, sources: dict[str, str] | str, start: str = "Main",
-            setup: Callable[[Simulation], object] | None = None, slice_checkpoints: int = 1000) -> RunResult:
+            setup: Callable[[Simulation], object] | None = None, slice_checkpoints: int = 1000,
+            ignore: tuple[str, ...] = (), keep_going: bool = False) -> RunResult:
     """Transpile and run ``sources``; ``setup(sim)`` prepares the controller first (a slow
     power-up, an input), as ``gpl2py run --setup`` does.  A short ``slice_checkpoints`` makes
-    tests of thread scheduling fast (the controller's is 1000)."""
-    package, files, _ = transpile_to(root, sources, start)
+    tests of thread scheduling fast (the controller's is 1000).  ``ignore``, ``keep_going``: the
+    translation's options of the same names (:func:`transpile_to`)."""
+    package, files, _ = transpile_to(root, sources, start, ignore, keep_going)
     out_dir = str(root / "out")
     sys.path.insert(0, out_dir)
     try:

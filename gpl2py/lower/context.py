@@ -22,6 +22,7 @@ from gpl2py.lower.names import (
     py_ident,
     runtime_names,
 )
+from gpl2py.lower.kept import KeptErrors
 from gpl2py.lower.stub_names import STUBS_MODULE_NAMES, stub_attr_base, stub_module_name
 from gpl2py.semantics.catalogue import load_catalogue
 from gpl2py.semantics.check import Model
@@ -153,10 +154,11 @@ def _claim_module(package: Scope, base: str) -> str:
 class ModuleContext:
     """Imports and names for one generated module."""
 
-    def __init__(self, model: Model, names: ProjectNames, mod: ModuleSym) -> None:
+    def __init__(self, model: Model, names: ProjectNames, mod: ModuleSym, kept: KeptErrors) -> None:
         self.model = model
         self.names = names
         self.mod = mod
+        self.kept = kept  # the errors code that keeps one raises (lower/kept.py)
         self.imports: dict[str, dict[str, str]] = {}  # python module -> {name: alias}
         self.siblings: set[str] = set()
         self.needs_this = False

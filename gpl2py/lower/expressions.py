@@ -59,6 +59,7 @@ CONV = "gplrt.lang.conversions"
 OPS = "gplrt.lang.operators"
 BYREF = "gplrt.lang.byref"
 MEMBERS = "gplrt.lang.members"
+EXC = "gplrt.lang.exceptions"
 
 _PLAIN_NUM = (t.BYTE, t.SHORT, t.INTEGER, t.SINGLE, t.DOUBLE)
 _INTS = (t.BYTE, t.SHORT, t.INTEGER)
@@ -272,11 +273,19 @@ class ExprLowerer:
         return visit(self, e, i)
 
     def unlowered(self, e: A.Expr, why: str) -> Code:
-        """An expression the analysis could not give a meaning: after a reported error (output of
-        ``--keep-going``, which must still be Python) it is ``None``; otherwise a gap in gpl2py."""
+        """An expression the analysis could not give a meaning: after an error (kept with
+        ``--keep-going`` or ignored) a call that raises the controller's error for it when
+        reached (:meth:`fault`); with no error reported, a gap in gpl2py."""
         if self.model.errors_reported:
-            return "None", P_ATOM
+            return self.fault(e), P_ATOM
         raise InternalError(e.span, f"{why} (a {type(e).__name__} expression)")
+
+    def fault(self, node: A.Node) -> str:
+        """The call that raises, when reached, the controller's error for the error reported at
+        ``node`` (``compile_error(-729, "GPL2001: 'x' is not declared")``: lower/kept.py).  An
+        expression as much as a statement: it never returns."""
+        code, subject = self.ctx.kept.at(node.span)
+        return f"{self.rt(EXC, 'compile_error')}({code}, {py_string(subject)})"
 
     # -- one method per kind of meaning (_VISIT) ------------------------------------------------------
 

@@ -15,6 +15,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.classes import delegate_line, field_value, lower_class, register_line, register_lines
 from gpl2py.lower.context import ModuleContext, ProjectNames
 from gpl2py.lower.emit import Writer
+from gpl2py.lower.kept import KeptErrors
 from gpl2py.lower.expressions import annotation, default_code
 from gpl2py.lower.names import py_ident, py_literal
 from gpl2py.lower.text import escape
@@ -52,7 +53,7 @@ def _literal_value(e: A.Expr | None) -> bool:
 
 def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink) -> LoweredModule:
     """The text of the generated module and, per line, the GPL line it came from."""
-    ctx = ModuleContext(model, names, mod)
+    ctx = ModuleContext(model, names, mod, KeptErrors(sink))
     body = Writer()
     decl = mod.decl
     members: list[A.Stmt] = decl.members if decl is not None else [

@@ -43,7 +43,8 @@ RUNTIME_IMPORTS: dict[str, frozenset[str]] = {
         "to_int16", "to_int32", "to_number", "to_single", "to_string", "to_string_single", "to_uint8",
     }),
     "gplrt.lang.delegates": frozenset({"delegate_type"}),
-    "gplrt.lang.exceptions": frozenset({"ExitTry", "as_gpl_exception", "gpl_entry", "not_available"}),
+    "gplrt.lang.exceptions": frozenset({"ExitTry", "as_gpl_exception", "compile_error", "gpl_entry",
+                                        "not_available"}),
     "gplrt.lang.gpltypes": frozenset({"Ref"}),
     "gplrt.lang.members": frozenset({"get_member", "set_member"}),
     "gplrt.lang.operators": frozenset({

@@ -20,6 +20,7 @@ from gpl2py.lower.emit import BLOCKS, MAX_BLOCKS, MAX_INDENT, Writer
 from gpl2py.lower.expressions import (
     BYREF,
     CONV,
+    EXC,
     MEMBERS,
     P_AND,
     P_ADD,
@@ -52,7 +53,6 @@ from gpl2py.semantics.symbols import ClassSym, ProcSym, VarSym
 from gpl2py.syntax import ast as A
 
 THREADS = "gplrt.threads"
-EXC = "gplrt.lang.exceptions"
 # A range For of fewer literal steps than this is a plain ``range``: ``paced_range`` would return
 # the range itself (its checkpoint every PACE iterations, gplrt.threads.scheduler.PACE, which a
 # test keeps equal; the transpiler does not import the runtime).
@@ -157,8 +157,8 @@ class ProcLowerer(ExprLowerer):
             module, attr = self.ctx.stub_parts(stub)
             args = [self.val(i.receiver)] if not stub.shared and i.receiver is not None else []
             self.w.line(f"{module}.set_{attr}({', '.join([*args, value])})")
-        elif self.model.errors_reported:  # not a target (reported; --keep-going output)
-            self.w.line(f"pass  # cannot assign {type(target).__name__} (reported)")
+        elif self.model.errors_reported:  # not a target: the error reported at it, when reached
+            self.w.line(self.fault(target))
         else:
             raise InternalError(target.span, f"no lowering for a store into {type(i).__name__}")
 
@@ -411,17 +411,32 @@ class ProcLowerer(ExprLowerer):
         if visit is None:  # a gap in gpl2py: GPL9000 at the statement, never a statement dropped
             raise InternalError(s.span, f"no lowering for the statement {type(s).__name__}")
         outer_stmt, self.current = self.current, s
-        visit(self, s)
+        if not self.kept_error(s):
+            visit(self, s)
         self.current = outer_stmt
         if fits and not w.fits_python():
             self.too_deep(s, start)
         w.peak_level, w.peak_blocks = max(outer[0], w.peak_level), max(outer[1], w.peak_blocks)
         w.trailing(s.trailing_comment, start)
 
+    def kept_error(self, s: A.Stmt) -> bool:
+        """Code that keeps an error raises it when the program reaches its line (lower/kept.py):
+        a statement without blocks of its own with an error on one of its lines is the raising
+        call alone (returns True); a statement with blocks raises before it runs when its first
+        line has an error, and its blocks are lowered as usual (a GoTo may enter them).  A label
+        stays what it is, the target of a GoTo."""
+        if isinstance(s, A.Label) or not self.ctx.kept.any():
+            return False
+        simple = not child_blocks(s)
+        if not self.ctx.kept.on_lines(s.span, whole=simple):
+            return False
+        self.w.line(self.fault(s))
+        return simple
+
     def too_deep(self, s: A.Stmt, start: int) -> None:
         """``s`` is the innermost statement whose Python would nest deeper than CPython compiles
-        (emit.MAX_INDENT, emit.MAX_BLOCKS): an error at it, and a ``pass`` in its place so that
-        --keep-going output still compiles."""
+        (emit.MAX_INDENT, emit.MAX_BLOCKS): an error at it, and in its place the call that raises
+        the error when reached (lower/kept.py), so that code which keeps the error compiles."""
         w = self.w
         level, blocks = w.deepest()
         if level > MAX_INDENT:
@@ -432,14 +447,16 @@ class ProcLowerer(ExprLowerer):
         self.sink.report(M.NESTED_TOO_DEEPLY, s.span, detail=detail)
         self.too_deep_seen = True
         del w.lines[start:]
-        w.line("pass  # nested too deeply for Python (reported)")
+        w.line(self.fault(s))
         w.peak_level, w.peak_blocks = w.level, w.blocks
 
     def s_misplaced(self, s: A.Stmt) -> None:
-        """A declaration inside a procedure body: the parser reported it (--keep-going output)."""
+        """A line of a procedure body the parser reported -- a declaration that cannot be there, or
+        a line it could not read (an ErrorStmt) --: it raises the controller's error for it when
+        reached (lower/kept.py)."""
         if not self.model.errors_reported:
             raise InternalError(s.span, f"a {type(s).__name__} inside a procedure body was not reported")
-        self.w.line(f"pass  # {type(s).__name__} not lowered (reported)")
+        self.w.line(self.fault(s))
 
     def s_Label(self, s: A.Label) -> None:
         self.w.line(f"# {s.name}:")
@@ -988,8 +1005,8 @@ class ProcLowerer(ExprLowerer):
     def s_GoTo(self, s: A.GoTo) -> None:
         assert self.plan is not None
         j = self.plan.jumps.get(s)
-        if j is None:
-            self.w.line(f"pass  # GoTo {s.label}: not lowered (reported)")
+        if j is None:  # a jump to no label, or one that is not permitted (reported)
+            self.w.line(self.fault(s))
             return
         label = j.states[-1][1]
         if isinstance(label, A.Label) and label in self.plan.exits:
@@ -1350,6 +1367,7 @@ def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
     if not cands:
         return set()
     out = set(cands)
+    declared = {v.decl: v for v in cands}  # (one look-up per declarator: a Dim can list 60,000 names)
 
     def target(e: A.Expr | None) -> VarSym | None:
         i = info.get(e) if e is not None else None
@@ -1379,8 +1397,8 @@ def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
                 out.discard(v)
         elif isinstance(s, A.VarDecl):
             for d in s.declarators:
-                v = next((c for c in out if c.decl is d), None)
-                if v is not None and d.initializer is not None and not keeps_sign(v, "=", d.initializer):
+                v = declared.get(d)
+                if v is not None and v in out and d.initializer is not None and not keeps_sign(v, "=", d.initializer):
                     out.discard(v)
     return out
 
@@ -1478,6 +1496,7 @@ def _exits(block: A.Block, kind: str) -> bool:
 #: The lowering of each kind of statement (ProcLowerer.stmt); a kind without one raises.
 _STMT_VISIT: dict[type[A.Stmt], Callable[[ProcLowerer, Any], None]] = {
     A.Label: ProcLowerer.s_Label,
+    A.ErrorStmt: ProcLowerer.s_misplaced,
     A.VarDecl: ProcLowerer.s_VarDecl,
     A.Assign: ProcLowerer.s_Assign,
     A.CallStmt: ProcLowerer.s_CallStmt,

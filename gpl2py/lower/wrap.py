@@ -25,6 +25,7 @@ import io
 import keyword
 import tokenize
 from collections.abc import Iterator
+from typing import NamedTuple
 
 LIMIT = 99
 _OPS = {"+", "and", "or", "&", "|"}
@@ -38,6 +39,17 @@ _STEP_OPS = {"or": 1, "and": 2, "==": 3, "!=": 3, "<": 3, ">": 3, "<=": 3, ">=":
 # plain and augmented assignment: the expression to break starts after any of them (wrapping the
 # whole ``x += a + b`` statement in parentheses would not be Python)
 _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^=", "<<=", ">>="}
+
+
+class _Tok(NamedTuple):
+    """A token of the line being broken: what ``tokenize`` gives, less what one line does not need
+    (its line number, its text, two tuples of positions), so a line of a million operands keeps
+    half the memory for its tokens (issue 20: a GPL expression of a million terms is one line)."""
+
+    type: int
+    string: str
+    start: int  # (columns: the text is one line)
+    end: int
 
 
 def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tuple[int, str]]:
@@ -54,9 +66,11 @@ def _wrap_nested(indent: int, text: str, limit: int, depth: int, inside: bool) -
     out: list[tuple[int, str]] = []
     for i, (ind, txt) in enumerate(lines):
         # the first line too, when it is a piece of the text (an operand packed without brackets
-        # of its own) rather than the text's unchanged opening
+        # of its own) rather than the text's unchanged opening.  Every line of a text inside
+        # brackets is inside them, its last one too (a piece "or f(x) != y" of a condition packed
+        # without brackets of its own: in brackets of its own it would not be Python)
         if (i > 0 or txt != text) and 4 * ind + len(txt) > limit:
-            out.extend(_wrap_nested(ind, txt, limit, depth + 1, inside=i < len(lines) - 1))
+            out.extend(_wrap_nested(ind, txt, limit, depth + 1, inside=inside or i < len(lines) - 1))
         else:
             out.append((ind, txt))
     return out
@@ -77,7 +91,8 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         out.append((indent, "global " + ", ".join(cur)))
         return out
     try:
-        toks = [t for t in tokenize.generate_tokens(io.StringIO(text).readline)
+        toks = [_Tok(t.type, t.string, t.start[1], t.end[1])
+                for t in tokenize.generate_tokens(io.StringIO(text).readline)
                 if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER)]
     except (tokenize.TokenError, IndentationError, SyntaxError):
         return [(indent, text)]
@@ -87,7 +102,7 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         toks = toks[:-1]
     if not toks:
         return [(indent, text)]
-    body = text[: toks[-1].end[1]]
+    body = text[: toks[-1].end]
     header = body.endswith(":") and toks[0].string in ("if", "elif", "while", "for", "return", "def")
     cont = indent + (2 if header and toks[0].string != "return" else 1)
     # where the expression starts: after the first top-level "=", or after a leading keyword
@@ -103,8 +118,8 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
         expr = expr[:-1]
     if not expr:
         return [(indent, text)]
-    prefix = body[: expr[0].start[1]]
-    suffix = body[expr[-1].end[1]:]
+    prefix = body[: expr[0].start]
+    suffix = body[expr[-1].end:]
     # 0. the steps of a long operator chain, ``(_chain1 := ..., _chain1 := _chain1 + ..., ...)[-1]``
     #    opened by rule 3: one step a line, each broken before its operators
     if inside and not prefix and not suffix and not comment:
@@ -147,10 +162,10 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
             for c in [*commas, len(inner)]:
                 seg = inner[last:c]
                 if seg:
-                    piece = body[seg[0].start[1]:seg[-1].end[1]]
+                    piece = body[seg[0].start:seg[-1].end]
                     args.append(piece + ("," if c < len(inner) else ""))
                 last = c + 1
-            head = body[: expr[open_at].end[1]]
+            head = body[: expr[open_at].end]
             lines = [(indent, head + comment)]
             lines.extend(_pack(cont, "", args, cont, limit, " "))
             lines.append((indent, ")" + suffix))
@@ -161,18 +176,23 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
     group = _longest_group(toks)
     if group is not None:
         open_tok, close_tok = toks[group[0]], toks[group[1]]
-        inner = body[open_tok.end[1]:close_tok.start[1]].strip()
-        return [(indent, body[: open_tok.end[1]] + comment), (cont, inner), (indent, body[close_tok.start[1]:])]
+        inner = body[open_tok.end:close_tok.start].strip()
+        return [(indent, body[: open_tok.end] + comment), (cont, inner), (indent, body[close_tok.start:])]
     return [(indent, text)]
 
 
-def _chain_steps(body: str, expr: list[tokenize.TokenInfo]) -> list[list[str]] | None:
+def _chain_steps(body: str, expr: list[_Tok]) -> list[list[str]] | None:
     """The steps of the tuple that lowers a long operator chain (ExprLowerer.chunked), each as
     its pieces cut before top-level operators; None for any other text.  Only that tuple is
     recognised (its elements assign with ``:=``) so that no other output changes shape."""
-    top = list(_top_level(expr))
-    commas = [i for i, tok in top if tok.type == tokenize.OP and tok.string == ","]
-    if not commas or not any(tok.string == ":=" for _, tok in top):
+    commas: list[int] = []
+    assigns = False
+    for i, tok in _top_level(expr):  # (one pass, no list of the line's top-level tokens)
+        if tok.type == tokenize.OP and tok.string == ",":
+            commas.append(i)
+        elif tok.string == ":=":
+            assigns = True
+    if not commas or not assigns:
         return None
     steps: list[list[str]] = []
     for a, b in zip([-1, *commas], [*commas, len(expr)]):
@@ -186,7 +206,7 @@ def _chain_steps(body: str, expr: list[tokenize.TokenInfo]) -> list[list[str]] |
     return steps
 
 
-def _loosest_cuts(expr: list[tokenize.TokenInfo]) -> list[int]:
+def _loosest_cuts(expr: list[_Tok]) -> list[int]:
     """The top-level binary operators of ``expr`` that bind loosest (``a * f(x) * g(y)``: both
     ``*``; ``a - 3 * b``: the ``-``), the places a line may be broken before."""
     ops = [i for i, tok in _top_level(expr) if i > 0 and _binary_at(expr, i)]
@@ -195,7 +215,7 @@ def _loosest_cuts(expr: list[tokenize.TokenInfo]) -> list[int]:
 
 
 def _operator_lines(indent: int, cont: int, prefix: str, suffix: str, comment: str, body: str,
-                    expr: list[tokenize.TokenInfo], cuts: list[int], limit: int,
+                    expr: list[_Tok], cuts: list[int], limit: int,
                     inside: bool) -> list[tuple[int, str]]:
     """Rule 1's shape for any operator: parenthesised, broken before the operators at ``cuts``."""
     pieces = _pieces(body, expr, cuts)
@@ -204,7 +224,7 @@ def _operator_lines(indent: int, cont: int, prefix: str, suffix: str, comment: s
     return [(indent, prefix + "(" + comment), *_pack(cont, "", pieces, cont, limit, " "), (indent, ")" + suffix)]
 
 
-def _binary_at(toks: list[tokenize.TokenInfo], i: int) -> bool:
+def _binary_at(toks: list[_Tok], i: int) -> bool:
     """Whether ``toks[i]`` is a binary operator a chain step may be broken before: any of the
     arithmetic, bitwise and Boolean ones (a step is one operator repeated, ``-`` and ``*`` as
     often as ``+``), but not a sign (``x - -1``: the token before a sign is not an operand)."""
@@ -229,7 +249,7 @@ def _step_lines(indent: int, steps: list[list[str]], limit: int) -> list[tuple[i
     return lines
 
 
-def _top_level(toks: list[tokenize.TokenInfo]) -> Iterator[tuple[int, tokenize.TokenInfo]]:
+def _top_level(toks: list[_Tok]) -> Iterator[tuple[int, _Tok]]:
     """The tokens outside every bracket pair (brackets themselves excluded), with their index:
     the only places a line may be cut or an assignment found without changing its meaning."""
     depth = 0
@@ -242,13 +262,13 @@ def _top_level(toks: list[tokenize.TokenInfo]) -> Iterator[tuple[int, tokenize.T
             yield i, tok
 
 
-def _balanced(toks: list[tokenize.TokenInfo]) -> bool:
+def _balanced(toks: list[_Tok]) -> bool:
     """Every bracket opened in ``toks`` is closed there (a slice of a line may cut a group)."""
     opened = sum(1 for t in toks if t.type == tokenize.OP and t.string in "([{")
     return opened == sum(1 for t in toks if t.type == tokenize.OP and t.string in ")]}")
 
 
-def _longest_group(toks: list[tokenize.TokenInfo]) -> tuple[int, int] | None:
+def _longest_group(toks: list[_Tok]) -> tuple[int, int] | None:
     """Indices of the opening and closing token of the longest depth-0 bracket pair with
     something inside, or None."""
     best: tuple[int, int] | None = None
@@ -265,17 +285,17 @@ def _longest_group(toks: list[tokenize.TokenInfo]) -> tuple[int, int] | None:
         elif tok.string in ")]}":
             depth -= 1
             if depth == 0 and i > open_at + 1:
-                span = tok.start[1] - toks[open_at].end[1]
+                span = tok.start - toks[open_at].end
                 if span > best_len:
                     best, best_len = (open_at, i), span
     return best
 
 
-def _pieces(body: str, expr: list[tokenize.TokenInfo], cuts: list[int]) -> list[str]:
+def _pieces(body: str, expr: list[_Tok], cuts: list[int]) -> list[str]:
     bounds = [0, *cuts, len(expr)]
     out = []
     for a, b in zip(bounds, bounds[1:]):
-        out.append(body[expr[a].start[1]:expr[b - 1].end[1]])
+        out.append(body[expr[a].start:expr[b - 1].end])
     return out
 
 

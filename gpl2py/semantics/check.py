@@ -17,7 +17,7 @@ from dataclasses import dataclass, field, replace
 from sys import intern
 
 from gpl2py import messages as M
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import DiagnosticSink, contained
 from gpl2py.semantics import types as t
 from gpl2py.semantics.catalogue import BuiltinClass, Catalogue, Member, Param
 from gpl2py.semantics.consts import fold_constants
@@ -168,8 +168,8 @@ class Model:
     # procedure declares the same variable (_declare_locals), a rejected duplicate is absent
     local_of: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
     stubs: StubTable | None = None  # names defined in protected code / missing built-in members
-    # errors were reported before lowering (it runs then for --keep-going only): an expression
-    # without a meaning is one of them, not a gap in gpl2py
+    # errors were reported before lowering, kept or ignored (it runs then for --keep-going or
+    # ignored errors only): an expression without a meaning is one of them, not a gap in gpl2py
     errors_reported: bool = False
     # module and class Consts whose value translation computed (semantics/consts.py)
     const_values: dict[VarSym, object] = field(default_factory=dict)
@@ -267,6 +267,7 @@ class Checker:
         self.r = Resolver(project, catalogue, sink, self.stubs)
         self.model = Model(project, self.r, stubs=self.stubs)
         self.cat = catalogue
+        self.sources_missing = False  # a source failed to load (analyze)
         # Infos that only say "a variable" or "an operator's result of this type" are shared by
         # every expression they describe (most expressions of dense code: docs/security.md,
         # "Input size"); nothing changes an Info of these kinds once made
@@ -297,13 +298,14 @@ class Checker:
         col.check_overloads()
         project = self.model.project
         for mod in list(project.modules.values()):
-            self._module(mod)
+            with contained(self.sink, mod.span):  # a bug met in one module: the others are checked
+                self._module(mod)
         self.model.const_values = fold_constants(project, self.model.info, self.sink)
         if start:
             self._start(start, start_span)
         else:
             self._assume_main()
-        self.model.errors_reported = self.sink.has_errors()
+        self.model.errors_reported = self.sink.found_errors()
         return self.model
 
     def _assume_main(self) -> None:
@@ -330,6 +332,8 @@ class Checker:
             proc = cands[0] if len(cands) == 1 else None
         if isinstance(proc, OverloadSet):  # the thread starts it without arguments
             proc = _parameterless(proc) or proc.procs[0]
+        if not isinstance(proc, ProcSym) and self.sources_missing:
+            return  # perhaps in the file that failed to load: its error says what is wrong
         if not declared and self.stubs.protected:
             # not declared anywhere readable: in a project with protected files that is where it
             # lives, and saying so beats "not a Sub of this project" (the user sees the file)
@@ -372,7 +376,10 @@ class Checker:
         if cls is not None and v.shared:
             ctx = _Ctx(mod, cls, None)
             ctx.cls = cls
-        self._declarator_exprs(d, v, ctx)
+        try:
+            self._declarator_exprs(d, v, ctx)
+        except RecursionError:  # as for a statement (_block): an initializer nested past Python's stack
+            self._too_deep(d.span)
 
     def _declarator_exprs(self, d: A.VarDeclarator, v: VarSym, ctx: _Ctx) -> None:
         if d.bounds:
@@ -400,7 +407,10 @@ class Checker:
         if isinstance(decl, A.ProcDecl):
             for v in p.params:  # (a duplicate parameter was reported and left out of p.params)
                 if v.default is not None:
-                    self._store_value(v.default, v.type, ctx)
+                    try:
+                        self._store_value(v.default, v.type, ctx)
+                    except RecursionError:
+                        self._too_deep(v.default.span)
         # locals are visible in the whole procedure (§6.2): declare them all first
         self._declare_locals(decl.body, p, ctx, [], {})
         self._block(decl.body, ctx)
@@ -473,8 +483,14 @@ class Checker:
         for s in block.statements:
             try:
                 self._stmt(s, ctx)
-            except RecursionError:  # pragma: no cover - absurdly deep expressions
-                self.sink.report(M.NOT_SUPPORTED, s.span, what="an expression this deeply nested")
+            except RecursionError:
+                self._too_deep(s.span)
+
+    def _too_deep(self, span: Span) -> None:
+        """A statement, a module-level initializer or a parameter's default whose expression nests
+        deeper than the checker's recursion reaches (500 chained calls or members, which the parser's
+        depth limit does not count): GPL3005 at it, never a RecursionError out of the analysis."""
+        self.sink.report(M.NOT_SUPPORTED, span, what="an expression this deeply nested")
 
     def _stmt(self, s: A.Stmt, ctx: _Ctx) -> None:
         p = ctx.proc
@@ -559,8 +575,8 @@ class Checker:
                                      given=len(s.bounds))
             elif tt is not t.ERROR:
                 self.sink.report(M.NOT_AN_ARRAY, s.target.span, name=_text(s.target))
-        elif isinstance(s, (A.Label,)):
-            pass
+        elif isinstance(s, (A.Label, A.ErrorStmt)):
+            pass  # (an ErrorStmt: the parser reported the line)
         elif isinstance(s, (A.ProcDecl, A.ClassDecl, A.ModuleDecl, A.PropertyDecl, A.DelegateDecl)):
             pass  # misplaced; the parser reported it
 
@@ -1379,16 +1395,18 @@ def _text(e: A.Expr) -> str:
 def analyze(units: list[A.SourceUnit], sink: DiagnosticSink, catalogue: Catalogue,
             project_name: str = "", start: str | None = None, *, protected: bool = False,
             strict: bool = False, stub_provider: Callable[[Stub], str | None] | None = None,
-            start_span: Span | None = None) -> Model:
+            start_span: Span | None = None, sources_missing: bool = False) -> Model:
     """Semantic analysis of a parsed project (units in ProjectSource order).
 
     ``protected``: the project has protected (.gpp) files, so unknown names become stubs
     (``gpl2py.semantics.stubs``); ``strict`` reports every stub as an error; ``stub_provider``
     names the stand-in that implements a stub, for its warning.  ``start_span``: where ``start``
     is written (the ProjectStart value in Project.gpr), where a start procedure that does not
-    exist is reported."""
+    exist is reported -- unless ``sources_missing``: a source failed to load (reported) and may be
+    where it is, so its absence says nothing more."""
     checker = Checker(ProjectSyms(project_name), catalogue, sink,
                       StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
+    checker.sources_missing = sources_missing
     return checker.run(units, start, start_span)
 
 

@@ -259,6 +259,12 @@ class Label(Stmt):
 
 
 @dataclass(slots=True, eq=False, init=False)
+class ErrorStmt(Stmt):
+    """Stands in for a line of a procedure body that failed to parse (a diagnostic was reported):
+    code translated despite the error raises it when the program reaches the line."""
+
+
+@dataclass(slots=True, eq=False, init=False)
 class Assign(Stmt):
     """``target op value`` where ``op`` is ``=`` or a compound operator (``+=``, ``<<=``, ``&=`` ...)."""
 

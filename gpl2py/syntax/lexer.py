@@ -55,6 +55,11 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.source import SourceFile, Span
 from gpl2py.syntax.tokens import KEYWORDS, OPERATORS, RawToken, Token, TokenKind
 
+# A string literal (S) is '"', runs of other characters and '""' pairs, '"'.  Its repetitions are
+# possessive ('*+': nothing to back into), so the engine keeps no state per character and a literal
+# of any length is matched in constant memory; '"(?:[^"]|"")*"' kept ~150 bytes a character (2 GB
+# for a 7 MB literal, issue 20).  When the quotes after an opening quote do not pair up to a
+# closing one, the string is unterminated (US) from that opening quote.
 _MASTER = re.compile(
     r"""[ \t\f\v]*(?:
      (?P<W>[A-Za-z][A-Za-z0-9_]*|_+[A-Za-z0-9][A-Za-z0-9_]*)
@@ -62,7 +67,7 @@ _MASTER = re.compile(
     |(?P<H>&[Hh][0-9A-Fa-f]+|&[Oo][0-7]+)
     |(?P<O><<=|>>=|<>|<=|>=|<<|>>|[\^*/\\+\-&]=|[-+*/\\^&=<>(),.:])
     |(?P<NL>\r\n|\n|\r)
-    |(?P<S>"(?:[^"\r\n]|"")*")
+    |(?P<S>"[^"\r\n]*+(?:""[^"\r\n]*+)*+")
     |(?P<C>'[^\r\n]*)
     |(?P<CONT>_[ \t\f\v]*(?P<CC>'[^\r\n]*)?(?:\r\n|\n|\r|\Z))
     |(?P<US>"[^\r\n]*)
@@ -74,6 +79,7 @@ _MASTER = re.compile(
 
 # characters that can be part of a name: a '_' right after one of these is not a continuation
 _NAME_CHAR = re.compile(r"[A-Za-z0-9_]").fullmatch
+_WORD_RUN = re.compile(r"\w*").match
 _CONDITIONAL = re.compile(r"#\s*(if|else|elseif|end\s+if|const)\b", re.IGNORECASE)
 _MAX_NAME = 128
 _MAX_STRING = 128
@@ -111,9 +117,10 @@ CHUNK = 4096
 
 def token_chunks(source: SourceFile, sink: DiagnosticSink, chunk: int = CHUNK) -> Iterator[list[RawToken]]:
     """The tokens of ``source`` as the parser reads them, plain tuples ``(kind, text, value, span)``
-    (:data:`~gpl2py.syntax.tokens.KIND`), in consecutive lists of about ``chunk`` tokens (a list
-    ends at a line break, so one logical line may make it longer).  Diagnostics are reported as
-    the tokens are made."""
+    (:data:`~gpl2py.syntax.tokens.KIND`), in consecutive lists of ``chunk`` tokens, a few more at
+    most (a line continued with a comment adds its comments), wherever they fall in a line: a file of
+    one line of a million terms is handed out in pieces too.  Diagnostics are reported as the tokens
+    are made."""
     return _tokenize(source, sink, chunk)
 
 
@@ -164,6 +171,10 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
         stop -= 1
     base = begin - 1  # a column is the offset minus this: the offset where its line starts, less one
     for m in _MASTER.finditer(text, begin, stop):
+        if len(toks) >= chunk:  # (tested per token, not per line: one line can be the whole file)
+            yield toks
+            toks = []
+            append = toks.append
         g = m.lastindex
         if g == 1:  # word
             t = m.group(1)
@@ -193,10 +204,6 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
                 has_tokens = False
             line += 1
             base = m.end() - 1
-            if len(toks) >= chunk:
-                yield toks
-                toks = []
-                append = toks.append
         elif g == 2:  # number
             start = m.start(g)
             t = intern(m.group(g))  # a literal keeps its text: one string per spelling, like names
@@ -205,11 +212,11 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
             if "." in t or "e" in t or "E" in t:
                 value: object = float(t)
                 if value == float("inf"):
-                    sink.report(M.LEX_LITERAL_RANGE, span, text=t)
+                    sink.report(M.LEX_LITERAL_RANGE, span, text=_shown_number(t))
                     value = 0.0
                 append((_K.REAL, t, value, span))
             else:
-                append((_K.INTEGER, t, int(t), span))
+                append((_K.INTEGER, t, int(t) if len(t) < _LONG_DECIMAL else _long_decimal(t, span, sink), span))
             has_tokens = True
             _check_suffix(text, m.end(g), t, span, sink)
         elif g == 6:  # S
@@ -237,7 +244,7 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
             span = _span(path, line, col, col + len(t))
             raw = int(t[2:], 16 if t[1] in "Hh" else 8)
             if raw > 0xFFFFFFFF:
-                sink.report(M.LEX_LITERAL_RANGE, span, text=t)
+                sink.report(M.LEX_LITERAL_RANGE, span, text=_shown_number(t))
                 raw = 0
             elif raw >= 0x80000000:
                 raw -= 0x100000000
@@ -304,6 +311,35 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
     yield toks
 
 
+#: Decimal integer literals this long may pass the Double range (1.8E+308 has 309 digits); shorter
+#: ones are read with ``int`` directly.
+_LONG_DECIMAL = 309
+
+
+def _long_decimal(t: str, span: Span, sink: DiagnosticSink) -> int:
+    """The value of a long decimal literal, or 0 after GPL1007 when it is beyond the Double range.
+
+    A decimal literal past the Integer range is a Double (semantics), so one past the Double range
+    is out of range like ``1E+400``.  Deciding that before ``int(t)`` also keeps Python's limit on
+    converting strings of over 4,300 digits (a ValueError) away from the input; leading zeros
+    count for nothing."""
+    digits = t.lstrip("0")
+    if len(digits) <= _LONG_DECIMAL:
+        value = int(digits or "0")
+        try:
+            float(value)
+            return value
+        except OverflowError:
+            pass
+    sink.report(M.LEX_LITERAL_RANGE, span, text=_shown_number(t))
+    return 0
+
+
+def _shown_number(t: str) -> str:
+    """A numeric literal as a message quotes it: a very long one is cut, with its length."""
+    return t if len(t) <= 40 else f"{t[:20]}... ({len(t)} characters)"
+
+
 def _show(chars: str) -> str:
     """A readable rendering of offending characters: ``'é' (U+00E9)``."""
     if len(chars) == 1:
@@ -325,7 +361,5 @@ def _check_suffix(text: str, end: int, number: str, span: Span, sink: Diagnostic
     if end < len(text):
         c = text[end]
         if c.isalpha() or c == "_":
-            stop = end
-            while stop < len(text) and (text[stop].isalnum() or text[stop] == "_"):
-                stop += 1
+            stop = _WORD_RUN(text, end).end()  # (letters, digits, '_': isalnum() or '_', in C)
             sink.report(M.LEX_LITERAL_SUFFIX, span, suffix=text[end:stop], number=number)

@@ -411,11 +411,11 @@ class Parser:
 
     def _trailing_comment(self) -> A.Comment:
         first = self.next()
-        comment = A.Comment(_at(first), first[VALUE])  # type: ignore[arg-type]
+        texts = [first[VALUE]]
         while self.kind is K.COMMENT:  # several (a continuation comment + the line's own)
-            more = self.next()
-            comment = A.Comment(_at(first), f"{comment.text} {more[VALUE]}")
-        return comment
+            texts.append(self.next()[VALUE])
+        # (joined once: a statement continued over 50,000 commented lines copied its text as often)
+        return A.Comment(_at(first), " ".join(texts))  # type: ignore[arg-type]
 
     def skip_line(self) -> A.Comment | None:
         self.failed = True
@@ -1058,7 +1058,7 @@ class Parser:
             k = self.kind
         if k is K.COLON:
             self.error(M.PARSE_COLON_SEPARATOR, tok)
-            self.skip_line()
+            self.unreadable(tok, out)
             return
         handler = _BLOCK_STATEMENTS.get(k)
         if handler is not None:
@@ -1071,7 +1071,15 @@ class Parser:
             out.append(node)
             self.end_of_line(node)
         else:
-            self.skip_line()
+            self.unreadable(tok, out)
+
+    def unreadable(self, start: RawToken, out: list[A.Stmt]) -> None:
+        """Skip the rest of a statement line that failed (reported), leaving an ErrorStmt for it."""
+        node = A.ErrorStmt(_at(start))
+        comment = self.skip_line()
+        node.span = self.span_from(start)
+        node.trailing_comment = comment
+        out.append(node)
 
     def simple_statement(self) -> A.Stmt | None:
         """A statement that fits on one line (does not consume the end of the line)."""

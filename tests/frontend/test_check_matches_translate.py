@@ -51,7 +51,17 @@ CASES: dict[str, dict[str, str | bytes]] = {
     "protected": {"Main.gpl": PROTECTED, "VendorLib.gpp": b"'#Protected|\x00\x01"},
     "missing_source": {"Project.gpr": 'ProjectBegin\nProjectStart="Main"\nProjectSource="Main.gpl"\n'
                        'ProjectSource="Gone.gpl"\nProjectEnd\n', "Main.gpl": SUB_MAIN},
+    # translate once reported a knock-on GPL2019 here (the start is in the file that is missing)
+    "only_source_missing": {"Project.gpr": 'ProjectBegin\nProjectStart="Main"\nProjectSource="Main.gpl"\n'
+                            'ProjectEnd\n'},
+    "undeclared": {"Main.gpl": "Module Main\n    Public Sub Main()\n        x = 1\n        Foo(y)\n    End Sub\n"
+                               "End Module\n"},
 }
+#: The cases again with some of their errors ignored: check once said "checked 0 files" after the
+#: lowering's internal error on an ignored GPL2001 (and dropped GPL2032), and ran the start check
+#: that translate leaves out when a source is missing.
+IGNORED = [("undeclared", "GPL2001"), ("only_source_missing", "GPL1405"), ("missing_source", "GPL1405"),
+           ("errors_of_every_layer", "GPL"), ("goto_into_for", "GPL3001"), ("too_deep_for_python", "GPL3007")]
 
 
 def _report(argv: list[str]) -> tuple[int, list[tuple[object, ...]]]:
@@ -91,3 +101,16 @@ def test_check_reports_what_translate_reports(name: str, strict: bool, tmp_path:
     if name in ("sub_main_start", "goto_into_for", "too_deep_for_python") and not strict:
         # the lowering's own diagnostics, which check once missed
         assert {c for _, c, *_ in checked[1]} & {"GPL2032", "GPL3001", "GPL3007"}, checked
+
+
+@pytest.mark.parametrize("name, ignored", IGNORED, ids=[f"{n}-{c}" for n, c in IGNORED])
+def test_check_reports_what_translate_reports_with_errors_ignored(name: str, ignored: str, tmp_path: Path) -> None:
+    folder = tmp_path / name
+    folder.mkdir()
+    for file, text in CASES[name].items():
+        (folder / file).write_bytes(text if isinstance(text, bytes) else text.encode("latin-1"))
+    extra = ["--ignore", ignored]
+    checked = _report(["check", "--json", str(folder), *extra])
+    translated = _report(["translate", "--json", str(folder), "-o", str(tmp_path / "out"), *extra])
+    assert checked == translated
+    assert "GPL9000" not in {c for _, c, *_ in checked[1]}

@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import gpl2py.cli as cli
+import gpl2py.transpile as transpile_module
 from gpl2py import messages
 from gpl2py.cli import main
 
@@ -250,7 +251,7 @@ def test_internal_error_becomes_gpl9000(monkeypatch: pytest.MonkeyPatch, tmp_pat
         raise RuntimeError("simulated bug")
 
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(cli, "load_project", boom)
+    monkeypatch.setattr(transpile_module, "load_project", boom)  # (check runs translate's pipeline)
     code, out, err = run(capsys, "check", str(tmp_path))
     assert code == 2  # gpl2py failed, not the input: ruff's and mypy's status for a crash
     assert "error GPL9000: internal error in gpl2py while processing this input: RuntimeError: simulated bug" in err
@@ -267,7 +268,7 @@ def test_internal_error_in_the_parser_becomes_gpl9000(monkeypatch: pytest.Monkey
 
     (tmp_path / "Main.gpl").write_bytes(GOOD_MODULE)
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(cli, "_parse", broken_parse)
+    monkeypatch.setattr(transpile_module, "parse", broken_parse)
     code, _, err = run(capsys, "check", str(tmp_path))
     assert code == 2 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
 
@@ -453,7 +454,8 @@ def test_explain_prints_a_codes_documentation_from_the_installed_package(tmp_pat
     assert isinstance(entry, m)
     first, blank, *notes = done.stdout.splitlines()
     assert first == f"GPL2014 (error): {entry.template}" and blank == ""
-    assert " ".join(notes) == entry.doc
+    assert " ".join(notes) == entry.notes
+    assert entry.notes.startswith(entry.doc) and "raises error -738 *Invalid data type*" in entry.notes
 
 
 def test_explain_lists_a_range_and_suggests_a_code(capsys: pytest.CaptureFixture[str]) -> None:
@@ -462,7 +464,9 @@ def test_explain_lists_a_range_and_suggests_a_code(capsys: pytest.CaptureFixture
     assert [line.split(" ")[0] for line in out.splitlines()] == ["GPL3501", "GPL3502", "GPL3503"]
     code, out, _ = run(capsys, "explain", "--json", "1101")
     assert code == 0
-    assert json.loads(out)["explain"] == {"code": "GPL1101", "severity": "error",
-                                          "message": "expected an expression, found {found}", "notes": ""}
+    assert json.loads(out)["explain"] == {
+        "code": "GPL1101", "severity": "error", "message": "expected an expression, found {found}",
+        "notes": "Translated anyway (--keep-going, or the error ignored), the code it affects raises error "
+                 "-712 *Invalid syntax* when the program reaches it."}
     code, _, err = run(capsys, "explain", "GPL9O01")
     assert code == 2 and "error GPL9001: gpl2py explain: no diagnostic code 'GPL9O01'; did you mean GPL9001?" in err

@@ -14,20 +14,29 @@ diagnostics have a valid position and render, and that the token stream ends wit
 vendor's TCS (``../shared/corpus``, read in place) mutated by lines, tokens and bytes, with hostile
 names -- identifiers renamed consistently to Python keywords, builtins, runtime helpers, names
 gpl2py generates and dunders; hostile source file names, folder names, ProjectName and ProjectStart
-values -- in one-file, several-file, folder and whole-TCS projects.  Each input goes through
-``transpile`` in-process (``GPL2PY_TRACEBACK=1``, so a bug is an exception here rather than a
-GPL9000), some also through ``--keep-going`` and ``gpl2py check --json``.  The properties:
+values -- in one-file, several-file, folder and whole-TCS projects -- and with the shapes that
+once gave internal errors (issue 20): decimal literals past the Double range and past Python's
+4,300-digit limit, deep nesting in module-level initialisers, operator chains of up to 5,000 terms
+and Dim lists of up to 5,000 names (sizes where an input takes seconds: the speed of a
+million-term chain is benchmarks/memory.py's subject).  Each input goes through ``transpile`` in-process
+(``GPL2PY_TRACEBACK=1``, so a bug is an exception here rather than a GPL9000); one with errors
+also with ``--keep-going``, or with every error ignored, and some through ``gpl2py check --json``.
+The properties:
 
-* no exception (no traceback, no internal error GPL9000);
+* no exception (no traceback, no internal error GPL9000), whatever the errors and whether they
+  are kept or ignored (the codes translated ignored are printed);
 * a translation without errors (what ``translate`` exits 0 with) writes modules that compile
-  and a source map that is JSON; ``--keep-going`` output compiles too;
+  and a source map that is JSON; ``--keep-going`` output and output with the errors ignored
+  compile too;
+* ``check`` reports exactly what ``translate`` reports;
 * nothing is written outside the batch's temporary folder (an audit hook sees every write);
 * every diagnostic is ``file:line:col: severity GPLnnnn: message`` (only the three about the
   path itself, GPL1400-GPL1402, have no file to point at).
 
 At least 5,000 inputs per run (``GPL2PY_FUZZ_INPUTS`` for more); the seed is fixed so CI is
 repeatable (``GPL2PY_FUZZ_SEED`` to explore others; a failure names its seed and input number and
-keeps the failing project).  It runs in batches sharing one temporary folder each.
+keeps the failing project).  It runs in batches sharing one temporary folder each, and prints the
+slowest input's time (CPU and wall; never asserted: the machine may be shared).
 """
 
 from __future__ import annotations
@@ -44,6 +53,7 @@ import re
 import shutil
 import sys
 import tempfile
+import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -57,6 +67,7 @@ from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.lower.names import RUNTIME_NAMES
 from gpl2py.run import import_package
+from gpl2py.selection import Selection
 from gpl2py.source import SourceFile
 from gpl2py.syntax.lexer import tokenize
 from gpl2py.syntax.parser import parse
@@ -442,8 +453,9 @@ class Mutator:
         for _ in range(rng.choice([0, 1, 1, 2, 2, 3, 5])):
             op = rng.choices(
                 ["rename", "rename_pair", "line_del", "line_dup", "line_swap", "line_donor", "token",
-                 "token_hostile", "byte_ins", "byte_del", "byte_flip", "literal", "deep"],
-                weights=[12, 6, 3, 2, 2, 2, 3, 3, 1, 1, 1, 1, 1])[0]
+                 "token_hostile", "byte_ins", "byte_del", "byte_flip", "literal", "deep", "huge_literal",
+                 "deep_init", "huge_expr", "long_dim"],
+                weights=[12, 6, 3, 2, 2, 2, 3, 3, 1, 1, 1, 1, 1, 0.5, 0.5, 0.5, 0.5])[0]
             what.append(op)
             text = getattr(self, "op_" + op)(text, declared)
         return text
@@ -548,6 +560,68 @@ class Mutator:
         head, tail = kind.split("|")
         lines[i:i + 1] = [head * n, lines[i], tail * n]
         return "".join(lines)
+
+    # -- the shapes of issue 20: each was a GPL9000 (or a run of over a minute) in mutants of real code
+    def op_huge_literal(self, text: str, declared: list[str]) -> str:
+        """A decimal literal of 310 digits or more (past the Double range), 4,301 or more (past
+        Python's int() limit), or a real with as many: in place of a number, or a new line."""
+        rng = self.rng
+        digits = rng.choice([309, 310, 4301, 20_000])
+        literal = rng.choice(["9", "1"]) + "0" * (digits - 1) + rng.choice(["", "", ".5", "E+2"])
+        numbers = list(re.finditer(r"(?<![\w.&])\d+(?![\w.])", text))
+        if numbers and rng.random() < 0.7:
+            m = rng.choice(numbers)
+            return text[:m.start()] + literal + text[m.end():]
+        return self._in_procedure(text, f"fuzz_big = {literal}\n")
+
+    def op_deep_init(self, text: str, declared: list[str]) -> str:
+        """Deep nesting in a module-level initialiser (a Const, a variable, a Shared field, an
+        Optional parameter's default): parentheses past the parser's limit, chained calls or
+        members past the checker's recursion, unary operators."""
+        rng = self.rng
+        n = rng.choice([149, 150, 151, 478, 500])
+        deep = rng.choice([("(" * n) + "1" + (")" * n), "a" + "(1)" * n, "a" + ".b" * n, "a" + ".b(1)" * n,
+                           "-" * n + "1", "CInt(" * min(n, 200) + "1" + ")" * min(n, 200)])
+        line = rng.choice([f"Public Const FUZZ_DEEP As Integer = {deep}\n", f"Private fuzz_deep As Double = {deep}\n",
+                           f"Public Class FuzzDeep\nPublic Shared Y As Integer = {deep}\nEnd Class\n",
+                           f"Sub FuzzDeep(Optional ByVal q As Integer = {deep})\nEnd Sub\n"])
+        return self._in_module(text, line)
+
+    def op_huge_expr(self, text: str, declared: list[str]) -> str:
+        """A long operator chain in a procedure (real code builds strings over hundreds of continued
+        lines).  At most 5,000 terms, a few seconds for an input (translated, kept or ignored,
+        compiled and imported): a million took a minute before the memory work (branch memory),
+        whose subject the speed is."""
+        rng = self.rng
+        n = rng.choice([300, 1000, 3000, 5000])
+        op = rng.choice([" + ", " & ", " * ", " And ", " - "])
+        term = rng.choice(["1", '"a"', "fuzz_x", "1.5"])
+        continued = " _\n" if rng.random() < 0.3 else ""
+        chain = (op.rstrip() + continued + " ").join([term] * n) if continued else op.join([term] * n)
+        return self._in_procedure(text, f"fuzz_sum = {chain}\n")
+
+    def op_long_dim(self, text: str, declared: list[str]) -> str:
+        """A long Dim list, in a procedure or a module (quadratic once; at most 5,000 names here,
+        for the same reason as op_huge_expr)."""
+        rng = self.rng
+        n = rng.choice([100, 500, 2000, 5000])
+        names = ", ".join(f"fuzz_d{i}" + ("(3)" if i % 7 == 3 else "") for i in range(n))
+        line = f"Dim {names} As {rng.choice(['Integer', 'String', 'Location', 'Nonsense'])}\n"
+        return self._in_procedure(text, line) if rng.random() < 0.5 else self._in_module(text, line)
+
+    def _in_module(self, text: str, line: str) -> str:
+        """``line`` after a ``Module`` line (the start of the text when there is none)."""
+        heads = [m.end() for m in re.finditer(r"(?im)^[ \t]*Module[ \t]+\w+[^\n]*\n", text)]
+        at = self.rng.choice(heads) if heads else 0
+        return text[:at] + line + text[at:]
+
+    def _in_procedure(self, text: str, line: str) -> str:
+        """``line`` after a ``Sub``/``Function`` line (after a Module line when there is none)."""
+        heads = [m.end() for m in re.finditer(r"(?im)^[ \t]*(?:(?:public|private|shared)[ \t]+)*(?:sub|function)[ \t][^\n]*\n", text)]
+        if not heads:
+            return self._in_module(text, line)
+        at = self.rng.choice(heads)
+        return text[:at] + line + text[at:]
 
     # -- bytes
     def op_byte_ins(self, text: str, declared: list[str]) -> str:
@@ -691,19 +765,37 @@ def run_input(item: FuzzProject, root: Path) -> None:
             compile_py(py.read_text(encoding="utf-8"), str(py))
         import_generated(written / out.package)
     elif item.keep_going:
-        sink = DiagnosticSink()
-        out = transpile(folder, sink, keep_going=True)
-        check_diagnostics(sink, folder)
+        kept = DiagnosticSink()
+        out = transpile(folder, kept, keep_going=True)
+        check_diagnostics(kept, folder)
+        if out is not None:
+            compile_all(out.files, strict=False)
+    else:
+        # every error ignored (--ignore GPL1,GPL2,GPL3): the translation goes on, and the lines
+        # that carry one raise it when reached (issue 20); whatever the errors, no GPL9000
+        ignored = DiagnosticSink(Selection(None, ("GPL1", "GPL2", "GPL3")))
+        out = transpile(folder, ignored)
+        check_diagnostics(ignored, folder)
+        assert not ignored.has_errors(), [d.header() for d in ignored]
+        IGNORED_CODES.update(d.code for d in ignored.ignored_errors)
         if out is not None:
             compile_all(out.files, strict=False)
     if item.check_cli:
         stdout, stderr = io.StringIO(), io.StringIO()
         with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
-            status = cli_main(["check", "--json", str(folder)])
+            status = cli_main(["check", "--json", "--no-config", str(folder)])
         assert status in (0, 1), stderr.getvalue()
-        for d in json.loads(stdout.getvalue())["diagnostics"]:
+        checked = json.loads(stdout.getvalue())["diagnostics"]
+        for d in checked:
             assert d["code"] != "GPL9000", d
             assert d["code"] in PATH_CODES or (d["file"] and d["line"] >= 1 and d["column"] >= 1), d
+        # check reports exactly what translate reported
+        assert sorted(json.dumps(d, sort_keys=True) for d in checked) == \
+            sorted(json.dumps(d.to_json(), sort_keys=True) for d in sink)
+
+
+#: The error codes the pipeline fuzz translated with the error ignored (printed: the codes walked).
+IGNORED_CODES: set[str] = set()
 
 
 def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathFactory,
@@ -716,6 +808,7 @@ def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathF
     monkeypatch.delenv("GPL2PY_MAX_SOURCE_MB", raising=False)
     fed = 0
     translated = 0
+    slowest: tuple[tuple[float, float], int, list[str]] = ((0.0, 0.0), -1, [])
     while fed < FUZZ_INPUTS:
         batch = tmp_path_factory.mktemp("fuzz")
         written: list[str] = []
@@ -725,6 +818,7 @@ def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathF
                 item = mutator.project(fed, whole)
                 root = batch / f"i{fed}"
                 root.mkdir()
+                started, cpu = time.perf_counter(), time.process_time()
                 try:
                     run_input(item, root)
                 except BaseException as exc:
@@ -733,6 +827,10 @@ def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathF
                     raise AssertionError(f"fuzz input {fed} (GPL2PY_FUZZ_SEED={seed}, mutations {item.what}) "
                                          f"failed; the project is kept in {kept / item.folder!r}: "
                                          f"{type(exc).__name__}: {exc}") from exc
+                # (reported, never asserted: the machine is shared; CPU time says what the input cost)
+                seconds = (time.process_time() - cpu, time.perf_counter() - started)
+                if seconds > slowest[0]:
+                    slowest = (seconds, fed, item.what)
                 translated += (root / "out").is_dir()
                 fed += 1
                 shutil.rmtree(root, ignore_errors=True)
@@ -740,6 +838,9 @@ def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathF
             _watch.pop()
         outside = sorted({p for p in written if not Path(p).resolve().is_relative_to(batch.resolve())})
         assert outside == [], f"written outside the temporary folder (seed {seed}): {outside[:10]}"
-    print(f"pipeline fuzz: {fed} inputs (seed {seed}), {translated} translated without errors")
+    print(f"pipeline fuzz: {fed} inputs (seed {seed}), {translated} translated without errors; "
+          f"{len(IGNORED_CODES)} error codes translated ignored ({', '.join(sorted(IGNORED_CODES))}); "
+          f"slowest input {slowest[1]}: {slowest[0][0]:.2f} s of CPU, {slowest[0][1]:.2f} s wall "
+          f"({', '.join(slowest[2])})")
     assert fed >= 5000 or fed == FUZZ_INPUTS
     assert translated > 0  # some inputs reached the end of the pipeline

@@ -184,3 +184,39 @@ def test_a_file_name_cannot_break_a_diagnostic_line(tmp_path: Path, capsys: pyte
     assert first.endswith("Main.gpl:3:9: error GPL2001: 'x' is not declared"), first
     assert "a\\x0ab: error GPL0000: forged\\u202e" in first
     assert not any(line.startswith("b: error") for line in err.splitlines())
+
+
+def test_a_diagnostic_on_a_long_line_quotes_a_window_of_it(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # issue 20: the warning on a 7 MB string literal reprinted the whole line, and a caret under
+    # all of it (14.7 MB of output); an error far along the line reprinted it too
+    folder = tmp_path / "P"
+    folder.mkdir()
+    line = '        Console.WriteLine("' + "a" * 1_000_000 + '" & nothere & "' + "b" * 1_000_000 + '" & nor)'
+    (folder / "Main.gpl").write_text(f"Module Main\n    Public Sub Main()\n{line}\n    End Sub\nEnd Module\n")
+    assert cli_main(["check", str(folder)]) == 1
+    err = capsys.readouterr().err.split("\n")
+    assert sum(map(len, err)) < 4_000, sum(map(len, err))
+    first, middle, last = err[0:3], err[3:6], err[9:12]  # (err[6:9]: the second string)
+    assert first[0].endswith("Main.gpl:3:27: warning GPL1003: string literal is 1000000 characters long; "
+                             "the manual limits string literals to 128")
+    assert first[1] == "    " + line[:200] + "..."  # from the start of the line: the column is near it
+    assert first[2] == "    " + " " * 26 + "^" * 177  # under the string, to the window's end
+    col = line.index("nothere") + 1
+    assert middle[0].endswith(f"Main.gpl:3:{col}: error GPL2001: 'nothere' is not declared")
+    assert middle[1] == "    ..." + line[col - 61:col + 139] + "..."  # 60 characters before the column
+    assert middle[2] == "    " + " " * 63 + "^" * 7  # under 'nothere'
+    assert last[0].endswith(f"Main.gpl:3:{line.index('nor)') + 1}: error GPL2001: 'nor' is not declared")
+    assert last[1] == "    ..." + line[-200:]  # the last 200 characters: the column is near the end
+    assert last[2].index("^") == last[1].index("nor)") and last[2].endswith(" ^^^")
+
+
+def test_a_message_quotes_at_most_200_characters_of_a_token(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # a Real literal of a million digits is out of range: the message quoted all of them
+    folder = tmp_path / "P"
+    folder.mkdir()
+    number = "1" + "0" * 1_000_000 + ".5"
+    (folder / "Main.gpl").write_text(f"Module Main\n    Public Sub Main()\n        Console.WriteLine({number})\n"
+                                     "    End Sub\nEnd Module\n")
+    assert cli_main(["check", str(folder)]) == 1
+    header = capsys.readouterr().err.split("\n")[0]
+    assert header.endswith(f"error GPL1007: numeric literal {number[:120]}...{number[-60:]} is out of range")

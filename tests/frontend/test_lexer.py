@@ -9,7 +9,7 @@ import pytest
 from gpl2py.diagnostics import DiagnosticSink, Severity
 from gpl2py.project import load_project
 from gpl2py.source import SourceFile
-from gpl2py.syntax.lexer import tokenize
+from gpl2py.syntax.lexer import CHUNK, token_chunks, tokenize
 from gpl2py.syntax.parser import parse
 from gpl2py.syntax.tokens import Token, TokenKind as K
 
@@ -107,6 +107,23 @@ def test_head_trap_lexes_a_hex_literal() -> None:
 def test_hex_literal_out_of_range_is_reported() -> None:
     _, sink = lex("x = &H100000000\n")
     assert codes(sink) == ["GPL1007"]
+
+
+def test_decimal_literal_past_the_double_range_is_reported() -> None:
+    # a decimal literal past the Integer range is a Double, so one past the Double range is out of
+    # range like 1E+400: 310 digits (once an OverflowError in the lowering of a Double store) and
+    # 4,301 (once Python's ValueError for long int() strings in the lexer, a GPL9000)
+    for digits in (310, 4301, 100_000):
+        toks, sink = lex(f"x = {'9' * digits}\n")
+        assert codes(sink) == ["GPL1007"], digits
+        assert toks[2].kind is K.INTEGER and toks[2].value == 0
+        assert f"({digits} characters)" in sink.errors[0].message and len(sink.errors[0].message) < 100
+    toks, sink = lex(f"x = {'9' * 308}\n")  # within the range: the exact value
+    assert codes(sink) == [] and toks[2].value == int("9" * 308)
+    toks, sink = lex(f"x = {'0' * 5000}17\n")  # leading zeros count for nothing
+    assert codes(sink) == [] and toks[2].value == 17
+    toks, sink = lex(f"x = {'1' + '0' * 5000}.5\n")  # a real literal the same
+    assert codes(sink) == ["GPL1007"] and "(5003 characters)" in sink.errors[0].message
 
 
 def test_literal_suffix_is_reported() -> None:
@@ -250,6 +267,16 @@ def test_string_limits_and_errors() -> None:
     assert codes(sink) == ["GPL1004"]
 
 
+def test_an_unterminated_string_holding_doubled_quotes_is_reported_at_its_opening_quote() -> None:
+    # '"ab""' has no closing quote: the '""' is a quote inside the string, so the string that
+    # is not closed is the one that starts at column 5 (it was reported at the last quote)
+    toks, sink = lex('s = "ab""\n')
+    assert codes(sink) == ["GPL1002"] and sink.errors[0].span.col == 5
+    assert [(t.kind, t.value) for t in toks[2:4]] == [(K.STRING, 'ab"'), (K.NEWLINE, None)]
+    toks, sink = lex('s = "ab""" & "c""d"\n')  # closed strings are unchanged
+    assert len(sink) == 0 and [t.value for t in toks if t.kind is K.STRING] == ['ab"', 'c"d']
+
+
 def test_non_ascii_outside_comments_is_an_error_inside_comments_fine() -> None:
     _, sink = lex("x = 1 ' café – ok\n")
     assert len(sink) == 0
@@ -324,3 +351,13 @@ def test_source_lines_are_the_lexers_lines_so_excerpts_match_positions() -> None
     parse(src, sink)
     assert [d.code for d in sink.errors] == ["GPL1101"]
     assert sink.errors[0].render(src).splitlines()[1:] == ["    x = (1 +", "            ^"]
+
+
+def test_one_long_line_is_handed_to_the_parser_in_chunks() -> None:
+    # the parser holds one or two chunks at a time; a chunk used to end only at a line break, so
+    # a file of one line of 100,000 terms was 200,000 tokens at once (~200 bytes each, 100 times
+    # the two bytes of source they come from)
+    text = "x = 1" + " + 1" * 100_000 + "\n"
+    chunks = list(token_chunks(SourceFile("long.gpl", text), DiagnosticSink()))
+    assert sum(map(len, chunks)) == 200_005  # x = 1, a '+' and a 1 per term, NEWLINE, EOF
+    assert max(map(len, chunks)) <= CHUNK + 1

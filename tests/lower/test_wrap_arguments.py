@@ -43,3 +43,18 @@ def test_sole_long_argument_breaks_without_extra_parentheses() -> None:
     assert lines[0] == (1, "Console.WriteLine(") and lines[-1] == (1, ")")
     assert [t[:2] for _, t in lines[1:-1]] == ["al", "+ "]
     assert ast.dump(ast.parse("\n".join("    " * (i - 1) + t for i, t in lines))) == ast.dump(ast.parse(text))
+
+
+def test_the_last_piece_of_a_sole_argument_stays_inside_the_calls_brackets() -> None:
+    """A long condition as the sole argument of a call (``to_bool(a or f(x) != y)``), broken before
+    ``or``, whose last piece is itself too long: that piece is still inside the call's brackets,
+    so it breaks before ``!=`` without brackets of its own.  It was given some, ``(`` then
+    ``or f(x)`` then ``!= y`` then ``)``: a SyntaxError in --keep-going output (the pipeline fuzz,
+    once ignored errors became longer calls than ``None``)."""
+    long_name = "a_function_with_a_name_long_enough_to_need_a_line_of_its_own"
+    text = (f'if to_bool(to_bool(lt({long_name}(-729, 12345), 0)) or StringMembers.Substring(sValue, '
+            f'bool_num(not_({long_name}(-729, 1234)))) != "\\""):')
+    lines = wrap(2, text)
+    assert len(lines) > 3 and all(4 * ind + len(t) <= 99 for ind, t in lines)
+    wrapped = "\n".join("    " * (ind - 2) + t for ind, t in lines) + "\n    pass"
+    assert ast.dump(ast.parse(wrapped).body[0].test) == ast.dump(ast.parse(text + "\n    pass").body[0].test)  # type: ignore[attr-defined]

@@ -64,7 +64,8 @@ from gplrt.lang.errors import (
 from gplrt.lang.sourcemap import locate
 
 
-__all__ = ["ExitTry", "as_gpl_exception", "gpl_code_for", "gpl_entry", "not_available", "not_simulated"]
+__all__ = ["ExitTry", "as_gpl_exception", "compile_error", "gpl_code_for", "gpl_entry", "not_available",
+           "not_simulated"]
 
 
 def gpl_code_for(exc: BaseException) -> int:
@@ -165,6 +166,20 @@ def not_available(name: str, builtin: bool = False) -> NoReturn:
     """
     what = "not available in the simulated controller" if builtin else "protected source not available"
     raise GplException(NOT_IMPLEMENTED, subject=f"{what}: {name}")
+
+
+def compile_error(code: int, diagnostic: str) -> NoReturn:
+    """What code translated despite an error does when the program reaches it (gpl2py's
+    ``--keep-going``, or the error ignored: docs/design/lowering.md, "Code that keeps an error").
+
+    The controller would not have compiled the line; gpl2py translated the rest of the project, and
+    the line raises the error the controller's compiler names for the fault (-729 *Undefined
+    symbol* for an undeclared name: ``gpl2py.messages.RUNTIME_CODES``), so the program's own
+    Try/Catch sees an ordinary GPL error.  The subject is gpl2py's diagnostic ("GPL2001: 'x' is not
+    declared"), in ``Message`` as for a stub, so an unhandled-error report says which line of the
+    source was kept with its error and why.
+    """
+    raise GplException(code, subject=diagnostic)
 
 
 def gpl_member_name(qualname: str) -> str:
