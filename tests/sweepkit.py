@@ -1,6 +1,7 @@
 """A tiny project and setup for the sweep tests: each parameter set's ``mode`` chooses what the
 run does, so one sweep can hold runs that end well, fail, stall, run into the time-out, or whose
-setup raises or kills its worker, each in a few milliseconds of wall time."""
+setup raises (itself, or in a call into gpl2py) or kills its worker, each in a few milliseconds
+of wall time."""
 
 from __future__ import annotations
 
@@ -56,6 +57,8 @@ def setup(sim, params, cell):
         sim.io.set_input(10003, True)
     elif mode == "setup":
         raise ValueError("no conveyor on this cell")
+    elif mode == "nomodule":
+        cell.module("Conveyor")  # raises inside gpl2py.notebook: the row names this line
     elif mode == "kill" and not os.path.exists(params["marker"]):
         open(params["marker"], "w").close()
         os.kill(os.getpid(), signal.SIGKILL)  # the worker dies mid-run, the first time only
@@ -66,6 +69,8 @@ def setup(sim, params, cell):
 
 #: The line of the ``raise`` in SETUP.
 RAISE_LINE = SETUP.splitlines().index('        raise ValueError("no conveyor on this cell")') + 1
+#: The line of ``cell.module("Conveyor")`` in SETUP (the project has no module Conveyor).
+NO_MODULE_LINE = next(i for i, line in enumerate(SETUP.splitlines(), 1) if 'cell.module("Conveyor")' in line)
 
 
 def tiny_project(root: Path) -> tuple[str, Path]:

@@ -185,8 +185,9 @@ def _run(project: Installed, setup: Setup | SetupSource | None, params: Mapping[
                 return None
             outcome.update(ended)
     except Exception as exc:  # a fault of gpl2py or the runtime: the row says so, the sweep goes on
-        outcome.update(status="crashed", error_message=f"{type(exc).__name__}: {exc}",
-                       error_thread=traceback.format_exc(limit=-3))
+        frames = traceback.extract_tb(exc.__traceback__)
+        where = f" (at {Path(frames[-1].filename).name}:{frames[-1].lineno})" if frames else ""
+        outcome.update(status="crashed", error_message=f"{type(exc).__name__}: {exc}{where}")
         sim.close(0.0)
     record.end_time = round(sim.now(), 9)
     record.console = console.lines()
@@ -207,6 +208,9 @@ def _start(package: ModuleType, sim: Any, setup: Setup | SetupSource | None,
     if setup is None:
         return {}
     try:
+        # A setup file is executed afresh for each run: nothing it keeps at module level (a
+        # random generator, a counter) carries over from one run to the next, whichever runs a
+        # worker happened to get before.
         function = setup.load() if isinstance(setup, SetupSource) else setup
         if _takes_cell(function):
             from gpl2py.notebook import Cell
@@ -216,8 +220,10 @@ def _start(package: ModuleType, sim: Any, setup: Setup | SetupSource | None,
             function(sim, dict(params))
     except Exception as exc:  # the user's setup code: its file and line
         sim.close(0.0)
+        mine = setup.path if isinstance(setup, SetupSource) else getattr(getattr(setup, "__code__", None),
+                                                                         "co_filename", None)
         frames = traceback.extract_tb(exc.__traceback__)
-        last = frames[-1] if frames else None
+        last = next((f for f in reversed(frames) if f.filename == mine), frames[-1] if frames else None)
         return {"status": "setup error", "error_message": f"setup raised {type(exc).__name__}: {exc}",
                 "error_file": Path(last.filename).name if last else None, "error_line": last.lineno if last else None}
     return {}

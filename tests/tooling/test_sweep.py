@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from gpltest import SAMPLES
-from sweepkit import RAISE_LINE, THROW_LINE, tiny_project
+from sweepkit import NO_MODULE_LINE, RAISE_LINE, THROW_LINE, tiny_project
 
 from gpl2py.sweep import Count, EndTime, EventTime, ParamsError, Sweep, draws, grid, read_params, run_id
 from gpl2py.sweep.metrics import from_table
@@ -104,6 +104,35 @@ def test_every_way_a_run_ends_is_a_row_and_the_others_go_on(tiny: tuple[str, Pat
     assert loop["end_time"] == 5.0 and "time-out, 5 s of controller time" in loop["error_message"]
     assert (setup["error_file"], setup["error_line"]) == ("tiny_setup.py", RAISE_LINE)
     assert setup["error_message"] == "setup raised ValueError: no conveyor on this cell"
+
+
+def test_a_setup_error_raised_inside_gpl2py_names_the_setup_files_line(tiny: tuple[str, Path]) -> None:
+    [row] = _sweep(tiny, [{"mode": "nomodule", "parts": 1}]).run_in_process().to_dict("records")
+    assert row["status"] == "setup error"
+    assert (row["error_file"], row["error_line"]) == ("tiny_setup.py", NO_MODULE_LINE)  # not notebook.py's
+    assert "no module 'Conveyor' in this project" in row["error_message"]
+
+
+def test_a_fault_of_the_runtime_is_a_crashed_row_naming_where_and_the_others_go_on(
+        tiny: tuple[str, Path], monkeypatch: pytest.MonkeyPatch) -> None:
+    from gplrt.sim import Simulation
+
+    real = Simulation.install_project_files
+    calls: list[str] = []
+
+    def broken(sim: Simulation, files: object, project: str) -> None:
+        calls.append(project)
+        if len(calls) == 2:  # the second run only
+            raise RuntimeError("flash disk gone")
+        real(sim, files, project)
+
+    monkeypatch.setattr(Simulation, "install_project_files", broken)
+    df = _sweep(tiny, [{"mode": "ok", "parts": n} for n in (1, 2, 3)]).run_in_process()
+    assert list(df["status"]) == ["ok", "crashed", "ok"] and list(df["made"]) == [1, 0, 3]
+    crashed = df.iloc[1]
+    line = next(i for i, text in enumerate(Path(__file__).read_text().splitlines(), 1) if '"flash disk gone"' in text)
+    assert crashed["error_message"] == f"RuntimeError: flash disk gone (at {Path(__file__).name}:{line})"
+    assert crashed["error_thread"] is None  # a thread's name, never a traceback
 
 
 def test_the_rows_hold_the_parameters_as_columns_in_the_sets_order(tiny: tuple[str, Path]) -> None:
