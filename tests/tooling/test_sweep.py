@@ -179,6 +179,19 @@ def test_the_sample_measures_motion_and_its_conveyor_and_speed_change_the_cycle(
     assert (slow["peak_speed_Wrist"], fast["peak_speed_Wrist"]) == (72.0, 288.0)
 
 
+def test_a_parameter_named_robot_is_the_robot_model_of_its_run() -> None:
+    sweep = Sweep.from_file(SAMPLES / "pick_and_place", SAMPLES / "sweep" / "params.toml",
+                            SAMPLES / "sweep" / "setup.py", timeout=5.0)
+    sweep.sets = [{"interval": 0.2, "speed": 80, "robot": r} for r in ("PF400SX", "ARM6", "PF400SXL")]
+    df = sweep.run_in_process().set_index("robot")
+    # Each model's own joints (a SCARA's Z, the six-axis arm's Base and Wrist1, the PF400SXL's
+    # Rail) and its own limits (the PF400SXL's Z is faster at the same Speed).
+    assert math.isnan(df.loc["ARM6", "peak_speed_Z"]) and math.isnan(df.loc["PF400SX", "peak_speed_Base"])
+    assert df.loc["ARM6", "peak_speed_Base"] > 0 and df.loc["ARM6", "peak_speed_Wrist1"] > 0
+    assert math.isnan(df.loc["PF400SX", "peak_speed_Rail"]) and df.loc["PF400SXL", "peak_speed_Rail"] == 0.0
+    assert df.loc["PF400SXL", "peak_speed_Z"] > df.loc["PF400SX", "peak_speed_Z"]
+
+
 # -- the table, written as the rows arrive -----------------------------------------------------------
 
 
