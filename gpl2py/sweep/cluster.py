@@ -24,6 +24,7 @@ import logging
 from collections.abc import Callable, Iterator
 from typing import Any
 
+import dask
 from distributed import Client, LocalCluster, WorkerPlugin, as_completed
 
 from gpl2py.sweep.engine import lost_row, row_of
@@ -31,7 +32,7 @@ from gpl2py.sweep.metrics import Metric
 from gpl2py.sweep.params import ParamSet, run_id
 from gpl2py.sweep.worker import Setup, SetupSource, Shipment, install, installed, run_one
 
-__all__ = ["Client", "ShipPackage", "local_cluster", "on_dask"]
+__all__ = ["PRELOAD", "QUIET", "Client", "ShipPackage", "local_cluster", "on_dask"]
 
 
 class ShipPackage(WorkerPlugin):
@@ -56,13 +57,31 @@ def local_cluster(workers: int) -> LocalCluster:
     """A Dask cluster of ``workers`` processes on this machine, one thread each (a run holds the
     GIL: two runs in one process would take turns, not run side by side).  Each worker imports
     the runtime as it starts (``preload``, seconds of pinocchio and the robot models), so the
-    cluster is ready to run once it is up, and that cost is not paid again inside the sweep."""
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                        silence_logs=logging.ERROR, preload=list(PRELOAD))
+    cluster is ready to run once it is up, and that cost is not paid again inside the sweep.
+    Dask's own diagnostics are turned down first (:data:`QUIET`); the nannies pass the settings
+    on to the worker processes they start."""
+    with dask.config.set(QUIET):
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                            silence_logs=logging.ERROR, preload=list(PRELOAD))
 
 
 #: What a worker imports as it starts (``dask worker --preload gplrt.sim`` does it on a cluster).
 PRELOAD = ("gplrt.sim", "gpl2py.sweep.worker")
+
+#: Dask's diagnostics, off or polled less often on the local cluster: they take CPU time from
+#: the runs, and on a machine with as many workers as cores that time comes out of the sweep's.
+#: The sampling profiler stops the running task every 10 ms to walk its stack (for the
+#: dashboard's profile page: about a tenth of a run's CPU time); the nanny's memory monitor reads
+#: each worker's memory every 100 ms, the event loops check their own latency every 20 ms and the
+#: system monitor samples the processes every 500 ms (together about 6 % of a core in this
+#: process, the scheduler's).  docs/sweep.md has the figures and the same settings for
+#: ``dask worker``.
+QUIET = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.worker.memory.monitor-interval": "1s",
+    "distributed.admin.system-monitor.interval": "2s",
+    "distributed.admin.tick.interval": "500ms",
+}
 
 
 def on_dask(client: Any, shipment: Shipment, setup: Setup | SetupSource | None, sets: list[ParamSet],

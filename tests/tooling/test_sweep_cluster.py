@@ -142,3 +142,26 @@ def test_the_same_sets_give_the_same_rows_on_one_worker_on_two_and_in_a_plain_lo
     tiny = _sweep(project, setup, [{"mode": m, "parts": 2} for m in ("ok", "fail", "stall", "loop", "setup")],
                   timeout=5.0)
     pd.testing.assert_frame_equal(tiny.run(client=client), tiny.run_in_process())
+
+
+def _busy() -> int:
+    """Half a second of Python on a worker: long enough for Dask's profiler to sample it often."""
+    import time
+
+    started, spins = time.perf_counter(), 0
+    while time.perf_counter() - started < 0.5:
+        spins += 1
+    return spins
+
+
+def test_the_local_cluster_has_dasks_profiler_off_and_its_monitors_slower() -> None:
+    import dask
+
+    from gpl2py.sweep.cluster import local_cluster
+
+    with local_cluster(1) as cluster, distributed.Client(cluster) as c:
+        assert c.submit(_busy, pure=False).result() > 0
+        assert c.profile()["count"] == 0  # no stack sample taken from the run (Dask's default: every 10 ms)
+        settings = c.run(lambda: (dask.config.get("distributed.worker.profile.enabled"),
+                                  dask.config.get("distributed.worker.memory.monitor-interval")))
+        assert list(settings.values()) == [(False, "1s")]
