@@ -34,8 +34,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.run import Built, build, project_files
 from gpl2py.sweep.metrics import OUTCOME, Count, EndTime, EventTime, Metric, MotionTime, PeakJointSpeeds, default_metrics
 from gpl2py.sweep.params import ParamsError, ParamSet, draws, grid, read_params, run_id, unique
-from gpl2py.sweep.worker import Setup, SetupSource, Shipment, pack
-from gplrt.controller.pdb import model_names
+from gpl2py.sweep.worker import Setup, SetupSource, Shipment, pack, robot_models
 
 __all__ = ["Count", "EndTime", "EventTime", "Metric", "MotionTime", "PeakJointSpeeds", "ParamsError", "Sweep",
            "SweepError", "default_metrics", "default_workers", "draws", "grid", "read_params", "run_id"]
@@ -88,8 +87,8 @@ class Sweep:
                 raise ParamsError(f"parameter {name!r} has the name of a column of the results: rename it")
         for params in found:
             robot = params.get("robot")
-            if robot is not None and str(robot).upper() not in model_names():
-                raise ParamsError(f"robot {robot!r} is not a robot model; one of {', '.join(model_names())}")
+            if robot is not None and str(robot).upper() not in robot_models():
+                raise ParamsError(f"robot {robot!r} is not a robot model; one of {', '.join(robot_models())}")
         self._sets = found
 
     @property

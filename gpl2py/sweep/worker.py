@@ -49,7 +49,7 @@ from gplrt.controller.console import ConsoleSink
 
 from gpl2py.sweep.metrics import OUTCOME, Metric, MotionSummary, RunRecord
 
-__all__ = ["Installed", "Shipment", "SetupSource", "install", "installed", "run_one", "pack"]
+__all__ = ["Installed", "Shipment", "SetupSource", "install", "installed", "robot_models", "run_one", "pack"]
 
 #: A run's setup: the user's function, or the text of a setup file (the CLI's ``--setup``).
 Setup = Callable[..., Any]
@@ -144,6 +144,14 @@ def install(shipment: Shipment, folder: str | Path | None = None) -> Installed:
     module = import_package(target, f"_gpl2py_sweep_{shipment.package}_{shipment.digest[:8]}")
     found = _installed[shipment.digest] = Installed(module, shipment.project, dict(shipment.files))
     return found
+
+
+def robot_models() -> list[str]:
+    """The robot models a parameter ``robot`` may name (the runtime's; the sweep checks the sets
+    against them before any run, through this module: the one that runs programs)."""
+    from gplrt.controller.pdb import model_names
+
+    return list(model_names())
 
 
 def run_one(project: Installed, setup: Setup | SetupSource | None, params: Mapping[str, Any],
