@@ -20,6 +20,11 @@ The yardsticks:
   the module docstrings' formulas: the 4x4 in, the Tool offset off, law of cosines (or the gantry's
   axes), joints in mm/degrees out, with none of the checks (reach, orientation, soft limits, the
   branch boundary), no turn chosen for the rotary axes and no error codes;
+* **inverse**, URDF robots (Viper s650, Cobra s600, TM5-900): the solver of the robot's family
+  on a flange target already in SI, every branch (``UrdfModel._solver``: the Viper's and the
+  Cobra's closed forms, the TM's closed form and its Pinocchio polish), none of the branch choice
+  by the Config bits, the turns, the unit conversions or the checks; the wrapper's answer must be
+  one of its candidates (modulo a turn);
 * **inverse**, ARM6: its closed-form seed (``analytic``) and the Pinocchio damped-least-squares
   refinement (``solve_dls``) on a ``pin.SE3`` flange target already in SI: the work of the IK
   without the unit conversions, the Tool and Base, the branch choice or the checks.
@@ -55,11 +60,12 @@ from gplrt.motion.kinematics import (  # noqa: E402
     GantryModel,
     Pf400Model,
     RobotModel,
+    UrdfModel,
     build_model,
     solve_dls,
 )
 
-MODELS = ("PF400SX", "PF400SXL", "PF3400SX", "GANTRY4", "ARM6")
+MODELS = ("PF400SX", "PF400SXL", "PF3400SX", "GANTRY4", "ARM6", "VIPER-S650", "COBRA-S600", "TM5-900")
 TARGET = 3.0
 #: CPU time of this process: the machine is shared, and a sample of a few milliseconds that loses
 #: the processor to another program would otherwise count the other program's time.
@@ -137,6 +143,8 @@ def _inverse_yardstick(model: RobotModel, Ts: list[np.ndarray], configs: list[in
         gik = _gantry_bare(model)
         gjobs = list(zip(Ts, configs, qs, strict=True))
         return lambda: [gik(T, c, q) for T, c, q in gjobs]
+    if isinstance(model, UrdfModel):
+        return _urdf_bare(model, Ts, qs)
     assert isinstance(model, Articulated6Model) and model.pin_model is not None and model.pin_data is not None
     M, D, F = model.pin_model, model.pin_data, model.flange_frame
     mm = 1000.0
@@ -157,6 +165,33 @@ def _inverse_yardstick(model: RobotModel, Ts: list[np.ndarray], configs: list[in
         return out
 
     return bare
+
+
+def _urdf_bare(model: UrdfModel, Ts: list[np.ndarray], qs: list[Joints]) -> Callable[[], list[list[Joints]]]:
+    """Every branch's solution of every sample, in degrees/mm (the module docstring)."""
+    solver, linear = model._solver, [j.linear for j in model.joints]
+    jobs = []
+    for T, q in zip(Ts, qs, strict=True):
+        flange = model._base_inv @ T @ model._tool_inv
+        jobs.append((flange[:3, :3].copy(), flange[:3, 3] / 1000.0, model._to_si_list(q)))
+
+    def every(_q: list[float]) -> bool:
+        return True
+
+    def bare() -> list[list[Joints]]:
+        return [[[v * 1000.0 if lin else math.degrees(v) for v, lin in zip(c, linear)] for c in solver(R, p, q, every)[0]]
+                for R, p, q in jobs]
+
+    return bare
+
+
+def _among(answers: list[Joints], candidates: list[list[Joints]], what: str, rotary: np.ndarray) -> None:
+    """Each wrapper answer is one of its sample's candidates (rotary axes modulo a turn)."""
+    for k, (a, cands) in enumerate(zip(answers, candidates, strict=True)):
+        d = np.array(cands, dtype=float) - np.array(a, dtype=float)
+        d[:, rotary] = (d[:, rotary] + 180.0) % 360.0 - 180.0
+        if not float(np.abs(d).max(axis=1).min()) <= 1e-9:
+            raise SystemExit(f"{what}: sample {k}: the wrapper's answer is none of the yardstick's")
 
 
 def _same(a: list[Joints] | list[np.ndarray], b: list[Joints] | list[np.ndarray], what: str,
@@ -201,7 +236,10 @@ def main(n: int = 500, runs: int = 21) -> None:
         inv = model.inverse
         jobs = list(zip(Ts, configs, qs, strict=True))
         bare_inv = _inverse_yardstick(model, Ts, configs, qs)
-        _same([inv(T, c, q) for T, c, q in jobs], bare_inv(), f"{name} inverse", rotary)
+        if isinstance(model, UrdfModel):
+            _among([inv(T, c, q) for T, c, q in jobs], bare_inv(), f"{name} inverse", rotary)  # type: ignore[arg-type]
+        else:
+            _same([inv(T, c, q) for T, c, q in jobs], bare_inv(), f"{name} inverse", rotary)
         pair = side_by_side(lambda: [inv(T, c, q) for T, c, q in jobs], bare_inv, runs, warmup=2, clock=CLOCK, reference=ref)
         print(_line(name, "inverse", pair, n))
     print(ref.line())

@@ -50,15 +50,16 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "benchmarks"))
 
-CORPUS = Path(os.environ.get("GPL2PY_CORPUS", ROOT.parent.parent / "shared" / "corpus"))
+#: The real code (``$GPL_CORPUS``, else ``../shared/corpus`` beside the repository), as the tests
+#: and the other benchmarks find it.
+CORPUS = Path(os.environ.get("GPL_CORPUS") or ROOT.parent / "shared" / "corpus")
 TARGET = 30.0
 
 
 def _corpus_dir() -> Path:
-    for base in (CORPUS, Path("/work/shared/corpus")):
-        if (base / "tcs-3.0C1-pa").is_dir():
-            return base / "tcs-3.0C1-pa"
-    raise SystemExit("corpus not found: set GPL2PY_CORPUS to the folder holding tcs-3.0C1-pa")
+    if (CORPUS / "tcs-3.0C1-pa").is_dir():
+        return CORPUS / "tcs-3.0C1-pa"
+    raise SystemExit(f"corpus not found at {CORPUS}: set GPL_CORPUS to the folder holding tcs-3.0C1-pa")
 
 
 # ------------------------------------------------------------------------------------ inputs
@@ -141,8 +142,8 @@ def _declared_names(texts: dict[str, str]) -> tuple[set[str], set[str]]:
     Consts and Shared fields of top-level classes (visible without qualification too)."""
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.source import SourceFile
-    from gpl2py.syntax import ast as A
-    from gpl2py.syntax.parser import parse
+    from gpl2py.gpl.syntax import ast as A
+    from gpl2py.gpl.syntax.parser import parse
 
     modules: set[str] = set()
     names: set[str] = set()
@@ -170,8 +171,8 @@ def _rename(text: str, renamed: tuple[set[str], set[str]], k: int) -> str:
     ``Module.`` / ``Class.`` (a member reached through its module or class)."""
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.source import SourceFile
-    from gpl2py.syntax.lexer import tokenize
-    from gpl2py.syntax.tokens import TokenKind as K
+    from gpl2py.gpl.syntax.lexer import tokenize
+    from gpl2py.gpl.syntax.tokens import TokenKind as K
 
     modules, names = renamed
     lines = text.split("\n")

@@ -22,7 +22,7 @@ modules, one ``ast.parse`` per module, as the GPL side parses one file at a time
 
 Only lex+parse is timed (the files are read once, before timing).  Both sides run in this process,
 in turns, under the same garbage-collector state: off, the state gpl2py parses in
-(``gpl2py.syntax.lexer.gc_paused``), so ``ast.parse`` does not pay for collections the GPL side
+(``gpl2py.gpl.syntax.lexer.gc_paused``), so ``ast.parse`` does not pay for collections the GPL side
 skips.  Printed: the median of ``--runs`` runs of each with the spread, and the median of the
 per-turn ratios ``gpl / python``.  Target: <= 3x.  The reference workload R (``_reference``) runs
 in every turn too, under the same collector state and clock, and each time is printed once more
@@ -53,7 +53,7 @@ from _sidebyside import side_by_side  # noqa: E402
 
 from gpl2py.diagnostics import DiagnosticSink  # noqa: E402
 from gpl2py.project import load_project  # noqa: E402
-from gpl2py.syntax.parser import parse  # noqa: E402
+from gpl2py.gpl.syntax.parser import parse  # noqa: E402
 
 Pair = tuple[str, str]  # (GPL line, Python line), without indentation
 

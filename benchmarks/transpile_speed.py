@@ -226,7 +226,7 @@ def compile_all(py: dict[str, str]) -> None:
 
 def _child(what: str, proj: Path) -> None:
     """One timed run in this fresh process (``--child``): prints its times as JSON."""
-    from gpl2py.semantics.catalogue import load_catalogue
+    from gpl2py.gpl.semantics.catalogue import load_catalogue
 
     load_catalogue()
     for name in ("conversions", "operators", "strings", "mathlib"):  # what folding Consts imports

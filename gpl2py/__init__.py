@@ -2,10 +2,10 @@
 
 Layers (each ignorant of the others' business):
 
-* ``gpl2py.syntax``    characters -> tokens -> AST (lexer, parser)
+* ``gpl2py.gpl.syntax``    characters -> tokens -> AST (lexer, parser)
 * ``gpl2py.project``   Project.gpr / folder / single file -> ordered source set
-* ``gpl2py.semantics`` names, scopes, static types, conversions
-* ``gpl2py.lower``     typed AST -> Python source (a PEP 8 line writer, see docs/design/lowering.md)
+* ``gpl2py.gpl.semantics`` names, scopes, static types, conversions
+* ``gpl2py.gpl.lower``     typed AST -> Python source (a PEP 8 line writer, see docs/design/lowering.md)
 * ``gpl2py.cli``       the ``gpl2py`` command
 """
 

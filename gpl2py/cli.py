@@ -142,7 +142,7 @@ def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
 
     try:
         transpile(path, sink, stubs_dir=args.stubs, strict=args.strict, loaded=on_load,
-                  limits=limits_of(args), keep_modules=False)
+                  limits=limits_of(args), keep_modules=False, language=args.language)
     finally:
         out.sink.extend(sink)
 
@@ -160,7 +160,7 @@ def _configure_dump_ast(parser: argparse.ArgumentParser) -> None:
 
 def _run_dump_ast(args: argparse.Namespace) -> Outcome:
     """Parse one file and print its syntax tree (for debugging the front end)."""
-    from gpl2py.syntax.ast import dump
+    from gpl2py.gpl.syntax.ast import dump
 
     out = Outcome(product_key="ast")
     path = Path(args.file)
@@ -251,7 +251,7 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
         try:
             output = transpile(path, sink, keep_going=args.keep_going, progress=bar,
                                stubs_dir=args.stubs, strict=args.strict, loaded=on_load,
-                               limits=limits_of(args))
+                               limits=limits_of(args), language=args.language)
         finally:
             bar.close()
         if loaded:
@@ -381,7 +381,7 @@ COMMANDS: list[Command] = [
 
 
 def _parse(source: SourceFile, sink: DiagnosticSink) -> object:
-    from gpl2py.syntax.parser import parse
+    from gpl2py.gpl.syntax.parser import parse
 
     return parse(source, sink)
 

@@ -114,7 +114,7 @@ def plural(n: int, word: str) -> str:
 class InternalError(Exception):
     """A gap in gpl2py met at one node of the input (a kind of node or meaning a pass has no rule
     for): reported as GPL9000 at that node's position, never as ``None`` in the output or a
-    statement silently dropped (``gpl2py.lower``'s visitors raise it)."""
+    statement silently dropped (``gpl2py.gpl.lower``'s visitors raise it)."""
 
     def __init__(self, span: Span | None, detail: str) -> None:
         super().__init__(detail)
@@ -172,7 +172,7 @@ class DiagnosticSink:
     as it arrives, so every later question (errors? how many warnings?) sees the filtered set.
     The errors it drops are kept aside (:attr:`ignored_errors`): an ignored error still means that
     the input has no meaning there, which the translation must know (it raises the controller's
-    error at that line, ``gpl2py.lower``) though the user asked not to hear of it.
+    error at that line, ``gpl2py.gpl.lower``) though the user asked not to hear of it.
     """
 
     def __init__(self, filter: DiagnosticFilter | None = None) -> None:

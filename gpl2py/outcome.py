@@ -63,10 +63,15 @@ class Outcome:
 
 
 def add_project_options(parser: argparse.ArgumentParser) -> None:
-    """The options of every command that reads a project (check, translate, run): stubs,
+    """The options of every command that reads a project (check, translate, run): the language, stubs,
     strictness, input limits, the diagnostics selection and the configuration file.  Each one
     that ``[tool.gpl2py]`` can set defaults to None here, so that :func:`_settle` can tell
     "not given" from a value."""
+    from gpl2py.languages import names
+
+    parser.add_argument("--language", metavar="NAME", default=None, type=str.lower, choices=names(),
+                        help=f"the source language ({', '.join(names())}; default: recognised "
+                        "from the files)")
     parser.add_argument("--max-source-mb", metavar="MB", type=_megabytes, default=None,
                         help=f"read at most MB megabytes from one source file and {PROJECT_FACTOR} "
                         f"times that from all of them (default: ${MAX_SOURCE_ENV}, else "

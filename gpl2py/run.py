@@ -70,7 +70,8 @@ from gpl2py.formats import github_annotation, github_annotations, json_document
 from gpl2py.interrupts import EXIT_INTERRUPTED, stop_status
 from gpl2py.outcome import Display, Outcome, add_project_options, emit, limits_of, new_sink, remember
 from gpl2py.progress import ProgressBar
-from gpl2py.project import Limits, Project, load_project
+from gpl2py.languages import frontend_for
+from gpl2py.project import Limits, Project
 
 if TYPE_CHECKING:
     from gplrt.io.sockets import Listening
@@ -127,7 +128,8 @@ def count_lines(project: Project) -> int:
 def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | None = None,
           keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None,
           stubs_dir: str | Path | None = None, strict: bool = False,
-          loaded: Callable[[Project], None] | None = None, limits: Limits | None = None) -> Built | None:
+          loaded: Callable[[Project], None] | None = None, limits: Limits | None = None,
+          language: str | None = None) -> Built | None:
     """Translate ``path`` into the cache (or reuse the entry); diagnostics go to ``sink``.
 
     Returns None when the project has errors (unless ``keep_going``) or the cache cannot be
@@ -138,7 +140,8 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
     """
     started = time.perf_counter()
     probe = sink.child()  # the caller's filter (--select, --ignore) decides what stops the build
-    project = load_project(path, probe, limits)
+    frontend = frontend_for(path, language)
+    project = frontend.load_project(path, probe, limits)
     if project is not None and sink.filter is not None:
         sink.filter.add_sources(project.sources, sink)  # its gpl2py: ignore comments
     if project is not None and loaded is not None:
@@ -147,7 +150,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
         sink.extend(probe)
         return None
     cache = Cache(cache_dir)
-    key = cache_key(project, {"keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir),
+    key = cache_key(project, {"language": frontend.name, "keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir),
                               "selection": sink.filter.fingerprint() if sink.filter is not None else None})
     entry = None if rebuild else cache.lookup(key)
     if entry is not None:
@@ -157,7 +160,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
 
     local = sink.child()
     output = transpile(path, local, keep_going=keep_going, progress=progress, stubs_dir=stubs_dir, strict=strict,
-                       limits=limits)
+                       limits=limits, language=frontend.name)
     sink.extend(local)
     if output is None:
         return None
@@ -545,7 +548,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
     try:
         built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
                       stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append,
-                      limits=limits_of(args))
+                      limits=limits_of(args), language=args.language)
     finally:
         bar.close()
     project = built.project if built is not None else (loaded[0] if loaded else None)

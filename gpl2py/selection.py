@@ -14,7 +14,7 @@ Decisions:
 * **Errors can be ignored too**, as in mypy (``# type: ignore``): real vendor code breaks rules
   the controller does not enforce.  An ignored error no longer stops the translation; its line is
   translated as ``--keep-going`` translates it: it raises the controller's error for the fault
-  when reached (``gpl2py.lower.kept``).  The sink keeps the ignored errors aside for that.
+  when reached (``gpl2py.gpl.lower.kept``).  The sink keeps the ignored errors aside for that.
 * **GPL9000-GPL9003 are never filtered**: an internal error, a wrong command line or
   configuration is not a finding about the GPL code.
 * **Inline comments.**  ``' gpl2py: ignore[GPL2014, GPL3501]`` (codes or prefixes) or
@@ -114,8 +114,8 @@ class Selection:
         """Read the ``gpl2py: ignore`` comments of ``sources`` (before they are parsed, so that the
         parser's own diagnostics are filtered too).  A bracketed code that no diagnostic has is
         warning GPL9004 in ``sink``."""
-        from gpl2py.syntax.lexer import token_chunks
-        from gpl2py.syntax.tokens import TokenKind
+        from gpl2py.gpl.syntax.lexer import token_chunks
+        from gpl2py.gpl.syntax.tokens import TokenKind
         from gpl2py.source import make_span
 
         for source in sources:

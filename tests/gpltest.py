@@ -42,7 +42,7 @@ from gplrt.sim import Simulation
 
 if TYPE_CHECKING:
     import pytest
-    from gpl2py.semantics.check import Model
+    from gpl2py.gpl.semantics.check import Model
 
 REPO = Path(__file__).resolve().parents[1]
 SAMPLES = REPO / "samples"
@@ -527,9 +527,9 @@ def analyze_text(tmp_path: Path, text: str, start: str | None = None) -> tuple[M
     """Parse ``text`` as the one file of a project and run the semantic pass on it: the model and
     every diagnostic, for tests of name resolution and typing.  Syntax errors fail the test."""
     from gpl2py.project import load_project
-    from gpl2py.semantics.catalogue import load_catalogue
-    from gpl2py.semantics.check import analyze
-    from gpl2py.syntax.parser import parse
+    from gpl2py.gpl.semantics.catalogue import load_catalogue
+    from gpl2py.gpl.semantics.check import analyze
+    from gpl2py.gpl.syntax.parser import parse
 
     f = tmp_path / "Main.gpl"
     f.write_text(text)
@@ -545,9 +545,9 @@ def analyze_project(path: Path) -> tuple[Model, DiagnosticSink]:
     """Load, parse and analyze a project folder as ``gpl2py check`` does (protected files make
     unknown names stubs), without lowering it: the model and every diagnostic."""
     from gpl2py.project import load_project
-    from gpl2py.semantics.catalogue import load_catalogue
-    from gpl2py.semantics.check import analyze
-    from gpl2py.syntax.parser import parse
+    from gpl2py.gpl.semantics.catalogue import load_catalogue
+    from gpl2py.gpl.semantics.check import analyze
+    from gpl2py.gpl.syntax.parser import parse
 
     sink = DiagnosticSink()
     project = load_project(path, sink)

@@ -1,7 +1,7 @@
 """The catalogue of GPL built-ins: the one list of what GPL programs can name without declaring.
 
 Generated code imports from here (``from gplrt.builtins import Location, Move``) and the
-transpiler's semantic pass introspects the same tables (``gpl2py.semantics.catalogue``), so the
+transpiler's semantic pass introspects the same tables (``gpl2py.gpl.semantics.catalogue``), so the
 runtime and the transpiler cannot drift apart.  See ``gplrt/CATALOGUE.md`` for the conventions the
 entries follow.
 

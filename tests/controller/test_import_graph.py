@@ -37,7 +37,7 @@ GPL2PY_USES_GPLRT = {
     "gpl2py.notebook": "the notebook loader: translates, then runs on a Simulation",
     "gpl2py.cli": "run's configuration: checks [tool.gpl2py] robot against the runtime's models",
     "gpl2py.cache": "the cache key includes the runtime's files (a translation is made for them)",
-    "gpl2py.semantics.consts": "folds a Const with gplrt.lang's own operators, as the program would",
+    "gpl2py.gpl.semantics.consts": "folds a Const with gplrt.lang's own operators, as the program would",
     "gpl2py.deploy": "the compiler of the simulated controller's console: translates, imports, hands gplrt a Program",
     "gpl2py.serve": "run --console/--ftp: starts the runtime's Telnet and FTP servers on the run's Simulation",
     "gpl2py.sweep.worker": "sweep: runs one parameter set on a Simulation, on a Dask worker or in the loop",
@@ -197,7 +197,7 @@ def test_gpl2py_imports_form_no_cycle() -> None:
 def test_gpl2py_imports_gplrt_only_where_it_runs_programs() -> None:
     graph = build_graph(TRANSPILER, "gpl2py", other="gplrt")
     users = {m for m, _, _ in graph.foreign}
-    assert "gpl2py.notebook" in users and "gpl2py.semantics.consts" in users  # (import_module calls too)
+    assert "gpl2py.notebook" in users and "gpl2py.gpl.semantics.consts" in users  # (import_module calls too)
     unexpected = [f"{m}:{line}: imports {name}" for m, line, name in graph.foreign if m not in GPL2PY_USES_GPLRT]
     assert unexpected == [], "\n".join(unexpected)
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gpl2py.lower.statements import PACE as LOWERING_PACE
+from gpl2py.gpl.lower.statements import PACE as LOWERING_PACE
 from gplrt.threads import scheduler
 from gplrt.threads.scheduler import PACE, paced_range
 from gpltest import run_gpl

@@ -26,7 +26,7 @@ from types import ModuleType
 import pycodestyle
 import pytest
 
-from gpl2py.lower.expressions import LONG_CHAIN
+from gpl2py.gpl.lower.expressions import LONG_CHAIN
 from gpltest import Transpiled, transpile, write_project
 from gplrt.sim import Simulation
 

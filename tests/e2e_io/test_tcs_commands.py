@@ -307,7 +307,7 @@ def case(command: str, guide: str, section: str, needs: str, checks: str, verdic
 
 @case("version", TCS, "General", "nothing", "the TCS version and every plug-in's, in order")
 def _version(tcs: Tcs) -> None:
-    from gpl2py.standins.parobot_auto_center import Version as auto_center_standin
+    from gpl2py.gpl.standins.parobot_auto_center import Version as auto_center_standin
 
     tcs.expect("version", "0 TCP Command Server 3.0C1 05-27-2021, Load-Save Module 3.0B2 12-04-2020, "
                "PARobot Module 3.0C1 05-27-2021, SSGrip Module 3.0A3 09-03-2015, " + auto_center_standin)

@@ -43,7 +43,7 @@ import pytest
 
 from gpl2py.diagnostics import DiagnosticSink, Severity
 from gpl2py.source import SourceFile
-from gpl2py.syntax.parser import parse
+from gpl2py.gpl.syntax.parser import parse
 
 EXAMPLES = Path(__file__).parent / "examples"
 

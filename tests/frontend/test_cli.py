@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import gpl2py.cli as cli
-import gpl2py.transpile as transpile_module
+import gpl2py.gpl.pipeline as pipeline_module
 from gpl2py import messages
 from gpl2py.cli import main
 
@@ -230,8 +230,8 @@ def test_dump_ast_json_has_ast_and_diagnostics(tmp_path: Path, capsys: pytest.Ca
 def test_dump_ast_prints_the_tree(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     from gpl2py.diagnostics import DiagnosticSink
     from gpl2py.source import SourceFile
-    from gpl2py.syntax.ast import dump
-    from gpl2py.syntax.parser import parse
+    from gpl2py.gpl.syntax.ast import dump
+    from gpl2py.gpl.syntax.parser import parse
 
     path = tmp_path / "Main.gpl"
     path.write_bytes(GOOD_MODULE)
@@ -251,7 +251,7 @@ def test_internal_error_becomes_gpl9000(monkeypatch: pytest.MonkeyPatch, tmp_pat
         raise RuntimeError("simulated bug")
 
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(transpile_module, "load_project", boom)  # (check runs translate's pipeline)
+    monkeypatch.setattr(pipeline_module, "load_project", boom)  # (check runs translate's pipeline)
     code, out, err = run(capsys, "check", str(tmp_path))
     assert code == 2  # gpl2py failed, not the input: ruff's and mypy's status for a crash
     assert "error GPL9000: internal error in gpl2py while processing this input: RuntimeError: simulated bug" in err
@@ -268,7 +268,7 @@ def test_internal_error_in_the_parser_becomes_gpl9000(monkeypatch: pytest.Monkey
 
     (tmp_path / "Main.gpl").write_bytes(GOOD_MODULE)
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(transpile_module, "parse", broken_parse)
+    monkeypatch.setattr(pipeline_module, "parse", broken_parse)
     code, _, err = run(capsys, "check", str(tmp_path))
     assert code == 2 and "GPL9000" in err and "IndexError" in err and "Traceback" not in err
 
@@ -277,7 +277,7 @@ def test_internal_error_caught_by_the_pipeline_exits_2(monkeypatch: pytest.Monke
                                                        capsys: pytest.CaptureFixture[str]) -> None:
     """transpile() turns a fault of any phase into GPL9000 itself (for library callers): the command
     still exits 2, not 1 as for an error in the GPL input."""
-    import gpl2py.transpile as transpile
+    import gpl2py.gpl.pipeline as transpile
 
     def broken_lower(*args: object, **kwargs: object) -> None:
         raise KeyError("lowering bug")

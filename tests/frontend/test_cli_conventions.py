@@ -107,7 +107,7 @@ def test_a_bad_code_is_a_usage_error(value: str, hint: str, tmp_path: Path, caps
 
 def test_an_internal_error_cannot_be_ignored(monkeypatch: pytest.MonkeyPatch, tmp_path: Path,
                                             capsys: pytest.CaptureFixture[str]) -> None:
-    import gpl2py.transpile as transpile
+    import gpl2py.gpl.pipeline as transpile
 
     def broken_lower(*args: object, **kwargs: object) -> None:
         raise KeyError("lowering bug")

@@ -14,7 +14,8 @@ from typing import Any
 import pytest
 
 import gpl2py.cli as cli
-import gpl2py.semantics.check as check_module
+import gpl2py.gpl.semantics.check as check_module
+import gpl2py.gpl.pipeline as pipeline_module
 import gpl2py.transpile as transpile_module
 from gpl2py.diagnostics import DiagnosticSink
 
@@ -41,11 +42,11 @@ def _record(monkeypatch: pytest.MonkeyPatch) -> dict[str, list[bool]]:
 
     wrap(cli, "load_project")
     wrap(cli, "_parse")
-    wrap(transpile_module, "load_project")
-    wrap(transpile_module, "parse")
+    wrap(pipeline_module, "load_project")
+    wrap(pipeline_module, "parse")
     wrap(check_module, "analyze")
-    wrap(transpile_module, "analyze")
-    wrap(transpile_module, "lower")
+    wrap(pipeline_module, "analyze")
+    wrap(pipeline_module, "lower")
     return seen
 
 

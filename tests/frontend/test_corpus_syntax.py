@@ -12,7 +12,7 @@ from pathlib import Path
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.project import load_project
-from gpl2py.syntax.parser import parse
+from gpl2py.gpl.syntax.parser import parse
 from gpltest import corpus_dir
 
 _SOURCES = (".gpl", ".gpo")

@@ -65,13 +65,13 @@ from hypothesis import strategies as st
 
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.lower.names import RUNTIME_NAMES
+from gpl2py.gpl.lower.names import RUNTIME_NAMES
 from gpl2py.run import import_package
 from gpl2py.selection import Selection
 from gpl2py.source import SourceFile
-from gpl2py.syntax.lexer import tokenize
-from gpl2py.syntax.parser import parse
-from gpl2py.syntax.tokens import KEYWORDS, TokenKind
+from gpl2py.gpl.syntax.lexer import tokenize
+from gpl2py.gpl.syntax.parser import parse
+from gpl2py.gpl.syntax.tokens import KEYWORDS, TokenKind
 from gpl2py.transpile import transpile, write_package
 from gpltest import corpus_dir
 

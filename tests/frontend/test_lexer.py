@@ -9,9 +9,9 @@ import pytest
 from gpl2py.diagnostics import DiagnosticSink, Severity
 from gpl2py.project import load_project
 from gpl2py.source import SourceFile
-from gpl2py.syntax.lexer import CHUNK, token_chunks, tokenize
-from gpl2py.syntax.parser import parse
-from gpl2py.syntax.tokens import Token, TokenKind as K
+from gpl2py.gpl.syntax.lexer import CHUNK, token_chunks, tokenize
+from gpl2py.gpl.syntax.parser import parse
+from gpl2py.gpl.syntax.tokens import Token, TokenKind as K
 
 
 def lex(text: str) -> tuple[list[Token], DiagnosticSink]:

@@ -22,9 +22,9 @@ from typing import Any
 import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.lower.expressions import LONG_CHAIN
-from gpl2py.lower.wrap import wrap
-from gpl2py.semantics.catalogue import load_catalogue
+from gpl2py.gpl.lower.expressions import LONG_CHAIN
+from gpl2py.pywriter.wrap import wrap
+from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.transpile import Output, transpile
 
 ROOT = Path(__file__).resolve().parents[2]

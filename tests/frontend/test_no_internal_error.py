@@ -27,8 +27,8 @@ from pathlib import Path
 
 import pytest
 
-import gpl2py.semantics.check as check_module
-import gpl2py.transpile as transpile_module
+import gpl2py.gpl.semantics.check as check_module
+import gpl2py.gpl.pipeline as pipeline_module
 from gpl2py import messages as M
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink, Severity
@@ -314,14 +314,14 @@ def _project(tmp_path: Path, other: str) -> Path:
 def _planted(kind: str, monkeypatch: pytest.MonkeyPatch) -> None:
     """A bug in gpl2py that only file Bug.gpl meets, in ``kind`` (parse, analysis, lowering)."""
     if kind == "parse":
-        real_parse = transpile_module.parse
+        real_parse = pipeline_module.parse
 
         def parse(src, sink):  # type: ignore[no-untyped-def]
             if src.path.endswith("Bug.gpl"):
                 raise ValueError("planted parser bug")
             return real_parse(src, sink)
 
-        monkeypatch.setattr(transpile_module, "parse", parse)
+        monkeypatch.setattr(pipeline_module, "parse", parse)
     elif kind == "analysis":
         real_module = check_module.Checker._module
 
@@ -332,14 +332,14 @@ def _planted(kind: str, monkeypatch: pytest.MonkeyPatch) -> None:
 
         monkeypatch.setattr(check_module.Checker, "_module", _module)
     else:
-        real_lower = transpile_module.lower_module
+        real_lower = pipeline_module.lower_module
 
         def lower_module(model, names, mod, sink):  # type: ignore[no-untyped-def]
             if mod.name == "Bug":
                 raise IndexError("planted lowering bug")
             return real_lower(model, names, mod, sink)
 
-        monkeypatch.setattr(transpile_module, "lower_module", lower_module)
+        monkeypatch.setattr(pipeline_module, "lower_module", lower_module)
 
 
 @pytest.mark.parametrize("kind", ["parse", "analysis", "lowering"])

@@ -6,8 +6,8 @@ import pytest
 
 from gpl2py.diagnostics import DiagnosticSink, Severity
 from gpl2py.source import SourceFile
-from gpl2py.syntax import ast as A
-from gpl2py.syntax.parser import parse, parse_expression
+from gpl2py.gpl.syntax import ast as A
+from gpl2py.gpl.syntax.parser import parse, parse_expression
 
 
 def parse_text(text: str) -> tuple[A.SourceUnit, DiagnosticSink]:

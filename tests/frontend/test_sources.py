@@ -14,8 +14,8 @@ import pytest
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.project import load_project
-from gpl2py.syntax import ast
-from gpl2py.syntax.parser import parse
+from gpl2py.gpl.syntax import ast
+from gpl2py.gpl.syntax.parser import parse
 
 REPO = Path(__file__).resolve().parents[2]
 SOURCES = REPO / "tests" / "frontend" / "sources"

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import types
 
-from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue_gen import build_catalogue
+from gpl2py.gpl.semantics import types as t
+from gpl2py.gpl.semantics.catalogue_gen import build_catalogue
 from gplrt.geometry import Location, RefFrame
 from gplrt.motion.profile import Profile
 

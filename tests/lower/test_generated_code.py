@@ -15,7 +15,7 @@ import libcst
 import pycodestyle
 
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.lower.wrap import wrap
+from gpl2py.pywriter.wrap import wrap
 from gpl2py.transpile import transpile
 from gpltest import generated_main_module as gen
 from gpltest import main_body

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pycodestyle
 
-from gpl2py.lower.expressions import LONG_CHAIN
-from gpl2py.lower.wrap import wrap
+from gpl2py.gpl.lower.expressions import LONG_CHAIN
+from gpl2py.pywriter.wrap import wrap
 from gpltest import RunResult, module_src, run_gpl
 
 M = 3 * LONG_CHAIN + 7  # operators per chain: three full steps and a partial one

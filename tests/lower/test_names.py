@@ -1,4 +1,4 @@
-"""The naming rules (gpl2py/lower/names.py, docs/security.md "Names"): one-to-one, and the
+"""The naming rules (gpl2py/gpl/lower/names.py, docs/security.md "Names"): one-to-one, and the
 reserved-name table is what generated code really imports."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ import keyword
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gpl2py.lower.context import Scope, builtin_names
-from gpl2py.lower.names import PYTHON_NAMES, RUNTIME_IMPORTS, module_base, package_name, py_ident
+from gpl2py.gpl.lower.context import Scope, builtin_names
+from gpl2py.gpl.lower.names import PYTHON_NAMES, RUNTIME_IMPORTS, module_base, package_name, py_ident
 
 # GPL identifiers: a letter or underscore, then letters, digits and underscores; hostile ones
 # are Python keywords, builtins and dunders with underscores added anywhere

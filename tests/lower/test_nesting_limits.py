@@ -15,7 +15,7 @@ import pytest
 
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.lower.emit import BLOCKS, MAX_BLOCKS, MAX_INDENT
+from gpl2py.pywriter.emit import BLOCKS, MAX_BLOCKS, MAX_INDENT
 from gpl2py.transpile import transpile
 
 HEAD = ["Module Main", "Public Sub Main()", "Dim x As Integer", "Dim n As Integer = 3", "Dim e As Exception"]

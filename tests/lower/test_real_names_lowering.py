@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.lower.names import overload_names
+from gpl2py.gpl.lower.names import overload_names
 from gpl2py.transpile import transpile
 from gpltest import generated_main_module as gen
 from gpltest import main_body, write_project

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-import gpl2py.transpile as transpile_module
+import gpl2py.gpl.pipeline as pipeline_module
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.transpile import transpile
 from gpltest import compiled_modules, main_body
@@ -80,7 +80,7 @@ def test_library_transpile_turns_a_bug_in_any_phase_into_gpl9000(
         raise KeyError("simulated bug")
 
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
-    monkeypatch.setattr(transpile_module, phase, boom)
+    monkeypatch.setattr(pipeline_module, phase, boom)
     sink = DiagnosticSink()
     assert transpile(str(_project(tmp_path)), sink) is None
     assert [d.code for d in sink.errors] == ["GPL9000"]
@@ -93,7 +93,7 @@ def test_library_transpile_reraises_with_gpl2py_traceback(tmp_path: Path,
         raise KeyError("simulated bug")
 
     monkeypatch.setenv("GPL2PY_TRACEBACK", "1")
-    monkeypatch.setattr(transpile_module, "analyze", boom)
+    monkeypatch.setattr(pipeline_module, "analyze", boom)
     with pytest.raises(KeyError):
         transpile(str(_project(tmp_path)), DiagnosticSink())
 

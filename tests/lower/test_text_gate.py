@@ -1,7 +1,7 @@
 """Input text never becomes code (issue 12, items 1 and 2; docs/security.md, "Generated code").
 
 Project names, folder names, source file names, string literals and comments are untrusted.  Each
-reaches the generated package through ``gpl2py.lower.text.escape`` only; these tests feed it
+reaches the generated package through ``gpl2py.pywriter.text.escape`` only; these tests feed it
 hostile text directly, then through whole projects that are translated, imported and run, and
 check that a planted command never runs and the text comes back unchanged where it is shown.
 """
@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gpl2py.cli import main as cli_main
-from gpl2py.lower.text import escape, py_string
+from gpl2py.pywriter.text import escape, py_string
 from gpl2py.run import import_package
 from gplrt.sim import Simulation
 

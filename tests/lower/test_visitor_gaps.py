@@ -13,10 +13,11 @@ from pathlib import Path
 
 import pytest
 
+import gpl2py.gpl.pipeline as pipeline_module
 import gpl2py.transpile as transpile_module
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.semantics.info import Info, VarInfo
-from gpl2py.syntax import ast as A
+from gpl2py.gpl.semantics.info import Info, VarInfo
+from gpl2py.gpl.syntax import ast as A
 from gpltest import write_project
 
 SRC = """Module Main
@@ -51,14 +52,14 @@ def _main_body(units: list[A.SourceUnit]) -> A.Block:
 
 def _transpile_planted(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, plant) -> tuple[object, DiagnosticSink]:  # type: ignore[no-untyped-def]
     """Transpile SRC with ``plant(units, model)`` run between analysis and lowering."""
-    real = transpile_module.analyze
+    real = pipeline_module.analyze
 
     def analyze(units, *args, **kwargs):  # type: ignore[no-untyped-def]
         model = real(units, *args, **kwargs)
         plant(units, model)
         return model
 
-    monkeypatch.setattr(transpile_module, "analyze", analyze)
+    monkeypatch.setattr(pipeline_module, "analyze", analyze)
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
     project = write_project(tmp_path, {"Main.gpl": SRC})
     sink = DiagnosticSink()
@@ -122,7 +123,7 @@ def test_gpl9000_from_the_command_line_names_the_position_and_exits_2(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
     from gpl2py.cli import main as cli_main
 
-    real = transpile_module.analyze
+    real = pipeline_module.analyze
 
     def analyze(units, *args, **kwargs):  # type: ignore[no-untyped-def]
         model = real(units, *args, **kwargs)
@@ -130,7 +131,7 @@ def test_gpl9000_from_the_command_line_names_the_position_and_exits_2(
         body.statements.insert(2, Unheard(body.statements[1].span))
         return model
 
-    monkeypatch.setattr(transpile_module, "analyze", analyze)
+    monkeypatch.setattr(pipeline_module, "analyze", analyze)
     monkeypatch.delenv("GPL2PY_TRACEBACK", raising=False)
     project = write_project(tmp_path, {"Main.gpl": SRC})
     status = cli_main(["translate", project, "-o", str(tmp_path / "out")])

@@ -10,7 +10,7 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-from gpl2py.lower.wrap import wrap
+from gpl2py.pywriter.wrap import wrap
 from gpltest import module_src, run_gpl
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from gpl2py.lower.wrap import wrap
+from gpl2py.pywriter.wrap import wrap
 from gpltest import module_src, run_gpl
 
 

@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-from gpl2py.semantics.info import BuiltinMemberInfo, VarInfo
-from gpl2py.semantics.symbols import ClassSym, VarSym
+from gpl2py.gpl.semantics.info import BuiltinMemberInfo, VarInfo
+from gpl2py.gpl.semantics.symbols import ClassSym, VarSym
 from gpltest import analyze_project, corpus_dir
 
 PROJECTS = ["tcs-3.0C1", "tcs-3.0C1-pa"]

@@ -24,8 +24,8 @@ from pyflakes.reporter import Reporter
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.source import SourceFile
-from gpl2py.syntax.lexer import tokenize as gpl_tokenize
-from gpl2py.syntax.tokens import TokenKind
+from gpl2py.gpl.syntax.lexer import tokenize as gpl_tokenize
+from gpl2py.gpl.syntax.tokens import TokenKind
 from gpl2py.transpile import transpile, write_package
 
 # The warnings that are right on the PARobot project: its auto-centring module is protected (one

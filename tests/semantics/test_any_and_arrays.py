@@ -7,9 +7,9 @@ import types as pytypes
 from pathlib import Path
 from typing import Any
 
-from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import load_catalogue
-from gpl2py.semantics.catalogue_gen import build_catalogue
+from gpl2py.gpl.semantics import types as t
+from gpl2py.gpl.semantics.catalogue import load_catalogue
+from gpl2py.gpl.semantics.catalogue_gen import build_catalogue
 from gplrt.lang.arrays import GplArray
 from gplrt.lang.gpltypes import Integer, String
 from gpltest import analyze_text

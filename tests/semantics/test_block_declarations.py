@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from gpl2py.semantics import types as t
-from gpl2py.syntax import ast as A
+from gpl2py.gpl.semantics import types as t
+from gpl2py.gpl.syntax import ast as A
 from gpltest import analyze_text
 
 

@@ -8,9 +8,9 @@ from typing import Any
 
 import pytest
 
-from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import BuiltinClass, load_catalogue
-from gpl2py.semantics.catalogue_gen import CatalogueError, build_catalogue
+from gpl2py.gpl.semantics import types as t
+from gpl2py.gpl.semantics.catalogue import BuiltinClass, load_catalogue
+from gpl2py.gpl.semantics.catalogue_gen import CatalogueError, build_catalogue
 from gplrt.lang.errors import GplException
 from gplrt.lang.exceptions import not_simulated
 from gplrt.lang.gpltypes import Boolean, Double, Integer, Ref, String

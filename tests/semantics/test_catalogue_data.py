@@ -1,7 +1,7 @@
 """The transpiler reads the built-in catalogue from a data module; the runtime stays its source.
 
-``gpl2py/semantics/builtins_data.py`` is generated from ``gplrt.builtins`` by
-``python -m gpl2py.semantics.catalogue_gen``.  These tests fail when the runtime changed and the
+``gpl2py/gpl/semantics/builtins_data.py`` is generated from ``gplrt.builtins`` by
+``python -m gpl2py.gpl.semantics.catalogue_gen``.  These tests fail when the runtime changed and the
 data module was not regenerated, and when the data module loses anything the runtime declares."""
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from typing import Any
 
 import pytest
 
-from gpl2py.semantics import catalogue_gen
-from gpl2py.semantics.catalogue import REGENERATE, Catalogue, catalogue_from_data, load_catalogue
+from gpl2py.gpl.semantics import catalogue_gen
+from gpl2py.gpl.semantics.catalogue import REGENERATE, Catalogue, catalogue_from_data, load_catalogue
 from gplrt.lang.gpltypes import Integer, String
 
 

@@ -2,7 +2,7 @@
 
 ``tests/gpldictionary.py`` reads the member tables of ``shared/spec/gpl-dictionary.md``; each
 member becomes one test that holds the runtime's catalogue (``gplrt.builtins`` as
-``gpl2py.semantics.catalogue`` reads it) against it: the member exists on its class, is Shared
+``gpl2py.gpl.semantics.catalogue`` reads it) against it: the member exists on its class, is Shared
 when the Dictionary says so, can be read and assigned as listed, and accepts every argument count
 the Dictionary's signature allows.  The catalogue may accept more (real code calls some members
 with arguments the Dictionary does not list; docs/design/real-code.md), never less.
@@ -16,8 +16,8 @@ import pytest
 from gpldictionary import DictMember, read_dictionary
 from gpltest import find_shared, spec_dir
 
-from gpl2py.semantics import types as t
-from gpl2py.semantics.catalogue import BuiltinClass, Catalogue, Member, load_catalogue
+from gpl2py.gpl.semantics import types as t
+from gpl2py.gpl.semantics.catalogue import BuiltinClass, Catalogue, Member, load_catalogue
 
 
 def _dictionary() -> list[DictMember | None]:

@@ -9,7 +9,7 @@ import pytest
 
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.semantics.info import CallInfo, IndexInfo, NewInfo
+from gpl2py.gpl.semantics.info import CallInfo, IndexInfo, NewInfo
 from gpl2py.transpile import transpile
 from gpltest import analyze_text, compiled_modules
 

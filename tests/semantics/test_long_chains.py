@@ -9,9 +9,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from gpl2py.semantics import types as t
-from gpl2py.semantics.check import Model
-from gpl2py.syntax import ast as A
+from gpl2py.gpl.semantics import types as t
+from gpl2py.gpl.semantics.check import Model
+from gpl2py.gpl.syntax import ast as A
 from gpltest import analyze_text, module_src, run_gpl
 
 

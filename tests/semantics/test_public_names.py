@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 
 from gpl2py import messages as M
-from gpl2py.semantics.info import CallInfo
-from gpl2py.semantics.symbols import ClassSym, ProjectSyms, PublicName
+from gpl2py.gpl.semantics.info import CallInfo
+from gpl2py.gpl.semantics.symbols import ClassSym, ProjectSyms, PublicName
 from gpltest import analyze_text
 
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from gpl2py.semantics.info import AddressOfInfo, BuiltinMemberInfo, CallInfo
-from gpl2py.semantics.symbols import OverloadSet, VarSym
+from gpl2py.gpl.semantics.info import AddressOfInfo, BuiltinMemberInfo, CallInfo
+from gpl2py.gpl.semantics.symbols import OverloadSet, VarSym
 from gpltest import analyze_project, analyze_text
 
 CLASSES = """Module Cmd

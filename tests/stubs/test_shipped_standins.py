@@ -1,4 +1,4 @@
-"""gpl2py's own stand-ins for protected vendor code (gpl2py/standins, docs/design/real-code.md).
+"""gpl2py's own stand-ins for protected vendor code (gpl2py/gpl/standins, docs/design/real-code.md).
 
 TCS with the PARobot plug-in reads ``PARobot_auto_center.Version`` in a module ``Init`` and calls
 ``AC_InitAutoCenter(robot)`` whenever a client connects; both live in a protected ``.gpp`` file.

@@ -50,6 +50,9 @@ def test_ci_runs_exactly_the_readme_test_command() -> None:
     assert "bash scripts/floors.sh" in README
     fresh = (REPO / "scripts/fresh_clone.sh").read_text()
     assert re.search(rf"^env -u CI -u GPL_CORPUS -u GPL_SPEC -u GPL2PY_VENV {re.escape(readme_test)} ", fresh, re.M)
+    # the whole suite is collected there (a collection-time error once made it run 0 tests)
+    assert re.search(rf"^env -u CI -u GPL_CORPUS -u GPL_SPEC -u GPL2PY_VENV {re.escape(readme_test)} "
+                     r"--collect-only ", fresh, re.M)
 
 
 def _sandbox(tmp_path: Path) -> tuple[Path, dict[str, str]]:

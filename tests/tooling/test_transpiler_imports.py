@@ -1,6 +1,6 @@
 """``gpl2py check`` and translate import no part of the simulator (issue 13, item 1).
 
-They read the built-in catalogue from gpl2py's data module (``gpl2py/semantics/builtins_data.py``)
+They read the built-in catalogue from gpl2py's data module (``gpl2py/gpl/semantics/builtins_data.py``)
 and the project's own files with gpl2py's reader, so a real project -- the vendor's TCP Command
 Server from the corpus -- is checked and translated without numpy, Pinocchio, Coal or Ruckig, and
 without the runtime's motion, geometry, I/O, threads or simulation packages.  What they may import
@@ -47,12 +47,12 @@ def _simulator_modules(modules: list[str]) -> list[str]:
 
 def test_check_of_a_real_project_imports_no_simulator() -> None:
     modules = _imports("check", str(corpus_dir() / "tcs-3.0C1-pa"), "--quiet")
-    assert "gpl2py.semantics.check" in modules  # the check ran in this process
+    assert "gpl2py.gpl.semantics.check" in modules  # the check ran in this process
     assert _simulator_modules(modules) == []
 
 
 def test_translate_of_a_real_project_imports_no_simulator(tmp_path: Path) -> None:
     modules = _imports(str(corpus_dir() / "tcs-3.0C1-pa"), "-o", str(tmp_path), "--quiet")
-    assert "gpl2py.lower.module" in modules
+    assert "gpl2py.gpl.lower.module" in modules
     assert list(tmp_path.glob("*/_project_files/Tcs.gpo"))  # the project's files were packed too
     assert _simulator_modules(modules) == []

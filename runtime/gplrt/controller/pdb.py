@@ -51,6 +51,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from gplrt.controller.urdf_catalogue import URDF_ROBOTS, pdb_layers
 from gplrt.lang.conversions import to_double
 from gplrt.lang.errors import (
     CANT_OPEN_PARAMETER_DB,
@@ -606,8 +607,9 @@ _DEFAULT_CACHE: dict[str, ParameterDatabase] = {}
 
 
 def model_names() -> list[str]:
-    """All model names ``default_database`` accepts (aliases included)."""
-    return sorted([*MODELS, *MODEL_ALIASES])
+    """All model names ``default_database`` accepts (aliases included): the ``.pac`` models above
+    and the URDF ones (``gplrt.controller.urdf_catalogue``)."""
+    return sorted([*MODELS, *MODEL_ALIASES, *URDF_ROBOTS])
 
 
 def default_database(model: str = "PF400SX") -> ParameterDatabase:
@@ -618,7 +620,13 @@ def default_database(model: str = "PF400SX") -> ParameterDatabase:
         raise GplException(INVALID_ROBOT_TYPE, detail=f"a robot model is a name, not {model!r}; known: {', '.join(model_names())}")
     name = model.strip().upper()
     name = MODEL_ALIASES.get(name, name)
-    if name not in MODELS:
+    if name not in _DEFAULT_CACHE and name not in MODELS:
+        if name in URDF_ROBOTS:  # a database derived from the robot's URDF
+            db = ParameterDatabase()
+            for filename, text in pdb_layers(name):
+                db.load_text(text, filename)
+            _DEFAULT_CACHE[name] = db
+    if name not in MODELS and name not in _DEFAULT_CACHE:
         raise GplException(INVALID_ROBOT_TYPE, detail=f"unknown robot model {model!r}; known: {', '.join(model_names())}")
     if name not in _DEFAULT_CACHE:
         _DEFAULT_CACHE[name] = ParameterDatabase.load([DATA_DIR / layer for layer in MODELS[name]])

@@ -32,7 +32,7 @@ from gplrt.lang.errors import OBJECT_NOT_INSTANTIATED, READ_ONLY, UNDEFINED_SYMB
 # process; the tables are small.
 _TABLES: dict[type, dict[str, str]] = {}
 
-# generated package modules that hold --stubs files and shipped stand-ins (gpl2py/lower/user_stubs.py)
+# generated package modules that hold --stubs files and shipped stand-ins (gpl2py/gpl/lower/user_stubs.py)
 _STUB_MODULE_PREFIXES = ("_user_", "_standin_")
 
 

@@ -9,6 +9,7 @@ the robot's own DataIDs.  Modules implemented:
 | 2 | XYZTheta (gantry, PrecisePlace style) | ``GantryModel`` |
 | 12 | PreciseFlex 400 family (PF400, PF3400) | ``Pf400Model`` |
 | 22 | six-axis articulated arm (our ARM6 geometry) | ``Articulated6Model`` |
+| 9001-9006 | a robot from its URDF (Viper s650, Cobra s600, TM5-700/900, TM12, TM14; ours) | ``UrdfModel`` |
 
 Any other value gives a bare ``RobotModel`` that knows its axes and soft limits (joint moves
 work) but raises -1036 *Kinematics not installed* on every Cartesian operation (§3 step 1).
@@ -19,19 +20,28 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from gplrt.controller.pdb import ParameterDatabase
+from gplrt.controller.pdb import ParameterDatabase, default_database
 from gplrt.lang.errors import UNDEFINED_ROBOT, GplException
 from gplrt.motion.kinematics.articulated import MODULE_ARTICULATED6, Articulated6Model
 from gplrt.motion.kinematics.base import JointInfo, JointKind, RobotModel, read_limits, read_transform, robot_name
 from gplrt.motion.kinematics.gantry import MODULE_XYZTHETA, GantryModel
 from gplrt.motion.kinematics.pf400 import MODULE_PF400, Pf400Model
+from gplrt.motion.kinematics.urdf import modules as urdf_modules
 
 
 MODULES: dict[int, Callable[[ParameterDatabase, int], RobotModel]] = {
     MODULE_XYZTHETA: GantryModel,
     MODULE_PF400: Pf400Model,
     MODULE_ARTICULATED6: Articulated6Model,
+    **urdf_modules(),
 }
+
+
+def robot_model(name: str, robot: int = 1) -> RobotModel:
+    """The kinematic model of catalogue robot ``name`` (``--robot``'s names: ``VIPER-S650``,
+    ``TM5-900``, ``PF400SX`` ...), built from its shipped parameter database: the one call a
+    language layer needs for forward and inverse kinematics outside a running controller."""
+    return build_model(default_database(name), robot)
 
 
 def robot_type(pdb: ParameterDatabase, robot: int = 1) -> int:

@@ -1,0 +1,280 @@
+"""Symbol tables: project -> module -> class -> procedure (spec §6, §8.3, §12).
+
+Symbols are plain mutable dataclasses compared by identity; the semantic pass keys its tables on
+them and the lowering reads them.  Every table is keyed by the lower-cased name because GPL is
+case-insensitive (§1.7); each symbol keeps the spelling of its declaration, which the generated
+Python uses everywhere.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Union
+
+from gpl2py.gpl.semantics import types as t
+from gpl2py.source import Span
+from gpl2py.gpl.syntax import ast as A
+
+
+@dataclass(eq=False, slots=True)
+class VarSym:
+    """A variable: local, Static local, parameter, module variable, class field or Const.
+
+    ``storage`` is one of ``local``, ``static``, ``param``, ``module``, ``field``.
+    ``boxed`` is set by the checker when a local is passed to a ByRef parameter: the lowering then
+    keeps it in a cell for the whole procedure, which makes ByRef true aliasing (§9.3).
+    ``declared_at`` is the declaring node (or a span): :attr:`span` reads the node's span when
+    asked, so a project's variables do not keep a Span object each (docs/security.md, "Input size").
+    """
+
+    name: str
+    declared_at: A.Node | Span | None
+    type: t.GplType
+    storage: str
+    owner: object = None
+    public: bool = False
+    shared: bool = False
+    const: bool = False
+    decl: A.VarDeclarator | None = None
+    byref: bool = False
+    optional: bool = False
+    default: A.Expr | None = None
+    boxed: bool = False
+    assigned: bool = False
+    read: bool = False
+
+    @property
+    def span(self) -> Span | None:
+        at = self.declared_at
+        return at.span if isinstance(at, A.Node) else at
+
+
+@dataclass(eq=False)
+class ProcSym:
+    """A Sub, Function, constructor (``New``) or property accessor (kind ``Get``/``Set``)."""
+
+    name: str
+    span: Span | None
+    kind: str
+    params: list[VarSym]
+    result: t.GplType
+    owner: Union[ModuleSym, ClassSym, None]
+    public: bool = False
+    shared: bool = False
+    decl: A.ProcDecl | A.Accessor | None = None
+    locals: dict[str, VarSym] = field(default_factory=dict)
+    labels: dict[str, A.Label] = field(default_factory=dict)
+    uses_result: bool = False
+    prop: PropSym | None = None
+    overload_index: int = 0
+
+    @property
+    def min_args(self) -> int:
+        return sum(1 for p in self.params if not p.optional)
+
+    @property
+    def is_function(self) -> bool:
+        return self.result is not t.VOID
+
+    @property
+    def module(self) -> ModuleSym | None:
+        owner = self.owner
+        while isinstance(owner, ClassSym):
+            owner = owner.outer if owner.outer is not None else owner.module
+        return owner if isinstance(owner, ModuleSym) else None
+
+
+@dataclass(eq=False)
+class PropSym:
+    name: str
+    span: Span | None
+    type: t.GplType
+    owner: ClassSym
+    public: bool = False
+    shared: bool = False
+    getter: ProcSym | None = None
+    setter: ProcSym | None = None
+    decl: A.PropertyDecl | None = None
+
+
+@dataclass(eq=False)
+class DelegateSym:
+    name: str
+    span: Span | None
+    params: list[VarSym]
+    result: t.GplType
+    owner: Union[ModuleSym, ClassSym, None]
+    public: bool = False
+    decl: A.DelegateDecl | None = None
+    type: t.ClassType = field(default=None)  # type: ignore[assignment]
+
+
+@dataclass(eq=False)
+class ClassSym:
+    name: str
+    span: Span | None
+    module: ModuleSym | None
+    outer: ClassSym | None
+    public: bool = False
+    decl: A.ClassDecl | None = None
+    members: dict[str, Member] = field(default_factory=dict)
+    ctors: list[ProcSym] = field(default_factory=list)
+    type: t.ClassType = field(default=None)  # type: ignore[assignment]
+
+    @property
+    def path(self) -> list[str]:
+        """Declared names from the module down: ``["Station", "Gripper"]`` (module excluded)."""
+        names = [self.name]
+        outer = self.outer
+        while outer is not None:
+            names.insert(0, outer.name)
+            outer = outer.outer
+        return names
+
+    def fields(self) -> list[VarSym]:
+        return [m for m in self.members.values() if isinstance(m, VarSym)]
+
+    @property
+    def init_proc(self) -> ProcSym | None:
+        """The class's ``Shared Sub Init()``, which the controller runs at start-up like a module's
+        ``Init`` (real code: ``Class_gpofile.gpl:74``, "Init routine called automatically at
+        startup"; docs/design/real-code.md).  An instance ``Init`` needs an object: never run."""
+        return next((p for p in procedures(self.members.get("init"))
+                     if not p.params and p.shared and p.kind == "Sub"), None)
+
+    def classes(self) -> list[ClassSym]:
+        """This class and the classes nested in it, outer first, in declaration order."""
+        out = [self]
+        for m in self.members.values():
+            if isinstance(m, ClassSym):
+                out.extend(m.classes())
+        return out
+
+
+@dataclass(eq=False)
+class ModuleSym:
+    name: str
+    span: Span | None
+    path: str  # the source file (diagnostic path)
+    decl: A.ModuleDecl | None = None
+    members: dict[str, Member] = field(default_factory=dict)
+    order: int = 0
+    py_name: str = ""
+
+    @property
+    def init_proc(self) -> ProcSym | None:
+        return next((p for p in procedures(self.members.get("init")) if not p.params), None)
+
+
+@dataclass(eq=False)
+class OverloadSet:
+    """Procedures of one module or class that share a name (real GPL overloads them by
+    parameter list; docs/design/real-code.md).  The member table holds the set in place of a
+    single :class:`ProcSym`; the checker picks one overload per call (argument count, then
+    argument types), so the lowering only ever sees the chosen :class:`ProcSym`.
+
+    ``procs`` keeps declaration order; ``procs[k].overload_index == k``.
+    """
+
+    name: str
+    span: Span | None
+    owner: Union[ModuleSym, ClassSym, None]
+    procs: list[ProcSym] = field(default_factory=list)
+
+    @property
+    def public(self) -> bool:
+        """Public if any overload is (each call still checks the overload it picks)."""
+        return any(p.public for p in self.procs)
+
+    @property
+    def shared(self) -> bool:
+        return any(p.shared for p in self.procs)
+
+    @property
+    def result(self) -> t.GplType:
+        """The result type when every overload agrees, else ERROR (a call's type is the chosen
+        overload's)."""
+        first = self.procs[0].result
+        return first if all(p.result == first for p in self.procs) else t.ERROR
+
+
+Member = Union[VarSym, ProcSym, PropSym, ClassSym, DelegateSym, OverloadSet]
+
+
+def procedures(member: object) -> list[ProcSym]:
+    """The procedures a member table entry stands for: the overloads of a set, the procedure
+    itself, or none (a variable, class ...)."""
+    if isinstance(member, OverloadSet):
+        return list(member.procs)
+    if isinstance(member, ProcSym):
+        return [member]
+    return []
+
+
+@dataclass(frozen=True)
+class PublicName:
+    """A Public name reachable without qualification (§6.4): a module's Public member, a
+    top-level class, or a Public Shared/Const member of a top-level class.  ``where`` names the
+    module or class that declares it (for the ambiguity message)."""
+
+    where: str
+    module: ModuleSym
+    member: Member
+
+
+@dataclass
+class ProjectSyms:
+    """Everything declared in a project."""
+
+    name: str
+    modules: dict[str, ModuleSym] = field(default_factory=dict)
+    module_list: list[ModuleSym] = field(default_factory=list)
+    # Top-level classes (AMB-1) are Public and module-less; they live in a synthetic module.
+    procs: list[ProcSym] = field(default_factory=list)
+    classes: list[ClassSym] = field(default_factory=list)
+
+    # the synthetic module holding top-level classes (resolve.TOP_MODULE), if any
+    top: ModuleSym | None = None
+    # every name public_members() answers for, built on first use (see there)
+    _public: dict[str, tuple[PublicName, ...]] | None = field(default=None, repr=False)
+
+    def public_members(self, name: str) -> tuple[PublicName, ...]:
+        """Every Public ``name`` that may be used unqualified (the "unambiguous Public name"
+        rule, §6.4): Public members of all modules and, as real code uses them, top-level
+        classes and the Public Shared or Const members of top-level classes (a top-level class
+        is reachable like a module: ``Station.LoadFile``, ``STA_FL_PAL``).  Modules come in
+        project order, then the top-level classes.
+
+        Every name that is not local, not a member of the enclosing class or module and not a
+        module asks here (``Console``, ``CInt`` and every other built-in too), so the answer
+        comes from an index of all Public names, built once: scanning every module per lookup
+        made a project's analysis grow with the square of its number of modules.  Whoever
+        changes a member table after the first lookup calls :meth:`names_changed`."""
+        index = self._public
+        if index is None:
+            index = self._public = self._index_public()
+        return index.get(name.lower(), ())
+
+    def names_changed(self) -> None:
+        """A module's or top-level class's member table changed: index again on next use."""
+        self._public = None
+
+    def _index_public(self) -> dict[str, tuple[PublicName, ...]]:
+        index: dict[str, list[PublicName]] = {}
+        for mod in self.module_list:
+            for key, m in mod.members.items():
+                if getattr(m, "public", False):
+                    index.setdefault(key, []).append(PublicName(mod.name, mod, m))
+        top = self.top
+        if top is not None:
+            for key, cls in top.members.items():
+                if isinstance(cls, ClassSym):
+                    index.setdefault(key, []).append(PublicName(cls.name, top, cls))
+            for c in top.members.values():
+                if not isinstance(c, ClassSym) or not c.public:
+                    continue
+                for key, m in c.members.items():
+                    if not isinstance(m, ClassSym) and getattr(m, "public", False) \
+                            and (getattr(m, "shared", False) or getattr(m, "const", False)):
+                        index.setdefault(key, []).append(PublicName(c.name, top, m))
+        return {key: tuple(found) for key, found in index.items()}

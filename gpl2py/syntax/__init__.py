@@ -1,8 +1,0 @@
-"""The GPL front end: :mod:`~gpl2py.syntax.lexer` (text -> tokens), :mod:`~gpl2py.syntax.parser`
-(tokens -> :mod:`~gpl2py.syntax.ast`).  Both report problems to a
-:class:`~gpl2py.diagnostics.DiagnosticSink` and never raise on bad input."""
-
-from gpl2py.syntax.lexer import tokenize
-from gpl2py.syntax.parser import parse, parse_expression
-
-__all__ = ["parse", "parse_expression", "tokenize"]
