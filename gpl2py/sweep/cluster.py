@@ -90,8 +90,8 @@ def on_dask(client: Any, shipment: Shipment, setup: Setup | SetupSource | None, 
     """Submit every set to ``client``'s cluster and yield the rows as the runs end."""
     plugin = ShipPackage(shipment)
     client.register_plugin(plugin, name=plugin.name)
+    futures: dict[Any, ParamSet] = {}
     try:
-        futures = {}
         for params in sets:
             future = client.submit(_task, shipment.digest, setup, params, metrics, timeout,
                                    key=f"gpl2py-run-{shipment.digest}-{run_id(params)}", pure=False)
@@ -109,6 +109,9 @@ def on_dask(client: Any, shipment: Shipment, setup: Setup | SetupSource | None, 
                 progress(done, len(sets))
     finally:
         try:
+            if futures:  # stopped early (Ctrl-C): the runs not yet back are not wanted any more, and
+                # must not start on a worker that joins once the package's plugin is gone
+                client.cancel(list(futures))
             client.unregister_worker_plugin(plugin.name)
         except Exception:  # noqa: BLE001 - the cluster may be gone already; nothing to undo then
             pass

@@ -26,9 +26,11 @@ from gpl2py.sweep.results import parts_folder
 TRANSLATOR = ("gpl2py.transpile", "gpl2py.lower", "gpl2py.semantics", "gpl2py.syntax", "gpl2py.gpl")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture
 def client() -> Iterator[distributed.Client]:
-    """Two worker processes, one thread each (a test kills one: processes=True)."""
+    """Two worker processes, one thread each (a test kills one: processes=True); a cluster per test,
+    so that a worker a test killed and that did not come back (on a loaded machine) leaves no test
+    after it waiting for workers that are not there."""
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
                                   silence_logs=50) as cluster, distributed.Client(cluster) as c:
         yield c
@@ -111,6 +113,9 @@ def test_an_interrupted_sweep_with_faults_and_a_killed_worker_resumes_with_the_c
         sweep.run(client=client, output=out, progress=interrupt_after_three)
     kept = sweep.already_done(out)
     assert kept >= 3 and not out.exists()  # the rows that had arrived are in the parts
+    # The runs that had not come back were cancelled: the cluster works on nothing of the sweep.
+    assert client.run_on_scheduler(lambda dask_scheduler: [k for k in dask_scheduler.tasks
+                                                           if str(k).startswith("gpl2py-run-")]) == []
 
     address = client.scheduler.address
     done = gpl2py("sweep", project, "--params", str(params), "--setup", str(setup), "-o", str(out),
