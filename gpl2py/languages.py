@@ -55,10 +55,12 @@ class Frontend:
 
 
 GPL = Frontend("gpl", "GPL", (".gpl", ".gpo", ".gpr"), "gpl2py.gpl.pipeline", "gpl2py.project")
+TMSCRIPT = Frontend("tmscript", "TMscript", (".tms", ".tmscript"), "gpl2py.tmscript.pipeline",
+                    "gpl2py.tmscript.pipeline")
 
 #: Every front end, GPL first: a folder or file no other front end claims is GPL (its loader
 #: reports what it cannot read in the project's form).
-FRONTENDS: tuple[Frontend, ...] = (GPL,)
+FRONTENDS: tuple[Frontend, ...] = (GPL, TMSCRIPT)
 
 
 def names() -> list[str]:
@@ -92,4 +94,4 @@ def frontend_for(path: str | os.PathLike[str], language: str | None = None) -> F
     return next((f for f in FRONTENDS if suffix in f.extensions), GPL)
 
 
-__all__ = ["FRONTENDS", "GPL", "Frontend", "Pipeline", "by_name", "frontend_for", "names"]
+__all__ = ["FRONTENDS", "GPL", "TMSCRIPT", "Frontend", "Pipeline", "by_name", "frontend_for", "names"]

@@ -112,10 +112,21 @@ def _register(message: Message) -> Message:
 
 def message(code: str) -> Message:
     """The registry entry of ``code`` (``"GPL2001"``)."""
+    if code not in _REGISTRY:
+        all_messages()  # (a front end's code: its module registers it)
     return _REGISTRY[code]
 
 
+#: The front ends' own message modules (docs/design/frontends.md, "Diagnostics"): imported when
+#: every message is listed, so explain and docs/diagnostics.md show them too.
+FRONTEND_MESSAGES = ("gpl2py.tmscript.messages",)
+
+
 def all_messages() -> list[Message]:
+    import importlib
+
+    for name in FRONTEND_MESSAGES:
+        importlib.import_module(name)
     return sorted(_REGISTRY.values(), key=lambda m: m.code)
 
 
@@ -817,4 +828,7 @@ def markdown() -> str:
 
 
 if __name__ == "__main__":
-    sys.stdout.write(markdown())
+    # (run as __main__, this module is a second copy; the front ends register into gpl2py.messages)
+    from gpl2py.messages import markdown as _markdown
+
+    sys.stdout.write(_markdown())

@@ -226,12 +226,20 @@ def _robot_names() -> list[str]:
     return model_names()
 
 
+#: The TM robots (gplrt.tm.robot.MODELS; named here so that --help does not import the runtime).
+TM_MODELS = ("TM5-700", "TM5-900", "TM12", "TM14")
+
+
 def configure(parser: argparse.ArgumentParser) -> None:
     """Arguments of ``gpl2py run``."""
-    robots = _robot_names()
-    parser.add_argument("path", metavar="PROJECT",
+    robots = sorted(set(_robot_names()) | set(TM_MODELS))
+    parser.add_argument("path", metavar="PROJECT", nargs="?", default=None,
                         help="a project folder (with or without Project.gpr), a Project.gpr file, "
-                        "or one .gpl file")
+                        "or one .gpl file; a TMscript file or folder (.tms); none with --listen-node")
+    parser.add_argument("--listen-node", action="store_true",
+                        help="TM robots: serve the Listen node (TCP 5890: $TMSCT scripts, $TMSTA) and the "
+                        "Ethernet Slave (TCP 5891: $TMSVR) on loopback (or --listen ADDRESS) for clients "
+                        "such as techmanpy, until Ctrl-C (docs/tmscript.md)")
     parser.add_argument("--robot", default=None, type=str.upper, choices=robots, metavar="MODEL",
                         help="robot model of the simulated controller (default: robot in "
                         "[tool.gpl2py], else PF400SX); one of: "
@@ -543,6 +551,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
     stdout, stderr = sys.stdout, sys.stderr
     display: Display = args.display
     out = Outcome(sink=new_sink(args), emitted=True)
+    if args.listen_node or args.path is None:
+        return _run_listen_node(args, out)
     bar = ProgressBar(stderr, wants_progress(stderr, args.quiet, not display.text))
     loaded: list[Project] = []
     try:
@@ -562,6 +572,14 @@ def run_command(args: argparse.Namespace) -> Outcome:
         out.emitted = False  # cli prints the diagnostics; status 1
         return out
     package = import_built(built)
+    if not hasattr(package, "PROJECT"):  # a TMscript project: its own runner (gplrt.tm.run_project)
+        if not args.json:
+            emit(out, display, stdout, stderr)
+        from gplrt.tm import context
+
+        context.use_robot(args.robot if args.robot in TM_MODELS else "TM5-900")
+        out.exit_status = int(package.main())
+        return out
     if package.PROJECT.get("start") is None:
         out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs "
                         "a Project.gpr with ProjectStart=\"Module.Proc\", or a single Public Sub Main")
@@ -647,6 +665,22 @@ def run_command(args: argparse.Namespace) -> Outcome:
         stderr.write(text + "\n")
     elif not args.quiet:
         stderr.write(run_summary(report, args.clock) + "\n")
+    return out
+
+
+def _run_listen_node(args: argparse.Namespace, out: Outcome) -> Outcome:
+    """``gpl2py run --robot TM5-900 --listen-node``: a simulated TM robot in a Listen node."""
+    if not args.listen_node or (args.robot or "TM5-900") not in TM_MODELS:
+        out.sink.report(msg.USAGE_ERROR, None, detail="run needs a PROJECT, or --listen-node with a TM "
+                        f"robot (--robot {' | '.join(TM_MODELS)})")
+        out.emitted, out.usage_error = False, True
+        return out
+    import math
+
+    from gplrt.tm.listen import main as listen_main
+
+    speed = args.speed if args.clock == "real" else math.inf
+    out.exit_status = listen_main(args.robot or "TM5-900", args.listen or "127.0.0.1", speed=speed)
     return out
 
 

@@ -37,6 +37,7 @@ SMALLEST: dict[str, tuple[list[str], str]] = {
     "motion_speed.py": (["--runs", "1", "--block", "1", "--cell-runs", "1", "--parts", "1"],
                         r"normalised: wall .* controller s per R \(wall\).* controller s per R \(CPU\)"),
     "parse_speed.py": (["--lines", "800", "--runs", "1"], r"in R: +gpl2py .* R .*GPL lines per R"),
+    "tm_listen.py": (["--moves", "2", "--runs", "1"], r"100 statements: .* µR \(spread"),
     "runtime_speed.py": (["--n", "50", "--runs", "5", "--on", "direct"], r"class method call .*\n +in R +[\d.]+ R"),
     "sweep_speed.py": (["--sets", "4", "--runs", "1"], r"2 workers \(sweep\) +[\d.]+ s .*in R: +[\d.]+ R \(spread"),
     "transpile_speed.py": (["--lines", "300", "--runs", "1"],

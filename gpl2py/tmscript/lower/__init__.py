@@ -1,0 +1,1 @@
+"""TMscript -> Python on ``gplrt.tm`` (docs/design/tmscript.md)."""

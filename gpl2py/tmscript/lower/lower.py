@@ -1,0 +1,453 @@
+"""The checked TMscript tree -> Python text, through the shared writer (``gpl2py.pywriter``).
+
+A script project becomes a module: ``define`` globals at module level, ``main``/``closestop``/
+``errorstop`` and the functions as ``def``s, and a ``run()`` that runs them as the controller does.
+A Listen-node packet becomes ``def script(v):`` whose node variables are attributes of ``v`` (they
+outlive the packet, L17838).  Values follow ``gplrt.tm.values``: every store converts to the
+declared type (``tm.to_int``, ``tm.Array``), arithmetic goes through ``tm.add``/``tm.div``/... (int
+wrap, binary32 floats, text concatenation), conditions through ``tm.truth`` unless they are already
+a bool.  Built-ins are ``tm.Name``; a deferred argument (``ThreadRun(f())``, ``WaitFor(c, ms)``) is a
+``lambda``.  Each line records its TMscript line, so a run-time error names the script's line.
+"""
+
+from __future__ import annotations
+
+from gpl2py.pywriter.emit import Writer
+from gpl2py.pywriter.text import escape, py_string
+from gpl2py.tmscript.semantics.check import Info, Var, pyname
+from gpl2py.tmscript.semantics.library import DEFERRED, DEFERRED_WITH_TWO, OBJECTS
+from gpl2py.tmscript.syntax import ast as A
+
+ARITH = {"+": "add", "-": "sub", "*": "mul", "/": "div", "%": "mod", "&": "bit_and", "|": "bit_or",
+         "^": "bit_xor", "<<": "shl", ">>": "shr"}
+CONVERT = {"byte": "to_byte", "int": "to_int", "float": "to_float", "double": "to_double",
+           "bool": "to_bool", "string": "to_string"}
+DEFAULTS = {"byte": "0", "int": "0", "float": "tm.to_float(0)", "double": "tm.to_double(0)",
+            "bool": "False", "string": '""'}
+BOOLEAN_OPS = frozenset({"==", "!=", "<", "<=", ">", ">=", "&&", "||"})
+
+
+class Unsupported(Exception):
+    """A construct the lowering does not translate yet (reported by the pipeline)."""
+
+    def __init__(self, node: A.Node, what: str) -> None:
+        super().__init__(what)
+        self.node, self.what = node, what
+
+
+class Lowerer:
+    def __init__(self, info: Info, packet: bool) -> None:
+        self.info, self.packet = info, packet
+        self.w = Writer()
+        self.temps = 0
+        self.steps: list[list[A.Node] | None] = []  # per enclosing loop: a for's step (continue runs it)
+        self.in_switch: list[bool] = []
+
+    def temp(self, stem: str) -> str:
+        self.temps += 1
+        return f"_{stem}{self.temps}"
+
+    # --- expressions ----------------------------------------------------------------------------
+    def var_ref(self, var: Var) -> str:
+        return f"v.{var.pyname}" if var.storage == "node" else var.pyname
+
+    def expr(self, e: A.Node) -> str:
+        if isinstance(e, A.Num):
+            return repr(e.value) if isinstance(e.value, int) else repr(float(e.value))
+        if isinstance(e, A.Str):
+            parts = self.info.interpolations.get(id(e))
+            if not parts:
+                return py_string(e.value)
+            out, pos = "", 0  # 'name' inside the string: its value (L628-L656)
+            for start, end, var in parts:
+                piece = py_string(e.value[pos:start])
+                out = piece if not out else f"tm.add({out}, {piece})"
+                out = f"tm.add({out}, {self.var_ref(var)})"
+                pos = end
+            return f"tm.add({out}, {py_string(e.value[pos:])})"
+        if isinstance(e, A.Bool):
+            return "True" if e.value else "False"
+        if isinstance(e, A.ArrayLit):
+            return "[" + ", ".join(self.expr(x) for x in e.items) + "]"
+        if isinstance(e, A.Name):
+            var = self.info.names.get(id(e))
+            if var is not None:
+                return self.var_ref(var)
+            if e.name in OBJECTS:
+                return f"tm.{e.name}"
+            return py_string(e.name)  # a bare word is its own text (L602)
+        if isinstance(e, A.Call):
+            return self.call(e)
+        if isinstance(e, A.Index):
+            index = self.expr(e.index) if e.index2 is None else f"{self.expr(e.index)}, {self.expr(e.index2)}"
+            return f"{self.expr(e.obj)}[{index}]"
+        if isinstance(e, A.Member):
+            return f"{self.expr(e.obj)}.{e.name}"
+        if isinstance(e, A.Unary):
+            inner = self.expr(e.operand)
+            if e.op == "-":
+                return f"tm.neg({inner})"
+            if e.op == "+":
+                return inner
+            if e.op == "!":
+                return f"not {self.cond(e.operand)}"
+            if e.op == "~":
+                return f"tm.invert({inner})"
+            return self.increment(e.operand, e.op, prefix=True)
+        if isinstance(e, A.Postfix):
+            return self.increment(e.operand, e.op, prefix=False)
+        if isinstance(e, A.Binary):
+            return self.binary(e)
+        if isinstance(e, A.Cond):
+            return f"({self.expr(e.then)} if {self.cond(e.cond)} else {self.expr(e.other)})"
+        if isinstance(e, A.Assign):
+            return self.assign_expr(e)
+        if isinstance(e, A.Cast):
+            arr = ", array=True" if e.array else ""
+            return f'tm.cast("{e.type}", {self.expr(e.operand)}{arr})'
+        raise Unsupported(e, type(e).__name__)
+
+    def binary(self, e: A.Binary) -> str:
+        op = e.op
+        if op in ARITH:
+            return f"tm.{ARITH[op]}({self.expr(e.left)}, {self.expr(e.right)})"
+        if op == "&&":
+            return f"({self.cond(e.left)} and {self.cond(e.right)})"
+        if op == "||":
+            return f"({self.cond(e.left)} or {self.cond(e.right)})"
+        if op == "==":
+            return f"tm.eq({self.expr(e.left)}, {self.expr(e.right)})"
+        if op == "!=":
+            return f"not tm.eq({self.expr(e.left)}, {self.expr(e.right)})"
+        return f"({self.expr(e.left)} {op} {self.expr(e.right)})"
+
+    def cond(self, e: A.Node) -> str:
+        """``e`` as a Python condition (a bool already, or ``tm.truth``)."""
+        if isinstance(e, A.Bool):
+            return "True" if e.value else "False"
+        if isinstance(e, A.Binary) and e.op in BOOLEAN_OPS:
+            return self.expr(e)
+        if isinstance(e, A.Unary) and e.op == "!":
+            return self.expr(e)
+        return f"tm.truth({self.expr(e)})"
+
+    def call(self, e: A.Call) -> str:
+        kind = self.info.calls.get(id(e))
+        args = [self.expr(a) for a in e.args]
+        callee = e.callee
+        if kind == "method" and isinstance(callee, A.Member):
+            return f"{self.expr(callee.obj)}.{callee.name}({', '.join(args)})"
+        assert isinstance(callee, A.Name)
+        if kind == "user":
+            return f"{pyname(callee.name)}({', '.join(args)})"
+        if args and (callee.name in DEFERRED or (callee.name in DEFERRED_WITH_TWO and len(args) == 2)):
+            args[0] = self.deferred(e.args[0], args[0])
+        return f"tm.{callee.name}({', '.join(args)})"
+
+    def deferred(self, node: A.Node, text: str) -> str:
+        """A deferred argument: a ``lambda``, or, when it assigns a variable of the function
+        (``WaitFor((st = ThreadState(t)) == 2, 1000)``, L2035), a nested ``def`` declaring it
+        ``nonlocal``/``global`` so that the assignment reaches the variable and not the lambda."""
+        assigned = sorted({(v.storage, v.pyname) for v in self.assigned_vars(node) if v.storage != "node"})
+        if not assigned:
+            return f"lambda: {text}"
+        name = self.temp("deferred")
+        self.w.blank()
+        self.line(f"def {name}():", node)
+        self.w.indent()
+        for storage, words in (("local", "nonlocal"), ("global", "global")):
+            names = [n for s, n in assigned if s == storage]
+            if names:
+                self.line(f"{words} {', '.join(names)}", node)
+        self.line(f"return {text}", node)
+        self.w.dedent()
+        self.w.blank()
+        return name
+
+    def assigned_vars(self, node: A.Node) -> list[Var]:
+        out: list[Var] = []
+        stack = [node]
+        while stack:
+            n = stack.pop()
+            target = None
+            if isinstance(n, A.Assign):
+                target = n.target
+            elif isinstance(n, (A.Unary, A.Postfix)) and n.op in ("++", "--"):
+                target = n.operand
+            var = self.target_var(target) if target is not None else None
+            if var is not None:
+                out.append(var)
+            stack.extend(v for v in vars(n).values() if isinstance(v, A.Node))
+            for v in vars(n).values():
+                if isinstance(v, list):
+                    stack.extend(x for x in v if isinstance(x, A.Node))
+        return out
+
+    def convert(self, var: Var, value: str, node: A.Node | None = None) -> str:
+        """``value`` converted for a store into ``var`` (nothing to convert for a literal of its type)."""
+        if var.cls is not None:
+            return value
+        if var.array:
+            return f'tm.Array("{var.type}", {value})'
+        if node is not None:
+            if var.type in ("int", "byte") and isinstance(node, A.Num) and isinstance(node.value, int) \
+                    and (0 <= node.value <= 255 or (var.type == "int" and -2**31 <= node.value < 2**31)):
+                return value
+            if var.type == "string" and isinstance(node, A.Str):
+                return value
+            if var.type == "bool" and isinstance(node, A.Bool):
+                return value
+        return f"tm.{CONVERT[var.type]}({value})"
+
+    def target_var(self, target: A.Node) -> Var | None:
+        return self.info.names.get(id(target)) if isinstance(target, A.Name) else None
+
+    def new_value(self, e: A.Assign) -> str:
+        value = self.expr(e.value)
+        if e.op != "=":
+            value = f"tm.{ARITH[e.op[:-1]]}({self.expr(e.target)}, {value})"
+        return value
+
+    def assign_expr(self, e: A.Assign) -> str:
+        """An assignment used as a value (``(st = ThreadState(t)) == 2``, L2035)."""
+        var = self.target_var(e.target)
+        value = self.new_value(e)
+        if var is not None:
+            conv = self.convert(var, value, e.value if e.op == "=" else None)
+            if var.storage == "node":
+                return f'tm.assign(v, "{var.pyname}", {conv})'
+            return f"({var.pyname} := {conv})"
+        if isinstance(e.target, A.Index):
+            return f"tm.setitem({self.expr(e.target.obj)}, {self.expr(e.target.index)}, {value})"
+        if isinstance(e.target, A.Member):
+            return f'tm.assign({self.expr(e.target.obj)}, "{e.target.name}", {value})'
+        raise Unsupported(e, "this assignment")
+
+    def increment(self, target: A.Node, op: str, prefix: bool) -> str:
+        one = "tm.add" if op == "++" else "tm.sub"
+        var = self.target_var(target)
+        if var is None:
+            raise Unsupported(target, f"'{op}' on this operand")
+        ref = self.var_ref(var)
+        new = f"tm.{CONVERT[var.type]}({one}({ref}, 1))"
+        setter = f'tm.assign(v, "{var.pyname}", {new})' if var.storage == "node" else f"({var.pyname} := {new})"
+        if prefix:
+            return setter
+        back = "tm.sub" if op == "++" else "tm.add"
+        return f"tm.{CONVERT[var.type]}({back}({setter}, 1))"
+
+    # --- statements -----------------------------------------------------------------------------
+    def line(self, text: str, node: A.Node) -> None:
+        self.w.line(text, node.span.line)
+
+    def statements(self, body: list[A.Node]) -> None:
+        start = self.w.mark()
+        for st in body:
+            self.statement(st)
+        self.w.ensure_body(start)
+
+    def statement(self, st: A.Node) -> None:
+        if isinstance(st, A.Decl):
+            for d in st.declarators:
+                var = self.info.names[id(d)]
+                assert var is not None
+                if d.init is None:
+                    value = "tm.Array(\"%s\")" % st.type if st.array else DEFAULTS[st.type]
+                else:
+                    value = self.convert(var, self.expr(d.init), d.init)
+                self.line(f"{self.var_ref(var)} = {value}", d)
+        elif isinstance(st, A.ClassDecl):
+            var = self.info.names[id(st)]
+            assert var is not None
+            args = ", ".join([py_string(st.name)] + [self.expr(a) for a in st.args])
+            self.line(f"{self.var_ref(var)} = tm.{st.cls}({args})", st)
+        elif isinstance(st, A.ExprStmt):
+            self.expr_statement(st.expr)
+        elif isinstance(st, A.Block):
+            self.statements(st.body)
+        elif isinstance(st, A.If):
+            self.if_chain(st, "if")
+        elif isinstance(st, A.While):
+            self.line(f"while {self.cond(st.cond)}:", st)
+            self.loop_body(st.body, None)
+        elif isinstance(st, A.DoWhile):
+            first = self.temp("first")
+            self.line(f"{first} = True", st)
+            self.line(f"while {first} or {self.cond(st.cond)}:", st)
+            self.w.indent(blocks=1)
+            self.line(f"{first} = False", st)
+            self.w.dedent()
+            self.loop_body(st.body, None)
+        elif isinstance(st, A.For):
+            for s in st.init:
+                self.statement(s) if isinstance(s, A.Decl) else self.expr_statement(s)
+            cond = "True" if st.cond is None else self.cond(st.cond)
+            self.line(f"while {cond}:", st)
+            self.loop_body(st.body, st.step)
+        elif isinstance(st, A.Switch):
+            self.switch(st)
+        elif isinstance(st, A.Jump):
+            if st.word == "continue":
+                step = next((s for s in reversed(self.steps)), None)
+                for s in step or []:
+                    self.expr_statement(s)
+                self.line("continue", st)
+            elif self.in_switch and self.in_switch[-1]:
+                raise Unsupported(st, "'break' inside a switch case other than as its last statement")
+            else:
+                self.line("break", st)
+        elif isinstance(st, A.Return):
+            if st.value is None:
+                self.line("return", st)
+            else:
+                self.line(f"return {self.return_value(st.value)}", st)
+        else:
+            raise Unsupported(st, type(st).__name__)
+
+    def return_value(self, value: A.Node) -> str:
+        fn = self.function
+        text = self.expr(value)
+        if fn is not None and fn.ret != "void":
+            if fn.ret_array:
+                return f'tm.Array("{fn.ret}", {text})'
+            return f"tm.{CONVERT[fn.ret]}({text})"
+        return text
+
+    function: A.Function | None = None
+
+    def expr_statement(self, e: A.Node) -> None:
+        if isinstance(e, A.Assign):
+            var = self.target_var(e.target)
+            value = self.new_value(e)
+            if var is not None:
+                value = self.convert(var, value, e.value if e.op == "=" else None)
+                self.line(f"{self.var_ref(var)} = {value}", e)
+                return
+            self.line(f"{self.expr(e.target)} = {value}", e)
+            return
+        if isinstance(e, (A.Postfix, A.Unary)) and e.op in ("++", "--"):
+            var = self.target_var(e.operand)
+            if var is not None:
+                one = "tm.add" if e.op == "++" else "tm.sub"
+                ref = self.var_ref(var)
+                self.line(f"{ref} = tm.{CONVERT[var.type]}({one}({ref}, 1))", e)
+                return
+        self.line(self.expr(e), e)
+
+    def if_chain(self, st: A.If, word: str) -> None:
+        self.line(f"{word} {self.cond(st.cond)}:", st)
+        self.body(st.then)
+        other = st.other
+        if isinstance(other, A.If):
+            self.if_chain(other, "elif")
+        elif other is not None:
+            self.line("else:", other)
+            self.body(other)
+
+    def body(self, st: A.Node) -> None:
+        self.w.indent()
+        self.statements(st.body if isinstance(st, A.Block) else [st])
+        self.w.dedent()
+
+    def loop_body(self, body: A.Node, step: list[A.Node] | None) -> None:
+        self.w.indent(blocks=1)
+        self.steps.append(step)
+        self.in_switch.append(False)
+        start = self.w.mark()
+        if self.packet:  # a Listen node's priority commands must be able to end a looping script
+            self.line("tm.tick()", body)
+        self.statements(body.body if isinstance(body, A.Block) else [body])
+        for s in step or []:
+            self.expr_statement(s)
+        self.w.ensure_body(start)
+        self.in_switch.pop()
+        self.steps.pop()
+        self.w.dedent()
+
+    def switch(self, st: A.Switch) -> None:
+        subject = self.temp("switch")
+        self.line(f"{subject} = {self.expr(st.subject)}", st)
+        word = "if"
+        default: A.Case | None = None
+        for c in st.cases:
+            if c.label is None:
+                default = c
+                continue
+            label = self.expr(c.label)
+            test = f"tm.eq({subject}, {label})" if c.op in (None, "==") else (
+                f"not tm.eq({subject}, {label})" if c.op == "!=" else f"{subject} {c.op} {label}")
+            self.line(f"{word} {test}:", c)
+            self.case_body(c)
+            word = "elif"
+        if default is not None:
+            self.line("else:" if word == "elif" else "if True:", default)
+            self.case_body(default)
+
+    def case_body(self, c: A.Case) -> None:
+        body = list(c.body)
+        if body and isinstance(body[-1], A.Jump) and body[-1].word == "break":
+            body.pop()  # the case's end (fall-through is not documented, spec §2.1)
+        self.w.indent()
+        self.in_switch.append(True)
+        self.statements(body)
+        self.in_switch.pop()
+        self.w.dedent()
+
+    # --- units ----------------------------------------------------------------------------------
+    def function_def(self, name: str, params: list[A.Param], body: A.Block, node: A.Node, fn: A.Function | None) -> None:
+        self.function = fn
+        names = ", ".join(pyname(p.name) for p in params)
+        self.line(f"def {pyname(name)}({names}):", node)
+        self.w.indent()
+        assigned = sorted(self.info.globals_assigned.get(name, set()))
+        if assigned:
+            self.line(f"global {', '.join(assigned)}", node)
+        for p in params:
+            conv = f'tm.Array("{p.type}", {pyname(p.name)})' if p.array else f"tm.{CONVERT[p.type]}({pyname(p.name)})"
+            self.line(f"{pyname(p.name)} = {conv}", p)
+        self.statements(body.body)
+        self.w.dedent()
+        self.w.blank(2)
+        self.function = None
+
+
+def lower_packet(tree: A.Script, info: Info) -> tuple[str, list[int]]:
+    """A packet's statements as ``def script(v):`` (text, and the TMscript line of each line)."""
+    lo = Lowerer(info, packet=True)
+    lo.w.line("def script(v):", 0)
+    lo.w.indent()
+    lo.statements(tree.statements)
+    lo.w.dedent()
+    return lo.w.render()
+
+
+def lower_script(tree: A.Script, info: Info, title: str) -> tuple[str, list[int]]:
+    """A script project as a module."""
+    lo = Lowerer(info, packet=False)
+    w = lo.w
+    w.line(f'"""TMscript project {escape(title, "docstring")}, translated by gpl2py."""', 0)
+    w.blank()
+    w.line("from gplrt import tm", 0)
+    w.blank(2)
+    for st in tree.define:
+        lo.statement(st)
+    if tree.define:
+        w.blank(2)
+    for name in ("main", "closestop", "errorstop"):
+        block = tree.sections.get(name)
+        if block is not None:
+            lo.function_def(name, [], block, block, None)
+    for fn in tree.functions:
+        lo.function_def(fn.name, fn.params, fn.body, fn, fn)
+    stops = ", ".join(f"{n}={n if n in tree.sections else 'None'}" for n in ("closestop", "errorstop"))
+    w.line("def run():", 0)
+    w.indent()
+    w.line('"""Run the project as the robot does: main, then closestop or errorstop."""', 0)
+    w.line(f"return tm.run_project({'main' if 'main' in tree.sections else 'None'}, {stops})", 0)
+    w.dedent()
+    w.blank(2)
+    w.line('if __name__ == "__main__":', 0)
+    w.indent()
+    w.line("run()", 0)
+    w.dedent()
+    return w.render()

@@ -1,0 +1,66 @@
+"""The TMscript built-ins the front end knows: name -> (fewest, most arguments; ``None`` = any).
+
+The runtime (``gplrt.tm.library``) implements each of them under the same name; a test keeps the
+two in step.  ``DEFERRED`` names the built-ins whose first argument is not evaluated at the call
+but later or repeatedly (spec §2, "Deferred arguments": ThreadRun, WaitFor's condition), which the
+lowering wraps in a ``lambda``.  ``RETURNS`` gives the type of what a built-in returns where the
+checks need it.
+"""
+
+from __future__ import annotations
+
+BUILTINS: dict[str, tuple[int, int | None]] = {
+    # threads and script control (L1815-L2064, L7707-L8032)
+    "ThreadRun": (1, 2), "ThreadID": (0, 0), "ThreadState": (0, 1), "ThreadExit": (0, 1),
+    "Exit": (0, 2), "Pause": (0, 0), "Resume": (0, 0), "WaitFor": (1, 2), "Sleep": (1, 1),
+    "Display": (1, 4),
+    # Listen node (L7447-L7706, L17642-L18305)
+    "ScriptExit": (0, 1), "ListenPacket": (1, 2), "ListenSend": (2, 3),
+    # motion and the motion queue (L15515-L17228); the float[6] forms and the scalar forms
+    "QueueTag": (1, 2), "WaitQueueTag": (1, 2), "StopAndClearBuffer": (0, 1),
+    "PTP": (6, 15), "Line": (6, 12), "Circle": (8, 19), "PLine": (5, 10),
+    "Move_PTP": (6, 11), "Move_Line": (6, 11), "Move_PLine": (5, 10),
+    "ChangeBase": (1, 6), "ChangeTCP": (1, 16), "ChangeLoad": (1, 1),
+    "PVTEnter": (0, 1), "PVTExit": (0, 0), "PVTPoint": (3, 13), "PVTPause": (0, 0), "PVTResume": (0, 0),
+    # Ethernet Slave (L19694-L20556)
+    "svr_read": (1, 1), "svr_write": (2, 2),
+    # conversions, strings, arrays, checksums, time (L2066-L7446)
+    "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetBytes": (1, 3), "GetNowStamp": (0, 2),
+    "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5),
+    "String_ToInteger": (1, 2), "String_ToFloat": (1, 2), "String_ToDouble": (1, 2),
+    "String_IndexOf": (2, 3), "String_LastIndexOf": (2, 3), "String_Substring": (2, 4),
+    "String_Split": (2, 3), "String_Replace": (3, 3), "String_Trim": (1, 3), "String_ToLower": (1, 1),
+    "String_ToUpper": (1, 1), "String_ToByte": (1, 2), "Byte_ToString": (1, 2),
+    "Byte_ToInt16": (1, 3), "Byte_ToInt32": (1, 2), "Byte_ToFloat": (1, 2), "Byte_ToDouble": (1, 2),
+    "Byte_Concat": (2, None),
+    "Array_Append": (2, 2), "Array_Insert": (3, 3), "Array_Remove": (2, 3), "Array_Equals": (2, 5),
+    "Array_IndexOf": (2, 3), "Array_LastIndexOf": (2, 3), "Array_Reverse": (1, 2), "Array_Sort": (1, 2),
+    "Array_SubElements": (2, 3),
+    "XOR8": (1, 3), "SUM8": (1, 3), "SUM16": (1, 3), "SUM32": (1, 3), "CRC16": (1, 4), "CRC32": (1, 3),
+    # math in degrees (L8033-L9400) and pose math (L9393-L9900)
+    "abs": (1, 1), "pow": (2, 2), "sqrt": (1, 1), "ceil": (1, 1), "floor": (1, 1), "round": (1, 2),
+    "random": (0, 2), "sum": (1, None), "average": (1, None), "min": (1, None), "max": (1, None),
+    "d2r": (1, 1), "r2d": (1, 1), "sin": (1, 1), "cos": (1, 1), "tan": (1, 1), "asin": (1, 1),
+    "acos": (1, 1), "atan": (1, 1), "atan2": (2, 2), "log": (1, 2), "log10": (1, 1), "norm2": (1, 1),
+    "dist": (2, 2), "trans": (2, 3), "inversetrans": (1, 2), "applytrans": (2, 3), "changeref": (2, 3),
+    "interpoint": (3, 3),
+}
+
+#: Built-ins whose first argument is a deferred statement or condition (spec §2).
+DEFERRED = frozenset({"ThreadRun"})
+#: WaitFor defers its first argument only in the two-argument form ``WaitFor(cond, ms)`` (L7865).
+DEFERRED_WITH_TWO = frozenset({"WaitFor"})
+
+#: Class types (L12376-L25700) the runtime has; a declaration of another is reported as not
+#: supported yet, never translated to a call that fails at run time.
+CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP"})
+
+#: Parameterized objects: ``Item[index].Attribute`` without a declaration (L14355-L14860).
+OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})
+
+#: What a built-in returns, where a check needs the type (the rest: unknown).
+RETURNS: dict[str, str] = {
+    "Length": "int", "ThreadID": "int", "ThreadRun": "int", "ThreadState": "int", "ThreadExit": "int",
+    "QueueTag": "bool", "WaitQueueTag": "int", "GetNowStamp": "int", "String_ToInteger": "int",
+    "String_IndexOf": "int", "ScriptExit": "bool",
+}

@@ -1,0 +1,1 @@
+"""TMscript syntax: tokens, the tree, the parser (spec §1-§2)."""

@@ -1,0 +1,52 @@
+"""Which simulated robot (and Listen node) the running TMscript talks to.
+
+Generated code calls ``tm.PTP(...)`` without naming a robot, as a TM robot runs one project; the
+session that starts the code (``gpl2py run``, the Listen node, a test) sets the current one here.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from gplrt.tm.motion import Robot
+
+_current: dict[str, Any] = {"robot": None, "node": None, "display": None}
+
+
+def robot() -> Robot:
+    """The current robot (a TM5-900 on the fast clock when nothing chose one)."""
+    r = _current["robot"]
+    if r is None:
+        r = use_robot("TM5-900")
+    return r  # type: ignore[no-any-return]
+
+
+def use_robot(name: str = "TM5-900", speed: float = math.inf) -> Robot:
+    """Make a new simulated robot ``name`` the current one (``speed``: simulated seconds per wall
+    second; ``math.inf`` is the fast clock)."""
+    from gplrt.tm.motion import Robot
+    from gplrt.tm.robot import arm
+
+    r = Robot(arm(name), speed=speed)
+    _current["robot"] = r
+    return r
+
+
+def node() -> Any:
+    """The Listen node running the current script, or None."""
+    return _current["node"]
+
+
+def set_node(n: object) -> None:
+    _current["node"] = n
+
+
+def set_display(callback: object) -> None:
+    """Where ``Display()`` text goes (default: standard output)."""
+    _current["display"] = callback
+
+
+def display_callback() -> Any:
+    return _current["display"]

@@ -1,0 +1,777 @@
+"""The TMscript built-in functions (spec §3), under their TMscript names: generated code calls
+``tm.PTP(...)``, ``tm.String_Substring(...)``.  Each cites its manual section.
+
+Motion functions queue a command and return ``true`` at once (L15519); their target forms are the
+manual's: a ``float[]`` or the scalars spelled out (techmanpy sends the scalars).  A failure the
+manual calls an error raises :class:`TMError` (the project stops by error).
+"""
+
+from __future__ import annotations
+
+import builtins
+import math
+import random as _random
+import threading
+import time
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from gplrt.tm import context
+from gplrt.tm.motion import CARTESIAN_SPEED, Command, arc_path, line_path
+from gplrt.tm.robot import pose_to_se3, se3_to_pose
+from gplrt.tm.teach import Base, Point, TBase, TCP, TPoint, TTCP, frame_of  # noqa: F401 (TMscript's names)
+from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, to_float, to_int, to_string
+
+
+# --- script control (L7707-L8032) ---------------------------------------------------------------
+def Display(*args: object) -> bool:
+    """Show text on the dashboard (L7950): ``(text)``, ``(title, text)``, ``(bg, fg, title, text)``;
+    printed as ``text``, or ``[title] text`` when there is a title (colours are not shown)."""
+    text = to_string(args[-1])
+    if len(args) in (2, 4):
+        text = f"[{to_string(args[-2])}] {text}"
+    cb = context.display_callback()
+    if cb is not None:
+        cb(text)
+    else:
+        print(text, flush=True)
+    return True
+
+
+class ThreadStopped(Exception):
+    """``ThreadExit(id)`` asked this thread to stop: raised at its next wait (L1967-L1999)."""
+
+
+def _cancelled() -> bool:
+    """Whether a wait must end now: the Listen node abandons the script (raises), or this
+    thread was asked to stop by ``ThreadExit`` (raises :class:`ThreadStopped`)."""
+    entry = _threads.get(getattr(_local, "id", 0))
+    if entry is not None and entry[1] == 1:
+        raise ThreadStopped
+    n = context.node()
+    return bool(n is not None and n.cancelled())
+
+
+def _wall(ms: int) -> float:
+    """Wall seconds that ``ms`` of the robot's time last (its clock's speed; none on the fast clock)."""
+    speed = context.robot().speed
+    return 0.0 if math.isinf(speed) else builtins.max(0, ms) / 1000.0 / speed
+
+
+def tick() -> None:
+    """A loop's turn in a Listen-node script: ends the script when a priority command abandons
+    it (``StopAndClearBuffer(1|2)``, ``ScriptExit(0|1)``, L18127) or its thread was stopped."""
+    _cancelled()
+
+
+def Sleep(ms: object) -> bool:
+    """Wait ``ms`` of the robot's time (L7926); false when interrupted."""
+    end = time.monotonic() + _wall(to_int(ms))
+    while time.monotonic() < end:
+        if _cancelled():
+            return False
+        time.sleep(builtins.min(0.02, builtins.max(0.0, end - time.monotonic())))
+    return True
+
+
+def WaitFor(cond: object, ms: object = None) -> bool:
+    """``WaitFor(cond, ms)``: until the deferred ``cond`` holds (true) or ``ms`` passes (false, ms < 0
+    waits forever); ``WaitFor(ms)`` sleeps (L7865-L7900)."""
+    if ms is None:
+        return Sleep(cond)
+    assert callable(cond)
+    from gplrt.tm.values import truth
+
+    limit = to_int(ms)
+    end = time.monotonic() + _wall(limit)
+    while not truth(cond()):
+        if _cancelled() or (limit >= 0 and time.monotonic() >= end):
+            return False
+        time.sleep(0.001)
+    return True
+
+
+def Pause() -> bool:
+    r = context.robot()
+    with r.lock:
+        r.paused = True
+    return True
+
+
+def Resume() -> bool:
+    r = context.robot()
+    with r.lock:
+        r.paused = False
+        r.lock.notify_all()
+    return True
+
+
+class ProjectExit(Exception):
+    """``Exit()``: the project stops (``code`` > 0 closestop, < 0 errorstop, L7709)."""
+
+    def __init__(self, code: int) -> None:
+        super().__init__(code)
+        self.code = code
+
+
+def Exit(*args: object) -> bool:
+    wait, code = True, 0
+    for a in args:
+        if isinstance(a, bool):
+            wait = a
+        else:
+            code = to_int(a)
+    if wait:
+        context.robot().wait_idle(_cancelled)
+    raise ProjectExit(code)
+
+
+# --- threads (L1815-L2064) ----------------------------------------------------------------------
+_threads: dict[int, list[object]] = {}  # id -> [thread, state]
+_local = threading.local()
+
+
+def ThreadRun(stmt: Callable[[], object], non_pausable: object = False) -> int:
+    tid = builtins.max(_threads, default=0) + 1
+    entry: list[object] = [None, 0]
+
+    def body() -> None:
+        _local.id = tid
+        try:
+            stmt()
+        except ThreadStopped:
+            pass
+        finally:
+            entry[1] = 2
+    t = threading.Thread(target=body, name=f"tm-thread-{tid}", daemon=True)
+    entry[0] = t
+    _threads[tid] = entry
+    t.start()
+    return tid
+
+
+def ThreadID() -> int:
+    """The current thread's id (L1867); the first thread that asks (``main``) gets one as well."""
+    tid = getattr(_local, "id", None)
+    if tid is None:
+        tid = builtins.max(_threads, default=0) + 1
+        _threads[tid] = [threading.current_thread(), 0]
+        _local.id = tid
+    return int(tid)
+
+
+def ThreadState(tid: object = None) -> int:
+    """-1 no such thread, 0 running, 1 asked to stop, 2 stopped (L1931)."""
+    entry = _threads.get(ThreadID() if tid is None else to_int(tid))
+    return -1 if entry is None else int(entry[1])  # type: ignore[call-overload]
+
+
+def ThreadExit(tid: object = None) -> int:
+    entry = _threads.get(ThreadID() if tid is None else to_int(tid))
+    if entry is None:
+        return -1
+    if entry[1] == 0:
+        entry[1] = 1
+    return 0
+
+
+# --- motion queue (L15515-L15705) ---------------------------------------------------------------
+def QueueTag(tag: object, wait: object = 0) -> bool:
+    """Put tag 1..15 into the motion queue; ``wait`` = 1 blocks until it is reached (L15521)."""
+    n = to_int(tag)
+    if not 1 <= n <= 15:
+        raise TMError(f"QueueTag: tag {n} is not between 1 and 15")
+    r = context.robot()
+    node = context.node()
+    if node is not None:
+        node.tag_owner[n] = getattr(node, "_owner", None)
+    r.enqueue(Command("tag", tag=n))
+    if to_int(wait) == 1:
+        r.wait_tag(n, -1, _cancelled)
+    return True
+
+
+def WaitQueueTag(tag: object, timeout: object = -1) -> int:
+    """1 done, 0 not done by the timeout, -1 not among the last four tags (L15562)."""
+    return context.robot().wait_tag(to_int(tag), to_int(timeout), _cancelled)
+
+
+def StopAndClearBuffer(mode: object = 0) -> bool:
+    """Stop the robot and clear the motion queue (L15683); in a Listen node, modes 1 and 2 are
+    priority commands the node handles itself (L18127)."""
+    context.robot().stop_and_clear()
+    return True
+
+
+def _split(args: Sequence[object], n_points: int) -> tuple[list[list[float]], list[object]]:
+    """The target(s) (a float[] each, or six scalars each) and the arguments after them."""
+    points: list[list[float]] = []
+    rest = list(args)
+    for _ in range(n_points):
+        if rest and isinstance(rest[0], (list, tuple, np.ndarray)):
+            pt = [float(to_double(x)) for x in rest.pop(0)]  # type: ignore[union-attr]
+        else:
+            if len(rest) < 6:
+                raise TMError("a point needs six values")
+            pt = [float(to_double(x)) for x in rest[:6]]
+            rest = rest[6:]
+        if len(pt) != 6:
+            raise TMError(f"a point has 6 values, not {len(pt)}")
+        points.append(pt)
+    return points, rest
+
+
+def _fmt(fmt: object, allowed: tuple[str, ...], name: str) -> str:
+    f = to_string(fmt)
+    if f not in allowed:
+        raise TMError(f"{name}: the format {f!r} is not one of {', '.join(allowed)}")
+    return f
+
+
+def _line_speed(fmt: str, speed: object) -> float:
+    """mm/s of a path motion: ``P`` % of the Cartesian top speed, ``A``/``D`` mm/s (L15972)."""
+    v = float(to_double(speed))
+    return CARTESIAN_SPEED * v / 100.0 if fmt[1] == "P" else v
+
+
+def PTP(fmt: object, *args: object) -> bool:
+    """Joint-interpolated move to a joint (``JPP``) or Cartesian (``CPP``) target (L15706)."""
+    f = _fmt(fmt, ("JPP", "CPP"), "PTP")
+    (target,), rest = _split(args, 1)
+    if len(rest) < 4:
+        raise TMError("PTP: speed, acceleration time, blending and precise positioning are needed")
+    speed, accel = rest[0], rest[1]
+    r = context.robot()
+    cmd = r.joint_move(target, float(to_double(speed)), float(to_double(accel))) if f == "JPP" \
+        else r.ptp_pose(target, float(to_double(speed)), float(to_double(accel)))
+    return r.enqueue(cmd)
+
+
+def Line(fmt: object, *args: object) -> bool:
+    """Straight line of the TCP to a pose in the current base (L15954)."""
+    f = _fmt(fmt, ("CPP", "CPR", "CAP", "CAR", "CDP", "CDR"), "Line")
+    (target,), rest = _split(args, 1)
+    if len(rest) < 4:
+        raise TMError("Line: speed, acceleration time, blending and precise positioning are needed")
+    r = context.robot()
+    goal = lambda: r.cartesian_target(target)  # noqa: E731 (in the base in effect when it starts)
+    return r.enqueue(r.path_move(line_path(goal), _line_speed(f, rest[0]), float(to_double(rest[1]))))
+
+
+def Circle(fmt: object, *args: object) -> bool:
+    """Arc through ``via`` to ``end`` (L16073); arc angle ≠ 0 sweeps it at constant orientation."""
+    f = _fmt(fmt, ("CPP", "CAP", "CDP"), "Circle")
+    (via, end), rest = _split(args, 2)
+    if len(rest) < 5:
+        raise TMError("Circle: speed, acceleration time, blending, arc angle and precise positioning are needed")
+    r = context.robot()
+    path = arc_path(lambda: (r.cartesian_target(via), r.cartesian_target(end)), float(to_double(rest[3])))
+    return r.enqueue(r.path_move(path, _line_speed(f, rest[0]), float(to_double(rest[1]))))
+
+
+def PLine(fmt: object, *args: object) -> bool:
+    """A path motion at constant TCP speed (L16200; the manual does not describe its path: ours is
+    a straight line for ``C`` targets, joint-interpolated for ``J`` targets)."""
+    f = _fmt(fmt, ("CAP", "CDP", "JAP", "JDP"), "PLine")
+    (target,), rest = _split(args, 1)
+    if len(rest) < 3:
+        raise TMError("PLine: speed, acceleration time and blending are needed")
+    r = context.robot()
+    if f[0] == "J":
+        r._check_joints(target)
+        goal = r.arm.fk_se3(target)
+    else:
+        goal = lambda: r.cartesian_target(target)  # noqa: E731
+    return r.enqueue(r.path_move(line_path(goal), float(to_double(rest[0])), float(to_double(rest[1]))))
+
+
+def _relative(f: str, offset: list[float]) -> Callable[[list[float]], list[float]]:
+    """The absolute target of a relative motion, from the joints it starts at (L16320)."""
+    r = context.robot()
+
+    def target(start: list[float]) -> list[float]:
+        if f[0] == "J":
+            return [a + b for a, b in zip(start, offset)]
+        tcp = r.base.inverse() * r.arm.fk_se3(start) * r.tcp
+        d = pose_to_se3(offset)
+        if f[0] == "T":
+            return se3_to_pose(tcp * d)
+        return se3_to_pose(_world_delta(tcp, d))
+    return target
+
+
+def _world_delta(p: object, d: object) -> object:
+    """(P + Pd, Rd·R): an offset expressed in the base (manual L9578)."""
+    import pinocchio as pin
+    assert isinstance(p, pin.SE3) and isinstance(d, pin.SE3)
+    return pin.SE3(d.rotation @ p.rotation, p.translation + d.translation)
+
+
+def _queue_relative(kind: str, f: str, offset: list[float], speed: float, accel: float) -> bool:
+    r = context.robot()
+    target = _relative(f, offset)
+
+    def plan(start: list[float]):  # type: ignore[no-untyped-def]
+        goal = target(start)
+        if kind == "ptp":
+            cmd = r.joint_move(goal, speed, accel) if f[0] == "J" else r.ptp_pose(goal, speed, accel)
+        elif f[0] == "J":
+            cmd = r.path_move(line_path(r.arm.fk_se3(goal)), speed, accel)
+        else:
+            cmd = r.path_move(line_path(r.cartesian_target(goal)), speed, accel)
+        assert cmd.plan is not None
+        return cmd.plan(start)
+    return r.enqueue(Command("move", plan=plan))
+
+
+def Move_PTP(fmt: object, *args: object) -> bool:
+    """Relative PTP: ``C`` offset in the current base, ``T`` in the tool, ``J`` joint offsets (L16300)."""
+    f = _fmt(fmt, ("CPP", "TPP", "JPP"), "Move_PTP")
+    (offset,), rest = _split(args, 1)
+    return _queue_relative("ptp", f, offset, float(to_double(rest[0])), float(to_double(rest[1])))
+
+
+def Move_Line(fmt: object, *args: object) -> bool:
+    """Relative straight line (L16430)."""
+    allowed = tuple(a + b + c for a in "CT" for b in "PAD" for c in "PR")
+    f = _fmt(fmt, allowed, "Move_Line")
+    (offset,), rest = _split(args, 1)
+    return _queue_relative("line", f, offset, _line_speed(f, rest[0]), float(to_double(rest[1])))
+
+
+def Move_PLine(fmt: object, *args: object) -> bool:
+    """Relative PLine (L16598)."""
+    f = _fmt(fmt, ("CAP", "CDP", "TAP", "TDP", "JAP", "JDP"), "Move_PLine")
+    (offset,), rest = _split(args, 1)
+    return _queue_relative("line", f, offset, float(to_double(rest[0])), float(to_double(rest[1])))
+
+
+def ChangeBase(*args: object) -> bool:
+    """Set the base of the following motions (queued, L16706): ``"RobotBase"`` or a pose."""
+    r = context.robot()
+    if len(args) in (1, 2) and isinstance(args[0], str):
+        name = args[0]
+        declared = frame_of("base", name)
+        if name != "RobotBase" and declared is None:
+            raise TMError(f"ChangeBase: no base named {name!r}")
+        frame, label = (pose_to_se3([0] * 6) if declared is None else declared[0]), name
+    else:
+        (pose,), _ = _split(args, 1)
+        frame, label = pose_to_se3(pose), ""
+
+    def run() -> None:
+        r.base, r.base_name = frame, label
+    return r.enqueue(Command("call", run=run))
+
+
+def ChangeTCP(*args: object) -> bool:
+    """Set the TCP of the following motions (queued, L16814): ``"NOTOOL"`` or a pose [, mass ...]."""
+    r = context.robot()
+    mass = 0.0
+    if isinstance(args[0], str):
+        declared = frame_of("tcp", args[0])
+        if args[0] != "NOTOOL" and declared is None:
+            raise TMError(f"ChangeTCP: no TCP named {args[0]!r}")
+        frame, label = (pose_to_se3([0] * 6), "NOTOOL") if declared is None else (declared[0], args[0])
+        if declared is not None:
+            mass = declared[1]
+    else:
+        (pose,), rest = _split(args, 1)
+        frame, label = pose_to_se3(pose), ""
+        if rest:
+            mass = float(to_double(rest[0]))
+
+    def run() -> None:
+        r.tcp, r.tcp_name, r.tool_mass = frame, label, mass
+    return r.enqueue(Command("call", run=run))
+
+
+def ChangeLoad(kg: object) -> bool:
+    """The payload of the following motions (queued, L17007)."""
+    r = context.robot()
+    value = float(to_double(kg))
+
+    def run() -> None:
+        r.load = value
+    return r.enqueue(Command("call", run=run))
+
+
+_pvt: dict[str, object] = {"mode": None}
+
+
+def PVTEnter(mode: object = 0) -> bool:
+    """Enter PVT streaming (L17033): 0 joint, 1 Cartesian."""
+    _pvt["mode"] = to_int(mode)
+    return True
+
+
+def PVTPoint(*args: object) -> bool:
+    """A knot: position, velocity, duration (s) (L17100).  Simulated as a move that ends at the
+    position at rest in at least the duration (the knot's velocity is not matched)."""
+    if _pvt["mode"] is None:
+        raise TMError("PVTPoint outside PVTEnter/PVTExit")
+    (pos, _vel), rest = _split(args, 2)
+    seconds = float(to_double(rest[0])) if rest else 0.0
+    r = context.robot()
+    if _pvt["mode"] == 0:
+        cmd = r.joint_move(pos, 100.0, builtins.max(1.0, seconds * 1000.0 / 2))
+    else:
+        cmd = r.path_move(line_path(lambda: r.cartesian_target(pos)), CARTESIAN_SPEED, builtins.max(1.0, seconds * 1000.0 / 2))
+    return r.enqueue(cmd)
+
+
+def PVTExit() -> bool:
+    _pvt["mode"] = None
+    return True
+
+
+def PVTPause() -> bool:
+    return Pause()
+
+
+def PVTResume() -> bool:
+    return Resume()
+
+
+# --- Listen node (L7447-L7706, L17642-L18305) ---------------------------------------------------
+def ScriptExit(mode: object = None) -> bool:
+    """Leave the Listen node once the queue is done (L17676); outside one, false."""
+    n = context.node()
+    if n is None:
+        return False
+    n.script_exit()
+    return True
+
+
+def ListenPacket(*args: object) -> str:
+    """``$HDR,len,data,*CS\\r\\n`` (L7447); the header defaults to TMSCT."""
+    from gplrt.tm.packets import encode
+
+    header, data = ("TMSCT", args[0]) if len(args) == 1 else (args[0], args[1])
+    return encode(to_string(header) or "TMSCT", to_string(data).encode("utf-8")).decode("utf-8", "replace")
+
+
+def ListenSend(*args: object) -> int:
+    """Push ``$TMSTA,<90..99>,<value>`` to the Listen node's clients (L7507): 0, -1 no server, -2 bad SubCmd."""
+    if len(args) == 3:
+        args = args[1:]
+    sub, value = to_int(args[0]), args[1]
+    if not 90 <= sub <= 99:
+        return -2
+    n = context.node()
+    if n is None:
+        return -1
+    from gplrt.tm.conversions import GetBytes
+
+    if isinstance(value, str) or not isinstance(value, (list, tuple)):
+        payload = to_string(value).encode("utf-8")
+    else:
+        payload = bytes(GetBytes(value))
+    n.push(b"TMSTA", f"{sub},".encode() + payload)
+    return 0
+
+
+# --- Ethernet Slave (L19694-L20556) -------------------------------------------------------------
+def svr_read(item: object) -> object:
+    from gplrt.tm.slave import table
+    return table().read(to_string(item))
+
+
+def svr_write(item: object, value: object) -> bool:
+    from gplrt.tm.slave import table
+    return table().write(to_string(item), value) == 0
+
+
+# --- math in degrees (L8033-L9400): the float forms compute in binary32 -------------------------
+def _same(x: object, v: float) -> object:
+    return F64(v) if type(x) is F64 else F32(v)
+
+
+def _unary(fn: Callable[[float], float], x: object) -> object:
+    v = float(to_double(x))
+    return _same(x, fn(v))
+
+
+def abs(x: object) -> object:  # noqa: A001 (TMscript's name)
+    if isinstance(x, int) and not isinstance(x, bool):
+        return to_int(-x if x < 0 else x)
+    return _same(x, math.fabs(float(to_double(x))))
+
+
+def sqrt(x: object) -> object:
+    v = float(to_double(x))
+    if v < 0:
+        raise TMError("sqrt of a negative number")
+    return _same(x, math.sqrt(v))
+
+
+def pow(b: object, e: object) -> object:  # noqa: A001
+    r = math.pow(float(to_double(b)), float(to_double(e)))
+    if isinstance(b, int) and not isinstance(b, bool):
+        return to_int(r)
+    return _same(b, r)
+
+
+def ceil(x: object) -> object:
+    return _unary(math.ceil, x)
+
+
+def floor(x: object) -> object:
+    return _unary(math.floor, x)
+
+
+def round(x: object, digits: object = 0) -> object:  # noqa: A001
+    d = to_int(digits)
+    d = d if 0 <= d <= 15 else 0
+    v = float(to_double(x))
+    q = 10.0 ** d
+    r = math.floor(math.fabs(v) * q + 0.5) / q  # midpoint away from zero (round(-0.567) = -1, L8340)
+    return _same(x, math.copysign(r, v))
+
+
+def random(*args: object) -> object:
+    if not args:
+        return F32(_random.random())
+    lo, hi = (0, to_int(args[0])) if len(args) == 1 else (to_int(args[0]), to_int(args[1]))
+    if hi <= lo:
+        return lo if len(args) == 2 else 0
+    return _random.randrange(lo, hi)
+
+
+def _flat(args: Sequence[object]) -> list[object]:
+    out: list[object] = []
+    for a in args:
+        out.extend(a if isinstance(a, (list, tuple)) else [a])
+    return out
+
+
+def sum(*args: object) -> object:  # noqa: A001
+    vals = _flat(args)
+    if all(isinstance(v, int) and not isinstance(v, bool) for v in vals):
+        return to_int(math.fsum(vals))  # type: ignore[arg-type]
+    return F64(math.fsum(float(to_double(v)) for v in vals))
+
+
+def average(*args: object) -> object:
+    vals = _flat(args)
+    return F64(math.fsum(float(to_double(v)) for v in vals) / len(vals))
+
+
+def min(*args: object) -> object:  # noqa: A001
+    vals = _flat(args)
+    m = vals[0]
+    for v in vals[1:]:
+        if float(to_double(v)) < float(to_double(m)):
+            m = v
+    return m
+
+
+def max(*args: object) -> object:  # noqa: A001
+    vals = _flat(args)
+    m = vals[0]
+    for v in vals[1:]:
+        if float(to_double(v)) > float(to_double(m)):
+            m = v
+    return m
+
+
+def d2r(x: object) -> object:
+    return _unary(math.radians, x)
+
+
+def r2d(x: object) -> object:
+    return _unary(math.degrees, x)
+
+
+def _trig(fn: Callable[[float], float], x: object) -> object:
+    if type(x) is F64:
+        return F64(fn(math.radians(float(x))))
+    return F32(fn(float(np.radians(to_float(x)))))
+
+
+def sin(x: object) -> object:
+    return _trig(math.sin, x)
+
+
+def cos(x: object) -> object:
+    return _trig(math.cos, x)
+
+
+def tan(x: object) -> object:
+    return _trig(math.tan, x)
+
+
+def _atrig(fn: Callable[[float], float], x: object) -> object:
+    v = float(to_double(x))
+    if type(x) is F64:
+        return F64(math.degrees(fn(v)))
+    return F32(np.degrees(F32(fn(float(to_float(x))))))
+
+
+def asin(x: object) -> object:
+    return _atrig(math.asin, x)
+
+
+def acos(x: object) -> object:
+    return _atrig(math.acos, x)
+
+
+def atan(x: object) -> object:
+    return _atrig(math.atan, x)
+
+
+def atan2(y: object, x: object) -> object:
+    v = math.degrees(math.atan2(float(to_double(y)), float(to_double(x))))
+    return F64(v) if type(y) is F64 or type(x) is F64 else F32(v)
+
+
+def log(x: object, base: object = None) -> object:
+    v = float(to_double(x))
+    if v <= 0:
+        raise TMError("log of a number that is not positive")
+    r = math.log(v) if base is None else math.log(v, float(to_double(base)))
+    return _same(x, r)
+
+
+def log10(x: object) -> object:
+    return log(x, 10.0)
+
+
+def norm2(v: object) -> object:
+    return F32(math.sqrt(math.fsum(float(to_double(x)) ** 2 for x in v)))  # type: ignore[attr-defined]
+
+
+def dist(a: object, b: object) -> object:
+    """Distance of the XYZ parts of two poses (L9363)."""
+    return F32(math.dist([float(x) for x in a[:3]], [float(x) for x in b[:3]]))  # type: ignore[index]
+
+
+def Length(x: object) -> int:
+    """Bytes of a scalar, characters of a string, elements of an array (L6694)."""
+    if isinstance(x, str):
+        return len(x)
+    if isinstance(x, (list, tuple)):
+        return len(x)
+    if isinstance(x, bool):
+        return 1
+    if isinstance(x, int):
+        return 1 if 0 <= x <= 255 else 4
+    return 8 if type(x) is F64 else 4
+
+
+def Ctrl(x: object) -> str:
+    """Control characters (L6771-L6840): an int's big-endian bytes, a string's escapes, bytes."""
+    if isinstance(x, str):
+        table = {"0": "\0", "a": "\a", "b": "\b", "t": "\t", "r": "\r", "v": "\v", "f": "\f", "n": "\n"}
+        out, i = [], 0
+        while i < len(x):
+            if x[i] == "\\" and i + 1 < len(x) and x[i + 1] in table:
+                out.append(table[x[i + 1]])
+                i += 2
+            else:
+                out.append(x[i])
+                i += 1
+        return "".join(out)
+    if isinstance(x, (list, tuple)):
+        return "".join(chr(int(b)) for b in x)
+    v = to_int(x) & 0xFFFFFFFF
+    return "".join(chr(b) for b in v.to_bytes(4, "big") if b)
+
+
+def GetNowStamp(*args: object) -> object:
+    """Project run time in ms (L6471)."""
+    ms = int(context.robot().sim_time * 1000)
+    if args and isinstance(args[0], bool):
+        return F64(ms)
+    if args:
+        return to_int(ms - to_int(args[0]))
+    return to_int(ms)
+
+
+def GetString(x: object, *args: object) -> str:
+    """The text form of a value (L5162; the base/format options are not implemented yet)."""
+    if args and isinstance(args[0], str) and isinstance(x, (list, tuple)):
+        return args[0].join(format_value(v) for v in x)
+    return format_value(x)
+
+
+# --- the utility families, in modules of their own ---------------------------------------------
+from gplrt.tm.conversions import (  # noqa: E402
+    CRC16, CRC32, SUM8, SUM16, SUM32, XOR8, Byte_Concat, Byte_ToDouble, Byte_ToFloat, Byte_ToInt16, Byte_ToInt32,
+    Byte_ToString, GetBytes, String_ToByte,
+)
+from gplrt.tm.posemath import applytrans, changeref, interpoint, inversetrans, trans  # noqa: E402
+from gplrt.tm.strings import (  # noqa: E402
+    Array_Append, Array_Equals, Array_IndexOf, Array_Insert, Array_LastIndexOf, Array_Remove, Array_Reverse,
+    Array_Sort, Array_SubElements, GetToken, String_IndexOf, String_LastIndexOf, String_Replace, String_Split,
+    String_Substring, String_ToInteger, String_ToLower, String_ToUpper, String_Trim,
+)
+
+
+def String_ToFloat(s: object, base: object = 10) -> object:
+    """Decimal text, or hex/binary text taken as the bit pattern of a binary32 (L3013)."""
+    if isinstance(s, list):
+        return Array("float", [String_ToFloat(x, base) for x in s])
+    text = to_string(s).strip()
+    low = text.lower()
+    b = to_int(base)
+    if b in (16, 2) or low.startswith(("0x", "0b")):
+        bits = String_ToInteger(text, 16 if (b == 16 or low.startswith("0x")) else 2)
+        import struct
+
+        return F32(struct.unpack("<f", struct.pack("<I", int(bits) & 0xFFFFFFFF))[0])  # type: ignore[call-overload]
+    try:
+        return to_float(text)
+    except TMError:
+        return F32(0)
+
+
+def String_ToDouble(s: object, base: object = 10) -> object:
+    if isinstance(s, list):
+        return Array("double", [String_ToDouble(x, base) for x in s])
+    try:
+        return to_double(to_string(s).strip())
+    except TMError:
+        return F64(0)
+
+
+def GetVarValue(name: object) -> object:
+    """The value of the variable named at run time (L6650); an error if there is none."""
+    n = context.node()
+    key = to_string(name).strip()
+    if n is not None and hasattr(n.vars, key):
+        return getattr(n.vars, key)
+    raise TMError(f"GetVarValue: no variable {key!r}")
+
+
+_NOW_TOKENS = ("yyyy", "yy", "MMMM", "MMM", "MM", "M", "dddd", "ddd", "dd", "d", "HH", "H", "hh", "h", "mm", "m",
+               "ss", "s", "ffff", "fff", "ff", "f", "tt", "t")
+
+
+def GetNow(fmt: object = "MM/dd/yyyy HH:mm:ss") -> str:
+    """The local time with .NET-style specifiers (L6389)."""
+    import datetime
+
+    now = datetime.datetime.now()
+    f = to_string(fmt)
+    out, i = [], 0
+    values = {
+        "yyyy": f"{now.year:04d}", "yy": f"{now.year % 100:02d}", "MMMM": now.strftime("%B"), "MMM": now.strftime("%b"),
+        "MM": f"{now.month:02d}", "M": str(now.month), "dddd": now.strftime("%A"), "ddd": now.strftime("%a"),
+        "dd": f"{now.day:02d}", "d": str(now.day), "HH": f"{now.hour:02d}", "H": str(now.hour),
+        "hh": f"{(now.hour % 12) or 12:02d}", "h": str((now.hour % 12) or 12), "mm": f"{now.minute:02d}",
+        "m": str(now.minute), "ss": f"{now.second:02d}", "s": str(now.second), "tt": "AM" if now.hour < 12 else "PM",
+        "t": "A" if now.hour < 12 else "P",
+    }
+    for k in range(1, 5):
+        values["f" * k] = f"{now.microsecond:06d}"[:k]
+    while i < len(f):
+        tok = next((t for t in _NOW_TOKENS if f.startswith(t, i)), None)
+        if tok is None:
+            out.append(f[i])
+            i += 1
+        else:
+            out.append(values[tok])
+            i += len(tok)
+    return "".join(out)

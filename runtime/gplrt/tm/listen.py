@@ -1,0 +1,339 @@
+"""The Listen node: a TCP server on port 5890 that runs the TMscript clients send (manual §14,
+L17642-L18305; spec §2.3).
+
+Every ``$TMSCT,len,ID,SCRIPT`` is translated **at run time by the TMscript front end**
+(``gpl2py.tmscript.pipeline.translate_packet``: the same lexer, parser, checks and lowering as
+``gpl2py translate``) and run in arrival order by one executor; motion and I/O calls queue on the
+robot and return, ``QueueTag(n, 1)`` waits.  The reply follows the run (L17813): ``OK``,
+``OK;l;l`` naming lines with warnings, ``ERROR;l;l`` naming the bad lines of a script that does not
+compile (sent at once, nothing run).  Variables declared by a packet live until the node is left
+(L17838).  ``$TMSTA`` 00 and 01 are answered at once, 01 is also pushed when a tag completes, and
+``ListenSend`` pushes 90-99.  The priority commands ``ScriptExit(0|1)`` and
+``StopAndClearBuffer(0|1|2)`` act on receipt, ahead of the queue (L18127).  After ``ScriptExit()``
+the node is left: a ``$TMSCT`` then draws ``CPERR F1``.
+
+A run-time error in a script (a division by zero, an unreachable point) would stop a real robot's
+project; the simulated node replies ``ERROR;<line>`` for that script and keeps serving, so a client
+under test sees which line failed (docs/design/tmscript.md).
+"""
+
+from __future__ import annotations
+
+import re
+import socket
+import sys
+import threading
+from collections import deque
+from dataclasses import dataclass, field
+from types import TracebackType
+
+from gplrt.tm import context
+from gplrt.tm.motion import Robot
+from gplrt.tm.packets import encode, split, start, tcp_server
+from gplrt.tm.values import TMError
+
+PORT = 5890
+_PRIORITY = re.compile(r"^\s*(ScriptExit|StopAndClearBuffer)\s*\(\s*(\d+)\s*\)\s*$")
+_ID = re.compile(r"^[A-Za-z0-9]+$")
+
+
+class ScriptAborted(Exception):
+    """The running script was abandoned (``StopAndClearBuffer(1|2)``, ``ScriptExit(0|1)``)."""
+
+
+class _Exit(Exception):
+    """``ScriptExit()`` ran: the rest of the packet is not executed (L17690)."""
+
+
+class Vars:
+    """The node's variables (``v.name`` in a packet's Python)."""
+
+
+@dataclass
+class _Job:
+    conn: _Conn
+    ident: str
+    script: str
+    pushes: list[bytes] = field(default_factory=list)  # tag pushes held until the reply is sent
+
+
+@dataclass
+class _Conn:
+    sock: socket.socket
+    lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def send(self, frame: bytes) -> None:
+        with self.lock:
+            try:
+                self.sock.sendall(frame)
+            except OSError:
+                pass
+
+
+class ListenNode:
+    """A Listen node on ``robot``; ``serve()`` opens the port (0: any free port, see ``port``)."""
+
+    def __init__(self, robot: Robot, host: str = "127.0.0.1", port: int = PORT, message: str = "Listen1") -> None:
+        self.robot, self.host, self.message = robot, host, message
+        self.active = False
+        self.vars = Vars()
+        self.known: dict[str, object] = {}
+        self.jobs: deque[_Job] = deque()
+        self.cv = threading.Condition()
+        self.conns: list[_Conn] = []
+        self.abort = False
+        self.running: _Job | None = None
+        self.tag_owner: dict[int, _Conn] = {}
+        self.exited = threading.Event()
+        self.result: str | None = None  # "pass" / "fail" once left
+        robot.on_tag = self._tag_done
+        self.server = tcp_server(host, port, self._serve_conn)
+        self.port = self.server.server_address[1]
+        self._executor = threading.Thread(target=self._execute, name="tm-listen", daemon=True)
+
+    # --- life -----------------------------------------------------------------------------------
+    def serve(self, enter: bool = True) -> ListenNode:
+        """Start listening (in the background); ``enter``: the flow is in the node now."""
+        start(self.server, "tm-listen-server")
+        self._executor.start()
+        if enter:
+            self.enter()
+        return self
+
+    def enter(self) -> None:
+        """The flow enters the node: greet every connected client (``$TMSCT,n,0,Listen1``, L17795)."""
+        with self.cv:
+            self.active = True
+            self.result = None
+            self.exited.clear()
+            conns = list(self.conns)
+        for c in conns:
+            c.send(encode("TMSCT", f"0,{self.message}".encode()))
+
+    def close(self) -> None:
+        self.server.shutdown()
+        self.server.server_close()
+        with self.cv:
+            for c in self.conns:
+                try:
+                    c.sock.close()
+                except OSError:
+                    pass
+
+    def cancelled(self) -> bool:
+        """Whether the running script must stop (checked by the library's waits)."""
+        if self.abort:
+            raise ScriptAborted
+        return False
+
+    def script_exit(self) -> None:
+        raise _Exit
+
+    def push(self, header: bytes, data: bytes) -> None:
+        """Send a frame to every client (``ListenSend``)."""
+        with self.cv:
+            conns = list(self.conns)
+        for c in conns:
+            c.send(encode(header, data))
+
+    def _tag_done(self, tag: int) -> None:
+        """Push ``$TMSTA 01,NN,true`` to the connection that queued the tag -- after the reply of
+        the script that queued it, as in the manual's exchanges (L18262-L18269): on the fast
+        clock a motion can end before its script has been answered."""
+        conn = self.tag_owner.get(tag)
+        if conn is None:
+            return
+        frame = encode("TMSTA", f"01,{tag:02d},true".encode())
+        with self.cv:
+            job = self.running
+            if job is not None and job.conn is conn:
+                job.pushes.append(frame)
+                return
+        conn.send(frame)
+
+    # --- connections ----------------------------------------------------------------------------
+    def _serve_conn(self, sock: socket.socket) -> None:
+        conn = _Conn(sock)
+        with self.cv:
+            self.conns.append(conn)
+        buf = bytearray()
+        try:
+            while True:
+                try:
+                    chunk = sock.recv(65536)
+                except OSError:
+                    break
+                if not chunk:
+                    break
+                buf += chunk
+                for frame in split(buf):
+                    if frame.error:
+                        conn.send(encode("CPERR", f"{frame.error:02X}".encode()))
+                    elif frame.header == b"TMSTA":
+                        self._status(conn, frame.data)
+                    elif frame.header == b"TMSCT":
+                        self._script(conn, frame.data)
+                    else:  # CPERR / TMSVR sent to the Listen port
+                        conn.send(encode("CPERR", b"03"))
+        finally:
+            with self.cv:
+                if conn in self.conns:
+                    self.conns.remove(conn)
+
+    def _status(self, conn: _Conn, data: bytes) -> None:
+        text = data.decode("utf-8", "replace")
+        parts = text.split(",")
+        sub = parts[0]
+        if sub == "00":  # (also "00," as some clients send it)
+            reply = f"00,true,{self.message}" if self.active else "00,false,"
+        elif sub == "01" and len(parts) >= 2 and parts[1].strip().isdigit():
+            tag = int(parts[1])
+            state = self.robot.tag_status(tag) if 1 <= tag <= 15 else None
+            word = "none" if state is None else ("true" if state else "false")
+            reply = f"01,{parts[1].strip()},{word}"
+        else:
+            conn.send(encode("CPERR", b"04"))
+            return
+        conn.send(encode("TMSTA", reply.encode()))
+
+    def _script(self, conn: _Conn, data: bytes) -> None:
+        text = data.decode("utf-8", "replace")
+        ident, comma, script = text.partition(",")
+        if not comma or not _ID.match(ident):
+            conn.send(encode("CPERR", b"04"))
+            return
+        if not self.active:
+            conn.send(encode("CPERR", b"F1"))
+            return
+        prio = self._priority(script)
+        if prio is not None:
+            self._run_priority(conn, ident, *prio)
+            return
+        with self.cv:
+            self.jobs.append(_Job(conn, ident, script))
+            self.cv.notify_all()
+
+    @staticmethod
+    def _priority(script: str) -> tuple[str, int] | None:
+        """The one priority command a packet carries (ScriptExit before StopAndClearBuffer, the
+        first of each, L18196), or None."""
+        found = [(m.group(1), int(m.group(2))) for line in script.splitlines()
+                 if (m := _PRIORITY.match(line)) is not None]
+        exits = [f for f in found if f[0] == "ScriptExit" and f[1] in (0, 1)]
+        stops = [f for f in found if f[0] == "StopAndClearBuffer" and f[1] in (0, 1, 2)]
+        return exits[0] if exits else stops[0] if stops else None
+
+    def _run_priority(self, conn: _Conn, ident: str, name: str, mode: int) -> None:
+        dropped: list[_Job] = []
+        with self.cv:
+            if name == "ScriptExit" or mode >= 1:
+                if self.running is not None:
+                    self.abort = True
+                elif self.jobs:  # the current script has not started yet: it is the one abandoned
+                    dropped.append(self.jobs.popleft())
+            if name == "ScriptExit" or mode == 2:
+                self.jobs.clear()
+        for job in dropped:
+            job.conn.send(encode("TMSCT", f"{job.ident},OK".encode()))
+        self.robot.stop_and_clear()
+        with self.cv:
+            self.cv.wait_for(lambda: self.running is None or not self.abort, timeout=5.0)
+        conn.send(encode("TMSCT", f"{ident},OK".encode()))
+        if name == "ScriptExit":
+            self._leave("pass" if mode == 1 else "fail")
+
+    def _leave(self, result: str) -> None:
+        with self.cv:
+            self.active = False
+            self.result = result
+            self.vars = Vars()
+            self.known = {}
+        self.exited.set()
+
+    # --- the script executor --------------------------------------------------------------------
+    def _execute(self) -> None:
+        while True:
+            with self.cv:
+                while not self.jobs:
+                    self.cv.wait()
+                job = self.jobs.popleft()
+                self.running = job
+                self.abort = False
+            try:
+                reply, leave = self._run_job(job)
+            except Exception:  # a fault of the simulator itself: the script fails, the node goes on
+                reply, leave = "ERROR;1", False
+            finally:
+                with self.cv:
+                    job.conn.send(encode("TMSCT", f"{job.ident},{reply}".encode()))
+                    for frame in job.pushes:
+                        job.conn.send(frame)
+                    self.running = None
+                    self.abort = False
+                    self.cv.notify_all()
+            if leave:
+                self.robot.wait_idle()
+                self._leave("pass")
+
+    def _run_job(self, job: _Job) -> tuple[str, bool]:
+        from gpl2py.tmscript.pipeline import translate_packet
+
+        packet = translate_packet(job.script, self.known, name=f"TMSCT {job.ident}")  # type: ignore[arg-type]
+        if packet.errors:
+            lines = sorted({d.span.line for d in packet.errors if d.span is not None} or {1})
+            return "ERROR;" + ";".join(map(str, lines)), False
+        warn = sorted({d.span.line for d in packet.warnings if d.span is not None})
+        ok = "OK" + "".join(f";{n}" for n in warn)
+        filename = f"<TMSCT {job.ident}>"
+        namespace: dict[str, object] = {"tm": _tm()}
+        try:
+            exec(compile(packet.python, filename, "exec"), namespace)  # noqa: S102 (the front end's own output)
+        except SyntaxError:
+            return "ERROR;1", False
+        self.known.update(packet.declared)
+        context.set_node(self)
+        self._owner = job.conn
+        try:
+            namespace["script"](self.vars)  # type: ignore[operator]
+        except _Exit:
+            return ok, True
+        except ScriptAborted:
+            return ok, False
+        except (TMError, ArithmeticError, ValueError, TypeError, IndexError, KeyError, AttributeError) as exc:
+            return f"ERROR;{_script_line(exc.__traceback__, filename, packet.lines)}", False
+        return ok, False
+
+
+def _script_line(tb: TracebackType | None, filename: str, lines: list[int]) -> int:
+    """The script line of the innermost frame of the packet's code in a traceback."""
+    found = 0
+    while tb is not None:
+        if tb.tb_frame.f_code.co_filename == filename and 0 < tb.tb_lineno <= len(lines):
+            found = lines[tb.tb_lineno - 1] or found
+        tb = tb.tb_next
+    return found or 1
+
+
+def _tm():  # type: ignore[no-untyped-def]
+    import gplrt.tm as tm
+    return tm
+
+
+def main(robot_name: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT, svr_port: int = 5891,
+         speed: float = float("inf")) -> int:
+    """``gpl2py run --robot TM5-900 --listen-node``: serve until interrupted."""
+    from gplrt.tm.slave import EthernetSlave
+
+    robot = context.use_robot(robot_name, speed)
+    node = ListenNode(robot, host, port).serve()
+    context.set_node(node)
+    slave = EthernetSlave(robot, host, svr_port).serve()
+    print(f"{robot_name} Listen node on {host}:{node.port}, Ethernet Slave on {host}:{slave.port}", file=sys.stderr, flush=True)
+    try:
+        threading.Event().wait()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        node.close()
+        slave.close()
+    return 0

@@ -1,0 +1,369 @@
+"""The TM motion queue on the shared planner (Ruckig, ``gplrt.motion.planner``) and the robot's state.
+
+TMscript's motion calls only *queue* a command and return ``true`` (manual L15519, L14655): one
+FIFO holds motions, ``ChangeBase``/``ChangeTCP``/``ChangeLoad``, queued I/O writes and queue tags,
+and one executor thread runs it in order.  A motion is planned when it starts, from where the
+robot is: ``PTP`` joint-interpolated (``plan_axes``), ``Line``/``Circle``/``PLine`` along their path
+(``plan_scalar`` on the path length).  Units are the manual's (spec §4.4): speed % of the joints'
+URDF speeds (or mm/s for ``A``/``D`` formats), acceleration as the time in ms to reach top speed.
+
+Time: ``speed`` scales simulated time to wall time (``math.inf``: the fast clock, a motion takes
+no wall time but adds its duration to ``sim_time``); states read during a motion are sampled from
+its plan.  Blending is not simulated (each motion ends at rest): the path between motions
+differs from a blended one, their end points do not.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import pinocchio as pin
+
+from gplrt.motion.limits import AxisLimits
+from gplrt.motion.planner import plan_axes, plan_scalar
+from gplrt.tm.robot import TMArm, pose_to_se3, se3_to_pose
+from gplrt.tm.values import TMError
+
+#: 100 % Cartesian speed (mm/s) of a ``P`` format Line (ours: the manual gives none; the same
+#: figure as the shared URDF catalogue's).
+CARTESIAN_SPEED = 1000.0
+#: Queue tags that are remembered (TMSTA 01 answers for the last 4, manual L17930).
+TAGS_KEPT = 4
+
+
+@dataclass
+class Command:
+    """One queued item: ``kind`` is ``move``, ``tag``, ``call`` (base/TCP/load/IO)."""
+
+    kind: str
+    run: Callable[[], None] | None = None
+    tag: int = 0
+    plan: Callable[[list[float]], tuple[float, Callable[[float], list[float]], list[float]]] | None = None
+
+
+@dataclass
+class Motion:
+    """The motion being executed: started at simulated ``t0``, lasting ``duration``."""
+
+    t0: float
+    duration: float
+    at: Callable[[float], list[float]]
+    end: list[float]
+    wall0: float = 0.0
+
+
+@dataclass
+class Robot:
+    """The simulated TM robot: joints, frames, load, I/O tables and the motion queue."""
+
+    arm: TMArm
+    speed: float = math.inf  # simulated seconds per wall second
+    joints: list[float] = field(default_factory=lambda: [0.0, 0.0, 90.0, 0.0, 90.0, 0.0])
+    base: pin.SE3 = field(default_factory=pin.SE3.Identity)
+    base_name: str = "RobotBase"
+    tcp: pin.SE3 = field(default_factory=pin.SE3.Identity)
+    tcp_name: str = "NOTOOL"
+    load: float = 0.0
+    tool_mass: float = 0.0
+    sim_time: float = 0.0
+    error_code: int = 0
+    paused: bool = False
+    project_running: bool = True
+    on_tag: Callable[[int], None] | None = None
+
+    def __post_init__(self) -> None:
+        self.queue: deque[Command] = deque()
+        self.lock = threading.Condition()
+        self.motion: Motion | None = None
+        self.tags: dict[int, bool] = {}  # tag -> done, the last TAGS_KEPT in order
+        self.ctrl_do = [0] * 16
+        self.ctrl_di = [0] * 16
+        self.ctrl_ao = [0.0] * 2
+        self.ctrl_ai = [0.0] * 2
+        self.end_do = [0] * 4
+        self.end_di = [0] * 3
+        self.end_ao = [0.0]
+        self.end_ai = [0.0]
+        self.busy = False
+        self.stopped = False
+        self._thread = threading.Thread(target=self._execute, name="tm-motion", daemon=True)
+        self._thread.start()
+
+    # --- state ----------------------------------------------------------------------------------
+    def current_joints(self) -> list[float]:
+        with self.lock:
+            m = self.motion
+            if m is None:
+                return list(self.joints)
+            if math.isinf(self.speed):
+                return list(m.end)
+            t = min(m.duration, (time.monotonic() - m.wall0) * self.speed)
+            return m.at(t)
+
+    def flange(self) -> list[float]:
+        """The flange pose in RobotBase (mm, deg)."""
+        return self.arm.fk(self.current_joints())
+
+    def tool(self) -> list[float]:
+        """The TCP in RobotBase (``Robot[0].CoordRobot``, L14714)."""
+        return se3_to_pose(self.arm.fk_se3(self.current_joints()) * self.tcp)
+
+    def tool_in_base(self) -> list[float]:
+        """The TCP in the current base (``Robot[0].CoordBase``)."""
+        return se3_to_pose(self.base.inverse() * self.arm.fk_se3(self.current_joints()) * self.tcp)
+
+    def joint_speeds(self) -> list[float]:
+        with self.lock:
+            m = self.motion
+            if m is None or math.isinf(self.speed):
+                return [0.0] * 6
+            t = min(m.duration, (time.monotonic() - m.wall0) * self.speed)
+            dt = 1e-3
+            a, b = m.at(max(0.0, t - dt)), m.at(min(m.duration, t + dt))
+            return [(y - x) / (2 * dt) for x, y in zip(a, b)]
+
+    # --- queue ----------------------------------------------------------------------------------
+    def enqueue(self, cmd: Command) -> bool:
+        with self.lock:
+            if cmd.kind == "tag":
+                self.tags[cmd.tag] = False
+                self.tags.pop(cmd.tag)
+                self.tags[cmd.tag] = False
+                while len(self.tags) > TAGS_KEPT:
+                    self.tags.pop(next(iter(self.tags)))
+            self.queue.append(cmd)
+            self.lock.notify_all()
+        return True
+
+    def tag_status(self, tag: int) -> bool | None:
+        with self.lock:
+            return self.tags.get(tag)
+
+    def wait_tag(self, tag: int, timeout_ms: float = -1, cancelled: Callable[[], bool] = lambda: False) -> int:
+        """1 when ``tag`` is done, 0 at the timeout, -1 for a tag not among the last four (L15562)."""
+        deadline = None if timeout_ms < 0 else time.monotonic() + timeout_ms / 1000.0 / max(1.0, min(self.speed, 1e9))
+        with self.lock:
+            while True:
+                if tag not in self.tags:
+                    return -1 if tag != 0 else 0
+                if self.tags[tag]:
+                    return 1
+                if cancelled():
+                    return 0
+                left = None if deadline is None else deadline - time.monotonic()
+                if left is not None and left <= 0:
+                    return 0
+                self.lock.wait(0.05 if left is None else min(0.05, left))
+
+    def idle(self) -> bool:
+        with self.lock:
+            return not self.queue and not self.busy
+
+    def wait_idle(self, cancelled: Callable[[], bool] = lambda: False) -> None:
+        with self.lock:
+            while (self.queue or self.busy) and not cancelled():
+                self.lock.wait(0.05)
+
+    def stop_and_clear(self) -> None:
+        """Stop at once and drop what is queued (``StopAndClearBuffer``, L15683); the robot stays
+        where the stop caught it."""
+        with self.lock:
+            self.queue.clear()
+            for tag in [t for t, done in self.tags.items() if not done]:
+                del self.tags[tag]  # (cleared with the queue: never reported, L18243)
+            if self.motion is not None:
+                self.stopped = True
+            self.lock.notify_all()
+            while self.busy:
+                self.lock.wait(0.05)
+            self.stopped = False
+
+    # --- the executor ---------------------------------------------------------------------------
+    def _execute(self) -> None:
+        while True:
+            with self.lock:
+                while not self.queue or self.paused:
+                    self.lock.wait()
+                cmd = self.queue.popleft()
+                self.busy = True
+            try:
+                self._run(cmd)
+            except TMError as exc:
+                self.error_code = 1
+                self.last_error = str(exc)
+            finally:
+                with self.lock:
+                    self.busy = False
+                    self.lock.notify_all()
+
+    def _run(self, cmd: Command) -> None:
+        if cmd.kind == "tag":
+            with self.lock:
+                if cmd.tag in self.tags:
+                    self.tags[cmd.tag] = True
+                self.lock.notify_all()
+            if self.on_tag is not None:
+                self.on_tag(cmd.tag)
+            return
+        if cmd.kind == "call":
+            assert cmd.run is not None
+            cmd.run()
+            return
+        assert cmd.plan is not None
+        start = list(self.joints)
+        duration, at, end = cmd.plan(start)
+        with self.lock:
+            self.motion = Motion(self.sim_time, duration, at, end, time.monotonic())
+        stopped_at = None
+        if not math.isinf(self.speed):
+            wall_end = self.motion.wall0 + duration / self.speed
+            with self.lock:
+                while not self.stopped:
+                    left = wall_end - time.monotonic()
+                    if left <= 0:
+                        break
+                    self.lock.wait(min(0.02, left))
+                if self.stopped:
+                    stopped_at = min(duration, (time.monotonic() - self.motion.wall0) * self.speed)
+        with self.lock:
+            if stopped_at is None:
+                self.joints = list(end)
+                self.sim_time += duration
+            else:
+                self.joints = at(stopped_at)
+                self.sim_time += stopped_at
+            self.motion = None
+
+    # --- motions (the planning, run when a motion starts) ---------------------------------------
+    def limits(self, speed_pct: float, accel_ms: float) -> AxisLimits:
+        pct = max(1.0, min(100.0, float(speed_pct))) / 100.0
+        vel = [s * pct for s in self.arm.speed]
+        t = max(float(accel_ms), 1.0) / 1000.0
+        acc = [v / t for v in vel]
+        jerk = [a / 0.05 for a in acc]
+        return AxisLimits(vel, acc, acc, jerk)
+
+    def joint_move(self, target: list[float], speed_pct: float, accel_ms: float) -> Command:
+        self._check_joints(target)
+        lim = self.limits(speed_pct, accel_ms)
+
+        def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
+            p = plan_axes(start, None, None, [float(x) for x in target], lim)
+            return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), list(target)
+        return Command("move", plan=plan)
+
+    def _check_joints(self, target: list[float]) -> None:
+        for i, (q, lo, hi) in enumerate(zip(target, self.arm.lower, self.arm.upper)):
+            if not lo - 1e-9 <= q <= hi + 1e-9:
+                raise TMError(f"joint {i + 1} target {q:g} is beyond its limits [{lo:g}, {hi:g}]")
+
+    def cartesian_target(self, pose: list[float]) -> pin.SE3:
+        """The flange transform for a TCP ``pose`` given in the current base."""
+        return self.base * pose_to_se3(pose) * self.tcp.inverse()
+
+    def ptp_pose(self, pose: list[float], speed_pct: float, accel_ms: float) -> Command:
+        """A PTP to a TCP pose in the base and with the TCP in effect when it starts: base and TCP
+        changes are queued with the motions (L16706, L16814)."""
+        lim = self.limits(speed_pct, accel_ms)
+
+        def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
+            end = self.arm.ik_se3(self.cartesian_target(pose), start)
+            p = plan_axes(start, None, None, end, lim)
+            return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), end
+        return Command("move", plan=plan)
+
+    def path_move(self, path: Callable[[pin.SE3], Callable[[float], pin.SE3]], speed_mm_s: float,
+                  accel_ms: float) -> Command:
+        """A Cartesian path: ``path(start)`` gives the flange transform at s in [0, 1]."""
+        def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
+            begin = self.arm.fk_se3(start)
+            f = path(begin)
+            length = _path_length(f)
+            v = max(1e-3, float(speed_mm_s))
+            a = v / max(float(accel_ms), 1.0) * 1000.0
+            end = self.arm.ik_se3(f(1.0), start)
+            if length < 1e-9:
+                return 0.0, (lambda t: list(end)), end
+            p = plan_scalar(0.0, 0.0, 0.0, length, v, a, a, a / 0.05)
+            seed = [list(start)]
+
+            def at(t: float) -> list[float]:
+                s = float(p.at(t)[0][0]) / length
+                q = self.arm.ik_se3(f(min(1.0, max(0.0, s))), seed[0])
+                seed[0] = q
+                return q
+            return p.duration, at, end
+        return Command("move", plan=plan)
+
+
+def _path_length(f: Callable[[float], pin.SE3], n: int = 32) -> float:
+    """Length (mm) of a path, its rotation counted as 1 mm per degree where it turns more than it moves."""
+    pts = [f(i / n) for i in range(n + 1)]
+    lin = sum(float(np.linalg.norm(b.translation - a.translation)) for a, b in zip(pts, pts[1:])) * 1000.0
+    rot = math.degrees(float(np.linalg.norm(pin.log3(pts[0].rotation.T @ pts[-1].rotation))))
+    return max(lin, rot)
+
+
+def line_path(goal: pin.SE3 | Callable[[], pin.SE3]) -> Callable[[pin.SE3], Callable[[float], pin.SE3]]:
+    """A straight line to ``goal`` (or to what ``goal()`` gives when the motion starts: a pose in
+    the base then in effect), orientation interpolated on the shortest rotation."""
+    def path(start: pin.SE3) -> Callable[[float], pin.SE3]:
+        target = goal() if callable(goal) else goal
+
+        def at(s: float) -> pin.SE3:
+            if s >= 1.0:
+                return target
+            return pin.SE3.Interpolate(start, target, s) if hasattr(pin.SE3, "Interpolate") else _interp(start, target, s)
+        return at
+    return path
+
+
+def _interp(a: pin.SE3, b: pin.SE3, s: float) -> pin.SE3:
+    rot = a.rotation @ pin.exp3(s * pin.log3(a.rotation.T @ b.rotation))
+    return pin.SE3(rot, a.translation + s * (b.translation - a.translation))
+
+
+def arc_path(points: Callable[[], tuple[pin.SE3, pin.SE3]], arc_deg: float) -> Callable[[pin.SE3], Callable[[float], pin.SE3]]:
+    """A circular arc from the start through ``via`` to ``end`` (``points()`` when the motion
+    starts, ``arc_deg`` = 0); with ``arc_deg`` ≠ 0, that many degrees along the same circle at
+    constant orientation (L16114)."""
+    def path(start: pin.SE3) -> Callable[[float], pin.SE3]:
+        via, end = points()
+        p0, p1, p2 = start.translation, via.translation, end.translation
+        centre, normal, radius = _circle(p0, p1, p2)
+        u = (p0 - centre) / radius
+        w = np.cross(normal, u)
+
+        def angle_of(p: np.ndarray) -> float:
+            d = p - centre
+            a = math.atan2(float(d @ w), float(d @ u))
+            return a if a >= 0 else a + 2 * math.pi
+        sweep = angle_of(p2) if arc_deg == 0 else math.radians(abs(arc_deg))
+        if arc_deg < 0:
+            w = -w
+
+        def at(s: float) -> pin.SE3:
+            if arc_deg == 0 and s >= 1.0:
+                return end
+            th = sweep * s
+            p = centre + radius * (math.cos(th) * u + math.sin(th) * w)
+            rot = start.rotation if arc_deg != 0 else _interp(start, end, s).rotation
+            return pin.SE3(rot, p)
+        return at
+    return path
+
+
+def _circle(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    ab, ac = b - a, c - a
+    n = np.cross(ab, ac)
+    nn = float(n @ n)
+    if nn < 1e-18:
+        raise TMError("the three points of the circle are on one line")
+    centre = a + (np.cross(n, ab) * float(ac @ ac) + np.cross(ac, n) * float(ab @ ab)) / (2 * nn)
+    return centre, n / math.sqrt(nn), float(np.linalg.norm(a - centre))

@@ -1,0 +1,66 @@
+"""Every TMscript error code (GPL5000-GPL5999) has a case that produces it, at the line and column
+the message is about, and none of them is an internal error."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from gpl2py import messages as M
+from gpl2py.diagnostics import DiagnosticSink, Severity
+from gpl2py.tmscript.pipeline import translate_packet
+from gpl2py.transpile import transpile
+
+# code -> (script project or None, packet text or None, line, col)
+CASES: dict[str, tuple[str | None, str | None, int, int]] = {
+    "GPL5001": (None, "int a = 1 @ 2", 1, 11),
+    "GPL5002": (None, 'string s = "abc', 1, 12),
+    "GPL5003": (None, "int a = 1\n/* open", 2, 1),
+    "GPL5004": (None, "int a = 0x", 1, 9),
+    "GPL5100": (None, "if (1 Display(1)", 1, 7),
+    "GPL5101": (None, "int a = *", 1, 9),
+    "GPL5102": (None, "int a = 1 2", 1, 11),
+    "GPL5103": (None, "else", 1, 1),
+    "GPL5104": (None, "1 = 2", 1, 3),
+    "GPL5105": (None, "int s = 2\nStopAndClearBuffer(s)", 2, 20),
+    "GPL5300": (None, "int a = 1\nfloat a = 2", 2, 7),
+    "GPL5302": (None, "Nope(1)", 1, 1),
+    "GPL5303": (None, "Sleep()", 1, 1),
+    "GPL5304": (None, "int a = (int)true", 1, 9),
+    "GPL5305": (None, "int a = 4 / 0", 1, 13),
+    "GPL5306": ("main\n{\n}\nint F()\n{\n  return\n}\n", None, 6, 3),
+    "GPL5307": (None, "break", 1, 1),
+    "GPL5308": (None, "byte b = -100", 1, 10),
+    "GPL5309": (None, "float f = 1\nf++", 2, 1),
+    "GPL5310": ("define\n{\n  int a = 1\n}\n", None, 1, 1),
+    "GPL5311": ("main\n{\n}\nmain\n{\n}\n", None, 4, 1),
+    "GPL5314": (None, "int x = 1\nswitch (x)\n{\ncase 1\n  if (x > 0) break\n  Display(1)\n}", 5, 14),
+    "GPL5700": ("", None, 0, 0),
+}
+
+
+def test_every_tmscript_error_code_has_a_case() -> None:
+    codes = {m.code for m in M.all_messages() if m.severity is Severity.ERROR and "GPL5000" <= m.code < "GPL6000"}
+    assert codes == set(CASES)
+
+
+@pytest.mark.parametrize("code", sorted(CASES))
+def test_each_case_gives_its_code_where_it_is(code: str, tmp_path: Path) -> None:
+    project, packet, line, col = CASES[code]
+    if packet is not None:
+        found = translate_packet(packet).errors
+    else:
+        if code == "GPL5700":
+            path = tmp_path  # a folder with no script
+        else:
+            path = tmp_path / "p.tms"
+            path.write_text(project or "")
+        sink = DiagnosticSink()
+        transpile(path, sink, language="tmscript")
+        found = sink.errors
+    hits = [d for d in found if d.code == code]
+    assert hits, [d.header() for d in found]
+    if line:
+        assert (hits[0].span.line, hits[0].span.col) == (line, col), hits[0].header()
+    assert not any(d.code == "GPL9000" for d in found)

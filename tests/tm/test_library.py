@@ -1,0 +1,137 @@
+"""The built-ins against the manual's own examples (spec Appendix A, E41-E65): each runs as a
+Listen-node packet (translated at run time, as a client would send it) and the values it leaves
+are the ones the manual prints."""
+
+from __future__ import annotations
+
+import pytest
+
+from gpl2py.tmscript.pipeline import translate_packet
+from gplrt.tm import context
+from gplrt.tm.listen import Vars
+from gplrt.tm.values import format_value
+
+
+def run(script: str) -> Vars:
+    p = translate_packet(script)
+    assert not p.errors, [d.header() for d in p.errors]
+    ns: dict[str, object] = {}
+    import gplrt.tm as tm
+
+    ns["tm"] = tm
+    exec(compile(p.python, "<packet>", "exec"), ns)  # noqa: S102
+    v = Vars()
+    ns["script"](v)  # type: ignore[operator]
+    return v
+
+
+def values(script: str, *names: str) -> list[str]:
+    v = run(script)
+    return [format_value(getattr(v, n)) for n in names]
+
+
+def test_e41_byte_to_int16() -> None:
+    got = values("byte[] bb1 = {0x90, 0x01, 0x05}\nbyte[] bb2 = {0x01}\n"
+                 "int a = Byte_ToInt16(bb1, 0, 0)\nint b = Byte_ToInt16(bb1, 1, 0)\nint c = Byte_ToInt16(bb1, 1, 1)\n"
+                 "int d = Byte_ToInt16(bb2, 0, 0)\nint e = Byte_ToInt16(bb2, 1, 1)", "a", "b", "c", "d", "e")
+    assert got == ["400", "-28671", "36865", "1", "256"]
+
+
+def test_e42_byte_concat() -> None:
+    got = values("byte[] bb1 = {0x31, 0x32, 0x00, 0x4F, 1}\nbyte[] bb2 = {0x01, 0x02, 0x03}\nbyte bb3 = 0x5A\n"
+                 'byte[] a = Byte_Concat(bb1, bb2, "", bb3)\nbyte[] b = Byte_Concat(bb2, 0x10, bb1)\n'
+                 'byte[] c = Byte_Concat(bb1, "AB", bb2, 1000)', "a", "b", "c")
+    assert got == ["{49,50,0,79,1,1,2,3,90}", "{1,2,3,16,49,50,0,79,1}", "{49,50,0,79,1,1,2,3}"]
+
+
+@pytest.mark.parametrize("text, base, value", [
+    ("1234", 10, 1234), ("1234", 16, 4660), ("1234", 2, 0), ("1100", 2, 12), ("0x1234", 10, 4660),
+    ("0x1234", 16, 4660), ("0x1234", 2, 0), ("0b1100", 10, 12), ("0b1100", 16, 725248), ("0b1100", 2, 12),
+    ("+1234", 10, 1234), ("-1234", 10, -1234), ("-0x1234", 16, 0), ("-0b1100", 2, 0),
+])
+def test_e43_string_to_integer(text: str, base: int, value: int) -> None:
+    assert values(f'int val = String_ToInteger("{text}", {base})', "val") == [str(value)]
+
+
+def test_e44_e45_substring_and_split() -> None:
+    got = values('string a = String_Substring("0x12345", 2, 4)\nstring b = String_Substring("0x12345", -1, 4)\n'
+                 'string c = String_Substring("0x12345", 7, 4)\nstring d = String_Substring("0x12345", 2, -1)\n'
+                 'string e = String_Substring("0x12345", 2, 100)\n'
+                 'string[] f = String_Split("0x112345", "1", 0)\nstring[] g = String_Split("0x112345", "1", 1)\n'
+                 'string[] h = String_Split("", "1", 0)\nstring[] i = String_Split("", "1", 1)\n'
+                 'string s1 = "123, ""456,67"" ,89"\nstring[] j = String_Split(s1, ",", 2)',
+                 "a", "b", "c", "d", "e", "f", "g", "h", "i", "j")
+    assert got == ["1234", "", "", "12345", "12345", "{0x,,2345}", "{0x,2345}", "{}", "{}", '{123,"456,67",89}']
+
+
+def test_e46_e47_arrays() -> None:
+    got = values("byte[] n1 = {100, 200, 30}\nbyte[] n2 = {40, 50, 60}\nbyte[] n3 = Array_Append(n1, n2)\n"
+                 "n1 = Array_Append(n1, 100)\nint[] m = {100, 200, 30, 40, 50, 60}\nint[] r5 = Array_Remove(m, 0)\n"
+                 "int[] r6 = Array_Remove(m, 1, 2)\nint[] r7 = Array_Remove(m, 1, 100)", "n3", "n1", "r5", "r6", "r7")
+    assert got == ["{100,200,30,40,50,60}", "{100,200,30,100}", "{200,30,40,50,60}", "{100,40,50,60}", "{100}"]
+
+
+def test_e48_get_bytes_int_forms() -> None:
+    got = values("byte[] a = GetBytes(12345, 0, 0)\nbyte[] b = GetBytes(12345, 0, 1)\nbyte[] c = GetBytes(0x123456, 0, 1)\n"
+                 "byte[] d = GetBytes(0x123456, 0, 2)\nbyte[] e = GetBytes(0x1234561, 1, 0)\nbyte[] f = GetBytes(0x1234561, 1, 2)",
+                 "a", "b", "c", "d", "e", "f")
+    assert got == ["{57,48,0,0}", "{57,48}", "{86,52,18,0}", "{86,52}", "{1,35,69,97}", "{69,97}"]
+
+
+def test_e49_get_token() -> None:
+    cases = [('"", "", 0', "$abcd$1234$ABCD$"), ('"$", "$"', "$abcd$"), ('"$", "$", 0', ""), ('"$", "$", 2', "$ABCD$"),
+             ('"$", "$", 3', ""), ('"$", "$", -1, 1', "ABCD"), ('"$", "$", 1, 1', "abcd"), ('"$", "", 2', "$1234"),
+             ('"$", "", 4', "$"), ('"", "$", 1', "$"), ('"", "$", 2', "abcd$"), ('"", "$", 4', "ABCD$")]
+    script = 'string n = "$abcd$1234$ABCD$"\n' + "\n".join(f"string t{i} = GetToken(n, {a})" for i, (a, _) in enumerate(cases))
+    assert values(script, *(f"t{i}" for i in range(len(cases)))) == [want for _, want in cases]
+
+
+def test_e53_e54_e55_ctrl_and_checksums() -> None:
+    got = values("string a = Ctrl(0x0D000A09)\nstring b = Ctrl(0x0D300A09)\nstring c = Ctrl(0x00)\n"
+                 "byte[] bb1 = {0x10, 0x20, 0x50, 0xF0, 0xFF, 0xFF, 0xFF}\nbyte x = XOR8(bb1)\nbyte y = XOR8(bb1,0,Length(bb1))\n"
+                 "byte[] c0 = CRC16(0, bb1,0,Length(bb1))\nbyte[] c1 = CRC16(0, bb1,1,-1)\nbyte[] c2 = CRC16(0, bb1,-1,-1)\n"
+                 "byte[] c3 = CRC16(3, bb1,0,Length(bb1))\nbyte[] c4 = CRC16(4, bb1,0,Length(bb1))\n"
+                 "bb1 = Byte_Concat(bb1, XOR8(bb1))", "a", "b", "c", "x", "y", "c0", "c1", "c2", "c3", "c4", "bb1")
+    assert got == ["\r\n\t", "\r0\n\t", "", "111", "111", "{45,212}", "{236,197}", "{0,0}", "{66,18}", "{171,174}",
+                   "{16,32,80,240,255,255,255,111}"]
+
+
+def test_e56_listen_packet() -> None:
+    got = values('string a = ListenPacket("", "2,Techman Robot")\nstring b = ListenPacket("TMSTA", "00")\n'
+                 'string c = ListenPacket("TMSTA", "Hello World")', "a", "b", "c")
+    assert got == ["$TMSCT,15,2,Techman Robot,*57\r\n", "$TMSTA,2,00,*41\r\n", "$TMSTA,11,Hello World,*53\r\n"]
+
+
+def test_e62_sin_in_degrees_binary32() -> None:
+    got = values("float a = sin(15)\ndouble b = sin((double)15)\nfloat c = acos(cos(15))", "a", "b", "c")
+    assert got[0] == "0.25881904"  # L8889
+    assert got[2] == "15.000003"  # L9081
+    assert got[1].startswith("0.258819045102")
+
+
+def test_numbers_e01_e02_e03_e09() -> None:
+    got = values("byte b = 0 - 100\nbyte c = 255\nc = c + 1\nint i = 2147483647\ni = i + 1\n"
+                 "int d = 10 / 3\nfloat f = 10 / 3.0\nint j = \"0x89AB\"\nint k = (int)1.99\nbyte m = (byte)1000",
+                 "b", "c", "i", "d", "f", "j", "k", "m")
+    assert got == ["156", "0", "-2147483648", "3", "3.3333333", "35243", "1", "232"]
+
+
+def test_pose_math_round_trip_e63() -> None:
+    context.use_robot("TM5-900")
+    got = values("float[] p1 = {100, 200, 300, 10, 20, 30}\nfloat[] p2 = {150, 180, 320, -5, 45, 60}\n"
+                 "float[] d = trans(p1, p2, true)\nfloat[] back = applytrans(p1, d, true)\n"
+                 "float[] w = trans(p1, p2)\nfloat[] back2 = applytrans(p1, w)", "back", "back2")
+    for text in got:
+        nums = [float(x) for x in text.strip("{}").split(",")]
+        assert all(abs(a - b) < 1e-3 for a, b in zip(nums, [150, 180, 320, -5, 45, 60]))
+
+
+def test_e04_e05_single_quoted_variables_in_strings() -> None:
+    p = translate_packet('string s = "TM5"\nstring a = "Hi, \'s\' Robot"\nstring b = "Hi, \'x\' Robot"\n'
+                         'string[] ss = {"Techman", "Robot"}\nstring c = "Hi, \'s\' \'ss[0]\' Robot"\n'
+                         'string d = "Hi, s Robot"\nstring e = "Hi, \'" + "s" + "\' Robot"')
+    assert [(w.code, w.span.line) for w in p.warnings] == [("GPL5315", 2), ("GPL5315", 5)]
+    got = values('string s = "TM5"\nstring a = "Hi, \'s\' Robot"\nstring b = "Hi, \'x\' Robot"\n'
+                 'string[] ss = {"Techman", "Robot"}\nstring c = "Hi, \'s\' \'ss[0]\' Robot"\n'
+                 'string d = "Hi, s Robot"\nstring e = "Hi, \'" + "s" + "\' Robot"', "a", "b", "c", "d", "e")
+    assert got == ["Hi, TM5 Robot", "Hi, 'x' Robot", "Hi, TM5 'ss[0]' Robot", "Hi, s Robot", "Hi, 's' Robot"]
