@@ -142,7 +142,8 @@ def check_project(path: str, args: argparse.Namespace, out: Outcome) -> None:
 
     try:
         transpile(path, sink, stubs_dir=args.stubs, strict=args.strict, loaded=on_load,
-                  limits=limits_of(args), keep_modules=False, language=args.language)
+                  limits=limits_of(args), keep_modules=False, language=args.language,
+                  start=args.start)
     finally:
         out.sink.extend(sink)
 
@@ -251,7 +252,7 @@ def _run_transpile(args: argparse.Namespace) -> Outcome:
         try:
             output = transpile(path, sink, keep_going=args.keep_going, progress=bar,
                                stubs_dir=args.stubs, strict=args.strict, loaded=on_load,
-                               limits=limits_of(args), language=args.language)
+                               limits=limits_of(args), language=args.language, start=args.start)
         finally:
             bar.close()
         if loaded:

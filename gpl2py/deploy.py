@@ -84,7 +84,10 @@ def program_of(package: ModuleType, warnings: tuple[str, ...] = ()) -> Program:
     start = package.PROJECT.get("start")
     if not start:
         return Program(None, "", warnings)
-    procedure = registry_for(package.__name__).find(start).func
+    if package.PROJECT.get("language", "gpl") != "gpl":  # another front end's package names its
+        procedure = package.start_program  # start itself (V+: the start program, as task 0)
+    else:  # (a GPL module may be called start_program: GPL's start is found by its name)
+        procedure = registry_for(package.__name__).find(start).func
     init = package.init
 
     def run_project() -> None:

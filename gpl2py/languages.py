@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import importlib
 import os
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,13 +36,15 @@ class Frontend:
     """One source language: its ``--language`` name, the name users know it by, the file
     extensions that are its sources (lower case, with the dot), its pipeline's module (which has
     ``transpile_project``) and its loader's module (which has ``load_project(path, sink, limits)
-    -> Project | None``, what ``gpl2py run`` reads to key its cache before it translates)."""
+    -> Project | None``, what ``gpl2py run`` reads to key its cache before it translates);
+    ``first_line``, a pattern that claims a file whose extension says nothing by its start."""
 
     name: str
     title: str
     extensions: tuple[str, ...]
     module: str
     loader: str
+    first_line: str = ""
 
     def pipeline(self) -> Pipeline:
         """The pipeline's ``transpile_project``, imported on first use."""
@@ -55,12 +58,19 @@ class Frontend:
 
 
 GPL = Frontend("gpl", "GPL", (".gpl", ".gpo", ".gpr"), "gpl2py.gpl.pipeline", "gpl2py.project")
+#: V+ (Adept): .V2 modules and .PG program files; any file whose first line that is neither blank
+#: nor a ``;`` comment is ``.PROGRAM`` (a V+ program, whatever the extension).
+VPLUS = Frontend("vplus", "V+", (".v2", ".pg"), "gpl2py.vplus.pipeline", "gpl2py.vplus.loader",
+                 first_line=r"(?:[ \t\x1a]*(?:;[^\r\n]*)?(?:\r\n|\r|\n))*[ \t]*\.PROGRAM\b")
 TMSCRIPT = Frontend("tmscript", "TMscript", (".tms", ".tmscript"), "gpl2py.tmscript.pipeline",
                     "gpl2py.tmscript.pipeline")
 
 #: Every front end, GPL first: a folder or file no other front end claims is GPL (its loader
 #: reports what it cannot read in the project's form).
-FRONTENDS: tuple[Frontend, ...] = (GPL, TMSCRIPT)
+FRONTENDS: tuple[Frontend, ...] = (GPL, VPLUS, TMSCRIPT)
+
+#: How much of a file is read to recognise its first line.
+_HEAD = 4096
 
 
 def names() -> list[str]:
@@ -91,7 +101,26 @@ def frontend_for(path: str | os.PathLike[str], language: str | None = None) -> F
         best = max(FRONTENDS, key=lambda f: counts[f])  # (ties: the first, GPL)
         return best if counts[best] else GPL
     suffix = p.suffix.lower()
-    return next((f for f in FRONTENDS if suffix in f.extensions), GPL)
+    by_suffix = next((f for f in FRONTENDS if suffix in f.extensions), None)
+    if by_suffix is not None:
+        return by_suffix
+    return _by_first_line(p) or GPL
 
 
-__all__ = ["FRONTENDS", "GPL", "TMSCRIPT", "Frontend", "Pipeline", "by_name", "frontend_for", "names"]
+def _by_first_line(p: Path) -> Frontend | None:
+    """The front end whose ``first_line`` the start of the file ``p`` matches (the first 4 KB,
+    read without following a link; an unreadable file is the loader's to report)."""
+    try:
+        fd = os.open(p, os.O_RDONLY | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_NONBLOCK", 0))
+    except OSError:
+        return None
+    try:
+        head = os.read(fd, _HEAD).removeprefix(b"\xef\xbb\xbf").decode("latin-1")
+    except OSError:
+        return None
+    finally:
+        os.close(fd)
+    return next((f for f in FRONTENDS if f.first_line and re.match(f.first_line, head, re.IGNORECASE)), None)
+
+
+__all__ = ["FRONTENDS", "GPL", "TMSCRIPT", "VPLUS", "Frontend", "Pipeline", "by_name", "frontend_for", "names"]

@@ -119,7 +119,7 @@ def message(code: str) -> Message:
 
 #: The front ends' own message modules (docs/design/frontends.md, "Diagnostics"): imported when
 #: every message is listed, so explain and docs/diagnostics.md show them too.
-FRONTEND_MESSAGES = ("gpl2py.tmscript.messages",)
+FRONTEND_MESSAGES = ("gpl2py.vplus.messages", "gpl2py.tmscript.messages")
 
 
 def all_messages() -> list[Message]:

@@ -196,6 +196,8 @@ class Cell:
         listen: str | None = None,
         history: int | None = DEFAULT_HISTORY,
         signal_history: int | None = DEFAULT_SIGNAL_HISTORY,
+        language: str | None = None,
+        start: str | None = None,
     ) -> Cell:
         """Translate ``project`` (through the cache), import it and make its Simulation.
 
@@ -211,7 +213,8 @@ class Cell:
         ``io.trace`` (None: the whole run; by default a bounded window, docs/notebook.md).  Raises
         :class:`ProjectError` when the project has errors, ValueError for a ``listen`` that is not
         an address of this computer or a history that is not a whole number >= 1 or None.  Each
-        warning of the translation is issued as a :class:`TranslationWarning`.
+        warning of the translation is issued as a :class:`TranslationWarning`.  ``language`` and
+        ``start`` are ``gpl2py run``'s ``--language`` and ``--start`` (a V+ project's program to run).
         """
         default_database(robot)  # an unknown model fails here, with -221 and the known names
         if listen is not None:
@@ -221,7 +224,8 @@ class Cell:
         if stubs is not None and not isinstance(stubs, (str, os.PathLike)):
             raise TypeError(f"stubs is the folder of Python stubs (a str or Path), not {stubs!r}")
         sink = DiagnosticSink()
-        built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild, stubs_dir=stubs)
+        built = build(project, sink, cache_dir=cache_dir, rebuild=rebuild, stubs_dir=stubs, language=language,
+                      start=start)
         files = {f.path: f for f in built.project.files()} if built is not None else {}
         rendered = [(d.severity, d.render(files.get(d.span.file) if d.span else None)) for d in sink.sorted()]
         if built is None:

@@ -72,6 +72,9 @@ def add_project_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--language", metavar="NAME", default=None, type=str.lower, choices=names(),
                         help=f"the source language ({', '.join(names())}; default: recognised "
                         "from the files)")
+    parser.add_argument("--start", metavar="PROGRAM", default=None,
+                        help="the program to run (V+: default the first program of the first file, "
+                        "as EXECUTE of the main program; GPL: replaces Project.gpr's ProjectStart)")
     parser.add_argument("--max-source-mb", metavar="MB", type=_megabytes, default=None,
                         help=f"read at most MB megabytes from one source file and {PROJECT_FACTOR} "
                         f"times that from all of them (default: ${MAX_SOURCE_ENV}, else "

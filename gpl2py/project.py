@@ -157,6 +157,39 @@ def load_project(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Lim
     return None
 
 
+def load_sources(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Limits | None,
+                 suffixes: tuple[str, ...]) -> Project | None:
+    """A project of another front end (docs/design/frontends.md): one file, or every file of a
+    folder with one of ``suffixes`` (sorted case-insensitively by name; none is not reported
+    here, the caller says what it looked for), read with GPL's safety
+    (size limits, no links out of the folder, lenient decoding); never raises."""
+    limits = limits if limits is not None else Limits.from_env()
+    try:
+        p = Path(path)
+        exists, is_dir = p.exists(), p.is_dir()
+    except (TypeError, OSError) as exc:
+        sink.report(msg.NOT_A_PROJECT, None, path=f"{path!r} ({exc})"[:200])
+        return None
+    if not exists:
+        sink.report(msg.PATH_NOT_FOUND, None, path=str(p))
+        return None
+    if not is_dir:
+        project = Project(name=p.stem, start=None, root=p.parent, limits=limits)
+        _add_source(project, p, str(p), None, sink)
+        return project
+    project = Project(name=_folder_name(p), start=None, root=p, limits=limits)
+    try:
+        entries = sorted(p.iterdir(), key=lambda e: (e.name.lower(), e.name))
+    except OSError as exc:
+        sink.report(msg.CANNOT_READ, None, path=str(p), reason=exc.strerror or str(exc))
+        return project
+    candidates = [e for e in entries if e.suffix.lower() in suffixes and not e.is_dir()]
+    for entry in candidates:
+        if _inside(p, entry, str(entry), None, sink):
+            _add_source(project, entry, str(entry), None, sink)
+    return project  # (no sources: the front end says so in its own words)
+
+
 # --- the three input kinds ----------------------------------------------------------------------
 
 

@@ -129,7 +129,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
           keep_going: bool = False, rebuild: bool = False, progress: Progress | None = None,
           stubs_dir: str | Path | None = None, strict: bool = False,
           loaded: Callable[[Project], None] | None = None, limits: Limits | None = None,
-          language: str | None = None) -> Built | None:
+          language: str | None = None, start: str | None = None) -> Built | None:
     """Translate ``path`` into the cache (or reuse the entry); diagnostics go to ``sink``.
 
     Returns None when the project has errors (unless ``keep_going``) or the cache cannot be
@@ -150,7 +150,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
         sink.extend(probe)
         return None
     cache = Cache(cache_dir)
-    key = cache_key(project, {"language": frontend.name, "keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir),
+    key = cache_key(project, {"language": frontend.name, **({"start": start} if start else {}), "keep_going": keep_going, "strict": strict, "stubs": _stubs_fingerprint(stubs_dir),
                               "selection": sink.filter.fingerprint() if sink.filter is not None else None})
     entry = None if rebuild else cache.lookup(key)
     if entry is not None:
@@ -160,7 +160,7 @@ def build(path: str | Path, sink: DiagnosticSink, *, cache_dir: str | Path | Non
 
     local = sink.child()
     output = transpile(path, local, keep_going=keep_going, progress=progress, stubs_dir=stubs_dir, strict=strict,
-                       limits=limits, language=frontend.name)
+                       limits=limits, language=frontend.name, start=start)
     sink.extend(local)
     if output is None:
         return None
@@ -558,7 +558,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
     try:
         built = build(args.path, out.sink, cache_dir=args.cache_dir, rebuild=args.rebuild, progress=bar,
                       stubs_dir=args.stubs, strict=args.strict, loaded=loaded.append,
-                      limits=limits_of(args), language=args.language)
+                      limits=limits_of(args), language=args.language, start=args.start)
     finally:
         bar.close()
     project = built.project if built is not None else (loaded[0] if loaded else None)
@@ -581,8 +581,9 @@ def run_command(args: argparse.Namespace) -> Outcome:
         out.exit_status = int(package.main())
         return out
     if package.PROJECT.get("start") is None:
-        out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs "
-                        "a Project.gpr with ProjectStart=\"Module.Proc\", or a single Public Sub Main")
+        needs = ("a .PROGRAM" if package.PROJECT.get("language") == "vplus" else
+                 "a Project.gpr with ProjectStart=\"Module.Proc\", or a single Public Sub Main")
+        out.sink.report(msg.USAGE_ERROR, None, detail=f"{args.path} has no start procedure: run needs {needs}")
         out.emitted, out.usage_error = False, True
         return out
     if not args.json:

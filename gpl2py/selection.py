@@ -29,12 +29,12 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 
 from gpl2py import messages as msg
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink
-from gpl2py.source import SourceFile
+from gpl2py.source import SourceFile, Span
 
 #: What --select, --ignore and the comments accept: "GPL" and up to four digits.
 CODE_OR_PREFIX = re.compile(r"GPL\d{0,4}")
@@ -114,10 +114,6 @@ class Selection:
         """Read the ``gpl2py: ignore`` comments of ``sources`` (before they are parsed, so that the
         parser's own diagnostics are filtered too).  A bracketed code that no diagnostic has is
         warning GPL9004 in ``sink``."""
-        from gpl2py.gpl.syntax.lexer import token_chunks
-        from gpl2py.gpl.syntax.tokens import TokenKind
-        from gpl2py.source import make_span
-
         for source in sources:
             if source.path in self._scanned:
                 continue
@@ -125,21 +121,18 @@ class Selection:
             if "gpl2py" not in source.text.lower():  # the lexer runs only where a comment may be
                 continue
             lines: dict[int, tuple[str, ...] | None] = {}
-            for chunk in token_chunks(source, DiagnosticSink()):  # the parse reports the lexer's errors
-                for kind, _, value, span in chunk:  # (the parser's plain-tuple tokens)
-                    if kind is not TokenKind.COMMENT:
-                        continue
-                    found = _DIRECTIVE.search(str(value))
-                    if found is None:
-                        continue
-                    codes = self._comment_codes(found.group(1), make_span(*span), sink)
-                    if codes is not None and not codes:
-                        continue  # only bad codes: suppress nothing (GPL9004 said why)
-                    line = span[1]  # (file, line, col, end_line, end_col)
-                    if codes is None or lines.get(line, ()) is None:
-                        lines[line] = None
-                    else:
-                        lines[line] = (*(lines.get(line) or ()), *codes)
+            for text, span in _comments(source):
+                found = _DIRECTIVE.search(text)
+                if found is None:
+                    continue
+                codes = self._comment_codes(found.group(1), span, sink)
+                if codes is not None and not codes:
+                    continue  # only bad codes: suppress nothing (GPL9004 said why)
+                line = span.line
+                if codes is None or lines.get(line, ()) is None:
+                    lines[line] = None
+                else:
+                    lines[line] = (*(lines.get(line) or ()), *codes)
             if lines:
                 self._inline[source.path] = lines
 
@@ -158,6 +151,27 @@ class Selection:
             else:
                 sink.report(msg.BAD_SUPPRESSION, span, code=part.strip(), problem=problem)  # type: ignore[arg-type]
         return tuple(good)
+
+
+def _comments(source: SourceFile) -> Iterator[tuple[str, Span]]:
+    """The text and place of every comment of ``source``, read by its own language's lexer (a V+
+    ``; gpl2py: ignore`` comment; GPL's lexer would take V+'s ``'A`` for a comment)."""
+    from gpl2py.languages import frontend_for
+
+    if frontend_for(source.path).name == "vplus":
+        from gpl2py.vplus.syntax.lexer import lex
+
+        for c in lex(source, DiagnosticSink()).comments:
+            yield c.text, c.span
+        return
+    from gpl2py.gpl.syntax.lexer import token_chunks
+    from gpl2py.gpl.syntax.tokens import TokenKind
+    from gpl2py.source import make_span
+
+    for chunk in token_chunks(source, DiagnosticSink()):  # the parse reports the lexer's errors
+        for kind, _, value, span in chunk:  # (the parser's plain-tuple tokens)
+            if kind is TokenKind.COMMENT:
+                yield str(value), make_span(*span)
 
 
 __all__ = ["CODE_OR_PREFIX", "Selection", "code_problem", "parse_codes"]

@@ -21,6 +21,7 @@ so it reports exactly what ``translate`` reports, in every case.
 from __future__ import annotations
 
 import gc
+import inspect
 import os
 import sys
 from collections.abc import Callable, Iterator
@@ -28,6 +29,7 @@ from contextlib import contextmanager
 
 from gpl2py.diagnostics import DiagnosticSink, contained
 from gpl2py.languages import frontend_for
+from gpl2py.messages import USAGE_ERROR
 from gpl2py.output import DATA_FOLDER, Output, Progress, write_package
 from gpl2py.project import Limits, Project
 
@@ -36,7 +38,7 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
               progress: Progress | None = None, *, stubs_dir: str | os.PathLike[str] | None = None,
               strict: bool = False, loaded: Callable[[Project], None] | None = None,
               limits: Limits | None = None, keep_modules: bool = True,
-              language: str | None = None) -> Output | None:
+              language: str | None = None, start: str | None = None) -> Output | None:
     """``progress(phase, done, total)``, when given, is called per file parsed and module written
     (``gpl2py.progress.ProgressBar`` draws it).  ``stubs_dir``: user implementations of stubs
     (``gpl2py.gpl.lower.user_stubs``); ``strict``: every stub is an error (``gpl2py.gpl.semantics.stubs``).
@@ -44,14 +46,20 @@ def transpile(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bo
     when the translation fails.  ``limits``: how much input may be read (``project.Limits``;
     default from the environment).  ``keep_modules=False`` (``gpl2py check``): the diagnostics
     only, each module's text dropped once made and no project files read.  ``language``: the
-    front end's name (``--language``); by default recognised from the files.
+    front end's name (``--language``); by default recognised from the files.  ``start``: the
+    program to run (``--start``), given to the pipeline only when set.
 
     The cyclic garbage collector is paused meanwhile (:func:`collector_paused`), and the pipeline
     has the same stack whoever calls it (:func:`recursion_budget`).
     """
     with collector_paused(), recursion_budget(PIPELINE_FRAMES), contained(sink, None):  # never a traceback
-        pipeline = frontend_for(path, language).pipeline()
-        return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules)
+        frontend = frontend_for(path, language)
+        pipeline = frontend.pipeline()
+        extra = {"start": start} if start is not None else {}
+        if extra and "start" not in inspect.signature(pipeline).parameters:  # (a language without it)
+            sink.report(USAGE_ERROR, None, detail=f"--start: a {frontend.title} project has no start to choose")
+            return None
+        return pipeline(path, sink, keep_going, progress, stubs_dir, strict, loaded, limits, keep_modules, **extra)
     return None
 
 

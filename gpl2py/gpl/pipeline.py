@@ -41,10 +41,14 @@ from gpl2py.source import make_span
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                       progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
                       strict: bool = False, loaded: Callable[[Project], None] | None = None,
-                      limits: Limits | None = None, keep_modules: bool = True) -> Output | None:
-    """The GPL translation of ``path``; the arguments are :func:`gpl2py.transpile.transpile`'s."""
+                      limits: Limits | None = None, keep_modules: bool = True,
+                      start: str | None = None) -> Output | None:
+    """The GPL translation of ``path``; the arguments are :func:`gpl2py.transpile.transpile`'s
+    (``start``, from ``--start``, replaces Project.gpr's ProjectStart)."""
     loading = DiagnosticSink()  # unfiltered: whether a file failed to load, reported or ignored
     project = load_project(path, loading, limits)
+    if project is not None and start is not None:
+        project.start, project.start_span = start, None
     if project is not None and loaded is not None:
         loaded(project)  # (before the loading's diagnostics pass the sink's filter: its comments)
     sink.extend(loading)

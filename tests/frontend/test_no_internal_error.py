@@ -235,7 +235,8 @@ def test_every_error_code_has_a_case_and_a_run_time_decision() -> None:
     from gplrt.lang.error_codes import ERROR_MESSAGES
 
     # (the GPL front end's codes, GPL1000-GPL3999: the other front ends' are walked by their own
-    # tests, tests/tm/test_diagnostics.py for TMscript's; docs/design/frontends.md, "Diagnostics")
+    # tests, tests/tm/test_diagnostics.py for TMscript's, tests/vplus/test_error_cases.py for V+'s;
+    # docs/design/frontends.md, "Diagnostics")
     errors = {m.code for m in M.all_messages() if m.severity is Severity.ERROR and m.code < "GPL4000"}
     assert errors - set(CASES) == NOT_WALKED
     assert set(CASES) - errors == set()

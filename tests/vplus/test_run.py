@@ -1,0 +1,267 @@
+"""V+ programs translated and run end to end (issue 21, milestones 2, 4 and 5).
+
+``gpl2py run`` (in a subprocess, as a user runs it) and ``Cell.load`` on V+ files: the corpus's
+self-test prints what its ``[=> ...]`` notes say, the start program is ``--start`` or the first
+program of the first file, data sections load before it runs, GOTO jumps between blocks, a read
+before any assignment is V+'s *Undefined value* at its V+ line, and the generated Python keeps V+
+names, comments and lines.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.notebook import Cell
+from gpl2py.transpile import transpile
+from gpltest import corpus_dir
+
+
+def _run(path: Path | str, *options: str) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "GPL2PY_CACHE_DIR": str(Path(path).parent / ".cache")} \
+        if Path(path).parent.is_dir() and os.access(Path(path).parent, os.W_OK) else dict(os.environ)
+    return subprocess.run([sys.executable, "-m", "gpl2py", "run", str(path), "--quiet", *options],
+                          capture_output=True, text=True, timeout=300, env=env)
+
+
+def _write(tmp_path: Path, text: str, name: str = "main.v2") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_the_corpus_self_test_prints_what_its_notes_say(tmp_path: Path) -> None:
+    src = corpus_dir() / "vplus" / "robot-sandbox" / "tests" / "vplustests.v2"
+    r = _run(src, "--cache-dir", str(tmp_path / "cache"))
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    checked = 0
+    for i, line in enumerate(lines):
+        m = re.search(r"\[=> ([^\]]*)\]", line)
+        if m is None:
+            continue
+        expected = m.group(1).split()
+        assert lines[i + 1:i + 1 + len(expected)] == expected, (line, lines[i + 1:i + 1 + len(expected)])
+        checked += 1
+    assert checked == 7  # array, do-until, for, while-next, if-else, if-elseif-else, for-exit
+
+
+def test_the_start_program_is_the_first_of_the_first_file_or_start(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".PROGRAM first()\n  TYPE \"first\"\n.END\n.PROGRAM second()\n  TYPE \"second\"\n.END\n")
+    assert _run(src).stdout == "first\n"
+    assert _run(src, "--start", "SECOND").stdout == "second\n"
+    r = _run(src, "--start", "third")
+    assert r.returncode == 1 and "error GPL4311: --start third: no such program in this project" in r.stderr
+
+
+def test_cell_load_runs_a_v_plus_project_through_the_same_door(tmp_path: Path) -> None:
+    folder = tmp_path / "cell"
+    folder.mkdir()
+    _write(folder, ".PROGRAM main()\n  CALL helper(x)\n  TYPE \"x is \", x\n.END\n", "a.v2")
+    _write(folder, ".PROGRAM helper(v)\n  v = 41 + 1\n.END\n.PROGRAM other()\n  TYPE \"other\"\n.END\n", "b.v2")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cell = Cell.load(folder, echo=False, cache_dir=tmp_path / "cache")
+        assert cell.run_main() == 0
+        assert cell.sim.console.output == "x is 42\n"
+        other = Cell.load(folder, echo=False, cache_dir=tmp_path / "cache", start="other")
+        assert other.run_main() == 0
+        assert other.sim.console.output == "other\n"
+
+
+def test_data_sections_are_loaded_before_the_program_runs(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".PROGRAM main()\n  TYPE $name, \" \", dx * 2, \" \", DX(pick)\n.END\n"
+                 ".REALS\ndx 12.5\n.END\n.STRINGS\n$name \"cell\"\n.END\n"
+                 ".LOCATIONS\npick 100 200 300 0 180 0\n.END\n")
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "cell 25 100\n"
+
+
+def test_goto_leaves_and_reenters_blocks_forward_and_backward(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    n = 0\n"
+        "10  n = n + 1\n"
+        "    WHILE TRUE DO\n"
+        "        IF n < 3 THEN\n"
+        "            GOTO 10\n"
+        "        END\n"
+        "        GOTO 20\n"
+        "    END\n"
+        "    TYPE \"skipped\"\n"
+        "20  TYPE \"n = \", n\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "n = 3\n"
+
+
+def test_a_read_before_any_assignment_is_the_undefined_value_error_at_its_line(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".PROGRAM main()\n  TYPE \"start\"\n  x = y + 1\n  TYPE \"never\"\n.END\n")
+    r = _run(src)
+    assert r.stdout == "start\n"
+    assert r.returncode == 3
+    assert f"{src}:3: error -401 in thread task 0: *Undefined value* - y" in r.stderr
+
+
+def test_arguments_pass_by_reference_unless_an_expression_is_passed(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "  a = 1\n  b = 1\n  $s = \"x\"\n"
+        "  CALL inc(a, (b), $s, $s+\"\")\n"
+        "  TYPE a, \" \", b, \" \", $s\n"
+        ".END\n"
+        ".PROGRAM inc(p, q, $r, $t)\n"
+        "  p = p + 1\n  q = q + 1\n  $r = $r + \"y\"\n  $t = \"changed\"\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "2 1 xy\n"
+
+
+def test_generated_python_keeps_names_comments_and_lines(tmp_path: Path) -> None:
+    src = corpus_dir() / "vplus" / "swri-ros" / "ros.v2"
+    sink = DiagnosticSink()
+    out = transpile(src, sink)
+    assert out is not None, [d.header() for d in sink]
+    module = out.files[f"{out.package}/ros.py"]
+    assert '@vp.program("ros.rev.bytes")\ndef ros_rev_bytes(s_in, s_out) -> None:' in module
+    assert "    str_len.v = vp.len_(s_in.v)" in module
+    assert "cmd_port.v = 11000  # TCP port for joint commands" in module
+    smap = json.loads(out.files[f"{out.package}/_sourcemap.json"])
+    entry = smap["modules"]["ros.py"]
+    assert entry["source"] == "ros.v2"
+    source_lines = src.read_text().splitlines()
+    runs = entry["runs"]
+    py_lines = module.splitlines()
+
+    def v_line(n: int) -> int:  # the V+ line of Python line n (1-based)
+        found = 0
+        for first, line in runs:
+            if first <= n:
+                found = line
+        return found
+    seen = 0
+    for n, text in enumerate(py_lines, start=1):
+        if text.strip() == "cmd_port.v = 11000  # TCP port for joint commands":
+            assert source_lines[v_line(n) - 1].strip().startswith("cmd.port = 11000")
+            seen += 1
+        if text.strip().startswith("vp.write(lun.v, s_msg.v"):
+            assert source_lines[v_line(n) - 1].strip() == "WRITE (lun) $msg, /S"
+            seen += 1
+    assert seen == 3  # (two servers write)
+
+
+def test_a_tier_3_instruction_parses_and_raises_not_implemented_when_reached(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".PROGRAM main()\n  TYPE \"before\"\n  GCLEAR (20)\n  TYPE \"after\"\n.END\n")
+    r = _run(src)
+    assert "warning GPL4124: GCLEAR is not supported by gpl2py" not in r.stderr  # (--quiet: errors only)
+    assert r.stdout == "before\n"
+    assert r.returncode == 3
+    assert f"{src}:3: error -430 in thread task 0: *Not implemented* - GCLEAR is not simulated" in r.stderr
+
+
+def test_reacte_traps_an_error_and_returne_goes_on_after_the_failing_statement(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    REACTE trouble\n"
+        "    TYPE \"before\"\n"
+        "    x = 1 / 0\n"
+        "    TYPE \"after, x defined: \", DEFINED(x)\n"
+        ".END\n"
+        ".PROGRAM trouble()\n"
+        "    TYPE \"trapped \", ERROR(-1)\n"
+        "    RETURNE\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "before\ntrapped -406\nafter, x defined: 0\n"
+
+
+def test_react_runs_its_program_when_the_signal_comes_on_during_a_loop(tmp_path: Path) -> None:
+    folder = tmp_path / "react"
+    folder.mkdir()
+    _write(folder, (
+        ".PROGRAM main()\n"
+        "    REACT 1001, alarm\n"
+        "    SIGNAL 1\n"
+        "    FOR i = 1 TO 3\n"
+        "        TYPE \"tick \", i\n"
+        "        WAIT.EVENT , 1\n"
+        "    END\n"
+        ".END\n"
+        ".PROGRAM alarm()\n"
+        "    TYPE \"alarm at \", i\n"
+        ".END\n"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cell = Cell.load(folder, echo=False, cache_dir=tmp_path / "cache")
+    cell.io.when_output(1, True).set_input(10001, True, after=1.5)  # the input 1001 comes on at 1.5 s
+    assert cell.run_main() == 0
+    assert cell.sim.console.output == "tick 1\ntick 2\nalarm at 2\ntick 3\n"
+
+
+def test_scopes_local_keeps_its_value_auto_is_new_per_call_global_is_shared(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    shared = 0\n"
+        "    FOR k = 1 TO 3\n"
+        "        CALL count()\n"
+        "    END\n"
+        "    TYPE \"shared \", shared\n"
+        "    IF \"abc\" == \"ABC\" THEN\n"  # UPPER is on: strings compare ignoring case
+        "        TYPE \"same\"\n"
+        "    END\n"
+        ".END\n"
+        ".PROGRAM count()\n"
+        "    LOCAL calls\n"
+        "    AUTO fresh\n"
+        "    IF NOT DEFINED(calls) THEN\n"
+        "        calls = 0\n"
+        "    END\n"
+        "    calls = calls + 1\n"
+        "    TYPE \"calls \", calls, \" fresh \", DEFINED(fresh)\n"
+        "    fresh = 1\n"
+        "    shared = shared + 10\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "calls 1 fresh 0\ncalls 2 fresh 0\ncalls 3 fresh 0\nshared 30\nsame\n"
+
+
+def test_running_a_file_without_a_program_is_a_usage_error_that_says_what_is_missing(tmp_path: Path) -> None:
+    src = _write(tmp_path, ".REALS\nx 1\n.END\n")
+    r = _run(src)
+    assert r.returncode == 2
+    assert f"error GPL9001: {src} has no start procedure: run needs a .PROGRAM" in r.stderr
+
+
+def test_under_reacte_an_error_in_a_block_header_resumes_as_if_the_test_were_false(tmp_path: Path) -> None:
+    src = _write(tmp_path, (
+        ".PROGRAM main()\n"
+        "    REACTE trouble\n"
+        "    IF 1 / 0 THEN\n"
+        "        TYPE \"then\"\n"
+        "    ELSE\n"
+        "        TYPE \"else\"\n"
+        "    END\n"
+        "    n = 0\n"
+        "    WHILE n < 3 DO\n"
+        "        n = n + 1\n"
+        "    END\n"
+        "    TYPE \"n \", n\n"
+        ".END\n"
+        ".PROGRAM trouble()\n"
+        "    TYPE \"trapped \", ERROR(-1)\n"
+        "    RETURNE\n"
+        ".END\n"))
+    r = _run(src)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "trapped -406\nelse\nn 3\n"
