@@ -22,8 +22,10 @@ from sweepkit import THROW_LINE, tiny_project
 from gpl2py.sweep import Count, EndTime, EventTime, Sweep, run_id
 from gpl2py.sweep.results import parts_folder
 
-#: The translator's packages (also under gpl2py.gpl, where the front end may move).
-TRANSLATOR = ("gpl2py.transpile", "gpl2py.lower", "gpl2py.semantics", "gpl2py.syntax", "gpl2py.gpl")
+#: The translator: its entry, the front ends (GPL's under gpl2py.gpl, V+, TMscript) and the writer
+#: of the generated Python; the old places of GPL's front end too, in case a module is left there.
+TRANSLATOR = ("gpl2py.transpile", "gpl2py.gpl", "gpl2py.vplus", "gpl2py.tmscript", "gpl2py.pywriter",
+              "gpl2py.lower", "gpl2py.semantics", "gpl2py.syntax")
 
 
 @pytest.fixture
