@@ -321,6 +321,18 @@ def _run_lsp(args: argparse.Namespace) -> Outcome:
     return out
 
 
+def _configure_sweep(parser: argparse.ArgumentParser) -> None:
+    from gpl2py.sweep.command import configure
+
+    configure(parser)
+
+
+def _run_sweep(args: argparse.Namespace) -> Outcome:
+    from gpl2py.sweep.command import run_command
+
+    return run_command(args)
+
+
 def _run_epilog() -> str:
     from gpl2py.run import RUN_EPILOG
 
@@ -385,6 +397,18 @@ COMMANDS: list[Command] = [
         "rename and quick fixes (docs/editors.md). Needs the lsp extra: pip install 'gpl2py[lsp]'.",
         configure=_configure_lsp,
         run=_run_lsp,
+    ),
+    Command(
+        name="sweep",
+        help="run a project many times with different parameters, on Dask (docs/sweep.md)",
+        description="Translate a GPL project once, then run its ProjectStart once per parameter set "
+        "of --params on a Dask cluster (a local one, or --scheduler ADDRESS), each run on the virtual "
+        "clock after --setup's setup(sim, params), and write one row per run (its parameters, how it "
+        "ended, its metrics) to a Parquet file as the runs end. Example: gpl2py sweep "
+        "samples/pick_and_place --params samples/sweep/params.toml --setup samples/sweep/setup.py "
+        "-o results.parquet --plot cycle.png",
+        configure=_configure_sweep,
+        run=_run_sweep,
     ),
 ]
 

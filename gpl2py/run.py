@@ -686,18 +686,23 @@ def _run_listen_node(args: argparse.Namespace, out: Outcome) -> Outcome:
 
 
 def install_project_files(sim: Any, path: str | Path, project: Project | None) -> None:
-    """Install the project's own files in its controller folder (``Simulation.install_project_files``):
-    every regular file of a project folder; for a single source file, just that file."""
-    if project is None:
+    """Install the project's own files in its controller folder (``Simulation.install_project_files``)."""
+    if project is None or not Path(path).exists():
         return
+    sim.install_project_files(project_files(path, project), project.name)
+
+
+def project_files(path: str | Path, project: Project) -> dict[str, bytes]:
+    """The project's own files, by name: every regular file of a project folder; for a single
+    source file, just that file (``gpl2py sweep`` ships them to its workers as bytes)."""
+    from gplrt.io.project_files import read_project_files
+
     given = Path(path)
     if given.is_dir() or given.name.lower() == "project.gpr":
-        sim.install_project_files(project.root, project.name)
-    elif given.is_file():
-        from gplrt.io.project_files import read_project_files
-
-        files = {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
-        sim.install_project_files(files, project.name)
+        return read_project_files(project.root)
+    if given.is_file():
+        return {k: v for k, v in read_project_files(given.parent).items() if k == given.name}
+    return {}
 
 
 def listening_note(where: Listening) -> str:

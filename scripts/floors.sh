@@ -9,10 +9,10 @@ VENV="${GPL2PY_FLOORS_VENV:-$ROOT/.venv-floors}"
 PY="${PYTHON:-python3}"
 started=$SECONDS
 "$PY" -m venv --clear "$VENV"
-"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot lsp > "$VENV/floors.txt"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" constraints plot lsp sweep > "$VENV/floors.txt"
 # Not editable: the wheel a user would get, with its package data.
-"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot,lsp]"
-"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot lsp
+"$VENV/bin/python" -m pip install --quiet --constraint "$VENV/floors.txt" "$ROOT[plot,lsp,sweep]"
+"$VENV/bin/python" "$ROOT/scripts/floors.py" verify plot lsp sweep
 
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
@@ -39,4 +39,9 @@ MAIN_URI="file://$WORK/lsp/Main.gpl"
   lsp_message '{"jsonrpc":"2.0","id":2,"method":"shutdown"}'
   lsp_message '{"jsonrpc":"2.0","method":"exit"}'; } | "$G" lsp > "$WORK/lsp.txt"
 grep -q "GPL2001" "$WORK/lsp.txt"
+printf 'interval,speed\n0.2,80\n6.0,80\n' > "$WORK/params.csv"
+"$G" sweep "$ROOT/samples/pick_and_place" --params "$WORK/params.csv" --setup "$ROOT/samples/sweep/setup.py" \
+    --workers 2 -o "$WORK/sweep.parquet" --quiet
+"$VENV/bin/python" -c "import pandas as pd, sys; df = pd.read_parquet(sys.argv[1]); \
+assert list(df['status']) == ['ok', 'ok'] and df['end_time'][0] > df['end_time'][1], df" "$WORK/sweep.parquet"
 echo "floors: smoke test passed in $((SECONDS - started)) s"

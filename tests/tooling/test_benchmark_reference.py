@@ -44,6 +44,7 @@ SMALLEST: dict[str, tuple[list[str], str]] = {
                        r"hover +[\d.]+ ms \(spread .*\) +[\d.]+ R \(spread"),
     "vplus_speed.py": (["--lines", "300", "--runs", "1"], r"translate +V\+ *: .* us/line, [\d.]+ µR/line"),
     "runtime_speed.py": (["--n", "50", "--runs", "5", "--on", "direct"], r"class method call .*\n +in R +[\d.]+ R"),
+    "sweep_speed.py": (["--sets", "4", "--runs", "1"], r"2 workers \(sweep\) +[\d.]+ s .*in R: +[\d.]+ R \(spread"),
     "transpile_speed.py": (["--lines", "300", "--runs", "1"],
                            r"transpile: .* ms .* R \(spread(.|\n)*translate .* mR/line"),
 }

@@ -102,8 +102,10 @@ def test_readme_links_work_on_pypi(dists: tuple[zipfile.ZipFile, tarfile.TarFile
 
 def test_every_dependency_has_a_floor_that_ci_installs() -> None:
     project = PYPROJECT["project"]
-    for req in [*project["dependencies"], *project["optional-dependencies"]["plot"]]:
+    extras = project["optional-dependencies"]
+    for req in [*project["dependencies"], *extras["plot"], *extras["sweep"]]:
         assert ">=" in req, req
+    assert set(extras["sweep"]) <= set(extras["test"])  # CI installs what the sweep tests need
     floors = subprocess.run([sys.executable, str(REPO / "scripts" / "floors.py"), "constraints", "plot"],
                             capture_output=True, text=True, check=True).stdout.split()
     assert floors == sorted(floors) and "pin==3.3.1" in floors
