@@ -35,8 +35,10 @@ def session(moves: int, speed: float) -> tuple[float, float, float]:
     from gplrt.tm import context
     from gplrt.tm.listen import ListenNode
 
+    from gpl2py.tmscript.pipeline import translate_packet
+
     robot = context.use_robot("TM5-900")
-    node = ListenNode(robot, "127.0.0.1", 0).serve()
+    node = ListenNode(robot, translate_packet, "127.0.0.1", 0).serve()
     techmanpy.TMSCT_client.PORT = node.port
     targets = ([0.0, 0.0, 90.0, 0.0, 90.0, 0.0], [45.0, -20.0, 110.0, 10.0, 60.0, 30.0])
 

@@ -678,7 +678,7 @@ def _run_listen_node(args: argparse.Namespace, out: Outcome) -> Outcome:
         return out
     import math
 
-    from gplrt.tm.listen import main as listen_main
+    from gpl2py.tmscript.node import main as listen_main
 
     speed = args.speed if args.clock == "real" else math.inf
     out.exit_status = listen_main(args.robot or "TM5-900", args.listen or "127.0.0.1", speed=speed)

@@ -40,6 +40,7 @@ GPL2PY_USES_GPLRT = {
     "gpl2py.gpl.semantics.consts": "folds a Const with gplrt.lang's own operators, as the program would",
     "gpl2py.deploy": "the compiler of the simulated controller's console: translates, imports, hands gplrt a Program",
     "gpl2py.serve": "run --console/--ftp: starts the runtime's Telnet and FTP servers on the run's Simulation",
+    "gpl2py.tmscript.node": "run --listen-node: starts the runtime's TM Listen node with the TMscript front end",
     "gpl2py.sweep.worker": "sweep: runs one parameter set on a Simulation, on a Dask worker or in the loop",
 }
 

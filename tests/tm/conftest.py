@@ -11,11 +11,13 @@ from gplrt.tm import context
 from gplrt.tm.listen import ListenNode
 from gplrt.tm.slave import EthernetSlave
 
+from gpl2py.tmscript.pipeline import translate_packet
+
 
 @pytest.fixture
 def tm_robot() -> Iterator[tuple[object, ListenNode, EthernetSlave]]:
     robot = context.use_robot("TM5-900")
-    node = ListenNode(robot, "127.0.0.1", 0).serve()
+    node = ListenNode(robot, translate_packet, "127.0.0.1", 0).serve()
     slave = EthernetSlave(robot, "127.0.0.1", 0).serve()
     try:
         yield robot, node, slave

@@ -96,10 +96,10 @@ def test_techmanpy_session(tm_robot, monkeypatch) -> None:  # type: ignore[no-un
 
 
 def test_serve_from_a_notebook(monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    """``gplrt.tm.serve()``: the notebook's way to what ``gpl2py run --listen-node`` starts."""
-    import gplrt.tm as tm
+    """``gpl2py.tmscript.node.serve()``: the notebook's way to what ``gpl2py run --listen-node`` starts."""
+    from gpl2py.tmscript.node import serve
 
-    node, slave = tm.serve("TM12", port=0, svr_port=0)
+    node, slave = serve("TM12", port=0, svr_port=0)
     try:
         ports(node, slave, monkeypatch)
 

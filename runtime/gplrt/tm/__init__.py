@@ -2,10 +2,15 @@
 ``tm.<name>`` -- the values and operators (``values``), the built-in library (``library``), the
 parameterized objects ``Robot[0]`` and ``IO[...]`` (``objects``) -- on a simulated TM robot
 (``motion``, ``robot``); the Listen node (``listen``) and the Ethernet Slave (``slave``).
+The Listen node is not imported here: it runs the packets it receives in this package's namespace.
 """
 
 from __future__ import annotations
 
+import sys
+
+from gplrt.lang.sourcemap import locate
+from gplrt.tm import context
 from gplrt.tm.library import *  # noqa: F401,F403 (the TMscript names generated code calls)
 from gplrt.tm.library import ProjectExit
 from gplrt.tm.objects import IO, Robot
@@ -29,8 +34,6 @@ def setitem(obj: object, index: object, value: object) -> object:
 def run_project(main: object, closestop: object = None, errorstop: object = None) -> int:
     """Run a script project as TMflow does: ``main``, then ``closestop`` when it ends without error
     or by ``Exit(code >= 0)``, ``errorstop`` after an error (L1045-L1148); 0 or 1."""
-    from gplrt.tm import context
-
     failed = False
     try:
         if callable(main):
@@ -57,10 +60,6 @@ def run_project(main: object, closestop: object = None, errorstop: object = None
 
 def _report(exc: TMError) -> None:
     """A run-time error as a TM user reads it: the script's file and line, then the message."""
-    import sys
-
-    from gplrt.lang.sourcemap import locate
-
     where = getattr(exc, "where", None) or locate(exc)
     print(f"{where + ': ' if where else ''}error: {exc}", file=sys.stderr, flush=True)
 
@@ -70,19 +69,4 @@ def run_module(module: object, sim: object = None) -> int:
     return int(module.run() or 0)  # type: ignore[attr-defined]
 
 
-__all__ = ["IO", "Robot", "assign", "run_module", "run_project", "serve", "setitem"]
-
-
-def serve(robot: str = "TM5-900", host: str = "127.0.0.1", port: int = 5890, svr_port: int = 5891,
-          speed: float = float("inf")) -> tuple[object, object]:
-    """A simulated TM robot in a Listen node, from a notebook or a script (what ``gpl2py run
-    --robot TM5-900 --listen-node`` starts): ``(node, slave)``, serving in the background until
-    ``node.close()`` and ``slave.close()``.  Port 0 takes a free port (``node.port``)."""
-    from gplrt.tm import context
-    from gplrt.tm.listen import ListenNode
-    from gplrt.tm.slave import EthernetSlave
-
-    r = context.use_robot(robot, speed)
-    node = ListenNode(r, host, port).serve()
-    slave = EthernetSlave(r, host, svr_port).serve()
-    return node, slave
+__all__ = ["IO", "Robot", "assign", "run_module", "run_project", "setitem"]

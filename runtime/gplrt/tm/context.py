@@ -7,10 +7,10 @@ session that starts the code (``gpl2py run``, the Listen node, a test) sets the 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-if TYPE_CHECKING:
-    from gplrt.tm.motion import Robot
+from gplrt.tm.motion import Robot
+from gplrt.tm.robot import arm
 
 _current: dict[str, Any] = {"robot": None, "node": None, "display": None}
 
@@ -26,9 +26,6 @@ def robot() -> Robot:
 def use_robot(name: str = "TM5-900", speed: float = math.inf) -> Robot:
     """Make a new simulated robot ``name`` the current one (``speed``: simulated seconds per wall
     second; ``math.inf`` is the fast clock)."""
-    from gplrt.tm.motion import Robot
-    from gplrt.tm.robot import arm
-
     r = Robot(arm(name), speed=speed)
     _current["robot"] = r
     return r

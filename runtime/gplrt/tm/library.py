@@ -18,10 +18,12 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from gplrt.tm import context
+from gplrt.tm.packets import encode
+from gplrt.tm.slave import table
 from gplrt.tm.motion import CARTESIAN_SPEED, Command, arc_path, line_path
 from gplrt.tm.robot import config_bits, pose_to_se3, se3_to_pose
 from gplrt.tm.teach import Base, Point, TBase, TCP, TPoint, TTCP, frame_of  # noqa: F401 (TMscript's names)
-from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, to_float, to_int, to_string
+from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, to_float, to_int, to_string, truth
 
 
 # --- script control (L7707-L8032) ---------------------------------------------------------------
@@ -81,8 +83,6 @@ def WaitFor(cond: object, ms: object = None) -> bool:
     if ms is None:
         return Sleep(cond)
     assert callable(cond)
-    from gplrt.tm.values import truth
-
     limit = to_int(ms)
     end = time.monotonic() + _wall(limit)
     while not truth(cond()):
@@ -461,8 +461,6 @@ def ScriptExit(mode: object = None) -> bool:
 
 def ListenPacket(*args: object) -> str:
     """``$HDR,len,data,*CS\\r\\n`` (L7447); the header defaults to TMSCT."""
-    from gplrt.tm.packets import encode
-
     header, data = ("TMSCT", args[0]) if len(args) == 1 else (args[0], args[1])
     return encode(to_string(header) or "TMSCT", to_string(data).encode("utf-8")).decode("utf-8", "replace")
 
@@ -477,8 +475,6 @@ def ListenSend(*args: object) -> int:
     n = context.node()
     if n is None:
         return -1
-    from gplrt.tm.conversions import GetBytes
-
     if isinstance(value, str) or not isinstance(value, (list, tuple)):
         payload = to_string(value).encode("utf-8")
     else:
@@ -489,12 +485,10 @@ def ListenSend(*args: object) -> int:
 
 # --- Ethernet Slave (L19694-L20556) -------------------------------------------------------------
 def svr_read(item: object) -> object:
-    from gplrt.tm.slave import table
     return table().read(to_string(item))
 
 
 def svr_write(item: object, value: object) -> bool:
-    from gplrt.tm.slave import table
     return table().write(to_string(item), value) == 0
 
 

@@ -25,11 +25,15 @@ import sys
 import threading
 from collections import deque
 from dataclasses import dataclass, field
+from collections.abc import Callable
 from types import TracebackType
+from typing import Any
 
+import gplrt.tm as tm
 from gplrt.tm import context
 from gplrt.tm.motion import Robot
 from gplrt.tm.packets import encode, split, start, tcp_server
+from gplrt.tm.slave import EthernetSlave
 from gplrt.tm.values import TMError
 
 PORT = 5890
@@ -70,11 +74,23 @@ class _Conn:
                 pass
 
 
-class ListenNode:
-    """A Listen node on ``robot``; ``serve()`` opens the port (0: any free port, see ``port``)."""
+#: The TMscript front end as the node calls it on each script: ``translate(script, known, name)``
+#: -> a packet with ``errors``, ``warnings`` (diagnostics), ``python`` (the text defining
+#: ``script(vars)``), ``declared`` and ``lines`` (Python line -> script line).  The runtime never
+#: imports the transpiler (tests/controller/test_import_graph.py): whoever starts a node hands it
+#: ``gpl2py.tmscript.pipeline.translate_packet`` (``gpl2py run --listen-node``,
+#: ``gpl2py.tmscript.serve``), the same front end that translates script projects.
+Translate = Callable[[str, dict[str, object], str], Any]
 
-    def __init__(self, robot: Robot, host: str = "127.0.0.1", port: int = PORT, message: str = "Listen1") -> None:
+
+class ListenNode:
+    """A Listen node on ``robot`` that translates each script with ``translate`` (:data:`Translate`);
+    ``serve()`` opens the port (0: any free port, see ``port``)."""
+
+    def __init__(self, robot: Robot, translate: Translate, host: str = "127.0.0.1", port: int = PORT,
+                 message: str = "Listen1") -> None:
         self.robot, self.host, self.message = robot, host, message
+        self.translate = translate
         self.active = False
         self.vars = Vars()
         self.known: dict[str, object] = {}
@@ -294,16 +310,14 @@ class ListenNode:
                     self._leave("pass")
 
     def _run_job(self, job: _Job) -> tuple[str, bool]:
-        from gpl2py.tmscript.pipeline import translate_packet
-
-        packet = translate_packet(job.script, self.known, name=f"TMSCT {job.ident}")  # type: ignore[arg-type]
+        packet = self.translate(job.script, self.known, f"TMSCT {job.ident}")
         if packet.errors:
             lines = sorted({d.span.line for d in packet.errors if d.span is not None} or {1})
             return "ERROR;" + ";".join(map(str, lines)), False
         warn = sorted({d.span.line for d in packet.warnings if d.span is not None})
         ok = "OK" + "".join(f";{n}" for n in warn)
         filename = f"<TMSCT {job.ident}>"
-        namespace: dict[str, object] = {"tm": _tm()}
+        namespace: dict[str, object] = {"tm": tm}
         try:
             exec(compile(packet.python, filename, "exec"), namespace)  # noqa: S102 (the front end's own output)
         except SyntaxError:
@@ -334,18 +348,23 @@ def _script_line(tb: TracebackType | None, filename: str, lines: list[int]) -> i
     return found or 1
 
 
-def _tm():  # type: ignore[no-untyped-def]
-    import gplrt.tm as tm
-    return tm
+def serve(translate: Translate, robot: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT,
+          svr_port: int = 5891, speed: float = float("inf")) -> tuple[ListenNode, EthernetSlave]:
+    """A simulated TM robot in a Listen node (what ``gpl2py run --robot TM5-900 --listen-node``
+    starts; a notebook calls ``gpl2py.tmscript.serve``, which gives the front end):
+    ``(node, slave)``, serving in the background until ``node.close()`` and ``slave.close()``.
+    Port 0 takes a free port (``node.port``)."""
+    r = context.use_robot(robot, speed)
+    node = ListenNode(r, translate, host, port).serve()
+    slave = EthernetSlave(r, host, svr_port).serve()
+    return node, slave
 
 
-def main(robot_name: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT, svr_port: int = 5891,
-         speed: float = float("inf")) -> int:
+def main(translate: Translate, robot_name: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT,
+         svr_port: int = 5891, speed: float = float("inf")) -> int:
     """``gpl2py run --robot TM5-900 --listen-node``: serve until interrupted."""
-    from gplrt.tm.slave import EthernetSlave
-
     robot = context.use_robot(robot_name, speed)
-    node = ListenNode(robot, host, port).serve()
+    node = ListenNode(robot, translate, host, port).serve()
     context.set_node(node)
     slave = EthernetSlave(robot, host, svr_port).serve()
     print(f"{robot_name} Listen node on {host}:{node.port}, Ethernet Slave on {host}:{slave.port}", file=sys.stderr, flush=True)

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
+from gplrt.lang.sourcemap import gpl_line_of
 from gplrt.motion.limits import AxisLimits
 from gplrt.motion.planner import plan_axes, plan_scalar
 from gplrt.tm.robot import TMArm, pose_to_se3, se3_to_pose
@@ -371,8 +372,6 @@ def _origin(frame: object, depth: int = 8) -> tuple[tuple[str, int], ...]:
 
 def _where(origin: tuple[tuple[str, int], ...]) -> str | None:
     """``"file.tms:line"`` of the innermost transpiled frame of ``origin`` (the source map)."""
-    from gplrt.lang.sourcemap import gpl_line_of
-
     for file, line in origin:
         found = gpl_line_of(file, line)
         if found is not None:
