@@ -177,7 +177,7 @@ def test_garbage_and_hostile_scripts_leave_the_node_serving(client, tm_robot) ->
         while (reply := client.reply()).startswith(b"$TMSTA,"):
             pass  # (the tag the last script queued)
         assert reply.startswith(f"$TMSCT,".encode()) and (b",OK" in reply or b",ERROR;" in reply), reply[:200]
-    # an unreachable target stops the project by error (tests/tm/test_motion.py): the node is
+    # an unreachable target stops the project by error (tests/tm/test_tm_motion.py): the node is
     # left, and serves again once the flow enters it anew
     robot, node, _ = tm_robot
     assert client.ask(script("120", 'PTP("CPP",5000,0,0,0,0,0,50,200,0,false)')) == encode("TMSCT", b"120,OK")

@@ -5,7 +5,7 @@ The models (``TM5-700``, ``TM5-900``, ``TM12``, ``TM14``) are the core's URDF ro
 (``gplrt.motion.kinematics.robot_model``, docs/design/robots.md): forward kinematics, the
 closed-form inverse with configuration bits, the joint limits and speeds of Techman's nominal
 URDFs.  This module only adds what is TM's business: the pose convention (R = Rz·Ry·Rx is what
-Pinocchio calls roll-pitch-yaw, ``pin.rpy``, checked in tests/tm/test_robot.py) and TM's pose
+Pinocchio calls roll-pitch-yaw, ``pin.rpy``, checked in tests/tm/test_tm_robot.py) and TM's pose
 configuration triplet ``{Config1, Config2, Config3}`` (L17206–L17227) as the core's bits.
 
 **The triplet.**  Config1 ∈ {0, 1} is the shoulder side, Config2 ∈ {2, 3} the elbow (the sign of
