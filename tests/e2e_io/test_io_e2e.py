@@ -15,9 +15,12 @@ from pathlib import Path
 
 import pytest
 
-from conftest import PROJECTS
 from gpltest import LineClient, Transpiled, copy_project, free_port, transpile
 from gplrt.sim import Simulation
+
+#: The GPL projects of these tests (here, not imported from conftest: ``from conftest import``
+#: found another folder's conftest when several folders' tests ran in one session).
+PROJECTS = Path(__file__).resolve().parent / "projects"
 
 TIMEOUT = 10.0  # seconds, for every client socket operation
 

@@ -3,12 +3,16 @@
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import pytest
 
-from conftest import PROJECTS
 from gpltest import Transpiled, transpile
 from gplrt.sim import Simulation
+
+#: The GPL projects of these tests (here, not imported from conftest: ``from conftest import``
+#: found another folder's conftest when several folders' tests ran in one session).
+PROJECTS = Path(__file__).resolve().parent / "projects"
 
 ITEMS = 40
 EXPECTED_TOTAL = sum(pid * 1000 + n for pid in (1, 2) for n in range(1, ITEMS + 1))
