@@ -569,3 +569,13 @@ def compiled_modules(files: dict[str, str]) -> dict[str, str]:
             if "__" not in name:
                 modules[name] = code
     return modules
+
+
+#: ``python -c FOREGROUND ARGS...`` is ``python -m gpl2py ARGS...`` as a terminal's foreground
+#: runs it, for tests that send it Ctrl-C.  A terminal delivers Ctrl-C to a foreground program whose SIGINT is at its default.  A test run
+# started as a background job of a shell script (several suites at once: `pytest ... &`) inherits
+# SIGINT *ignored*, as POSIX has it for background jobs, and so would gpl2py, which then rightly
+# keeps ignoring it: reset it, as the terminal's foreground would have it, then run gpl2py exactly
+# as `python -m gpl2py` does.
+FOREGROUND = ("import runpy, signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
+              "runpy.run_module('gpl2py', run_name='__main__', alter_sys=True)")

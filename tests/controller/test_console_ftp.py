@@ -21,7 +21,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-from gpltest import free_port, write_project
+from gpltest import FOREGROUND, free_port, write_project
 
 from gplrt.controller import telnet
 from gplrt.io import ftp as ftp_module
@@ -102,7 +102,7 @@ def test_deploy_by_ftp_then_load_start_show_stop_unload_from_the_console(tmp_pat
     boot = write_project(tmp_path / "boot", {"Main.gpl": BOOT})
     echo_port = free_port()
     env = {**os.environ, "GPL2PY_CACHE_DIR": str(tmp_path / "cache")}
-    proc = subprocess.Popen([sys.executable, "-m", "gpl2py", "run", boot, "--console", "0", "--ftp", "0"],
+    proc = subprocess.Popen([sys.executable, "-c", FOREGROUND, "run", boot, "--console", "0", "--ftp", "0"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         notes: dict[str, int] = {}

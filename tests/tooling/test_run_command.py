@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from gpltest import REPO, gpl2py, in_process, module_src, write_project
+from gpltest import FOREGROUND, REPO, gpl2py, in_process, module_src, write_project
 
 TICKER = module_src("""\
     Function Inner(ByVal d As Integer) As Integer
@@ -274,13 +274,6 @@ LOOP = module_src("""\
     End Sub""")
 
 
-# A terminal delivers Ctrl-C to a foreground program whose SIGINT is at its default.  A test run
-# started as a background job of a shell script (several suites at once: `pytest ... &`) inherits
-# SIGINT *ignored*, as POSIX has it for background jobs, and so would gpl2py, which then rightly
-# keeps ignoring it: reset it, as the terminal's foreground would have it, then run gpl2py exactly
-# as `python -m gpl2py` does.
-FOREGROUND = ("import runpy, signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
-              "runpy.run_module('gpl2py', run_name='__main__', alter_sys=True)")
 
 
 @pytest.mark.parametrize("clock", ["real", "virtual"])
