@@ -57,6 +57,7 @@ def test_open_publishes_what_check_reports(tmp_path: Path) -> None:
     with Session(tmp_path) as s:
         s.open(folder / "Main.gpl")
         s.wait_diagnostics(folder / "Helper.gpl")  # the whole project's, the unopened file's too
+        s.wait_diagnostics(folder / "Main.gpl")  # (published after Helper.gpl: the files go in sorted order)
         assert published(s) == expected
         d = s.diagnostics[uri(folder / "Main.gpl")][0]
         assert d.source == "gpl2py" and d.code_description is not None
