@@ -284,17 +284,22 @@ def configure(parser: argparse.ArgumentParser) -> None:
 DEFAULT_HISTORY = 1000
 
 
+def whole_number(text: str, other: str = "") -> int:
+    """An option's whole number >= 1 (``other``: what else the option takes, for the message)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number{other}: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
+    return value
+
+
 def _history(text: str) -> int | None:
     """``--history N|all``: a whole number >= 1, or None for ``all``."""
     if text.strip().lower() == "all":
         return None
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number or 'all': {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
-    return value
+    return whole_number(text, " or 'all'")
 
 
 def _positive_float(text: str) -> float:

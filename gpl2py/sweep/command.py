@@ -57,13 +57,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 
 def _whole(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
-    return value
+    from gpl2py.run import whole_number  # (run's own check: the same words for the same mistake)
+
+    return whole_number(text)
 
 
 def run_command(args: argparse.Namespace) -> Outcome:
