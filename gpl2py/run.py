@@ -686,7 +686,7 @@ def _run_listen_node(args: argparse.Namespace, out: Outcome) -> Outcome:
     from gpl2py.tmscript.node import main as listen_main
 
     speed = args.speed if args.clock == "real" else math.inf
-    out.exit_status = listen_main(args.robot or "TM5-900", args.listen or "127.0.0.1", speed=speed)
+    out.exit_status = listen_main(args.robot or "TM5-900", args.listen or "127.0.0.1", speed=speed, clock=args.clock)
     return out
 
 

@@ -21,16 +21,17 @@ SVR_PORT = 5891
 
 
 def serve(robot: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT, svr_port: int = SVR_PORT,
-          speed: float = math.inf) -> tuple[ListenNode, EthernetSlave]:
+          speed: float = math.inf, clock: str | None = None) -> tuple[ListenNode, EthernetSlave]:
     """``(node, slave)`` of a simulated ``robot``, serving in the background until
-    ``node.close()`` and ``slave.close()``; port 0 takes a free port (``node.port``, ``slave.port``)."""
-    return _serve(translate_packet, robot, host, port, svr_port, speed)
+    ``node.close()`` and ``slave.close()``; port 0 takes a free port (``node.port``, ``slave.port``);
+    ``clock`` ``fast`` (default), ``virtual`` or ``real`` (at ``speed``), docs/design/clock.md."""
+    return _serve(translate_packet, robot, host, port, svr_port, speed, clock)
 
 
 def main(robot: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT, svr_port: int = SVR_PORT,
-         speed: float = math.inf) -> int:
+         speed: float = math.inf, clock: str | None = None) -> int:
     """Serve until interrupted (``gpl2py run --listen-node``); the exit status."""
-    return _main(translate_packet, robot, host, port, svr_port, speed)
+    return _main(translate_packet, robot, host, port, svr_port, speed, clock)
 
 
 __all__ = ["SVR_PORT", "main", "serve"]

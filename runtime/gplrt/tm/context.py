@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from gplrt.sim import Simulation
 from gplrt.tm.motion import Robot
 from gplrt.tm.robot import arm
 
@@ -23,11 +24,18 @@ def robot() -> Robot:
     return r  # type: ignore[no-any-return]
 
 
-def use_robot(name: str = "TM5-900", speed: float = math.inf) -> Robot:
-    """Make a new simulated robot ``name`` the current one (``speed``: simulated seconds per wall
-    second; ``math.inf`` is the fast clock)."""
-    r = Robot(arm(name), speed=speed)
+def use_robot(name: str = "TM5-900", speed: float = math.inf, clock: str | None = None) -> Robot:
+    """Make a new simulated robot ``name`` the current one, in a session of its own
+    (``gplrt.sim.Simulation``) on ``clock``: ``fast`` (the default), ``virtual`` or ``real``
+    (``speed`` controller seconds per wall second); a finite ``speed`` alone means ``real``."""
+    if clock is None:
+        clock = "fast" if math.isinf(speed) else "real"
+    sim = Simulation(clock=clock, speed=1.0 if math.isinf(speed) else speed)  # type: ignore[arg-type]
+    previous = _current["robot"]
+    r = Robot(arm(name), sim=sim)
     _current["robot"] = r
+    if previous is not None:
+        previous.close()
     return r
 
 

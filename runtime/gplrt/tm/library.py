@@ -12,15 +12,15 @@ import builtins
 import math
 import random as _random
 import threading
-import time
 from collections.abc import Callable, Sequence
 
 import numpy as np
 
+from gplrt.threads.scheduler import checkpoint
 from gplrt.tm import context
 from gplrt.tm.packets import encode
 from gplrt.tm.slave import table
-from gplrt.tm.motion import CARTESIAN_SPEED, Command, arc_path, line_path
+from gplrt.tm.motion import CARTESIAN_SPEED, Command, arc_path, line_path, start_thread
 from gplrt.tm.robot import config_bits, pose_to_se3, se3_to_pose
 from gplrt.tm.teach import Base, Point, TBase, TCP, TPoint, TTCP, frame_of  # noqa: F401 (TMscript's names)
 from gplrt.tm.values import F32, F64, Array, TMError, format_value, to_double, to_float, to_int, to_string, truth
@@ -55,25 +55,29 @@ def _cancelled() -> bool:
     return bool(n is not None and n.cancelled())
 
 
-def _wall(ms: int) -> float:
-    """Wall seconds that ``ms`` of the robot's time last (its clock's speed; none on the fast clock)."""
-    speed = context.robot().speed
-    return 0.0 if math.isinf(speed) else builtins.max(0, ms) / 1000.0 / speed
+#: Controller seconds between two looks at a ``WaitFor`` condition (the controller's cycle is
+#: shorter; a condition on I/O or variables set by other threads is seen within this).
+WAITFOR_POLL = 0.01
 
 
 def tick() -> None:
-    """A loop's turn in a Listen-node script: ends the script when a priority command abandons
-    it (``StopAndClearBuffer(1|2)``, ``ScriptExit(0|1)``, L18127) or its thread was stopped."""
+    """A loop's turn in a Listen-node script: a scheduling point of the shared scheduler (the
+    connections' threads get their turn), and the end of the script when a priority command
+    abandons it (``StopAndClearBuffer(1|2)``, ``ScriptExit(0|1)``, L18127) or its thread was
+    stopped."""
+    checkpoint()
     _cancelled()
 
 
 def Sleep(ms: object) -> bool:
-    """Wait ``ms`` of the robot's time (L7926); false when interrupted."""
-    end = time.monotonic() + _wall(to_int(ms))
-    while time.monotonic() < end:
-        if _cancelled():
-            return False
-        time.sleep(builtins.min(0.02, builtins.max(0.0, end - time.monotonic())))
+    """Wait ``ms`` of the robot's (controller) time (L7926); false when interrupted."""
+    r = context.robot()
+    end = r.clock.now() + builtins.max(0, to_int(ms)) / 1000.0
+    with r.sched.adopted():
+        while not r.clock.reached(end):
+            if _cancelled():
+                return False
+            r.sched.wait(r.changed, end)
     return True
 
 
@@ -84,26 +88,24 @@ def WaitFor(cond: object, ms: object = None) -> bool:
         return Sleep(cond)
     assert callable(cond)
     limit = to_int(ms)
-    end = time.monotonic() + _wall(limit)
-    while not truth(cond()):
-        if _cancelled() or (limit >= 0 and time.monotonic() >= end):
-            return False
-        time.sleep(0.001)
+    r = context.robot()
+    end = r.clock.now() + builtins.max(0, limit) / 1000.0
+    with r.sched.adopted():
+        while not truth(cond()):
+            if _cancelled() or (limit >= 0 and r.clock.reached(end)):
+                return False
+            poll = r.clock.now() + WAITFOR_POLL
+            r.sched.wait(r.changed, poll if limit < 0 else builtins.min(poll, end))
     return True
 
 
 def Pause() -> bool:
-    r = context.robot()
-    with r.lock:
-        r.paused = True
+    context.robot().pause(True)
     return True
 
 
 def Resume() -> bool:
-    r = context.robot()
-    with r.lock:
-        r.paused = False
-        r.lock.notify_all()
+    context.robot().pause(False)
     return True
 
 
@@ -144,10 +146,10 @@ def ThreadRun(stmt: Callable[[], object], non_pausable: object = False) -> int:
             pass
         finally:
             entry[1] = 2
-    t = threading.Thread(target=body, name=f"tm-thread-{tid}", daemon=True)
-    entry[0] = t
+    entry[0] = f"tm-thread-{tid}"
     _threads[tid] = entry
-    t.start()
+    # a thread of the shared scheduler, as GPL threads and V+ tasks are
+    start_thread(context.robot().sched, f"tm-thread-{tid}", body)
     return tid
 
 
@@ -690,7 +692,7 @@ def Ctrl(x: object) -> str:
 
 def GetNowStamp(*args: object) -> object:
     """Project run time in ms (L6471)."""
-    ms = int(context.robot().sim_time * 1000)
+    ms = int(context.robot().clock.now() * 1000)
     if args and isinstance(args[0], bool):
         return F64(ms)
     if args:

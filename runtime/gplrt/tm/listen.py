@@ -20,7 +20,6 @@ under test sees which line failed (docs/design/tmscript.md).
 from __future__ import annotations
 
 import re
-import socket
 import sys
 import threading
 from collections import deque
@@ -31,8 +30,10 @@ from typing import Any
 
 import gplrt.tm as tm
 from gplrt.tm import context
-from gplrt.tm.motion import Robot
-from gplrt.tm.packets import encode, split, start, tcp_server
+from gplrt.tm.motion import Robot, start_thread
+from gplrt.threads.scheduler import WaitQueue
+from gplrt.tm.packets import encode, split
+from gplrt.tm.server import Conn, Server
 from gplrt.tm.slave import EthernetSlave
 from gplrt.tm.values import TMError
 
@@ -55,23 +56,10 @@ class Vars:
 
 @dataclass
 class _Job:
-    conn: _Conn
+    conn: Conn
     ident: str
     script: str
     pushes: list[bytes] = field(default_factory=list)  # tag pushes held until the reply is sent
-
-
-@dataclass
-class _Conn:
-    sock: socket.socket
-    lock: threading.Lock = field(default_factory=threading.Lock)
-
-    def send(self, frame: bytes) -> None:
-        with self.lock:
-            try:
-                self.sock.sendall(frame)
-            except OSError:
-                pass
 
 
 #: The TMscript front end as the node calls it on each script: ``translate(script, known, name)``
@@ -85,7 +73,13 @@ Translate = Callable[[str, dict[str, object], str], Any]
 
 class ListenNode:
     """A Listen node on ``robot`` that translates each script with ``translate`` (:data:`Translate`);
-    ``serve()`` opens the port (0: any free port, see ``port``)."""
+    ``serve()`` opens the port (0: any free port, see ``port``).
+
+    Its threads -- the accept loop, one per connection, the script executor -- are threads of
+    the robot's scheduler (``robot.sim``), its sockets ``gplrt.io.sockets``' (``gplrt.tm.server``):
+    the node runs on the same clock as the robot's motions (docs/design/tmscript.md).  ``lock``
+    guards the node's state and is never held across a wait or a send (either may hand the
+    scheduler's token to another thread); waits go through the scheduler (``changed``)."""
 
     def __init__(self, robot: Robot, translate: Translate, host: str = "127.0.0.1", port: int = PORT,
                  message: str = "Listen1") -> None:
@@ -95,24 +89,36 @@ class ListenNode:
         self.vars = Vars()
         self.known: dict[str, object] = {}
         self.jobs: deque[_Job] = deque()
-        self.cv = threading.Condition()
-        self.conns: list[_Conn] = []
+        self.lock = threading.RLock()
+        self.sched = robot.sched
+        self.changed = WaitQueue("tm-listen")
         self.abort = False
         self.running: _Job | None = None
-        self.tag_owner: dict[int, _Conn] = {}
+        self.tag_owner: dict[int, Conn] = {}
         self.exited = threading.Event()
         self.result: str | None = None  # "pass" / "fail" once left
+        self._owner: Conn | None = None
         robot.on_tag = self._tag_done
         robot.on_error = self._project_error
-        self.server = tcp_server(host, port, self._serve_conn)
-        self.port = self.server.server_address[1]
-        self._executor = threading.Thread(target=self._execute, name="tm-listen", daemon=True)
+        self._server: Server | None = None
+        self._requested_port = port
+        self.port = port
+
+    @property
+    def conns(self) -> list[Conn]:
+        return self._server.conns if self._server is not None else []
+
+    def _notify(self) -> None:
+        self.sched.notify_all(self.changed)
+        self.robot._notify()  # (a script waiting on the robot notices an abort)
 
     # --- life -----------------------------------------------------------------------------------
     def serve(self, enter: bool = True) -> ListenNode:
         """Start listening (in the background); ``enter``: the flow is in the node now."""
-        start(self.server, "tm-listen-server")
-        self._executor.start()
+        self._server = Server(self.robot.sim, self.host, self._requested_port, self._serve_conn, "tm-listen")
+        self.port = self._server.port
+        start_thread(self.sched, "tm-listen-executor", self._execute)
+        self.robot.drive()
         if enter:
             self.enter()
         return self
@@ -120,23 +126,18 @@ class ListenNode:
     def enter(self) -> None:
         """The flow enters the node: greet every connected client (``$TMSCT,n,0,Listen1``, L17795)."""
         self.robot.restart()
-        with self.cv:
+        with self.lock:
             self.active = True
             self.result = None
             self.exited.clear()
-            conns = list(self.conns)
-        for c in conns:
-            c.send(encode("TMSCT", f"0,{self.message}".encode()))
+        frame = encode("TMSCT", f"0,{self.message}".encode())
+        with self.sched.adopted():
+            for c in list(self.conns):
+                c.send(frame)
 
     def close(self) -> None:
-        self.server.shutdown()
-        self.server.server_close()
-        with self.cv:
-            for c in self.conns:
-                try:
-                    c.sock.close()
-                except OSError:
-                    pass
+        if self._server is not None:
+            self._server.close()
 
     def cancelled(self) -> bool:
         """Whether the running script must stop (checked by the library's waits)."""
@@ -149,10 +150,9 @@ class ListenNode:
 
     def push(self, header: bytes, data: bytes) -> None:
         """Send a frame to every client (``ListenSend``)."""
-        with self.cv:
-            conns = list(self.conns)
-        for c in conns:
-            c.send(encode(header, data))
+        frame = encode(header, data)
+        for c in list(self.conns):
+            c.send(frame)
 
     def _tag_done(self, tag: int) -> None:
         """Push ``$TMSTA 01,NN,true`` to the connection that queued the tag -- after the reply of
@@ -162,58 +162,49 @@ class ListenNode:
         if conn is None:
             return
         frame = encode("TMSTA", f"01,{tag:02d},true".encode())
-        with self.cv:
+        with self.lock:
             job = self.running
             if job is not None and job.conn is conn:
                 job.pushes.append(frame)
                 return
-        conn.send(frame)
+            conn.queue(frame)  # (in order with a reply queued just before, see _execute)
+        conn.flush()
 
     def _project_error(self, exc: TMError) -> None:
         """A motion stopped the project by error (``Robot._stop_by_error``): the flow leaves the
         node, the running script is stopped, the scripts waiting are not run (they are answered
         ``CPERR F1``, as every later one: no external script mode now, L18121)."""
-        with self.cv:
+        with self.lock:
             if not self.active:
                 return
             if self.running is not None:
                 self.abort = True
             dropped = list(self.jobs)
             self.jobs.clear()
+        self._notify()
         for job in dropped:
             job.conn.send(encode("CPERR", b"F1"))
         self._leave("fail")
 
     # --- connections ----------------------------------------------------------------------------
-    def _serve_conn(self, sock: socket.socket) -> None:
-        conn = _Conn(sock)
-        with self.cv:
-            self.conns.append(conn)
+    def _serve_conn(self, conn: Conn) -> None:
         buf = bytearray()
-        try:
-            while True:
-                try:
-                    chunk = sock.recv(65536)
-                except OSError:
-                    break
-                if not chunk:
-                    break
-                buf += chunk
-                for frame in split(buf):
-                    if frame.error:
-                        conn.send(encode("CPERR", f"{frame.error:02X}".encode()))
-                    elif frame.header == b"TMSTA":
-                        self._status(conn, frame.data)
-                    elif frame.header == b"TMSCT":
-                        self._script(conn, frame.data)
-                    else:  # CPERR / TMSVR sent to the Listen port
-                        conn.send(encode("CPERR", b"03"))
-        finally:
-            with self.cv:
-                if conn in self.conns:
-                    self.conns.remove(conn)
+        while True:
+            chunk = conn.recv()
+            if not chunk:
+                return
+            buf += chunk
+            for frame in split(buf):
+                if frame.error:
+                    conn.send(encode("CPERR", f"{frame.error:02X}".encode()))
+                elif frame.header == b"TMSTA":
+                    self._status(conn, frame.data)
+                elif frame.header == b"TMSCT":
+                    self._script(conn, frame.data)
+                else:  # CPERR / TMSVR sent to the Listen port
+                    conn.send(encode("CPERR", b"03"))
 
-    def _status(self, conn: _Conn, data: bytes) -> None:
+    def _status(self, conn: Conn, data: bytes) -> None:
         text = data.decode("utf-8", "replace")
         parts = text.split(",")
         sub = parts[0]
@@ -229,7 +220,7 @@ class ListenNode:
             return
         conn.send(encode("TMSTA", reply.encode()))
 
-    def _script(self, conn: _Conn, data: bytes) -> None:
+    def _script(self, conn: Conn, data: bytes) -> None:
         text = data.decode("utf-8", "replace")
         ident, comma, script = text.partition(",")
         if not comma or not _ID.match(ident):
@@ -242,9 +233,9 @@ class ListenNode:
         if prio is not None:
             self._run_priority(conn, ident, *prio)
             return
-        with self.cv:
+        with self.lock:
             self.jobs.append(_Job(conn, ident, script))
-            self.cv.notify_all()
+        self._notify()
 
     @staticmethod
     def _priority(script: str) -> tuple[str, int] | None:
@@ -256,9 +247,9 @@ class ListenNode:
         stops = [f for f in found if f[0] == "StopAndClearBuffer" and f[1] in (0, 1, 2)]
         return exits[0] if exits else stops[0] if stops else None
 
-    def _run_priority(self, conn: _Conn, ident: str, name: str, mode: int) -> None:
+    def _run_priority(self, conn: Conn, ident: str, name: str, mode: int) -> None:
         dropped: list[_Job] = []
-        with self.cv:
+        with self.lock:
             if name == "ScriptExit" or mode >= 1:
                 if self.running is not None:
                     self.abort = True
@@ -266,17 +257,18 @@ class ListenNode:
                     dropped.append(self.jobs.popleft())
             if name == "ScriptExit" or mode == 2:
                 self.jobs.clear()
+        self._notify()
         for job in dropped:
             job.conn.send(encode("TMSCT", f"{job.ident},OK".encode()))
         self.robot.stop_and_clear()
-        with self.cv:
-            self.cv.wait_for(lambda: self.running is None or not self.abort, timeout=5.0)
-        conn.send(encode("TMSCT", f"{ident},OK".encode()))
-        if name == "ScriptExit":
+        self.sched.wait(self.changed, self.robot.clock.now() + 5.0,
+                        until=lambda: self.running is None or not self.abort)
+        if name == "ScriptExit":  # (left before the reply, as a queued ScriptExit())
             self._leave("pass" if mode == 1 else "fail")
+        conn.send(encode("TMSCT", f"{ident},OK".encode()))
 
     def _leave(self, result: str) -> None:
-        with self.cv:
+        with self.lock:
             self.active = False
             self.result = result
             self.vars = Vars()
@@ -285,10 +277,12 @@ class ListenNode:
 
     # --- the script executor --------------------------------------------------------------------
     def _execute(self) -> None:
+        """The script executor, a thread of the robot's scheduler: one script at a time."""
         while True:
-            with self.cv:
-                while not self.jobs:
-                    self.cv.wait()
+            self.sched.wait(self.changed, None, until=lambda: bool(self.jobs))
+            with self.lock:
+                if not self.jobs:
+                    continue
                 job = self.jobs.popleft()
                 self.running = job
                 self.abort = False
@@ -296,18 +290,20 @@ class ListenNode:
                 reply, leave = self._run_job(job)
             except Exception:  # a fault of the simulator itself: the script fails, the node goes on
                 reply, leave = "ERROR;1", False
-            finally:
-                with self.cv:
-                    job.conn.send(encode("TMSCT", f"{job.ident},{reply}".encode()))
-                    for frame in job.pushes:
-                        job.conn.send(frame)
-                    self.running = None
-                    self.abort = False
-                    self.cv.notify_all()
             if leave:
+                # The node is left once the queue is done, before the reply: the client's next
+                # script, sent when it reads the reply, must find the node left (CPERR F1).
                 self.robot.wait_idle()
                 if self.robot.fault is None:  # (else the error has left the node already)
                     self._leave("pass")
+            with self.lock:
+                for frame in [encode("TMSCT", f"{job.ident},{reply}".encode()), *job.pushes]:
+                    job.conn.queue(frame)
+                job.pushes = []
+                self.running = None
+                self.abort = False
+            job.conn.flush()
+            self._notify()
 
     def _run_job(self, job: _Job) -> tuple[str, bool]:
         packet = self.translate(job.script, self.known, f"TMSCT {job.ident}")
@@ -349,21 +345,22 @@ def _script_line(tb: TracebackType | None, filename: str, lines: list[int]) -> i
 
 
 def serve(translate: Translate, robot: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT,
-          svr_port: int = 5891, speed: float = float("inf")) -> tuple[ListenNode, EthernetSlave]:
+          svr_port: int = 5891, speed: float = float("inf"),
+          clock: str | None = None) -> tuple[ListenNode, EthernetSlave]:
     """A simulated TM robot in a Listen node (what ``gpl2py run --robot TM5-900 --listen-node``
     starts; a notebook calls ``gpl2py.tmscript.serve``, which gives the front end):
     ``(node, slave)``, serving in the background until ``node.close()`` and ``slave.close()``.
-    Port 0 takes a free port (``node.port``)."""
-    r = context.use_robot(robot, speed)
+    Port 0 takes a free port (``node.port``); ``clock``/``speed`` as ``context.use_robot``."""
+    r = context.use_robot(robot, speed, clock)
     node = ListenNode(r, translate, host, port).serve()
     slave = EthernetSlave(r, host, svr_port).serve()
     return node, slave
 
 
 def main(translate: Translate, robot_name: str = "TM5-900", host: str = "127.0.0.1", port: int = PORT,
-         svr_port: int = 5891, speed: float = float("inf")) -> int:
+         svr_port: int = 5891, speed: float = float("inf"), clock: str | None = None) -> int:
     """``gpl2py run --robot TM5-900 --listen-node``: serve until interrupted."""
-    robot = context.use_robot(robot_name, speed)
+    robot = context.use_robot(robot_name, speed, clock)
     node = ListenNode(robot, translate, host, port).serve()
     context.set_node(node)
     slave = EthernetSlave(robot, host, svr_port).serve()
@@ -375,4 +372,5 @@ def main(translate: Translate, robot_name: str = "TM5-900", host: str = "127.0.0
     finally:
         node.close()
         slave.close()
+        robot.close()
     return 0

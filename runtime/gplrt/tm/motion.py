@@ -7,10 +7,16 @@ robot is: ``PTP`` joint-interpolated (``plan_axes``), ``Line``/``Circle``/``PLin
 (``plan_scalar`` on the path length).  Units are the manual's (spec §4.4): speed % of the joints'
 URDF speeds (or mm/s for ``A``/``D`` formats), acceleration as the time in ms to reach top speed.
 
-Time: ``speed`` scales simulated time to wall time (``math.inf``: the fast clock, a motion takes
-no wall time but adds its duration to ``sim_time``); states read during a motion are sampled from
-its plan.  Blending is not simulated (each motion ends at rest): the path between motions
-differs from a blended one, their end points do not.
+Time is the controller time of the robot's session (``gplrt.sim.Simulation``: the shared
+scheduler's ``virtual``, ``fast`` or ``real`` clock, docs/design/clock.md).  The executor is a
+thread of that scheduler: a motion starts at the clock's now and ends ``duration`` later, the
+executor waiting for that deadline as a GPL ``WaitForEOM`` would; states read during a motion are
+sampled from its plan at the clock's now.  A script that waits for the robot (``QueueTag(n, 1)``,
+``WaitQueueTag``, the end of a project, ``Exit``) waits *for the controller*
+(``controller_wait``): on the ``fast`` clock time then jumps to the end of the motion in
+progress, while a motion nobody waits for keeps real-time pace (its client watches it move).
+Blending is not simulated (each motion ends at rest): the path between motions differs from a
+blended one, their end points do not.
 """
 
 from __future__ import annotations
@@ -29,6 +35,8 @@ import pinocchio as pin
 from gplrt.lang.sourcemap import gpl_line_of
 from gplrt.motion.limits import AxisLimits
 from gplrt.motion.planner import plan_axes, plan_scalar
+from gplrt.sim import Simulation
+from gplrt.threads.scheduler import Scheduler, ThreadAbort, WaitQueue, controller_wait
 from gplrt.tm.robot import TMArm, pose_to_se3, se3_to_pose
 from gplrt.tm.values import TMError
 
@@ -37,6 +45,22 @@ from gplrt.tm.values import TMError
 CARTESIAN_SPEED = 1000.0
 #: Queue tags that are remembered (TMSTA 01 answers for the last 4, manual L17930).
 TAGS_KEPT = 4
+
+
+def start_thread(sched: Scheduler, name: str, body: Callable[[], None]) -> None:
+    """Run ``body`` as a thread of ``sched`` (the robot's executor, the servers' loops, the
+    Listen node's scripts, ``ThreadRun``): as a GPL thread, it ends by handing the token on
+    (``finish``); an Abort (the session closing) ends it quietly."""
+    ctx = sched.new_ctx(name)
+
+    def run() -> None:
+        try:
+            body()
+        except ThreadAbort:
+            pass
+        finally:
+            sched.finish(ctx)
+    sched.spawn(ctx, run)
 
 
 @dataclass
@@ -54,13 +78,12 @@ class Command:
 
 @dataclass
 class Motion:
-    """The motion being executed: started at simulated ``t0``, lasting ``duration``."""
+    """The motion being executed: started at controller time ``t0``, lasting ``duration``."""
 
     t0: float
     duration: float
     at: Callable[[float], list[float]]
     end: list[float]
-    wall0: float = 0.0
 
 
 @dataclass
@@ -68,7 +91,8 @@ class Robot:
     """The simulated TM robot: joints, frames, load, I/O tables and the motion queue."""
 
     arm: TMArm
-    speed: float = math.inf  # simulated seconds per wall second
+    #: The session whose scheduler and clock the robot runs on (default: the ``fast`` clock).
+    sim: Simulation = field(default_factory=lambda: Simulation(clock="fast"))
     joints: list[float] = field(default_factory=lambda: [0.0, 0.0, 90.0, 0.0, 90.0, 0.0])
     base: pin.SE3 = field(default_factory=pin.SE3.Identity)
     base_name: str = "RobotBase"
@@ -76,7 +100,7 @@ class Robot:
     tcp_name: str = "NOTOOL"
     load: float = 0.0
     tool_mass: float = 0.0
-    sim_time: float = 0.0
+    sim_time: float = 0.0  # seconds of motion executed (controller time spent moving)
     error_code: int = 0
     paused: bool = False
     project_running: bool = True
@@ -86,7 +110,12 @@ class Robot:
 
     def __post_init__(self) -> None:
         self.queue: deque[Command] = deque()
-        self.lock = threading.Condition()
+        #: Guards the state; never waited on (waits go through the scheduler: ``changed``).
+        self.lock = threading.RLock()
+        self.sched = self.sim.scheduler
+        self.clock = self.sched.clock
+        #: Notified whenever the queue, a motion, a tag, pause or stop changes.
+        self.changed = WaitQueue("tm-robot")
         self.motion: Motion | None = None
         self.tags: dict[int, bool] = {}  # tag -> done, the last TAGS_KEPT in order
         self.ctrl_do = [0] * 16
@@ -101,19 +130,70 @@ class Robot:
         self.stopped = False
         #: The error that stopped the project (a motion that could not start), until ``restart``.
         self.fault: TMError | None = None
-        self._thread = threading.Thread(target=self._execute, name="tm-motion", daemon=True)
-        self._thread.start()
+        start_thread(self.sched, "tm-motion", self._execute)
+
+    def close(self) -> None:
+        """End the robot's session: its executor and threads (a new ``use_robot`` replaces it)."""
+        self._driving = False
+        self.sim.close(grace=1.0)
+
+    def drive(self) -> None:
+        """Keep the robot's session driven while its servers serve: virtual time moves only
+        while someone outside waits on the run (``Scheduler.drivers``, as ``gpl2py run`` does for
+        GPL's servers); clients over sockets are that someone.  Idempotent."""
+        if getattr(self, "_driving", False):
+            return
+        self._driving = True
+
+        def driver() -> None:
+            while self._driving:
+                t0 = time.monotonic()
+                self.sched.wait_until_quiet(None, 0.5)
+                if time.monotonic() - t0 < 0.05:  # (stalled: nothing runs until a client comes)
+                    time.sleep(0.05)
+        threading.Thread(target=driver, name="tm-driver", daemon=True).start()
+
+    @property
+    def speed(self) -> float:
+        """Controller seconds per wall second of a real clock (``math.inf`` on a virtual one)."""
+        return float(getattr(self.clock, "speed", math.inf))
+
+    def _notify(self) -> None:
+        self.sched.notify_all(self.changed)
+
+    def _horizon(self) -> float:
+        """When the motion in progress ends (``math.inf``: none in progress)."""
+        m = self.motion
+        return math.inf if m is None else m.t0 + m.duration
+
+    def _wait_for(self, done: Callable[[], bool], deadline: float | None,
+                  cancelled: Callable[[], bool] = lambda: False, fault: bool = True) -> bool:
+        """Wait for the controller until ``done()`` (True), or until controller time ``deadline``
+        or ``cancelled()`` (False); the fault that stops the project is raised (if ``fault``).  The wait is a
+        ``controller_wait`` to the end of the motion in progress, renewed as each one starts: on
+        the ``fast`` clock a waited motion takes no wall time (docs/design/clock.md)."""
+        with self.sched.adopted():
+            while True:
+                with self.lock:
+                    if fault:
+                        self._raise_fault()
+                    if done():
+                        return True
+                if cancelled() or (deadline is not None and self.clock.reached(deadline)):
+                    return False
+                with controller_wait(self._horizon()):
+                    self.sched.wait(self.changed, deadline)
 
     # --- state ----------------------------------------------------------------------------------
+    def _elapsed(self, m: Motion) -> float:
+        return min(m.duration, max(0.0, self.clock.now() - m.t0))
+
     def current_joints(self) -> list[float]:
         with self.lock:
             m = self.motion
             if m is None:
                 return list(self.joints)
-            if math.isinf(self.speed):
-                return list(m.end)
-            t = min(m.duration, (time.monotonic() - m.wall0) * self.speed)
-            return m.at(t)
+            return m.at(self._elapsed(m))
 
     def flange(self) -> list[float]:
         """The flange pose in RobotBase (mm, deg)."""
@@ -130,9 +210,9 @@ class Robot:
     def joint_speeds(self) -> list[float]:
         with self.lock:
             m = self.motion
-            if m is None or math.isinf(self.speed):
+            if m is None:
                 return [0.0] * 6
-            t = min(m.duration, (time.monotonic() - m.wall0) * self.speed)
+            t = self._elapsed(m)
             dt = 1e-3
             a, b = m.at(max(0.0, t - dt)), m.at(min(m.duration, t + dt))
             return [(y - x) / (2 * dt) for x, y in zip(a, b)]
@@ -150,7 +230,7 @@ class Robot:
                 while len(self.tags) > TAGS_KEPT:
                     self.tags.pop(next(iter(self.tags)))
             self.queue.append(cmd)
-            self.lock.notify_all()
+        self._notify()
         return True
 
     def _raise_fault(self) -> None:
@@ -179,35 +259,34 @@ class Robot:
             self.error_code = 0
             self.project_running = True
 
+    def pause(self, paused: bool) -> None:
+        """``Pause()`` / ``Resume()``: no queued command starts while paused."""
+        with self.lock:
+            self.paused = paused
+        self._notify()
+
     def tag_status(self, tag: int) -> bool | None:
         with self.lock:
             return self.tags.get(tag)
 
     def wait_tag(self, tag: int, timeout_ms: float = -1, cancelled: Callable[[], bool] = lambda: False) -> int:
         """1 when ``tag`` is done, 0 at the timeout, -1 for a tag not among the last four (L15562)."""
-        deadline = None if timeout_ms < 0 else time.monotonic() + timeout_ms / 1000.0 / max(1.0, min(self.speed, 1e9))
+        deadline = None if timeout_ms < 0 else self.clock.now() + timeout_ms / 1000.0
         with self.lock:
-            while True:
-                self._raise_fault()
-                if tag not in self.tags:
-                    return -1 if tag != 0 else 0
-                if self.tags[tag]:
-                    return 1
-                if cancelled():
-                    return 0
-                left = None if deadline is None else deadline - time.monotonic()
-                if left is not None and left <= 0:
-                    return 0
-                self.lock.wait(0.05 if left is None else min(0.05, left))
+            if tag not in self.tags:
+                return -1 if tag != 0 else 0
+        done = self._wait_for(lambda: self.tags.get(tag, True), deadline, cancelled)
+        with self.lock:
+            if tag not in self.tags:  # (cleared by StopAndClearBuffer while waited for)
+                return 0
+            return 1 if done and self.tags[tag] else 0
 
     def idle(self) -> bool:
         with self.lock:
             return not self.queue and not self.busy
 
     def wait_idle(self, cancelled: Callable[[], bool] = lambda: False) -> None:
-        with self.lock:
-            while (self.queue or self.busy) and not cancelled():
-                self.lock.wait(0.05)
+        self._wait_for(lambda: not self.queue and not self.busy, None, cancelled, fault=False)
 
     def stop_and_clear(self) -> None:
         """Stop at once and drop what is queued (``StopAndClearBuffer``, L15683); the robot stays
@@ -218,17 +297,23 @@ class Robot:
                 del self.tags[tag]  # (cleared with the queue: never reported, L18243)
             if self.motion is not None:
                 self.stopped = True
-            self.lock.notify_all()
+        self._notify()
+        with self.sched.adopted():
             while self.busy:
-                self.lock.wait(0.05)
+                self.sched.wait(self.changed, None, until=lambda: not self.busy)
+        with self.lock:
             self.stopped = False
 
     # --- the executor ---------------------------------------------------------------------------
     def _execute(self) -> None:
+        """The executor, a thread of the robot's scheduler: runs the queue in order."""
+        ready = lambda: bool(self.queue) and not self.paused  # noqa: E731
         while True:
+            while not ready():
+                self.sched.wait(self.changed, None, until=ready)
             with self.lock:
-                while not self.queue or self.paused:
-                    self.lock.wait()
+                if not ready():
+                    continue
                 cmd = self.queue.popleft()
                 self.busy = True
             try:
@@ -238,7 +323,7 @@ class Robot:
             finally:
                 with self.lock:
                     self.busy = False
-                    self.lock.notify_all()
+                self._notify()
 
     def _stop_by_error(self, cmd: Command, exc: TMError) -> None:
         """A motion that cannot start (a Cartesian target out of reach, a joint beyond its limit)
@@ -254,7 +339,7 @@ class Robot:
             self.queue.clear()
             for tag in [t for t, done in self.tags.items() if not done]:
                 del self.tags[tag]
-            self.lock.notify_all()
+        self._notify()
         if self.on_error is not None:
             self.on_error(exc)
 
@@ -263,7 +348,7 @@ class Robot:
             with self.lock:
                 if cmd.tag in self.tags:
                     self.tags[cmd.tag] = True
-                self.lock.notify_all()
+            self._notify()
             if self.on_tag is not None:
                 self.on_tag(cmd.tag)
             return
@@ -274,26 +359,21 @@ class Robot:
         assert cmd.plan is not None
         start = list(self.joints)
         duration, at, end = cmd.plan(start)
+        t0 = self.clock.now()
         with self.lock:
-            self.motion = Motion(self.sim_time, duration, at, end, time.monotonic())
-        stopped_at = None
-        if not math.isinf(self.speed):
-            wall_end = self.motion.wall0 + duration / self.speed
-            with self.lock:
-                while not self.stopped:
-                    left = wall_end - time.monotonic()
-                    if left <= 0:
-                        break
-                    self.lock.wait(min(0.02, left))
-                if self.stopped:
-                    stopped_at = min(duration, (time.monotonic() - self.motion.wall0) * self.speed)
+            self.motion = motion = Motion(t0, duration, at, end)
+        self._notify()  # the waiters renew their controller_wait to this motion's end
+        t_end = t0 + duration
+        while not self.stopped and not self.clock.reached(t_end):
+            self.sched.wait(self.changed, t_end, until=lambda: self.stopped)
         with self.lock:
-            if stopped_at is None:
+            if not self.stopped:
                 self.joints = list(end)
                 self.sim_time += duration
             else:
-                self.joints = at(stopped_at)
-                self.sim_time += stopped_at
+                elapsed = self._elapsed(motion)
+                self.joints = at(elapsed)
+                self.sim_time += elapsed
             self.motion = None
 
     # --- motions (the planning, run when a motion starts) ---------------------------------------

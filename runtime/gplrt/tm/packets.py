@@ -9,10 +9,6 @@ for a bad one, which CPERR code it earns: 01 packet, 02 checksum, 03 header.
 from __future__ import annotations
 
 import re
-import socket
-import socketserver
-import threading
-from collections.abc import Callable
 from dataclasses import dataclass
 
 HEADERS = (b"TMSCT", b"TMSTA", b"CPERR", b"TMSVR")
@@ -128,26 +124,3 @@ def split(buf: bytearray) -> list[Frame]:
             out.append(Frame(header, data, 3))
         else:
             out.append(Frame(header, data))
-
-
-class _Server(socketserver.ThreadingTCPServer):
-    allow_reuse_address = True
-    daemon_threads = True
-
-
-def tcp_server(host: str, port: int, serve_conn: Callable[[socket.socket], None]) -> socketserver.ThreadingTCPServer:
-    """A server (not yet serving) that runs ``serve_conn(sock)`` on a thread per connection, with
-    ``TCP_NODELAY``: a reply often follows a push (a tag's TMSTA, then the script's OK), and
-    Nagle would hold the second until the client's delayed ACK, 40 ms a motion."""
-
-    class Handler(socketserver.BaseRequestHandler):
-        def handle(self) -> None:
-            self.request.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
-            serve_conn(self.request)
-
-    return _Server((host, port), Handler)
-
-
-def start(server: socketserver.ThreadingTCPServer, name: str) -> None:
-    """Serve in the background, polling for ``shutdown()`` every 50 ms."""
-    threading.Thread(target=server.serve_forever, args=(0.05,), name=name, daemon=True).start()

@@ -13,14 +13,14 @@ periodically (clients here request what they read).
 from __future__ import annotations
 
 import json
-import socket
 import struct
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from gplrt.tm import context
 from gplrt.tm.motion import Robot
-from gplrt.tm.packets import encode, split, start, tcp_server
+from gplrt.tm.packets import encode, split
+from gplrt.tm.server import Conn, Server
 from gplrt.tm.values import TMError, format_value
 
 PORT = 5891
@@ -150,24 +150,25 @@ class EthernetSlave:
         self.robot = robot
         self.table = Table(robot)
         robot._svr_table = self.table  # type: ignore[attr-defined]
-        self.server = tcp_server(host, port, self._serve_conn)
-        self.port = self.server.server_address[1]
+        self.host, self.port = host, port
+        self._server: Server | None = None
 
     def serve(self) -> EthernetSlave:
-        start(self.server, "tm-svr")
+        """Listen (port 0: a free one, see ``port``) on threads of the robot's scheduler, with the
+        runtime's sockets (``gplrt.tm.server``)."""
+        self._server = Server(self.robot.sim, self.host, self.port, self._serve_conn, "tm-svr")
+        self.port = self._server.port
+        self.robot.drive()
         return self
 
     def close(self) -> None:
-        self.server.shutdown()
-        self.server.server_close()
+        if self._server is not None:
+            self._server.close()
 
-    def _serve_conn(self, sock: socket.socket) -> None:
+    def _serve_conn(self, conn: Conn) -> None:
         buf = bytearray()
         while True:
-            try:
-                chunk = sock.recv(65536)
-            except OSError:
-                return
+            chunk = conn.recv()
             if not chunk:
                 return
             buf += chunk
@@ -176,9 +177,8 @@ class EthernetSlave:
                     reply = encode("CPERR", f"{frame.error or 3:02X}".encode())
                 else:
                     reply = self._request(frame.data)
-                try:
-                    sock.sendall(reply)
-                except OSError:
+                conn.send(reply)
+                if conn.closed:
                     return
 
     def _request(self, data: bytes) -> bytes:
