@@ -51,6 +51,7 @@ def session(moves: int, speed: float) -> tuple[float, float, float]:
     asyncio.run(run())
     wall, cpu = time.perf_counter() - w0, time.process_time() - c0
     node.close()
+    getattr(robot, "close", lambda: None)()  # (its session's threads; before issue 22's clock work, none)
     return wall, cpu, robot.sim_time
 
 
