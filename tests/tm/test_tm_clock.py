@@ -2,12 +2,15 @@
 node's and the Ethernet Slave's threads are threads of the robot's session, their sockets the
 runtime's (``gplrt.io.sockets``), and controller time is that session's clock -- a script's
 ``Sleep`` takes controller time, a motion nobody waits for keeps real-time pace (a client watches
-it move, docs/design/clock.md), one waited for costs no wall time on the fast clock."""
+it move, docs/design/clock.md), one waited for costs no wall time on the fast clock; blending
+hands a motion over to the next one on the shared Ruckig planner."""
 
 from __future__ import annotations
 
 import re
 import socket
+
+import pytest
 
 from gplrt.tm.packets import encode
 
@@ -102,5 +105,72 @@ def test_a_waited_motion_moves_the_controller_clock_by_its_duration(tm_robot) ->
         elapsed = int(pushed.split(b",")[3])
         assert abs(elapsed - robot.sim_time * 1000) <= 5, (elapsed, robot.sim_time)
         assert robot.sim_time > 2.0  # (90 degrees at 20 %: seconds of motion)
+    finally:
+        c.close()
+
+
+# --- blending (L15747, L15990): a motion blends into the next one, on the shared Ruckig planner ---
+A = "0,0,90,0,90,0"
+B = "60,-20,110,0,60,0"
+C = "0,30,60,10,90,40"
+
+
+_sessions = iter(range(1, 1000))
+
+
+def session_time(port: int, motions: str) -> int:
+    """Controller ms that ``motions`` (script lines) take, waited for with a queue tag."""
+    c = Client(port)
+    t = f"t{next(_sessions)}"  # (a Listen node's variables outlive their packet, L17838)
+    try:
+        text = f"int {t} = GetNowStamp()\r\n{motions}\r\nQueueTag(1, 1)\r\nListenSend(90, \"\" + GetNowStamp({t}))"
+        c.sock.sendall(script("1", text))
+        frames = [c.reply() for _ in range(3)]
+        assert encode("TMSCT", b"1,OK") in frames, frames
+        return int(next(f for f in frames if b",90," in f).split(b",")[3])
+    finally:
+        c.close()
+
+
+def test_a_blended_ptp_hands_over_moving_and_ends_on_its_target(tm_robot) -> None:  # type: ignore[no-untyped-def]
+    robot, node, _ = tm_robot
+
+    def through_b(blend: int) -> int:
+        robot.wait_idle()
+        return session_time(node.port, f'PTP("JPP",{B},50,200,{blend},false)\r\nPTP("JPP",{C},50,200,0,false)\r\n'
+                                       f'PTP("JPP",{A},100,200,0,false)')
+    stopping, blended = through_b(0), through_b(50)
+    assert blended < stopping  # the robot does not stop at B
+    assert robot.joints == [0.0, 0.0, 90.0, 0.0, 90.0, 0.0]
+    # from a fast motion into a slow one: Ruckig brakes from the hand-over state
+    session_time(node.port, f'PTP("JPP",{B},100,200,80,false)\r\nPTP("JPP",{C},2,200,0,false)')
+    assert robot.joints == [0.0, 30.0, 60.0, 10.0, 90.0, 40.0]
+
+
+def test_a_line_blends_by_radius_into_a_ptp_but_nothing_blends_into_a_path(tm_robot) -> None:  # type: ignore[no-untyped-def]
+    robot, node, _ = tm_robot
+    line = 'Line("CAR",400,-100,500,180,0,90,300,200,{},false)'
+    ptp = f'PTP("JPP",{A},50,200,0,false)'
+    start = f'PTP("JPP",{A},100,200,0,false)\r\n'
+
+    def timed(motions: str) -> float:
+        """Seconds of motion (the robot's, not the script's own turns) of ``motions`` from A."""
+        session_time(node.port, start.strip())
+        before = robot.sim_time
+        session_time(node.port, motions)
+        return robot.sim_time - before
+    assert timed(line.format(50) + "\r\n" + ptp) < timed(line.format(0) + "\r\n" + ptp)
+    assert robot.joints == [0.0, 0.0, 90.0, 0.0, 90.0, 0.0]
+    # a path motion starts at rest: a blend into a Line is not made (docs/design/tmscript.md)
+    assert timed(ptp.replace(",0,false", ",50,false") + "\r\n" + line.format(0)) == \
+        pytest.approx(timed(ptp + "\r\n" + line.format(0)), abs=1e-9)
+
+
+def test_blending_values_out_of_range_are_script_errors(tm_robot) -> None:  # type: ignore[no-untyped-def]
+    _, node, _ = tm_robot
+    c = Client(node.port)
+    try:
+        assert c.ask(script("1", f'PTP("JPP",{B},50,200,101,false)')) == encode("TMSCT", b"1,ERROR;1")
+        assert c.ask(script("2", 'Line("CAR",400,-100,500,180,0,90,300,200,-5,false)')) == encode("TMSCT", b"2,ERROR;1")
     finally:
         c.close()

@@ -237,6 +237,16 @@ def _line_speed(fmt: str, speed: object) -> float:
     return CARTESIAN_SPEED * v / 100.0 if fmt[1] == "P" else v
 
 
+def _blend(cmd: Command, f: str, value: object) -> Command:
+    """``cmd`` blending into the next motion by ``value``: % for a format ending in ``P``, a
+    radius in mm for ``R`` (L15747, L15990; docs/design/tmscript.md says how a blend is made)."""
+    v = float(to_double(value))
+    if v < 0 or (f[-1] == "P" and v > 100):
+        raise TMError(f"the blending value {v:g} is out of range ({'0-100 %' if f[-1] == 'P' else '>= 0 mm'})")
+    cmd.blend = (f[-1], v) if v > 0 else None
+    return cmd
+
+
 def PTP(fmt: object, *args: object) -> bool:
     """Joint-interpolated move to a joint (``JPP``) or Cartesian (``CPP``) target (L15706)."""
     f = _fmt(fmt, ("JPP", "CPP"), "PTP")
@@ -250,7 +260,7 @@ def PTP(fmt: object, *args: object) -> bool:
     r = context.robot()
     cmd = r.joint_move(target, float(to_double(speed)), float(to_double(accel))) if f == "JPP" \
         else r.ptp_pose(target, float(to_double(speed)), float(to_double(accel)), config)
-    return r.enqueue(cmd)
+    return r.enqueue(_blend(cmd, f, rest[2]))
 
 
 def _pose_config(extra: Sequence[object]) -> list[int] | None:
@@ -273,7 +283,7 @@ def Line(fmt: object, *args: object) -> bool:
         raise TMError("Line: speed, acceleration time, blending and precise positioning are needed")
     r = context.robot()
     goal = lambda: r.cartesian_target(target)  # noqa: E731 (in the base in effect when it starts)
-    return r.enqueue(r.path_move(line_path(goal), _line_speed(f, rest[0]), float(to_double(rest[1]))))
+    return r.enqueue(_blend(r.path_move(line_path(goal), _line_speed(f, rest[0]), float(to_double(rest[1]))), f, rest[2]))
 
 
 def Circle(fmt: object, *args: object) -> bool:
@@ -284,7 +294,7 @@ def Circle(fmt: object, *args: object) -> bool:
         raise TMError("Circle: speed, acceleration time, blending, arc angle and precise positioning are needed")
     r = context.robot()
     path = arc_path(lambda: (r.cartesian_target(via), r.cartesian_target(end)), float(to_double(rest[3])))
-    return r.enqueue(r.path_move(path, _line_speed(f, rest[0]), float(to_double(rest[1]))))
+    return r.enqueue(_blend(r.path_move(path, _line_speed(f, rest[0]), float(to_double(rest[1]))), f, rest[2]))
 
 
 def PLine(fmt: object, *args: object) -> bool:
@@ -300,7 +310,7 @@ def PLine(fmt: object, *args: object) -> bool:
         goal = r.arm.fk_se3(target)
     else:
         goal = lambda: r.cartesian_target(target)  # noqa: E731
-    return r.enqueue(r.path_move(line_path(goal), float(to_double(rest[0])), float(to_double(rest[1]))))
+    return r.enqueue(_blend(r.path_move(line_path(goal), float(to_double(rest[0])), float(to_double(rest[1]))), f, rest[2]))
 
 
 def _relative(f: str, offset: list[float]) -> Callable[[list[float]], list[float]]:
@@ -325,11 +335,12 @@ def _world_delta(p: object, d: object) -> object:
     return pin.SE3(d.rotation @ p.rotation, p.translation + d.translation)
 
 
-def _queue_relative(kind: str, f: str, offset: list[float], speed: float, accel: float) -> bool:
+def _queue_relative(kind: str, f: str, offset: list[float], speed: float, accel: float,
+                    blend: object = 0) -> bool:
     r = context.robot()
     target = _relative(f, offset)
 
-    def plan(start: list[float]):  # type: ignore[no-untyped-def]
+    def plan(start: list[float], v0: list[float] | None = None, a0: list[float] | None = None):  # type: ignore[no-untyped-def]
         goal = target(start)
         if kind == "ptp":
             cmd = r.joint_move(goal, speed, accel) if f[0] == "J" else r.ptp_pose(goal, speed, accel)
@@ -338,15 +349,16 @@ def _queue_relative(kind: str, f: str, offset: list[float], speed: float, accel:
         else:
             cmd = r.path_move(line_path(r.cartesian_target(goal)), speed, accel)
         assert cmd.plan is not None
-        return cmd.plan(start)
-    return r.enqueue(Command("move", plan=plan))
+        return cmd.plan(start, v0, a0) if v0 is not None else cmd.plan(start)
+    return r.enqueue(_blend(Command("move", plan=plan, from_motion=kind == "ptp"), f, blend))
 
 
 def Move_PTP(fmt: object, *args: object) -> bool:
     """Relative PTP: ``C`` offset in the current base, ``T`` in the tool, ``J`` joint offsets (L16300)."""
     f = _fmt(fmt, ("CPP", "TPP", "JPP"), "Move_PTP")
     (offset,), rest = _split(args, 1)
-    return _queue_relative("ptp", f, offset, float(to_double(rest[0])), float(to_double(rest[1])))
+    return _queue_relative("ptp", f, offset, float(to_double(rest[0])), float(to_double(rest[1])),
+                           rest[2] if len(rest) > 2 else 0)
 
 
 def Move_Line(fmt: object, *args: object) -> bool:
@@ -354,14 +366,16 @@ def Move_Line(fmt: object, *args: object) -> bool:
     allowed = tuple(a + b + c for a in "CT" for b in "PAD" for c in "PR")
     f = _fmt(fmt, allowed, "Move_Line")
     (offset,), rest = _split(args, 1)
-    return _queue_relative("line", f, offset, _line_speed(f, rest[0]), float(to_double(rest[1])))
+    return _queue_relative("line", f, offset, _line_speed(f, rest[0]), float(to_double(rest[1])),
+                           rest[2] if len(rest) > 2 else 0)
 
 
 def Move_PLine(fmt: object, *args: object) -> bool:
     """Relative PLine (L16598)."""
     f = _fmt(fmt, ("CAP", "CDP", "TAP", "TDP", "JAP", "JDP"), "Move_PLine")
     (offset,), rest = _split(args, 1)
-    return _queue_relative("line", f, offset, float(to_double(rest[0])), float(to_double(rest[1])))
+    return _queue_relative("line", f, offset, float(to_double(rest[0])), float(to_double(rest[1])),
+                           rest[2] if len(rest) > 2 else 0)
 
 
 def ChangeBase(*args: object) -> bool:

@@ -43,6 +43,10 @@ from gplrt.tm.values import TMError
 #: 100 % Cartesian speed (mm/s) of a ``P`` format Line (ours: the manual gives none; the same
 #: figure as the shared URDF catalogue's).
 CARTESIAN_SPEED = 1000.0
+#: Samples of a blending motion searched for the start of its blend zone.
+BLEND_SAMPLES = 200
+#: Time step (s) of the differences that give a blend's hand-over velocity and acceleration.
+BLEND_DT = 1e-4
 #: Queue tags that are remembered (TMSTA 01 answers for the last 4, manual L17930).
 TAGS_KEPT = 4
 
@@ -70,7 +74,14 @@ class Command:
     kind: str
     run: Callable[[], None] | None = None
     tag: int = 0
-    plan: Callable[[list[float]], tuple[float, Callable[[float], list[float]], list[float]]] | None = None
+    #: ``plan(start, v0, a0)`` -> (duration, joints at t, end joints); ``v0``/``a0`` (deg/s,
+    #: deg/s²) are given only to a motion that ``from_motion`` (a blend hands over to it moving).
+    plan: Callable[..., tuple[float, Callable[[float], list[float]], list[float]]] | None = None
+    #: Blending into the next motion (L15747, L15990): ``("P", percent)`` or ``("R", mm)``.
+    blend: tuple[str, float] | None = None
+    #: Whether it can start from a moving state (a joint-interpolated PTP, planned by Ruckig from
+    #: the full state); a path motion starts at rest, so a blend into one is not made.
+    from_motion: bool = False
     #: (file, line) of the frames that queued a motion, innermost first: the script line named
     #: when it fails (``Robot.fault``).
     origin: tuple[tuple[str, int], ...] = ()
@@ -128,6 +139,8 @@ class Robot:
         self.end_ai = [0.0]
         self.busy = False
         self.stopped = False
+        #: (joints, velocities, accelerations) a blended motion hands over to the next one.
+        self._handoff: tuple[list[float], list[float], list[float]] | None = None
         #: The error that stopped the project (a motion that could not start), until ``restart``.
         self.fault: TMError | None = None
         start_thread(self.sched, "tm-motion", self._execute)
@@ -297,6 +310,7 @@ class Robot:
                 del self.tags[tag]  # (cleared with the queue: never reported, L18243)
             if self.motion is not None:
                 self.stopped = True
+            self._handoff = None
         self._notify()
         with self.sched.adopted():
             while self.busy:
@@ -357,13 +371,31 @@ class Robot:
             cmd.run()
             return
         assert cmd.plan is not None
-        start = list(self.joints)
-        duration, at, end = cmd.plan(start)
+        handoff, self._handoff = self._handoff, None
+        if handoff is not None:
+            start, v0, a0 = handoff
+            duration, at, end = cmd.plan(start, v0, a0)
+        else:
+            start = list(self.joints)
+            duration, at, end = cmd.plan(start)
         t0 = self.clock.now()
         with self.lock:
             self.motion = motion = Motion(t0, duration, at, end)
         self._notify()  # the waiters renew their controller_wait to this motion's end
         t_end = t0 + duration
+        cut = self._blend_start(cmd.blend, at, duration, start, end) if cmd.blend else None
+        if cut is not None:
+            t_cut = t0 + cut
+            while not self.stopped and not self.clock.reached(t_cut):
+                self.sched.wait(self.changed, t_cut, until=lambda: self.stopped)
+            if not self.stopped and self._blends_into_next():
+                q, v, a = _state(at, cut, duration)
+                with self.lock:
+                    self.joints = q
+                    self.sim_time += cut
+                    self.motion = None
+                    self._handoff = (q, v, a)
+                return
         while not self.stopped and not self.clock.reached(t_end):
             self.sched.wait(self.changed, t_end, until=lambda: self.stopped)
         with self.lock:
@@ -375,6 +407,39 @@ class Robot:
                 self.joints = at(elapsed)
                 self.sim_time += elapsed
             self.motion = None
+
+    def _blends_into_next(self) -> bool:
+        """A blend is made when the next command is a motion that can start moving, queued
+        before the blend zone is reached (as the core's ``InRange < 0``)."""
+        with self.lock:
+            return (not self.paused and bool(self.queue) and self.queue[0].kind == "move"
+                    and self.queue[0].from_motion)
+
+    def _blend_start(self, blend: tuple[str, float], at: Callable[[float], list[float]], duration: float,
+                     start: list[float], end: list[float]) -> float | None:
+        """When (s after its start) a blending motion may hand over to the next one: the first
+        sampled moment the TCP is within ``R`` mm of the target, or (``P``) the joints have
+        ``percent`` % of their way left, but never before half the motion (so 100 % still moves
+        half-way); None for no blend."""
+        kind, value = blend
+        if value <= 0 or duration <= 0:
+            return None
+        n = BLEND_SAMPLES
+        if kind == "R":
+            goal = (self.arm.fk_se3(end) * self.tcp).translation
+            def left(q: list[float]) -> float:
+                return float(np.linalg.norm((self.arm.fk_se3(q) * self.tcp).translation - goal)) * 1000.0
+            zone = value
+        else:
+            span = max(abs(b - a) for a, b in zip(start, end)) or 1.0
+            def left(q: list[float]) -> float:
+                return max(abs(b - a) for a, b in zip(q, end)) / span * 100.0
+            zone = min(100.0, value)
+        for i in range(n // 2, n):
+            t = duration * i / n
+            if left(at(t)) <= zone:
+                return t
+        return None
 
     # --- motions (the planning, run when a motion starts) ---------------------------------------
     def limits(self, speed_pct: float, accel_ms: float) -> AxisLimits:
@@ -389,10 +454,11 @@ class Robot:
         self._check_joints(target)
         lim = self.limits(speed_pct, accel_ms)
 
-        def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
-            p = plan_axes(start, None, None, [float(x) for x in target], lim)
+        def plan(start: list[float], v0: list[float] | None = None,
+                 a0: list[float] | None = None) -> tuple[float, Callable[[float], list[float]], list[float]]:
+            p = plan_axes(start, v0, a0, [float(x) for x in target], lim)
             return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), list(target)
-        return Command("move", plan=plan)
+        return Command("move", plan=plan, from_motion=True)
 
     def _check_joints(self, target: list[float]) -> None:
         for i, (q, lo, hi) in enumerate(zip(target, self.arm.lower, self.arm.upper)):
@@ -410,11 +476,12 @@ class Robot:
         triplet (L17206), else the branch the robot is in."""
         lim = self.limits(speed_pct, accel_ms)
 
-        def plan(start: list[float]) -> tuple[float, Callable[[float], list[float]], list[float]]:
+        def plan(start: list[float], v0: list[float] | None = None,
+                 a0: list[float] | None = None) -> tuple[float, Callable[[float], list[float]], list[float]]:
             end = self.arm.ik_se3(self.cartesian_target(pose), start, config)
-            p = plan_axes(start, None, None, end, lim)
+            p = plan_axes(start, v0, a0, end, lim)
             return p.duration, (lambda t: [float(x) for x in p.at(t)[0]]), end
-        return Command("move", plan=plan)
+        return Command("move", plan=plan, from_motion=True)
 
     def path_move(self, path: Callable[[pin.SE3], Callable[[float], pin.SE3]], speed_mm_s: float,
                   accel_ms: float) -> Command:
@@ -438,6 +505,17 @@ class Robot:
                 return q
             return p.duration, at, end
         return Command("move", plan=plan)
+
+
+def _state(at: Callable[[float], list[float]], t: float, duration: float) -> tuple[list[float], list[float], list[float]]:
+    """Joints, velocities and accelerations of a plan at ``t`` (central differences, as the
+    core's blend, ``queue._BLEND_DT``)."""
+    h = BLEND_DT
+    q = at(t)
+    before, after = at(max(0.0, t - h)), at(min(duration, t + h))
+    v = [(b - a) / (2 * h) for a, b in zip(before, after)]
+    acc = [(b - 2 * m + a) / (h * h) for a, m, b in zip(before, q, after)]
+    return q, v, acc
 
 
 def _origin(frame: object, depth: int = 8) -> tuple[tuple[str, int], ...]:
