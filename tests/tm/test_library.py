@@ -9,7 +9,7 @@ import pytest
 from gpl2py.tmscript.pipeline import translate_packet
 from gplrt.tm import context
 from gplrt.tm.listen import Vars
-from gplrt.tm.values import format_value
+from gplrt.tm.values import TMError, format_value
 
 
 def run(script: str) -> Vars:
@@ -94,6 +94,20 @@ def test_e53_e54_e55_ctrl_and_checksums() -> None:
                  "bb1 = Byte_Concat(bb1, XOR8(bb1))", "a", "b", "c", "x", "y", "c0", "c1", "c2", "c3", "c4", "bb1")
     assert got == ["\r\n\t", "\r0\n\t", "", "111", "111", "{45,212}", "{236,197}", "{0,0}", "{66,18}", "{171,174}",
                    "{16,32,80,240,255,255,255,111}"]
+
+
+def test_e55_crc16_every_algorithm() -> None:
+    """Algorithms 1, 2, 5, 6 against their catalogue check values (CRC-16/MODBUS, the Sick
+    checksum, XMODEM, KERMIT of "123456789"), 7 (Schunk gripper: init 0xFFFF, polynomial 0x1021
+    forward, L7230) giving what 4 gives for the manual's bytes (L7245: {0xAB, 0xAE}); 8 is an error."""
+    got = values('byte[] d = String_ToByte("123456789")\nbyte[] m = CRC16(1, d)\nbyte[] x = CRC16(5, d)\n'
+                 "byte[] k = CRC16(6, d)\nbyte[] bb1 = {0x10, 0x20, 0x50, 0xF0, 0xFF, 0xFF, 0xFF}\n"
+                 "byte[] s7 = CRC16(7, bb1)\nbyte[] s7b = CRC16(7, bb1, 1, 3)\nbyte[] s4b = CRC16(4, bb1, 1, 3)",
+                 "m", "x", "k", "s7", "s7b", "s4b")
+    assert got[:3] == ["{75,55}", "{49,195}", "{33,137}"]  # 0x4B37, 0x31C3, 0x2189
+    assert got[3] == "{171,174}" and got[4] == got[5]
+    with pytest.raises(TMError):
+        run("byte[] bb1 = {1}\nbyte[] c = CRC16(8, bb1)")
 
 
 def test_e56_listen_packet() -> None:

@@ -37,6 +37,11 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "Array_IndexOf": (2, 3), "Array_LastIndexOf": (2, 3), "Array_Reverse": (1, 2), "Array_Sort": (1, 2),
     "Array_SubElements": (2, 3),
     "XOR8": (1, 3), "SUM8": (1, 3), "SUM16": (1, 3), "SUM32": (1, 3), "CRC16": (1, 4), "CRC32": (1, 3),
+    # files in the sandbox (L9907-L12366)
+    "File_ReadBytes": (1, 1), "File_ReadText": (1, 1), "File_ReadLines": (1, 3), "File_NextLine": (0, 2),
+    "File_NextEOF": (0, 0), "File_WriteBytes": (2, 5), "File_WriteText": (2, 5), "File_WriteLine": (2, 5),
+    "File_WriteLines": (2, 5), "File_Exists": (1, 1), "File_Length": (1, 1), "File_Delete": (1, None),
+    "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5),
     # math in degrees (L8033-L9400) and pose math (L9393-L9900)
     "abs": (1, 1), "pow": (2, 2), "sqrt": (1, 1), "ceil": (1, 1), "floor": (1, 1), "round": (1, 2),
     "random": (0, 2), "sum": (1, None), "average": (1, None), "min": (1, None), "max": (1, None),
@@ -62,5 +67,6 @@ OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})
 RETURNS: dict[str, str] = {
     "Length": "int", "ThreadID": "int", "ThreadRun": "int", "ThreadState": "int", "ThreadExit": "int",
     "QueueTag": "bool", "WaitQueueTag": "int", "GetNowStamp": "int", "String_ToInteger": "int",
-    "String_IndexOf": "int", "ScriptExit": "bool",
+    "String_IndexOf": "int", "ScriptExit": "bool", "File_Length": "int", "File_Exists": "bool",
+    "File_NextEOF": "bool",
 }

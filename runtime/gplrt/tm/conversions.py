@@ -193,20 +193,24 @@ def _crc_sick(data: bytes) -> int:
 
 _CRC16 = {0: (0x0000, "r", 0xA001), 1: (0xFFFF, "r", 0xA001), 2: (0x0000, "sick", 0x8005),
           3: (0x1D0F, "f", 0x1021), 4: (0xFFFF, "f", 0x1021), 5: (0x0000, "f", 0x1021),
-          6: (0x0000, "r", 0x8408)}
+          6: (0x0000, "r", 0x8408),
+          # Schunk gripper: the manual's table (L7230) gives init 0xFFFF and polynomial 0x1021.  It
+          # writes reflected algorithms with their reflected polynomial (0xA001, 0x8408) and forward
+          # ones with the normal form (0x1021 for 3-5), so 0x1021 is forward: CRC-16/CCITT-FALSE,
+          # the same computation as 4 (docs/design/tmscript.md).
+          7: (0xFFFF, "f", 0x1021)}
 
 
 def CRC16(*args: object) -> Array:
     """``CRC16([alg,] bytes [, start [, n]])``, big endian (L7203); an invalid start gives the
-    initial value.  Algorithm 7 (Schunk gripper) is not simulated: the manual gives its initial
-    value and polynomial only, not its bit order."""
+    initial value; algorithms 0-7 (``_CRC16``)."""
     rest = list(args)
     alg = to_int(rest.pop(0)) if not isinstance(rest[0], (list, tuple)) else 0
     b = rest.pop(0)
     start = rest.pop(0) if rest else 0
     n = rest.pop(0) if rest else -1
     if alg not in _CRC16:
-        raise TMError(f"CRC16: algorithm {alg} is not simulated")
+        raise TMError(f"CRC16: algorithm {alg} is not one of 0-7 (L7212)")
     init, kind, poly = _CRC16[alg]
     data = _span(b, start, n, "CRC16")
     if data is None:

@@ -726,6 +726,10 @@ from gplrt.tm.conversions import (  # noqa: E402
     CRC16, CRC32, SUM8, SUM16, SUM32, XOR8, Byte_Concat, Byte_ToDouble, Byte_ToFloat, Byte_ToInt16, Byte_ToInt32,
     Byte_ToString, GetBytes, String_ToByte,
 )
+from gplrt.tm.files import (  # noqa: E402
+    File_Copy, File_Delete, File_Exists, File_GetToken, File_Length, File_NextEOF, File_NextLine, File_ReadBytes,
+    File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines, File_WriteText,
+)
 from gplrt.tm.posemath import applytrans, changeref, interpoint, inversetrans, trans  # noqa: E402
 from gplrt.tm.strings import (  # noqa: E402
     Array_Append, Array_Equals, Array_IndexOf, Array_Insert, Array_LastIndexOf, Array_Remove, Array_Reverse,
