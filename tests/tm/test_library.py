@@ -149,3 +149,34 @@ def test_e04_e05_single_quoted_variables_in_strings() -> None:
                  'string[] ss = {"Techman", "Robot"}\nstring c = "Hi, \'s\' \'ss[0]\' Robot"\n'
                  'string d = "Hi, s Robot"\nstring e = "Hi, \'" + "s" + "\' Robot"', "a", "b", "c", "d", "e")
     assert got == ["Hi, TM5 Robot", "Hi, 'x' Robot", "Hi, TM5 'ss[0]' Robot", "Hi, s Robot", "Hi, 's' Robot"]
+
+
+def test_getstring_bases_formats_separators_l5111_l5560() -> None:
+    """The manual's GetString examples that agree with its own parameter tables (its int[] and
+    double[] hex lines and some binary ones have digits missing or doubled: L5205-L5240)."""
+    got = values("byte n = 123\nstring a = GetString(n, 16)\nstring b = GetString(n, 2)\nstring c = GetString(n, 16, 3)\n"
+                 "string d = GetString(n, 2, 2)\nbyte[] bn = {12, 34, 56}\nstring e = GetString(bn, 16)\n"
+                 "string f = GetString(bn, 2)\nstring g = GetString(bn, 16, 3)\nstring h = GetString(bn, 2, 2)\n"
+                 "int i = 1234\nstring j = GetString(i, 16)\nstring k = GetString(i, 16, 3)\nstring l = GetString(i, 2, 2)\n"
+                 "int[] m = {123, 345, -123, -456}\nstring o = GetString(m, 16, 3)\nfloat p = 12.34\n"
+                 "string q = GetString(p, 16)\nstring r = GetString(p, 2)\nstring s = GetString(p, 2, 2)\n"
+                 "float[] t = {123.4, 345.6, -123.4, -456.7}\nstring u = GetString(t, 16)\ndouble w = 12.34\n"
+                 "string x = GetString(w, 16)\nbool y = true\nstring z = GetString(y, 16, 3)",
+                 *"abcdefghjkloqrsuxz")
+    assert got == ["0x7B", "0b01111011", "7B", "0b1111011", "{0x0C,0x22,0x38}", "{0b00001100,0b00100010,0b00111000}",
+                   "{C,22,38}", "{0b1100,0b100010,0b111000}", "0x000004D2", "4D2", "0b10011010010",
+                   "{7B,159,FFFFFF85,FFFFFE38}", "0x414570A4", "0b01000001010001010111000010100100",
+                   "0b1000001010001010111000010100100", "{0x42F6CCCD,0x43ACCCCD,0xC2F6CCCD,0xC3E4599A}",
+                   "0x4028AE147AE147AE", "true"]
+    v = run('string[] n = {"123.45", "345.67", "-12""3.48", "-45A6.79"}\nstring a = GetString(n, 1)\n'
+            'string b = GetString(n, 2)\nstring c = GetString(n, 10, 3)\nstring d = GetString(n, "-", 2)\n'
+            "byte[] bn = {12, 34, 56}\nstring e = GetString(bn, \"-\")\nstring f = GetString(bn, \"-\", 16, 3)\n"
+            'string g = GetString(bn, "[0]=", "-")\nstring h = GetString(bn, "[0]=", "-", 2, 2)\n'
+            'string i = GetString(bn, newline, 16)\nbyte one = 123\nstring j = GetString(one, "[0]=", "-", 16)')
+    assert v.a == '{"123.45","345.67","-12""3.48","-45A6.79"}'
+    assert v.b == '{123.45,345.67,-12"3.48,-45A6.79}'
+    assert v.c == '{123.45,345.67,"-12""3.48",-45A6.79}'
+    assert v.d == '123.45-345.67--12"3.48--45A6.79'
+    assert (v.e, v.f) == ("12-34-56", "C-22-38")
+    assert (v.g, v.h) == ("[0]=12-[1]=34-[2]=56", "[0]=0b1100-[1]=0b100010-[2]=0b111000")
+    assert v.i in ("0x0C\r\n0x22\r\n0x38", "0x0C\n0x22\n0x38") and v.j == "0x7B"

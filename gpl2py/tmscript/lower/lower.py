@@ -142,7 +142,15 @@ class Lowerer:
             return f"{pyname(callee.name)}({', '.join(args)})"
         if args and (callee.name in DEFERRED or (callee.name in DEFERRED_WITH_TWO and len(args) == 2)):
             args[0] = self.deferred(e.args[0], args[0])
+        if callee.name == "GetString" and e.args and self.is_byte_scalar(e.args[0]):
+            args.append("as_byte=True")  # (a byte and an int are both Python ints at run time)
         return f"tm.{callee.name}({', '.join(args)})"
+
+    def is_byte_scalar(self, node: A.Node) -> bool:
+        """Whether ``node`` is a variable declared ``byte`` (not an array): ``GetString`` shows its
+        bit pattern in 8 bits, an int's in 32 (L5162)."""
+        var = self.info.names.get(id(node)) if isinstance(node, A.Name) else None
+        return var is not None and var.type == "byte" and not var.array
 
     def deferred(self, node: A.Node, text: str) -> str:
         """A deferred argument: a ``lambda``, or, when it assigns a variable of the function

@@ -11,6 +11,8 @@ from __future__ import annotations
 import builtins
 import math
 import random as _random
+import re
+import struct
 import threading
 from collections.abc import Callable, Sequence
 
@@ -714,11 +716,70 @@ def GetNowStamp(*args: object) -> object:
     return to_int(ms)
 
 
-def GetString(x: object, *args: object) -> str:
-    """The text form of a value (L5162; the base/format options are not implemented yet)."""
-    if args and isinstance(args[0], str) and isinstance(x, (list, tuple)):
-        return args[0].join(format_value(v) for v in x)
-    return format_value(x)
+def GetString(x: object, *args: object, as_byte: bool = False) -> str:
+    """The text form of a value (L5111-L5560): ``(v [, base [, fmt]])``, ``(v, sep [, base [,
+    fmt]])``, ``(v, indexFormat, sep [, base [, fmt]])``.  ``base`` 16 or 2 shows a number's bit
+    pattern (byte 8 bits, int 32, float 32, double 64), ``fmt`` 0 pads and prefixes ``0x``/``0b``,
+    1 pads, 2 prefixes, 3 neither; for a ``string[]`` ``base`` is the quoting (0/10 when needed,
+    1 always, other never).  An array is ``{a,b}``, or joined by ``sep`` without braces, each
+    element after ``indexFormat`` with its index (``"[0]="``).  ``as_byte``: the front end's mark
+    of a ``byte`` scalar (a byte and an int are both Python ints at run time)."""
+    rest = list(args)
+    index = sep = None
+    if rest and isinstance(rest[0], str):
+        if len(rest) >= 2 and isinstance(rest[1], str):
+            index, sep, rest = rest[0], rest[1], rest[2:]
+        else:
+            sep, rest = rest[0], rest[1:]
+    base = to_int(rest[0]) if rest else 10
+    fmt = to_int(rest[1]) if len(rest) > 1 else 0
+    if not isinstance(x, (list, tuple)):
+        return _radix_text(x, base, fmt, as_byte)
+    kind = getattr(x, "type", None)
+    if kind == "string":
+        items = [_quoted(to_string(v), base, sep or ",") for v in x]
+    else:
+        items = [_radix_text(v, base, fmt, kind == "byte") for v in x]
+    if index is not None:
+        items = [_index_text(index, i) + t for i, t in enumerate(items)]
+    return "{" + ",".join(items) + "}" if sep is None else sep.join(items)
+
+
+def _radix_text(v: object, base: int, fmt: int, is_byte: bool) -> str:
+    """A number's text in ``base`` 16 or 2 (its bit pattern), else its ordinary text."""
+    if base not in (16, 2) or isinstance(v, (bool, np.bool_, str)):
+        return format_value(v)
+    if isinstance(v, (int, np.integer)):
+        bits, pattern = (8, int(v) & 0xFF) if is_byte else (32, int(v) & 0xFFFFFFFF)
+    elif isinstance(v, np.float64):
+        bits, pattern = 64, int.from_bytes(struct.pack(">d", float(v)), "big")
+    elif isinstance(v, (float, np.floating)):
+        bits, pattern = 32, int.from_bytes(struct.pack(">f", float(F32(v))), "big")
+    else:
+        return format_value(v)
+    width = bits // 4 if base == 16 else bits
+    digits = format(pattern, "X" if base == 16 else "b")
+    if fmt in (0, 1):
+        digits = digits.rjust(width, "0")
+    return ("0x" if base == 16 else "0b") + digits if fmt in (0, 2) else digits
+
+
+def _quoted(text: str, mode: int, sep: str) -> str:
+    """A ``string[]`` element: in standard string form (``"a""b"``) always (mode 1), when it holds
+    a quote or the separator (0 or 10), else as it is (L5140)."""
+    if mode == 1 or (mode in (0, 10) and ('"' in text or sep in text)):
+        return '"' + text.replace('"', '""') + '"'
+    return text
+
+
+def _index_text(pattern: str, i: int) -> str:
+    """An element's index in a numeric format string: the first run of ``0``/``#`` placeholders
+    stands for the index, zero-padded to the number of ``0`` (``"[0]="`` -> ``"[3]="``, L5449)."""
+    found = re.search(r"[0#]+", pattern)
+    if found is None:
+        return pattern
+    text = str(i).rjust(found.group().count("0"), "0")
+    return pattern[:found.start()] + text + pattern[found.end():]
 
 
 # --- the utility families, in modules of their own ---------------------------------------------
@@ -747,8 +808,6 @@ def String_ToFloat(s: object, base: object = 10) -> object:
     b = to_int(base)
     if b in (16, 2) or low.startswith(("0x", "0b")):
         bits = String_ToInteger(text, 16 if (b == 16 or low.startswith("0x")) else 2)
-        import struct
-
         return F32(struct.unpack("<f", struct.pack("<I", int(bits) & 0xFFFFFFFF))[0])  # type: ignore[call-overload]
     try:
         return to_float(text)
