@@ -4,8 +4,8 @@ the output the manual shows.
 Runnable (tests/tm/examples/, conversion artefacts of the seed repaired and said in each file's
 first line): E12, E13, E14, E15, E16, E17, E18, E19, E20, E36, E37, E38, E39, E40.
 Not runnable: E105 (force control: FTSensor/Force need a force sensor, not simulated); E21 is a
-compile-error example (tested: tests/tm/test_diagnostics.py GPL5300) and E22 needs the Socket class
-(not yet); E24-E35 are function-level programs without ``main`` (their statements are covered by
+compile-error example (tested: tests/tm/test_diagnostics.py GPL5300) and E22 shows a Socket closed
+when its block is left (not simulated; the Socket functions: tests/tm/test_tm_sockets.py); E24-E35 are function-level programs without ``main`` (their statements are covered by
 tests/tm/test_frontend.py); E41-E65 are statement snippets (tests/tm/test_library.py); E66-E104
 need vision, serial ports, sockets, teach points, Modbus, fieldbus or force control.
 Thread ids differ from the manual's (they are the controller's), so their lines are compared by form.

@@ -42,6 +42,9 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "File_NextEOF": (0, 0), "File_WriteBytes": (2, 5), "File_WriteText": (2, 5), "File_WriteLine": (2, 5),
     "File_WriteLines": (2, 5), "File_Exists": (1, 1), "File_Length": (1, 1), "File_Delete": (1, None),
     "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5),
+    # the Socket class's TCP client (L13396-L14356)
+    "socket_open": (1, 1), "socket_close": (1, 1), "socket_read": (1, 5), "socket_read_string": (1, 5),
+    "socket_send": (2, 4), "socket_sendline": (2, 4),
     # math in degrees (L8033-L9400) and pose math (L9393-L9900)
     "abs": (1, 1), "pow": (2, 2), "sqrt": (1, 1), "ceil": (1, 1), "floor": (1, 1), "round": (1, 2),
     "random": (0, 2), "sum": (1, None), "average": (1, None), "min": (1, None), "max": (1, None),
@@ -58,7 +61,7 @@ DEFERRED_WITH_TWO = frozenset({"WaitFor"})
 
 #: Class types (L12376-L25700) the runtime has; a declaration of another is reported as not
 #: supported yet, never translated to a call that fails at run time.
-CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP"})
+CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP", "Socket"})
 
 #: Parameterized objects: ``Item[index].Attribute`` without a declaration (L14355-L14860).
 OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})

@@ -229,3 +229,16 @@ def CRC32(b: object, start: object = 0, n: object = -1) -> Array:
 
     data = _span(b, start, n, "CRC32")
     return Array("byte", (zlib.crc32(data) if data is not None else 0).to_bytes(4, "big"))
+
+
+def write_span(value: object, start: object, length: object) -> object:
+    """The part of a string or an array a write takes (``File_Write*``, ``socket_send``, L10410,
+    L14149): ``start`` outside it is 0, ``length`` <= 0 to the end; other values whole."""
+    if not isinstance(value, (str, list, tuple)):
+        return value
+    st, n = to_int(start), to_int(length)
+    if not 0 <= st < len(value):
+        st = 0
+    whole = value if isinstance(value, str) else list(value)  # (an Array takes no slice)
+    part = whole[st:] if n <= 0 else whole[st:st + n]
+    return Array(value.type, part) if isinstance(value, Array) else part

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from gplrt.io.sandbox import Sandbox, SandboxPath
 from gplrt.lang.errors import GplException
 from gplrt.tm import context
-from gplrt.tm.conversions import GetBytes
+from gplrt.tm.conversions import GetBytes, write_span
 from gplrt.tm.strings import GetToken
 from gplrt.tm.values import Array, TMError, format_value, to_int, to_string
 
@@ -210,19 +210,6 @@ def File_NextEOF() -> bool:
     return _cursor().eof
 
 
-def _slice(value: object, start: object, length: object) -> object:
-    """The part of a string or an array a write takes (L10410): ``start`` outside it is 0,
-    ``length`` <= 0 to the end."""
-    if not isinstance(value, (str, list, tuple)):
-        return value
-    st, n = to_int(start), to_int(length)
-    if not 0 <= st < len(value):
-        st = 0
-    whole = value if isinstance(value, str) else list(value)  # (an Array takes no slice)
-    part = whole[st:] if n <= 0 else whole[st:st + n]
-    return Array(value.type, part) if isinstance(value, Array) else part
-
-
 def _write(path: object, data: bytes, append: object, what: str) -> bool:
     entry = _file(path, what)
     try:
@@ -240,24 +227,24 @@ def _write(path: object, data: bytes, append: object, what: str) -> bool:
 
 def File_WriteBytes(path: object, value: object, append: object = 0, start: object = 0, length: object = 0) -> bool:
     """``value`` as bytes (little-endian numbers, UTF-8 text, L10410); ``append`` 1 appends."""
-    data = bytes(GetBytes(_slice(value, start, length)))
+    data = bytes(GetBytes(write_span(value, start, length)))
     return _write(path, data, append, "File_WriteBytes")
 
 
 def File_WriteText(path: object, value: object, append: object = 0, start: object = 0, length: object = 0) -> bool:
     """``value``'s text form (arrays ``{a,b}``), no newline (L10772)."""
-    return _write(path, format_value(_slice(value, start, length)).encode("utf-8"), append, "File_WriteText")
+    return _write(path, format_value(write_span(value, start, length)).encode("utf-8"), append, "File_WriteText")
 
 
 def File_WriteLine(path: object, value: object, append: object = 0, start: object = 0, length: object = 0) -> bool:
     """``value``'s text form and a newline (L11074)."""
-    text = format_value(_slice(value, start, length)) + NEWLINE
+    text = format_value(write_span(value, start, length)) + NEWLINE
     return _write(path, text.encode("utf-8"), append, "File_WriteLine")
 
 
 def File_WriteLines(path: object, value: object, append: object = 0, start: object = 0, length: object = 0) -> bool:
     """Each element of an array on a line of its own (a single value: one line, L11329)."""
-    part = _slice(value, start, length)
+    part = write_span(value, start, length)
     items = part if isinstance(part, (list, tuple)) else [part]
     text = "".join(format_value(v) + NEWLINE for v in items)
     return _write(path, text.encode("utf-8"), append, "File_WriteLines")

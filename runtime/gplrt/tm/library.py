@@ -792,6 +792,9 @@ from gplrt.tm.files import (  # noqa: E402
     File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines, File_WriteText,
 )
 from gplrt.tm.posemath import applytrans, changeref, interpoint, inversetrans, trans  # noqa: E402
+from gplrt.tm.sockets import (  # noqa: E402
+    Socket, socket_close, socket_open, socket_read, socket_read_string, socket_send, socket_sendline,
+)
 from gplrt.tm.strings import (  # noqa: E402
     Array_Append, Array_Equals, Array_IndexOf, Array_Insert, Array_LastIndexOf, Array_Remove, Array_Reverse,
     Array_Sort, Array_SubElements, GetToken, String_IndexOf, String_LastIndexOf, String_Replace, String_Split,

@@ -1,0 +1,126 @@
+"""TMscript's Socket class and socket_* functions (manual §9, L13396-L14356) against the manual's
+own examples, with a TCP server of the test's on loopback as the remote device."""
+
+from __future__ import annotations
+
+import socket
+import threading
+import time
+
+import pytest
+
+from gpl2py.tmscript.pipeline import translate_packet
+from gplrt.tm import context
+from gplrt.tm.listen import Vars
+from gplrt.tm.values import format_value
+
+HELLO = b"Hello, World\r\n"
+
+
+class Peer:
+    """The remote device: accepts one client, sends ``greeting``, keeps what it receives."""
+
+    def __init__(self, greeting: bytes = b"") -> None:
+        self.server = socket.create_server(("127.0.0.1", 0))
+        self.port = self.server.getsockname()[1]
+        self.received = bytearray()
+        self.greeting = greeting
+        threading.Thread(target=self._serve, daemon=True).start()
+
+    def _serve(self) -> None:
+        conn, _ = self.server.accept()
+        conn.sendall(self.greeting)
+        while chunk := conn.recv(65536):
+            self.received += chunk
+
+    def wait_for(self, n: int) -> bytes:
+        end = time.monotonic() + 30  # (only ends a hang; not a timing assertion)
+        while len(self.received) < n and time.monotonic() < end:
+            time.sleep(0.005)
+        return bytes(self.received)
+
+
+@pytest.fixture
+def robot():  # type: ignore[no-untyped-def]
+    return context.use_robot("TM5-900")
+
+
+def run(script: str) -> Vars:
+    p = translate_packet(script)
+    assert not p.errors, [d.header() for d in p.errors]
+    import gplrt.tm as tm
+
+    ns: dict[str, object] = {"tm": tm}
+    exec(compile(p.python, "<packet>", "exec"), ns)  # noqa: S102
+    v = Vars()
+    ns["script"](v)  # type: ignore[operator]
+    return v
+
+
+def hexes(data: bytes) -> str:
+    return "{" + ",".join(str(b) for b in data) + "}"
+
+
+def test_open_read_with_a_read_time_and_close(robot) -> None:  # type: ignore[no-untyped-def]
+    peer = Peer(HELLO)
+    v = run(f'Socket ntd_a = "127.0.0.1", {peer.port}\nbool o = socket_open("ntd_a")\n'
+            'byte[] a = socket_read("ntd_a", 14, 5000)\nbyte[] b = socket_read("ntd_a")\nbool c = socket_close("ntd_a")')
+    assert v.o is True and bytes(v.a) == HELLO and v.b == [] and v.c is True
+
+
+def test_read_from_the_received_buffer_l13505_l13856(robot) -> None:  # type: ignore[no-untyped-def]
+    peer = Peer()
+    run(f'Socket ntd_a = "127.0.0.1", {peer.port}\nsocket_open("ntd_a")')
+    buffer = robot._socket_devices["ntd_a"].buffer
+
+    def read(call: str) -> tuple[str, bytes]:
+        value = run(f"byte[] x = {call}").x
+        return format_value(value), bytes(buffer)
+
+    buffer[:] = HELLO
+    assert read('socket_read("ntd_a", 6)') == (hexes(b"Hello,"), b" World\r\n")
+    assert read('socket_read("ntd_a", 100)') == ("{}", b" World\r\n")
+    assert read('socket_read("ntd_a", 0)') == (hexes(b" World\r\n"), b"")
+    buffer[:] = b"Hello,\r\nWorld\r\n"
+    assert read('socket_read("ntd_a", "", "")') == (hexes(b"Hello,\r\nWorld\r\n"), b"")
+    buffer[:] = b"Hello,\r\nWorld\r\n"
+    assert read('socket_read("ntd_a", "He", newline)') == (hexes(b"Hello,\r\n"), b"World\r\n")
+    assert read('socket_read("ntd_a", "", newline, 1)') == (hexes(b"World"), b"")
+    buffer[:] = b"Hello,\r\nWorld\r\n"
+    assert read('socket_read("ntd_a", "lo", newline)') == (hexes(b"lo,\r\n"), b"World\r\n")
+    buffer[:] = b"$Hello\r\n#Hi\r\n$TM\r\n#Robot\r\n"
+    assert read('socket_read("ntd_a", "#", newline, 2)') == ("{}", b"$Hello\r\n#Hi\r\n$TM\r\n#Robot\r\n")
+    assert read('socket_read("ntd_a", "$", newline, 2)') == (hexes(b"$Hello\r\n"), b"#Hi\r\n$TM\r\n#Robot\r\n")
+    assert read('socket_read("ntd_a", "#", newline, 2)') == (hexes(b"#Hi\r\n"), b"$TM\r\n#Robot\r\n")
+    assert read('socket_read("ntd_a", "$", newline, 3)') == (hexes(b"TM"), b"#Robot\r\n")
+    assert read('socket_read("ntd_a", "#", newline, 3)') == (hexes(b"Robot"), b"")
+    buffer[:] = "達明\r\n".encode()
+    assert run('string s = socket_read_string("ntd_a", "", newline, 1)').s == "達明"
+
+
+def test_send_l14149(robot) -> None:  # type: ignore[no-untyped-def]
+    peer = Peer()
+    sends = ['1000', '(float)1.234', '(double)123.456', '"Hello, World"+newline', "var_ii", "var_ss",
+             '1000, 1, 2', '"Hello, World"+newline, 0, 7', "var_bb", "var_bb, 1, 1", "var_bb, -1, 1",
+             '"達明機器人", 2']
+    script = (f'Socket ntd_a = "127.0.0.1", {peer.port}\nint[] var_ii = {{100, 200, 300, 400}}\n'
+              'string[] var_ss = {"TM", "", "Robot"}\nbyte[] var_bb = {100, 200}\n'
+              + "\n".join(f'int r{i} = socket_send("ntd_a", {s})' for i, s in enumerate(sends))
+              + '\nint l = socket_sendline("ntd_a", "TM")\nint e = socket_send("ntd_a", "")'
+              + '\nint missing = socket_send("nope", 1)')
+    v = run(script)  # (socket_send connects an unopened device itself, L13424)
+    want = (bytes([0xE8, 3, 0, 0]) + bytes([0xB6, 0xF3, 0x9D, 0x3F]) + bytes([0x77, 0xBE, 0x9F, 0x1A, 0x2F, 0xDD, 0x5E, 0x40])
+            + HELLO + bytes([100, 0, 0, 0, 200, 0, 0, 0, 0x2C, 1, 0, 0, 0x90, 1, 0, 0]) + b"TMRobot"
+            + bytes([0xE8, 3, 0, 0]) + b"Hello, " + bytes([100, 200]) + bytes([200]) + bytes([100])
+            + "機器人".encode() + b"TM\r\n")
+    assert peer.wait_for(len(want)) == want
+    assert [getattr(v, f"r{i}") for i in range(len(sends))] == [1] * len(sends)
+    assert (v.l, v.e, v.missing) == (1, 0, -3)
+
+
+def test_a_device_that_cannot_connect(robot) -> None:  # type: ignore[no-untyped-def]
+    closed = socket.create_server(("127.0.0.1", 0))
+    port = closed.getsockname()[1]
+    closed.close()
+    v = run(f'Socket ntd_b = "127.0.0.1", {port}, 500\nbool o = socket_open("ntd_b")\nint s = socket_send("ntd_b", 1)')
+    assert (v.o, v.s) == (False, -2)
