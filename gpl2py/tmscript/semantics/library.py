@@ -45,6 +45,10 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     # the Socket class's TCP client (L13396-L14356)
     "socket_open": (1, 1), "socket_close": (1, 1), "socket_read": (1, 5), "socket_read_string": (1, 5),
     "socket_send": (2, 4), "socket_sendline": (2, 4),
+    # the ModbusTCP class's user-defined reads and writes (L18324-L19693)
+    "modbus_open": (1, 1), "modbus_close": (1, 1), "modbus_read": (5, 5), "modbus_read_int16": (5, 6),
+    "modbus_read_int32": (5, 6), "modbus_read_float": (5, 6), "modbus_read_double": (5, 6),
+    "modbus_read_string": (5, 6), "modbus_write": (5, 6),
     # math in degrees (L8033-L9400) and pose math (L9393-L9900)
     "abs": (1, 1), "pow": (2, 2), "sqrt": (1, 1), "ceil": (1, 1), "floor": (1, 1), "round": (1, 2),
     "random": (0, 2), "sum": (1, None), "average": (1, None), "min": (1, None), "max": (1, None),
@@ -61,7 +65,7 @@ DEFERRED_WITH_TWO = frozenset({"WaitFor"})
 
 #: Class types (L12376-L25700) the runtime has; a declaration of another is reported as not
 #: supported yet, never translated to a call that fails at run time.
-CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP", "Socket"})
+CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP", "Socket", "ModbusTCP"})
 
 #: Parameterized objects: ``Item[index].Attribute`` without a declaration (L14355-L14860).
 OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})

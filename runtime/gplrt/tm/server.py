@@ -16,6 +16,7 @@ from collections.abc import Callable
 
 from gplrt.io._codec import from_bytes, to_bytes
 from gplrt.io.sockets import IPEndPoint, Socket, TcpListener, listen_address
+from gplrt.lang.byref import Box
 from gplrt.lang.errors import GplException
 from gplrt.sim import Simulation
 from gplrt.threads.scheduler import ThreadAbort
@@ -23,19 +24,6 @@ from gplrt.tm.motion import start_thread
 
 #: Bytes asked for per receive.
 CHUNK = 65536
-
-
-class _Box:
-    """The ``Ref[String]`` that ``Socket.Receive`` fills."""
-
-    def __init__(self) -> None:
-        self.value = ""
-
-    def get(self) -> str:
-        return self.value
-
-    def set(self, value: str) -> None:
-        self.value = value
 
 
 class Conn:
@@ -54,7 +42,7 @@ class Conn:
         self._sending = False
 
     def recv(self) -> bytes:
-        box = _Box()
+        box = Box()
         try:
             n = int(self.sock.Receive(box, CHUNK))  # type: ignore[arg-type]
         except GplException:
