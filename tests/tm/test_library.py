@@ -5,29 +5,12 @@ are the ones the manual prints."""
 from __future__ import annotations
 
 import pytest
+from tmpacket import packet_values as values
+from tmpacket import run_packet as run
 
 from gpl2py.tmscript.pipeline import translate_packet
 from gplrt.tm import context
-from gplrt.tm.listen import Vars
-from gplrt.tm.values import TMError, format_value
-
-
-def run(script: str) -> Vars:
-    p = translate_packet(script)
-    assert not p.errors, [d.header() for d in p.errors]
-    ns: dict[str, object] = {}
-    import gplrt.tm as tm
-
-    ns["tm"] = tm
-    exec(compile(p.python, "<packet>", "exec"), ns)  # noqa: S102
-    v = Vars()
-    ns["script"](v)  # type: ignore[operator]
-    return v
-
-
-def values(script: str, *names: str) -> list[str]:
-    v = run(script)
-    return [format_value(getattr(v, n)) for n in names]
+from gplrt.tm.values import TMError
 
 
 def test_e41_byte_to_int16() -> None:

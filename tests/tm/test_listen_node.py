@@ -3,37 +3,10 @@ bad packets that each get the manual's reply and leave the node serving the next
 
 from __future__ import annotations
 
-import socket
-
 import pytest
+from tmpacket import NodeClient as Client
 
 from gplrt.tm.packets import encode
-
-
-class Client:
-    """A raw TCP client: send frames, read the replies frame by frame."""
-
-    def __init__(self, port: int) -> None:
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=10)
-        self.buf = b""
-
-    def send(self, raw: bytes) -> None:
-        self.sock.sendall(raw)
-
-    def reply(self) -> bytes:
-        while b"\r\n" not in self.buf:
-            chunk = self.sock.recv(65536)
-            assert chunk, "the node closed the connection"
-            self.buf += chunk
-        frame, _, self.buf = self.buf.partition(b"\r\n")
-        return frame + b"\r\n"
-
-    def ask(self, raw: bytes) -> bytes:
-        self.send(raw)
-        return self.reply()
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 @pytest.fixture

@@ -8,41 +8,18 @@ hands a motion over to the next one on the shared Ruckig planner."""
 from __future__ import annotations
 
 import re
-import socket
 
 import pytest
+from tmpacket import NodeClient
 
 from gplrt.tm.packets import encode
-
-
-class Client:
-    """A raw TCP client reading the replies frame by frame."""
-
-    def __init__(self, port: int) -> None:
-        self.sock = socket.create_connection(("127.0.0.1", port), timeout=30)
-        self.buf = b""
-
-    def ask(self, raw: bytes) -> bytes:
-        self.sock.sendall(raw)
-        return self.reply()
-
-    def reply(self) -> bytes:
-        while b"\r\n" not in self.buf:
-            chunk = self.sock.recv(65536)
-            assert chunk, "the robot closed the connection"
-            self.buf += chunk
-        frame, _, self.buf = self.buf.partition(b"\r\n")
-        return frame + b"\r\n"
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 def script(ident: str, text: str) -> bytes:
     return encode("TMSCT", f"{ident},{text}".encode())
 
 
-def joints(svr: Client) -> list[float]:
+def joints(svr: NodeClient) -> list[float]:
     """``Joint_Angle`` read through the Ethernet Slave (mode 12, as techmanpy reads it)."""
     reply = svr.ask(encode("TMSVR", b"q,12,Joint_Angle")).decode()
     found = re.search(r"Joint_Angle=\{([^}]*)\}", reply)
@@ -60,7 +37,7 @@ def test_the_servers_are_threads_and_sockets_of_the_robots_session(tm_robot) -> 
 
 def test_sleep_in_a_script_takes_controller_time(tm_robot) -> None:  # type: ignore[no-untyped-def]
     _, node, _ = tm_robot
-    c = Client(node.port)
+    c = NodeClient(node.port)
     try:
         text = ("int t0 = GetNowStamp()\r\nSleep(200)\r\nint t1 = GetNowStamp()\r\n"
                 'ListenSend(90, "" + (t1 - t0))')
@@ -75,7 +52,7 @@ def test_sleep_in_a_script_takes_controller_time(tm_robot) -> None:  # type: ign
 
 def test_a_motion_nobody_waits_for_is_watched_moving_and_stops_where_caught(tm_robot) -> None:  # type: ignore[no-untyped-def]
     robot, node, slave = tm_robot
-    c, svr = Client(node.port), Client(slave.port)
+    c, svr = NodeClient(node.port), NodeClient(slave.port)
     start = [0.0, 0.0, 90.0, 0.0, 90.0, 0.0]
     try:
         # J1 by 90 degrees at 1 % of its speed: about a minute of motion, in real-time pace
@@ -94,7 +71,7 @@ def test_a_motion_nobody_waits_for_is_watched_moving_and_stops_where_caught(tm_r
 
 def test_a_waited_motion_moves_the_controller_clock_by_its_duration(tm_robot) -> None:  # type: ignore[no-untyped-def]
     robot, node, _ = tm_robot
-    c = Client(node.port)
+    c = NodeClient(node.port)
     try:
         text = ('int t0 = GetNowStamp()\r\nPTP("JPP",90,0,90,0,90,0,20,200,0,false)\r\nQueueTag(1, 1)\r\n'
                 'ListenSend(90, "" + GetNowStamp(t0))')
@@ -120,7 +97,7 @@ _sessions = iter(range(1, 1000))
 
 def session_time(port: int, motions: str) -> int:
     """Controller ms that ``motions`` (script lines) take, waited for with a queue tag."""
-    c = Client(port)
+    c = NodeClient(port)
     t = f"t{next(_sessions)}"  # (a Listen node's variables outlive their packet, L17838)
     try:
         text = f"int {t} = GetNowStamp()\r\n{motions}\r\nQueueTag(1, 1)\r\nListenSend(90, \"\" + GetNowStamp({t}))"
@@ -168,7 +145,7 @@ def test_a_line_blends_by_radius_into_a_ptp_but_nothing_blends_into_a_path(tm_ro
 
 def test_blending_values_out_of_range_are_script_errors(tm_robot) -> None:  # type: ignore[no-untyped-def]
     _, node, _ = tm_robot
-    c = Client(node.port)
+    c = NodeClient(node.port)
     try:
         assert c.ask(script("1", f'PTP("JPP",{B},50,200,101,false)')) == encode("TMSCT", b"1,ERROR;1")
         assert c.ask(script("2", 'Line("CAR",400,-100,500,180,0,90,300,200,-5,false)')) == encode("TMSCT", b"2,ERROR;1")

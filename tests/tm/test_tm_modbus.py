@@ -12,10 +12,9 @@ import time
 from collections.abc import Iterator
 
 import pytest
+from tmpacket import run_packet
 
-from gpl2py.tmscript.pipeline import translate_packet
 from gplrt.tm import context
-from gplrt.tm.listen import Vars
 
 pymodbus = pytest.importorskip("pymodbus")
 from pymodbus.client import ModbusTcpClient  # noqa: E402
@@ -65,16 +64,6 @@ def port() -> Iterator[int]:
     loop.close()
 
 
-def run(script: str) -> Vars:
-    p = translate_packet(script)
-    assert not p.errors, [d.header() for d in p.errors]
-    import gplrt.tm as tm
-
-    ns: dict[str, object] = {"tm": tm}
-    exec(compile(p.python, "<packet>", "exec"), ns)  # noqa: S102
-    v = Vars()
-    ns["script"](v)  # type: ignore[operator]
-    return v
 
 
 def close(a: list[float], b: list[float]) -> bool:
@@ -82,7 +71,7 @@ def close(a: list[float], b: list[float]) -> bool:
 
 
 def test_reads_l18871_l19445(port: int) -> None:
-    v = run(f'ModbusTCP TCP_1 = "127.0.0.1", {port}\nbool o = modbus_open("TCP_1")\n'
+    v = run_packet(f'ModbusTCP TCP_1 = "127.0.0.1", {port}\nbool o = modbus_open("TCP_1")\n'
             'byte[] do4 = modbus_read("TCP_1", 0, "DO", 0, 4)\nbyte[] di3 = modbus_read("TCP_1", 0, "DI", 0, 3)\n'
             'byte[] ro = modbus_read("TCP_1", 0, "RO", 0, 6)\nbyte[] ri = modbus_read("TCP_1", 0, "RI", 0, 12)\n'
             'int[] a = modbus_read_int16("TCP_1", 0, "DI", 0, 3)\nint[] b = modbus_read_int16("TCP_1", 0, "RO", 0, 6)\n'
@@ -108,7 +97,7 @@ def test_reads_l18871_l19445(port: int) -> None:
 
 
 def test_writes_and_string_l19346_l19552(port: int) -> None:
-    v = run(f'ModbusTCP TCP_1 = "127.0.0.1", {port}\nbyte[] bb = {{10, 20, 0, 30}}\n'
+    v = run_packet(f'ModbusTCP TCP_1 = "127.0.0.1", {port}\nbyte[] bb = {{10, 20, 0, 30}}\n'
             'bool w1 = modbus_write("TCP_1", 0, "DO", 0, bb)\nbool w2 = modbus_write("TCP_1", 0, "DO", 8, bb, 2)\n'
             'bool w3 = modbus_write("TCP_1", 0, "DO", 12, true)\nint i = 10000\n'
             'bool w4 = modbus_write("TCP_1", 0, "RO", 10, i)\nstring[] n = {"ABC", "12", "34"}\n'
@@ -131,5 +120,5 @@ def test_a_device_that_does_not_answer(port: int) -> None:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         dead = s.getsockname()[1]
-    v = run(f'ModbusTCP m = "127.0.0.1", {dead}, 500\nbool o = modbus_open("m")\nbool w = modbus_write("m", 0, "DO", 0, true)')
+    v = run_packet(f'ModbusTCP m = "127.0.0.1", {dead}, 500\nbool o = modbus_open("m")\nbool w = modbus_write("m", 0, "DO", 0, true)')
     assert (v.o, v.w) == (False, False)

@@ -8,10 +8,9 @@ import threading
 import time
 
 import pytest
+from tmpacket import run_packet
 
-from gpl2py.tmscript.pipeline import translate_packet
 from gplrt.tm import context
-from gplrt.tm.listen import Vars
 from gplrt.tm.values import format_value
 
 HELLO = b"Hello, World\r\n"
@@ -45,16 +44,6 @@ def robot():  # type: ignore[no-untyped-def]
     return context.use_robot("TM5-900")
 
 
-def run(script: str) -> Vars:
-    p = translate_packet(script)
-    assert not p.errors, [d.header() for d in p.errors]
-    import gplrt.tm as tm
-
-    ns: dict[str, object] = {"tm": tm}
-    exec(compile(p.python, "<packet>", "exec"), ns)  # noqa: S102
-    v = Vars()
-    ns["script"](v)  # type: ignore[operator]
-    return v
 
 
 def hexes(data: bytes) -> str:
@@ -63,18 +52,18 @@ def hexes(data: bytes) -> str:
 
 def test_open_read_with_a_read_time_and_close(robot) -> None:  # type: ignore[no-untyped-def]
     peer = Peer(HELLO)
-    v = run(f'Socket ntd_a = "127.0.0.1", {peer.port}\nbool o = socket_open("ntd_a")\n'
+    v = run_packet(f'Socket ntd_a = "127.0.0.1", {peer.port}\nbool o = socket_open("ntd_a")\n'
             'byte[] a = socket_read("ntd_a", 14, 5000)\nbyte[] b = socket_read("ntd_a")\nbool c = socket_close("ntd_a")')
     assert v.o is True and bytes(v.a) == HELLO and v.b == [] and v.c is True
 
 
 def test_read_from_the_received_buffer_l13505_l13856(robot) -> None:  # type: ignore[no-untyped-def]
     peer = Peer()
-    run(f'Socket ntd_a = "127.0.0.1", {peer.port}\nsocket_open("ntd_a")')
+    run_packet(f'Socket ntd_a = "127.0.0.1", {peer.port}\nsocket_open("ntd_a")')
     buffer = robot._socket_devices["ntd_a"].buffer
 
     def read(call: str) -> tuple[str, bytes]:
-        value = run(f"byte[] x = {call}").x
+        value = run_packet(f"byte[] x = {call}").x
         return format_value(value), bytes(buffer)
 
     buffer[:] = HELLO
@@ -95,7 +84,7 @@ def test_read_from_the_received_buffer_l13505_l13856(robot) -> None:  # type: ig
     assert read('socket_read("ntd_a", "$", newline, 3)') == (hexes(b"TM"), b"#Robot\r\n")
     assert read('socket_read("ntd_a", "#", newline, 3)') == (hexes(b"Robot"), b"")
     buffer[:] = "達明\r\n".encode()
-    assert run('string s = socket_read_string("ntd_a", "", newline, 1)').s == "達明"
+    assert run_packet('string s = socket_read_string("ntd_a", "", newline, 1)').s == "達明"
 
 
 def test_send_l14149(robot) -> None:  # type: ignore[no-untyped-def]
@@ -108,7 +97,7 @@ def test_send_l14149(robot) -> None:  # type: ignore[no-untyped-def]
               + "\n".join(f'int r{i} = socket_send("ntd_a", {s})' for i, s in enumerate(sends))
               + '\nint l = socket_sendline("ntd_a", "TM")\nint e = socket_send("ntd_a", "")'
               + '\nint missing = socket_send("nope", 1)')
-    v = run(script)  # (socket_send connects an unopened device itself, L13424)
+    v = run_packet(script)  # (socket_send connects an unopened device itself, L13424)
     want = (bytes([0xE8, 3, 0, 0]) + bytes([0xB6, 0xF3, 0x9D, 0x3F]) + bytes([0x77, 0xBE, 0x9F, 0x1A, 0x2F, 0xDD, 0x5E, 0x40])
             + HELLO + bytes([100, 0, 0, 0, 200, 0, 0, 0, 0x2C, 1, 0, 0, 0x90, 1, 0, 0]) + b"TMRobot"
             + bytes([0xE8, 3, 0, 0]) + b"Hello, " + bytes([100, 200]) + bytes([200]) + bytes([100])
@@ -122,5 +111,5 @@ def test_a_device_that_cannot_connect(robot) -> None:  # type: ignore[no-untyped
     closed = socket.create_server(("127.0.0.1", 0))
     port = closed.getsockname()[1]
     closed.close()
-    v = run(f'Socket ntd_b = "127.0.0.1", {port}, 500\nbool o = socket_open("ntd_b")\nint s = socket_send("ntd_b", 1)')
+    v = run_packet(f'Socket ntd_b = "127.0.0.1", {port}, 500\nbool o = socket_open("ntd_b")\nint s = socket_send("ntd_b", 1)')
     assert (v.o, v.s) == (False, -2)

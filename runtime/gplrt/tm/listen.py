@@ -32,7 +32,7 @@ import gplrt.tm as tm
 from gplrt.tm import context
 from gplrt.tm.motion import Robot, start_thread
 from gplrt.threads.scheduler import WaitQueue
-from gplrt.tm.packets import encode, split
+from gplrt.tm.packets import encode
 from gplrt.tm.server import Conn, Server
 from gplrt.tm.slave import EthernetSlave
 from gplrt.tm.values import TMError
@@ -188,21 +188,15 @@ class ListenNode:
 
     # --- connections ----------------------------------------------------------------------------
     def _serve_conn(self, conn: Conn) -> None:
-        buf = bytearray()
-        while True:
-            chunk = conn.recv()
-            if not chunk:
-                return
-            buf += chunk
-            for frame in split(buf):
-                if frame.error:
-                    conn.send(encode("CPERR", f"{frame.error:02X}".encode()))
-                elif frame.header == b"TMSTA":
-                    self._status(conn, frame.data)
-                elif frame.header == b"TMSCT":
-                    self._script(conn, frame.data)
-                else:  # CPERR / TMSVR sent to the Listen port
-                    conn.send(encode("CPERR", b"03"))
+        for frame in conn.frames():
+            if frame.error:
+                conn.send(encode("CPERR", f"{frame.error:02X}".encode()))
+            elif frame.header == b"TMSTA":
+                self._status(conn, frame.data)
+            elif frame.header == b"TMSCT":
+                self._script(conn, frame.data)
+            else:  # CPERR / TMSVR sent to the Listen port
+                conn.send(encode("CPERR", b"03"))
 
     def _status(self, conn: Conn, data: bytes) -> None:
         text = data.decode("utf-8", "replace")

@@ -12,7 +12,7 @@ controller, and the listen address follows the session's network policy (docs/se
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 from gplrt.io._codec import from_bytes, to_bytes
 from gplrt.io.sockets import IPEndPoint, Socket, TcpListener, listen_address
@@ -20,6 +20,7 @@ from gplrt.lang.byref import Box
 from gplrt.lang.errors import GplException
 from gplrt.sim import Simulation
 from gplrt.threads.scheduler import ThreadAbort
+from gplrt.tm.packets import Frame, split
 from gplrt.tm.motion import start_thread
 
 #: Bytes asked for per receive.
@@ -78,6 +79,13 @@ class Conn:
     def send(self, frame: bytes) -> None:
         self.queue(frame)
         self.flush()
+
+    def frames(self) -> Iterator[Frame]:
+        """The frames the client sends, as they arrive (``packets.split``), until it closes."""
+        buf = bytearray()
+        while chunk := self.recv():
+            buf += chunk
+            yield from split(buf)
 
     def close(self) -> None:
         self.closed = True

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 from gplrt.tm import context
 from gplrt.tm.motion import Robot
-from gplrt.tm.packets import encode, split
+from gplrt.tm.packets import encode
 from gplrt.tm.server import Conn, Server
 from gplrt.tm.values import TMError, format_value
 
@@ -166,20 +166,14 @@ class EthernetSlave:
             self._server.close()
 
     def _serve_conn(self, conn: Conn) -> None:
-        buf = bytearray()
-        while True:
-            chunk = conn.recv()
-            if not chunk:
+        for frame in conn.frames():
+            if frame.error or frame.header != b"TMSVR":
+                reply = encode("CPERR", f"{frame.error or 3:02X}".encode())
+            else:
+                reply = self._request(frame.data)
+            conn.send(reply)
+            if conn.closed:
                 return
-            buf += chunk
-            for frame in split(buf):
-                if frame.error or frame.header != b"TMSVR":
-                    reply = encode("CPERR", f"{frame.error or 3:02X}".encode())
-                else:
-                    reply = self._request(frame.data)
-                conn.send(reply)
-                if conn.closed:
-                    return
 
     def _request(self, data: bytes) -> bytes:
         ident, _, rest = data.partition(b",")

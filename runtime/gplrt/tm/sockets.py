@@ -23,7 +23,7 @@ from gplrt.lang.errors import GplException
 from gplrt.tm import context
 from gplrt.tm.conversions import GetBytes, write_span
 from gplrt.tm.motion import Robot, start_thread
-from gplrt.tm.server import CHUNK, Conn
+from gplrt.tm.server import Conn
 from gplrt.tm.values import Array, TMError, to_int, to_string
 
 #: The Received Buffer's capacity in bytes (the manual gives none; the oldest bytes go first).
