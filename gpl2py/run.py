@@ -582,8 +582,11 @@ def run_command(args: argparse.Namespace) -> Outcome:
             emit(out, display, stdout, stderr)
         from gplrt.tm import context
 
-        context.use_robot(args.robot if args.robot in TM_MODELS else "TM5-900")
-        out.exit_status = int(package.main())
+        robot = context.use_robot(args.robot if args.robot in TM_MODELS else "TM5-900")
+        try:
+            out.exit_status = int(package.main())
+        finally:
+            robot.close()  # (its session's threads and planned motions)
         return out
     if package.PROJECT.get("start") is None:
         needs = ("a .PROGRAM" if package.PROJECT.get("language") == "vplus" else

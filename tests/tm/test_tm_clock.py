@@ -151,3 +151,42 @@ def test_blending_values_out_of_range_are_script_errors(tm_robot) -> None:  # ty
         assert c.ask(script("2", 'Line("CAR",400,-100,500,180,0,90,300,200,-5,false)')) == encode("TMSCT", b"2,ERROR;1")
     finally:
         c.close()
+
+
+SPINNER = """define
+{
+    int flag = 0
+}
+
+void Waiter()
+{
+    while (flag == 0)
+    {
+    }
+    Display("seen")
+}
+
+main
+{
+    ThreadRun(Waiter())
+    PTP("JPP",0,0,90,0,90,10,50,200,0,false)
+    QueueTag(1,1)
+    flag = 1
+    Sleep(100)
+    Display("done")
+}
+"""
+
+
+def test_a_thread_that_spins_leaves_the_robot_its_turns(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """TM threads run one at a time on the shared scheduler: a loop's turn is a scheduling point
+    (``tm.tick()``), so a thread polling a variable without a wait does not starve the motion
+    executor that ``main`` waits for (the run would hang)."""
+    import subprocess
+    import sys
+
+    src = tmp_path / "spin.tms"
+    src.write_text(SPINNER)
+    run = subprocess.run([sys.executable, "-m", "gpl2py", "run", str(src)], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.splitlines() == ["seen", "done"]

@@ -362,8 +362,10 @@ class Lowerer:
         self.steps.append(step)
         self.in_switch.append(False)
         start = self.w.mark()
-        if self.packet:  # a Listen node's priority commands must be able to end a looping script
-            self.line("tm.tick()", body)
+        # A turn of the loop is a scheduling point of the shared scheduler (the motion executor, the
+        # connections, other threads get their turn: TM threads run one at a time, as GPL's), and
+        # where a Listen node's priority command ends a looping script.
+        self.line("tm.tick()", body)
         self.statements(body.body if isinstance(body, A.Block) else [body])
         for s in step or []:
             self.expr_statement(s)
