@@ -124,23 +124,28 @@ def test_a_blended_ptp_hands_over_moving_and_ends_on_its_target(tm_robot) -> Non
     assert robot.joints == [0.0, 30.0, 60.0, 10.0, 90.0, 40.0]
 
 
-def test_a_line_blends_by_radius_into_a_ptp_but_nothing_blends_into_a_path(tm_robot) -> None:  # type: ignore[no-untyped-def]
+def test_a_line_blends_by_radius_into_a_ptp_and_a_ptp_into_a_line(tm_robot) -> None:  # type: ignore[no-untyped-def]
     robot, node, _ = tm_robot
     line = 'Line("CAR",400,-100,500,180,0,90,300,200,{},false)'
-    ptp = f'PTP("JPP",{A},50,200,0,false)'
-    start = f'PTP("JPP",{A},100,200,0,false)\r\n'
+    ptp = f'PTP("JPP",{A},50,200,{{}},false)'
+    start = f'PTP("JPP",{A},100,200,0,false)'
 
-    def timed(motions: str) -> float:
-        """Seconds of motion (the robot's, not the script's own turns) of ``motions`` from A."""
-        session_time(node.port, start.strip())
+    def timed(motions: str) -> tuple[float, list[float]]:
+        """Seconds of motion (the robot's, not the script's own turns) of ``motions`` from A, and
+        where the robot ends."""
+        session_time(node.port, start)
         before = robot.sim_time
         session_time(node.port, motions)
-        return robot.sim_time - before
-    assert timed(line.format(50) + "\r\n" + ptp) < timed(line.format(0) + "\r\n" + ptp)
-    assert robot.joints == [0.0, 0.0, 90.0, 0.0, 90.0, 0.0]
-    # a path motion starts at rest: a blend into a Line is not made (docs/design/tmscript.md)
-    assert timed(ptp.replace(",0,false", ",50,false") + "\r\n" + line.format(0)) == \
-        pytest.approx(timed(ptp + "\r\n" + line.format(0)), abs=1e-9)
+        return robot.sim_time - before, list(robot.joints)
+    blended, stopping = timed(line.format(50) + "\r\n" + ptp.format(0)), timed(line.format(0) + "\r\n" + ptp.format(0))
+    assert blended[0] < stopping[0] and blended[1] == stopping[1] == [0.0, 0.0, 90.0, 0.0, 90.0, 0.0]
+    # into a path motion: superposed until the PTP's end, then exactly on the line (the core's way)
+    to_b = f'PTP("JPP",{B},50,200,{{}},false)'
+    blended, stopping = timed(to_b.format(50) + "\r\n" + line.format(0)), timed(to_b.format(0) + "\r\n" + line.format(0))
+    assert blended[0] < stopping[0]
+    assert blended[1] == pytest.approx(stopping[1], abs=1e-9)
+    flange = robot.arm.fk(blended[1])
+    assert flange[:3] == pytest.approx([400, -100, 500], abs=1e-6)
 
 
 def test_blending_values_out_of_range_are_script_errors(tm_robot) -> None:  # type: ignore[no-untyped-def]

@@ -379,16 +379,18 @@ class Robot:
             start = list(self.joints)
             duration, at, end = cmd.plan(start)
         t0 = self.clock.now()
-        with self.lock:
-            self.motion = motion = Motion(t0, duration, at, end)
-        self._notify()  # the waiters renew their controller_wait to this motion's end
-        t_end = t0 + duration
-        cut = self._blend_start(cmd.blend, at, duration, start, end) if cmd.blend else None
-        if cut is not None:
-            t_cut = t0 + cut
-            while not self.stopped and not self.clock.reached(t_cut):
-                self.sched.wait(self.changed, t_cut, until=lambda: self.stopped)
-            if not self.stopped and self._blends_into_next():
+        blend = cmd.blend
+        while True:
+            with self.lock:
+                self.motion = motion = Motion(t0, duration, at, end)
+            self._notify()  # the waiters renew their controller_wait to this motion's end
+            cut = self._blend_start(blend, at, duration, start, end) if blend else None
+            if cut is None or not self._wait_until(t0 + cut):
+                break
+            nxt = self._next_blendable()
+            if nxt is None:
+                break
+            if nxt.from_motion:  # a PTP: planned by Ruckig from the state at the cut
                 q, v, a = _state(at, cut, duration)
                 with self.lock:
                     self.joints = q
@@ -396,8 +398,11 @@ class Robot:
                     self.motion = None
                     self._handoff = (q, v, a)
                 return
-        while not self.stopped and not self.clock.reached(t_end):
-            self.sched.wait(self.changed, t_end, until=lambda: self.stopped)
+            merged = self._superpose(nxt, t0, cut, duration, at, end)
+            if merged is None:
+                break
+            t0, duration, at, start, end, blend = merged
+        self._wait_until(t0 + duration)
         with self.lock:
             if not self.stopped:
                 self.joints = list(end)
@@ -408,12 +413,56 @@ class Robot:
                 self.sim_time += elapsed
             self.motion = None
 
-    def _blends_into_next(self) -> bool:
-        """A blend is made when the next command is a motion that can start moving, queued
-        before the blend zone is reached (as the core's ``InRange < 0``)."""
+    def _wait_until(self, t: float) -> bool:
+        """Wait for controller time ``t``; False if a stop came first."""
+        while not self.stopped and not self.clock.reached(t):
+            self.sched.wait(self.changed, t, until=lambda: self.stopped)
+        return not self.stopped
+
+    def _superpose(self, nxt: Command, t0: float, cut: float, duration: float, at: Callable[[float], list[float]],
+                   end: list[float]) -> tuple[float, float, Callable[[float], list[float]], list[float], list[float],
+                                              tuple[str, float] | None] | None:
+        """Blend into a path motion (``nxt``, taken off the queue): it is planned from rest at the
+        current motion's target and starts at ``tb`` = the cut, but no earlier than its own
+        duration before the current motion's end; until that end the two are added in joint space
+        (the current motion's remaining way plus the path's progress), after it the robot is on the
+        path exactly.  The core does the same in Cartesian space (``queue.BlendedPathSegment``).
+        Returns the merged motion (t0, duration, at, start, end, its blend), or None when the path
+        cannot be planned here (it then runs after the current motion, failing in its own name)."""
         with self.lock:
-            return (not self.paused and bool(self.queue) and self.queue[0].kind == "move"
-                    and self.queue[0].from_motion)
+            if not self.queue or self.queue[0] is not nxt:
+                return None
+            self.queue.popleft()
+        assert nxt.plan is not None
+        try:
+            d_b, at_b, end_b = nxt.plan(list(end))
+        except TMError:
+            with self.lock:
+                self.queue.appendleft(nxt)
+            return None
+        tb = max(cut, duration - d_b)
+        if not self._wait_until(t0 + tb):
+            return None
+        rest = duration - tb
+
+        def merged(t: float, at_a: Callable[[float], list[float]] = at, a_end: list[float] = end) -> list[float]:
+            q = at_b(t)
+            if t >= rest:
+                return q
+            qa = at_a(tb + t)
+            return [b + x - e for b, x, e in zip(q, qa, a_end)]
+        with self.lock:
+            self.sim_time += tb
+            self.joints = merged(0.0)
+        return t0 + tb, max(d_b, rest), merged, merged(0.0), end_b, nxt.blend
+
+    def _next_blendable(self) -> Command | None:
+        """The motion a blend hands over to: the next command, if it is a motion queued before
+        the blend zone is reached (as the core's ``InRange < 0``) and the robot is not paused."""
+        with self.lock:
+            if not self.paused and self.queue and self.queue[0].kind == "move":
+                return self.queue[0]
+            return None
 
     def _blend_start(self, blend: tuple[str, float], at: Callable[[float], list[float]], duration: float,
                      start: list[float], end: list[float]) -> float | None:
