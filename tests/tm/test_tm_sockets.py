@@ -89,7 +89,7 @@ def test_read_from_the_received_buffer_l13505_l13856(robot) -> None:  # type: ig
 
 def test_send_l14149(robot) -> None:  # type: ignore[no-untyped-def]
     peer = Peer()
-    sends = ['1000', '(float)1.234', '(double)123.456', '"Hello, World"+newline', "var_ii", "var_ss",
+    sends = ['100', '1000', '(float)1.234', '(double)123.456', '"Hello, World"+newline', "var_ii", "var_ss",
              '1000, 1, 2', '"Hello, World"+newline, 0, 7', "var_bb", "var_bb, 1, 1", "var_bb, -1, 1",
              '"達明機器人", 2']
     script = (f'Socket ntd_a = "127.0.0.1", {peer.port}\nint[] var_ii = {{100, 200, 300, 400}}\n'
@@ -98,7 +98,7 @@ def test_send_l14149(robot) -> None:  # type: ignore[no-untyped-def]
               + '\nint l = socket_sendline("ntd_a", "TM")\nint e = socket_send("ntd_a", "")'
               + '\nint missing = socket_send("nope", 1)')
     v = run_packet(script)  # (socket_send connects an unopened device itself, L13424)
-    want = (bytes([0xE8, 3, 0, 0]) + bytes([0xB6, 0xF3, 0x9D, 0x3F]) + bytes([0x77, 0xBE, 0x9F, 0x1A, 0x2F, 0xDD, 0x5E, 0x40])
+    want = (bytes([0x64]) + bytes([0xE8, 3, 0, 0]) + bytes([0xB6, 0xF3, 0x9D, 0x3F]) + bytes([0x77, 0xBE, 0x9F, 0x1A, 0x2F, 0xDD, 0x5E, 0x40])
             + HELLO + bytes([100, 0, 0, 0, 200, 0, 0, 0, 0x2C, 1, 0, 0, 0x90, 1, 0, 0]) + b"TMRobot"
             + bytes([0xE8, 3, 0, 0]) + b"Hello, " + bytes([100, 200]) + bytes([200]) + bytes([100])
             + "機器人".encode() + b"TM\r\n")
