@@ -34,8 +34,8 @@ def use_robot(name: str = "TM5-900", speed: float = math.inf, clock: str | None 
     previous = _current["robot"]
     r = Robot(arm(name), sim=sim)
     _current["robot"] = r
-    if previous is not None:
-        previous.close()
+    if previous is not None and not previous.servers:
+        previous.close()  # (one still serving clients, a notebook's first robot, runs on)
     return r
 
 

@@ -138,6 +138,8 @@ class ListenNode:
     def close(self) -> None:
         if self._server is not None:
             self._server.close()
+            self._server = None
+            self.robot.undrive()
 
     def cancelled(self) -> bool:
         """Whether the running script must stop (checked by the library's waits)."""

@@ -139,6 +139,8 @@ class Robot:
         self.end_ai = [0.0]
         self.busy = False
         self.stopped = False
+        #: Servers serving the robot (the Listen node, the Ethernet Slave): ``drive``/``undrive``.
+        self.servers = 0
         #: (joints, velocities, accelerations) a blended motion hands over to the next one.
         self._handoff: tuple[list[float], list[float], list[float]] | None = None
         #: The error that stopped the project (a motion that could not start), until ``restart``.
@@ -146,25 +148,31 @@ class Robot:
         start_thread(self.sched, "tm-motion", self._execute)
 
     def close(self) -> None:
-        """End the robot's session: its executor and threads (a new ``use_robot`` replaces it)."""
-        self._driving = False
+        """End the robot's session: its executor and threads (``use_robot`` closes the robot it
+        replaces, unless a server still serves it)."""
+        self.servers = 0
         self.sim.close(grace=1.0)
 
     def drive(self) -> None:
-        """Keep the robot's session driven while its servers serve: virtual time moves only
-        while someone outside waits on the run (``Scheduler.drivers``, as ``gpl2py run`` does for
-        GPL's servers); clients over sockets are that someone.  Idempotent."""
-        if getattr(self, "_driving", False):
+        """A server (the Listen node, the Ethernet Slave) starts serving: keep the robot's
+        session driven while any does.  Virtual time moves only while someone outside waits on
+        the run (``Scheduler.drivers``, as ``gpl2py run`` does for GPL's servers); clients over
+        sockets are that someone.  ``undrive`` when the server closes."""
+        self.servers += 1
+        if self.servers > 1:
             return
-        self._driving = True
 
         def driver() -> None:
-            while self._driving:
+            while self.servers > 0:
                 t0 = time.monotonic()
                 self.sched.wait_until_quiet(None, 0.5)
                 if time.monotonic() - t0 < 0.05:  # (stalled: nothing runs until a client comes)
                     time.sleep(0.05)
         threading.Thread(target=driver, name="tm-driver", daemon=True).start()
+
+    def undrive(self) -> None:
+        """A server closed (the driver ends with the last)."""
+        self.servers = max(0, self.servers - 1)
 
     @property
     def speed(self) -> float:

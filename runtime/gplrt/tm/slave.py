@@ -164,6 +164,8 @@ class EthernetSlave:
     def close(self) -> None:
         if self._server is not None:
             self._server.close()
+            self._server = None
+            self.robot.undrive()
 
     def _serve_conn(self, conn: Conn) -> None:
         for frame in conn.frames():
