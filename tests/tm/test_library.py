@@ -163,3 +163,22 @@ def test_getstring_bases_formats_separators_l5111_l5560() -> None:
     assert (v.e, v.f) == ("12-34-56", "C-22-38")
     assert (v.g, v.h) == ("[0]=12-[1]=34-[2]=56", "[0]=0b1100-[1]=0b100010-[2]=0b111000")
     assert v.i in ("0x0C\r\n0x22\r\n0x38", "0x0C\n0x22\n0x38") and v.j == "0x7B"
+
+
+def test_get_all_tokens_l6270() -> None:
+    """The manual's GetAllTokens examples on "$abcd$1234$ABCD$" and "#abcd$1234#ABCD$5678#"
+    (L6300-L6400; its comment lines under the first group are misplaced copies)."""
+    first = [('"", ""', "{$abcd$1234$ABCD$}"), ('"$", "$"', "{$abcd$,$ABCD$}"), ('"$", "$", 1', "{abcd,ABCD}"),
+             ('"$", ""', "{$abcd,$1234,$ABCD,$}"), ('"", "$", 1', "{,abcd,1234,ABCD}")]
+    second = [('"", "", 0', "{#abcd$1234#ABCD$5678#}"), ('"$", "", 0', "{$1234#ABCD,$5678#}"),
+              ('"$", "", 1', "{1234#ABCD,5678#}"), ('"$", "", 2', "{}"), ('"$", "", 3', "{}"),
+              ('"$", "$", 0', "{$1234#ABCD$}"), ('"$", "$", 1', "{1234#ABCD}"), ('"$", "$", 2', "{}"),
+              ('"#", "", 0', "{#abcd$1234,#ABCD$5678,#}"), ('"#", "", 1', "{abcd$1234,ABCD$5678,}"),
+              ('"#", "", 2', "{#abcd$1234,#ABCD$5678,#}"), ('"#", "$", 1', "{abcd,ABCD}"),
+              ('"#", "$", 2', "{#abcd$,#ABCD$}"), ('"", "$", 0', "{#abcd$,1234#ABCD$}"),
+              ('"", "$", 3', "{#abcd,1234#ABCD}"), ('"", "#", 0', "{#,abcd$1234#,ABCD$5678#}"),
+              ('"", "#", 1', "{,abcd$1234,ABCD$5678}")]
+    for text, cases in (("$abcd$1234$ABCD$", first), ("#abcd$1234#ABCD$5678#", second)):
+        script = f'string n = "{text}"\n' + "\n".join(
+            f"string[] t{i} = GetAllTokens(n, {args})" for i, (args, _) in enumerate(cases))
+        assert values(script, *(f"t{i}" for i in range(len(cases)))) == [want for _, want in cases]

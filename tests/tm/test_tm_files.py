@@ -121,6 +121,9 @@ def test_exists_length_delete_copy_replace(robot) -> None:  # type: ignore[no-un
     assert v.c is True and v.copied == "1Hello World!\r\n1Hello TM Robot!"
     assert v.r is True and v.lines == ["2Bye World!", "2Bye TM Robot!", "2Hi TM Robot!"]
     assert (v.d1, v.d2, v.e4) == (True, True, False)
+    v = run_packet('string[] t = File_GetAllTokens("SampleFile5.txt", "5", newline, 1)\n'
+                   'string g = File_GetToken("SampleFile5.txt", "5", newline, 2, 1)')
+    assert (v.t, v.g) == (["Hello World!", "Hello TM Robot!"], "Hello TM Robot!")
 
 
 def test_the_files_stay_in_the_sandbox(robot, tmp_path) -> None:  # type: ignore[no-untyped-def]

@@ -26,7 +26,7 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "svr_read": (1, 1), "svr_write": (2, 2),
     # conversions, strings, arrays, checksums, time (L2066-L7446)
     "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetBytes": (1, 3), "GetNowStamp": (0, 2),
-    "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5),
+    "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5), "GetAllTokens": (3, 4),
     "String_ToInteger": (1, 2), "String_ToFloat": (1, 2), "String_ToDouble": (1, 2),
     "String_IndexOf": (2, 3), "String_LastIndexOf": (2, 3), "String_Substring": (2, 4),
     "String_Split": (2, 3), "String_Replace": (3, 3), "String_Trim": (1, 3), "String_ToLower": (1, 1),
@@ -42,6 +42,7 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "File_NextEOF": (0, 0), "File_WriteBytes": (2, 5), "File_WriteText": (2, 5), "File_WriteLine": (2, 5),
     "File_WriteLines": (2, 5), "File_Exists": (1, 1), "File_Length": (1, 1), "File_Delete": (1, None),
     "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5),
+    "File_GetAllTokens": (3, 4),
     # the Socket class's TCP client (L13396-L14356)
     "socket_open": (1, 1), "socket_close": (1, 1), "socket_read": (1, 5), "socket_read_string": (1, 5),
     "socket_send": (2, 4), "socket_sendline": (2, 4),

@@ -24,7 +24,7 @@ from gplrt.io.sandbox import Sandbox, SandboxPath
 from gplrt.lang.errors import GplException
 from gplrt.tm import context
 from gplrt.tm.conversions import GetBytes, write_span
-from gplrt.tm.strings import GetToken
+from gplrt.tm.strings import GetAllTokens, GetToken
 from gplrt.tm.values import Array, TMError, format_value, to_int, to_string
 
 #: The local folders a path may name (L9911), by their lower-case name.
@@ -316,8 +316,13 @@ def File_GetToken(path: object, prefix: object, suffix: object, n: object = 1, m
     return GetToken(_text(_read(path, "File_GetToken")), prefix, suffix, n, mode)
 
 
+def File_GetAllTokens(path: object, prefix: object, suffix: object, mode: object = 0) -> Array:
+    """``GetAllTokens`` over the file's text (L12259)."""
+    return GetAllTokens(_text(_read(path, "File_GetAllTokens")), prefix, suffix, mode)
+
+
 __all__ = [
-    "File_Copy", "File_Delete", "File_Exists", "File_GetToken", "File_Length", "File_NextEOF", "File_NextLine",
+    "File_Copy", "File_Delete", "File_GetAllTokens", "File_Exists", "File_GetToken", "File_Length", "File_NextEOF", "File_NextLine",
     "File_ReadBytes", "File_ReadLines", "File_ReadText", "File_Replace", "File_WriteBytes", "File_WriteLine",
     "File_WriteLines", "File_WriteText",
 ]

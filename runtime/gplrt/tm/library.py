@@ -788,8 +788,9 @@ from gplrt.tm.conversions import (  # noqa: E402
     Byte_ToString, GetBytes, String_ToByte,
 )
 from gplrt.tm.files import (  # noqa: E402
-    File_Copy, File_Delete, File_Exists, File_GetToken, File_Length, File_NextEOF, File_NextLine, File_ReadBytes,
-    File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines, File_WriteText,
+    File_Copy, File_Delete, File_Exists, File_GetAllTokens, File_GetToken, File_Length, File_NextEOF, File_NextLine,
+    File_ReadBytes, File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines,
+    File_WriteText,
 )
 from gplrt.tm.modbus import (  # noqa: E402
     ModbusTCP, modbus_close, modbus_open, modbus_read, modbus_read_double, modbus_read_float, modbus_read_int16,
@@ -801,8 +802,8 @@ from gplrt.tm.sockets import (  # noqa: E402
 )
 from gplrt.tm.strings import (  # noqa: E402
     Array_Append, Array_Equals, Array_IndexOf, Array_Insert, Array_LastIndexOf, Array_Remove, Array_Reverse,
-    Array_Sort, Array_SubElements, GetToken, String_IndexOf, String_LastIndexOf, String_Replace, String_Split,
-    String_Substring, String_ToInteger, String_ToLower, String_ToUpper, String_Trim,
+    Array_Sort, Array_SubElements, GetAllTokens, GetToken, String_IndexOf, String_LastIndexOf, String_Replace,
+    String_Split, String_Substring, String_ToInteger, String_ToLower, String_ToUpper, String_Trim,
 )
 
 

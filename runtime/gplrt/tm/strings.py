@@ -132,13 +132,11 @@ def String_ToInteger(s: object, base: object = 10) -> object:
     return 0
 
 
-def GetToken(s: object, prefix: object, suffix: object, n: object = 1, mode: object = 0) -> str:
-    """The n-th (``-1`` the last) ``prefix…suffix`` token; mode 1 without prefix and suffix
-    (L5549; the examples at L5620-L5688)."""
-    text, p, q, k, m = to_string(s), to_string(prefix), to_string(suffix), to_int(n), to_int(mode)
-    if p == "" and q == "":
-        return text if k in (0, 1) else ""
-    tokens: list[tuple[int, int]] = []  # (start, end) including prefix/suffix
+def _tokens(text: str, p: str, q: str) -> list[tuple[int, int]]:
+    """(start, end) of every ``p…q`` token of ``text``, prefix and suffix included, left to right
+    without overlap: both given, from a prefix to the next suffix; a prefix alone, from one to
+    the next; a suffix alone, from the end of the last token to the next suffix (L5549, L6270)."""
+    tokens: list[tuple[int, int]] = []
     if p and q:
         i = 0
         while True:
@@ -165,6 +163,20 @@ def GetToken(s: object, prefix: object, suffix: object, n: object = 1, mode: obj
                 break
             tokens.append((i, b + len(q)))
             i = b + len(q)
+    return tokens
+
+
+def _strip(tok: str, p: str, q: str) -> str:
+    return tok[len(p):len(tok) - len(q) if q else len(tok)]
+
+
+def GetToken(s: object, prefix: object, suffix: object, n: object = 1, mode: object = 0) -> str:
+    """The n-th (``-1`` the last) ``prefix…suffix`` token; mode 1 without prefix and suffix
+    (L5549; the examples at L5620-L5688)."""
+    text, p, q, k, m = to_string(s), to_string(prefix), to_string(suffix), to_int(n), to_int(mode)
+    if p == "" and q == "":
+        return text if k in (0, 1) else ""
+    tokens = _tokens(text, p, q)
     if k == 0 or not tokens:
         return ""
     if k == -1:
@@ -172,10 +184,21 @@ def GetToken(s: object, prefix: object, suffix: object, n: object = 1, mode: obj
     if not 1 <= k <= len(tokens):
         return ""
     a, b = tokens[k - 1]
-    tok = text[a:b]
-    if m == 1:
-        tok = tok[len(p):len(tok) - len(q) if q else len(tok)]
-    return tok
+    return _strip(text[a:b], p, q) if m == 1 else text[a:b]
+
+
+def GetAllTokens(s: object, prefix: object, suffix: object, mode: object = 0) -> Array:
+    """Every ``prefix…suffix`` token (L6270): mode 1 and 3 without the prefix and suffix, 2 and 3
+    only when the first token starts the text (else ``{}``); no prefix and no suffix: the text."""
+    text, p, q, m = to_string(s), to_string(prefix), to_string(suffix), to_int(mode)
+    if m not in (0, 1, 2, 3):
+        raise TMError(f"GetAllTokens: mode {m} is not 0-3")
+    if p == "" and q == "":
+        return Array("string", [text])
+    tokens = _tokens(text, p, q)
+    if m >= 2 and (not tokens or tokens[0][0] != 0):
+        return Array("string", [])
+    return Array("string", [_strip(text[a:b], p, q) if m in (1, 3) else text[a:b] for a, b in tokens])
 
 
 # --- arrays (L3957-L4588) -----------------------------------------------------------------------
