@@ -182,3 +182,21 @@ def test_get_all_tokens_l6270() -> None:
         script = f'string n = "{text}"\n' + "\n".join(
             f"string[] t{i} = GetAllTokens(n, {args})" for i, (args, _) in enumerate(cases))
         assert values(script, *(f"t{i}" for i in range(len(cases)))) == [want for _, want in cases]
+
+
+def test_value_reverse_l4589() -> None:
+    """The manual's ValueReverse examples (its string[] line drops a character: "GFEDCBA" for
+    "ABCDEFGH", L4855)."""
+    got = values("int i = 10000\nint a = ValueReverse(i, 0)\nint b = ValueReverse(i, 1)\nint j = 100000\n"
+                 "int c = ValueReverse(j, 0)\nint d = ValueReverse(j, 1)\nint e = ValueReverse(j, 2)\n"
+                 'string s = ValueReverse("ABCDEF")\nint[] k = {10000, 20000, 60000, 80000}\n'
+                 "int[] f = ValueReverse(k, 0)\nint[] g = ValueReverse(k, 1)\nint[] h = ValueReverse(k, 2)\n"
+                 "float[] x = {10000, 20000}\nfloat[] y = ValueReverse(x)\ndouble[] z = {10000, 20000}\n"
+                 'double[] w = ValueReverse(z)\nstring[] t = {"ABCDEFGH", "12345678"}\nstring[] u = ValueReverse(t)',
+                 *"abcdesfghyu")
+    assert got[:9] == ["270991360", "4135", "-1601830656", "-1601830656", "-24442", "FEDCBA",
+                       "{270991360,541982720,1625948160,-2143813376}", "{4135,8270,1625948160,-2143813376}",
+                       "{4135,8270,24810,-32712}"]
+    assert got[9] == "{5.887614E-39,5.933532E-39}" and got[10] == "{HGFEDCBA,87654321}"
+    v = run("double[] z = {10000, 20000}\ndouble[] w = ValueReverse(z)")
+    assert [float(x) for x in v.w] == pytest.approx([4.428251e-317, 4.430275e-317], rel=1e-6)

@@ -27,6 +27,7 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     # conversions, strings, arrays, checksums, time (L2066-L7446)
     "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetBytes": (1, 3), "GetNowStamp": (0, 2),
     "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5), "GetAllTokens": (3, 4),
+    "ValueReverse": (1, 2),
     "String_ToInteger": (1, 2), "String_ToFloat": (1, 2), "String_ToDouble": (1, 2),
     "String_IndexOf": (2, 3), "String_LastIndexOf": (2, 3), "String_Substring": (2, 4),
     "String_Split": (2, 3), "String_Replace": (3, 3), "String_Trim": (1, 3), "String_ToLower": (1, 1),

@@ -242,3 +242,24 @@ def write_span(value: object, start: object, length: object) -> object:
     whole = value if isinstance(value, str) else list(value)  # (an Array takes no slice)
     part = whole[st:] if n <= 0 else whole[st:st + n]
     return Array(value.type, part) if isinstance(value, Array) else part
+
+
+def ValueReverse(value: object, fmt: object = 0) -> object:
+    """The value with its bytes in reverse order (L4589): an int as int32 (``fmt`` 0), as int16
+    when it fits one (1), or its low 16 bits as int16 (2); a float's 4 bytes, a double's 8; a
+    string's characters; an array element by element."""
+    if isinstance(value, (list, tuple)):
+        kind = getattr(value, "type", None) or "double"
+        return Array(kind, [ValueReverse(v, fmt) for v in value])
+    if isinstance(value, str):
+        return value[::-1]
+    if isinstance(value, (bool, np.bool_)):
+        raise TMError("ValueReverse: a bool has no bytes to reverse")
+    if isinstance(value, (int, np.integer)):
+        n, f = to_int(value), to_int(fmt)
+        if f == 2 or (f == 1 and -32768 <= n <= 32767):
+            return struct.unpack("<h", struct.pack(">H", n & 0xFFFF))[0]
+        return struct.unpack("<i", struct.pack(">i", n))[0]
+    if isinstance(value, np.float64):
+        return F64(struct.unpack("<d", struct.pack(">d", float(value)))[0])
+    return F32(struct.unpack("<f", struct.pack(">f", float(F32(value))))[0])

@@ -785,7 +785,7 @@ def _index_text(pattern: str, i: int) -> str:
 # --- the utility families, in modules of their own ---------------------------------------------
 from gplrt.tm.conversions import (  # noqa: E402
     CRC16, CRC32, SUM8, SUM16, SUM32, XOR8, Byte_Concat, Byte_ToDouble, Byte_ToFloat, Byte_ToInt16, Byte_ToInt32,
-    Byte_ToString, GetBytes, String_ToByte,
+    Byte_ToString, GetBytes, String_ToByte, ValueReverse,
 )
 from gplrt.tm.files import (  # noqa: E402
     File_Copy, File_Delete, File_Exists, File_GetAllTokens, File_GetToken, File_Length, File_NextEOF, File_NextLine,
