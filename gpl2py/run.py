@@ -582,7 +582,8 @@ def run_command(args: argparse.Namespace) -> Outcome:
             emit(out, display, stdout, stderr)
         from gplrt.tm import context
 
-        robot = context.use_robot(args.robot if args.robot in TM_MODELS else "TM5-900")
+        robot = context.use_robot(args.robot if args.robot in TM_MODELS else "TM5-900", clock=args.clock,
+                                  speed=args.speed if args.clock == "real" else float("inf"))
         try:
             out.exit_status = int(package.main())
         finally:
