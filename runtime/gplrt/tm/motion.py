@@ -15,8 +15,9 @@ sampled from its plan at the clock's now.  A script that waits for the robot (``
 ``WaitQueueTag``, the end of a project, ``Exit``) waits *for the controller*
 (``controller_wait``): on the ``fast`` clock time then jumps to the end of the motion in
 progress, while a motion nobody waits for keeps real-time pace (its client watches it move).
-Blending is not simulated (each motion ends at rest): the path between motions differs from a
-blended one, their end points do not.
+A motion with a blend value hands over, at its blend zone, to the next motion queued by then:
+a PTP is planned by Ruckig from the moving state there, a path motion is superposed on the end of
+the blending one (``_superpose``); docs/design/tmscript.md says how.
 """
 
 from __future__ import annotations
