@@ -77,14 +77,19 @@ def test_arrays_grow_last_and_element_references(sim: Simulation) -> None:
     assert info.value.Message() == "*Illegal array index*"
 
 
-def test_string_array_element_never_assigned_reads_empty(sim: Simulation) -> None:
-    """ros.v2 ros.srv.cmd appends $msg.jts[idx] that nothing assigned (docs/design/vplus.md)."""
+def test_string_array_element_never_assigned_is_undefined_value(sim: Simulation) -> None:
+    """ros.v2 ros.srv.cmd appends $msg.jts[idx] that nothing assigned: an AUTO array's elements
+    are allocated, not assigned, so the first one read is *Undefined value* (L4129-4143), as for
+    a real array (docs/design/vplus.md, "string array elements")."""
     jts = vp.VArray("$msg.jts", 10)
     msg = vp.Cell("$msg")
     msg.v = "head"
-    for idx in range(1, 11):
-        msg.v = vp.add(msg.v, jts[idx])
+    with pytest.raises(vp.VError) as info:
+        msg.v = vp.add(msg.v, jts[1])
+    assert (info.value.ErrorCode, info.value.Message()) == (-401, "*Undefined value*")
     assert msg.v == "head"
+    jts[2] = "x"  # an assigned element of the same array reads as assigned
+    assert vp.add(msg.v, jts[2]) == "headx"
 
 
 def test_operators_are_vplus_logic() -> None:
