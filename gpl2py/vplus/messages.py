@@ -105,9 +105,12 @@ REDECLARED = _warning("GPL4310", "{name} is declared again{detail}")
 START_NOT_FOUND = _error("GPL4311", "--start {name}: no such program in this project")
 
 # --- lowering ------------------------------------------------------------------------------------
-GOTO_UNSUPPORTED = _error("GPL4700", "GOTO {label} jumps into a block, which gpl2py does not translate yet",
-                          "A GOTO to a step label of the program's top level is translated from anywhere "
-                          "in the program; a label inside an IF, CASE or loop is not yet.")
-EXIT_COUNT = _error("GPL4701", "{word} with a count is not translated yet",
-                    "EXIT n and NEXT n (leave n nested loops) are in the V+ Reference Guide, which the "
-                    "User's Guide defers to; gpl2py translates EXIT and NEXT of the innermost loop.")
+GOTO_INTO_FOR = _error("GPL4700", "GOTO {label} jumps into a FOR loop, which gpl2py does not translate",
+                      "A GOTO may enter an IF, CASE, WHILE or DO block, as V+ allows (the Guide's disk "
+                      "example jumps into a THEN block); entering a FOR loop other than through its FOR "
+                      "statement would skip the evaluation of its end and step, which V+ does once, when "
+                      "the FOR statement runs (User's Guide L4889-4890), so the loop's END would have "
+                      "nothing to test.")
+EXIT_COUNT = _error("GPL4701", "{word} {count}: {reason}",
+                    "EXIT n and NEXT n leave n nested FOR, DO or WHILE loops (the innermost is 1); n must "
+                    "be a whole number no greater than the number of loops around the statement.")
