@@ -272,6 +272,49 @@ def test_exit_n_and_next_n_leave_n_nested_loops(tmp_path: Path) -> None:
     assert r.stdout.splitlines() == ["i 1 done", "after: i=2 j=2 k=2", "m 1", "m 1", "m 1", "n=3 m=2"]
 
 
+KEPT_ERRORS = """\
+.PROGRAM main()
+        REACTE trap
+        TYPE "start"
+        FROB 3
+        TYPE "after frob"
+        x = (1 +
+        TYPE "after bad expression"
+        CALL nothing()
+        TYPE "after call"
+        y = FROB(1)
+        TYPE "after function"
+        SET p = TRANS(1)
+        p = 2
+        TYPE "end"
+.END
+.PROGRAM trap()
+        TYPE "trapped ", ERROR(-1), " ", $ERROR(ERROR(-1))
+.END
+"""
+KEPT = "GPL4100,GPL4101,GPL4300,GPL4304,GPL4306"
+
+
+def test_a_line_kept_with_its_error_raises_v_plus_error_there_which_reacte_traps(tmp_path: Path) -> None:
+    """--keep-going, or the errors ignored: each line V+ would not have loaded raises *Program not
+    executable* when reached, a CALL of no program *Undefined program or variable name*, a real
+    stored into a location *Data type mismatch* -- and the rest of the program runs."""
+    r = _run(_write(tmp_path, KEPT_ERRORS), "--ignore", KEPT)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == [
+        "start", "trapped -311 *Program not executable*", "after frob",
+        "trapped -311 *Program not executable*", "after bad expression",
+        "trapped -402 *Undefined program or variable name*", "after call",
+        "trapped -311 *Program not executable*", "after function",
+        "trapped -407 *Data type mismatch*", "end"]
+    untrapped = _write(tmp_path, KEPT_ERRORS.replace("        REACTE trap\n", "        TYPE \"no trap\"\n"), "plain.v2")
+    r = _run(untrapped, "--ignore", KEPT)
+    assert r.stdout == "no trap\nstart\n"
+    assert r.returncode == 3
+    assert (f"{untrapped}:4: error -311 in thread task 0: *Program not executable* - GPL4101: unknown V+ "
+            "instruction FROB") in r.stderr
+
+
 def test_a_read_before_any_assignment_is_the_undefined_value_error_at_its_line(tmp_path: Path) -> None:
     src = _write(tmp_path, ".PROGRAM main()\n  TYPE \"start\"\n  x = y + 1\n  TYPE \"never\"\n.END\n")
     r = _run(src)

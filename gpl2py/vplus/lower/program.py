@@ -15,6 +15,7 @@ keeps its V+ line (the source map), every ``;`` comment is carried.
 from __future__ import annotations
 
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.kept import KeptErrors
 from gpl2py.pywriter.emit import Writer
 from gpl2py.pywriter.text import py_string
 from gpl2py.vplus import messages as M
@@ -39,6 +40,7 @@ class ProgramLowerer:
         self.info = info
         self.functions = functions
         self.sink = sink
+        self.kept = KeptErrors(sink, M.PROGRAM_NOT_EXECUTABLE, M.RUNTIME_CODES)  # (lines that raise)
         reserved = {f.split(".")[0] for f in functions.values()}
         self.names = Names(reserved)
         self.x = Exprs(model, self.var)
@@ -232,7 +234,9 @@ class ProgramLowerer:
         after = [c for c in s.comments if c.span.line >= s.span.line]
         w.comments(before)
         start = w.mark()
-        if self.steps and isinstance(s, _RESUMABLE) and (not isinstance(s, A.Instr) or s.word):
+        if self.kept.any() and self.kept.on_lines(s.span, whole=False):
+            self._kept(s)
+        elif self.steps and isinstance(s, _RESUMABLE) and (not isinstance(s, A.Instr) or s.word):
             w.line(f"with vp.step({s.span.line}):")
             w.indent()
             self._simple(s)
@@ -244,6 +248,18 @@ class ProgramLowerer:
             first.attach(f"# step {s.label}")
         for c in after:
             w.trailing(c, start)
+
+    def _kept(self, s: A.Stmt) -> None:
+        """A statement translated despite an error on its line (``--keep-going``, or the error
+        ignored): it raises V+'s error for the fault when reached (gpl2py.kept), in a step of its
+        own so that REACTE traps it and RETURNE goes on after it (a block with it)."""
+        code, subject = self.kept.at(s.span)
+        if self.steps:
+            self.w.line(f"with vp.step({s.span.line}):")
+            self.w.indent()
+        self.w.line(f"vp.compile_error({code}, {py_string(subject)})")
+        if self.steps:
+            self.w.dedent()
 
     def _simple(self, s: A.Stmt) -> None:  # noqa: C901 (one dispatch over the statement kinds)
         w, x = self.w, self.x

@@ -39,6 +39,7 @@ STRING_TOO_LONG = -405
 DIVIDE_BY_ZERO = -406
 TYPE_MISMATCH = -407              # L4009-4011 "data type different from ... originally created"
 TOO_MANY_CALLS = -410             # L992
+PROGRAM_NOT_EXECUTABLE = -311     # L664 (a line V+ would not load, kept by gpl2py --keep-going)
 TASK_IN_USE = -421
 NOT_IMPLEMENTED = -430
 DEVICE_NOT_READY = -508           # L7404-7406
@@ -83,6 +84,7 @@ _TEXT: dict[int, str] = {
     DIVIDE_BY_ZERO: "Divide by zero",
     TYPE_MISMATCH: "Data type mismatch",
     TOO_MANY_CALLS: "Too many subroutine calls",
+    PROGRAM_NOT_EXECUTABLE: "Program not executable",
     TASK_IN_USE: "Task already in use",
     NOT_IMPLEMENTED: "Not implemented",
     DEVICE_NOT_READY: "Device not ready",
@@ -128,6 +130,13 @@ def unsupported(keyword: str, *args: object) -> None:
     """A tier-3 instruction or function (graphics, vision, VME, protocols: spec §2.6) reached at
     run time: V+'s *Not implemented* naming it."""
     raise VError(NOT_IMPLEMENTED, detail=f"{keyword} is not simulated")
+
+
+def compile_error(code: int, diagnostic: str) -> None:
+    """A line gpl2py translated despite an error (``--keep-going``, or the error ignored), reached:
+    V+'s error for the fault (``gpl2py.vplus.messages.RUNTIME_CODES``), naming gpl2py's diagnostic,
+    so the program's REACTE traps it as any other and an unhandled one says which line and why."""
+    raise VError(int(code), detail=diagnostic)
 
 
 # GPL codes the shared core raises -> the V+ code a V+ program sees (the same condition).
