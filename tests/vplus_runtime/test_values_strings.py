@@ -166,3 +166,25 @@ def test_wrong_operand_types_are_vplus_errors() -> None:
                  lambda: vp.to_int("3")):
         with pytest.raises(vp.VError):
             call()
+
+
+# The twelve error codes the User's Guide prints with their text (seed 002; the seeds hold no
+# error-message appendix): $ERROR gives each as printed there (runtime/gplrt/vplus/errors.py).
+GUIDE_ERRORS = {
+    -504: "*Unexpected end of file*",    # L5359-5361, L8078
+    -522: "*Data error on device*",      # L8064
+    -524: "*Communications overrun*",    # L8069
+    -526: "*No data received*",          # L8074, L7530-7535
+    -620: "*Speed pot or STEP not pressed*",  # L9793-9795
+    -624: "*Force protect limit exceeded*",   # L5830 (printed lower-case, its closing * lost)
+    -666: "*Device Hardware not Present*",    # L12019 (and *Must use Monitor #1*, L12015)
+    -1003: "*Time-out nulling errors*",  # L5832
+    -1006: "*Soft envelope error*",      # L5833
+    -1011: "*No zero index*",            # L12618
+    -1012: "*Lost encoder sync*",        # L12616
+    -1013: "*Encoder quadrature error*",  # L12617
+}
+
+
+def test_the_error_codes_the_guide_prints_have_its_texts() -> None:
+    assert {code: vp.s_error(code) for code in GUIDE_ERRORS} == GUIDE_ERRORS
