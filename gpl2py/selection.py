@@ -14,7 +14,7 @@ Decisions:
 * **Errors can be ignored too**, as in mypy (``# type: ignore``): real vendor code breaks rules
   the controller does not enforce.  An ignored error no longer stops the translation; its line is
   translated as ``--keep-going`` translates it: it raises the controller's error for the fault
-  when reached (``gpl2py.gpl.lower.kept``).  The sink keeps the ignored errors aside for that.
+  when reached (``gpl2py.kept``).  The sink keeps the ignored errors aside for that.
 * **GPL9000-GPL9003 are never filtered**: an internal error, a wrong command line or
   configuration is not a finding about the GPL code.
 * **Inline comments.**  ``' gpl2py: ignore[GPL2014, GPL3501]`` (codes or prefixes) or

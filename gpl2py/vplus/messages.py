@@ -105,9 +105,29 @@ REDECLARED = _warning("GPL4310", "{name} is declared again{detail}")
 START_NOT_FOUND = _error("GPL4311", "--start {name}: no such program in this project")
 
 # --- lowering ------------------------------------------------------------------------------------
-GOTO_UNSUPPORTED = _error("GPL4700", "GOTO {label} jumps into a block, which gpl2py does not translate yet",
-                          "A GOTO to a step label of the program's top level is translated from anywhere "
-                          "in the program; a label inside an IF, CASE or loop is not yet.")
-EXIT_COUNT = _error("GPL4701", "{word} with a count is not translated yet",
-                    "EXIT n and NEXT n (leave n nested loops) are in the V+ Reference Guide, which the "
-                    "User's Guide defers to; gpl2py translates EXIT and NEXT of the innermost loop.")
+GOTO_INTO_FOR = _error("GPL4700", "GOTO {label} jumps into a FOR loop, which gpl2py does not translate",
+                      "A GOTO may enter an IF, CASE, WHILE or DO block, as V+ allows (the Guide's disk "
+                      "example jumps into a THEN block); entering a FOR loop other than through its FOR "
+                      "statement would skip the evaluation of its end and step, which V+ does once, when "
+                      "the FOR statement runs (User's Guide L4889-4890), so the loop's END would have "
+                      "nothing to test.")
+EXIT_COUNT = _error("GPL4701", "{word} {count}: {reason}",
+                    "EXIT n and NEXT n leave n nested FOR, DO or WHILE loops (the innermost is 1); n must "
+                    "be a whole number no greater than the number of loops around the statement.")
+
+# --- what a line kept with an error raises -----------------------------------------------------------
+#: A line translated despite one of these errors (--keep-going, or the error ignored) raises, when
+#: the program reaches it, this V+ error (gpl2py.kept; docs/design/vplus.md, "Lines kept with an
+#: error"), which REACTE traps; another error of a line, *Program not executable*.  (V+'s numbers
+#: are not GPL's: this table is the V+ front end's, beside gpl2py.messages.RUNTIME_CODES.)  The numbers are gplrt.vplus.errors' (the translator does not import
+#: the runtime): a line V+ would not have loaded is *Program not executable* (User's Guide L664; the
+#: number is unconfirmed), a fault V+ finds only when the line runs is that fault's error.
+PROGRAM_NOT_EXECUTABLE = -311
+RUNTIME_CODES: dict[str, int] = {
+    **dict.fromkeys(("GPL4001", "GPL4002", "GPL4003", "GPL4004", "GPL4100", "GPL4101", "GPL4104",
+                     "GPL4105", "GPL4107", "GPL4108", "GPL4111", "GPL4303", "GPL4306", "GPL4308",
+                     "GPL4309", "GPL4701"), PROGRAM_NOT_EXECUTABLE),
+    "GPL4300": -402,  # *Undefined program or variable name* (L1224-1226), when the CALL runs
+    "GPL4304": -407,  # *Data type mismatch*: a real stored into a location (L4009-4011)
+    "GPL4700": -430,  # *Not implemented*: V+ runs it, gpl2py does not translate it
+}

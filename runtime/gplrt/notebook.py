@@ -243,6 +243,13 @@ class GplError(GplException):
                 text = gpl_source_line(file, int(line), package_folder)
                 self.frames = [GplFrame(file, int(line), "", text)]
 
+    def Message(self) -> str:  # noqa: N802 - the core's member name
+        """The raised error's own text: a language layer's error (V+'s ``VError``) numbers and
+        words its errors itself, and ``*Error -401*`` would hide V+'s *Undefined value*."""
+        if isinstance(self.error, GplException):
+            return self.error.Message()
+        return super().Message()
+
     @property
     def source_line(self) -> str:
         """The GPL line that raised it (``""`` when unknown)."""

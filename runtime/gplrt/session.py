@@ -149,6 +149,9 @@ class Session:
         self.threads: list[Thread] = []
         #: Called with each GPL Thread as it ends, on that thread (robots are released there).
         self.thread_exit_hooks: list[Callable[[Thread], None]] = []
+        #: Called when the session stops (``Simulation.stop``): a language layer releases there
+        #: what it keeps past a thread's end (V+ keeps an error-stopped task's devices attached).
+        self.stop_hooks: list[Callable[[], None]] = []
         self._booted: ParameterDatabase | None = None
         #: The projects in the controller's memory (the composer sets it: ``gplrt.sim``).
         self.projects: ProjectTable | None = None

@@ -292,6 +292,8 @@ class Simulation(Session):
         except KeyboardInterrupt:
             pass
         sched.release_timers()  # end the real-time timer thread unless an I/O rule still waits on it
+        for hook in list(self.stop_hooks):
+            hook()
         return StopReport([c.name for c in running], [c.name for c in running if c.phase != "done"])
 
     def close(self, grace: float = 2.0) -> StopReport:

@@ -37,7 +37,7 @@ CASES: dict[str, tuple[str, int]] = {  # code -> (source, line of the diagnostic
     "GPL4308": (P + "  GOTO 5\n.END\n", 2),
     "GPL4309": (P + "  NEXT\n.END\n", 2),
     "GPL4311": None,  # type: ignore[dict-item]
-    "GPL4700": (P + "  GOTO 5\n  IF x THEN\n5   x = 1\n  END\n.END\n", 2),
+    "GPL4700": (P + "  GOTO 5\n  FOR i = 1 TO 3\n5   x = 1\n  END\n.END\n", 2),
     "GPL4701": (P + "  WHILE x DO\n    EXIT 2\n  END\n.END\n", 3),
 }
 #: (GPL4311 is about --start: tests/vplus/test_run.py; GPL4112 about a folder: below.)

@@ -103,6 +103,218 @@ def test_goto_leaves_and_reenters_blocks_forward_and_backward(tmp_path: Path) ->
     assert r.stdout == "n = 3\n"
 
 
+GOTO_INTO_BLOCKS = """\
+.PROGRAM main()
+; GOTO into IF, ELSE, CASE, WHILE and DO blocks
+        n = 0
+        GOTO 10
+        TYPE "skipped"
+        IF n > 100 THEN
+            TYPE "never: n > 100"
+10          TYPE "in the THEN block, n=", n
+            n = n+1
+        ELSE
+            TYPE "else, n=", n
+20          TYPE "in the ELSE block, n=", n
+            n = n+1
+        END
+        IF n < 2 GOTO 20
+        CASE n OF
+        VALUE 1:
+            TYPE "one"
+        VALUE 2:
+            TYPE "two"
+30          TYPE "in VALUE 2, n=", n
+        ANY
+            TYPE "any"
+        END
+        IF n == 2 THEN
+            n = 5
+            GOTO 30
+        END
+        k = 10
+        GOTO 40
+        WHILE k < 3 DO
+            TYPE "while k=", k
+40          k = k-7
+            TYPE "k=", k
+        END
+        m = 0
+        again = 0
+        DO
+            m = m+1
+50          TYPE "do m=", m
+            m = m+1
+        UNTIL m > 5
+        IF again <> 1 THEN
+            again = 1
+            m = 3
+            GOTO 50
+        END
+        TYPE "end n=", n, " k=", k, " m=", m
+.END
+"""
+
+
+def test_goto_enters_if_else_case_while_and_do_blocks_as_the_controller_runs_them(tmp_path: Path) -> None:
+    """V+ runs a program step by step: a GOTO to a label inside a block runs from there, and the
+    block's END (or ELSE, VALUE, UNTIL) does what it always does -- an IF's goes on after the IF,
+    a WHILE's tests the condition again, an UNTIL tests its own (L4376-4397)."""
+    expected = ["in the THEN block, n=0", "in the ELSE block, n=1", "two", "in VALUE 2, n=2", "in VALUE 2, n=5",
+                "k=3", "do m=1", "do m=3", "do m=5", "do m=3", "do m=5", "end n=5 k=3 m=6"]
+    r = _run(_write(tmp_path, GOTO_INTO_BLOCKS))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == expected
+    # the same under REACTE, where each test of a block is a resumable step of its own
+    trapped = GOTO_INTO_BLOCKS.replace("        n = 0\n", "        REACTE trap\n        n = 0\n", 1) \
+        + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
+    r = _run(_write(tmp_path, trapped, "trapped.v2"))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == expected
+
+
+GUIDE_DISK_EXAMPLE = """\
+.PROGRAM disk.example()
+AUTO dlun, i
+AUTO $file.name
+$file.name = "data.tst"
+
+; Attach to a disk logical unit
+ATTACH (dlun, 4) "DISK"
+IF IOSTAT(dlun) < 0 GOTO 100
+
+; Open a new file and check status
+FOPENW (dlun) $file.name
+IF IOSTAT(dlun) < 0 GOTO 100
+
+; Write the text
+FOR i = 1 TO 10
+
+WRITE (dlun) "Line "+$ENCODE(i)
+IF IOSTAT(dlun) < 0 GOTO 100
+
+END
+
+; Close the file
+FCLOSE (dlun)
+IF IOSTAT(dlun) < 0 GOTO 100
+
+; Reopen the file and read its contents
+FOPENR (dlun) $file.name
+IF IOSTAT(dlun) < 0 GOTO 100
+READ (dlun) $txt
+WHILE IOSTAT(dlun) > 0 DO
+
+TYPE $txt
+READ (dlun) $txt
+
+END ;End of file or error
+IF (IOSTAT(dlun) < 0) AND (IOSTAT(dlun) <> -504) THEN
+
+100 TYPE $ERROR(IOSTAT(dlun)) ;Report any errors
+END
+FCLOSE (dlun) ;Close the file
+IF IOSTAT(dlun) < 0 THEN
+
+TYPE $ERROR(IOSTAT(dlun))
+END
+DETACH (dlun) ;Detach the LUN
+.END
+"""
+
+
+def test_the_guides_disk_example_which_jumps_into_a_then_block_translates_and_runs(tmp_path: Path) -> None:
+    """The User's Guide's disk I/O example (L7755-7798, spec Appendix B.2) as printed, inside a
+    .PROGRAM: its ``GOTO 100`` lands in a THEN block."""
+    r = _run(_write(tmp_path, GUIDE_DISK_EXAMPLE))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == [f"Line {i}" for i in range(1, 11)]
+
+
+EXIT_AND_NEXT_WITH_A_COUNT = """\
+.PROGRAM main()
+; EXIT n and NEXT n leave n nested loops
+        FOR i = 1 TO 3
+            FOR j = 1 TO 3
+                k = 0
+                WHILE k < 5 DO
+                    k = k+1
+                    IF (i == 2) AND (j == 2) AND (k == 2) THEN
+                        EXIT 3          ; out of the FOR i
+                    END
+                    IF k == 3 THEN
+                        NEXT 2          ; the next j
+                    END
+                END
+                TYPE "never: NEXT 2 skips this"
+            END
+            TYPE "i ", i, " done"
+        END
+        TYPE "after: i=", i, " j=", j, " k=", k
+        n = 0
+        DO
+            n = n+1
+            FOR m = 1 TO 4
+                IF m == 2 THEN
+                    NEXT 2              ; the DO's next pass: its UNTIL is tested
+                END
+                TYPE "m ", m
+            END
+        UNTIL n >= 3
+        TYPE "n=", n, " m=", m
+.END
+"""
+
+
+def test_exit_n_and_next_n_leave_n_nested_loops(tmp_path: Path) -> None:
+    r = _run(_write(tmp_path, EXIT_AND_NEXT_WITH_A_COUNT))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == ["i 1 done", "after: i=2 j=2 k=2", "m 1", "m 1", "m 1", "n=3 m=2"]
+
+
+KEPT_ERRORS = """\
+.PROGRAM main()
+        REACTE trap
+        TYPE "start"
+        FROB 3
+        TYPE "after frob"
+        x = (1 +
+        TYPE "after bad expression"
+        CALL nothing()
+        TYPE "after call"
+        y = FROB(1)
+        TYPE "after function"
+        SET p = TRANS(1)
+        p = 2
+        TYPE "end"
+.END
+.PROGRAM trap()
+        TYPE "trapped ", ERROR(-1), " ", $ERROR(ERROR(-1))
+.END
+"""
+KEPT = "GPL4100,GPL4101,GPL4300,GPL4304,GPL4306"
+
+
+def test_a_line_kept_with_its_error_raises_v_plus_error_there_which_reacte_traps(tmp_path: Path) -> None:
+    """--keep-going, or the errors ignored: each line V+ would not have loaded raises *Program not
+    executable* when reached, a CALL of no program *Undefined program or variable name*, a real
+    stored into a location *Data type mismatch* -- and the rest of the program runs."""
+    r = _run(_write(tmp_path, KEPT_ERRORS), "--ignore", KEPT)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == [
+        "start", "trapped -311 *Program not executable*", "after frob",
+        "trapped -311 *Program not executable*", "after bad expression",
+        "trapped -402 *Undefined program or variable name*", "after call",
+        "trapped -311 *Program not executable*", "after function",
+        "trapped -407 *Data type mismatch*", "end"]
+    untrapped = _write(tmp_path, KEPT_ERRORS.replace("        REACTE trap\n", "        TYPE \"no trap\"\n"), "plain.v2")
+    r = _run(untrapped, "--ignore", KEPT)
+    assert r.stdout == "no trap\nstart\n"
+    assert r.returncode == 3
+    assert (f"{untrapped}:4: error -311 in thread task 0: *Program not executable* - GPL4101: unknown V+ "
+            "instruction FROB") in r.stderr
+
+
 def test_a_read_before_any_assignment_is_the_undefined_value_error_at_its_line(tmp_path: Path) -> None:
     src = _write(tmp_path, ".PROGRAM main()\n  TYPE \"start\"\n  x = y + 1\n  TYPE \"never\"\n.END\n")
     r = _run(src)

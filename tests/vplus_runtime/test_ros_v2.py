@@ -3,11 +3,10 @@ Viper s650, served to a simple_message client written from REP-I0006 over loopba
 clock.
 
 What the client sees is what the file does under the runtime's decisions (docs/design/vplus.md):
-the command server reads a four-byte connect notice before the first message, each JOINT_POSITION
-command gets a reply whose header says 56 bytes but which carries only the 16 header bytes after
-the length field ($msg.jts never assigned), the arm reaches each commanded point, the feedback
-server streams JOINT_POSITION topics with the simulated joints, and a STOP (sequence -2) ends both
-tasks.
+the command server reads a four-byte connect notice before the first message, then stops at its
+first command with *Undefined value* ($msg.jts[1], never assigned: L4129-4143) before replying or
+moving, keeping its connection open (L7476-7480); the feedback server streams JOINT_POSITION
+topics with the simulated joints.
 """
 
 from __future__ import annotations
@@ -18,7 +17,6 @@ import struct
 import threading
 import time
 
-import numpy as np
 import pytest
 
 from gpltest import free_port
@@ -71,27 +69,25 @@ def server():  # type: ignore[no-untyped-def]
     sim.close()
 
 
-def test_ros_v2_serves_joint_commands_and_feedback(server) -> None:  # type: ignore[no-untyped-def]
+def test_ros_v2_command_server_stops_at_its_first_reply(server) -> None:  # type: ignore[no-untyped-def]
     sim, cmd_port, fdb_port = server
-    points = [(10.0, -20.0, 40.0, 5.0, 50.0, -10.0), (-15.0, -35.0, 70.0, -5.0, 45.0, 20.0)]
+    point = (10.0, -20.0, 40.0, 5.0, 50.0, -10.0)
     deadline = time.monotonic() + DEADLINE
     with socket.create_connection(("127.0.0.1", fdb_port), timeout=DEADLINE) as fdb, \
             socket.create_connection(("127.0.0.1", cmd_port), timeout=DEADLINE) as cmd:
-        for seq, point in enumerate(points):
-            cmd.sendall(_command(seq, point))
-            reply = _recv(cmd, 20)
-            assert HEADER.unpack(reply) == (56, 10, 3, 1, 0)
-            want = [np.float32(math.radians(d)) for d in point]
-            while True:  # feedback streams until the arm is there
-                header, joints = _feedback(fdb)
-                assert header == (56, 10, 1, 0, 0) and joints[6:] == (0.0,) * 4
-                if all(abs(j - w) <= 1e-6 for j, w in zip(joints[:6], want)):
-                    break
-                assert time.monotonic() < deadline, (joints, want)
-        assert "ROS connected to V+ command server" in sim.console.output
-        cmd.sendall(_command(-2, (0.0,) * 6))  # STOP: sequence -2 (msg.unused == -2)
-        while any(t._active for t in sim.threads):
-            assert time.monotonic() < deadline, [t.Name for t in sim.threads if t._active]
+        cmd.sendall(_command(0, point))
+        failed: list = []
+        while not failed:  # the command task reads the command and stops at $msg.jts[1]
+            failed = [t for t in sim.threads if t.unhandled_error is not None]
+            assert time.monotonic() < deadline, sim.console.log_text
             time.sleep(0.01)
-        assert cmd.recv(1) == b""  # the command server closed its port
-    assert sim.console.log_text == ""
+        (task,) = failed
+        assert task.Name == "task 5"
+        assert (task.unhandled_error.ErrorCode, task.unhandled_error.Message()) == (-401, "*Undefined value*")
+        cmd.setblocking(False)
+        with pytest.raises(BlockingIOError):  # no reply, and the connection stays open
+            cmd.recv(20)
+        for _ in range(3):  # the feedback task streams on; the arm never moved
+            header, joints = _feedback(fdb)
+            assert header == (56, 10, 1, 0, 0) and joints == (0.0,) * 10
+        assert "ROS connected to V+ command server" in sim.console.output

@@ -77,14 +77,19 @@ def test_arrays_grow_last_and_element_references(sim: Simulation) -> None:
     assert info.value.Message() == "*Illegal array index*"
 
 
-def test_string_array_element_never_assigned_reads_empty(sim: Simulation) -> None:
-    """ros.v2 ros.srv.cmd appends $msg.jts[idx] that nothing assigned (docs/design/vplus.md)."""
+def test_string_array_element_never_assigned_is_undefined_value(sim: Simulation) -> None:
+    """ros.v2 ros.srv.cmd appends $msg.jts[idx] that nothing assigned: an AUTO array's elements
+    are allocated, not assigned, so the first one read is *Undefined value* (L4129-4143), as for
+    a real array (docs/design/vplus.md, "string array elements")."""
     jts = vp.VArray("$msg.jts", 10)
     msg = vp.Cell("$msg")
     msg.v = "head"
-    for idx in range(1, 11):
-        msg.v = vp.add(msg.v, jts[idx])
+    with pytest.raises(vp.VError) as info:
+        msg.v = vp.add(msg.v, jts[1])
+    assert (info.value.ErrorCode, info.value.Message()) == (-401, "*Undefined value*")
     assert msg.v == "head"
+    jts[2] = "x"  # an assigned element of the same array reads as assigned
+    assert vp.add(msg.v, jts[2]) == "headx"
 
 
 def test_operators_are_vplus_logic() -> None:
@@ -161,3 +166,25 @@ def test_wrong_operand_types_are_vplus_errors() -> None:
                  lambda: vp.to_int("3")):
         with pytest.raises(vp.VError):
             call()
+
+
+# The twelve error codes the User's Guide prints with their text (seed 002; the seeds hold no
+# error-message appendix): $ERROR gives each as printed there (runtime/gplrt/vplus/errors.py).
+GUIDE_ERRORS = {
+    -504: "*Unexpected end of file*",    # L5359-5361, L8078
+    -522: "*Data error on device*",      # L8064
+    -524: "*Communications overrun*",    # L8069
+    -526: "*No data received*",          # L8074, L7530-7535
+    -620: "*Speed pot or STEP not pressed*",  # L9793-9795
+    -624: "*Force protect limit exceeded*",   # L5830 (printed lower-case, its closing * lost)
+    -666: "*Device Hardware not Present*",    # L12019 (and *Must use Monitor #1*, L12015)
+    -1003: "*Time-out nulling errors*",  # L5832
+    -1006: "*Soft envelope error*",      # L5833
+    -1011: "*No zero index*",            # L12618
+    -1012: "*Lost encoder sync*",        # L12616
+    -1013: "*Encoder quadrature error*",  # L12617
+}
+
+
+def test_the_error_codes_the_guide_prints_have_its_texts() -> None:
+    assert {code: vp.s_error(code) for code in GUIDE_ERRORS} == GUIDE_ERRORS

@@ -22,7 +22,7 @@ from gpl2py.gpl.lower.names import (
     py_ident,
     runtime_names,
 )
-from gpl2py.gpl.lower.kept import KeptErrors
+from gpl2py.kept import KeptErrors
 from gpl2py.gpl.lower.stub_names import STUBS_MODULE_NAMES, stub_attr_base, stub_module_name
 from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.gpl.semantics.check import Model
@@ -158,7 +158,7 @@ class ModuleContext:
         self.model = model
         self.names = names
         self.mod = mod
-        self.kept = kept  # the errors code that keeps one raises (lower/kept.py)
+        self.kept = kept  # the errors code that keeps one raises (gpl2py/kept.py)
         self.imports: dict[str, dict[str, str]] = {}  # python module -> {name: alias}
         self.siblings: set[str] = set()
         self.needs_this = False

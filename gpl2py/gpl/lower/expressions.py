@@ -282,7 +282,7 @@ class ExprLowerer:
 
     def fault(self, node: A.Node) -> str:
         """The call that raises, when reached, the controller's error for the error reported at
-        ``node`` (``compile_error(-729, "GPL2001: 'x' is not declared")``: lower/kept.py).  An
+        ``node`` (``compile_error(-729, "GPL2001: 'x' is not declared")``: gpl2py/kept.py).  An
         expression as much as a statement: it never returns."""
         code, subject = self.ctx.kept.at(node.span)
         return f"{self.rt(EXC, 'compile_error')}({code}, {py_string(subject)})"

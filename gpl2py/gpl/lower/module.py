@@ -15,7 +15,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.gpl.lower.classes import delegate_line, field_value, lower_class, register_line, register_lines
 from gpl2py.gpl.lower.context import ModuleContext, ProjectNames
 from gpl2py.pywriter.emit import Writer
-from gpl2py.gpl.lower.kept import KeptErrors
+from gpl2py.kept import KeptErrors
 from gpl2py.gpl.lower.expressions import annotation, default_code
 from gpl2py.gpl.lower.names import py_ident, py_literal
 from gpl2py.pywriter.text import escape

@@ -420,7 +420,7 @@ class ProcLowerer(ExprLowerer):
         w.trailing(s.trailing_comment, start)
 
     def kept_error(self, s: A.Stmt) -> bool:
-        """Code that keeps an error raises it when the program reaches its line (lower/kept.py):
+        """Code that keeps an error raises it when the program reaches its line (gpl2py/kept.py):
         a statement without blocks of its own with an error on one of its lines is the raising
         call alone (returns True); a statement with blocks raises before it runs when its first
         line has an error, and its blocks are lowered as usual (a GoTo may enter them).  A label
@@ -436,7 +436,7 @@ class ProcLowerer(ExprLowerer):
     def too_deep(self, s: A.Stmt, start: int) -> None:
         """``s`` is the innermost statement whose Python would nest deeper than CPython compiles
         (emit.MAX_INDENT, emit.MAX_BLOCKS): an error at it, and in its place the call that raises
-        the error when reached (lower/kept.py), so that code which keeps the error compiles."""
+        the error when reached (gpl2py/kept.py), so that code which keeps the error compiles."""
         w = self.w
         level, blocks = w.deepest()
         if level > MAX_INDENT:
@@ -453,7 +453,7 @@ class ProcLowerer(ExprLowerer):
     def s_misplaced(self, s: A.Stmt) -> None:
         """A line of a procedure body the parser reported -- a declaration that cannot be there, or
         a line it could not read (an ErrorStmt) --: it raises the controller's error for it when
-        reached (lower/kept.py)."""
+        reached (gpl2py/kept.py)."""
         if not self.model.errors_reported:
             raise InternalError(s.span, f"a {type(s).__name__} inside a procedure body was not reported")
         self.w.line(self.fault(s))

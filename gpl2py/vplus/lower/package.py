@@ -27,7 +27,7 @@ from gpl2py.vplus.syntax import ast as A
 
 _GOTO_CLASS = [
     "class _GoTo(Exception):",
-    '    """A V+ GOTO to a step label of a program\'s top level (the program\'s dispatch loop catches it)."""',
+    '    """A V+ GOTO to a step label (the program\'s dispatch loop catches it and goes on there)."""',
     "",
     "    def __init__(self, label: int) -> None:",
     "        super().__init__(label)",

@@ -15,6 +15,7 @@ keeps its V+ line (the source map), every ``;`` comment is carried.
 from __future__ import annotations
 
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.kept import KeptErrors
 from gpl2py.pywriter.emit import Writer
 from gpl2py.pywriter.text import py_string
 from gpl2py.vplus import messages as M
@@ -39,6 +40,7 @@ class ProgramLowerer:
         self.info = info
         self.functions = functions
         self.sink = sink
+        self.kept = KeptErrors(sink, M.PROGRAM_NOT_EXECUTABLE, M.RUNTIME_CODES)  # (lines that raise)
         reserved = {f.split(".")[0] for f in functions.values()}
         self.names = Names(reserved)
         self.x = Exprs(model, self.var)
@@ -46,6 +48,15 @@ class ProgramLowerer:
         self.loops: list[tuple[str, A.Stmt]] = []  # ("for", stmt) / ("while", stmt) / ("do", stmt)
         self.temps = 0
         self.top_labels: dict[int, int] = {}  # label -> segment number, when the program jumps
+        #: EXIT n / NEXT n (n > 1): the flag of each loop they leave to (``_leave1``), and for each
+        #: loop they pass through, the flags to test right after it ends (see ``_plan_exits``)
+        self.leave_flag: dict[int, str] = {}
+        self.after_loop: dict[int, list[tuple[str, A.Exit]]] = {}
+        self.exit_target: dict[int, A.Stmt] = {}
+        #: GOTO into a block: the targets whose label is not on the top level, and for each
+        #: statement the ones at or inside it (see ``_plan_entries``)
+        self.nested_targets: frozenset[int] = frozenset()
+        self.inside: dict[int, frozenset[int]] = {}
 
     # --- names ----------------------------------------------------------------------------------
 
@@ -93,8 +104,10 @@ class ProgramLowerer:
         outer = self.w
         self.w = Writer(level=outer.level)
         prog = self.info.program
+        self._plan_exits(prog.body, [])
         gotos = _has_goto(prog.body)
         if gotos:
+            self._plan_entries(prog.body)
             self._dispatch(prog.body)
         else:
             self.block(prog.body)
@@ -146,16 +159,21 @@ class ProgramLowerer:
         ``_GoTo(label)`` and the loop goes on at that label's segment."""
         w = self.w
         segments: list[list[A.Stmt]] = [[]]
+        entries: dict[int, int] = {}  # a label inside a block -> the segment of its top statement
         for s in body:
             if s.label is not None and segments[-1]:
                 segments.append([])
             if s.label is not None:
                 self.top_labels[s.label] = len(segments) - 1
+            for label in sorted(self.inside.get(id(s), ())):
+                entries[label] = len(segments) - 1
             segments[-1].append(s)
-        labels = ", ".join(f"{k}: {v}" for k, v in self.top_labels.items())
+        labels = ", ".join(f"{k}: {v}" for k, v in {**self.top_labels, **entries}.items())
         w.gpl_line = body[0].span.line if body else self.info.program.span.line
         w.line(f"_labels = {{{labels}}}  # step label -> segment")
         w.line("_at = 0")
+        if self.nested_targets:
+            w.line("_into = 0  # a step label inside a block that a GOTO enters, until it is reached")
         w.line("while True:")
         w.indent(blocks=1)
         w.line("try:")
@@ -173,14 +191,41 @@ class ProgramLowerer:
         w.line("except _GoTo as jump:")
         w.indent(blocks=2)
         w.line("_at = _labels[jump.label]")
+        if self.nested_targets:
+            w.line("_into = jump.label")
         w.dedent()
         w.dedent()
 
     # --- statements -----------------------------------------------------------------------------
 
     def block(self, body: list[A.Stmt]) -> None:
-        for s in body:
-            self.stmt(s)
+        if not self.nested_targets:
+            for s in body:
+                self.stmt(s)
+            return
+        # A GOTO may enter this block at a label further down: the statements before it are
+        # skipped while ``_into`` names a label after them (consecutive ones under one test).
+        later: list[frozenset[int]] = []
+        seen: frozenset[int] = frozenset()
+        for s in reversed(body):
+            later.append(seen)
+            seen = seen | self.inside.get(id(s), frozenset())
+        later.reverse()
+        w = self.w
+        i = 0
+        while i < len(body):
+            skip = later[i]
+            if not skip:
+                self.stmt(body[i])
+                i += 1
+                continue
+            w.gpl_line = body[i].span.line
+            w.line(f"if _into not in {_labels_text(skip)}:  # (entered further down by a GOTO)")
+            w.indent()
+            while i < len(body) and later[i] == skip:
+                self.stmt(body[i])
+                i += 1
+            w.dedent()
 
     def stmt(self, s: A.Stmt) -> None:  # noqa: C901 (one dispatch over the statement kinds)
         w, x = self.w, self.x
@@ -189,7 +234,9 @@ class ProgramLowerer:
         after = [c for c in s.comments if c.span.line >= s.span.line]
         w.comments(before)
         start = w.mark()
-        if self.steps and isinstance(s, _RESUMABLE) and (not isinstance(s, A.Instr) or s.word):
+        if self.kept.any() and self.kept.on_lines(s.span, whole=False):
+            self._kept(s)
+        elif self.steps and isinstance(s, _RESUMABLE) and (not isinstance(s, A.Instr) or s.word):
             w.line(f"with vp.step({s.span.line}):")
             w.indent()
             self._simple(s)
@@ -202,8 +249,24 @@ class ProgramLowerer:
         for c in after:
             w.trailing(c, start)
 
+    def _kept(self, s: A.Stmt) -> None:
+        """A statement translated despite an error on its line (``--keep-going``, or the error
+        ignored): it raises V+'s error for the fault when reached (gpl2py.kept), in a step of its
+        own so that REACTE traps it and RETURNE goes on after it (a block with it)."""
+        code, subject = self.kept.at(s.span)
+        if self.steps:
+            self.w.line(f"with vp.step({s.span.line}):")
+            self.w.indent()
+        self.w.line(f"vp.compile_error({code}, {py_string(subject)})")
+        if self.steps:
+            self.w.dedent()
+
     def _simple(self, s: A.Stmt) -> None:  # noqa: C901 (one dispatch over the statement kinds)
         w, x = self.w, self.x
+        if s.label is not None and s.label in self.nested_targets:
+            w.line("_into = 0  # (the GOTO's label is reached)")
+        if id(s) in self.leave_flag:  # a loop that an EXIT n / NEXT n of an inner loop leaves to
+            w.line(f"{self.leave_flag[id(s)]} = False  # set by an inner loop's EXIT or NEXT with a count")
         if isinstance(s, A.Assign | A.SetLoc):
             w.line(f"{self._target(s.target)} = {x.value(s.value)}")
         elif isinstance(s, A.Here):
@@ -224,7 +287,9 @@ class ProgramLowerer:
             w.line("while True:  # WHILE ... DO")
             self._loop_body("while", s, s.body, test=s.cond)
         elif isinstance(s, A.While):
-            w.line(f"while {x.condition(s.cond)}:")
+            enter = self._into_any(s.body)
+            test = x.condition(s.cond)
+            w.line(f"while {f'_into in {_labels_text(enter)} or ({test})' if enter else test}:")
             self._loop_body("while", s, s.body)
         elif isinstance(s, A.DoUntil):
             w.line("while True:  # DO ... UNTIL")
@@ -264,28 +329,46 @@ class ProgramLowerer:
             return f"{name}[{', '.join(self.x.value(i) for i in v.index)}]"
         return f"{name}.v"
 
-    def _guarded(self, cond: A.Expr, line: int) -> str:
+    def _guarded(self, cond: A.Expr, line: int, into: frozenset[int] = frozenset(),
+                 away: frozenset[int] = frozenset()) -> str:
         """The condition of a block's header; under REACTE its evaluation is a resumable unit of
         its own, into a temporary that is false if the handler resumes after it
-        (docs/design/vplus-runtime.md §7)."""
+        (docs/design/vplus-runtime.md §7).  A GOTO entering the block (``_into`` in ``into``)
+        makes it true, one entering another branch (``away``) false, neither evaluating it."""
         if not self.steps:
-            return self.x.condition(cond)
+            test = self.x.condition(cond)
+            if away:
+                test = f"_into not in {_labels_text(away)} and ({test})"
+            return f"_into in {_labels_text(into)} or ({test})" if into else test
         temp = self._temp("c")
-        self.w.line(f"{temp} = False")
+        self.w.line(f"{temp} = {f'_into in {_labels_text(into)}' if into else 'False'}")
+        skip = into | away
+        if skip:
+            self.w.line(f"if _into not in {_labels_text(skip)}:")
+            self.w.indent()
         self.w.line(f"with vp.step({line}):")
         self.w.indent()
         self.w.line(f"{temp} = {self.x.condition(cond)}")
         self.w.dedent()
+        if skip:
+            self.w.dedent()
         return temp
+
+    def _into_any(self, body: list[A.Stmt] | None) -> frozenset[int]:
+        """The labels a GOTO may enter at, in ``body``."""
+        found: frozenset[int] = frozenset()
+        for s in body or []:
+            found = found | self.inside.get(id(s), frozenset())
+        return found
 
     def _if(self, s: A.If) -> None:
         w = self.w
-        w.line(f"if {self._guarded(s.cond, s.span.line)}:")
+        w.line(f"if {self._guarded(s.cond, s.span.line, self._into_any(s.then), self._into_any(s.orelse))}:")
         self._suite(s.then)
         orelse = s.orelse
         while orelse is not None:
             if len(orelse) == 1 and isinstance(orelse[0], A.If) and not orelse[0].comments and orelse[0].label is None \
-                    and not self.steps:
+                    and not self.steps and not self.inside.get(id(orelse[0])):
                 inner = orelse[0]
                 w.gpl_line = inner.span.line
                 w.line(f"elif {self.x.condition(inner.cond)}:")
@@ -307,9 +390,13 @@ class ProgramLowerer:
     def _case(self, s: A.Case) -> None:
         w, x = self.w, self.x
         subject = x.value(s.subject)
+        entered = self._into_any([arm_stmt for arm in s.arms for arm_stmt in arm.body])
         if not (isinstance(s.subject, A.Var) and s.subject.index is None):
             temp = self._temp("case")
-            w.line(f"{temp} = {subject}  # CASE ... OF")
+            if entered:  # (not evaluated when a GOTO enters an arm)
+                w.line(f"{temp} = None if _into in {_labels_text(entered)} else {subject}  # CASE ... OF")
+            else:
+                w.line(f"{temp} = {subject}  # CASE ... OF")
             subject = temp
         first = True
         for arm in s.arms:
@@ -326,6 +413,11 @@ class ProgramLowerer:
             else:
                 values = [x.value(v) for v in arm.values]
                 test = f"{subject} == {values[0]}" if len(values) == 1 else f"{subject} in ({', '.join(values)})"
+                if entered:
+                    into = self._into_any(arm.body)
+                    test = f"_into not in {_labels_text(entered)} and {test}"
+                    if into:
+                        test = f"_into in {_labels_text(into)} or ({test})"
                 w.line(f"{'if' if first else 'elif'} {test}:")
             for c in arm.comments:
                 w.trailing(c, w.mark() - 1)
@@ -339,7 +431,7 @@ class ProgramLowerer:
         w.indent(blocks=1)
         start = w.mark()
         if test is not None:  # WHILE's test at the top of the body (under REACTE)
-            w.line(f"if not {self._guarded(test, s.span.line)}:")
+            w.line(f"if not {self._guarded(test, s.span.line, self._into_any(body))}:")
             w.indent()
             w.line("break")
             w.dedent()
@@ -357,6 +449,16 @@ class ProgramLowerer:
         w.ensure_body(start)
         w.dedent()
         self.loops.pop()
+        for flag, ex in self.after_loop.get(id(s), []):  # an EXIT n / NEXT n left this loop
+            w.line(f"if {flag}:")
+            w.indent()
+            target = self.exit_target[id(ex)]
+            if ex.word == "NEXT" and self.loops and self.loops[-1][1] is target:
+                w.line(f"{flag} = False")
+                self._next(*self.loops[-1])
+            else:
+                w.line("break")
+            w.dedent()
 
     def _for(self, s: A.For) -> None:
         w, x = self.w, self.x
@@ -380,16 +482,70 @@ class ProgramLowerer:
         increment = f"{index} += {step_value}" if not step_value.startswith("-") else f"{index} -= {step_value[1:]}"
         self._loop_body("for", s, s.body, step=increment)
 
+    def _plan_entries(self, body: list[A.Stmt]) -> None:
+        """The GOTO targets inside blocks, and which statements hold them.  A target inside a FOR
+        loop is GPL4700 (and is left out: its GOTO stays a jump to a label the program lacks)."""
+        targets = _goto_targets(body)
+        nested: set[int] = set()
+
+        def walk(stmts: list[A.Stmt], top: bool, in_for: bool) -> frozenset[int]:
+            found: frozenset[int] = frozenset()
+            for s in stmts:
+                here: frozenset[int] = frozenset()
+                if not top and s.label is not None and s.label in targets:
+                    if in_for:
+                        self.sink.report(M.GOTO_INTO_FOR, targets[s.label].span, label=s.label)
+                    else:
+                        here = frozenset({s.label})
+                for b in blocks(s):
+                    here = here | walk(b, False, in_for or isinstance(s, A.For))
+                if here:
+                    self.inside[id(s)] = here
+                    nested.update(here)
+                found = found | here
+            return found
+
+        walk(body, True, False)
+        self.nested_targets = frozenset(nested)
+
+    def _plan_exits(self, body: list[A.Stmt], loops: list[A.Stmt]) -> None:
+        """Find each EXIT n / NEXT n (n > 1) and the loop it leaves to.  Python breaks one loop:
+        the statement sets that loop's flag and breaks; each loop it passes through is followed by
+        ``if flag: break``, and the last by the outer loop's NEXT (or ``break`` for EXIT)."""
+        for s in body:
+            if isinstance(s, A.Exit) and s.count is not None and loops:  # (none: GPL4309)
+                n = _whole(s.count)
+                if n is None or n < 1 or n > len(loops):
+                    reason = ("the count must be a whole number" if n is None or n < 1 else
+                              f"only {len(loops)} loop{'s' if len(loops) != 1 else ''} enclose{'s' if len(loops) == 1 else ''} it")
+                    self.sink.report(M.EXIT_COUNT, s.span, word=s.word, count=_count_text(s.count), reason=reason)
+                elif n > 1:
+                    target = loops[-n]
+                    flag = self.leave_flag.setdefault(id(target), self._temp("leave"))
+                    self.exit_target[id(s)] = target
+                    for inner in loops[-n + 1:]:
+                        self.after_loop.setdefault(id(inner), []).append((flag, s))
+            inner_loops = loops + [s] if isinstance(s, A.While | A.DoUntil | A.For) else loops
+            for b in blocks(s):
+                self._plan_exits(b, inner_loops)
+
     def _exit(self, s: A.Exit) -> None:
         w = self.w
-        if s.count is not None and not (isinstance(s.count, A.Num) and s.count.value == 1):
-            self.sink.report(M.EXIT_COUNT, s.span, word=s.word)
         if not self.loops:
             return
-        kind, loop = self.loops[-1]
+        target = self.exit_target.get(id(s))
+        if target is not None:  # EXIT n / NEXT n, n > 1
+            w.line(f"{self.leave_flag[id(target)]} = True")
+            w.line(f"break  # {s.word} {_count_text(s.count)}")
+            return
         if s.word == "EXIT":
             w.line("break")
             return
+        self._next(*self.loops[-1])
+
+    def _next(self, kind: str, loop: A.Stmt) -> None:
+        """NEXT of ``loop``: its step (FOR) or its UNTIL test (DO), then the next time round."""
+        w = self.w
         if kind == "for":
             assert isinstance(loop, A.For)
             step = self.x.value(loop.step) if loop.step is not None else "1"
@@ -404,10 +560,6 @@ class ProgramLowerer:
         w.line("continue")
 
     def _goto(self, label: int, s: A.Stmt) -> None:
-        if label not in self.top_labels:
-            self.sink.report(M.GOTO_UNSUPPORTED, s.span, label=label)
-            self.w.line(f"raise _GoTo({label})")
-            return
         self.w.line(f"raise _GoTo({label})  # GOTO {label}")
 
     def _react(self, s: A.React) -> None:
@@ -446,6 +598,39 @@ def _const_value(e: A.Expr) -> float:
     if isinstance(e, A.Paren):
         return _const_value(e.inner)
     return 0.0
+
+
+def _whole(e: A.Expr) -> int | None:
+    """The count of EXIT n / NEXT n when it is a whole-number constant."""
+    if not _constant(e):
+        return None
+    value = _const_value(e)
+    return int(value) if value == int(value) else None
+
+
+def _count_text(e: A.Expr | None) -> str:
+    if e is None:
+        return ""
+    n = _whole(e)
+    return str(n) if n is not None else "n"
+
+
+def _labels_text(labels: frozenset[int]) -> str:
+    """A set of step labels as a Python tuple, in order: ``(100,)``."""
+    items = sorted(labels)
+    return f"({items[0]},)" if len(items) == 1 else f"({', '.join(map(str, items))})"
+
+
+def _goto_targets(body: list[A.Stmt]) -> dict[int, A.Stmt]:
+    """Each label a GOTO or IF ... GOTO names, with the first statement that names it."""
+    found: dict[int, A.Stmt] = {}
+    for s in body:
+        if isinstance(s, A.Goto | A.IfGoto):
+            found.setdefault(s.target, s)
+        for b in blocks(s):
+            for label, at in _goto_targets(b).items():
+                found.setdefault(label, at)
+    return found
 
 
 def _has_goto(body: list[A.Stmt]) -> bool:

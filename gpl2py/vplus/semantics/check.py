@@ -97,6 +97,7 @@ def analyze(modules: list[A.Module], sink: DiagnosticSink, start: str | None = N
         if not a.changed:
             break
     sink.extend(a.sink)
+    sink.ignored_errors.extend(a.sink.ignored_errors)  # (their lines raise: gpl2py.kept)
     a.sink = sink
     for sym in a.all_symbols():
         if sym.type is T.UNKNOWN:

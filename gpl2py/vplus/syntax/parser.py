@@ -361,8 +361,8 @@ class _Parser:
         else:
             try:
                 stmt = self._dispatch(prog)
-            except _LineError:
-                stmt = None
+            except _LineError:  # (kept in place, empty: a translation that keeps the error
+                stmt = A.Instr(t.span, "")  # makes the line raise it: gpl2py.kept)
                 if self.n == n:
                     self.n += 1
         if stmt is not None:

@@ -6,7 +6,7 @@ path imports it.
 """
 
 from gplrt.vplus import errors
-from gplrt.vplus.errors import UNDEFINED_VALUE, VError, error_text, unsupported
+from gplrt.vplus.errors import UNDEFINED_VALUE, VError, compile_error, error_text, unsupported
 from gplrt.vplus.values import (
     G, Cell, ElementRef, Ref, VArray, calls, defined, find_program, last, local_store, program, byval,
 )

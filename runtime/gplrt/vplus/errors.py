@@ -5,10 +5,13 @@ file*`` is V+'s, GPL has no such code), and ``$ERROR(code)``, ``IOSTAT`` and REA
 numbers to the program.  ``VError`` subclasses the core's ``GplException`` so that the core's
 thread machinery reports an unhandled V+ error as it reports a GPL one.
 
-Provenance of each code (docs/design/vplus-runtime.md §9): ``GUIDE`` codes are printed in the V+
-Language User's Guide with their number (seed 002, line given); ``UNCONFIRMED`` codes are messages
-the Guide names without a number, numbered as we believe the Reference Guide numbers them — a
-reader with that guide should check them; the table is the one place to correct.
+Provenance of each code (docs/design/vplus-runtime.md §9): the seeds hold no error-message
+appendix (that is in the V+ Reference Guides, which we do not have); the User's Guide (seed 002)
+prints twelve codes with their number and text, each cited below and checked by
+tests/vplus_runtime/test_values_strings.py.  The other codes are ``UNCONFIRMED``: the number is
+ours (as we believe the Reference Guide numbers them), and the text is the Guide's where a line is
+cited, else ours too.  A reader with the Reference Guide should check them; this table is the one
+place to correct.
 """
 
 from __future__ import annotations
@@ -22,41 +25,42 @@ DATA_ERROR = -522             # L8064
 COMM_OVERRUN = -524           # L8069
 NO_DATA = -526                # L8074, L7530-7535
 SPEED_POT = -620              # L9795
-FORCE_PROTECT = -624          # L5830
-NO_HARDWARE = -666            # L12015-12019
+FORCE_PROTECT = -624          # L5830 (printed "*force protect limit exceeded")
+NO_HARDWARE = -666            # L12015-12019 (-666 is also *Must use Monitor #1*, L12015)
 NULLING_TIMEOUT = -1003       # L5832
 SOFT_ENVELOPE = -1006         # L5833
 NO_ZERO_INDEX = -1011         # L12618
 LOST_SYNC = -1012             # L12616
 QUADRATURE = -1013            # L12617
 
-# -- messages the Guide names without a number (UNCONFIRMED numbering) ------------------------------
-UNDEFINED_VALUE = -401            # L4139-4143
-UNDEFINED_NAME = -402             # L1224-1226 *Undefined program or variable name*
-ILLEGAL_INDEX = -403
-ILLEGAL_VALUE = -404
-STRING_TOO_LONG = -405
-DIVIDE_BY_ZERO = -406
-TYPE_MISMATCH = -407              # L4009-4011 "data type different from ... originally created"
-TOO_MANY_CALLS = -410             # L992
-TASK_IN_USE = -421
-NOT_IMPLEMENTED = -430
-DEVICE_NOT_READY = -508           # L7404-7406
-NONEXISTENT_FILE = -513           # L8556-8561
-FILE_EXISTS = -514
-NOT_ATTACHED = -516
-ALREADY_ATTACHED = -517
-FILE_NOT_OPEN = -518
-FILE_ALREADY_OPEN = -519
-ILLEGAL_IO = -530
-CONNECTION_CLOSED = -543
-CONNECTION_REFUSED = -544
-ROBOT_NOT_ATTACHED = -601
-NOT_PRECISION_POINT = -603
-LOCATION_OUT_OF_RANGE = -610
-JOINT_OUT_OF_RANGE = -1002
-TOO_CLOSE = -1004
-TOO_FAR = -1005
+# -- UNCONFIRMED: numbers ours; the text the Guide's where a line is cited ---------------------------
+UNDEFINED_VALUE = -401            # text L4141 ("an undefined value error")
+UNDEFINED_NAME = -402             # text L1224-1226
+ILLEGAL_INDEX = -403              # text ours
+ILLEGAL_VALUE = -404              # text ours
+STRING_TOO_LONG = -405            # text ours (the 128-character limit: §3.4)
+DIVIDE_BY_ZERO = -406             # text ours
+TYPE_MISMATCH = -407              # text ours; the condition L4009-4011
+TOO_MANY_CALLS = -410             # text L992
+PROGRAM_NOT_EXECUTABLE = -311     # text L664 (a line V+ would not load, kept by gpl2py --keep-going)
+TASK_IN_USE = -421                # text ours
+NOT_IMPLEMENTED = -430            # text ours (what gpl2py does not simulate)
+DEVICE_NOT_READY = -508           # text L7404-7406, L8480
+NONEXISTENT_FILE = -513           # text L8556-8561
+FILE_EXISTS = -514                # text ours
+NOT_ATTACHED = -516               # text ours
+ALREADY_ATTACHED = -517           # text ours
+FILE_NOT_OPEN = -518              # text ours
+FILE_ALREADY_OPEN = -519          # text ours
+ILLEGAL_IO = -530                 # text ours
+CONNECTION_CLOSED = -543          # text ours
+CONNECTION_REFUSED = -544         # text ours
+ROBOT_NOT_ATTACHED = -601         # text ours
+NOT_PRECISION_POINT = -603        # text ours
+LOCATION_OUT_OF_RANGE = -610      # text ours
+JOINT_OUT_OF_RANGE = -1002        # text ours
+TOO_CLOSE = -1004                 # text ours
+TOO_FAR = -1005                   # text ours
 
 # Positive IOSTAT values of a TCP server LUN (AdeptNet; docs/design/vplus.md)
 CLIENT_CONNECTED = 100
@@ -83,6 +87,7 @@ _TEXT: dict[int, str] = {
     DIVIDE_BY_ZERO: "Divide by zero",
     TYPE_MISMATCH: "Data type mismatch",
     TOO_MANY_CALLS: "Too many subroutine calls",
+    PROGRAM_NOT_EXECUTABLE: "Program not executable",
     TASK_IN_USE: "Task already in use",
     NOT_IMPLEMENTED: "Not implemented",
     DEVICE_NOT_READY: "Device not ready",
@@ -128,6 +133,13 @@ def unsupported(keyword: str, *args: object) -> None:
     """A tier-3 instruction or function (graphics, vision, VME, protocols: spec §2.6) reached at
     run time: V+'s *Not implemented* naming it."""
     raise VError(NOT_IMPLEMENTED, detail=f"{keyword} is not simulated")
+
+
+def compile_error(code: int, diagnostic: str) -> None:
+    """A line gpl2py translated despite an error (``--keep-going``, or the error ignored), reached:
+    V+'s error for the fault (``gpl2py.vplus.messages.RUNTIME_CODES``), naming gpl2py's diagnostic,
+    so the program's REACTE traps it as any other and an unhandled one says which line and why."""
+    raise VError(int(code), detail=diagnostic)
 
 
 # GPL codes the shared core raises -> the V+ code a V+ program sees (the same condition).

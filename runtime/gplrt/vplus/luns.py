@@ -37,8 +37,9 @@ from gplrt.vplus import errors as E
 from gplrt.vplus.operators import to_int
 from gplrt.vplus.motion import attach_robot, detach_robot
 from gplrt.vplus.strings import render, val
-from gplrt.vplus.taskstate import current_task, safepoint
-from gplrt.vplus.values import MAX_STRING
+from gplrt.session import current_session
+from gplrt.vplus.taskstate import _tables, current_task, safepoint
+from gplrt.vplus.values import MAX_STRING, session_data
 
 FREE_LUNS = range(5, 32)  # [D] where ATTACH mode 4 looks for a free LUN
 RECORD_MAX = 512
@@ -103,6 +104,7 @@ def attach(lun: Any, mode: Any = 0, device: str = "") -> None:
         task.luns[number].status = E.ALREADY_ATTACHED
         return
     entry = Lun(number, dev)
+    _release_at_stop()
     if dev not in ("DISK", "TCP") and not dev.startswith("NFS"):
         entry.status = E.DEVICE_NOT_READY  # serial lines, graphics, the pendant: not simulated
     task.luns[number] = entry
@@ -119,10 +121,27 @@ def detach(lun: Any = 0) -> None:
 
 
 def detach_all(task: Any) -> None:
-    """Every LUN of a task that ends (L7476-7489)."""
+    """Every LUN of a task that ends normally (L7476-7477), is run again or is aborted."""
     for entry in list(task.luns.values()):
         _close(entry)
     task.luns.clear()
+
+
+def _release_at_stop() -> None:
+    """Once per session: when it stops, close the devices that tasks stopped by an error kept
+    attached (L7476-7480: "most device attachments are preserved"; see ``tasks.execute``)."""
+    _, tasks, lock = _tables()
+    extra = session_data().extra
+    with lock:
+        if extra.get("luns_released_at_stop"):
+            return
+        extra["luns_released_at_stop"] = True
+
+    def release() -> None:
+        for task in list(tasks.values()):
+            detach_all(task)
+
+    current_session().stop_hooks.append(release)
 
 
 def _close(entry: Lun) -> None:

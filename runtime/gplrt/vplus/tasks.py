@@ -44,6 +44,8 @@ def execute(task: Any, prog: Any, *args: Any, cycles: Any = 1) -> None:
             raise VError(TASK_IN_USE, detail=f"task {n}")
         state = TaskState(n)
         by_number[n] = state
+    if old is not None:
+        detach_all(old)  # a task stopped by an error kept its devices until run again (as KILL)
     count = to_int(cycles)
 
     def body() -> None:
@@ -51,20 +53,18 @@ def execute(task: Any, prog: Any, *args: Any, cycles: Any = 1) -> None:
         with lock:
             by_key[key] = state
         try:
-            remaining = count
-            while True:
-                try:
-                    fn(*args)
-                except TaskEnd as end:
-                    if end.kind == "STOP" and remaining != 1:
-                        remaining -= 1
-                        continue
-                    return
-                remaining -= 1
-                if remaining == 0 or count == 0:
-                    return
+            _cycles(fn, args, count)
+        except GplException:
+            # Stopped by an error: "most device attachments are preserved" (L7476-7480) -- the
+            # task could be resumed (L915-917) -- so its files and connections stay open, and
+            # are closed when the task is run again or the session stops (_release_stopped).
+            raise
+        except BaseException:
+            detach_all(state)  # ABORT, the session stopping
+            raise
+        else:
+            detach_all(state)  # ended normally: every device detached (L7476-7477)
         finally:
-            detach_all(state)
             with lock:
                 by_key.pop(key, None)
 
@@ -72,6 +72,22 @@ def execute(task: Any, prog: Any, *args: Any, cycles: Any = 1) -> None:
     thread._start_name = getattr(fn, "vplus_name", getattr(fn, "__name__", "program"))
     state.thread = thread
     thread.Start()
+
+
+def _cycles(fn: Callable[..., Any], args: tuple[Any, ...], count: int) -> None:
+    """Run ``fn`` for ``count`` execution cycles (0: forever); STOP ends a cycle, HALT them all."""
+    remaining = count
+    while True:
+        try:
+            fn(*args)
+        except TaskEnd as end:
+            if end.kind == "STOP" and remaining != 1:
+                remaining -= 1
+                continue
+            return
+        remaining -= 1
+        if remaining == 0 or count == 0:
+            return
 
 
 def abort(task: Any) -> None:

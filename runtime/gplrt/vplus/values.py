@@ -141,8 +141,9 @@ class ElementRef:
 class VArray:
     """A V+ array of up to 3 dimensions, 0-based, growing as it is assigned (L3986-4049).
 
-    ``a[i]``, ``a[i, j]``; elements never assigned read as *Undefined value*, except in a
-    string array, where they read ``""`` (docs/design/vplus.md, "string array elements")."""
+    ``a[i]``, ``a[i, j]``; an element never assigned reads as *Undefined value*, whatever the
+    array's type: allocation is not assignment (L4013-4022, L4129-4143; docs/design/vplus.md,
+    "string array elements")."""
 
     __slots__ = ("name", "_data", "_kind", "_lock")
 
@@ -164,8 +165,6 @@ class VArray:
         try:
             return self._data[key]
         except KeyError:
-            if self._kind == "string":
-                return ""
             raise VError(UNDEFINED_VALUE, detail=f"{self.name}[{', '.join(map(str, key))}]") from None
 
     def _set(self, key: tuple[int, ...], value: Any) -> None:
