@@ -12,6 +12,9 @@ Conventions
 * ``a(1)`` is an :class:`Invoke` whatever it means (call, array index, indexed property, delegate
   invocation): the parser cannot know, semantics decides (spec §3.7).
 * Parentheses are not kept as nodes; precedence is already in the tree shape.
+* A run of :data:`CHAIN_MIN` binary operators of one precedence level or more is one
+  :class:`Chain` (operators and literal operands in arrays), which means the nested
+  :class:`Binary` nodes it stands for; a walker of left spines reads both (``chain_left``).
 
 Comments
 --------
