@@ -21,11 +21,11 @@ a double continuation indent so that their continuation lines stand apart from t
 
 from __future__ import annotations
 
-import io
 import keyword
+import re
 import tokenize
 from array import array
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from typing import NamedTuple, overload
 
 LIMIT = 99
@@ -40,6 +40,26 @@ _STEP_OPS = {"or": 1, "and": 2, "==": 3, "!=": 3, "<": 3, ">": 3, "<=": 3, ">=":
 # plain and augmented assignment: the expression to break starts after any of them (wrapping the
 # whole ``x += a + b`` statement in parentheses would not be Python)
 _ASSIGN = {"=", "+=", "-=", "*=", "/=", "//=", "%=", "**=", "@=", "&=", "|=", "^=", "<<=", ">>="}
+
+
+def _one_line(text: str) -> Callable[[], str]:
+    """A ``readline`` that gives ``text`` once, then the end: ``io.StringIO(text).readline`` keeps
+    a copy of the text at four bytes a character and hands out another, 10 times the GPL source
+    of ``1+1+...`` while its generated line is tokenized (issue 20)."""
+    return _Reader(text).readline
+
+
+class _Reader:
+    """:func:`_one_line`'s reader: the text, then empty strings."""
+
+    __slots__ = ("_text",)
+
+    def __init__(self, text: str) -> None:
+        self._text = text
+
+    def readline(self) -> str:
+        text, self._text = self._text, ""
+        return text
 
 
 class _Tok(NamedTuple):
@@ -73,7 +93,7 @@ class _Tokens:
         """The tokens of ``text`` (one line) but its NEWLINE, NL and ENDMARKER; raises what
         ``tokenize`` raises on text that is not Python."""
         types, starts, ends = array("B"), array("i"), array("i")
-        for t in tokenize.generate_tokens(io.StringIO(text).readline):
+        for t in tokenize.generate_tokens(_one_line(text)):
             if t.type not in (tokenize.NEWLINE, tokenize.NL, tokenize.ENDMARKER):
                 types.append(t.type)
                 starts.append(t.start[1])
@@ -146,6 +166,10 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
             cur.append(n)
         out.append((indent, "global " + ", ".join(cur)))
         return out
+    if inside and _CHAIN_START.match(text):
+        steps = _stream_steps(text)
+        if steps:
+            return _text_step_lines(indent, text, steps, limit)
     try:
         toks = _Tokens.of(text)
     except (tokenize.TokenError, IndentationError, SyntaxError):
@@ -177,9 +201,9 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
     # 0. the steps of a long operator chain, ``(_chain1 := ..., _chain1 := _chain1 + ..., ...)[-1]``
     #    opened by rule 3: one step a line, each broken before its operators
     if inside and not prefix and not suffix and not comment:
-        steps = _chain_steps(body, expr)
+        steps = _chain_steps(expr)
         if steps:
-            return _step_lines(indent, steps, limit)
+            return _step_lines(indent, body, expr, steps, limit)
     # 1. top-level binary operators
     cuts = [i for i, tok in _top_level(expr)
             if i > 0 and tok.string in _OPS and tok.type in (tokenize.OP, tokenize.NAME)]
@@ -235,9 +259,9 @@ def _wrap(indent: int, text: str, limit: int, inside: bool = False) -> list[tupl
     return [(indent, text)]
 
 
-def _chain_steps(body: str, expr: _Tokens) -> list[list[str]] | None:
-    """The steps of the tuple that lowers a long operator chain (ExprLowerer.chunked), each as
-    its pieces cut before top-level operators; None for any other text.  Only that tuple is
+def _chain_steps(expr: _Tokens) -> list[tuple[int, int]] | None:
+    """Where the steps of the tuple that lowers a long operator chain (ExprLowerer.chunked) are
+    in ``expr``, as (first, past-last) token indices; None for any other text.  Only that tuple is
     recognised (its elements assign with ``:=``) so that no other output changes shape."""
     commas: list[int] = []
     assigns = False
@@ -248,16 +272,74 @@ def _chain_steps(body: str, expr: _Tokens) -> list[list[str]] | None:
             assigns = True
     if not commas or not assigns:
         return None
-    steps: list[list[str]] = []
-    for a, b in zip([-1, *commas], [*commas, len(expr)]):
-        seg = expr[a + 1:b]
-        if not seg:
+    steps = [(a + 1, b) for a, b in zip([-1, *commas], [*commas, len(expr)])]
+    return None if any(a >= b for a, b in steps) else steps
+
+
+# the start of the steps of a long operator chain (ExprLowerer.chunked: ``_chain1 := ...``; a GPL
+# name is never written ``_chain1`` in Python, py_ident makes it ``_u_chain1``)
+_CHAIN_START = re.compile(r"_chain[0-9]+ := ")
+
+
+def _stream_steps(text: str) -> list[tuple[int, int]] | None:
+    """The steps of a long chain's tuple opened by rule 4 (``_chain1 := ..., _chain1 := _chain1
+    + ..., ...``) as (start, end) offsets in ``text``, found by reading its tokens as they come
+    rather than keeping them: the tokens of a million-term chain's line, even in arrays, were 9
+    times its GPL source (issue 20).  None for any other text (a comment, a trailing comma, no
+    ``:=`` at the top level, not Python), which the ordinary rules then break."""
+    commas: list[int] = []
+    assigns = False
+    depth = 0
+    try:
+        for tok in tokenize.generate_tokens(_one_line(text)):
+            if tok.type == tokenize.OP:
+                if tok.string in "([{":
+                    depth += 1
+                elif tok.string in ")]}":
+                    depth -= 1
+                elif depth == 0 and tok.string == ",":
+                    commas.append(tok.start[1])
+                elif depth == 0 and tok.string == ":=":
+                    assigns = True
+            elif tok.type == tokenize.COMMENT:
+                return None
+    except (tokenize.TokenError, IndentationError, SyntaxError):
+        return None
+    if not commas or not assigns:
+        return None
+    end = len(text.rstrip())
+    steps: list[tuple[int, int]] = []
+    for a, b in zip([-1, *commas], [*commas, end]):
+        a += 1
+        while a < b and text[a] == " ":
+            a += 1
+        if a >= b:
             return None
-        ops = [i for i, tok in _top_level(seg) if i > 0 and _binary_at(seg, i)]
-        # cut only before the loosest operators (``a - 3 * b`` breaks before ``-``, not ``*``)
-        loosest = min((_STEP_OPS[seg[i].string] for i in ops), default=0)
-        steps.append(_pieces(body, seg, [i for i in ops if _STEP_OPS[seg[i].string] == loosest]))
+        steps.append((a, b))
     return steps
+
+
+def _text_step_lines(indent: int, text: str, steps: list[tuple[int, int]], limit: int) -> list[tuple[int, str]]:
+    """:func:`_step_lines` for the steps at ``steps`` in ``text``, each tokenized on its own."""
+    lines: list[tuple[int, str]] = []
+    for k, (a, b) in enumerate(steps):
+        step = text[a:b]
+        seg = _Tokens.of(step)
+        lines.extend(_step_pack(indent, step, seg, limit, last=k == len(steps) - 1))
+    return lines
+
+
+def _step_pack(indent: int, body: str, seg: _Tokens, limit: int, last: bool) -> list[tuple[int, str]]:
+    """The lines of one step ``seg`` of a long chain, cut before its loosest top-level operators,
+    a comma after the last unless it is the ``last`` step."""
+    ops = [i for i, tok in _top_level(seg) if i > 0 and _binary_at(seg, i)]
+    # cut only before the loosest operators (``a - 3 * b`` breaks before ``-``, not ``*``)
+    loosest = min((_STEP_OPS[seg[i].string] for i in ops), default=0)
+    pieces = _pieces(body, seg, [i for i in ops if _STEP_OPS[seg[i].string] == loosest])
+    lines = _pack(indent, "", pieces, indent, limit - 1, " ")
+    if not last:
+        lines[-1] = (lines[-1][0], lines[-1][1] + ",")
+    return lines
 
 
 def _loosest_cuts(expr: _Tokens) -> list[int]:
@@ -291,15 +373,15 @@ def _binary_at(toks: _Tokens, i: int) -> bool:
         or (prev.type == tokenize.NAME and not keyword.iskeyword(prev.string))
 
 
-def _step_lines(indent: int, steps: list[list[str]], limit: int) -> list[tuple[int, str]]:
+def _step_lines(indent: int, body: str, expr: _Tokens, steps: list[tuple[int, int]],
+                limit: int) -> list[tuple[int, str]]:
     """One line per step (its continuation lines start with an operator), a comma after each but
-    the last: the comma stays on the step's last line, inside the tuple's own brackets."""
+    the last: the comma stays on the step's last line, inside the tuple's own brackets.  A step is
+    cut into pieces only when its lines are made: the pieces of all steps at once (a string per
+    operator) were 30 times the GPL source of ``1+1+...`` (issue 20)."""
     lines: list[tuple[int, str]] = []
-    for k, pieces in enumerate(steps):
-        step = _pack(indent, "", pieces, indent, limit - 1, " ")
-        if k < len(steps) - 1:
-            step[-1] = (step[-1][0], step[-1][1] + ",")
-        lines.extend(step)
+    for k, (a, b) in enumerate(steps):
+        lines.extend(_step_pack(indent, body, expr[a:b], limit, last=k == len(steps) - 1))
     return lines
 
 

@@ -925,7 +925,7 @@ def test_diagnostic_header_is_file_line_col() -> None:
 
 
 def test_a_file_of_many_token_chunks_parses_whole_with_exact_positions() -> None:
-    # The parser reads the lexer's tokens in chunks of CHUNK (4,096) and slides its window at
+    # The parser reads the lexer's tokens in chunks of CHUNK (1,024) and slides its window at
     # each boundary: statements, look-aheads ('End' + 'If') and spans that straddle a boundary
     # must come out as in a short file.  Statements of varying length put the boundaries at
     # every place in a statement.

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from gpl2py.gpl.semantics import types as t
 from gpl2py.gpl.semantics.check import Model
+from gpl2py.gpl.semantics.info import ChainInfo
 from gpl2py.gpl.syntax import ast as A
 from gpltest import analyze_text, module_src, run_gpl
 
@@ -42,7 +43,7 @@ def _assigned_expr(text: str, tmp_path: Path) -> tuple[A.Expr, Model, list[str]]
     """The value of the first binary assignment in Sub Main, the model, and every diagnostic."""
     model, sink = analyze_text(tmp_path, text)
     main = next(d for d in model.proc_of_decl if getattr(d, "name", "") == "Main")
-    assign = next(s for s in main.body.statements if isinstance(s, A.Assign) and isinstance(s.value, A.Binary))
+    assign = next(s for s in main.body.statements if isinstance(s, A.Assign) and isinstance(s.value, (A.Binary, A.Chain)))
     return assign.value, model, [d.header() for d in sink.sorted()]
 
 
@@ -50,14 +51,12 @@ def test_type_check_of_a_1500_operand_concatenation_has_no_depth_limit(tmp_path:
     value, model, diags = _assigned_expr(_concat_program(1500), tmp_path)
     assert diags == []
     assert model.type_of(value) is t.STRING
-    # every operator of the chain is typed, down to the first one
-    node = value
-    depth = 0
-    while isinstance(node, A.Binary):
-        assert model.type_of(node) is t.STRING
-        node = node.left
-        depth += 1
-    assert depth == 1499
+    # every operator of the chain is typed, down to the first one (a run of CHAIN_MIN operators
+    # or more is one Chain node, the type of each of its prefixes a byte of its record)
+    assert isinstance(value, A.Chain) and len(value.ops) == 1499
+    info = model.info[value]
+    assert isinstance(info, ChainInfo)
+    assert [info.prefix_type(k) for k in range(1499)] == [t.STRING] * 1499
 
 
 def test_an_error_deep_in_a_long_chain_is_reported_at_its_line(tmp_path: Path) -> None:

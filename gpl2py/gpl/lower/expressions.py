@@ -9,7 +9,8 @@ where GPL differs from Python (``\\``, ``Mod``, ``^``, string/number ``+``, Bool
 from __future__ import annotations
 
 import struct
-from collections.abc import Callable, Sequence
+from bisect import bisect_right
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 from gpl2py.gpl.lower.context import ModuleContext
@@ -22,6 +23,7 @@ from gpl2py.gpl.semantics.check import Model, nothing_as_string
 from gpl2py.gpl.semantics.info import (
     AddressOfInfo,
     BinaryInfo,
+    ChainInfo,
     BuiltinConstInfo,
     BuiltinFunctionInfo,
     BuiltinMemberInfo,
@@ -381,68 +383,76 @@ class ExprLowerer:
             return self.identity(e, negate=False)
         return self.binary_chain(e)
 
+    def x_chain(self, e: A.Expr, i: ChainInfo) -> Code:
+        assert isinstance(e, A.Chain)
+        return self.binary_chain(e)
+
     def _chains(self, e: A.Expr) -> bool:
         """Whether ``e`` continues a left-leaning operator chain that :meth:`binary_chain` folds."""
+        if isinstance(e, A.Chain):
+            return isinstance(self.model.info.get(e), ChainInfo)
         if not isinstance(e, A.Binary) or e.op == "Is":
             return False
         return isinstance(self.model.info.get(e), BinaryInfo)
 
-    def binary_chain(self, e: A.Binary) -> Code:
+    def binary_chain(self, e: A.Binary | A.Chain) -> Code:
         """Lower ``e`` and the binary operators down its left operand in a loop, not by recursion.
 
         GPL code continues string building over hundreds of lines (``s = s & "..." & _``); the
-        parser gives a left-leaning tree as deep as the chain, and one Python frame per operator
-        reached the recursion limit near 1,000 operands.  The leftmost operand is lowered first,
-        then each operator folds in its right operand in source order, so the output is what the
-        recursive form gave (Python's left-associative operators need no parentheses for it), except
-        that a very long run of ``&`` becomes one flat join (:meth:`flat_concat`) and a chain that
-        would nest deeper than ``LONG_CHAIN`` is cut into steps (:meth:`chunked`)."""
-        spine: list[A.Binary] = [e]
-        while self._chains(spine[-1].left):
-            spine.append(spine[-1].left)  # type: ignore[arg-type]
-        first = spine[-1].left
+        parser gives a left-leaning tree as deep as the chain (or, from ``CHAIN_MIN`` operators
+        on, a :class:`~gpl2py.gpl.syntax.ast.Chain`, which :class:`_Steps` reads as the same
+        operators), and one Python frame per operator reached the recursion limit near 1,000
+        operands.  The leftmost operand is lowered first, then each operator folds in its right
+        operand in source order, so the output is what the recursive form gave (Python's
+        left-associative operators need no parentheses for it), except that a very long run of
+        ``&`` becomes one flat join (:meth:`flat_concat`) and a chain that would nest deeper than
+        ``LONG_CHAIN`` is cut into steps (:meth:`chunked`)."""
+        spine: list[A.Binary | A.Chain] = [e]
+        while self._chains(A.chain_left(spine[-1])):
+            spine.append(A.chain_left(spine[-1]))  # type: ignore[arg-type]
+        first = A.chain_left(spine[-1])
         acc: Code = self.expr(first)
         acc_type = self.type_of(first)
-        nodes = spine[::-1]
+        steps = _Steps(spine[::-1], self.model.info)
+        n = len(steps)
         chunks: list[str] = []  # the finished steps of a long chain, each ``temp := <code>``
         temp = ""
         depth = 0  # how deep ``acc`` nests operators since the last step
-        long = sum(1 for n in nodes if n.op not in ("AndAlso", "OrElse")) > LONG_CHAIN
+        long = steps.not_boolean() > LONG_CHAIN
         wrapped = False  # the last operator put ``acc`` inside a call or parentheses
         left_node: A.Expr = first  # the GPL expression ``acc`` stands for
         at = 0
-        while at < len(nodes):
+        while at < n:
             if depth >= LONG_CHAIN or wrapped:
                 temp = temp or self.chain_temp()
                 chunks.append(f"{temp} := {acc[0]}")
                 acc, depth = (temp, P_ATOM), 0
             run = 0
-            while at + run < len(nodes) and nodes[at + run].op == "&":
+            while at + run < n and steps.op(at + run) == "&":
                 run += 1
             if run >= FLAT_CONCAT_MIN:
-                acc = self.flat_concat(acc, acc_type, nodes[at:at + run])
+                acc = self.flat_concat(acc, acc_type, (steps.right(k) for k in range(at, at + run)))
                 acc_type = t.STRING
                 at += run
                 depth += 1
-                left_node = nodes[at - 1]
+                left_node = steps.node(at - 1)
                 continue
-            node = nodes[at]
-            at += 1
-            if node.op in ("AndAlso", "OrElse"):
-                prec = P_AND if node.op == "AndAlso" else P_OR
+            op, right = steps.op(at), steps.right(at)
+            if op in ("AndAlso", "OrElse"):
+                prec = P_AND if op == "AndAlso" else P_OR
                 # Python's and/or are associative like AndAlso/OrElse: a left operand of the same
                 # operator needs no parentheses and adds no depth (one flat BoolOp however long)
                 cond = self.cond_code(acc, acc_type)
                 self.left_flat = (cond is acc or (acc_type in _PLAIN_NUM and acc[1] > P_CMP)) and cond[1] >= prec
                 left = paren(cond, prec)
-                right = paren(self.cond(node.right), prec + 1)
-                acc = (f"{left} and {right}", P_AND) if node.op == "AndAlso" else (f"{left} or {right}", P_OR)
+                right_code = paren(self.cond(right), prec + 1)
+                acc = (f"{left} and {right_code}", P_AND) if op == "AndAlso" else (f"{left} or {right_code}", P_OR)
             else:
-                acc = self.binop(node.op, (*acc, acc_type), (*self.expr(node.right), self.type_of(node.right)),
-                                 left_node, node.right)
+                acc = self.binop(op, (*acc, acc_type), (*self.expr(right), self.type_of(right)), left_node, right)
                 depth += 1
-            acc_type = self.type_of(node)
-            left_node = node
+            acc_type = steps.type(at)
+            left_node = steps.node(at)
+            at += 1
             # in a long chain, an operator that wraps the running value (``div(_chain1, x)``,
             # ``(_chain1 == x) == y``) ends its step: one readable line each, no nesting to wrap
             wrapped = long and not self.left_flat
@@ -473,7 +483,7 @@ class ExprLowerer:
             return last
         return f"({', '.join([*chunks, last[0]])})[-1]", P_ATOM
 
-    def flat_concat(self, first: Code, first_type: t.GplType, run: list[A.Binary]) -> Code:
+    def flat_concat(self, first: Code, first_type: t.GplType, run: Iterable[A.Expr]) -> Code:
         """A long run of ``&`` as one ``"".join((...))`` call instead of nested ``+``.
 
         CPython's compiler recurses on nested binary operations and gives up near 3,000 operands
@@ -481,7 +491,7 @@ class ExprLowerer:
         chains keep the more readable ``a + b`` form; only a run of at least ``FLAT_CONCAT_MIN``
         operators, which nobody reads operand by operand anyway, takes this form."""
         parts = [self.concat_part(first, first_type)]
-        parts += [self.concat_part(self.expr(n.right), self.type_of(n.right)) for n in run]
+        parts += [self.concat_part(self.expr(x), self.type_of(x)) for x in run]
         return f'"".join(({", ".join(parts)}))', P_ATOM
 
     def concat_part(self, c: Code, typ: t.GplType) -> str:
@@ -562,7 +572,7 @@ class ExprLowerer:
         if isinstance(e, A.Unary) and e.op == "-":
             inner = self.int_interval(e.operand)
             return None if inner is None else (-inner[1], -inner[0])
-        if isinstance(e, A.Binary) and typ in _INT_OR_BOOL:
+        if isinstance(e, (A.Binary, A.Chain)) and typ in _INT_OR_BOOL:
             return self._binary_interval(e)
         if typ is t.BOOLEAN:
             return (-1, 0)
@@ -570,18 +580,39 @@ class ExprLowerer:
             return _INT_RANGE[typ]
         return None
 
-    def _binary_interval(self, e: A.Binary) -> tuple[int, int] | None:
+    def _binary_interval(self, e: A.Binary | A.Chain) -> tuple[int, int] | None:
         """Bounds of an integer operator chain, folded along its left spine in a loop (a sum over
         hundreds of continued lines must not recurse once per operator)."""
-        spine: list[A.Binary] = [e]
-        while isinstance(spine[-1].left, A.Binary) and self.type_of(spine[-1].left) in _INT_OR_BOOL:
-            spine.append(spine[-1].left)  # type: ignore[arg-type]
-        acc = self.int_interval(spine[-1].left)
+        spine: list[A.Binary | A.Chain] = [e]
+        while isinstance(A.chain_left(spine[-1]), (A.Binary, A.Chain)) \
+                and self.type_of(A.chain_left(spine[-1])) in _INT_OR_BOOL:
+            spine.append(A.chain_left(spine[-1]))  # type: ignore[arg-type]
+        acc = self.int_interval(A.chain_left(spine[-1]))
         for node in reversed(spine):
-            if acc is None:
-                return None
-            acc = self._fold_interval(node.op, acc, self.int_interval(node.right))
+            if isinstance(node, A.Binary):
+                if acc is None:
+                    return None
+                acc = self._fold_interval(node.op, acc, self.int_interval(node.right))
+                continue
+            info = self.model.info.get(node)
+            for k in range(len(node.ops)):
+                if acc is None:
+                    return None
+                if k and info.prefix_type(k - 1) not in _INT_OR_BOOL:
+                    acc = self.int_interval_of_type(info.prefix_type(k - 1))
+                    if acc is None:
+                        return None
+                x = node.literal(k)
+                right = (x, x) if x is not None else self.int_interval(node.operands[k])  # type: ignore[arg-type]
+                acc = self._fold_interval(node.op(k), acc, right)
         return acc
+
+    @staticmethod
+    def int_interval_of_type(typ: t.GplType) -> tuple[int, int] | None:
+        """The bounds of any value of ``typ`` (None: not an integer type)."""
+        if typ is t.BOOLEAN:
+            return (-1, 0)
+        return _INT_RANGE.get(typ)
 
     @staticmethod
     def _fold_interval(op: str, a: tuple[int, int], b: tuple[int, int] | None) -> tuple[int, int] | None:
@@ -1035,13 +1066,77 @@ _VISIT: dict[type[Info], Callable[[ExprLowerer, A.Expr, Any], Code]] = {
     DynamicCallInfo: ExprLowerer.x_dynamic_call,
     UnaryInfo: ExprLowerer.x_unary,
     BinaryInfo: ExprLowerer.x_binary,
+    ChainInfo: ExprLowerer.x_chain,
 }
+
+
+class _Steps:
+    """The operators of a left spine of Binary and Chain nodes (``spine``, innermost first) as
+    one sequence, by index: the operator, its right operand, the type of the result so far and
+    the node that result is (a Binary, or the Chain for any of its prefixes: neither is a variable
+    or a literal, all that :meth:`ExprLowerer.binop` asks of a left operand).  A Chain's operands
+    kept as values are made nodes one at a time, so a long chain is never a tree in memory."""
+
+    __slots__ = ("_nodes", "_starts", "_info")
+
+    def __init__(self, spine: list[A.Binary | A.Chain], info: Any) -> None:
+        self._nodes = spine
+        self._starts: list[int] = []
+        self._info = info
+        at = 0
+        for node in spine:
+            self._starts.append(at)
+            at += len(node.ops) if isinstance(node, A.Chain) else 1
+        self._starts.append(at)
+
+    def __len__(self) -> int:
+        return self._starts[-1]
+
+    def _find(self, i: int) -> tuple[A.Binary | A.Chain, int]:
+        j = bisect_right(self._starts, i) - 1
+        return self._nodes[j], i - self._starts[j]
+
+    def op(self, i: int) -> str:
+        node, k = self._find(i)
+        return node.op if isinstance(node, A.Binary) else node.op(k)
+
+    def right(self, i: int) -> A.Expr:
+        node, k = self._find(i)
+        if isinstance(node, A.Binary):
+            return node.right
+        x = node.operand(k)
+        if x._info is None:  # an operand kept as a value: its meaning is the chain's record's
+            x._info = self._info.get(node).literal
+        return x
+
+    def type(self, i: int) -> t.GplType:
+        node, k = self._find(i)
+        info = self._info.get(node)
+        if info is None:
+            return t.ERROR
+        return info.prefix_type(k) if isinstance(node, A.Chain) else info.type
+
+    def node(self, i: int) -> A.Expr:
+        return self._find(i)[0]
+
+    def not_boolean(self) -> int:
+        """How many operators are neither ``AndAlso`` nor ``OrElse``."""
+        count = 0
+        boolean = (A.CHAIN_CODES["AndAlso"], A.CHAIN_CODES["OrElse"])
+        for node in self._nodes:
+            if isinstance(node, A.Binary):
+                count += node.op not in ("AndAlso", "OrElse")
+            else:
+                count += len(node.ops) - node.ops.count(boolean[0]) - node.ops.count(boolean[1])
+        return count
 
 
 def _may_overflow(e: A.Expr) -> bool:
     """Whether an integer-typed expression can leave the Integer range (bitwise results cannot)."""
     if isinstance(e, A.Binary):
         return e.op in ("+", "-", "*", "\\", "^")
+    if isinstance(e, A.Chain):
+        return any(e.ops.count(A.CHAIN_CODES[op]) for op in ("+", "-", "*", "\\", "^"))
     if isinstance(e, A.Unary):
         return e.op == "-"
     return False

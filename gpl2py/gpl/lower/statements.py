@@ -1184,7 +1184,9 @@ def _may_overflow_double(e: A.Expr, low: ExprLowerer) -> bool:
         if isinstance(n, A.Binary) and n.op == "*" and _bound(n, low, memo) > _SAFE \
                 and not (_shrinks(n.left) or _shrinks(n.right)):
             return True
-        if isinstance(n, (A.Binary, A.Unary)):
+        if isinstance(n, A.Chain) and A.CHAIN_CODES["*"] in n.ops:
+            return True  # (a product in a chain of CHAIN_MIN operators: not worth bounding)
+        if isinstance(n, (A.Binary, A.Unary, A.Chain)):
             stack.extend(n.children())
     return False
 

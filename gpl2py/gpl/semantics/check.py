@@ -26,6 +26,7 @@ from gpl2py.gpl.semantics.info import (
     NAMES_NOT_VALUES,
     AddressOfInfo,
     BinaryInfo,
+    ChainInfo,
     BuiltinClassInfo,
     BuiltinConstInfo,
     BuiltinFunctionInfo,
@@ -774,6 +775,8 @@ class Checker:
                         break
                 return self._record(e, BinaryInfo(t.BOOLEAN))
             return self._binary_chain(e, ctx)
+        if isinstance(e, A.Chain):
+            return self._binary_chain(e, ctx)
         if isinstance(e, A.New):
             return self._record(e, self._new(e, ctx))
         if isinstance(e, A.AddressOf):
@@ -789,14 +792,18 @@ class Checker:
         leftmost operand is typed first, then each right operand in source order, so diagnostics come
         out in the same order as a recursive walk would give them.  ``Is`` ends the spine (its
         operands are references, not values, and it never chains in practice)."""
-        spine: list[A.Binary] = [e]
-        left = e.left
-        while isinstance(left, A.Binary) and left.op != "Is":
+        spine: list[A.Binary | A.Chain] = [e]
+        left = A.chain_left(e)
+        while (isinstance(left, A.Binary) and left.op != "Is") or isinstance(left, A.Chain):
             spine.append(left)
-            left = left.left
+            left = A.chain_left(left)
         lt = self._value(left, ctx)
-        info = BinaryInfo(t.ERROR)
+        info: Info = BinaryInfo(t.ERROR)
         for node in reversed(spine):
+            if isinstance(node, A.Chain):
+                info = self._record(node, self._chain(node, lt, ctx))
+                lt = info.type
+                continue
             rt = self._value(node.right, ctx)
             typ = self._binary_type(node.op, lt, rt, node)
             shared = self._binary_infos.get(typ)
@@ -806,7 +813,28 @@ class Checker:
             lt = info.type
         return info
 
-    def _binary_type(self, op: str, lt: t.GplType, rt: t.GplType, node: A.Node) -> t.GplType:
+    def _chain(self, e: A.Chain, lt: t.GplType, ctx: _Ctx) -> ChainInfo:
+        """Type the operators of a Chain whose first operand has type ``lt``, as the nested
+        Binary nodes it stands for would be typed (same order, same diagnostics at the same spans),
+        keeping the type of each prefix in a byte."""
+        types: list[t.GplType] = []
+        index: dict[t.GplType, int] = {}
+        codes = bytearray()
+        operands, ops, names = e.operands, e.ops, A.CHAIN_OPS
+        for k in range(len(ops)):
+            x = operands[k]
+            rt = self._value(x, ctx) if isinstance(x, A.Node) else t.INTEGER  # (an Integer literal)
+            lt = self._binary_type(names[ops[k]], lt, rt, e, k)
+            code = index.get(lt)
+            if code is None:
+                code = index[lt] = len(types)
+                types.append(lt)
+            codes.append(code)
+        return ChainInfo(lt, tuple(types), bytes(codes), _LITERAL[t.INTEGER])
+
+    def _binary_type(self, op: str, lt: t.GplType, rt: t.GplType, node: A.Node, k: int = -1) -> t.GplType:
+        """The type of ``lt op rt``; ``node`` is the Binary (or, with ``k``, the Chain whose
+        ``k``-th operator it is) where a misuse is reported."""
         if lt is t.ERROR or rt is t.ERROR:
             return t.ERROR
         lt, rt = nothing_as_string(op, lt, rt)
@@ -825,7 +853,8 @@ class Checker:
         if not (_scalar(lt) and _scalar(rt)):
             if op in ("=", "<>") and (lt.is_reference or rt.is_reference):
                 pass
-            self.sink.report(M.BAD_OPERANDS, node.span, op=op, left=str(lt), right=str(rt))
+            span = node.prefix_span(k) if isinstance(node, A.Chain) else node.span
+            self.sink.report(M.BAD_OPERANDS, span, op=op, left=str(lt), right=str(rt))
             return t.ERROR
         if op in _COMPARE or op in ("AndAlso", "OrElse"):
             return t.BOOLEAN

@@ -136,7 +136,7 @@ class ConstFolder:
             return e.value
         if isinstance(e, A.Unary) and e.op in _UNARY_OPS:
             return self.rt.unary[e.op](self._value(e.operand))
-        if isinstance(e, A.Binary) and e.op in _BINARY_OPS:
+        if (isinstance(e, A.Binary) and e.op in _BINARY_OPS) or isinstance(e, A.Chain):
             return self._binary(e)
         info = self.info.get(e)
         if isinstance(info, VarInfo) and info.sym.const and info.sym.storage in ("module", "field"):
@@ -148,17 +148,25 @@ class ConstFolder:
             return _builtin(info.sym)(*args)
         raise _NotConstant
 
-    def _binary(self, e: A.Binary) -> object:
+    def _binary(self, e: A.Binary | A.Chain) -> object:
         """A left-leaning chain without recursing on its spine (real code has long ones)."""
         spine = [e]
-        left = e.left
-        while isinstance(left, A.Binary) and left.op in _BINARY_OPS:
+        left = A.chain_left(e)
+        while (isinstance(left, A.Binary) and left.op in _BINARY_OPS) or isinstance(left, A.Chain):
             spine.append(left)
-            left = left.left
+            left = A.chain_left(left)
         value = self._value(left)
         binary = self.rt.binary
         for node in reversed(spine):
-            value = binary[node.op](value, self._value(node.right))
+            if isinstance(node, A.Binary):
+                value = binary[node.op](value, self._value(node.right))
+                continue
+            for k in range(len(node.ops)):
+                op = node.op(k)
+                if op not in _BINARY_OPS:
+                    raise _NotConstant
+                x = node.operands[k]
+                value = binary[op](value, self._value(x) if isinstance(x, A.Node) else x)
         return value
 
 

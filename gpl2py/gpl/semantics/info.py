@@ -83,6 +83,21 @@ class BinaryInfo(Info):
 
 
 @dataclass(eq=False, slots=True)
+class ChainInfo(Info):
+    """The result of a :class:`~gpl2py.gpl.syntax.ast.Chain` (``type``) and of each of its
+    prefixes, the Binary nodes it stands for: prefix ``k`` (``first op1 x1 ... opk xk``) has type
+    ``types[codes[k]]`` (a byte per operator, not a record).  ``literal`` is the meaning of the
+    operands the chain keeps as values (Integer literals)."""
+
+    types: tuple[t.GplType, ...] = ()
+    codes: bytes = b""
+    literal: Info | None = None
+
+    def prefix_type(self, k: int) -> t.GplType:
+        return self.types[self.codes[k]]
+
+
+@dataclass(eq=False, slots=True)
 class IndexInfo(Info):
     """An array element ``a(i, j)``."""
 

@@ -12,6 +12,9 @@ Conventions
 * ``a(1)`` is an :class:`Invoke` whatever it means (call, array index, indexed property, delegate
   invocation): the parser cannot know, semantics decides (spec §3.7).
 * Parentheses are not kept as nodes; precedence is already in the tree shape.
+* A run of :data:`CHAIN_MIN` binary operators of one precedence level or more is one
+  :class:`Chain` (operators and literal operands in arrays), which means the nested
+  :class:`Binary` nodes it stands for; a walker of left spines reads both (``chain_left``).
 
 Comments
 --------
@@ -29,6 +32,7 @@ the syntax tree of dense code: docs/security.md, "Input size").
 
 from __future__ import annotations
 
+from array import array
 from dataclasses import KW_ONLY, MISSING, Field, InitVar, dataclass, field, fields
 from typing import Any, ClassVar, Iterator
 
@@ -201,6 +205,105 @@ class Binary(Expr):
     left: Expr
     right: Expr
     _children: ClassVar[tuple[str, ...]] = ("left", "right")
+
+
+#: The binary operators by their code in :attr:`Chain.ops`.
+CHAIN_OPS: tuple[str, ...] = ("^", "*", "/", "\\", "Mod", "+", "-", "&", "<<", ">>", "=", "<>", "<", ">",
+                              "<=", ">=", "And", "AndAlso", "Or", "OrElse", "Xor")
+CHAIN_CODES: dict[str, int] = {op: i for i, op in enumerate(CHAIN_OPS)}
+#: A run of this many operators of one precedence level or more is parsed into a :class:`Chain`
+#: (fewer stay nested :class:`Binary` nodes: every program a person writes keeps its tree).
+CHAIN_MIN = 64
+
+
+@dataclass(slots=True, eq=False, init=False)
+class Chain(Expr):
+    """``first op1 x1 op2 x2 ...``: a long left-associative run of binary operators of one
+    precedence level (at least :data:`CHAIN_MIN`), meaning the nested
+    ``Binary(...Binary(Binary(first, op1, x1), op2, x2)..., opn, xn)`` but held compactly.
+
+    Why: ``1+1+...`` of a million terms held an IntegerLiteral and a Binary per two bytes of
+    source, 135 times the source (issue 20, docs/security.md "Input size").  Here an operand costs
+    a byte for its operator, a reference, and eight bytes of position: a decimal Integer literal
+    operand is kept as its value (``operands[k]`` an ``int``, its line and column in ``lines`` and
+    ``cols``) and made a node again only when asked (:meth:`operand`); any other operand is its
+    node (``lines``/``cols`` 0).  The prefix ``first op1 x1 ... opk xk`` (the Binary that would
+    be) spans from ``first`` to the end of ``xk`` (:meth:`prefix_span`): a diagnostic about the
+    k-th operator is reported where the nested form reported it."""
+
+    first: Expr
+    ops: bytearray  # CHAIN_CODES of each operator
+    operands: list[Expr | int]
+    lines: array[int]
+    cols: array[int]
+    _children: ClassVar[tuple[str, ...]] = ("first", "operands")
+
+    def children(self) -> Iterator[Node]:
+        yield self.first
+        for x in self.operands:
+            if isinstance(x, Node):
+                yield x
+
+    def op(self, k: int) -> str:
+        return CHAIN_OPS[self.ops[k]]
+
+    def literal(self, k: int) -> int | None:
+        """The value of operand ``k`` when it is kept as a literal, else None."""
+        x = self.operands[k]
+        return None if isinstance(x, Node) else x
+
+    def operand(self, k: int) -> Expr:
+        """Operand ``k`` as a node (a new IntegerLiteral each time for a literal kept as a value)."""
+        x = self.operands[k]
+        if isinstance(x, Node):
+            return x  # type: ignore[return-value]
+        line, col = self.lines[k], self.cols[k]
+        text = str(x)
+        return IntegerLiteral(_new_tuple(Span, (self._file, line, col, line, col + len(text))), x, text)
+
+    def operand_end(self, k: int) -> tuple[int, int]:
+        """(line, column) just past operand ``k``."""
+        x = self.operands[k]
+        if isinstance(x, Node):
+            return x._end_line, x._end_col
+        return self.lines[k], self.cols[k] + len(str(x))
+
+    def prefix_span(self, k: int) -> Span:
+        """The span of ``first op1 x1 ... opk xk`` (k from 0)."""
+        end_line, end_col = self.operand_end(k)
+        return _new_tuple(Span, (self._file, self._line, self._col, end_line, end_col))
+
+    def append(self, op: str, x: Expr) -> None:
+        """Add ``op x`` at the end (the parser's step); a decimal Integer literal is kept as its value."""
+        self.ops.append(CHAIN_CODES[op])
+        if type(x) is IntegerLiteral and x._line == x._end_line and x.text == str(x.value) \
+                and x.value < 2**31:
+            self.operands.append(x.value)
+            self.lines.append(x._line)
+            self.cols.append(x._col)
+        else:
+            self.operands.append(x)
+            self.lines.append(0)
+            self.cols.append(0)
+        self._end_line, self._end_col = x._end_line, x._end_col
+
+    def nested(self) -> Binary:
+        """The nested Binary nodes this chain stands for, made now (``dump`` shows those: a
+        Chain is how the tree is held, not a construct of the language)."""
+        left = self.first
+        for k in range(len(self.ops)):
+            left = Binary(self.prefix_span(k), self.op(k), left, self.operand(k))
+        return left  # type: ignore[return-value]
+
+    @staticmethod
+    def of(first: Expr) -> Chain:
+        """An empty chain starting with ``first`` (:meth:`append` adds its operators)."""
+        return Chain(first.span, first, bytearray(), [], array("I"), array("I"))
+
+
+def chain_left(e: Binary | Chain) -> Expr:
+    """The left operand of a Binary, the first operand of a Chain: where a left spine goes on."""
+    return e.left if isinstance(e, Binary) else e.first
 
 
 @dataclass(slots=True, eq=False, init=False)
@@ -740,6 +843,8 @@ def _dump_node(
 ) -> list[str | tuple[Node, int]]:
     """Append ``node``'s own lines to ``out``; return what follows them, in order (child nodes to
     render at a depth, and literal lines such as field headings and closing comments)."""
+    if isinstance(node, Chain):
+        node = node.nested()
     pad = "  " * depth
     if comments:
         for c in getattr(node, "leading_comments", ()):

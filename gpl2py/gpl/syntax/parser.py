@@ -244,6 +244,21 @@ def parse_expression(source: SourceFile, sink: DiagnosticSink) -> A.Expr:
     return expr
 
 
+def _chain(spine: A.Expr, depth: int, op: str, right: A.Expr) -> A.Chain:
+    """The run of ``depth`` nested Binary nodes ``spine`` continued by ``op right``, as one
+    :class:`~gpl2py.gpl.syntax.ast.Chain` (the run has reached ``CHAIN_MIN`` operators)."""
+    nodes: list[A.Binary] = []
+    for _ in range(depth):
+        assert isinstance(spine, A.Binary)
+        nodes.append(spine)
+        spine = spine.left
+    chain = A.Chain.of(spine)
+    for node in reversed(nodes):
+        chain.append(node.op, node.right)
+    chain.append(op, right)
+    return chain
+
+
 class Parser:
     """Recursive-descent parser over the token list; see the module docstring for recovery rules."""
 
@@ -1525,6 +1540,7 @@ class Parser:
         left = self.unary() if self.kind in _UNARY_KINDS else self.postfix()
         binops = _BINOPS
         between = A.span_between
+        run_prec, run = -1, 0  # the precedence of the run of operators being read, its length
         while True:
             info = binops.get(self.kind)
             if info is None:
@@ -1535,6 +1551,7 @@ class Parser:
                     right = self.expression(_P_REL + 1)
                     span = between(left, right)
                     left = A.Unary(span, "Not", A.Binary(span, "Is", left, right))
+                    run_prec, run = -1, 0
                     continue
                 return left
             prec = info[0]
@@ -1545,7 +1562,19 @@ class Parser:
                 right = self.pow_operand()
             else:
                 right = self.expression(prec + 1)
-            left = A.Binary(between(left, right), info[1], left, right)
+            op = info[1]
+            if op == "Is":  # (never in a Chain: semantics types its operands as references)
+                run_prec, run = -1, 0
+            elif prec != run_prec:
+                run_prec, run = prec, 1
+            else:
+                run += 1
+            if run > A.CHAIN_MIN:
+                left.append(op, right)  # type: ignore[attr-defined]
+            elif run == A.CHAIN_MIN:
+                left = _chain(left, run - 1, op, right)
+            else:
+                left = A.Binary(between(left, right), op, left, right)
 
     def pow_operand(self) -> A.Expr:
         """The right operand of ``^``: a postfix expression, optionally negated (``x ^ -1``)."""
