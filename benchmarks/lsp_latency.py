@@ -7,10 +7,12 @@ debounce off: ``debounceMs`` 0, so what is timed is gpl2py's work and the protoc
 holds a copy of ``../shared/corpus/tcs-3.0C1-pa`` (or ``$GPL_CORPUS``).  Timed, in one run:
 
 * **edit -> diagnostics**: from sending a ``didChange`` to receiving the edited file's
-  ``publishDiagnostics`` for that version, over ``--edits`` edits alternating two kinds: a
+  ``publishDiagnostics`` for that version, over ``--edits`` edits taking three kinds by turns: a
   statement changed inside a procedure body (``Cmd.gpl``'s ``Cmd_Version``, ``Main.gpl``'s
-  ``TcpComMain``) and a Public declaration other modules use (``Globals.gpl``'s
-  ``Public Const EcUnknown``, read by ``Cmd.gpl`` and ``Class_command.gpl``);
+  ``TcpComMain``) and two edits of a Public declaration other modules use: the value of
+  ``Globals.gpl``'s ``Public Const EcUnknown`` (read by ``Cmd.gpl`` and ``Class_command.gpl``;
+  what other files see of it, its name and type, stays) and the type of a parameter of
+  ``Functions.gpl``'s ``Public Sub Backspace`` (called by ``Main.gpl``, which is checked again);
 * **hover** and **completion** round trips (a field reached through ``Cmd.``, the members after
   ``Cmd.``) once the index is built;
 * **cold check**: ``gpl2py check`` of the same project in a subprocess, ``--checks`` times, in
@@ -44,6 +46,10 @@ from _reference import HOW_TO_COMPARE, Reference, per_r  # noqa: E402
 from lspclient import Session  # noqa: E402  (the tests' client: pygls's, over stdio)
 
 
+#: The kinds of edit, taken by turns (``Edits``' methods).
+KINDS = ("body", "public", "signature")
+
+
 def corpus() -> Path:
     """The TCS project of the real code (``$GPL_CORPUS``, else ``../shared/corpus`` beside the
     repository), as the tests find it."""
@@ -68,13 +74,16 @@ class Edits:
     """The texts of the edits: a body statement or a Public Const's value, a new one each time."""
 
     def __init__(self, folder: Path) -> None:
-        self.files = {n: (folder / n).read_text(errors="replace") for n in ("Cmd.gpl", "Main.gpl", "Globals.gpl")}
+        self.files = {n: (folder / n).read_text(errors="replace")
+                      for n in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl")}
         self.anchor = {"Cmd.gpl": "        Dim ii As Integer\n        If bTelnetMode Then\n",
                        "Main.gpl": "        Dim cCount As Integer = 0\n"}
         for name, anchor in self.anchor.items():
             assert anchor in self.files[name], (name, anchor)
         self.const = '    Public Const EcUnknown As String = "-2805 *Unknown command*"'
         assert self.const in self.files["Globals.gpl"]
+        self.sub = "    Public Sub Backspace(ByVal index As Integer, ByRef msg As String)"
+        assert self.sub in self.files["Functions.gpl"]
 
     def body(self, n: int) -> tuple[str, str]:
         name = "Cmd.gpl" if n % 2 else "Main.gpl"
@@ -85,6 +94,12 @@ class Edits:
     def public(self, n: int) -> tuple[str, str]:
         return "Globals.gpl", self.files["Globals.gpl"].replace(
             self.const, f'    Public Const EcUnknown As String = "-2805 *Unknown command {n}*"', 1)
+
+    def signature(self, n: int) -> tuple[str, str]:
+        """A parameter's type, Integer or Double by turns: the procedure's signature changes."""
+        typ = "Double" if n % 2 else "Integer"
+        return "Functions.gpl", self.files["Functions.gpl"].replace(
+            self.sub, self.sub.replace("index As Integer", f"index As {typ}"), 1)
 
 
 def cold_check(folder: Path, cwd: Path) -> float:
@@ -127,7 +142,7 @@ def main() -> int:
             line = next(i for i, t in enumerate(edits.files["Main.gpl"].splitlines()) if "Cmd.NewRobNum = robNumArg" in t)
             col = edits.files["Main.gpl"].splitlines()[line].index("Cmd.NewRobNum") + 4
             # warm-up: one edit of each kind, a hover (imports the runtime's descriptions) and a completion
-            for kind in (edits.body, edits.public):
+            for kind in (edits.body, edits.public, edits.signature):
                 name, text = kind(0)
                 session.change(folder / name, text)
                 session.wait_diagnostics(folder / name, timeout=300)
@@ -135,11 +150,11 @@ def main() -> int:
                 session.wait_diagnostics(folder / name, timeout=300)
             session.hover(main_gpl, line, col)
             session.completion(main_gpl, line, col)
-            times: dict[str, list[float]] = {"body": [], "public": [], "hover": [], "completion": [], "check": []}
+            times: dict[str, list[float]] = {k: [] for k in KINDS + ("hover", "completion", "check")}
             refs: dict[str, list[float]] = {k: [] for k in times}
             for n in range(1, args.edits + 1):
-                kind = "body" if n % 2 else "public"
-                name, text = (edits.body if kind == "body" else edits.public)(n)
+                kind = KINDS[n % len(KINDS)]
+                name, text = getattr(edits, kind)(n)
                 t0 = time.perf_counter()
                 session.change(folder / name, text)
                 session.wait_diagnostics(folder / name, timeout=300)
@@ -166,7 +181,8 @@ def main() -> int:
     print(f"TCS project ({lines} lines), gpl2py lsp over stdio, debounce off; first diagnostics "
           f"after open: {first * 1e3:.0f} ms (server start, cold parse and check)")
     rows = [("edit in a procedure body -> diagnostics", "body", "target <= 50 ms"),
-            ("edit of a Public declaration -> diagnostics", "public", "target <= 200 ms"),
+            ("edit of a Public Const's value -> diagnostics", "public", "target <= 200 ms"),
+            ("edit of a Public Sub's parameter type -> diag.", "signature", "target <= 200 ms"),
             ("hover", "hover", "target <= 20 ms"),
             ("completion after Cmd.", "completion", "target <= 20 ms"),
             ("cold gpl2py check of the project", "check", "")]

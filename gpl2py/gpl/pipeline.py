@@ -32,6 +32,7 @@ from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.gpl.semantics.check import Model, analyze
 from gpl2py.gpl.semantics.resolve import TOP_MODULE
 from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
+from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files
@@ -42,6 +43,8 @@ from gpl2py.source import SourceFile, make_span
 
 #: Where :func:`transpile_project` leaves the analysed project in ``memo``: (project, units, model).
 MODEL_KEY = "gpl-model"
+#: Where it keeps the analysis it checks again after an edit (``semantics.warm.WarmAnalysis``).
+WARM_KEY = "gpl-warm"
 
 
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
@@ -86,11 +89,22 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     # the semantic pass runs even after syntax errors, so every error is reported in one run; a
     # file that failed to load (or to parse) may declare the start procedure, not looked for then
     missing = loading.has_errors() or len(units) < len(project.sources)
-    model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
-                    strict=strict, stub_provider=user.provider if user is not None else None,
-                    start_span=project.start_span, sources_missing=missing)
-    if memo is not None:  # what the language server's navigation reads (gpl2py/lsp/gpl/)
-        memo[MODEL_KEY] = (project, units, model)
+    provider = user.provider if user is not None else None
+    if memo is None:
+        model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
+                        strict=strict, stub_provider=provider, start_span=project.start_span,
+                        sources_missing=missing)
+    else:  # checked again: only the files that changed, when their declarations did not (warm.py)
+        kept = memo.get(WARM_KEY)
+        warm = analyze_warm(units, load_catalogue(), project.name, project.start, protected=protected,
+                            strict=strict, stub_provider=provider, start_span=project.start_span,
+                            sources_missing=missing, kept=kept if isinstance(kept, WarmAnalysis) else None,
+                            texts={src.path: src.text for src in project.sources})
+        memo[WARM_KEY] = warm
+        sink.extend(warm.diagnostics())
+        model = warm.model
+        model.errors_reported = sink.found_errors()  # (as analyze's: the parse's errors count too)
+        memo[MODEL_KEY] = (project, units, model)  # what the language server's navigation reads (gpl2py/lsp/gpl/)
     if sink.has_errors() and not keep_going:
         return None
     output = lower(project, model, sink, progress, user, keep_modules=keep_modules, memo=memo)
@@ -131,7 +145,7 @@ def _lower_memo(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagnos
         own = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
         entries[mod.py_name] = frozenset()
         with contained(own, mod.span):
-            entries[mod.py_name] = lower_module(model, names, mod, own)[2]
+            entries[mod.py_name] = lower_module(model, names, mod, own, text=False)[2]
         diags = list(own)
         memo[key] = (trees, diags, entries[mod.py_name])
     sink.extend(diags)
@@ -162,7 +176,9 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
     if project.start is None and start is not None and start.module is not None:
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
         sink.report(M.START_ASSUMED_MAIN, start.span, name=f"{start.module.name}.{start.name}")
-    names = ProjectNames.build(model)
+    warm = memo.get(WARM_KEY) if memo is not None else None
+    names = ProjectNames.build(model, warm.dynamic_members()
+                               if isinstance(warm, WarmAnalysis) and warm.model is model else None)
     package = package_name(project.name)
     out = Output(package, project=project)
     smap: dict[str, tuple[str, str]] = {}
@@ -177,7 +193,7 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
             _lower_memo(model, names, mod, sink, memo, entries)  # type: ignore[arg-type]
             continue
         with contained(sink, mod.span):  # a bug in one module: the others are still lowered
-            text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
+            text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink, text=keep_modules)
             if keep_modules:
                 fname = f"{mod.py_name}.py"
                 out.files[f"{package}/{fname}"] = text

@@ -62,7 +62,7 @@ def test_a_body_edit_lowers_only_its_module_and_reports_what_cold_lowering_does(
     lowered: list[str] = []
     real = pipeline.lower_module
     monkeypatch.setattr(pipeline, "lower_module",
-                        lambda model, names, mod, sink: lowered.append(mod.name) or real(model, names, mod, sink))
+                        lambda model, names, mod, sink, **kw: lowered.append(mod.name) or real(model, names, mod, sink, **kw))
 
     def warm(texts: dict[str, str]) -> list[str]:
         sink = DiagnosticSink()
@@ -105,3 +105,77 @@ def test_a_front_end_without_texts_and_memo_is_called_as_before(tmp_path: Path,
     sink = DiagnosticSink()
     assert door.transpile(tmp_path, sink, keep_modules=False, texts={"a": "b"}, memo={}) is None
     assert calls == [(tmp_path, False)] and list(sink) == []
+
+
+def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_does(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The guard of the warm semantic pass (gpl2py/gpl/semantics/warm.py): after a series of edits
+    -- bodies, with and without errors, one shifting every later line of its file, a Public Const's
+    value, a parameter's type, a Public declaration other files use renamed, a protected name used
+    for the first time -- each check's diagnostics equal a cold check of the same texts; an edit
+    that leaves every declaration as it was checks only the edited file, and one that changes a
+    declaration's type only the files that name it."""
+    from gpl2py.gpl.semantics.check import Checker
+    from gpl2py.gpl.semantics.symbols import ModuleSym
+
+    tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
+    memo: dict[object, object] = {}
+    checked: list[str] = []
+    real = Checker.check_item
+
+    def check_item(self: Checker, mod: ModuleSym, members: list[object]) -> None:
+        # (a top-level class is checked alone: the file is its own, not its synthetic module's)
+        checked.append(Path(mod.path if mod.decl is not None else members[0].span.file).name)  # type: ignore[attr-defined]
+        real(self, mod, members)
+
+    monkeypatch.setattr(Checker, "check_item", check_item)
+    texts = {name: (tcs / name).read_text() for name in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl")}
+
+    def step(name: str, old: str, new: str) -> tuple[list[str], set[str]]:
+        assert old in texts[name], old
+        texts[name] = texts[name].replace(old, new, 1)
+        checked.clear()
+        sink = DiagnosticSink()
+        transpile(tcs, sink, keep_modules=False, memo=memo,
+                  texts={os.path.abspath(tcs / n): t for n, t in texts.items()})
+        got, files = headers(sink), set(checked)
+        for n, t in texts.items():  # what a cold check of the same texts says
+            (tcs / n).write_text(t)
+        assert got == cold(tcs), name
+        return got, files
+
+    everything = {Path(s).name for s in os.listdir(tcs) if s.endswith(".gpl") or s.endswith(".gpo")}
+    step("Cmd.gpl", "", "")  # the first check: every file
+    anchor = "        Dim ii As Integer\n        If bTelnetMode Then\n"
+    got, files = step("Cmd.gpl", anchor, anchor + "        ii = 7\n")
+    assert files == {"Cmd.gpl"} and not any(" error GPL" in h for h in got)
+    got, files = step("Main.gpl", "        Dim cCount As Integer = 0\n",
+                      "        Dim cCount As Integer = 0\n        cCount = \"text\" & Nothing.Foo\n")
+    assert files == {"Main.gpl"} and any("Main.gpl" in h and " error GPL" in h for h in got)
+    # lines added near the top of Cmd.gpl: every later declaration moves, an error far below
+    got, files = step("Cmd.gpl", anchor, anchor + "        ii = 8\n\n\n")
+    got, files = step("Cmd.gpl", "    Public Sub Cmd_Nop(ByVal Cmd As Command, ByRef Reply As String)\n",
+                      "    Public Sub Cmd_Nop(ByVal Cmd As Command, ByRef Reply As String)\n        Reply = 1 +\n")
+    assert files == {"Cmd.gpl"} and any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    const = '    Public Const EcUnknown As String = "-2805 *Unknown command*"'
+    got, files = step("Globals.gpl", const, const.replace("command*", "command 2*"))
+    assert files == {"Globals.gpl"}
+    # a parameter's type changed: the files that name the procedure are checked again, and only they
+    sub = "    Public Sub Backspace(ByVal index As Integer, ByRef msg As String)"
+    got, files = step("Functions.gpl", sub, sub.replace("index As Integer", "index As Double"))
+    assert files == {"Functions.gpl", "Main.gpl"}
+    got, files = step("Functions.gpl", "index As Double", "index As Integer")
+    assert files == {"Functions.gpl", "Main.gpl"}
+    # a declaration other files use, renamed: they are checked again (and now take it for a name of
+    # the protected code)
+    got, files = step("Globals.gpl", "Public Const EcUnknown As", "Public Const EcUnknown2 As")
+    assert files == everything and any("Class_command.gpl" in h and "EcUnknown" in h for h in got)
+    got, files = step("Globals.gpl", "Public Const EcUnknown2 As", "Public Const EcUnknown As")
+    assert files == everything and not any("Class_command.gpl" in h for h in got)
+    # a name of the protected code used for the first time: which file reports it depends on the order
+    got, files = step("Cmd.gpl", anchor, anchor + "        AC_ErrorMessage()\n")
+    assert files == everything
+    got, files = step("Cmd.gpl", "        AC_ErrorMessage()\n", "")
+    assert files == everything  # Cmd.gpl's last check met a stub: the order matters again
+    got, files = step("Cmd.gpl", "        ii = 7\n", "        ii = 10\n")
+    assert files == {"Cmd.gpl"}

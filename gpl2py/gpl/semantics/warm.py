@@ -1,0 +1,370 @@
+"""Checking a project again after an edit, checking only what the edit can have changed (issue 23).
+
+The language server checks a project after every pause in typing.  The semantic pass
+(:class:`~gpl2py.gpl.semantics.check.Checker`) has three phases: it declares everything
+(``collect``: a tenth of the work), checks each module's members and each top-level class
+(``items``, ``check_item``: most of it), then folds the Consts and finds the start procedure
+(``finish``).  The check of one module's bodies reads the declarations of the whole project and
+the module's own bodies, never another module's bodies; so after an edit that leaves every
+declaration as the rest of the project sees it, checking the other modules again would give what it
+gave.  :func:`analyze_warm` keeps the last analysis (a :class:`WarmAnalysis`) and, after such an
+edit, checks again only the items declared by the files whose syntax tree changed.
+
+How the result stays exactly a cold check's:
+
+* **Declarations are collected again, from scratch, every time**, into fresh symbol tables: the
+  collection's diagnostics are a cold run's by construction.  The fresh tables are then paired with
+  the kept ones, symbol by symbol (same modules, members in the same order, same kinds, names,
+  types, access, parameters and defaults: :func:`_interface`).  When every pair agrees, the kept
+  symbol objects take the fresh ones' facts (positions, syntax nodes), so that what the unchanged
+  files' analysis points to (each expression's ``Info`` names a symbol) describes the new text.
+  When anything differs -- a declaration added, removed, renamed or retyped -- the whole project is
+  checked with the fresh tables, as a cold check does.
+* **Each item's diagnostics are kept** and reported again, in the order a cold check reports them.
+* **Stubs** (names of protected code) are reported at their first use, so which file reports one
+  depends on the order everything is checked in: an edit in a file whose check used the stub table,
+  before the edit or after it, checks the whole project.
+* **What needs the whole project** (the Consts' values, the start procedure) is found again every
+  time; it is small.
+
+Facts the checker records on symbols of other modules as it goes (a module variable passed ByRef
+is ``boxed``, one read somewhere is ``read``) are kept when the module that recorded them is checked
+again: they are what the lowering reads to shape the code, not diagnostics, and a fact that stays
+true after the edit removed its cause only keeps a variable in a cell it no longer needs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from functools import cache
+from itertools import islice
+
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
+from gpl2py.gpl.semantics.catalogue import Catalogue
+from gpl2py.gpl.semantics.check import Checker, InfoTable, Model
+from gpl2py.gpl.semantics.info import DYNAMIC_MEMBERS
+from gpl2py.gpl.semantics.stubs import Stub, StubTable
+from gpl2py.gpl.semantics.symbols import (
+    ClassSym,
+    DelegateSym,
+    ModuleSym,
+    OverloadSet,
+    ProcSym,
+    ProjectSyms,
+    PropSym,
+    VarSym,
+)
+from gpl2py.gpl.syntax import ast as A
+from gpl2py.source import Span
+
+#: The Model's tables keyed by syntax nodes, which an item's check fills for the nodes of its file.
+_NODE_TABLES = ("proc_of_decl", "class_of_decl", "delegate_of_decl", "catch_var", "decl_new", "local_of")
+#: Fields of symbols that link symbols (kept as they are: the kept structure equals the fresh one),
+#: or that the lowering fills in (``py_name``).
+_LINKS = frozenset({"owner", "params", "locals", "labels", "members", "ctors", "procs", "prop", "getter",
+                    "setter", "module", "outer", "py_name"})
+#: Facts the checker records on a variable wherever it is used (module docstring).
+_USE_FACTS = ("boxed", "assigned", "read")
+
+
+@dataclass
+class _Item:
+    """What checking one item (a module, or a top-level class) left: its diagnostics, the nodes it
+    added to the model's tables, and how often it used the stub table."""
+
+    diags: list[Diagnostic]
+    keys: dict[str, list[object]]
+    nodes: list[A.Expr]
+    byref: set[A.Expr]
+    stub_uses: int
+
+
+@dataclass
+class WarmAnalysis:
+    """The last analysis of a project and what :func:`analyze_warm` needs to redo part of it."""
+
+    settings: tuple[object, ...]
+    checker: Checker
+    units: list[A.SourceUnit]
+    collected: list[Diagnostic] = field(default_factory=list)  # the collection's diagnostics
+    items: dict[object, _Item] = field(default_factory=dict)  # by the item's symbol
+    finished: list[Diagnostic] = field(default_factory=list)  # ``finish``'s diagnostics
+    #: how the last call went: "cold" (the whole project checked) or "warm" (the changed files)
+    how: str = "cold"
+    #: the files (paths) whose items the last call checked
+    checked: list[str] = field(default_factory=list)
+
+    #: whether each file's Infos hold one of ``info.DYNAMIC_MEMBERS``, by the id of its tree
+    dynamic: dict[int, tuple[A.SourceUnit, bool]] = field(default_factory=dict)
+
+    @property
+    def model(self) -> Model:
+        return self.checker.model
+
+    def dynamic_members(self) -> bool:
+        """Whether some expression reads a member of a value of unknown type (what the lowering's
+        ``ProjectNames.dynamic_members`` asks), walking only the files checked since last asked:
+        walking every expression of the project after each edit took as long as checking a file."""
+        found = False
+        for unit in self.units:
+            kept = self.dynamic.get(id(unit))
+            if kept is None or kept[0] is not unit:
+                kept = self.dynamic[id(unit)] = (unit, any(isinstance(i, DYNAMIC_MEMBERS)
+                                                           for _, i in InfoTable.walk(unit)))
+            found = found or kept[1]
+        live = {id(u) for u in self.units}
+        for key in [k for k in self.dynamic if k not in live]:
+            del self.dynamic[key]
+        return found or any(isinstance(n._info, DYNAMIC_MEMBERS) for n in self.model.info.nodes())
+
+    def diagnostics(self) -> list[Diagnostic]:
+        """Every diagnostic of the analysis, in the order a cold check reports them."""
+        out = list(self.collected)
+        for sym, _members in self.checker.items():
+            out.extend(self.items[_item_key(sym, _members)].diags)
+        out.extend(self.finished)
+        return out
+
+
+def analyze_warm(units: list[A.SourceUnit], catalogue: Catalogue, project_name: str = "",
+                 start: str | None = None, *, kept: WarmAnalysis | None = None, protected: bool = False,
+                 strict: bool = False, stub_provider: Callable[[Stub], str | None] | None = None,
+                 start_span: Span | None = None, sources_missing: bool = False,
+                 texts: Mapping[str, str] | None = None) -> WarmAnalysis:
+    """:func:`~gpl2py.gpl.semantics.check.analyze` of ``units``, redoing only what changed since
+    ``kept`` (the result of the last call for the same project, or None).  ``texts``: each unit's
+    source text by its path, where the files that name a changed declaration are found (without
+    them, a declaration whose type changed checks the whole project).  The diagnostics are
+    :meth:`WarmAnalysis.diagnostics` (not reported to a sink: the caller replays them through its
+    filter), equal to a cold analysis's."""
+    settings = (project_name, start, start_span, protected, strict, sources_missing, id(catalogue))
+    sink = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+    fresh = Checker(ProjectSyms(project_name), catalogue, sink,
+                    StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
+    fresh.sources_missing = sources_missing
+    fresh.collect(units)
+    collected = list(sink)
+    if kept is not None and kept.settings == settings and len(kept.units) == len(units):
+        if _recheck(kept, fresh, units, collected, start, start_span, texts):
+            return kept
+    state = WarmAnalysis(settings, fresh, list(units), collected)
+    state.checked = [u.path for u in units]
+    for sym, members in fresh.items():
+        state.items[_item_key(sym, members)] = _check(fresh, sym, members)
+    state.finished = _finish(fresh, start, start_span)
+    fresh.model.errors_reported = any(d.severity is Severity.ERROR for d in state.diagnostics())
+    return state
+
+
+def _recheck(kept: WarmAnalysis, fresh: Checker, units: list[A.SourceUnit], collected: list[Diagnostic],
+             start: str | None, start_span: Span | None, texts: Mapping[str, str] | None) -> bool:
+    """Check again the items of the files that changed since ``kept``, and of the files that name a
+    declaration whose type or parameters changed; False (``kept`` then is stale) when the whole
+    project must be checked: a declaration added, removed or renamed, a stub met."""
+    changed = {i for i, (a, b) in enumerate(zip(kept.units, units)) if a is not b}
+    old = kept.checker
+    differs: set[str] = set()
+    pairs = _pair_projects(old.model.project, fresh.model.project, differs)
+    if pairs is None:
+        return False
+    again = set(changed)
+    if differs:
+        if texts is None:
+            return False
+        named = re.compile(r"(?<!\w)(?:" + "|".join(re.escape(n) for n in sorted(differs)) + r")(?!\w)",
+                           re.IGNORECASE)
+        again |= {i for i, u in enumerate(units) if i not in changed and named.search(texts.get(u.path, "x"))}
+    if any(kept.items[_item_key(s, m)].stub_uses for s, m in _items_of(old, kept.units, again)):
+        return False  # which file reports a stub depends on the order everything is checked in
+    _transplant(pairs, {units[i].path for i in again})
+    model = old.model
+    stale = [kept.items.pop(_item_key(s, m)) for s, m in _items_of(old, units, again)]
+    for item in stale:
+        for name in _NODE_TABLES:
+            table = getattr(model, name)
+            for key in item.keys[name]:
+                table.pop(key, None)
+        model.byref_temps.difference_update(item.byref)
+    model.info.drop_nodes({id(n) for item in stale for n in item.nodes})
+    for i in changed:
+        model.info.replace_tree(kept.units[i], units[i])
+    kept.units = list(units)
+    old.forget_shared_infos()
+    uses = old.stubs.uses
+    for sym, members in _items_of(old, units, again):
+        kept.items[_item_key(sym, members)] = _check(old, sym, members)
+    if old.stubs.uses != uses:
+        return False  # a stub met for the first time, or again: which file reports it needs the order
+    kept.collected = collected
+    kept.finished = _finish(old, start, start_span)
+    model.errors_reported = any(d.severity is Severity.ERROR for d in kept.diagnostics())
+    kept.how = "warm"
+    kept.checked = [units[i].path for i in sorted(again)]
+    return True
+
+
+def _item_key(sym: ModuleSym, members: list[object]) -> object:
+    """An item is known by its module, or by its class when it is a top-level class."""
+    return members[0] if sym.decl is None and len(members) == 1 else sym
+
+
+def _items_of(checker: Checker, units: list[A.SourceUnit], which: set[int]) -> list[tuple[ModuleSym, list[object]]]:
+    """The items declared by the units at the positions ``which``."""
+    decls = {id(m) for i in which for m in units[i].members}
+    return [(s, m) for s, m in checker.items()
+            if id(s.decl if s.decl is not None else getattr(m[0], "decl", None)) in decls]
+
+
+def _check(checker: Checker, sym: ModuleSym, members: list[object]) -> _Item:
+    """Check one item with a sink of its own, noting what it added to the model."""
+    model = checker.model
+    sink = DiagnosticSink()
+    checker.use_sink(sink)
+    sizes = {name: len(getattr(model, name)) for name in _NODE_TABLES}
+    nodes, byref, uses = model.info.node_count(), set(model.byref_temps), checker.stubs.uses
+    checker.check_item(sym, members)
+    keys = {}
+    for name in _NODE_TABLES:
+        table = getattr(model, name)
+        keys[name] = list(islice(reversed(table), len(table) - sizes[name]))
+    return _Item(list(sink), keys, model.info.nodes_since(nodes), model.byref_temps - byref,
+                 checker.stubs.uses - uses)
+
+
+def _finish(checker: Checker, start: str | None, start_span: Span | None) -> list[Diagnostic]:
+    sink = DiagnosticSink()
+    checker.use_sink(sink)
+    checker.finish(start, start_span)
+    return list(sink)
+
+
+# -- pairing the kept symbols with the fresh ones -------------------------------------------------------
+
+
+def _shape(e: object) -> object:
+    """What an expression says, without where it is (a parameter's default, compared)."""
+    if isinstance(e, A.Node):
+        return (type(e).__name__, *(_shape(getattr(e, f.name)) for f in dataclasses.fields(e)
+                                    if not f.name.startswith("_") and f.name not in ("span", "leading_comments")))
+    if isinstance(e, list):
+        return tuple(_shape(x) for x in e)
+    return e
+
+
+def _interface(s: object) -> tuple[object, ...]:
+    """What the rest of a project sees of a declaration: its name, type, access, parameters."""
+    if isinstance(s, VarSym):
+        return (s.name, s.type, s.storage, s.public, s.shared, s.const, s.byref, s.optional, _shape(s.default))
+    if isinstance(s, ProcSym):
+        return (s.name, s.kind, s.result, s.public, s.shared, s.overload_index)
+    if isinstance(s, PropSym):
+        return (s.name, s.type, s.public, s.shared)
+    if isinstance(s, DelegateSym):
+        return (s.name, s.result, s.public, s.type)
+    if isinstance(s, ClassSym):
+        return (s.name, s.public, s.type)
+    return (getattr(s, "name", None),)
+
+
+def _structure(s: object) -> tuple[object, ...]:
+    """What must not change for the kept symbols to stand for the fresh ones: how many parameters,
+    constructors, overloads and accessors; a module's name, file and place."""
+    if isinstance(s, (ProcSym, DelegateSym)):
+        return (len(s.params),)
+    if isinstance(s, ClassSym):
+        return (len(s.ctors),)
+    if isinstance(s, OverloadSet):
+        return (len(s.procs),)
+    if isinstance(s, PropSym):
+        return (s.getter is None, s.setter is None)
+    if isinstance(s, ModuleSym):
+        return (s.name, s.path, s.order)
+    return ()
+
+
+def _pair_projects(old: ProjectSyms, new: ProjectSyms, differs: set[str]) -> list[tuple[object, object]] | None:
+    """Every (kept, fresh) pair of symbols, or None when the two projects declare different
+    things; ``differs`` gets the name (lower case) by which the rest of the project refers to each
+    declaration whose :func:`_interface` changed."""
+    out: list[tuple[object, object]] = []
+    pairing = _Pairing(out, differs)
+    if not pairing.tables(old.modules, new.modules, None):  # (the synthetic module of top-level classes too)
+        return None
+    by_fresh = {id(b): a for a, b in out}
+    for olds, news in ((old.procs, new.procs), (old.classes, new.classes)):
+        if len(olds) != len(news) or any(by_fresh.get(id(b)) is not a for a, b in zip(olds, news)):
+            return None
+    return out
+
+
+@dataclass
+class _Pairing:
+    out: list[tuple[object, object]]
+    differs: set[str]
+
+    def tables(self, a: dict[str, object], b: dict[str, object], ref: str | None) -> bool:
+        return list(a) == list(b) and all(self.pair(a[k], b[k], ref or k) for k in a)
+
+    def lists(self, a: list[object], b: list[object], ref: str) -> bool:
+        return len(a) == len(b) and all(self.pair(x, y, ref) for x, y in zip(a, b))
+
+    def pair(self, a: object, b: object, ref: str) -> bool:
+        """Pair ``a`` with ``b`` and what they hold; ``ref``: the name the project uses them by
+        (a parameter's procedure, a property's accessors, a class's constructors)."""
+        if type(a) is not type(b) or _structure(a) != _structure(b):
+            return False
+        if _interface(a) != _interface(b):
+            self.differs.add(ref.lower())
+        self.out.append((a, b))
+        if isinstance(a, ModuleSym):
+            return self.tables(a.members, b.members, None)  # type: ignore[arg-type, union-attr]
+        if isinstance(a, ClassSym):
+            return self.tables(a.members, b.members, None) and self.lists(a.ctors, b.ctors, a.name)  # type: ignore[arg-type, union-attr]
+        if isinstance(a, (ProcSym, DelegateSym)):
+            return self.lists(a.params, b.params, ref)  # type: ignore[union-attr, arg-type]
+        if isinstance(a, PropSym):
+            return self.lists([x for x in (a.getter, a.setter) if x is not None],
+                              [x for x in (b.getter, b.setter) if x is not None], ref)  # type: ignore[union-attr]
+        if isinstance(a, OverloadSet):
+            return self.lists(a.procs, b.procs, ref)  # type: ignore[arg-type, union-attr]
+        return True
+
+
+def _transplant(pairs: list[tuple[object, object]], again: set[str]) -> None:
+    """The kept symbols take the fresh ones' facts (where they are, their syntax nodes, their
+    types); a procedure of a file in ``again`` (paths), checked again, starts from its parameters."""
+    by_fresh = {id(b): a for a, b in pairs}
+    for old, new in pairs:
+        if not _same_node(old, new):  # (else declared by a file that did not change: the same facts)
+            for name in _facts(type(old)):
+                if name in _USE_FACTS:
+                    setattr(old, name, getattr(old, name) or getattr(new, name))
+                else:
+                    setattr(old, name, getattr(new, name))
+        if isinstance(old, ProcSym) and isinstance(new, ProcSym) and new.span is not None and new.span.file in again:
+            old.locals = {k: by_fresh.get(id(v), v) for k, v in new.locals.items()}  # type: ignore[misc]
+            old.labels = {}
+            old.uses_result = new.uses_result
+
+
+def _same_node(old: object, new: object) -> bool:
+    """Whether both symbols come from the same syntax node (their file's tree was reused)."""
+    node = getattr(old, "decl", None)
+    if isinstance(old, VarSym) and isinstance(old.declared_at, A.Node):
+        node = old.declared_at
+    if node is None:
+        return False
+    return node is (new.declared_at if isinstance(new, VarSym) and isinstance(old, VarSym)
+                    and isinstance(old.declared_at, A.Node) else getattr(new, "decl", None))
+
+
+@cache
+def _facts(kind: type) -> tuple[str, ...]:
+    """The fields of a symbol class that :func:`_transplant` copies."""
+    return tuple(f.name for f in dataclasses.fields(kind) if f.name not in _LINKS)
+
+
+__all__ = ["WarmAnalysis", "analyze_warm"]
