@@ -133,9 +133,9 @@ def main() -> int:
         started = time.perf_counter()
         session = Session(work, debounce_ms=0)
         try:
-            for name in ("Main.gpl", "Cmd.gpl", "Globals.gpl"):
+            for name in ("Main.gpl", "Cmd.gpl", "Globals.gpl", "Functions.gpl"):
                 session.open(folder / name)
-            for name in ("Main.gpl", "Cmd.gpl", "Globals.gpl"):
+            for name in ("Main.gpl", "Cmd.gpl", "Globals.gpl", "Functions.gpl"):
                 session.wait_diagnostics(folder / name, timeout=300)
             first = time.perf_counter() - started
             main_gpl = folder / "Main.gpl"

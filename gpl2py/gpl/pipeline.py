@@ -34,6 +34,7 @@ from gpl2py.gpl.semantics.resolve import TOP_MODULE
 from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
 from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm
 from gpl2py.gpl.syntax.parser import parse
+from gpl2py.gpl.syntax.reparse import reparse_procedure
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
@@ -117,15 +118,18 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
 
 def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[object, object]) -> A.SourceUnit:
     """``parse(src, sink)``, or the tree an earlier call parsed from the same path and text, its
-    diagnostics reported again.  Only the last text of each path is kept."""
+    diagnostics reported again, or that tree with the one procedure an edit changed parsed again
+    (``syntax/reparse.py``).  Only the last text of each path is kept."""
     key = ("gpl-parse", src.path)
     kept = memo.get(key)
     if isinstance(kept, tuple) and kept[0] == src.text:
         unit, diags = kept[1], kept[2]
     else:
-        parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
-        unit = parse(src, parsed)
-        diags = list(parsed)
+        again = reparse_procedure(*kept, src) if isinstance(kept, tuple) else None  # (one procedure changed)
+        if again is None:
+            parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+            again = parse(src, parsed), list(parsed)
+        unit, diags = again
         memo[key] = (src.text, unit, diags)
     sink.extend(diags)
     return unit
@@ -144,10 +148,13 @@ def _lower_memo(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagnos
     else:
         own = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
         entries[mod.py_name] = frozenset()
+        # each procedure's last lowering, by its node: one whose node is shared with the last
+        # tree (syntax/reparse.py parsed only another one again) is not lowered again
+        decls = kept[3] if isinstance(kept, tuple) else {}
         with contained(own, mod.span):
-            entries[mod.py_name] = lower_module(model, names, mod, own, text=False)[2]
+            entries[mod.py_name] = lower_module(model, names, mod, own, text=False, reuse=decls)[2]
         diags = list(own)
-        memo[key] = (trees, diags, entries[mod.py_name])
+        memo[key] = (trees, diags, entries[mod.py_name], decls)
     sink.extend(diags)
 
 

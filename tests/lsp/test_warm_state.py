@@ -110,38 +110,45 @@ def test_a_front_end_without_texts_and_memo_is_called_as_before(tmp_path: Path,
 def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_does(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """The guard of the warm semantic pass (gpl2py/gpl/semantics/warm.py): after a series of edits
-    -- bodies, with and without errors, one shifting every later line of its file, a Public Const's
+    -- bodies, with and without errors (syntax errors typed inside a line too), one shifting every
+    later line of its file, a Public Const's
     value, a parameter's type, a Public declaration other files use renamed, a protected name used
     for the first time -- each check's diagnostics equal a cold check of the same texts; an edit
-    that leaves every declaration as it was checks only the edited file, and one that changes a
-    declaration's type only the files that name it."""
+    that leaves every declaration as it was checks only the edited file (only the edited procedure
+    when the file keeps its number of lines), and one that changes a declaration's type only the
+    files that name it."""
     from gpl2py.gpl.semantics.check import Checker
     from gpl2py.gpl.semantics.symbols import ModuleSym
 
     tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
     memo: dict[object, object] = {}
     checked: list[str] = []
-    real = Checker.check_item
+    members: list[str] = []
+    real = Checker.check_members
 
-    def check_item(self: Checker, mod: ModuleSym, members: list[object]) -> None:
+    def check_members(self: Checker, mod: ModuleSym, items: list[object]) -> None:
         # (a top-level class is checked alone: the file is its own, not its synthetic module's)
-        checked.append(Path(mod.path if mod.decl is not None else members[0].span.file).name)  # type: ignore[attr-defined]
-        real(self, mod, members)
+        checked.append(Path(mod.path if mod.decl is not None else items[0].span.file).name)  # type: ignore[attr-defined]
+        members.extend(str(getattr(m, "name", "?")) for m in items)
+        real(self, mod, items)
 
-    monkeypatch.setattr(Checker, "check_item", check_item)
-    texts = {name: (tcs / name).read_text() for name in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl")}
+    monkeypatch.setattr(Checker, "check_members", check_members)
+    texts = {name: (tcs / name).read_text()
+             for name in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl", "Class_command.gpl")}
 
     def step(name: str, old: str, new: str) -> tuple[list[str], set[str]]:
         assert old in texts[name], old
         texts[name] = texts[name].replace(old, new, 1)
         checked.clear()
+        members.clear()
         sink = DiagnosticSink()
         transpile(tcs, sink, keep_modules=False, memo=memo,
                   texts={os.path.abspath(tcs / n): t for n, t in texts.items()})
-        got, files = headers(sink), set(checked)
+        got, files, rechecked = headers(sink), set(checked), list(members)
         for n, t in texts.items():  # what a cold check of the same texts says
             (tcs / n).write_text(t)
         assert got == cold(tcs), name
+        members[:] = rechecked  # (those of the warm check, not the cold one's)
         return got, files
 
     everything = {Path(s).name for s in os.listdir(tcs) if s.endswith(".gpl") or s.endswith(".gpo")}
@@ -157,6 +164,18 @@ def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_doe
     got, files = step("Cmd.gpl", "    Public Sub Cmd_Nop(ByVal Cmd As Command, ByRef Reply As String)\n",
                       "    Public Sub Cmd_Nop(ByVal Cmd As Command, ByRef Reply As String)\n        Reply = 1 +\n")
     assert files == {"Cmd.gpl"} and any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    # edits that keep the number of lines: only the procedure around them is parsed and checked again
+    got, files = step("Cmd.gpl", "        ii = 7\n", "        ii = 70\n")
+    assert members == ["Cmd_Version"]
+    got, files = step("Cmd.gpl", "        Reply = 1 +\n", "        Reply = 1 + 2\n")
+    assert members == ["Cmd_Nop"] and not any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    got, files = step("Cmd.gpl", "        Reply = 1 + 2\n", "        Reply = (1 + 2 Then\n")
+    assert members == ["Cmd_Nop"] and any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    got, files = step("Cmd.gpl", "        Reply = (1 + 2 Then\n", "        If True Then\n")  # (no End If)
+    assert any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    got, files = step("Cmd.gpl", "        If True Then\n", "        Reply = 1\n")
+    got, files = step("Class_command.gpl", "                ss = \"\"\n", "                ss = \"?\"\n")
+    assert files == {"Class_command.gpl"}  # (a top-level class: checked as one)
     const = '    Public Const EcUnknown As String = "-2805 *Unknown command*"'
     got, files = step("Globals.gpl", const, const.replace("command*", "command 2*"))
     assert files == {"Globals.gpl"}
@@ -177,5 +196,5 @@ def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_doe
     assert files == everything
     got, files = step("Cmd.gpl", "        AC_ErrorMessage()\n", "")
     assert files == everything  # Cmd.gpl's last check met a stub: the order matters again
-    got, files = step("Cmd.gpl", "        ii = 7\n", "        ii = 10\n")
-    assert files == {"Cmd.gpl"}
+    got, files = step("Cmd.gpl", "        ii = 70\n", "        ii = 10\n")
+    assert members == ["Cmd_Version"]

@@ -371,11 +371,17 @@ class Checker:
 
     def check_item(self, mod: ModuleSym, members: list[object]) -> None:
         """Check the bodies and initializers of ``members`` of ``mod``."""
-        with contained(self.sink, mod.span):  # a bug met in one module: the others are checked
-            if mod is self.model.project.top:
-                self._container(mod, None, members)
-            else:
+        if mod is self.model.project.top:
+            self.check_members(mod, members)
+        else:
+            with contained(self.sink, mod.span):  # a bug met in one module: the others are checked
                 self._module(mod)
+
+    def check_members(self, mod: ModuleSym, members: list[object]) -> None:
+        """Check ``members`` of ``mod`` (semantics/warm.py checks one member at a time: a bug met in
+        one then leaves the module's other members checked)."""
+        with contained(self.sink, mod.span):
+            self._container(mod, None, members)
 
     def _module(self, mod: ModuleSym) -> None:
         self._container(mod, None, list(mod.members.values()))

@@ -97,8 +97,9 @@ class WarmAnalysis:
     #: the files (paths) whose items the last call checked
     checked: list[str] = field(default_factory=list)
 
-    #: whether each file's Infos hold one of ``info.DYNAMIC_MEMBERS``, by the id of its tree
-    dynamic: dict[int, tuple[A.SourceUnit, bool]] = field(default_factory=dict)
+    #: whether the Infos of each declaration of a module (each top-level class) hold one of
+    #: ``info.DYNAMIC_MEMBERS``, by the id of its node
+    dynamic: dict[int, tuple[A.Node, bool]] = field(default_factory=dict)
 
     @property
     def model(self) -> Model:
@@ -106,25 +107,27 @@ class WarmAnalysis:
 
     def dynamic_members(self) -> bool:
         """Whether some expression reads a member of a value of unknown type (what the lowering's
-        ``ProjectNames.dynamic_members`` asks), walking only the files checked since last asked:
-        walking every expression of the project after each edit took as long as checking a file."""
+        ``ProjectNames.dynamic_members`` asks), walking only the declarations checked since last
+        asked: walking every expression of the project after each edit took as long as checking a
+        file."""
         found = False
+        seen: dict[int, tuple[A.Node, bool]] = {}
         for unit in self.units:
-            kept = self.dynamic.get(id(unit))
-            if kept is None or kept[0] is not unit:
-                kept = self.dynamic[id(unit)] = (unit, any(isinstance(i, DYNAMIC_MEMBERS)
-                                                           for _, i in InfoTable.walk(unit)))
-            found = found or kept[1]
-        live = {id(u) for u in self.units}
-        for key in [k for k in self.dynamic if k not in live]:
-            del self.dynamic[key]
+            for top in unit.members:
+                for node in (top.members if isinstance(top, A.ModuleDecl) else [top]):
+                    kept = self.dynamic.get(id(node))
+                    if kept is None or kept[0] is not node:
+                        kept = (node, any(isinstance(i, DYNAMIC_MEMBERS) for _, i in InfoTable.walk(node)))
+                    seen[id(node)] = kept
+                    found = found or kept[1]
+        self.dynamic = seen
         return found or any(isinstance(n._info, DYNAMIC_MEMBERS) for n in self.model.info.nodes())
 
     def diagnostics(self) -> list[Diagnostic]:
         """Every diagnostic of the analysis, in the order a cold check reports them."""
         out = list(self.collected)
-        for sym, _members in self.checker.items():
-            out.extend(self.items[_item_key(sym, _members)].diags)
+        for _mod, member in _members(self.checker):
+            out.extend(self.items[member].diags)
         out.extend(self.finished)
         return out
 
@@ -152,8 +155,8 @@ def analyze_warm(units: list[A.SourceUnit], catalogue: Catalogue, project_name: 
             return kept
     state = WarmAnalysis(settings, fresh, list(units), collected)
     state.checked = [u.path for u in units]
-    for sym, members in fresh.items():
-        state.items[_item_key(sym, members)] = _check(fresh, sym, members)
+    for mod, member in _members(fresh):
+        state.items[member] = _check(fresh, mod, member)
     state.finished = _finish(fresh, start, start_span)
     fresh.model.errors_reported = any(d.severity is Severity.ERROR for d in state.diagnostics())
     return state
@@ -177,11 +180,18 @@ def _recheck(kept: WarmAnalysis, fresh: Checker, units: list[A.SourceUnit], coll
         named = re.compile(r"(?<!\w)(?:" + "|".join(re.escape(n) for n in sorted(differs)) + r")(?!\w)",
                            re.IGNORECASE)
         again |= {i for i, u in enumerate(units) if i not in changed and named.search(texts.get(u.path, "x"))}
-    if any(kept.items[_item_key(s, m)].stub_uses for s, m in _items_of(old, kept.units, again)):
+    members = _members(old)
+    redo = _changed_members(members, kept.units, units, changed)
+    for i in again - changed:  # (the files naming a changed declaration: all their members)
+        nodes = _member_nodes(units[i])
+        redo.update(m for _mod, m in members if any(id(n) in nodes for n in _nodes_of(m)))
+        for key in nodes:
+            kept.dynamic.pop(key, None)  # (their Infos are made again)
+    if any(kept.items[m].stub_uses for m in redo):
         return False  # which file reports a stub depends on the order everything is checked in
-    _transplant(pairs, {units[i].path for i in again})
+    _transplant(pairs, {id(p) for m in redo for p in _procs_under(m)})
     model = old.model
-    stale = [kept.items.pop(_item_key(s, m)) for s, m in _items_of(old, units, again)]
+    stale = [kept.items.pop(m) for m in redo]
     for item in stale:
         for name in _NODE_TABLES:
             table = getattr(model, name)
@@ -194,38 +204,82 @@ def _recheck(kept: WarmAnalysis, fresh: Checker, units: list[A.SourceUnit], coll
     kept.units = list(units)
     old.forget_shared_infos()
     uses = old.stubs.uses
-    for sym, members in _items_of(old, units, again):
-        kept.items[_item_key(sym, members)] = _check(old, sym, members)
+    for mod, member in members:
+        if member in redo:
+            kept.items[member] = _check(old, mod, member)
     if old.stubs.uses != uses:
         return False  # a stub met for the first time, or again: which file reports it needs the order
     kept.collected = collected
     kept.finished = _finish(old, start, start_span)
     model.errors_reported = any(d.severity is Severity.ERROR for d in kept.diagnostics())
     kept.how = "warm"
-    kept.checked = [units[i].path for i in sorted(again)]
+    kept.checked = [_name_of(m) for _mod, m in members if m in redo]
     return True
 
 
-def _item_key(sym: ModuleSym, members: list[object]) -> object:
-    """An item is known by its module, or by its class when it is a top-level class."""
-    return members[0] if sym.decl is None and len(members) == 1 else sym
+def _members(checker: Checker) -> list[tuple[ModuleSym, object]]:
+    """What is checked, one member at a time: each member of each module, each top-level class."""
+    return [(mod, m) for mod, members in checker.items() for m in members]
 
 
-def _items_of(checker: Checker, units: list[A.SourceUnit], which: set[int]) -> list[tuple[ModuleSym, list[object]]]:
-    """The items declared by the units at the positions ``which``."""
-    decls = {id(m) for i in which for m in units[i].members}
-    return [(s, m) for s, m in checker.items()
-            if id(s.decl if s.decl is not None else getattr(m[0], "decl", None)) in decls]
+def _nodes_of(member: object) -> list[object]:
+    """The syntax nodes that declare ``member`` (an overload set: each overload's)."""
+    if isinstance(member, OverloadSet):
+        return [p.decl for p in member.procs]
+    return [getattr(member, "decl", None)]
 
 
-def _check(checker: Checker, sym: ModuleSym, members: list[object]) -> _Item:
-    """Check one item with a sink of its own, noting what it added to the model."""
+def _member_nodes(unit: A.SourceUnit) -> set[int]:
+    """The ids of the nodes that declare the members of ``unit``'s modules (each declarator of a
+    variable declaration), and of its top-level classes."""
+    out: set[int] = set()
+    for top in unit.members:
+        for node in (top.members if isinstance(top, A.ModuleDecl) else [top]):
+            out.add(id(node))
+            if isinstance(node, A.VarDecl):
+                out.update(id(d) for d in node.declarators)
+    return out
+
+
+def _changed_members(members: list[tuple[ModuleSym, object]], old: list[A.SourceUnit], new: list[A.SourceUnit],
+                     changed: set[int]) -> set[object]:
+    """The members declared by a file of ``changed`` whose declaring node is not shared by its old
+    and new trees (the whole file when it was parsed again; one procedure after
+    ``syntax/reparse.py``)."""
+    redo: set[object] = set()
+    for i in changed:
+        before, after = _member_nodes(old[i]), _member_nodes(new[i])
+        kept = before & after
+        redo.update(m for _mod, m in members
+                    if any(id(n) in before for n in _nodes_of(m)) and not all(id(n) in kept for n in _nodes_of(m)))
+    return redo
+
+
+def _procs_under(member: object) -> list[ProcSym]:
+    """Every procedure a member holds: itself, its overloads, its accessors, a class's methods."""
+    if isinstance(member, ProcSym):
+        return [member]
+    if isinstance(member, OverloadSet):
+        return list(member.procs)
+    if isinstance(member, PropSym):
+        return [p for p in (member.getter, member.setter) if p is not None]
+    if isinstance(member, ClassSym):
+        return [*member.ctors, *(p for m in member.members.values() for p in _procs_under(m))]
+    return []
+
+
+def _name_of(member: object) -> str:
+    return str(getattr(member, "name", ""))
+
+
+def _check(checker: Checker, mod: ModuleSym, member: object) -> _Item:
+    """Check one member with a sink of its own, noting what it added to the model."""
     model = checker.model
     sink = DiagnosticSink()
     checker.use_sink(sink)
     sizes = {name: len(getattr(model, name)) for name in _NODE_TABLES}
     nodes, byref, uses = model.info.node_count(), set(model.byref_temps), checker.stubs.uses
-    checker.check_item(sym, members)
+    checker.check_members(mod, [member])
     keys = {}
     for name in _NODE_TABLES:
         table = getattr(model, name)
@@ -333,9 +387,9 @@ class _Pairing:
         return True
 
 
-def _transplant(pairs: list[tuple[object, object]], again: set[str]) -> None:
+def _transplant(pairs: list[tuple[object, object]], again: set[int]) -> None:
     """The kept symbols take the fresh ones' facts (where they are, their syntax nodes, their
-    types); a procedure of a file in ``again`` (paths), checked again, starts from its parameters."""
+    types); a procedure checked again (its id in ``again``) starts from its parameters."""
     by_fresh = {id(b): a for a, b in pairs}
     for old, new in pairs:
         if not _same_node(old, new):  # (else declared by a file that did not change: the same facts)
@@ -344,7 +398,7 @@ def _transplant(pairs: list[tuple[object, object]], again: set[str]) -> None:
                     setattr(old, name, getattr(old, name) or getattr(new, name))
                 else:
                     setattr(old, name, getattr(new, name))
-        if isinstance(old, ProcSym) and isinstance(new, ProcSym) and new.span is not None and new.span.file in again:
+        if isinstance(old, ProcSym) and isinstance(new, ProcSym) and id(old) in again:
             old.locals = {k: by_fresh.get(id(v), v) for k, v in new.locals.items()}  # type: ignore[misc]
             old.labels = {}
             old.uses_result = new.uses_result
