@@ -36,7 +36,7 @@ from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.gpl.syntax.reparse import reparse_procedure
 from gpl2py.output import Output, Progress
-from gpl2py.project import Limits, Project, load_project, read_data_files
+from gpl2py.project import Limits, Project, load_project, read_data_files, swap_texts
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
 from gpl2py.gpl.syntax import ast as A
 from gpl2py.source import SourceFile, make_span
@@ -66,10 +66,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     loading = DiagnosticSink()  # unfiltered: whether a file failed to load, reported or ignored
     project = load_project(path, loading, limits)
     if project is not None and texts:
-        for src in project.sources:
-            text = texts.get(os.path.abspath(src.path))
-            if text is not None:
-                src.text, src._lines = text, None
+        swap_texts(project, texts)
     if project is not None and start is not None:
         project.start, project.start_span = start, None
     if project is not None and loaded is not None:

@@ -133,18 +133,25 @@ def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_doe
         real(self, mod, items)
 
     monkeypatch.setattr(Checker, "check_members", check_members)
+    collected: list[int] = []
+    real_collect = Checker.collect
+    monkeypatch.setattr(Checker, "collect", lambda self, units: collected.append(1) or real_collect(self, units))
     texts = {name: (tcs / name).read_text()
              for name in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl", "Class_command.gpl")}
+
+    declared = [True]
 
     def step(name: str, old: str, new: str) -> tuple[list[str], set[str]]:
         assert old in texts[name], old
         texts[name] = texts[name].replace(old, new, 1)
         checked.clear()
         members.clear()
+        collected.clear()
         sink = DiagnosticSink()
         transpile(tcs, sink, keep_modules=False, memo=memo,
                   texts={os.path.abspath(tcs / n): t for n, t in texts.items()})
         got, files, rechecked = headers(sink), set(checked), list(members)
+        declared[0] = bool(collected)  # (the declarations were collected again)
         for n, t in texts.items():  # what a cold check of the same texts says
             (tcs / n).write_text(t)
         assert got == cold(tcs), name
@@ -166,7 +173,7 @@ def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_doe
     assert files == {"Cmd.gpl"} and any("Cmd.gpl" in h and " error GPL" in h for h in got)
     # edits that keep the number of lines: only the procedure around them is parsed and checked again
     got, files = step("Cmd.gpl", "        ii = 7\n", "        ii = 70\n")
-    assert members == ["Cmd_Version"]
+    assert members == ["Cmd_Version"] and not declared[0]  # (nor the declarations collected again)
     got, files = step("Cmd.gpl", "        Reply = 1 +\n", "        Reply = 1 + 2\n")
     assert members == ["Cmd_Nop"] and not any("Cmd.gpl" in h and " error GPL" in h for h in got)
     got, files = step("Cmd.gpl", "        Reply = 1 + 2\n", "        Reply = (1 + 2 Then\n")
@@ -178,7 +185,7 @@ def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_doe
     assert files == {"Class_command.gpl"}  # (a top-level class: checked as one)
     const = '    Public Const EcUnknown As String = "-2805 *Unknown command*"'
     got, files = step("Globals.gpl", const, const.replace("command*", "command 2*"))
-    assert files == {"Globals.gpl"}
+    assert files == {"Globals.gpl"} and declared[0]  # (not inside a procedure: collected again)
     # a parameter's type changed: the files that name the procedure are checked again, and only they
     sub = "    Public Sub Backspace(ByVal index As Integer, ByRef msg As String)"
     got, files = step("Functions.gpl", sub, sub.replace("index As Integer", "index As Double"))

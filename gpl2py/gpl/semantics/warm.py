@@ -8,19 +8,26 @@ The language server checks a project after every pause in typing.  The semantic 
 the module's own bodies, never another module's bodies; so after an edit that leaves every
 declaration as the rest of the project sees it, checking the other modules again would give what it
 gave.  :func:`analyze_warm` keeps the last analysis (a :class:`WarmAnalysis`) and, after such an
-edit, checks again only the items declared by the files whose syntax tree changed.
+edit, checks again only the members whose declaration changed.
 
 How the result stays exactly a cold check's:
 
-* **Declarations are collected again, from scratch, every time**, into fresh symbol tables: the
-  collection's diagnostics are a cold run's by construction.  The fresh tables are then paired with
-  the kept ones, symbol by symbol (same modules, members in the same order, same kinds, names,
-  types, access, parameters and defaults: :func:`_interface`).  When every pair agrees, the kept
-  symbol objects take the fresh ones' facts (positions, syntax nodes), so that what the unchanged
-  files' analysis points to (each expression's ``Info`` names a symbol) describes the new text.
-  When anything differs -- a declaration added, removed, renamed or retyped -- the whole project is
+* **Declarations are collected again, from scratch**, into fresh symbol tables: the collection's
+  diagnostics are a cold run's by construction.  The fresh tables are then paired with the kept
+  ones, symbol by symbol (same modules, members in the same order, same kinds and numbers of
+  parameters: :func:`_structure`), and the kept symbol objects take the fresh ones' facts
+  (positions, syntax nodes, types), so that what the unchanged files' analysis points to (each
+  expression's ``Info`` names a symbol) describes the new text.  A declaration whose name, type,
+  access or parameters changed (:func:`_interface`) has the files that name it checked again too;
+  when the structure differs -- a declaration added, removed or renamed -- the whole project is
   checked with the fresh tables, as a cold check does.
-* **Each item's diagnostics are kept** and reported again, in the order a cold check reports them.
+  When the only files that changed were parsed again one procedure at a time and each such
+  procedure's declaration reads as before, collecting again would only point that procedure's
+  symbol (and its parameters' and containers') at the new nodes: :func:`_rebind` does just that.
+* **Each member's diagnostics are kept** and reported again, in the order a cold check reports
+  them; the members checked again are those whose declaring node changed (every member of a file
+  parsed whole, one procedure after ``syntax/reparse.py``) and every member of a file that names
+  a declaration whose type changed.
 * **Stubs** (names of protected code) are reported at their first use, so which file reports one
   depends on the order everything is checked in: an edit in a file whose check used the stub table,
   before the edit or after it, checks the whole project.
@@ -144,6 +151,10 @@ def analyze_warm(units: list[A.SourceUnit], catalogue: Catalogue, project_name: 
     :meth:`WarmAnalysis.diagnostics` (not reported to a sink: the caller replays them through its
     filter), equal to a cold analysis's."""
     settings = (project_name, start, start_span, protected, strict, sources_missing, id(catalogue))
+    if kept is not None and kept.settings == settings and len(kept.units) == len(units) and _rebind(kept, units):
+        # (only procedures parsed again, their declarations as they were: no need to collect again)
+        if _recheck(kept, None, units, kept.collected, start, start_span, texts):
+            return kept
     sink = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
     fresh = Checker(ProjectSyms(project_name), catalogue, sink,
                     StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
@@ -162,15 +173,17 @@ def analyze_warm(units: list[A.SourceUnit], catalogue: Catalogue, project_name: 
     return state
 
 
-def _recheck(kept: WarmAnalysis, fresh: Checker, units: list[A.SourceUnit], collected: list[Diagnostic],
+def _recheck(kept: WarmAnalysis, fresh: Checker | None, units: list[A.SourceUnit], collected: list[Diagnostic],
              start: str | None, start_span: Span | None, texts: Mapping[str, str] | None) -> bool:
     """Check again the items of the files that changed since ``kept``, and of the files that name a
     declaration whose type or parameters changed; False (``kept`` then is stale) when the whole
-    project must be checked: a declaration added, removed or renamed, a stub met."""
+    project must be checked: a declaration added, removed or renamed, a stub met.  ``fresh``: the
+    declarations collected again, or None when :func:`_rebind` already pointed the kept ones at
+    the new nodes."""
     changed = {i for i, (a, b) in enumerate(zip(kept.units, units)) if a is not b}
     old = kept.checker
     differs: set[str] = set()
-    pairs = _pair_projects(old.model.project, fresh.model.project, differs)
+    pairs = _pair_projects(old.model.project, fresh.model.project, differs) if fresh is not None else []
     if pairs is None:
         return False
     again = set(changed)
@@ -189,7 +202,12 @@ def _recheck(kept: WarmAnalysis, fresh: Checker, units: list[A.SourceUnit], coll
             kept.dynamic.pop(key, None)  # (their Infos are made again)
     if any(kept.items[m].stub_uses for m in redo):
         return False  # which file reports a stub depends on the order everything is checked in
-    _transplant(pairs, {id(p) for m in redo for p in _procs_under(m)})
+    _transplant(pairs)
+    for m in redo:  # (checked again: each procedure starts from its parameters, as collected)
+        for proc in _procs_under(m):
+            proc.locals = {v.name.lower(): v for v in proc.params}
+            proc.labels = {}
+            proc.uses_result = False
     model = old.model
     stale = [kept.items.pop(m) for m in redo]
     for item in stale:
@@ -245,13 +263,13 @@ def _changed_members(members: list[tuple[ModuleSym, object]], old: list[A.Source
                      changed: set[int]) -> set[object]:
     """The members declared by a file of ``changed`` whose declaring node is not shared by its old
     and new trees (the whole file when it was parsed again; one procedure after
-    ``syntax/reparse.py``)."""
+    ``syntax/reparse.py``), whether their symbols still name the old nodes or already the new."""
     redo: set[object] = set()
     for i in changed:
         before, after = _member_nodes(old[i]), _member_nodes(new[i])
-        kept = before & after
+        kept, either = before & after, before | after  # (a symbol names its old node, or its new one)
         redo.update(m for _mod, m in members
-                    if any(id(n) in before for n in _nodes_of(m)) and not all(id(n) in kept for n in _nodes_of(m)))
+                    if any(id(n) in either for n in _nodes_of(m)) and not all(id(n) in kept for n in _nodes_of(m)))
     return redo
 
 
@@ -387,21 +405,68 @@ class _Pairing:
         return True
 
 
-def _transplant(pairs: list[tuple[object, object]], again: set[int]) -> None:
-    """The kept symbols take the fresh ones' facts (where they are, their syntax nodes, their
-    types); a procedure checked again (its id in ``again``) starts from its parameters."""
-    by_fresh = {id(b): a for a, b in pairs}
+def _transplant(pairs: list[tuple[object, object]]) -> None:
+    """The kept symbols take the fresh ones' facts (where they are, their syntax nodes, their types)."""
     for old, new in pairs:
-        if not _same_node(old, new):  # (else declared by a file that did not change: the same facts)
-            for name in _facts(type(old)):
-                if name in _USE_FACTS:
-                    setattr(old, name, getattr(old, name) or getattr(new, name))
-                else:
-                    setattr(old, name, getattr(new, name))
-        if isinstance(old, ProcSym) and isinstance(new, ProcSym) and id(old) in again:
-            old.locals = {k: by_fresh.get(id(v), v) for k, v in new.locals.items()}  # type: ignore[misc]
-            old.labels = {}
-            old.uses_result = new.uses_result
+        if _same_node(old, new):
+            continue  # declared by a file that did not change: the same facts
+        for name in _facts(type(old)):
+            if name in _USE_FACTS:
+                setattr(old, name, getattr(old, name) or getattr(new, name))
+            else:
+                setattr(old, name, getattr(new, name))
+
+
+def _rebind(kept: WarmAnalysis, units: list[A.SourceUnit]) -> bool:
+    """When every file that changed was parsed again one procedure at a time (``syntax/reparse.py``)
+    and each such procedure's declaration reads as it did (name, modifiers, parameters, result,
+    where it is), point the kept symbols at the new nodes -- all that collecting the declarations
+    again would change -- and say True; else False, with nothing changed."""
+    plan: list[tuple[object, A.Node, A.Node]] = []
+    for old, new in zip(kept.units, units):
+        if old is not new and not _plan(kept.model, old.members, new.members, plan):
+            return False
+    for sym, old, new in plan:
+        if isinstance(sym, ProcSym):
+            assert isinstance(old, A.ProcDecl) and isinstance(new, A.ProcDecl)
+            sym.span = new.span
+            for v in sym.params:
+                param = new.params[next(i for i, p in enumerate(old.params) if p is v.declared_at)]
+                v.declared_at, v.default = param, param.default
+        sym.decl = new  # type: ignore[attr-defined]
+    return True
+
+
+def _plan(model: Model, old: list[A.Stmt], new: list[A.Stmt], plan: list[tuple[object, A.Node, A.Node]]) -> bool:
+    """What :func:`_rebind` changes for the declarations ``old`` -> ``new`` of a file or container."""
+    if len(old) != len(new):
+        return False
+    for a, b in zip(old, new):
+        if a is b:
+            continue
+        if isinstance(a, A.ModuleDecl) and isinstance(b, A.ModuleDecl):
+            sym: object = model.project.modules.get(a.name.lower())
+            if getattr(sym, "decl", None) is not a or not _plan(model, a.members, b.members, plan):
+                return False
+        elif isinstance(a, A.ClassDecl) and isinstance(b, A.ClassDecl):
+            sym = model.class_of_decl.get(a)
+            if sym is None or not _plan(model, a.members, b.members, plan):
+                return False
+        elif isinstance(a, A.ProcDecl) and isinstance(b, A.ProcDecl):
+            sym = model.proc_of_decl.get(a)
+            if sym is None or _header(a) != _header(b) or any(
+                    not any(p is v.declared_at for p in a.params) for v in sym.params):  # type: ignore[attr-defined]
+                return False
+        else:
+            return False
+        plan.append((sym, a, b))
+    return True
+
+
+def _header(d: A.ProcDecl) -> tuple[object, ...]:
+    """A procedure's declaration as the symbol tables see it, positions included."""
+    return (d.kind, d.name, tuple(d.modifiers), tuple(A.dump(p) for p in d.params),
+            A.dump(d.return_type) if d.return_type is not None else None, tuple(d.span))
 
 
 def _same_node(old: object, new: object) -> bool:
