@@ -208,6 +208,9 @@ def main() -> int:
             ("completion after Cmd.", "completion", "target <= 20 ms"),
             ("cold gpl2py check of the project", "check", "")]
     for label, key, target in rows:
+        if not times[key]:  # (fewer --edits than kinds)
+            print(f"  {label:45s} not measured: no edit of this kind")
+            continue
         print(f"  {label:45s} {spread(times[key])}  {in_r(times[key], refs[key])}  {target}")
     print(f"memory: the server holding the project {rss / 1024:.0f} MB resident (peak {hwm / 1024:.0f} MB); "
           f"one gpl2py check peaks at {check_peak / 1024:.0f} MB")

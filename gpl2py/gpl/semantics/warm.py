@@ -67,7 +67,7 @@ from gpl2py.gpl.semantics.symbols import (
 from gpl2py.gpl.syntax import ast as A
 from gpl2py.source import Span
 
-#: The Model's tables keyed by syntax nodes, which an item's check fills for the nodes of its file.
+#: The Model's tables keyed by syntax nodes, which a member's check fills for its nodes.
 _NODE_TABLES = ("proc_of_decl", "class_of_decl", "delegate_of_decl", "catch_var", "decl_new", "local_of")
 #: Fields of symbols that link symbols (kept as they are: the kept structure equals the fresh one),
 #: or that the lowering fills in (``py_name``).
@@ -79,8 +79,8 @@ _USE_FACTS = ("boxed", "assigned", "read")
 
 @dataclass
 class _Item:
-    """What checking one item (a module, or a top-level class) left: its diagnostics, the nodes it
-    added to the model's tables, and how often it used the stub table."""
+    """What checking one member of a module (or one top-level class) left: its diagnostics, the
+    nodes it added to the model's tables, and how often it used the stub table."""
 
     diags: list[Diagnostic]
     keys: dict[str, list[object]]
@@ -97,11 +97,11 @@ class WarmAnalysis:
     checker: Checker
     units: list[A.SourceUnit]
     collected: list[Diagnostic] = field(default_factory=list)  # the collection's diagnostics
-    items: dict[object, _Item] = field(default_factory=dict)  # by the item's symbol
+    items: dict[object, _Item] = field(default_factory=dict)  # by the member's symbol
     finished: list[Diagnostic] = field(default_factory=list)  # ``finish``'s diagnostics
-    #: how the last call went: "cold" (the whole project checked) or "warm" (the changed files)
+    #: how the last call went: "cold" (the whole project checked) or "warm" (what changed)
     how: str = "cold"
-    #: the files (paths) whose items the last call checked
+    #: what the last call checked: the files (cold), the members' names (warm)
     checked: list[str] = field(default_factory=list)
 
     #: whether the Infos of each declaration of a module (each top-level class) hold one of
