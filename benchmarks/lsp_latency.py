@@ -1,16 +1,21 @@
 """How fast ``gpl2py lsp`` answers on the 12,000-line TCS project, against a cold ``gpl2py check``.
 
-    python benchmarks/lsp_latency.py [--edits 50] [--requests 30] [--checks 5]
+    python benchmarks/lsp_latency.py [--edits 52] [--requests 30] [--checks 5]
 
 One server (``gpl2py lsp`` in a subprocess, driven over stdio by the tests' pygls client, with the
 debounce off: ``debounceMs`` 0, so what is timed is gpl2py's work and the protocol's round trip)
 holds a copy of ``../shared/corpus/tcs-3.0C1-pa`` (or ``$GPL_CORPUS``).  Timed, in one run:
 
 * **edit -> diagnostics**: from sending a ``didChange`` to receiving the edited file's
-  ``publishDiagnostics`` for that version, over ``--edits`` edits alternating two kinds: a
+  ``publishDiagnostics`` for that version, over ``--edits`` edits taking four kinds by turns: a
   statement changed inside a procedure body (``Cmd.gpl``'s ``Cmd_Version``, ``Main.gpl``'s
-  ``TcpComMain``) and a Public declaration other modules use (``Globals.gpl``'s
-  ``Public Const EcUnknown``, read by ``Cmd.gpl`` and ``Class_command.gpl``);
+  ``TcpComMain``: the first edit of each adds a line, the next ones change it), a line added in a
+  body of the largest file (``PARobot.gpl``'s ``Cmd_Rail``, one blank line or two by turns: the
+  file no longer has the same number of lines, so it is parsed whole), and two edits of a
+  Public declaration other modules use: the value of
+  ``Globals.gpl``'s ``Public Const EcUnknown`` (read by ``Cmd.gpl`` and ``Class_command.gpl``;
+  what other files see of it, its name and type, stays) and the type of a parameter of
+  ``Functions.gpl``'s ``Public Sub Backspace`` (called by ``Main.gpl``, which is checked again);
 * **hover** and **completion** round trips (a field reached through ``Cmd.``, the members after
   ``Cmd.``) once the index is built;
 * **cold check**: ``gpl2py check`` of the same project in a subprocess, ``--checks`` times, in
@@ -44,6 +49,10 @@ from _reference import HOW_TO_COMPARE, Reference, per_r  # noqa: E402
 from lspclient import Session  # noqa: E402  (the tests' client: pygls's, over stdio)
 
 
+#: The kinds of edit, taken by turns (``Edits``' methods).
+KINDS = ("body", "newline", "public", "signature")
+
+
 def corpus() -> Path:
     """The TCS project of the real code (``$GPL_CORPUS``, else ``../shared/corpus`` beside the
     repository), as the tests find it."""
@@ -68,16 +77,21 @@ class Edits:
     """The texts of the edits: a body statement or a Public Const's value, a new one each time."""
 
     def __init__(self, folder: Path) -> None:
-        self.files = {n: (folder / n).read_text(errors="replace") for n in ("Cmd.gpl", "Main.gpl", "Globals.gpl")}
+        self.files = {n: (folder / n).read_text(errors="replace")
+                      for n in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl", "PARobot.gpl")}
         self.anchor = {"Cmd.gpl": "        Dim ii As Integer\n        If bTelnetMode Then\n",
                        "Main.gpl": "        Dim cCount As Integer = 0\n"}
         for name, anchor in self.anchor.items():
             assert anchor in self.files[name], (name, anchor)
         self.const = '    Public Const EcUnknown As String = "-2805 *Unknown command*"'
         assert self.const in self.files["Globals.gpl"]
+        self.sub = "    Public Sub Backspace(ByVal index As Integer, ByRef msg As String)"
+        assert self.sub in self.files["Functions.gpl"]
+        self.rail = "    Public Sub Cmd_Rail(ByVal Cmd As Command, ByRef Reply As String)\n        Dim StaID As Integer\n"
+        assert self.rail in self.files["PARobot.gpl"]
 
     def body(self, n: int) -> tuple[str, str]:
-        name = "Cmd.gpl" if n % 2 else "Main.gpl"
+        name = "Cmd.gpl" if n // len(KINDS) % 2 else "Main.gpl"
         anchor = self.anchor[name]
         stmt = f"        ii = {n}\n" if name == "Cmd.gpl" else f"        cCount = {n}\n"
         return name, self.files[name].replace(anchor, anchor + stmt, 1)
@@ -85,6 +99,25 @@ class Edits:
     def public(self, n: int) -> tuple[str, str]:
         return "Globals.gpl", self.files["Globals.gpl"].replace(
             self.const, f'    Public Const EcUnknown As String = "-2805 *Unknown command {n}*"', 1)
+
+    def newline(self, n: int) -> tuple[str, str]:
+        """Enter pressed in a body of the largest file (3,534 lines): one blank line or two by
+        turns, so the file's number of lines changes each time."""
+        return "PARobot.gpl", self.files["PARobot.gpl"].replace(self.rail, self.rail + "\n" * (1 + n // len(KINDS) % 2), 1)
+
+    def signature(self, n: int) -> tuple[str, str]:
+        """A parameter's type, Integer or Double by turns: the procedure's signature changes."""
+        typ = "Double" if n % 2 else "Integer"
+        return "Functions.gpl", self.files["Functions.gpl"].replace(
+            self.sub, self.sub.replace("index As Integer", f"index As {typ}"), 1)
+
+
+def where(main: str) -> tuple[int, int]:
+    """Where hover and completion are asked in Main.gpl's text: on ``NewRobNum`` after ``Cmd.``
+    (0-based line and column)."""
+    lines = main.splitlines()
+    line = next(i for i, t in enumerate(lines) if "Cmd.NewRobNum = robNumArg" in t)
+    return line, lines[line].index("Cmd.NewRobNum") + 4
 
 
 def cold_check(folder: Path, cwd: Path) -> float:
@@ -105,7 +138,7 @@ def memory(pid: int) -> tuple[int, int]:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--edits", type=int, default=50)
+    ap.add_argument("--edits", type=int, default=52)
     ap.add_argument("--requests", type=int, default=30)
     ap.add_argument("--checks", type=int, default=5)
     args = ap.parse_args()
@@ -118,16 +151,15 @@ def main() -> int:
         started = time.perf_counter()
         session = Session(work, debounce_ms=0)
         try:
-            for name in ("Main.gpl", "Cmd.gpl", "Globals.gpl"):
+            for name in edits.files:
                 session.open(folder / name)
-            for name in ("Main.gpl", "Cmd.gpl", "Globals.gpl"):
+            for name in edits.files:
                 session.wait_diagnostics(folder / name, timeout=300)
             first = time.perf_counter() - started
             main_gpl = folder / "Main.gpl"
-            line = next(i for i, t in enumerate(edits.files["Main.gpl"].splitlines()) if "Cmd.NewRobNum = robNumArg" in t)
-            col = edits.files["Main.gpl"].splitlines()[line].index("Cmd.NewRobNum") + 4
+            line, col = where(edits.files["Main.gpl"])
             # warm-up: one edit of each kind, a hover (imports the runtime's descriptions) and a completion
-            for kind in (edits.body, edits.public):
+            for kind in (edits.body, edits.newline, edits.public, edits.signature):
                 name, text = kind(0)
                 session.change(folder / name, text)
                 session.wait_diagnostics(folder / name, timeout=300)
@@ -135,11 +167,13 @@ def main() -> int:
                 session.wait_diagnostics(folder / name, timeout=300)
             session.hover(main_gpl, line, col)
             session.completion(main_gpl, line, col)
-            times: dict[str, list[float]] = {"body": [], "public": [], "hover": [], "completion": [], "check": []}
+            times: dict[str, list[float]] = {k: [] for k in KINDS + ("hover", "completion", "check")}
             refs: dict[str, list[float]] = {k: [] for k in times}
+            main_text = edits.files["Main.gpl"]
             for n in range(1, args.edits + 1):
-                kind = "body" if n % 2 else "public"
-                name, text = (edits.body if kind == "body" else edits.public)(n)
+                kind = KINDS[n % len(KINDS)]
+                name, text = getattr(edits, kind)(n)
+                main_text = text if name == "Main.gpl" else main_text
                 t0 = time.perf_counter()
                 session.change(folder / name, text)
                 session.wait_diagnostics(folder / name, timeout=300)
@@ -147,6 +181,7 @@ def main() -> int:
                 ref.run(match=times[kind][-1])
                 refs[kind].append(ref.wall[-1])
             session.settle()  # the index of the last check is built
+            line, col = where(main_text)  # (the body edits add a line above it)
             for _ in range(args.requests):
                 for kind, call in (("hover", session.hover), ("completion", session.completion)):
                     t0 = time.perf_counter()
@@ -166,11 +201,16 @@ def main() -> int:
     print(f"TCS project ({lines} lines), gpl2py lsp over stdio, debounce off; first diagnostics "
           f"after open: {first * 1e3:.0f} ms (server start, cold parse and check)")
     rows = [("edit in a procedure body -> diagnostics", "body", "target <= 50 ms"),
-            ("edit of a Public declaration -> diagnostics", "public", "target <= 200 ms"),
+            ("a line added in a body (PARobot.gpl) -> diag.", "newline", "target <= 50 ms"),
+            ("edit of a Public Const's value -> diagnostics", "public", "target <= 200 ms"),
+            ("edit of a Public Sub's parameter type -> diag.", "signature", "target <= 200 ms"),
             ("hover", "hover", "target <= 20 ms"),
             ("completion after Cmd.", "completion", "target <= 20 ms"),
             ("cold gpl2py check of the project", "check", "")]
     for label, key, target in rows:
+        if not times[key]:  # (fewer --edits than kinds)
+            print(f"  {label:45s} not measured: no edit of this kind")
+            continue
         print(f"  {label:45s} {spread(times[key])}  {in_r(times[key], refs[key])}  {target}")
     print(f"memory: the server holding the project {rss / 1024:.0f} MB resident (peak {hwm / 1024:.0f} MB); "
           f"one gpl2py check peaks at {check_peak / 1024:.0f} MB")

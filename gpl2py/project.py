@@ -36,6 +36,7 @@ from __future__ import annotations
 import os
 import re
 import stat
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -155,6 +156,15 @@ def load_project(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Lim
         return project
     sink.report(msg.NOT_A_PROJECT, None, path=str(p))
     return None
+
+
+def swap_texts(project: Project, texts: Mapping[str, str]) -> None:
+    """Each source of ``project`` whose absolute path ``texts`` names gets that text in place of
+    the file's (an editor's unsaved buffer: the language server, docs/design/frontends.md)."""
+    for src in project.sources:
+        text = texts.get(os.path.abspath(src.path))
+        if text is not None:
+            src.text, src._lines = text, None
 
 
 def load_sources(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Limits | None,

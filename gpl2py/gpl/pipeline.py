@@ -32,9 +32,11 @@ from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.gpl.semantics.check import Model, analyze
 from gpl2py.gpl.semantics.resolve import TOP_MODULE
 from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
+from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm
 from gpl2py.gpl.syntax.parser import parse
+from gpl2py.gpl.syntax.reparse import reparse_procedure
 from gpl2py.output import Output, Progress
-from gpl2py.project import Limits, Project, load_project, read_data_files
+from gpl2py.project import Limits, Project, load_project, read_data_files, swap_texts
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
 from gpl2py.gpl.syntax import ast as A
 from gpl2py.source import SourceFile, make_span
@@ -42,6 +44,8 @@ from gpl2py.source import SourceFile, make_span
 
 #: Where :func:`transpile_project` leaves the analysed project in ``memo``: (project, units, model).
 MODEL_KEY = "gpl-model"
+#: Where it keeps the analysis it checks again after an edit (``semantics.warm.WarmAnalysis``).
+WARM_KEY = "gpl-warm"
 
 
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
@@ -62,10 +66,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     loading = DiagnosticSink()  # unfiltered: whether a file failed to load, reported or ignored
     project = load_project(path, loading, limits)
     if project is not None and texts:
-        for src in project.sources:
-            text = texts.get(os.path.abspath(src.path))
-            if text is not None:
-                src.text, src._lines = text, None
+        swap_texts(project, texts)
     if project is not None and start is not None:
         project.start, project.start_span = start, None
     if project is not None and loaded is not None:
@@ -86,11 +87,22 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     # the semantic pass runs even after syntax errors, so every error is reported in one run; a
     # file that failed to load (or to parse) may declare the start procedure, not looked for then
     missing = loading.has_errors() or len(units) < len(project.sources)
-    model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
-                    strict=strict, stub_provider=user.provider if user is not None else None,
-                    start_span=project.start_span, sources_missing=missing)
-    if memo is not None:  # what the language server's navigation reads (gpl2py/lsp/gpl/)
-        memo[MODEL_KEY] = (project, units, model)
+    provider = user.provider if user is not None else None
+    if memo is None:
+        model = analyze(units, sink, load_catalogue(), project.name, project.start, protected=protected,
+                        strict=strict, stub_provider=provider, start_span=project.start_span,
+                        sources_missing=missing)
+    else:  # checked again: only the files that changed, when their declarations did not (warm.py)
+        kept = memo.get(WARM_KEY)
+        warm = analyze_warm(units, load_catalogue(), project.name, project.start, protected=protected,
+                            strict=strict, stub_provider=provider, start_span=project.start_span,
+                            sources_missing=missing, kept=kept if isinstance(kept, WarmAnalysis) else None,
+                            texts={src.path: src.text for src in project.sources})
+        memo[WARM_KEY] = warm
+        sink.extend(warm.diagnostics())
+        model = warm.model
+        model.errors_reported = sink.found_errors()  # (as analyze's: the parse's errors count too)
+        memo[MODEL_KEY] = (project, units, model)  # what the language server's navigation reads (gpl2py/lsp/gpl/)
     if sink.has_errors() and not keep_going:
         return None
     output = lower(project, model, sink, progress, user, keep_modules=keep_modules, memo=memo)
@@ -103,15 +115,18 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
 
 def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[object, object]) -> A.SourceUnit:
     """``parse(src, sink)``, or the tree an earlier call parsed from the same path and text, its
-    diagnostics reported again.  Only the last text of each path is kept."""
+    diagnostics reported again, or that tree with the one procedure an edit changed parsed again
+    (``syntax/reparse.py``).  Only the last text of each path is kept."""
     key = ("gpl-parse", src.path)
     kept = memo.get(key)
     if isinstance(kept, tuple) and kept[0] == src.text:
         unit, diags = kept[1], kept[2]
     else:
-        parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
-        unit = parse(src, parsed)
-        diags = list(parsed)
+        again = reparse_procedure(*kept, src) if isinstance(kept, tuple) else None  # (one procedure changed)
+        if again is None:
+            parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
+            again = parse(src, parsed), list(parsed)
+        unit, diags = again
         memo[key] = (src.text, unit, diags)
     sink.extend(diags)
     return unit
@@ -130,10 +145,13 @@ def _lower_memo(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagnos
     else:
         own = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
         entries[mod.py_name] = frozenset()
+        # each procedure's last lowering, by its node: one whose node is shared with the last
+        # tree (syntax/reparse.py parsed only another one again) is not lowered again
+        decls = kept[3] if isinstance(kept, tuple) else {}
         with contained(own, mod.span):
-            entries[mod.py_name] = lower_module(model, names, mod, own)[2]
+            entries[mod.py_name] = lower_module(model, names, mod, own, text=False, reuse=decls)[2]
         diags = list(own)
-        memo[key] = (trees, diags, entries[mod.py_name])
+        memo[key] = (trees, diags, entries[mod.py_name], decls)
     sink.extend(diags)
 
 
@@ -162,7 +180,9 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
     if project.start is None and start is not None and start.module is not None:
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
         sink.report(M.START_ASSUMED_MAIN, start.span, name=f"{start.module.name}.{start.name}")
-    names = ProjectNames.build(model)
+    warm = memo.get(WARM_KEY) if memo is not None else None
+    names = ProjectNames.build(model, warm.dynamic_members()
+                               if isinstance(warm, WarmAnalysis) and warm.model is model else None)
     package = package_name(project.name)
     out = Output(package, project=project)
     smap: dict[str, tuple[str, str]] = {}
@@ -177,7 +197,7 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
             _lower_memo(model, names, mod, sink, memo, entries)  # type: ignore[arg-type]
             continue
         with contained(sink, mod.span):  # a bug in one module: the others are still lowered
-            text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink)
+            text, gmap, entries[mod.py_name] = lower_module(model, names, mod, sink, text=keep_modules)
             if keep_modules:
                 fname = f"{mod.py_name}.py"
                 out.files[f"{package}/{fname}"] = text

@@ -3,9 +3,9 @@
 This module is the wiring only: the protocol's requests and notifications in, the workspace's
 checks (:mod:`gpl2py.lsp.projects`) and a language's features (:data:`FEATURES`) called, the
 answers converted to the protocol's types (:mod:`gpl2py.lsp.convert`).  What a feature knows of a
-language lives in that language's module: ``gpl2py.lsp.gpl`` (a package) for GPL; V+ and TMscript get
-diagnostics through the door as their front ends land, and their navigation by adding a module
-to :data:`FEATURES` with the same functions.
+language lives in that language's module: ``gpl2py.lsp.gpl`` (a package) for GPL; V+ and TMscript
+(``gpl2py.lsp.vplus``, ``gpl2py.lsp.tmscript``) have the outline (document and workspace symbols)
+and get diagnostics through the door like GPL; a function a language's module lacks answers nothing.
 
 Robustness: every handler runs inside :func:`guarded`, so an exception inside gpl2py is logged to
 the client (``window/logMessage``, with its traceback) and the request answered with nothing; the
@@ -35,12 +35,12 @@ from gpl2py.lsp.projects import CheckResult, ProjectState, Workspace
 
 #: The module of each language's navigation features (hover, definition, completion ...), by the
 #: front end's name (gpl2py.languages); a language without one gets diagnostics only.
-FEATURES: dict[str, str] = {"gpl": "gpl2py.lsp.gpl"}
+FEATURES: dict[str, str] = {"gpl": "gpl2py.lsp.gpl", "vplus": "gpl2py.lsp.vplus", "tmscript": "gpl2py.lsp.tmscript"}
 #: How long after the last change a file is checked (seconds); ``initializationOptions``'s
 #: ``debounceMs`` changes it (0: at once, what the latency benchmark measures).
 DEBOUNCE = 0.15
 #: The extensions of the files the editor is asked to watch (each spelling a controller may use).
-WATCHED = ("gpl", "gpo", "gpr", "GPL", "GPO", "GPR", "Gpl", "Gpr")
+WATCHED = ("gpl", "gpo", "gpr", "GPL", "GPO", "GPR", "Gpl", "Gpr", "v2", "V2", "pg", "PG", "tms", "TMS", "tmscript")
 #: The features that read the text being typed rather than the last check.
 TYPING = ("completion", "signature_help")
 

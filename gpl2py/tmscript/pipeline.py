@@ -12,7 +12,7 @@ no second interpreter (issue 22).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, MutableMapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -20,7 +20,7 @@ from gpl2py import messages as GM
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, contained
 from gpl2py.gpl.lower.names import package_name
 from gpl2py.output import Output, Progress
-from gpl2py.project import Limits, Project, _add_source
+from gpl2py.project import Limits, Project, _add_source, swap_texts
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
 from gpl2py.pywriter.text import escape
 from gpl2py.source import make_span
@@ -30,6 +30,8 @@ from gpl2py.tmscript.semantics.check import Var, check_packet, check_script
 from gpl2py.tmscript.syntax.parser import parse_packet, parse_script
 
 SUFFIXES = (".tms", ".tmscript")
+#: Where :func:`transpile_project` leaves the parsed scripts in ``memo``.
+SCRIPTS_KEY = "tmscript-scripts"
 
 
 def load_project(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Limits | None = None) -> Project | None:
@@ -62,12 +64,21 @@ def load_project(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Lim
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
                       progress: Progress | None, stubs_dir: str | os.PathLike[str] | None = None,
                       strict: bool = False, loaded: Callable[[Project], None] | None = None,
-                      limits: Limits | None = None, keep_modules: bool = True) -> Output | None:
+                      limits: Limits | None = None, keep_modules: bool = True, *,
+                      texts: Mapping[str, str] | None = None,
+                      memo: MutableMapping[object, object] | None = None) -> Output | None:
     """The TMscript translation of ``path``; the arguments are :func:`gpl2py.transpile.transpile`'s
-    (``stubs_dir`` and ``strict`` concern GPL's stubs and are not used)."""
+    (``stubs_dir`` and ``strict`` concern GPL's stubs and are not used).  ``texts`` and ``memo``
+    serve the language server (docs/design/frontends.md): the editor's text of some files in place
+    of theirs, and where the parsed scripts are left (:data:`SCRIPTS_KEY`, path -> tree)."""
     project = load_project(path, sink, limits)
     if project is None:
         return None
+    if texts:
+        swap_texts(project, texts)
+    trees: dict[str, object] = {}
+    if memo is not None:
+        memo[SCRIPTS_KEY] = trees  # (the language server's outline reads them: gpl2py/lsp/tmscript.py)
     if loaded is not None:
         loaded(project)
     package = package_name(project.name)
@@ -77,6 +88,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
     for i, src in enumerate(project.sources):
         with contained(sink, make_span(src.path, 1, 1, 1, 1)):
             tree = parse_script(src.text, src.path, sink)
+            trees[os.path.abspath(src.path)] = tree
             info = check_script(tree, sink)
             try:
                 text, gmap = lower_script(tree, info, Path(src.path).name)

@@ -337,10 +337,10 @@ def _planted(kind: str, monkeypatch: pytest.MonkeyPatch) -> None:
     else:
         real_lower = pipeline_module.lower_module
 
-        def lower_module(model, names, mod, sink):  # type: ignore[no-untyped-def]
+        def lower_module(model, names, mod, sink, **options):  # type: ignore[no-untyped-def]
             if mod.name == "Bug":
                 raise IndexError("planted lowering bug")
-            return real_lower(model, names, mod, sink)
+            return real_lower(model, names, mod, sink, **options)
 
         monkeypatch.setattr(pipeline_module, "lower_module", lower_module)
 

@@ -115,6 +115,7 @@ def test_tcs_file_gets_checks_diagnostics(tmp_path: Path) -> None:
     with Session(tmp_path) as s:
         s.open(target)
         s.wait_diagnostics(target)
+        s.wait_diagnostics(tcs / "Project.gpr", after=0)  # (published after the target: sorted order)
         got = published(s)
     assert got == expected and any(e[0] == uri(target) for e in expected)
 

@@ -62,7 +62,7 @@ def test_a_body_edit_lowers_only_its_module_and_reports_what_cold_lowering_does(
     lowered: list[str] = []
     real = pipeline.lower_module
     monkeypatch.setattr(pipeline, "lower_module",
-                        lambda model, names, mod, sink: lowered.append(mod.name) or real(model, names, mod, sink))
+                        lambda model, names, mod, sink, **kw: lowered.append(mod.name) or real(model, names, mod, sink, **kw))
 
     def warm(texts: dict[str, str]) -> list[str]:
         sink = DiagnosticSink()
@@ -105,3 +105,103 @@ def test_a_front_end_without_texts_and_memo_is_called_as_before(tmp_path: Path,
     sink = DiagnosticSink()
     assert door.transpile(tmp_path, sink, keep_modules=False, texts={"a": "b"}, memo={}) is None
     assert calls == [(tmp_path, False)] and list(sink) == []
+
+
+def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_does(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The guard of the warm semantic pass (gpl2py/gpl/semantics/warm.py): after a series of edits
+    -- bodies, with and without errors (syntax errors typed inside a line too), one shifting every
+    later line of its file, a Public Const's
+    value, a parameter's type, a Public declaration other files use renamed, a protected name used
+    for the first time -- each check's diagnostics equal a cold check of the same texts; an edit
+    that leaves every declaration as it was checks only the edited file (only the edited procedure
+    when the file keeps its number of lines), and one that changes a declaration's type only the
+    files that name it."""
+    from gpl2py.gpl.semantics.check import Checker
+    from gpl2py.gpl.semantics.symbols import ModuleSym
+
+    tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
+    memo: dict[object, object] = {}
+    checked: list[str] = []
+    members: list[str] = []
+    real = Checker.check_members
+
+    def check_members(self: Checker, mod: ModuleSym, items: list[object]) -> None:
+        # (a top-level class is checked alone: the file is its own, not its synthetic module's)
+        checked.append(Path(mod.path if mod.decl is not None else items[0].span.file).name)  # type: ignore[attr-defined]
+        members.extend(str(getattr(m, "name", "?")) for m in items)
+        real(self, mod, items)
+
+    monkeypatch.setattr(Checker, "check_members", check_members)
+    collected: list[int] = []
+    real_collect = Checker.collect
+    monkeypatch.setattr(Checker, "collect", lambda self, units: collected.append(1) or real_collect(self, units))
+    texts = {name: (tcs / name).read_text()
+             for name in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl", "Class_command.gpl")}
+
+    declared = [True]
+
+    def step(name: str, old: str, new: str) -> tuple[list[str], set[str]]:
+        assert old in texts[name], old
+        texts[name] = texts[name].replace(old, new, 1)
+        checked.clear()
+        members.clear()
+        collected.clear()
+        sink = DiagnosticSink()
+        transpile(tcs, sink, keep_modules=False, memo=memo,
+                  texts={os.path.abspath(tcs / n): t for n, t in texts.items()})
+        got, files, rechecked = headers(sink), set(checked), list(members)
+        declared[0] = bool(collected)  # (the declarations were collected again)
+        for n, t in texts.items():  # what a cold check of the same texts says
+            (tcs / n).write_text(t)
+        assert got == cold(tcs), name
+        members[:] = rechecked  # (those of the warm check, not the cold one's)
+        return got, files
+
+    everything = {Path(s).name for s in os.listdir(tcs) if s.endswith(".gpl") or s.endswith(".gpo")}
+    step("Cmd.gpl", "", "")  # the first check: every file
+    anchor = "        Dim ii As Integer\n        If bTelnetMode Then\n"
+    got, files = step("Cmd.gpl", anchor, anchor + "        ii = 7\n")
+    assert files == {"Cmd.gpl"} and not any(" error GPL" in h for h in got)
+    got, files = step("Main.gpl", "        Dim cCount As Integer = 0\n",
+                      "        Dim cCount As Integer = 0\n        cCount = \"text\" & Nothing.Foo\n")
+    assert files == {"Main.gpl"} and any("Main.gpl" in h and " error GPL" in h for h in got)
+    # lines added near the top of Cmd.gpl: every later declaration moves, an error far below
+    got, files = step("Cmd.gpl", anchor, anchor + "        ii = 8\n\n\n")
+    got, files = step("Cmd.gpl", "    Public Sub Cmd_Nop(ByVal Cmd As Command, ByRef Reply As String)\n",
+                      "    Public Sub Cmd_Nop(ByVal Cmd As Command, ByRef Reply As String)\n        Reply = 1 +\n")
+    assert files == {"Cmd.gpl"} and any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    # edits that keep the number of lines: only the procedure around them is parsed and checked again
+    got, files = step("Cmd.gpl", "        ii = 7\n", "        ii = 70\n")
+    assert members == ["Cmd_Version"] and not declared[0]  # (nor the declarations collected again)
+    got, files = step("Cmd.gpl", "        Reply = 1 +\n", "        Reply = 1 + 2\n")
+    assert members == ["Cmd_Nop"] and not any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    got, files = step("Cmd.gpl", "        Reply = 1 + 2\n", "        Reply = (1 + 2 Then\n")
+    assert members == ["Cmd_Nop"] and any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    got, files = step("Cmd.gpl", "        Reply = (1 + 2 Then\n", "        If True Then\n")  # (no End If)
+    assert any("Cmd.gpl" in h and " error GPL" in h for h in got)
+    got, files = step("Cmd.gpl", "        If True Then\n", "        Reply = 1\n")
+    got, files = step("Class_command.gpl", "                ss = \"\"\n", "                ss = \"?\"\n")
+    assert files == {"Class_command.gpl"}  # (a top-level class: checked as one)
+    const = '    Public Const EcUnknown As String = "-2805 *Unknown command*"'
+    got, files = step("Globals.gpl", const, const.replace("command*", "command 2*"))
+    assert files == {"Globals.gpl"} and declared[0]  # (not inside a procedure: collected again)
+    # a parameter's type changed: the files that name the procedure are checked again, and only they
+    sub = "    Public Sub Backspace(ByVal index As Integer, ByRef msg As String)"
+    got, files = step("Functions.gpl", sub, sub.replace("index As Integer", "index As Double"))
+    assert files == {"Functions.gpl", "Main.gpl"}
+    got, files = step("Functions.gpl", "index As Double", "index As Integer")
+    assert files == {"Functions.gpl", "Main.gpl"}
+    # a declaration other files use, renamed: they are checked again (and now take it for a name of
+    # the protected code)
+    got, files = step("Globals.gpl", "Public Const EcUnknown As", "Public Const EcUnknown2 As")
+    assert files == everything and any("Class_command.gpl" in h and "EcUnknown" in h for h in got)
+    got, files = step("Globals.gpl", "Public Const EcUnknown2 As", "Public Const EcUnknown As")
+    assert files == everything and not any("Class_command.gpl" in h for h in got)
+    # a name of the protected code used for the first time: which file reports it depends on the order
+    got, files = step("Cmd.gpl", anchor, anchor + "        AC_ErrorMessage()\n")
+    assert files == everything
+    got, files = step("Cmd.gpl", "        AC_ErrorMessage()\n", "")
+    assert files == everything  # Cmd.gpl's last check met a stub: the order matters again
+    got, files = step("Cmd.gpl", "        ii = 70\n", "        ii = 10\n")
+    assert members == ["Cmd_Version"]

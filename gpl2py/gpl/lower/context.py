@@ -78,7 +78,9 @@ class ProjectNames:
         return self.overload_py.get(p) or py_ident(p.name)
 
     @classmethod
-    def build(cls, model: Model) -> ProjectNames:
+    def build(cls, model: Model, dynamic_members: bool | None = None) -> ProjectNames:
+        """The names of ``model``'s project; ``dynamic_members``, when the caller knows it (the
+        language server's warm analysis, semantics/warm.py), saves walking every expression."""
         names = cls()
         names.runtime = runtime_names(builtin_names())
         taken: set[str] = set()
@@ -96,7 +98,8 @@ class ProjectNames:
                 if isinstance(m, OverloadSet):
                     names._name_overloads(m, taken)
         names.taken = taken
-        names.dynamic_members = any(isinstance(i, DYNAMIC_MEMBERS) for i in model.info.values())
+        names.dynamic_members = dynamic_members if dynamic_members is not None else any(
+            isinstance(i, DYNAMIC_MEMBERS) for i in model.info.values())
         # the package's namespace: its modules and stub modules never take a name a module
         # imports from the runtime or one the package defines (docs/security.md, "Names")
         package = Scope(taken | set(names.runtime) | set(PACKAGE_NAMES) | {"sys"})

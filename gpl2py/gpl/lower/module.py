@@ -11,7 +11,7 @@ from __future__ import annotations
 import os
 from typing import NamedTuple
 
-from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.diagnostics import Diagnostic, DiagnosticSink
 from gpl2py.gpl.lower.classes import delegate_line, field_value, lower_class, register_line, register_lines
 from gpl2py.gpl.lower.context import ModuleContext, ProjectNames
 from gpl2py.pywriter.emit import Writer
@@ -51,8 +51,18 @@ def _literal_value(e: A.Expr | None) -> bool:
         isinstance(e, A.Unary) and e.op == "-" and isinstance(e.operand, (A.IntegerLiteral, A.RealLiteral)))
 
 
-def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink) -> LoweredModule:
-    """The text of the generated module and, per line, the GPL line it came from."""
+def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink, *,
+                 text: bool = True, reuse: dict[A.Stmt, Lowered] | None = None) -> LoweredModule:
+    """The text of the generated module and, per line, the GPL line it came from.  ``text=False``
+    (``gpl2py check``, the language server: the lowering's diagnostics only) stops once every
+    procedure and initializer is lowered, with no text: writing it out (PEP 8 line breaking, the
+    assembly) reports nothing and was a third of the lowering's time.
+
+    ``reuse`` (with ``text=False``: the language server, with no error reported): what lowering
+    each procedure and class declaration of the module reported the last time, by its node, which
+    a node lowered then is not lowered again for; it is left holding this module's.  What a
+    procedure's lowering reports (a GoTo it cannot translate, nesting Python cannot compile) is
+    about its own statements."""
     ctx = ModuleContext(model, names, mod, KeptErrors(sink))
     body = Writer()
     decl = mod.decl
@@ -89,16 +99,25 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
     procs: list[ProcSym] = []
     classes: list[ClassSym] = []
     defs = Writer()
+    before = dict(reuse) if reuse is not None else None
+    if reuse is not None:
+        reuse.clear()
     for m in members:
         sym = mod.members.get(getattr(m, "name", "").lower()) if hasattr(m, "name") else None
         if isinstance(m, A.ClassDecl) and isinstance(sym, ClassSym) and sym.decl is m:
-            defs.blank(2)
-            defs.extend(lower_class(ctx, sym, sink))
+            if not _reused(m, before, reuse, ctx, sink):
+                own = _Own(m, reuse, ctx, sink)
+                defs.blank(2)
+                defs.extend(lower_class(ctx, sym, own.sink))
+                own.done()
             classes.append(sym)
         elif isinstance(m, A.ProcDecl) and m in model.proc_of_decl:
             proc = model.proc_of_decl[m]  # (each overload of a name is a declaration of its own)
-            defs.blank(2)
-            defs.extend(lower_procedure(ctx, proc, None, sink, method=False))
+            if not _reused(m, before, reuse, ctx, sink):
+                own = _Own(m, reuse, ctx, sink)
+                defs.blank(2)
+                defs.extend(lower_procedure(ctx, proc, None, own.sink, method=False))
+                own.done()
             procs.append(proc)
     # _init: module variables and Shared fields, textual order
     init = Writer()
@@ -156,6 +175,8 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             defs.line("global " + ", ".join(sorted(init_low.globals)))
         defs.dedent()
         defs.extend(init)
+    if not text:
+        return LoweredModule("", [], frozenset(entries))
     # registrations
     reg_lines: list[str] = []
     for p in procs:
@@ -202,6 +223,41 @@ def lower_module(model: Model, names: ProjectNames, mod: ModuleSym, sink: Diagno
             out.line(line)
     text, lines = out.render()
     return LoweredModule(text, lines, frozenset(entries))
+
+
+class Lowered(NamedTuple):
+    """What lowering one declaration of a module reported, and the Static locals it declared."""
+
+    diags: list[Diagnostic]
+    statics: list[tuple[str, str]]
+
+
+def _reused(node: A.Stmt, before: dict[A.Stmt, Lowered] | None, reuse: dict[A.Stmt, Lowered] | None,
+            ctx: ModuleContext, sink: DiagnosticSink) -> bool:
+    """Replay the last lowering of ``node`` if there was one (``lower_module``'s ``reuse``)."""
+    kept = before.get(node) if before is not None else None
+    if kept is None or reuse is None:
+        return False
+    sink.extend(kept.diags)
+    ctx.statics.extend(kept.statics)
+    reuse[node] = kept
+    return True
+
+
+class _Own:
+    """Lowering one declaration: with ``reuse``, its diagnostics and Static locals are noted."""
+
+    def __init__(self, node: A.Stmt, reuse: dict[A.Stmt, Lowered] | None, ctx: ModuleContext,
+                 sink: DiagnosticSink) -> None:
+        self.node, self.reuse, self.ctx, self.outer = node, reuse, ctx, sink
+        self.sink = DiagnosticSink() if reuse is not None else sink  # (unfiltered, replayed below)
+        self.statics = len(ctx.statics)
+
+    def done(self) -> None:
+        if self.reuse is not None:
+            diags = list(self.sink)
+            self.outer.extend(diags)
+            self.reuse[self.node] = Lowered(diags, self.ctx.statics[self.statics:])
 
 
 class LoweredModule(NamedTuple):

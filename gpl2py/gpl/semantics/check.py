@@ -138,7 +138,12 @@ class InfoTable:
         for expr in self._nodes:
             if expr._info is not None:
                 yield expr, expr._info  # type: ignore[misc]
-        stack = list(self._trees)
+        yield from self.walk(*self._trees)
+
+    @staticmethod
+    def walk(*trees: A.Node) -> Iterator[tuple[A.Expr, Info]]:
+        """The Info of every expression of ``trees`` that has one."""
+        stack = list(trees)
         while stack:  # (a loop, not recursion: an operator chain is as deep as it is long)
             node = stack.pop()
             info = getattr(node, "_info", None)  # (only expressions have one)
@@ -148,6 +153,28 @@ class InfoTable:
 
     def values(self) -> Iterator[Info]:
         return (info for _, info in self.items())
+
+    # -- what semantics/warm.py needs to check one file again --------------------------------------
+
+    def replace_tree(self, old: A.Node, new: A.Node) -> None:
+        """``new`` (a file parsed again) in place of ``old``."""
+        self._trees[next(i for i, tree in enumerate(self._trees) if tree is old)] = new
+
+    def node_count(self) -> int:
+        return len(self._nodes)
+
+    def nodes(self) -> list[A.Expr]:
+        """The nodes given to :meth:`add_node`."""
+        return self._nodes
+
+    def nodes_since(self, count: int) -> list[A.Expr]:
+        """The nodes given to :meth:`add_node` since there were ``count``."""
+        return self._nodes[count:]
+
+    def drop_nodes(self, ids: set[int]) -> None:
+        """Forget the nodes (given by their ``id``) of a part of the project checked again."""
+        if ids:
+            self._nodes = [n for n in self._nodes if id(n) not in ids]
 
 
 @dataclass
@@ -288,6 +315,17 @@ class Checker:
         # the ParamInfos of each parameter list, made once (``_params``)
         self._param_infos: dict[tuple[int, int], tuple[Sequence[VarSym | Param], tuple[ParamInfo, ...]]] = {}
 
+    def use_sink(self, sink: DiagnosticSink) -> None:
+        """Report to ``sink`` from now on (semantics/warm.py: each part's diagnostics on their own)."""
+        self.sink = self.r.sink = self.stubs.sink = sink
+
+    def forget_shared_infos(self) -> None:
+        """Drop the Infos shared by variables and parameter lists (semantics/warm.py, before
+        checking a file again: its old locals would stay alive in the table, and a declaration
+        whose type changed would keep its old Info)."""
+        self._var_infos.clear()
+        self._param_infos.clear()
+
     def _params(self, params: Sequence[VarSym | Param], stop: int | None = None) -> tuple[ParamInfo, ...]:
         """The passing facts of ``params[:stop]``, made once per parameter list and shared by
         every call that passes it (one tuple per call was a twentieth of the analysis of dense
@@ -302,23 +340,62 @@ class Checker:
     # -- driver ----------------------------------------------------------------------------------
 
     def run(self, units: list[A.SourceUnit], start: str | None, start_span: Span | None = None) -> Model:
+        self.collect(units)
+        for mod, members in self.items():
+            self.check_item(mod, members)
+        self.finish(start, start_span)
+        return self.model
+
+    # The three phases of :meth:`run`, which ``semantics/warm.py`` also calls one by one to check
+    # again only what an edit changed.
+
+    def collect(self, units: list[A.SourceUnit]) -> None:
+        """Declare everything ``units`` declare (the symbol tables, every declared type resolved)."""
         for unit in units:
             self.model.info.add_tree(unit)
         col = Collector(self.r, self.sink)
         col.collect_units(units)
         col.resolve_pending()
         col.check_overloads()
+
+    def items(self) -> list[tuple[ModuleSym, list[object]]]:
+        """What is checked, in order, each on its own: every module's members, and each top-level
+        class alone (the synthetic module holding them gathers classes of several files)."""
         project = self.model.project
+        out: list[tuple[ModuleSym, list[object]]] = []
         for mod in list(project.modules.values()):
+            if mod is project.top:
+                out.extend((mod, [m]) for m in mod.members.values())
+            else:
+                out.append((mod, list(mod.members.values())))
+        return out
+
+    def check_item(self, mod: ModuleSym, members: list[object]) -> None:
+        """Check the bodies and initializers of ``members`` of ``mod``."""
+        if mod is self.model.project.top:
+            self.check_members(mod, members)
+        else:
             with contained(self.sink, mod.span):  # a bug met in one module: the others are checked
                 self._module(mod)
+
+    def check_members(self, mod: ModuleSym, members: list[object]) -> None:
+        """Check ``members`` of ``mod`` (semantics/warm.py checks one member at a time: a bug met in
+        one then leaves the module's other members checked)."""
+        with contained(self.sink, mod.span):
+            self._container(mod, None, members)
+
+    def _module(self, mod: ModuleSym) -> None:
+        self._container(mod, None, list(mod.members.values()))
+
+    def finish(self, start: str | None, start_span: Span | None) -> None:
+        """What needs the whole checked project: the Consts' values and the start procedure."""
+        project = self.model.project
         self.model.const_values = fold_constants(project, self.model.info, self.sink)
         if start:
             self._start(start, start_span)
         else:
             self._assume_main()
         self.model.errors_reported = self.sink.found_errors()
-        return self.model
 
     def _assume_main(self) -> None:
         """No ProjectStart: the single Public parameterless ``Sub Main`` starts the project (a
@@ -357,9 +434,6 @@ class Checker:
         if not proc.public:
             self.sink.report(M.START_NOT_PUBLIC, proc.span, name=start)
         self.model.start = proc
-
-    def _module(self, mod: ModuleSym) -> None:
-        self._container(mod, None, list(mod.members.values()))
 
     def _container(self, mod: ModuleSym, cls: ClassSym | None, members: list[object]) -> None:
         for m in members:

@@ -72,6 +72,9 @@ class StubTable:
     # Who implements a stub, if anyone: "the stand-in vendorlib.py" (a --stubs file or one gpl2py
     # ships); None when the generated stub raises -204.  The warning says which.
     provider: Callable[[Stub], str | None] | None = None
+    # how many times a stub was looked up or made: whether checking a part of the project touched
+    # the table, which then depends on the order everything was checked in (semantics/warm.py)
+    uses: int = 0
 
     def _consequence(self, stub: Stub) -> str:
         """What becomes of the stub, as the warning (or, with ``strict``, the error) says it."""
@@ -89,6 +92,7 @@ class StubTable:
 
     def protected_name(self, name: str, span: Span | None, module: str | None = None) -> Stub:
         """The stub for ``name`` (or ``module.name``) from protected code."""
+        self.uses += 1
         if module is not None:
             module = self.modules.setdefault(module.lower(), module)
         full = f"{module}.{name}" if module else name
@@ -102,6 +106,7 @@ class StubTable:
 
     def builtin_member(self, owner: str, member: str, span: Span | None, shared: bool) -> Stub:
         """The stub for a member that the runtime's built-in class ``owner`` lacks."""
+        self.uses += 1
         full = f"{owner}.{member}"
         key = full.lower()
         stub = self.stubs.get(key)

@@ -141,10 +141,10 @@ def index_of(state: ProjectState) -> Index | None:
         return None
     project, units, model = kept
     cached = state.memo.get("lsp-index")
-    if isinstance(cached, Index) and cached.model is model:
-        return cached
+    if isinstance(cached, tuple) and cached[0] is kept:  # (each check leaves a new tuple: the
+        return cached[1]                                # model is kept from one check to the next)
     index = _build(units, model, state.last.files if state.last is not None else {})
-    state.memo["lsp-index"] = index
+    state.memo["lsp-index"] = (kept, index)
     return index
 
 
