@@ -115,15 +115,20 @@ class Sweep:
 
     def run(self, *, client: Any = None, scheduler: str | None = None, workers: int | None = None,
             output: str | Path | None = None, resume: bool = False,
-            progress: Callable[[int, int], None] | None = None) -> Any:
+            progress: Callable[[int, int], None] | None = None, per_task: int | None = None) -> Any:
         """Run every set on Dask and return the table (a pandas DataFrame, in the sets' order).
 
         ``client`` (a ``distributed.Client``) or ``scheduler`` (an address) is an existing
         cluster; without either a local cluster of ``workers`` processes (default: one per core)
         is started and closed here.  ``output`` is a Parquet file written as the rows arrive
-        (``gpl2py.sweep.results``); ``resume`` skips the sets already in it.
+        (``gpl2py.sweep.results``); ``resume`` skips the sets already in it.  ``per_task`` is the
+        most sets one Dask task runs (default ``gpl2py.sweep.cluster.MOST``; fewer towards the
+        end of the sweep); each run's row still arrives as the run ends.
         """
-        from gpl2py.sweep.cluster import Client, local_cluster, on_dask
+        from gpl2py.sweep.cluster import MOST, Client, local_cluster, on_dask
+
+        if per_task is not None and not (isinstance(per_task, int) and per_task >= 1):
+            raise ValueError(f"per_task must be a whole number >= 1, not {per_task!r}")
 
         results, todo = self._open(output, resume)
         owned: list[Any] = []
@@ -135,7 +140,8 @@ class Sweep:
                 else:
                     client = Client(scheduler)
                 owned.insert(0, client)
-            for row in on_dask(client, self.shipment, self.setup, todo, self.metrics, self.timeout, progress):
+            for row in on_dask(client, self.shipment, self.setup, todo, self.metrics, self.timeout, progress,
+                               per_task or MOST):
                 results.add(row)
         finally:
             results.flush()
