@@ -68,6 +68,7 @@ class Sweep:
             raise ValueError(f"timeout must be a number of controller seconds > 0, not {timeout!r}")
         self.timeout = timeout
         self.setup: Setup | SetupSource | None = _setup_of(setup)
+        _check_language(project)
         self.built: Built = _translate(project, cache_dir, stubs, sink if sink is not None else DiagnosticSink())
         self.shipment: Shipment = pack(self.built.package_dir, self.built.project.name,
                                        project_files(project, self.built.project))
@@ -212,6 +213,18 @@ def _setup_of(setup: Setup | str | Path | None) -> Setup | SetupSource | None:
     except SyntaxError as exc:
         raise SweepError(f"setup {path}:{exc.lineno}: {exc.msg}") from None
     return source
+
+
+def _check_language(project: str | Path) -> None:
+    """GPL and V+ projects run on the simulation (``gplrt.sim``), as a sweep's runs do; a TMscript
+    project has its own runner (``gplrt.tm.run_project``, not yet on the simulation's virtual
+    clock), so a sweep of one is refused before any run rather than giving a row of errors each."""
+    from gpl2py.languages import frontend_for
+
+    frontend = frontend_for(project)
+    if frontend.name == "tmscript":
+        raise SweepError(f"{project}: a {frontend.title} project cannot be swept yet (its runtime does not run "
+                         "on the simulation that a sweep's runs use); GPL and V+ projects can")
 
 
 def _translate(project: str | Path, cache_dir: str | Path | None, stubs: str | Path | None,
