@@ -45,10 +45,16 @@ THROW_LINE = MAIN.splitlines().index("            Throw exc") + 1
 SETUP = '''\
 import os
 import signal
+import time
 
 
 def setup(sim, params, cell):
     mode = params["mode"]
+    if "log" in params:  # which Dask task ran this set (each time it was tried), one line a try
+        from distributed import get_worker
+
+        with open(params["log"], "a") as log:
+            log.write(f"{params['n']} {get_worker().get_current_task()}\\n")
     if mode == "fail":
         sim.io.set_input(10001, True)
     elif mode == "stall":
@@ -61,8 +67,12 @@ def setup(sim, params, cell):
         cell.module("Conveyor")  # raises inside gpl2py.notebook: the row names this line
     elif mode == "kill" and not os.path.exists(params["marker"]):
         open(params["marker"], "w").close()
+        if "log" in params:
+            time.sleep(1.0)  # the rows of the sets before it leave the worker first (they are reported)
         os.kill(os.getpid(), signal.SIGKILL)  # the worker dies mid-run, the first time only
     elif mode == "killall":
+        if "log" in params:
+            time.sleep(1.0)  # the rows of the sets before it leave the worker first (they are reported)
         os.kill(os.getpid(), signal.SIGKILL)  # every worker that tries it dies
     cell.module("Main").parts = params["parts"]
 '''

@@ -68,6 +68,7 @@ class Sweep:
             raise ValueError(f"timeout must be a number of controller seconds > 0, not {timeout!r}")
         self.timeout = timeout
         self.setup: Setup | SetupSource | None = _setup_of(setup)
+        _check_language(project)
         self.built: Built = _translate(project, cache_dir, stubs, sink if sink is not None else DiagnosticSink())
         self.shipment: Shipment = pack(self.built.package_dir, self.built.project.name,
                                        project_files(project, self.built.project))
@@ -115,15 +116,20 @@ class Sweep:
 
     def run(self, *, client: Any = None, scheduler: str | None = None, workers: int | None = None,
             output: str | Path | None = None, resume: bool = False,
-            progress: Callable[[int, int], None] | None = None) -> Any:
+            progress: Callable[[int, int], None] | None = None, per_task: int | None = None) -> Any:
         """Run every set on Dask and return the table (a pandas DataFrame, in the sets' order).
 
         ``client`` (a ``distributed.Client``) or ``scheduler`` (an address) is an existing
         cluster; without either a local cluster of ``workers`` processes (default: one per core)
         is started and closed here.  ``output`` is a Parquet file written as the rows arrive
-        (``gpl2py.sweep.results``); ``resume`` skips the sets already in it.
+        (``gpl2py.sweep.results``); ``resume`` skips the sets already in it.  ``per_task`` is the
+        most sets one Dask task runs (default ``gpl2py.sweep.cluster.MOST``; fewer towards the
+        end of the sweep); each run's row still arrives as the run ends.
         """
-        from gpl2py.sweep.cluster import Client, local_cluster, on_dask
+        from gpl2py.sweep.cluster import MOST, Client, local_cluster, on_dask
+
+        if per_task is not None and not (isinstance(per_task, int) and per_task >= 1):
+            raise ValueError(f"per_task must be a whole number >= 1, not {per_task!r}")
 
         results, todo = self._open(output, resume)
         owned: list[Any] = []
@@ -135,7 +141,8 @@ class Sweep:
                 else:
                     client = Client(scheduler)
                 owned.insert(0, client)
-            for row in on_dask(client, self.shipment, self.setup, todo, self.metrics, self.timeout, progress):
+            for row in on_dask(client, self.shipment, self.setup, todo, self.metrics, self.timeout, progress,
+                               per_task or MOST):
                 results.add(row)
         finally:
             results.flush()
@@ -206,6 +213,18 @@ def _setup_of(setup: Setup | str | Path | None) -> Setup | SetupSource | None:
     except SyntaxError as exc:
         raise SweepError(f"setup {path}:{exc.lineno}: {exc.msg}") from None
     return source
+
+
+def _check_language(project: str | Path) -> None:
+    """GPL and V+ projects run on the simulation (``gplrt.sim``), as a sweep's runs do; a TMscript
+    project has its own runner (``gplrt.tm.run_project``, not yet on the simulation's virtual
+    clock), so a sweep of one is refused before any run rather than giving a row of errors each."""
+    from gpl2py.languages import frontend_for
+
+    frontend = frontend_for(project)
+    if frontend.name == "tmscript":
+        raise SweepError(f"{project}: a {frontend.title} project cannot be swept yet (its runtime does not run "
+                         "on the simulation that a sweep's runs use); GPL and V+ projects can")
 
 
 def _translate(project: str | Path, cache_dir: str | Path | None, stubs: str | Path | None,

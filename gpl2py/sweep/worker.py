@@ -29,6 +29,7 @@ itself becomes the row's ``status`` and ``error_*`` columns.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import inspect
 import io
@@ -41,7 +42,7 @@ import zipfile
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import ModuleType
+from types import CodeType, ModuleType
 from typing import Any
 
 import numpy as np
@@ -64,13 +65,20 @@ class SetupSource:
     text: str
 
     def load(self) -> Setup:
+        """A fresh module of the file's code (compiled once per process), and its ``setup``."""
         module = ModuleType(f"_gpl2py_sweep_setup_{hashlib.sha256(self.text.encode()).hexdigest()[:12]}")
         module.__file__ = self.path
-        exec(compile(self.text, self.path, "exec"), module.__dict__)  # the user's own code (like --setup)
+        exec(_compiled(self.path, self.text), module.__dict__)  # the user's own code (like --setup)
         setup = getattr(module, "setup", None)
         if not callable(setup):
             raise AttributeError(f"{self.path} defines no setup(sim, params) function")
         return setup
+
+
+@functools.lru_cache(maxsize=8)
+def _compiled(path: str, text: str) -> CodeType:
+    """A setup file's code: compiled once, executed afresh for each run (``_start``)."""
+    return compile(text, path, "exec")
 
 
 @dataclass(frozen=True)

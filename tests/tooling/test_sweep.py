@@ -164,6 +164,44 @@ def test_a_project_with_errors_is_refused_before_any_run(tmp_path: Path) -> None
         Sweep(project, None, [{"a": 1}])
 
 
+VPLUS_CELL = """\
+.PROGRAM main()
+  n = 2
+  IF SIG(1001) THEN
+    n = 4
+  END
+  FOR i = 1 TO n
+    TYPE "part ", i
+    WAIT.EVENT , 0.5
+  END
+  TYPE "done"
+.END
+"""
+
+
+def _more_parts(sim: object, params: dict[str, object]) -> None:
+    sim.io.set_input(10001, params["many"])  # type: ignore[attr-defined]  # V+ input 1001 (gplrt.vplus.signals)
+
+
+def test_a_v_plus_project_is_swept_as_a_gpl_one(tmp_path: Path) -> None:
+    source = tmp_path / "cell.v2"
+    source.write_text(VPLUS_CELL)
+    sweep = Sweep(source, _more_parts, [{"many": False}, {"many": True}],
+                  metrics=[EndTime(), Count("parts", "^part "), EventTime("done_at", "^done")])
+    df = sweep.run_in_process()
+    assert list(df["status"]) == ["ok", "ok"]
+    assert list(df["parts"]) == [2, 4] and list(df["done_at"]) == [1.0, 2.0]
+
+
+def test_a_tmscript_project_is_refused_before_any_run(tmp_path: Path) -> None:
+    from gpl2py.sweep import SweepError
+
+    source = tmp_path / "cell.tms"
+    source.write_text('main\n{\n    Display("Green", "Yellow", "Result", "part")\n}\n')
+    with pytest.raises(SweepError, match="a TMscript project cannot be swept yet"):
+        Sweep(source, None, [{"a": 1}])
+
+
 def test_the_sample_measures_motion_and_its_conveyor_and_speed_change_the_cycle() -> None:
     sweep = Sweep.from_file(SAMPLES / "pick_and_place", SAMPLES / "sweep" / "params.toml",
                             SAMPLES / "sweep" / "setup.py")

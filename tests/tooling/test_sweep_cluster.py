@@ -172,3 +172,81 @@ def test_the_local_cluster_has_dasks_profiler_off_and_its_monitors_slower() -> N
         settings = c.run(lambda: (dask.config.get("distributed.worker.profile.enabled"),
                                   dask.config.get("distributed.worker.memory.monitor-interval")))
         assert list(settings.values()) == [(False, "1s")]
+
+
+def _tries(log: Path) -> dict[int, list[str]]:
+    """The Dask task that ran each set (by its ``n``), once per try, from the setup's log."""
+    tries: dict[int, list[str]] = {}
+    for line in log.read_text().splitlines():
+        n, key = line.split(" ", 1)
+        tries.setdefault(int(n), []).append(key)
+    return tries
+
+
+def test_a_task_runs_a_batch_of_sets_a_fault_stays_its_runs_row_and_a_killed_batch_reruns_only_the_unreported(
+        client: distributed.Client, tmp_path: Path) -> None:
+    project, setup = tiny_project(tmp_path)
+    log, marker = tmp_path / "tries.log", tmp_path / "killed-once"
+    modes = ["ok", "fail", "kill", "ok", "stall", "loop", "setup"] + ["ok"] * 18  # 25 sets: batches of 4, 3, ...
+    sets: list[dict[str, object]] = [{"mode": m, "n": n, "parts": 1, "log": str(log), "marker": str(marker)}
+                                     for n, m in enumerate(modes)]
+    seen: list[int] = []
+    df = _sweep(project, setup, sets, timeout=5.0).run(client=client, per_task=4,
+                                                       progress=lambda done, total: seen.append(done))
+
+    assert seen == list(range(1, 26))  # one row at a time, as each run ended
+    assert len(df) == 25 and list(df["run_id"]) == [run_id(p) for p in sets]  # none lost, none twice
+    assert list(df["status"][:7]) == ["ok", "error", "ok", "ok", "stalled", "timeout", "setup error"]
+    assert set(df["status"][7:]) == {"ok"}
+    tries = _tries(log)
+    first = tries[0][0]
+    assert [tries[n][-1] for n in range(4)] == [first] * 4  # the first four sets: one task, a batch
+    # Its worker died in set 2 (the kill): Dask ran the task again, which ran set 2 and set 3
+    # only; sets 0 and 1 had reported their rows before and ran once.
+    assert tries[0] == tries[1] == [first] and tries[2] == [first, first] and tries[3] == [first]
+    assert len(set(tries[4])) == 1 and len(tries[4]) == 2  # the stall: run_one makes it again without the time-out
+    assert all(len(tries[n]) == 1 for n in range(5, 25))
+    assert len({key for keys in tries.values() for key in keys}) < 25  # fewer tasks than runs
+
+
+def test_a_batch_that_kills_every_worker_loses_only_the_run_that_kills(client: distributed.Client,
+                                                                       tmp_path: Path) -> None:
+    project, setup = tiny_project(tmp_path)
+    log = tmp_path / "tries.log"
+    modes = ["ok", "killall", "ok", "ok"] + ["ok"] * 21
+    sets: list[dict[str, object]] = [{"mode": m, "n": n, "parts": 1, "log": str(log)} for n, m in enumerate(modes)]
+
+    def allow(failures: int, saturation: float) -> None:
+        def set_up(dask_scheduler: distributed.Scheduler) -> None:
+            dask_scheduler.allowed_failures = failures
+            dask_scheduler.WORKER_SATURATION = saturation
+
+        client.run_on_scheduler(set_up)
+
+    # No retry: the batch is tried once, then its unreported sets one task each.  One task at a
+    # time on each worker: Dask counts a worker's death against every task it holds, also one
+    # waiting behind the run that killed it, and one death would make that one lost too.
+    allow(0, 1.0)
+    try:
+        df = _sweep(project, setup, sets).run(client=client, per_task=4)
+    finally:
+        allow(3, 1.1)
+    assert list(df["run_id"]) == [run_id(p) for p in sets]
+    assert list(df["status"]) == ["ok", "lost"] + ["ok"] * 23
+    assert df.iloc[1]["error_message"].startswith("KilledWorker")
+    tries = _tries(log)
+    assert len(set(tries[1])) == 2 == len(tries[1])  # once in the batch, once on its own
+    assert tries[0] == [tries[1][0]]  # the batch's first set ran once, its row reported before the kill
+
+
+def test_batches_keep_the_sets_order_and_shrink_to_single_runs_at_the_end() -> None:
+    from gpl2py.sweep.cluster import batches
+
+    sets: list[dict[str, object]] = [{"n": n} for n in range(200)]
+    cut = batches(sets, slots=2, most=8)  # type: ignore[arg-type]
+    assert [p for batch in cut for p in batch] == sets
+    sizes = [len(b) for b in cut]
+    assert sizes[0] == 8 and max(sizes) == 8 and sizes == sorted(sizes, reverse=True)
+    assert sizes[-8:] == [1] * 8  # the workers finish together: the last tasks are single runs
+    assert len(cut) < 50  # a quarter of the tasks of one run each
+    assert [len(b) for b in batches(sets[:6], slots=2)] == [1] * 6  # a small sweep: one run a task
