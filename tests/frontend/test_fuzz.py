@@ -34,9 +34,11 @@ The properties:
   path itself, GPL1400-GPL1402, have no file to point at).
 
 At least 5,000 inputs per run (``GPL2PY_FUZZ_INPUTS`` for more); the seed is fixed so CI is
-repeatable (``GPL2PY_FUZZ_SEED`` to explore others; a failure names its seed and input number and
-keeps the failing project).  It runs in batches sharing one temporary folder each, and prints the
-slowest input's time (CPU and wall; never asserted: the machine may be shared).
+repeatable (``GPL2PY_FUZZ_SEED`` to explore others; a failure names its seed, part and input number
+and keeps the failing project).  The inputs come in ``FUZZ_PARTS`` tests of their own, each drawing
+from its own random stream (the seed and the part's number), so that a parallel run (``pytest -n``)
+spreads them over the cores.  Each part runs in batches sharing one temporary folder each, and
+prints the slowest input's time (CPU and wall; never asserted: the machine may be shared).
 """
 
 from __future__ import annotations
@@ -283,6 +285,7 @@ def test_random_text_never_crashes() -> None:
 
 FUZZ_INPUTS = int(os.environ.get("GPL2PY_FUZZ_INPUTS", "5000"))
 FUZZ_SEED = os.environ.get("GPL2PY_FUZZ_SEED", "12")
+FUZZ_PARTS = 10  # tests the inputs are shared among (each with its own random stream)
 BATCH = 250  # inputs sharing one temporary folder (and one check that nothing was written outside it)
 
 #: Names the generated Python must never confuse with a GPL name: Python keywords that are not GPL
@@ -798,23 +801,25 @@ def run_input(item: FuzzProject, root: Path) -> None:
 IGNORED_CODES: set[str] = set()
 
 
-def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathFactory,
+@pytest.mark.parametrize("part", range(FUZZ_PARTS))
+def test_pipeline_fuzz_seeded_from_the_corpus(part: int, tmp_path_factory: pytest.TempPathFactory,
                                               monkeypatch: pytest.MonkeyPatch) -> None:
     seeds, whole = corpus_seeds()
     seed = random.randrange(2**32) if FUZZ_SEED == "random" else int(FUZZ_SEED)
-    rng = random.Random(seed)
+    rng = random.Random(f"{seed}/{part}")  # a str seed is hashed with SHA-512: the same stream everywhere
+    inputs = FUZZ_INPUTS // FUZZ_PARTS + (part < FUZZ_INPUTS % FUZZ_PARTS)
     mutator = Mutator(rng, seeds, clean_seeds(seeds, tmp_path_factory.mktemp("seeds")))
     monkeypatch.setenv("GPL2PY_TRACEBACK", "1")  # a bug is an exception here, not a GPL9000
     monkeypatch.delenv("GPL2PY_MAX_SOURCE_MB", raising=False)
     fed = 0
     translated = 0
     slowest: tuple[tuple[float, float], int, list[str]] = ((0.0, 0.0), -1, [])
-    while fed < FUZZ_INPUTS:
+    while fed < inputs:
         batch = tmp_path_factory.mktemp("fuzz")
         written: list[str] = []
         _watch.append(written)
         try:
-            for _ in range(min(BATCH, FUZZ_INPUTS - fed)):
+            for _ in range(min(BATCH, inputs - fed)):
                 item = mutator.project(fed, whole)
                 root = batch / f"i{fed}"
                 root.mkdir()
@@ -822,9 +827,9 @@ def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathF
                 try:
                     run_input(item, root)
                 except BaseException as exc:
-                    kept = Path(tempfile.mkdtemp(prefix=f"gpl2py-fuzz-{seed}-{fed}-"))
+                    kept = Path(tempfile.mkdtemp(prefix=f"gpl2py-fuzz-{seed}-{part}-{fed}-"))
                     shutil.copytree(root, kept, dirs_exist_ok=True, symlinks=True)
-                    raise AssertionError(f"fuzz input {fed} (GPL2PY_FUZZ_SEED={seed}, mutations {item.what}) "
+                    raise AssertionError(f"fuzz input {fed} of part {part} (GPL2PY_FUZZ_SEED={seed}, mutations {item.what}) "
                                          f"failed; the project is kept in {kept / item.folder!r}: "
                                          f"{type(exc).__name__}: {exc}") from exc
                 # (reported, never asserted: the machine is shared; CPU time says what the input cost)
@@ -837,10 +842,10 @@ def test_pipeline_fuzz_seeded_from_the_corpus(tmp_path_factory: pytest.TempPathF
         finally:
             _watch.pop()
         outside = sorted({p for p in written if not Path(p).resolve().is_relative_to(batch.resolve())})
-        assert outside == [], f"written outside the temporary folder (seed {seed}): {outside[:10]}"
-    print(f"pipeline fuzz: {fed} inputs (seed {seed}), {translated} translated without errors; "
+        assert outside == [], f"written outside the temporary folder (seed {seed}, part {part}): {outside[:10]}"
+    print(f"pipeline fuzz, part {part}: {fed} inputs (seed {seed}), {translated} translated without errors; "
           f"{len(IGNORED_CODES)} error codes translated ignored ({', '.join(sorted(IGNORED_CODES))}); "
           f"slowest input {slowest[1]}: {slowest[0][0]:.2f} s of CPU, {slowest[0][1]:.2f} s wall "
           f"({', '.join(slowest[2])})")
-    assert fed >= 5000 or fed == FUZZ_INPUTS
+    assert fed == inputs
     assert translated > 0  # some inputs reached the end of the pipeline
