@@ -119,7 +119,7 @@ def test_breaking_a_long_generated_line_keeps_its_tokens_small() -> None:
 
 #: The one-statement shapes of issue 20 that held an object per operand or name, and their size
 #: here (MB: 25,000 terms; 26,000 names).  ``1+1+...`` is a Chain (28x); the 30x bound is still
-#: open for the Dim (docs/security.md, "One long token, one long statement").
+#: open for the Dim (54x, was 113x: docs/security.md, "One long token, one long statement").
 LONG_STATEMENTS = {"sum": 0.05, "dim": 0.2}
 #: ``gpl2py PROJECT -o OUT`` on ``1+1+...``: 330x before the line's tokens went into arrays, ~185x
 #: after; 28x as a Chain, with the generated line tokenized step by step
@@ -144,10 +144,23 @@ def test_a_long_sum_breaks_its_generated_line_in_compact_arrays(tmp_path: Path) 
     assert ratio <= SUM_GUARD, f"sum: peak {ratio:.1f}x the source"
 
 
+#: ``gpl2py check`` of ``Dim v0, v1, ...``: 113x while the lowering made sets of every local's name
+#: and the analysis a dict entry and a record per declarator; 54x without them
+DIM_GUARD = 60.0
+
+
+def test_a_long_dim_makes_no_table_of_its_names_beside_its_symbols(tmp_path: Path) -> None:
+    """A Dim of 26,000 names nothing uses: the lowering asks about a local's Python name instead
+    of making sets of them all, the analysis finds a declarator's variable by its name, keeps no
+    record for a name declared first in the procedure's own block, and a VarSym is 96 bytes."""
+    ratio = _traced_check("dim", tmp_path)
+    assert ratio <= DIM_GUARD, f"dim: peak {ratio:.1f}x the source"
+
+
 @pytest.mark.parametrize("shape", [
     "sum",  # a Chain: operators in a byte each, literal operands as values (was 186x the source)
     pytest.param("dim", marks=pytest.mark.xfail(strict=True, reason="open (issue 20, item 3): a Dim "
-                                                "holds a declarator and a VarSym per name (114x)")),
+                                                "holds a declarator and a VarSym per name (54x; was 114x)")),
 ])
 def test_one_long_statement_takes_at_most_30_times_the_source(shape: str, tmp_path: Path) -> None:
     ratio = _traced_check(shape, tmp_path)

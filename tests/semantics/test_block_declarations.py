@@ -84,10 +84,12 @@ def test_one_name_in_two_sibling_blocks_with_one_type_is_one_variable(tmp_path: 
         Console.WriteLine(CStr(t) & buf(0))""")
     model, sink = analyze_text(tmp_path, src)
     assert [d.header() for d in sink] == []
-    decl = model.project.modules["main"].members["main"].decl  # type: ignore[attr-defined]
+    proc = model.project.modules["main"].members["main"]
     by_name: dict[str, set[int]] = {}
-    for d in _declarators(decl):
-        by_name.setdefault(d.name.lower(), set()).add(id(model.local_of[d]))
+    for d in _declarators(proc.decl):  # type: ignore[attr-defined]
+        v = model.local_of(d, proc)  # type: ignore[arg-type]
+        assert v is not None, d.name
+        by_name.setdefault(d.name.lower(), set()).add(id(v))
     assert {k: len(v) for k, v in by_name.items()} == {"n": 1, "t": 1, "buf": 1}
 
 

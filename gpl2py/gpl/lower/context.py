@@ -12,7 +12,7 @@ rules for single names are in ``lower/names.py``.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import AbstractSet, Any
 
 from gpl2py.gpl.lower.names import (
     PACKAGE_NAMES,
@@ -41,10 +41,12 @@ class Scope:
     name and the same input always gives the same names (claims happen in source order)."""
 
     taken: set[str] = field(default_factory=set)
+    #: names bound already, read only: looked in as well as ``taken``, not copied into it
+    outer: AbstractSet[str] = frozenset()
 
     def claim(self, preferred: str) -> str:
         name, n = preferred, 1
-        while name in self.taken:
+        while name in self.taken or name in self.outer:
             n += 1
             name = f"{preferred}_{n}"
         self.taken.add(name)
@@ -62,7 +64,7 @@ def builtin_names() -> frozenset[str]:
 @dataclass
 class ProjectNames:
     module_py: dict[ModuleSym, str] = field(default_factory=dict)
-    taken: set[str] = field(default_factory=set)
+    taken: set[str] = field(default_factory=set)  # the runtime names a project name hides (alias)
     # stub modules (Module.Name of a module only protected code declares): lower name -> file
     stub_module_py: dict[str, str] = field(default_factory=dict)
     # Some expression reads a member of a value of unknown type (a stub's result): classes then
@@ -88,21 +90,31 @@ class ProjectNames:
         for mod in [*model.project.module_list, *([top] if top is not None else [])]:
             for m in mod.members.values():
                 taken.add(py_ident(m.name))
-        for p in model.project.procs:
-            taken.update(py_ident(v.name) for v in p.locals.values())
         for c in model.project.classes:
             taken.update(py_ident(m.name) for m in c.members.values())
         tables = [mod.members for mod in model.project.module_list] + [c.members for c in model.project.classes]
+        # a local's name is asked about only as an overload's, a module's or a runtime name: the
+        # others stay out of the set (a Dim of 26,000 names made it as large: docs/security.md)
+        wanted = {w for table in tables for m in table.values() if isinstance(m, OverloadSet)
+                  for w in _overload_wanted(m)}
+        stubs = model.stubs
+        bases = {"_top_classes", *(module_base(mod.name) for mod in model.project.module_list),
+                 *(module_base(spelled) for spelled in (stubs.modules.values() if stubs is not None else ()))}
+        for p in model.project.procs:
+            taken.update(x for x in map(py_ident, (v.name for v in p.locals.values()))
+                         if x in names.runtime or _stem_in(x, "_mod", bases) or _stem_in(x, "_", wanted))
         for table in tables:
             for m in table.values():
                 if isinstance(m, OverloadSet):
                     names._name_overloads(m, taken)
-        names.taken = taken
+        # what ``alias`` asks: whether a runtime name is a project's too (not the project's names
+        # themselves, which a long Dim makes tens of thousands of: docs/security.md, "Input size")
+        names.taken = taken & names.runtime
         names.dynamic_members = dynamic_members if dynamic_members is not None else any(
             isinstance(i, DYNAMIC_MEMBERS) for i in model.info.values())
         # the package's namespace: its modules and stub modules never take a name a module
         # imports from the runtime or one the package defines (docs/security.md, "Names")
-        package = Scope(taken | set(names.runtime) | set(PACKAGE_NAMES) | {"sys"})
+        package = Scope(set(names.runtime) | set(PACKAGE_NAMES) | {"sys"}, taken)
         mods = list(model.project.module_list)
         if top is not None:
             mods.append(top)
@@ -111,7 +123,6 @@ class ProjectNames:
             name = _claim_module(package, base)
             names.module_py[mod] = name
             mod.py_name = name
-        stubs = model.stubs
         for key, spelled in sorted(stubs.modules.items()) if stubs is not None else ():
             names.stub_module_py[key] = _claim_module(package, module_base(spelled))
         if stubs is not None:
@@ -137,18 +148,32 @@ class ProjectNames:
     def _name_overloads(self, group: OverloadSet, taken: set[str]) -> None:
         """One Python name per overload (names.overload_names), none equal to another name of
         the project; the names become taken."""
-        wanted = overload_names(group.name, [[str(v.type) for v in p.params] for p in group.procs])
-        for p, name in zip(group.procs, wanted):
+        for p, name in zip(group.procs, _overload_wanted(group)):
             while name in taken:
                 name += "_"
             taken.add(name)
             self.overload_py[p] = name
 
 
+def _overload_wanted(group: OverloadSet) -> list[str]:
+    """The Python name each overload of ``group`` prefers (names.overload_names)."""
+    return overload_names(group.name, [[str(v.type) for v in p.params] for p in group.procs])
+
+
+def _stem_in(name: str, suffix: str, stems: AbstractSet[str]) -> bool:
+    """Whether ``name`` is one of ``stems`` followed by ``suffix`` none or more times (the names
+    ``_claim_module`` and ``_name_overloads`` try for a stem)."""
+    while name not in stems:
+        if not name.endswith(suffix):
+            return False
+        name = name[:-len(suffix)]
+    return True
+
+
 def _claim_module(package: Scope, base: str) -> str:
     """A module file name: ``base``, else ``base_mod``, ``base_mod_mod`` ... (unique in the package)."""
     name = base
-    while name in package.taken:
+    while name in package.taken or name in package.outer:
         name += "_mod"
     package.taken.add(name)
     return name

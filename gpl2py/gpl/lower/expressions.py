@@ -150,9 +150,6 @@ class ExprLowerer:
         self.int_checks: dict[str, str] = {}
         # the Python locals of the procedure: a global of this module spelled the same (a class
         # ``Station`` in ``Dim Station As New Station``) is reached as ``_this.Station``
-        self.local_py: frozenset[str] = frozenset(
-            py_ident(v.name) for v in proc.locals.values() if v.storage in ("local", "param")
-        ) if proc is not None else frozenset()
 
     # -- helpers -----------------------------------------------------------------------------------
 
@@ -243,10 +240,27 @@ class ExprLowerer:
         of some module; by default ``py_ident`` of its name), or ``_this.<ref>`` when ``root``
         belongs to this module and a local of the procedure has that Python name."""
         head = py_ident(getattr(root, "name", "")) if head is None else head
-        if self.ctx.owner_module(root) is self.ctx.mod and head in self.local_py:
+        if self.ctx.owner_module(root) is self.ctx.mod and self.is_local_py(head):
             self.ctx.needs_this = True
             return "_this." + ref
         return ref
+
+    def is_local_py(self, head: str) -> bool:
+        """Whether a local (or parameter) of the procedure has the Python name ``head``.  Asked of
+        the few names ``py_ident`` can have come from, not of a set of every local's Python name
+        (a ``Dim`` of 26,000 names made one per procedure lowered: docs/security.md, "Input size")."""
+        if self.proc is None:
+            return False
+        spellings = {head}
+        if head.startswith("_u_"):
+            spellings.add(head[2:])
+        if head.endswith("_"):
+            spellings.add(head[:-1])
+        for name in spellings:
+            v = self.proc.locals.get(name.lower())
+            if v is not None and v.storage in ("local", "param") and py_ident(v.name) == head:
+                return True
+        return False
 
     def module_var_ref(self, v: VarSym) -> str:
         """A module variable; ``_this.name`` when a local of the procedure hides it (§6.4)."""

@@ -192,9 +192,10 @@ class Model:
     start: ProcSym | None = None
     byref_temps: set[A.Expr] = field(default_factory=set)
     decl_new: dict[A.VarDeclarator, A.New] = field(default_factory=dict)
-    # every local declarator -> the variable it declares; a Dim repeated in another block of the
-    # procedure declares the same variable (_declare_locals), a rejected duplicate is absent
-    local_of: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
+    # a local declarator that declares an earlier declarator's variable -> that variable: a Dim
+    # repeated in another block of the procedure (_declare_locals).  The others are found by name
+    # (local_of): a dict entry per declarator was a tenth of a long Dim's memory (docs/security.md)
+    redeclared: dict[A.VarDeclarator, VarSym] = field(default_factory=dict)
     stubs: StubTable | None = None  # names defined in protected code / missing built-in members
     # errors were reported before lowering, kept or ignored (it runs then for --keep-going or
     # ignored errors only): an expression without a meaning is one of them, not a gap in gpl2py
@@ -205,6 +206,15 @@ class Model:
     def type_of(self, e: A.Expr) -> t.GplType:
         i = self.info.get(e)
         return i.type if i is not None else t.ERROR
+
+    def local_of(self, d: A.VarDeclarator, proc: ProcSym) -> VarSym | None:
+        """The variable local declarator ``d`` of ``proc`` declares: its own, the earlier one a
+        Dim in another block declares again, or None (a rejected duplicate, a name missing)."""
+        v = self.redeclared.get(d)
+        if v is not None:
+            return v
+        v = proc.locals.get(d.name.lower())
+        return v if v is not None and v.decl is d else None
 
 
 def _pinfo(params: Iterable[VarSym | Param]) -> tuple[ParamInfo, ...]:
@@ -280,6 +290,13 @@ class _LocalDecl:
         while prev is not None:
             yield prev
             prev = prev.earlier
+
+
+#: What a declaration finds as its earlier one when the name was declared first in the procedure's
+#: own block (a record each made a third of a long Dim's analysis peak: docs/security.md, "Input
+#: size").  Such a declaration contains every other, so each later one is a duplicate: the
+#: keyword that is not "Dim" says so to :meth:`Checker._redeclares`.
+_FIRST_IN_BODY = _LocalDecl(None, None, [], None)  # type: ignore[arg-type]
 
 
 class _Ctx:
@@ -520,17 +537,22 @@ class Checker:
                         typ = t.ArrayType(typ, len(d.bounds))
                     v = VarSym(d.name, d, typ, storage, owner=p, const=s.is_const, decl=d)
                     key = intern(d.name.lower())  # (one string per name, not one per local)
-                    here = _LocalDecl(v, s.keyword, chain, seen.get(key))
+                    earlier = seen.get(key)
+                    if earlier is None and key in p.locals and p.locals[key].decl is not None:
+                        earlier = _FIRST_IN_BODY  # (a name declared first in the body: no record)
+                    elif earlier is None and not outer and key not in p.locals:
+                        p.locals[key] = v  # any later declaration of it is a duplicate
+                        continue
+                    here = _LocalDecl(v, s.keyword, chain, earlier)
                     if key in p.locals:
                         prev = p.locals[key]
                         if self._redeclares(here):
-                            self.model.local_of[d] = prev
+                            self.model.redeclared[d] = prev
                         else:
                             self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
                                              line=prev.span.line if prev.span else 0)
                     else:
                         p.locals[key] = v
-                        self.model.local_of[d] = v
                     seen[key] = here
             elif isinstance(s, A.Label):
                 key = s.name.lower()
@@ -583,7 +605,7 @@ class Checker:
         assert p is not None
         if isinstance(s, A.VarDecl):
             for d in s.declarators:
-                v = self.model.local_of.get(d)
+                v = self.model.local_of(d, p)
                 if v is not None:
                     self._declarator_exprs(d, v, ctx)
         elif isinstance(s, A.Assign):

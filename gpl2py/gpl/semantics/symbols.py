@@ -16,7 +16,20 @@ from gpl2py.source import Span
 from gpl2py.gpl.syntax import ast as A
 
 
-@dataclass(eq=False, slots=True)
+#: VarSym's yes/no facts, one bit each of its ``_flags``
+_VAR_FLAGS = ("public", "shared", "const", "byref", "optional", "boxed", "assigned", "read")
+
+
+def _flag(bit: int) -> property:
+    def get(self: VarSym) -> bool:
+        return bool(self._flags & bit)
+
+    def set_(self: VarSym, value: bool) -> None:
+        self._flags = self._flags | bit if value else self._flags & ~bit
+
+    return property(get, set_)
+
+
 class VarSym:
     """A variable: local, Static local, parameter, module variable, class field or Const.
 
@@ -25,23 +38,46 @@ class VarSym:
     keeps it in a cell for the whole procedure, which makes ByRef true aliasing (§9.3).
     ``declared_at`` is the declaring node (or a span): :attr:`span` reads the node's span when
     asked, so a project's variables do not keep a Span object each (docs/security.md, "Input size").
+    The eight yes/no facts (``public`` ... ``read``) are bits of one integer, read and set like
+    attributes: a slot each made a VarSym 152 bytes, and a ``Dim`` of many names holds one per
+    name (96 bytes now).  Compared by identity, like every symbol.
     """
 
-    name: str
-    declared_at: A.Node | Span | None
-    type: t.GplType
-    storage: str
-    owner: object = None
-    public: bool = False
-    shared: bool = False
-    const: bool = False
-    decl: A.VarDeclarator | None = None
-    byref: bool = False
-    optional: bool = False
-    default: A.Expr | None = None
-    boxed: bool = False
-    assigned: bool = False
-    read: bool = False
+    __slots__ = ("name", "declared_at", "type", "storage", "owner", "decl", "default", "_flags")
+    #: What a VarSym says, as a dataclass's fields would (the language server's warm re-check
+    #: copies them from a fresh symbol onto the kept one: semantics/warm.py)
+    FIELDS = ("name", "declared_at", "type", "storage", "owner", "decl", "default", *_VAR_FLAGS)
+
+    def __init__(self, name: str, declared_at: A.Node | Span | None, type: t.GplType, storage: str,
+                 owner: object = None, public: bool = False, shared: bool = False, const: bool = False,
+                 decl: A.VarDeclarator | None = None, byref: bool = False, optional: bool = False,
+                 default: A.Expr | None = None, boxed: bool = False, assigned: bool = False,
+                 read: bool = False) -> None:
+        self.name = name
+        self.declared_at = declared_at
+        self.type = type
+        self.storage = storage
+        self.owner = owner
+        self.decl = decl
+        self.default = default
+        flags = 0
+        for bit, value in enumerate((public, shared, const, byref, optional, boxed, assigned, read)):
+            if value:
+                flags |= 1 << bit
+        self._flags = flags
+
+    public = _flag(1)
+    shared = _flag(2)
+    const = _flag(4)
+    byref = _flag(8)
+    optional = _flag(16)
+    boxed = _flag(32)
+    assigned = _flag(64)
+    read = _flag(128)
+
+    def __repr__(self) -> str:
+        flags = "".join(f", {f}=True" for i, f in enumerate(_VAR_FLAGS) if self._flags >> i & 1)
+        return f"VarSym(name={self.name!r}, type={self.type!r}, storage={self.storage!r}{flags})"
 
     @property
     def span(self) -> Span | None:

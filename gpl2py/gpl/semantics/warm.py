@@ -68,7 +68,7 @@ from gpl2py.gpl.syntax import ast as A
 from gpl2py.source import Span
 
 #: The Model's tables keyed by syntax nodes, which a member's check fills for its nodes.
-_NODE_TABLES = ("proc_of_decl", "class_of_decl", "delegate_of_decl", "catch_var", "decl_new", "local_of")
+_NODE_TABLES = ("proc_of_decl", "class_of_decl", "delegate_of_decl", "catch_var", "decl_new", "redeclared")
 #: Fields of symbols that link symbols (kept as they are: the kept structure equals the fresh one),
 #: or that the lowering fills in (``py_name``).
 _LINKS = frozenset({"owner", "params", "locals", "labels", "members", "ctors", "procs", "prop", "getter",
@@ -482,8 +482,10 @@ def _same_node(old: object, new: object) -> bool:
 
 @cache
 def _facts(kind: type) -> tuple[str, ...]:
-    """The fields of a symbol class that :func:`_transplant` copies."""
-    return tuple(f.name for f in dataclasses.fields(kind) if f.name not in _LINKS)
+    """The fields of a symbol class that :func:`_transplant` copies (a dataclass's fields, or the
+    ``FIELDS`` a slotted symbol such as ``VarSym`` names)."""
+    names = getattr(kind, "FIELDS", None) or tuple(f.name for f in dataclasses.fields(kind))
+    return tuple(name for name in names if name not in _LINKS)
 
 
 __all__ = ["WarmAnalysis", "analyze_warm"]

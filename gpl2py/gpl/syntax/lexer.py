@@ -83,6 +83,11 @@ _WORD_RUN = re.compile(r"\w*").match
 _CONDITIONAL = re.compile(r"#\s*(if|else|elseif|end\s+if|const)\b", re.IGNORECASE)
 _MAX_NAME = 128
 _MAX_STRING = 128
+#: How many spellings the scan remembers (``_tokenize``'s ``words``) before it starts afresh: the
+#: few hundred a file uses thousands of times are soon back, and a file of tens of thousands of
+#: names used once (``Dim v0, v1, ...``) does not keep a record for each while it is read (it was
+#: 15 times that source: docs/security.md, "Input size")
+_WORDS_KEPT = 4096
 
 _K = TokenKind
 
@@ -183,6 +188,8 @@ def _tokenize(source: SourceFile, sink: DiagnosticSink, chunk: int) -> Iterator[
             if seen is None:
                 t = intern(t)  # one string per name, however often it is used
                 kind = kw(t.lower(), IDENT)
+                if len(words) >= _WORDS_KEPT:  # (many distinct names, once each: a long Dim)
+                    words.clear()
                 seen = words[t] = (t, kind, len(t), kind is IDENT and len(t) > _MAX_NAME)
             t, kind, n, too_long = seen
             col = m.start(1) - base

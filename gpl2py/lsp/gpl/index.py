@@ -236,7 +236,7 @@ class _Builder:
                 if d is not None:
                     self.name(node, node.name, d, decl=True)
             elif isinstance(node, A.VarDeclarator):
-                sym = self.model.local_of.get(node) if proc is not None else None
+                sym = self.model.local_of(node, proc) if proc is not None else None
                 if sym is None and proc is None:
                     owner = cls if cls is not None else mod
                     member = owner.members.get(node.name.lower()) if owner is not None else None
