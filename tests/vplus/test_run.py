@@ -231,6 +231,75 @@ def test_the_guides_disk_example_which_jumps_into_a_then_block_translates_and_ru
     assert r.stdout.splitlines() == [f"Line {i}" for i in range(1, 11)]
 
 
+GOTO_IN_AND_OUT_OF_FOR = """\
+.PROGRAM main()
+; GOTO within one FOR body, forward and backward, and out of FOR loops
+        last = 4
+        FOR i = 1 TO last
+            last = 1                    ; (the end was evaluated once, at the FOR)
+            IF i == 2 GOTO 10           ; forward: skips the rest of the body's first part
+            TYPE "body i=", i
+10      tries = 0
+20      tries = tries+1
+            IF tries < i GOTO 20        ; backward: a retry loop inside the body
+            TYPE "i=", i, " tries=", tries
+        END
+        TYPE "after i=", i
+        FOR c = 1 TO 2
+            IF c == 1 GOTO 60           ; into a THEN block inside the same FOR body
+            IF c == 99 THEN
+60              TYPE "in the THEN block, c=", c
+            END
+            TYPE "c=", c
+        END
+        FOR a = 1 TO 3
+            FOR b = 1 TO 5
+                IF b == a GOTO 50       ; out of the inner loop, on in the outer body
+            END
+            TYPE "never"
+50      TYPE "a=", a, " b=", b
+        END
+        total = 0
+        FOR i = 1 TO 3
+            FOR j = 1 TO 3
+                total = total+1
+                IF (i == 2) AND (j == 2) GOTO 30    ; out of both loops
+            END
+        END
+30      TYPE "out at i=", i, " j=", j, " total=", total
+        FOR k = 1 TO 10 STEP 2
+            IF k == 5 GOTO 40
+        END
+40      TYPE "k=", k
+        FOR m = 1 TO 3
+            m = 10                      ; past the end: the GOTO still goes on in the body
+            GOTO 70
+            TYPE "never"
+70          TYPE "m=", m
+        END
+        TYPE "after m=", m
+.END
+"""
+
+
+def test_goto_within_a_for_body_and_out_of_for_loops_runs_as_the_controller_runs_it(tmp_path: Path) -> None:
+    """A GOTO whose label is in the same FOR body runs from that label on without going through
+    the FOR statement again (so without a new test of the end, evaluated once at the FOR,
+    L4889-4890); a GOTO out of one or more FOR loops leaves them with their index as it is."""
+    expected = ["body i=1", "i=1 tries=1", "i=2 tries=2", "body i=3", "i=3 tries=3", "body i=4",
+                "i=4 tries=4", "after i=5", "in the THEN block, c=1", "c=1", "c=2",
+                "a=1 b=1", "a=2 b=2", "a=3 b=3", "out at i=2 j=2 total=5", "k=5", "m=10", "after m=11"]
+    r = _run(_write(tmp_path, GOTO_IN_AND_OUT_OF_FOR))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == expected
+    # the same under REACTE, where each statement is a resumable step of its own
+    trapped = GOTO_IN_AND_OUT_OF_FOR.replace("        last = 4\n", "        REACTE trap\n        last = 4\n", 1) \
+        + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
+    r = _run(_write(tmp_path, trapped, "trapped.v2"))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == expected
+
+
 EXIT_AND_NEXT_WITH_A_COUNT = """\
 .PROGRAM main()
 ; EXIT n and NEXT n leave n nested loops
