@@ -300,6 +300,32 @@ def test_goto_within_a_for_body_and_out_of_for_loops_runs_as_the_controller_runs
     assert r.stdout.splitlines() == expected
 
 
+def test_a_goto_into_a_for_loop_from_outside_it_stays_refused_and_only_that_goto(tmp_path: Path) -> None:
+    """Entering a FOR body other than through its FOR statement would skip the evaluation of its
+    end and step (L4889-4890): GPL4700 at each GOTO that does it -- from the outer loop's body into
+    an inner loop, from the top level -- and not at a GOTO to the same label within the body."""
+    src = _write(tmp_path, """\
+.PROGRAM main()
+        FOR i = 1 TO 2
+            IF i == 1 GOTO 10
+            FOR j = 1 TO 2
+10              TYPE "j"
+            END
+        END
+        FOR k = 1 TO 2
+20          TYPE "k=", k
+            IF k == 1 GOTO 20
+        END
+        IF k == 3 GOTO 20
+.END
+""")
+    r = _run(src)
+    assert r.returncode != 0
+    errors = [line for line in r.stderr.splitlines() if "error GPL" in line]
+    assert [e.split(": error ")[0].rsplit(":", 2)[1:] for e in errors] == [["3", "13"], ["12", "9"]]
+    assert all("GPL4700" in e and "from outside it" in e for e in errors)
+
+
 EXIT_AND_NEXT_WITH_A_COUNT = """\
 .PROGRAM main()
 ; EXIT n and NEXT n leave n nested loops
