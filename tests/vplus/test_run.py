@@ -162,12 +162,16 @@ def test_goto_enters_if_else_case_while_and_do_blocks_as_the_controller_runs_the
     a WHILE's tests the condition again, an UNTIL tests its own (L4376-4397)."""
     expected = ["in the THEN block, n=0", "in the ELSE block, n=1", "two", "in VALUE 2, n=2", "in VALUE 2, n=5",
                 "k=3", "do m=1", "do m=3", "do m=5", "do m=3", "do m=5", "end n=5 k=3 m=6"]
-    r = _run(_write(tmp_path, GOTO_INTO_BLOCKS))
+    _prints_plain_and_under_reacte(tmp_path, GOTO_INTO_BLOCKS, "        n = 0\n", expected)
+
+
+def _prints_plain_and_under_reacte(tmp_path: Path, src: str, first: str, expected: list[str]) -> None:
+    """The program prints ``expected``, and the same with ``REACTE trap`` before its line
+    ``first``: each statement, and each test of a block, is then a resumable step of its own."""
+    r = _run(_write(tmp_path, src))
     assert r.returncode == 0, r.stderr
     assert r.stdout.splitlines() == expected
-    # the same under REACTE, where each test of a block is a resumable step of its own
-    trapped = GOTO_INTO_BLOCKS.replace("        n = 0\n", "        REACTE trap\n        n = 0\n", 1) \
-        + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
+    trapped = src.replace(first, "        REACTE trap\n" + first, 1) + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
     r = _run(_write(tmp_path, trapped, "trapped.v2"))
     assert r.returncode == 0, r.stderr
     assert r.stdout.splitlines() == expected
@@ -289,15 +293,7 @@ def test_goto_within_a_for_body_and_out_of_for_loops_runs_as_the_controller_runs
     expected = ["body i=1", "i=1 tries=1", "i=2 tries=2", "body i=3", "i=3 tries=3", "body i=4",
                 "i=4 tries=4", "after i=5", "in the THEN block, c=1", "c=1", "c=2",
                 "a=1 b=1", "a=2 b=2", "a=3 b=3", "out at i=2 j=2 total=5", "k=5", "m=10", "after m=11"]
-    r = _run(_write(tmp_path, GOTO_IN_AND_OUT_OF_FOR))
-    assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines() == expected
-    # the same under REACTE, where each statement is a resumable step of its own
-    trapped = GOTO_IN_AND_OUT_OF_FOR.replace("        last = 4\n", "        REACTE trap\n        last = 4\n", 1) \
-        + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
-    r = _run(_write(tmp_path, trapped, "trapped.v2"))
-    assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines() == expected
+    _prints_plain_and_under_reacte(tmp_path, GOTO_IN_AND_OUT_OF_FOR, "        last = 4\n", expected)
 
 
 def test_a_goto_into_a_for_loop_from_outside_it_stays_refused_and_only_that_goto(tmp_path: Path) -> None:
