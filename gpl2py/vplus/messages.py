@@ -105,9 +105,10 @@ REDECLARED = _warning("GPL4310", "{name} is declared again{detail}")
 START_NOT_FOUND = _error("GPL4311", "--start {name}: no such program in this project")
 
 # --- lowering ------------------------------------------------------------------------------------
-GOTO_INTO_FOR = _error("GPL4700", "GOTO {label} jumps into a FOR loop, which gpl2py does not translate",
+GOTO_INTO_FOR = _error("GPL4700", "GOTO {label} jumps into a FOR loop from outside it, which gpl2py does not translate",
                       "A GOTO may enter an IF, CASE, WHILE or DO block, as V+ allows (the Guide's disk "
-                      "example jumps into a THEN block); entering a FOR loop other than through its FOR "
+                      "example jumps into a THEN block), jump within one FOR body, and leave FOR loops; "
+                      "entering a FOR loop from outside other than through its FOR "
                       "statement would skip the evaluation of its end and step, which V+ does once, when "
                       "the FOR statement runs (User's Guide L4889-4890), so the loop's END would have "
                       "nothing to test.")

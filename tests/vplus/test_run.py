@@ -162,12 +162,16 @@ def test_goto_enters_if_else_case_while_and_do_blocks_as_the_controller_runs_the
     a WHILE's tests the condition again, an UNTIL tests its own (L4376-4397)."""
     expected = ["in the THEN block, n=0", "in the ELSE block, n=1", "two", "in VALUE 2, n=2", "in VALUE 2, n=5",
                 "k=3", "do m=1", "do m=3", "do m=5", "do m=3", "do m=5", "end n=5 k=3 m=6"]
-    r = _run(_write(tmp_path, GOTO_INTO_BLOCKS))
+    _prints_plain_and_under_reacte(tmp_path, GOTO_INTO_BLOCKS, "        n = 0\n", expected)
+
+
+def _prints_plain_and_under_reacte(tmp_path: Path, src: str, first: str, expected: list[str]) -> None:
+    """The program prints ``expected``, and the same with ``REACTE trap`` before its line
+    ``first``: each statement, and each test of a block, is then a resumable step of its own."""
+    r = _run(_write(tmp_path, src))
     assert r.returncode == 0, r.stderr
     assert r.stdout.splitlines() == expected
-    # the same under REACTE, where each test of a block is a resumable step of its own
-    trapped = GOTO_INTO_BLOCKS.replace("        n = 0\n", "        REACTE trap\n        n = 0\n", 1) \
-        + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
+    trapped = src.replace(first, "        REACTE trap\n" + first, 1) + ".PROGRAM trap()\n        TYPE \"trapped\"\n.END\n"
     r = _run(_write(tmp_path, trapped, "trapped.v2"))
     assert r.returncode == 0, r.stderr
     assert r.stdout.splitlines() == expected
@@ -229,6 +233,93 @@ def test_the_guides_disk_example_which_jumps_into_a_then_block_translates_and_ru
     r = _run(_write(tmp_path, GUIDE_DISK_EXAMPLE))
     assert r.returncode == 0, r.stderr
     assert r.stdout.splitlines() == [f"Line {i}" for i in range(1, 11)]
+
+
+GOTO_IN_AND_OUT_OF_FOR = """\
+.PROGRAM main()
+; GOTO within one FOR body, forward and backward, and out of FOR loops
+        last = 4
+        FOR i = 1 TO last
+            last = 1                    ; (the end was evaluated once, at the FOR)
+            IF i == 2 GOTO 10           ; forward: skips the rest of the body's first part
+            TYPE "body i=", i
+10      tries = 0
+20      tries = tries+1
+            IF tries < i GOTO 20        ; backward: a retry loop inside the body
+            TYPE "i=", i, " tries=", tries
+        END
+        TYPE "after i=", i
+        FOR c = 1 TO 2
+            IF c == 1 GOTO 60           ; into a THEN block inside the same FOR body
+            IF c == 99 THEN
+60              TYPE "in the THEN block, c=", c
+            END
+            TYPE "c=", c
+        END
+        FOR a = 1 TO 3
+            FOR b = 1 TO 5
+                IF b == a GOTO 50       ; out of the inner loop, on in the outer body
+            END
+            TYPE "never"
+50      TYPE "a=", a, " b=", b
+        END
+        total = 0
+        FOR i = 1 TO 3
+            FOR j = 1 TO 3
+                total = total+1
+                IF (i == 2) AND (j == 2) GOTO 30    ; out of both loops
+            END
+        END
+30      TYPE "out at i=", i, " j=", j, " total=", total
+        FOR k = 1 TO 10 STEP 2
+            IF k == 5 GOTO 40
+        END
+40      TYPE "k=", k
+        FOR m = 1 TO 3
+            m = 10                      ; past the end: the GOTO still goes on in the body
+            GOTO 70
+            TYPE "never"
+70          TYPE "m=", m
+        END
+        TYPE "after m=", m
+.END
+"""
+
+
+def test_goto_within_a_for_body_and_out_of_for_loops_runs_as_the_controller_runs_it(tmp_path: Path) -> None:
+    """A GOTO whose label is in the same FOR body runs from that label on without going through
+    the FOR statement again (so without a new test of the end, evaluated once at the FOR,
+    L4889-4890); a GOTO out of one or more FOR loops leaves them with their index as it is."""
+    expected = ["body i=1", "i=1 tries=1", "i=2 tries=2", "body i=3", "i=3 tries=3", "body i=4",
+                "i=4 tries=4", "after i=5", "in the THEN block, c=1", "c=1", "c=2",
+                "a=1 b=1", "a=2 b=2", "a=3 b=3", "out at i=2 j=2 total=5", "k=5", "m=10", "after m=11"]
+    _prints_plain_and_under_reacte(tmp_path, GOTO_IN_AND_OUT_OF_FOR, "        last = 4\n", expected)
+
+
+def test_a_goto_into_a_for_loop_from_outside_it_stays_refused_and_only_that_goto(tmp_path: Path) -> None:
+    """Entering a FOR body other than through its FOR statement would skip the evaluation of its
+    end and step (L4889-4890): GPL4700 at each GOTO that does it -- from the outer loop's body into
+    an inner loop, from the top level -- and not at a GOTO to the same label within the body."""
+    src = _write(tmp_path, """\
+.PROGRAM main()
+        FOR i = 1 TO 2
+            IF i == 1 GOTO 10
+            FOR j = 1 TO 2
+10              TYPE "j"
+            END
+        END
+        FOR k = 1 TO 2
+20          TYPE "k=", k
+            IF k == 1 GOTO 20
+        END
+        IF k == 3 GOTO 20
+.END
+""")
+    r = _run(src)
+    assert r.returncode != 0
+    errors = [line for line in r.stderr.splitlines() if "error GPL" in line]
+    assert [e.split(": error ")[0].rsplit(":", 2)[1:] for e in errors] == [["3", "13"], ["12", "9"]]
+    assert all("GPL4700" in e and "from outside it" in e for e in errors)
 
 
 EXIT_AND_NEXT_WITH_A_COUNT = """\

@@ -8,7 +8,8 @@ function so that the body reads like the V+: ``str_len.v = vp.len_(s_in.v)``.
 
 Blocks become Python blocks; FOR evaluates its bounds once and leaves its index past the end as
 a V+ loop does; a GOTO to a step label of the program's top level is a jump of a dispatch loop
-around the body (``_at``, ``_GoTo``), written only in a program that has one.  Every Python line
+around the body (``_at``, ``_GoTo``), written only in a program that has one; one to a label in
+its own FOR body is caught by that body, which goes round again from the label (``_into``).  Every Python line
 keeps its V+ line (the source map), every ``;`` comment is carried.
 """
 
@@ -57,6 +58,10 @@ class ProgramLowerer:
         #: statement the ones at or inside it (see ``_plan_entries``)
         self.nested_targets: frozenset[int] = frozenset()
         self.inside: dict[int, frozenset[int]] = {}
+        #: a GOTO within a FOR body: each FOR's labels that such a GOTO enters, and whether any
+        #: GOTO goes elsewhere (then the program needs its dispatch loop)
+        self.for_labels: dict[int, frozenset[int]] = {}
+        self.jumps_out = False
 
     # --- names ----------------------------------------------------------------------------------
 
@@ -108,7 +113,12 @@ class ProgramLowerer:
         gotos = _has_goto(prog.body)
         if gotos:
             self._plan_entries(prog.body)
+        if self.jumps_out:
             self._dispatch(prog.body)
+        elif self.nested_targets:  # (every GOTO goes to a label in its own FOR body)
+            self.w.gpl_line = prog.body[0].span.line
+            self.w.line("_into = 0  # a step label inside a FOR body that a GOTO enters, until it is reached")
+            self.block(prog.body)
         else:
             self.block(prog.body)
         self.w.comments(prog.trailing)
@@ -425,11 +435,17 @@ class ProgramLowerer:
             first = False
 
     def _loop_body(self, kind: str, s: A.Stmt, body: list[A.Stmt], until: A.Expr | None = None,
-                   step: str | None = None, test: A.Expr | None = None) -> None:
+                   step: str | None = None, test: A.Expr | None = None,
+                   local: frozenset[int] = frozenset()) -> None:
+        """A loop's body; ``local``: the step labels in a FOR body that a GOTO in it jumps to --
+        the body catches the jump and goes round again from the label (``_into``)."""
         w = self.w
         self.loops.append((kind, s))
         w.indent(blocks=1)
         start = w.mark()
+        if local:
+            w.line("try:")
+            w.indent(blocks=1)
         if test is not None:  # WHILE's test at the top of the body (under REACTE)
             w.line(f"if not {self._guarded(test, s.span.line, self._into_any(body))}:")
             w.indent()
@@ -443,6 +459,18 @@ class ProgramLowerer:
             w.line(f"if {self._guarded(until, until.span.line)}:  # UNTIL")
             w.indent()
             w.line("break")
+            w.dedent()
+        if local:
+            w.ensure_body(start + 1)
+            w.dedent()
+            w.line("except _GoTo as jump:  # a GOTO to a label in this FOR body")
+            w.indent(blocks=2)
+            w.line(f"if jump.label not in {_labels_text(local)}:")
+            w.indent()
+            w.line("raise")
+            w.dedent()
+            w.line("_into = jump.label")
+            w.line("continue  # (from the label, without the step)")
             w.dedent()
         if step is not None:
             w.line(step)
@@ -476,37 +504,61 @@ class ProgramLowerer:
         w.line(f"{index} = {x.value(s.start)}")
         if _constant(s.step) or s.step is None:
             negative = s.step is not None and _const_value(s.step) < 0
-            w.line(f"while {index} {'>=' if negative else '<='} {stop}:  # FOR")
+            test = f"{index} {'>=' if negative else '<='} {stop}"
         else:
-            w.line(f"while ({index} <= {stop} if {step_value} > 0 else {index} >= {stop}):  # FOR")
+            test = f"({index} <= {stop} if {step_value} > 0 else {index} >= {stop})"
+        local = self.for_labels.get(id(s), frozenset())
+        if local:  # (a GOTO within the body goes on at its label, without a test of the end)
+            test = f"_into in {_labels_text(local)} or {test if test.startswith('(') else f'({test})'}"
+        w.line(f"while {test}:  # FOR")
         increment = f"{index} += {step_value}" if not step_value.startswith("-") else f"{index} -= {step_value[1:]}"
-        self._loop_body("for", s, s.body, step=increment)
+        self._loop_body("for", s, s.body, step=increment, local=local)
 
     def _plan_entries(self, body: list[A.Stmt]) -> None:
-        """The GOTO targets inside blocks, and which statements hold them.  A target inside a FOR
-        loop is GPL4700 (and is left out: its GOTO stays a jump to a label the program lacks)."""
+        """The GOTO targets inside blocks, and which statements hold them.  A label inside a FOR
+        loop is entered by a GOTO in the same loop (at any depth): the FOR's body catches the jump
+        and runs again from the label (``for_labels``) without going through the FOR statement,
+        as V+ does.  A GOTO from outside the FOR to it is GPL4700 (entering the body would skip
+        the evaluation of the end and step); that GOTO stays a jump the program does not catch."""
         targets = _goto_targets(body)
-        nested: set[int] = set()
+        owner: dict[int, A.For | None] = {}  # a label -> the innermost FOR around it (None: none)
+        gotos: list[tuple[A.Goto | A.IfGoto, tuple[A.For, ...]]] = []
 
-        def walk(stmts: list[A.Stmt], top: bool, in_for: bool) -> frozenset[int]:
+        def find(stmts: list[A.Stmt], top: bool, fors: tuple[A.For, ...]) -> None:
+            for s in stmts:
+                if not top and s.label is not None and s.label in targets:
+                    owner.setdefault(s.label, fors[-1] if fors else None)
+                if isinstance(s, A.Goto | A.IfGoto):
+                    gotos.append((s, fors))
+                inner = fors + (s,) if isinstance(s, A.For) else fors
+                for b in blocks(s):
+                    find(b, False, inner)
+
+        find(body, True, ())
+        for g, fors in gotos:
+            loop = owner.get(g.target)
+            if loop is not None and not any(f is loop for f in fors):
+                self.sink.report(M.GOTO_INTO_FOR, g.span, label=g.target)
+        for label, loop in owner.items():
+            if loop is not None:
+                self.for_labels[id(loop)] = self.for_labels.get(id(loop), frozenset()) | {label}
+
+        def walk(stmts: list[A.Stmt]) -> frozenset[int]:
             found: frozenset[int] = frozenset()
             for s in stmts:
-                here: frozenset[int] = frozenset()
-                if not top and s.label is not None and s.label in targets:
-                    if in_for:
-                        self.sink.report(M.GOTO_INTO_FOR, targets[s.label].span, label=s.label)
-                    else:
-                        here = frozenset({s.label})
+                here = frozenset({s.label}) if s.label in owner else frozenset()
                 for b in blocks(s):
-                    here = here | walk(b, False, in_for or isinstance(s, A.For))
+                    below = walk(b)
+                    if not isinstance(s, A.For):  # (a FOR's own labels stay inside it)
+                        here = here | below
                 if here:
                     self.inside[id(s)] = here
-                    nested.update(here)
                 found = found | here
             return found
 
-        walk(body, True, False)
-        self.nested_targets = frozenset(nested)
+        walk(body)  # (a label of the top level is no entry: the dispatch loop goes there)
+        self.nested_targets = frozenset(owner)
+        self.jumps_out = any(owner.get(label) is None for label in targets)
 
     def _plan_exits(self, body: list[A.Stmt], loops: list[A.Stmt]) -> None:
         """Find each EXIT n / NEXT n (n > 1) and the loop it leaves to.  Python breaks one loop:
