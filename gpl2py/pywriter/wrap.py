@@ -130,7 +130,14 @@ class _Tokens:
 
 def wrap(indent: int, text: str, limit: int = LIMIT, depth: int = 0) -> list[tuple[int, str]]:
     """``(indent, text)`` lines for one logical line (unchanged when it fits); continuation lines
-    that are still too long are broken again (a long argument of a long call)."""
+    that are still too long are broken again (a long argument of a long call).  A text that
+    starts with spaces (the lowering writes a one-line body as ``"    x = ..."`` under its
+    header) is that much further in: each four spaces are a level, so that breaking it never
+    loses its text (a GoTo into a Select with a long subject came out as blank lines)."""
+    stripped = text.lstrip(" ")
+    if stripped != text and 4 * indent + len(text) > limit:
+        levels = -(-(len(text) - len(stripped)) // 4)  # (a partial level counts as a whole one)
+        return _wrap_nested(indent + levels, stripped, limit, depth, inside=False)
     return _wrap_nested(indent, text, limit, depth, inside=False)
 
 

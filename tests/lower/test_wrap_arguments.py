@@ -58,3 +58,20 @@ def test_the_last_piece_of_a_sole_argument_stays_inside_the_calls_brackets() -> 
     assert len(lines) > 3 and all(4 * ind + len(t) <= 99 for ind, t in lines)
     wrapped = "\n".join("    " * (ind - 2) + t for ind, t in lines) + "\n    pass"
     assert ast.dump(ast.parse(wrapped).body[0].test) == ast.dump(ast.parse(text + "\n    pass").body[0].test)  # type: ignore[attr-defined]
+
+
+def test_a_long_one_line_body_written_after_its_header_keeps_its_text(tmp_path: Path) -> None:
+    """The lowering writes a one-line body as ``"    x = ..."`` under its header (a Select entered
+    by a GoTo: ``if not _enter1:`` then its match value).  Broken, it came out as blank lines:
+    Python refused the module (found by the pipeline fuzz)."""
+    depth = 9
+    subject = "LongSubjectVariableName + LongSubjectVariableName"
+    body = ["Dim LongSubjectVariableName As Integer = 1", "Console.WriteLine(\"start\")", "GoTo inside"]
+    for _ in range(depth):
+        body += [f"Select Case {subject}", "Case 2"]
+    body += ["inside:", "Console.WriteLine(\"inside\")"]
+    body += ["End Select"] * depth
+    src = "Module Main\nPublic Sub Main()\n" + "\n".join(body) + "\nEnd Sub\nEnd Module\n"
+    result = run_gpl(tmp_path, {"Main.gpl": src})
+    assert result.output.splitlines() == ["start", "inside"] and result.log == ""
+    assert wrap(2, "    x = " + "f(" + ", ".join(["argument"] * 12) + ")")[0] == (3, "x = f(")
