@@ -22,6 +22,7 @@ import pytest
 from gpl2py.notebook import Cell, GplError
 from gplrt.vplus import errors
 from gpltest import REPO
+from vplusoracle import trans
 
 URDF = REPO / "runtime" / "gplrt" / "data" / "robots" / "urdf" / "adept_cobra_s600.urdf"
 
@@ -72,18 +73,6 @@ far     700 0 250 0 180 0
 """
 
 
-def _trans(x: float, y: float, z: float, yaw: float = 0, pitch: float = 0, roll: float = 0) -> np.ndarray:
-    def rz(a: float) -> np.ndarray:
-        c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
-        return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
-
-    def ry(a: float) -> np.ndarray:
-        c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
-        return np.array([[c, 0, s, 0], [0, 1, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1]])
-
-    t = np.eye(4)
-    t[:3, 3] = (x, y, z)
-    return t @ rz(yaw) @ ry(pitch) @ rz(roll)
 
 
 class UrdfArm:
@@ -123,10 +112,10 @@ def test_a_scara_program_reaches_what_it_names_by_the_urdf_and_traps_a_goal_too_
     reached = [arm.forward(joints) for joints in stops]
 
     def above(pose: np.ndarray, d: float) -> np.ndarray:  # APPRO/DEPART: along the tool's -Z
-        return pose @ _trans(0, 0, -d)
+        return pose @ trans(0, 0, -d)
 
     park = arm.forward([0, 90, -50, 0])
-    pick, place = _trans(350, -200, 250, 30, 180, 0), _trans(300, 250, 220, -45, 180, 0)
+    pick, place = trans(350, -200, 250, 30, 180, 0), trans(300, 250, 220, -45, 180, 0)
     expected = [park, above(pick, 60), pick, above(pick, 60),
                 above(place, 40), place, above(place, 40), place, above(pick, 60), park]
     assert len(reached) == len(expected)  # (MOVE far never started)

@@ -22,22 +22,11 @@ import numpy as np
 from gpl2py.notebook import Cell
 from gplrt.motion.kinematics import robot_model
 from gpltest import corpus_dir
+from vplusoracle import trans
 
 ROBOT = "VIPER-S650"
 
 
-def trans(x: float, y: float, z: float, yaw: float = 0, pitch: float = 0, roll: float = 0) -> np.ndarray:
-    def rz(a: float) -> np.ndarray:
-        c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
-        return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
-
-    def ry(a: float) -> np.ndarray:
-        c, s = math.cos(math.radians(a)), math.sin(math.radians(a))
-        return np.array([[c, 0, s, 0], [0, 1, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1]])
-
-    t = np.eye(4)
-    t[:3, 3] = (x, y, z)
-    return t @ rz(yaw) @ ry(pitch) @ rz(roll)
 
 
 def _run_demo(tmp_path: Path, demo: str, data: str, io: Callable[[Cell], None] | None = None) -> Cell:
