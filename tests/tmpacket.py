@@ -4,9 +4,21 @@ A module of its own (as gpltest.py): test folders are not packages, tests/ is on
 
 from __future__ import annotations
 
+import asyncio
+import contextlib
+import importlib.util
 import socket
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
 
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.output import write_package
 from gpl2py.tmscript.pipeline import translate_packet
+from gpl2py.transpile import transpile
+from gplrt.tm import context
 from gplrt.tm.listen import Vars
 from gplrt.tm.values import format_value
 
@@ -23,6 +35,26 @@ def run_packet(script: str) -> Vars:
     v = Vars()
     ns["script"](v)  # type: ignore[operator]
     return v
+
+
+def run_project(source: Path, out: Path, display: Callable[[str], object]) -> int:
+    """Translate the script project ``source`` into ``out``, import it and run it on the current
+    robot (``context.use_robot`` first), its ``Display`` lines going to ``display``; its status."""
+    sink = DiagnosticSink()
+    result = transpile(source, sink)
+    assert result is not None and not sink.has_errors(), [d.header() for d in sink]
+    write_package(result, out, sink)
+    module_path = out / result.package / f"{result.package}.py"
+    spec = importlib.util.spec_from_file_location(f"tm_project_{source.stem}", module_path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    context.set_display(display)
+    try:
+        return int(module.run())
+    finally:
+        context.set_display(None)
+        sys.modules.pop(spec.name, None)
 
 
 def packet_values(script: str, *names: str) -> list[str]:
@@ -55,3 +87,68 @@ class NodeClient:
 
     def close(self) -> None:
         self.sock.close()
+
+
+class Peer:
+    """A remote device on loopback for the Socket and SerialPort tests (``port``; ``url`` for a
+    serial port attached with pyserial's ``socket://``): accepts one client, sends ``greeting``,
+    keeps what it receives and notes when the client closes."""
+
+    def __init__(self, greeting: bytes = b"") -> None:
+        self.server = socket.create_server(("127.0.0.1", 0))
+        self.port = self.server.getsockname()[1]
+        self.url = f"socket://127.0.0.1:{self.port}"
+        self.received = bytearray()
+        self.greeting = greeting
+        self.closed = threading.Event()
+        threading.Thread(target=self._serve, daemon=True).start()
+
+    def _serve(self) -> None:
+        conn, _ = self.server.accept()
+        conn.sendall(self.greeting)
+        while chunk := conn.recv(65536):
+            self.received += chunk
+        self.closed.set()
+
+    def wait_for(self, n: int) -> bytes:
+        end = time.monotonic() + 30  # (only ends a hang; not a timing assertion)
+        while len(self.received) < n and time.monotonic() < end:
+            time.sleep(0.005)
+        return bytes(self.received)
+
+
+@contextlib.contextmanager
+def modbus_slave(device: object, framer: object = None) -> Iterator[int]:
+    """A pymodbus slave serving ``device`` (a ``ModbusDeviceContext``) on a free loopback port,
+    framed by ``framer`` (Modbus TCP by default; pymodbus's RTU framer for an RTU slave that a
+    virtual serial port reaches with ``socket://``); its port, once it accepts."""
+    from pymodbus import FramerType
+    from pymodbus.datastore import ModbusServerContext
+    from pymodbus.server import ModbusTcpServer
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        free = s.getsockname()[1]
+    loop = asyncio.new_event_loop()
+    servers: list[ModbusTcpServer] = []
+
+    async def serve() -> None:
+        server = ModbusTcpServer(ModbusServerContext(devices=device, single=True), address=("127.0.0.1", free),
+                                 framer=framer or FramerType.SOCKET)
+        servers.append(server)
+        await server.serve_forever()
+    thread = threading.Thread(target=loop.run_until_complete, args=(serve(),), daemon=True)
+    thread.start()
+    end = time.monotonic() + 10
+    while time.monotonic() < end:  # (until the port accepts; not a timing assertion)
+        try:
+            socket.create_connection(("127.0.0.1", free), 0.2).close()
+            break
+        except OSError:
+            time.sleep(0.02)
+    try:
+        yield free
+    finally:
+        asyncio.run_coroutine_threadsafe(servers[0].shutdown(), loop).result(5)
+        thread.join(5)
+        loop.close()

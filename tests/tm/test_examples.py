@@ -13,40 +13,23 @@ Thread ids differ from the manual's (they are the controller's), so their lines 
 
 from __future__ import annotations
 
-import importlib.util
 import re
-import sys
+import socket
+import threading
 from pathlib import Path
 
 import pytest
+from tmpacket import run_project
 
-from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.output import write_package
-from gpl2py.transpile import transpile
 from gplrt.tm import context
 
 EXAMPLES = Path(__file__).parent / "examples"
 
 
 def run_example(name: str, tmp_path: Path) -> tuple[int, list[str]]:
-    sink = DiagnosticSink()
-    out = transpile(EXAMPLES / f"{name}.tms", sink)
-    assert out is not None and not sink.has_errors(), [d.header() for d in sink]
-    write_package(out, tmp_path, sink)
-    module_path = tmp_path / out.package / f"{out.package}.py"
-    spec = importlib.util.spec_from_file_location(f"tm_example_{name}", module_path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
     lines: list[str] = []
     context.use_robot("TM5-900", speed=20.0)  # (threads that sleep need time to pass)
-    context.set_display(lines.append)
-    try:
-        status = module.run()
-    finally:
-        context.set_display(None)
-        sys.modules.pop(spec.name, None)
-    return status, lines
+    return run_project(EXAMPLES / f"{name}.tms", tmp_path, lines.append), lines
 
 
 EXPECTED = {
@@ -104,3 +87,24 @@ def test_e40_waitfor_assignment_and_thread_exit(tmp_path: Path) -> None:
     assert worker and worker[0].startswith("[t5 0] Hello ThreadTest5() ")
     assert any(ln.startswith("[t5 0 false] Hello ThreadTest5() ") for ln in worker)
     assert re.fullmatch(r"\[t5 2 true\] Hello main\(\) \d+", lines[-1])
+
+
+def test_e22_block_scope_closes_the_socket(tmp_path: Path) -> None:
+    """E22: ``b`` outside its block is the text "b" (a warning), and the Socket declared in the
+    if block connects and is closed when the block is left (the order against the next statement
+    is tests/tm/test_tm_sockets.py's).  The manual's port 12345 becomes a free one of the test's."""
+    server = socket.create_server(("127.0.0.1", 0))
+    source = (EXAMPLES / "e22_block_scope.tms").read_text(encoding="utf-8")
+    (tmp_path / "e22_block_scope.tms").write_text(source.replace("12345", str(server.getsockname()[1])), encoding="utf-8")
+    closed = threading.Event()
+
+    def peer() -> None:
+        conn, _ = server.accept()
+        while conn.recv(100):
+            pass
+        closed.set()
+    threading.Thread(target=peer, daemon=True).start()
+    lines: list[str] = []
+    context.use_robot("TM5-900", speed=20.0)  # (15 s of Sleep in 0.75 s)
+    assert run_project(tmp_path / "e22_block_scope.tms", tmp_path / "out", lines.append) == 0
+    assert lines == ["A Value: 10", "B Value: b"] and closed.wait(30)

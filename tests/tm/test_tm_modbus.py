@@ -3,23 +3,19 @@ L18324-L19693) against a pymodbus TCP server holding the manual's example data."
 
 from __future__ import annotations
 
-import asyncio
 import math
 import socket
 import struct
-import threading
-import time
 from collections.abc import Iterator
 
 import pytest
-from tmpacket import run_packet
+from tmpacket import modbus_slave, run_packet
 
 from gplrt.tm import context
 
 pymodbus = pytest.importorskip("pymodbus")
 from pymodbus.client import ModbusTcpClient  # noqa: E402
-from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock, ModbusServerContext  # noqa: E402
-from pymodbus.server import ModbusTcpServer  # noqa: E402
+from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock  # noqa: E402
 
 RO_BYTES = bytes.fromhex("54656368 6D616EE9 8194E698")
 RI_BYTES = bytes.fromhex("29309F4C C37C999A 445EECCD 42B40000 80000000 00000000")
@@ -38,32 +34,9 @@ def port() -> Iterator[int]:
         co=ModbusSequentialDataBlock(1, [False] * 16), di=ModbusSequentialDataBlock(1, [True, False, False]),
         hr=ModbusSequentialDataBlock(1, registers(RO_BYTES) + [0] * 20),
         ir=ModbusSequentialDataBlock(1, registers(RI_BYTES) + [0] * 8 + registers(RI_DATE)))
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        free = s.getsockname()[1]
-    loop = asyncio.new_event_loop()
-    servers: list[ModbusTcpServer] = []
-
-    async def serve() -> None:
-        server = ModbusTcpServer(ModbusServerContext(devices=device, single=True), address=("127.0.0.1", free))
-        servers.append(server)
-        await server.serve_forever()
-    thread = threading.Thread(target=loop.run_until_complete, args=(serve(),), daemon=True)
-    thread.start()
-    end = time.monotonic() + 10
-    while time.monotonic() < end:  # (until the port accepts; not a timing assertion)
-        try:
-            socket.create_connection(("127.0.0.1", free), 0.2).close()
-            break
-        except OSError:
-            time.sleep(0.02)
-    context.use_robot("TM5-900")
-    yield free
-    asyncio.run_coroutine_threadsafe(servers[0].shutdown(), loop).result(5)
-    thread.join(5)
-    loop.close()
-
-
+    with modbus_slave(device) as free:
+        context.use_robot("TM5-900")
+        yield free
 
 
 def close(a: list[float], b: list[float]) -> bool:

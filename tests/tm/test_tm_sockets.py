@@ -4,39 +4,14 @@ own examples, with a TCP server of the test's on loopback as the remote device."
 from __future__ import annotations
 
 import socket
-import threading
-import time
 
 import pytest
-from tmpacket import run_packet
+from tmpacket import Peer, run_packet, run_project
 
 from gplrt.tm import context
 from gplrt.tm.values import format_value
 
 HELLO = b"Hello, World\r\n"
-
-
-class Peer:
-    """The remote device: accepts one client, sends ``greeting``, keeps what it receives."""
-
-    def __init__(self, greeting: bytes = b"") -> None:
-        self.server = socket.create_server(("127.0.0.1", 0))
-        self.port = self.server.getsockname()[1]
-        self.received = bytearray()
-        self.greeting = greeting
-        threading.Thread(target=self._serve, daemon=True).start()
-
-    def _serve(self) -> None:
-        conn, _ = self.server.accept()
-        conn.sendall(self.greeting)
-        while chunk := conn.recv(65536):
-            self.received += chunk
-
-    def wait_for(self, n: int) -> bytes:
-        end = time.monotonic() + 30  # (only ends a hang; not a timing assertion)
-        while len(self.received) < n and time.monotonic() < end:
-            time.sleep(0.005)
-        return bytes(self.received)
 
 
 @pytest.fixture
@@ -113,3 +88,51 @@ def test_a_device_that_cannot_connect(robot) -> None:  # type: ignore[no-untyped
     closed.close()
     v = run_packet(f'Socket ntd_b = "127.0.0.1", {port}, 500\nbool o = socket_open("ntd_b")\nint s = socket_send("ntd_b", 1)')
     assert (v.o, v.s) == (False, -2)
+
+
+def test_suffix_only_reads_and_string_counts_of_characters_l13994_l14060(robot) -> None:  # type: ignore[no-untyped-def]
+    """``socket_read(dev, suffix [, option [, ms]])`` (syntax 7-9) and a ``_string`` read's count
+    of characters, not bytes (the manual's ``機器人`` examples)."""
+    peer = Peer()
+    run_packet(f'Socket ntd_a = "127.0.0.1", {peer.port}\nsocket_open("ntd_a")')
+    buffer = robot._socket_devices["ntd_a"].buffer
+    buffer[:] = b"Hello,\r\nWorld"
+    v = run_packet('string a = socket_read_string("ntd_a", newline)\nstring b = socket_read_string("ntd_a", newline, 0)')
+    assert (v.a, v.b, bytes(buffer)) == ("Hello,\r\n", "", b"World")
+    buffer[:] = b"World\r\n123\r\n"
+    v = run_packet('string a = socket_read_string("ntd_a", newline, 1)\nbyte[] b = socket_read("ntd_a", newline, 2)')
+    assert (v.a, bytes(v.b), bytes(buffer)) == ("World", b"123\r\n", b"")
+    buffer[:] = "TM達明機器人".encode()
+    v = run_packet('string a = socket_read_string("ntd_a", 4)\nstring b = socket_read_string("ntd_a", 5)')
+    assert (v.a, v.b, bytes(buffer)) == ("TM達明", "", "機器人".encode())
+
+
+def test_a_socket_declared_in_a_block_is_closed_when_the_block_is_left_e22(robot, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """L1320, L1335-L1345: leaving the block (its end, or an error in it) closes the device, so
+    the peer sees the close before the next statement runs; the name is forgotten."""
+    peers = [Peer(), Peer()]
+    src = tmp_path / "scoped.tms"
+    src.write_text(
+        "main\n{\n"
+        "    if (true)\n    {\n"
+        f'        Socket bbb = "127.0.0.1", {peers[0].port}\n        socket_open("bbb")\n'
+        '        socket_send("bbb", "hi")\n    }\n'
+        '    Display("after the block")\n'
+        '    Display(socket_send("bbb", "again"))\n'
+        "    Fail()\n}\n"
+        "void Fail()\n{\n"
+        f'    Socket ccc = "127.0.0.1", {peers[1].port}\n    socket_open("ccc")\n'
+        "    int zero = 0\n    int x = 1 / zero\n}\n"
+        'errorstop\n{\n    Display("errorstop")\n}\n')
+    seen: list[tuple[str, bool]] = []
+
+    def display(line: str) -> None:  # (runs in the script: what the peers saw at that moment)
+        if line in ("after the block", "errorstop"):
+            peer = peers[0] if line == "after the block" else peers[1]
+            seen.append((line, peer.closed.wait(30)))  # (30 s only ends a hang)
+        else:
+            seen.append((line, False))
+
+    assert run_project(src, tmp_path / "out", display) == 1
+    assert seen == [("after the block", True), ("-3", False), ("errorstop", True)]
+    assert peers[0].wait_for(2) == b"hi"

@@ -15,7 +15,7 @@ from __future__ import annotations
 from gpl2py.pywriter.emit import Writer
 from gpl2py.pywriter.text import escape, py_string
 from gpl2py.tmscript.semantics.check import Info, Var, pyname
-from gpl2py.tmscript.semantics.library import DEFERRED, DEFERRED_WITH_TWO, OBJECTS
+from gpl2py.tmscript.semantics.library import DEFERRED, DEFERRED_WITH_TWO, DEVICES, OBJECTS
 from gpl2py.tmscript.syntax import ast as A
 
 ARITH = {"+": "add", "-": "sub", "*": "mul", "/": "div", "%": "mod", "&": "bit_and", "|": "bit_or",
@@ -250,9 +250,35 @@ class Lowerer:
 
     def statements(self, body: list[A.Node]) -> None:
         start = self.w.mark()
+        scoped: list[int] = []  # the marks of the ``with`` bodies opened for devices
         for st in body:
-            self.statement(st)
+            if self.scoped_device(st):
+                assert isinstance(st, A.ClassDecl)
+                var = self.info.names[id(st)]
+                assert var is not None
+                args = ", ".join([py_string(st.name)] + [self.expr(a) for a in st.args])
+                used = any(v is var for k, v in self.info.names.items() if k != id(st))
+                target = f" as {var.pyname}" if used else ""  # (the functions name it by its text)
+                self.line(f"with tm.{st.cls}({args}){target}:", st)
+                self.w.indent(blocks=1)
+                scoped.append(self.w.mark())
+            else:
+                self.statement(st)
+        for mark in reversed(scoped):
+            self.w.ensure_body(mark)
+            self.w.dedent()
         self.w.ensure_body(start)
+
+    def scoped_device(self, st: A.Node) -> bool:
+        """Whether ``st`` declares a device that the end of its block closes (L1320,
+        L1335-L1345): a Socket, SerialPort or Modbus variable local to a function.  The rest of
+        the block becomes the body of ``with tm.Socket(...) as name:``, so leaving it in any way
+        (its end, ``return``, ``break``, an error) closes the device.  A ``define`` global lives
+        until the project stops, a Listen node's variable until the node is left."""
+        if not isinstance(st, A.ClassDecl) or st.cls not in DEVICES:
+            return False
+        var = self.info.names.get(id(st))
+        return var is not None and var.storage == "local"
 
     def statement(self, st: A.Node) -> None:
         if isinstance(st, A.Decl):

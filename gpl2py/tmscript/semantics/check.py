@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.tmscript import messages as M
-from gpl2py.tmscript.semantics.library import BUILTINS, CLASSES, OBJECTS, RETURNS
+from gpl2py.tmscript.semantics.library import BUILTINS, CLASS_ARGUMENTS, CLASSES, OBJECTS, RETURNS
 from gpl2py.tmscript.syntax import ast as A
 
 INTEGER = frozenset({"byte", "int"})
@@ -143,6 +143,11 @@ class Checker:
         elif isinstance(st, A.ClassDecl):
             if st.cls not in CLASSES:
                 self.sink.report(M.TM_UNSUPPORTED, st.span, what=f"the class {st.cls}")
+            counts = CLASS_ARGUMENTS.get(st.cls)
+            if counts is not None and len(st.args) not in counts:
+                expected = ", ".join(map(str, counts[:-1])) + f" or {counts[-1]}"
+                self.sink.report(M.TM_ARGUMENT_COUNT, st.span, name=st.cls, expected=expected, s="s",
+                                 given=len(st.args))
             for a in st.args:
                 self.expr(a)
             self.info.names[id(st)] = self.declare(st.name, st.cls, False, st.span, storage, st.cls)

@@ -44,13 +44,16 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "File_WriteLines": (2, 5), "File_Exists": (1, 1), "File_Length": (1, 1), "File_Delete": (1, None),
     "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5),
     "File_GetAllTokens": (3, 4),
+    # the SerialPort class on the simulated robot's virtual ports (L12367-L13395)
+    "com_open": (1, 1), "com_close": (1, 1), "com_read": (1, 5), "com_read_string": (1, 5),
+    "com_write": (2, 4), "com_writeline": (2, 4),
     # the Socket class's TCP client (L13396-L14356)
     "socket_open": (1, 1), "socket_close": (1, 1), "socket_read": (1, 5), "socket_read_string": (1, 5),
     "socket_send": (2, 4), "socket_sendline": (2, 4),
-    # the ModbusTCP class's user-defined reads and writes (L18324-L19693)
-    "modbus_open": (1, 1), "modbus_close": (1, 1), "modbus_read": (5, 5), "modbus_read_int16": (5, 6),
+    # the ModbusTCP/ModbusRTU classes' preset and user-defined reads and writes (L18324-L19693)
+    "modbus_open": (1, 1), "modbus_close": (1, 1), "modbus_read": (2, 5), "modbus_read_int16": (5, 6),
     "modbus_read_int32": (5, 6), "modbus_read_float": (5, 6), "modbus_read_double": (5, 6),
-    "modbus_read_string": (5, 6), "modbus_write": (5, 6),
+    "modbus_read_string": (5, 6), "modbus_write": (3, 6),
     # math in degrees (L8033-L9400) and pose math (L9393-L9900)
     "abs": (1, 1), "pow": (2, 2), "sqrt": (1, 1), "ceil": (1, 1), "floor": (1, 1), "round": (1, 2),
     "random": (0, 2), "sum": (1, None), "average": (1, None), "min": (1, None), "max": (1, None),
@@ -67,7 +70,12 @@ DEFERRED_WITH_TWO = frozenset({"WaitFor"})
 
 #: Class types (L12376-L25700) the runtime has; a declaration of another is reported as not
 #: supported yet, never translated to a call that fails at run time.
-CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP", "Socket", "ModbusTCP"})
+CLASSES: frozenset[str] = frozenset({"TPoint", "TBase", "TTCP", "Socket", "SerialPort", "ModbusTCP", "ModbusRTU"})
+#: How many values a device class's declaration takes (L12376, L13398, L18326, L18531).
+CLASS_ARGUMENTS: dict[str, tuple[int, ...]] = {
+    "SerialPort": (2, 5, 6, 9), "ModbusRTU": (2, 5, 6, 9), "Socket": (2, 3), "ModbusTCP": (1, 2, 3)}
+#: The device classes: closed when the block that declares them is left (L1320, L1335-L1345).
+DEVICES = frozenset(CLASS_ARGUMENTS)
 
 #: Parameterized objects: ``Item[index].Attribute`` without a declaration (L14355-L14860).
 OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})

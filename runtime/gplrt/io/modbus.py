@@ -231,12 +231,7 @@ class Modbus:
             except BaseException:  # Thread.Abort while waiting: the reply may still come
                 self._disconnect()
                 raise
-        if body[0] == function | 0x80:
-            code = body[1] if len(body) > 1 else 0
-            raise GplException(MODBUS_EXCEPTION, code, detail=f"FC{function}: exception code {code}")
-        if body[0] != function:
-            raise GplException(INVALID_PROTOCOL, detail=f"reply to FC{body[0]} for FC{function}")
-        return body[1:]
+        return _reply_data(function, body)
 
     def _receive(self, sock: _socket.socket, size: int) -> bytes:
         timeout = self._timeout()
@@ -258,6 +253,17 @@ class Modbus:
             return bytes(data)
 
         return blocking_call(wait, timeout)
+
+
+def _reply_data(function: int, pdu: bytes) -> bytes:
+    """A reply PDU's data after its function code; an exception reply is -1730 with its code
+    (the same for every transport: TCP here, RTU in ``gplrt.io.modbus_rtu``)."""
+    if pdu[0] == function | 0x80:
+        code = pdu[1] if len(pdu) > 1 else 0
+        raise GplException(MODBUS_EXCEPTION, code, detail=f"FC{function}: exception code {code}")
+    if pdu[0] != function:
+        raise GplException(INVALID_PROTOCOL, detail=f"reply to FC{pdu[0]} for FC{function}")
+    return pdu[1:]
 
 
 def _address(value: int) -> int:

@@ -11,6 +11,7 @@ import sys
 
 from gplrt.lang.sourcemap import locate
 from gplrt.tm import context
+from gplrt.tm.devices import close_all
 from gplrt.tm.library import *  # noqa: F401,F403 (the TMscript names generated code calls)
 from gplrt.tm.library import ProjectExit
 from gplrt.tm.objects import IO, Robot
@@ -55,6 +56,7 @@ def run_project(main: object, closestop: object = None, errorstop: object = None
             failed = True
         except ProjectExit:
             failed = True
+    close_all(context.robot())  # the project stops: its devices close (L12494)
     return 1 if failed else 0
 
 

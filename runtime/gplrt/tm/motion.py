@@ -152,6 +152,9 @@ class Robot:
         """End the robot's session: its executor and threads (``use_robot`` closes the robot it
         replaces, unless a server still serves it)."""
         self.servers = 0
+        from gplrt.tm.devices import close_all  # (devices need the context, which needs this module)
+
+        close_all(self)  # (the serial ports, sockets and Modbus links the scripts left open)
         self.sim.close(grace=1.0)
 
     def drive(self) -> None:
