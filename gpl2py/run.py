@@ -240,6 +240,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="TM robots: serve the Listen node (TCP 5890: $TMSCT scripts, $TMSTA) and the "
                         "Ethernet Slave (TCP 5891: $TMSVR) on loopback (or --listen ADDRESS) for clients "
                         "such as techmanpy, until Ctrl-C (docs/tmscript.md)")
+    parser.add_argument("--serial", action="append", default=[], type=_serial_link, metavar="PORT=URL",
+                        help="TM robots: attach the simulated robot's virtual serial port PORT (COM1...) to "
+                        "URL, a pyserial URL or device (loop://, socket://HOST:PORT, /dev/ttyUSB0); a "
+                        "script's SerialPort/ModbusRTU opens only ports attached so (docs/tmscript.md)")
     parser.add_argument("--robot", default=None, type=str.upper, choices=robots, metavar="MODEL",
                         help="robot model of the simulated controller (default: robot in "
                         "[tool.gpl2py], else PF400SX); one of: "
@@ -293,6 +297,23 @@ def whole_number(text: str, other: str = "") -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1: {text!r}")
     return value
+
+
+def _serial_link(text: str) -> tuple[str, str]:
+    """``--serial COM2=socket://127.0.0.1:7000``: (port, URL)."""
+    port, sep, url = text.partition("=")
+    if not sep or not port.strip() or not url.strip():
+        raise argparse.ArgumentTypeError(f"not PORT=URL: {text!r}")
+    return port.strip(), url.strip()
+
+
+def _attach_serial(args: argparse.Namespace) -> None:
+    """The virtual serial ports the user attached with ``--serial``."""
+    if args.serial:
+        from gplrt.tm.serial import attach_serial
+
+        for port, url in args.serial:
+            attach_serial(port, url)
 
 
 def _history(text: str) -> int | None:
@@ -582,6 +603,7 @@ def run_command(args: argparse.Namespace) -> Outcome:
             emit(out, display, stdout, stderr)
         from gplrt.tm import context
 
+        _attach_serial(args)
         robot = context.use_robot(args.robot if args.robot in TM_MODELS else "TM5-900", clock=args.clock,
                                   speed=args.speed if args.clock == "real" else float("inf"))
         try:
@@ -690,6 +712,7 @@ def _run_listen_node(args: argparse.Namespace, out: Outcome) -> Outcome:
     from gpl2py.tmscript.node import main as listen_main
 
     speed = args.speed if args.clock == "real" else math.inf
+    _attach_serial(args)
     out.exit_status = listen_main(args.robot or "TM5-900", args.listen or "127.0.0.1", speed=speed, clock=args.clock)
     return out
 

@@ -159,3 +159,20 @@ def test_the_end_of_the_project_closes_the_port(robot, tmp_path: Path) -> None: 
     assert run_project(src, tmp_path / "out", lines.append) == 0
     assert peer.closed.wait(30) and peer.wait_for(5) == b"bye\r\n"
     assert robot._serial_devices == {}
+
+
+def test_gpl2py_run_attaches_ports_with_serial(tmp_path: Path) -> None:
+    """``gpl2py run script.tms --serial COM2=loop://``; without it the port cannot be opened and
+    the run ends with the script's error on its line, not a traceback."""
+    import subprocess
+    import sys
+
+    src = tmp_path / "echo.tms"
+    src.write_text('main\n{\n    SerialPort spd = "COM2", 9600\n    com_open("spd")\n    com_writeline("spd", "echo")\n'
+                   '    Display(com_read_string("spd", newline, 1, 5000))\n}\n')
+    command = [sys.executable, "-m", "gpl2py", "run", str(src), "--robot", "TM5-900"]
+    r = subprocess.run(command + ["--serial", "COM2=loop://"], capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert (r.returncode, r.stdout) == (0, "echo\n"), r.stderr
+    r = subprocess.run(command, capture_output=True, text=True, cwd=tmp_path, timeout=120)
+    assert r.returncode == 1 and "Traceback" not in r.stderr
+    assert 'echo.tms:4: error: com_open("spd"): the serial port COM2 cannot be opened' in r.stderr
