@@ -19,9 +19,10 @@ import threading
 from pathlib import Path
 
 import pytest
-from tmpacket import run_project
+from tmpacket import Peer, modbus_slave, run_project
 
 from gplrt.tm import context
+from gplrt.tm.serial import attach_serial
 
 EXAMPLES = Path(__file__).parent / "examples"
 
@@ -108,3 +109,58 @@ def test_e22_block_scope_closes_the_socket(tmp_path: Path) -> None:
     context.use_robot("TM5-900", speed=20.0)  # (15 s of Sleep in 0.75 s)
     assert run_project(tmp_path / "e22_block_scope.tms", tmp_path / "out", lines.append) == 0
     assert lines == ["A Value: 10", "B Value: b"] and closed.wait(30)
+
+
+#: The bytes the manual's comments say a line writes or sends (``// write 0x64``, ``// send 0xE8,0x03``).
+MANUAL_BYTES = re.compile(r"//\s*(?:write|send) ((?:0x[0-9A-Fa-f]{2}[ ,]*)+)")
+
+
+def manual_bytes(text: str) -> bytes:
+    return b"".join(bytes(int(h, 16) for h in re.findall(r"0x([0-9A-Fa-f]{2})", m.group(1)))
+                    for m in MANUAL_BYTES.finditer(text))
+
+
+def test_e70_com_write_sends_the_manuals_bytes(tmp_path: Path) -> None:
+    """E69/E70 on the virtual port COM2, attached to a TCP peer of the test's: the peer receives
+    exactly the bytes the manual's comments give, in order."""
+    text = (EXAMPLES / "e70_com_write.tms").read_text(encoding="utf-8")
+    want = manual_bytes(text)
+    assert len(MANUAL_BYTES.findall(text)) == text.count("com_write(")  # (a comment per write)
+    peer = Peer()
+    attach_serial("COM2", peer.url)
+    try:
+        status, lines = run_example("e70_com_write", tmp_path)
+    finally:
+        attach_serial("COM2", None)
+    assert status == 0 and peer.wait_for(len(want)) == want
+
+
+def test_e72_socket_send_sends_the_manuals_bytes(tmp_path: Path) -> None:
+    """E71/E72, the manual's 192.168.1.10:12345 replaced by a loopback peer of the test's."""
+    text = (EXAMPLES / "e72_socket_send.tms").read_text(encoding="utf-8")
+    want = manual_bytes(text)
+    assert len(MANUAL_BYTES.findall(text)) == text.count("socket_send(")
+    peer = Peer()
+    (tmp_path / "e72_socket_send.tms").write_text(
+        text.replace('"192.168.1.10", 12345', f'"127.0.0.1", {peer.port}'), encoding="utf-8")
+    context.use_robot("TM5-900")
+    assert run_project(tmp_path / "e72_socket_send.tms", tmp_path / "out", print) == 0
+    assert peer.wait_for(len(want)) == want
+
+
+def test_e100_modbus_presets(tmp_path: Path) -> None:
+    """E100 against a pymodbus slave (its port in place of the manual's 502): the values the
+    manual's comments give."""
+    pytest.importorskip("pymodbus")
+    from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock
+
+    device = ModbusDeviceContext(co=ModbusSequentialDataBlock(1, [False] * 7300),
+                                 hr=ModbusSequentialDataBlock(1, [0] * 9100))
+    text = (EXAMPLES / "e100_modbus_preset.tms").read_text(encoding="utf-8")
+    with modbus_slave(device) as port:
+        (tmp_path / "e100_modbus_preset.tms").write_text(
+            text.replace('ModbusTCP mbus1 = "127.0.0.1"', f'ModbusTCP mbus1 = "127.0.0.1", {port}'), encoding="utf-8")
+        lines: list[str] = []
+        context.use_robot("TM5-900")
+        status = run_project(tmp_path / "e100_modbus_preset.tms", tmp_path / "out", lines.append)
+    assert (status, lines) == (0, ["false", "true", "1234", "HelloWorld", "1234oWorld"])
