@@ -44,6 +44,8 @@ EXPECTED = {
     "e19_block_comment": (0, []),
     "e20_global": (0, ["B Value: 20"]),
     "e36_return": (0, ["3"]),
+    # the base the manual's comment gives, and the TCP on its origin after the PTP to {0,0,0,0,0,0} in it
+    "e66_points2coord": (0, ["{389.9641,-4.797323,416.2175,-168.6551,-2.780696,99.9553}"] * 2),
 }
 
 

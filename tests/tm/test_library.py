@@ -123,6 +123,23 @@ def test_pose_math_round_trip_e63() -> None:
         assert all(abs(a - b) < 1e-3 for a, b in zip(nums, [150, 180, 320, -5, 45, 60]))
 
 
+def test_points2coord_and_intercoord_l9733_l9843() -> None:
+    """The manual's three examples, to the 7 significant digits it prints (1e-5 near 0)."""
+    context.use_robot("TM5-900")
+    got = values("float[] a = points2coord({389.9641,-4.797323,416.2175,177.3384,0.9190881,91.07789},"
+                 "{365.0222,137.3036,423.2249,177.4598,0.9549707,112.4033},"
+                 "{546.7307,94.02614,385.1812,176.3468,0.5975906,95.82078})\n"
+                 "float[] b = points2coord(260,0,360,260,100,360,100,0,360)\n"
+                 "float[] c = intercoord({-69.73,380.02,141.79,-176.11,1.13,-121.27},{58.81,613.03,140.7,171.62,-0.89,0.8})",
+                 "a", "b", "c")
+    want = [[389.9641, -4.797323, 416.2175, -168.6551, -2.780696, 99.9553], [260, 0, 360, 0, 0, 90],
+            [-5.460001, 496.52502, 141.245, 176.06546, 0.23468152, 61.116673]]
+    for text, manual in zip(got, want):
+        assert [float(x) for x in text.strip("{}").split(",")] == pytest.approx(manual, rel=5e-7, abs=1e-5)
+    with pytest.raises(TMError, match="do not define a frame"):
+        run("float[] d = points2coord(0,0,0,1,0,0,2,0,0)")
+
+
 def test_e04_e05_single_quoted_variables_in_strings() -> None:
     p = translate_packet('string s = "TM5"\nstring a = "Hi, \'s\' Robot"\nstring b = "Hi, \'x\' Robot"\n'
                          'string[] ss = {"Techman", "Robot"}\nstring c = "Hi, \'s\' \'ss[0]\' Robot"\n'

@@ -60,7 +60,7 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "d2r": (1, 1), "r2d": (1, 1), "sin": (1, 1), "cos": (1, 1), "tan": (1, 1), "asin": (1, 1),
     "acos": (1, 1), "atan": (1, 1), "atan2": (2, 2), "log": (1, 2), "log10": (1, 1), "norm2": (1, 1),
     "dist": (2, 2), "trans": (2, 3), "inversetrans": (1, 2), "applytrans": (2, 3), "changeref": (2, 3),
-    "interpoint": (3, 3),
+    "interpoint": (3, 3), "points2coord": (3, 9), "intercoord": (2, 2),
 }
 
 #: Built-ins whose first argument is a deferred statement or condition (spec §2).

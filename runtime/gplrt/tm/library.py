@@ -796,7 +796,9 @@ from gplrt.tm.modbus import (  # noqa: E402
     ModbusRTU, ModbusTCP, modbus_close, modbus_open, modbus_read, modbus_read_double, modbus_read_float, modbus_read_int16,
     modbus_read_int32, modbus_read_string, modbus_write,
 )
-from gplrt.tm.posemath import applytrans, changeref, interpoint, inversetrans, trans  # noqa: E402
+from gplrt.tm.posemath import (  # noqa: E402
+    applytrans, changeref, intercoord, interpoint, inversetrans, points2coord, trans,
+)
 from gplrt.tm.serial import (  # noqa: E402
     SerialPort, com_close, com_open, com_read, com_read_string, com_write, com_writeline,
 )

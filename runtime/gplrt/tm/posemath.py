@@ -57,5 +57,37 @@ def interpoint(p1: object, p2: object, ratio: object) -> Array:
     return _out(pin.SE3(rot, a.translation + r * (b.translation - a.translation)))
 
 
-__all__ = ["applytrans", "changeref", "interpoint", "inversetrans", "trans"]
-del np
+def _unit(v: np.ndarray, name: str) -> np.ndarray:
+    n = float(np.linalg.norm(v))
+    if n < 1e-9:
+        raise TMError(f"{name}: the points do not define a frame (two coincide or all three are on a line)")
+    return v / n
+
+
+def _frame(origin: np.ndarray, x: np.ndarray, z: np.ndarray) -> Array:
+    """The frame at ``origin`` with axes ``x``, ``z`` (unit, orthogonal) and y = z × x."""
+    return _out(pin.SE3(np.column_stack([x, np.cross(z, x), z]), origin))
+
+
+def points2coord(*args: object) -> Array:
+    """The frame of three points (L9733): origin p1, x towards p2, z = x × (p3 − p1), y = z × x;
+    three poses (their XYZ) or nine coordinates."""
+    if len(args) == 9:
+        pts = [np.array([float(v) for v in args[i:i + 3]]) / 1000.0 for i in (0, 3, 6)]  # type: ignore[arg-type]
+    elif len(args) == 3:
+        pts = [_se3(p, "points2coord").translation for p in args]
+    else:
+        raise TMError("points2coord: three poses or nine values")
+    x = _unit(pts[1] - pts[0], "points2coord")
+    return _frame(pts[0], x, _unit(np.cross(x, pts[2] - pts[0]), "points2coord"))
+
+
+def intercoord(p1: object, p2: object) -> Array:
+    """The frame between two frames (L9843): at their midpoint, i = p2 − p1, j = k1 × i, k = i × j."""
+    a, b = _se3(p1, "intercoord"), _se3(p2, "intercoord")
+    i = _unit(b.translation - a.translation, "intercoord")
+    j = _unit(np.cross(a.rotation[:, 2], i), "intercoord")
+    return _frame((a.translation + b.translation) / 2, i, np.cross(i, j))
+
+
+__all__ = ["applytrans", "changeref", "interpoint", "intercoord", "inversetrans", "points2coord", "trans"]
