@@ -91,10 +91,13 @@ class NodeClient:
 
 class Peer:
     """A remote device on loopback for the Socket and SerialPort tests (``port``; ``url`` for a
-    serial port attached with pyserial's ``socket://``): accepts one client, sends ``greeting``,
-    keeps what it receives and notes when the client closes."""
+    serial port attached with pyserial's ``socket://``): accepts one client, sends ``greeting``
+    (``asked``: only once the client sent something, as a serial device answers; opening a
+    serial port drops what came before, pyserial's ``open`` resets the input), keeps what it
+    receives and notes when the client closes."""
 
-    def __init__(self, greeting: bytes = b"") -> None:
+    def __init__(self, greeting: bytes = b"", asked: bool = False) -> None:
+        self.asked = asked
         self.server = socket.create_server(("127.0.0.1", 0))
         self.port = self.server.getsockname()[1]
         self.url = f"socket://127.0.0.1:{self.port}"
@@ -105,8 +108,11 @@ class Peer:
 
     def _serve(self) -> None:
         conn, _ = self.server.accept()
-        conn.sendall(self.greeting)
+        if not self.asked:
+            conn.sendall(self.greeting)
         while chunk := conn.recv(65536):
+            if self.asked and not self.received:
+                conn.sendall(self.greeting)
             self.received += chunk
         self.closed.set()
 

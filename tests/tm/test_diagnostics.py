@@ -64,3 +64,16 @@ def test_each_case_gives_its_code_where_it_is(code: str, tmp_path: Path) -> None
     if line:
         assert (hits[0].span.line, hits[0].span.col) == (line, col), hits[0].header()
     assert not any(d.code == "GPL9000" for d in found)
+
+
+@pytest.mark.parametrize("packet, header", [
+    ('mbus1.Preset("a", 1, "DO", 1, "bool")',
+     "packet:1:1: error GPL5302: 'mbus1.Preset' is not a function of TMscript or of this project"),
+    ('TBase b1 = 0,0,0,0,0,0\nfloat[] f = b1.GetValue(1)', "packet:2:13: error GPL5314: TBase.GetValue() is not supported yet by gpl2py"),
+    ("TTCP t = 0,0,0,0,0,0\nt.Frob()", "packet:2:1: error GPL5302: 'TTCP.Frob' is not a function of TMscript or of this project"),
+])
+def test_a_method_the_variable_does_not_have_is_reported_not_a_python_error(packet: str, header: str) -> None:
+    """``var.Method()`` on a bare word or a class without that method was an AttributeError at run
+    time (E81's ``b1.GetValue(1)``, a packet naming a device of an earlier node it never declared)."""
+    assert [d.header() for d in translate_packet(packet).errors] == [header]
+    assert translate_packet('ModbusTCP m = "127.0.0.1"\nm.Preset("a", 1, "DO", 1, "bool")').errors == []

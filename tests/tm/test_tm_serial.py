@@ -85,9 +85,10 @@ def test_write_l13270_as_the_peer_receives_it(robot) -> None:  # type: ignore[no
 def test_reads_wait_for_what_the_line_brings(robot) -> None:  # type: ignore[no-untyped-def]
     """The reader fills the Received Buffer in the background after com_open (L12494); a read
     with a read time waits for it, in controller time."""
-    peer = Peer(HELLO + b"$TM\r\n")
+    peer = Peer(HELLO + b"$TM\r\n", asked=True)
     attach_serial("COM2", peer.url)
-    v = run_packet('SerialPort spd = "COM2",115200\ncom_open("spd")\nbyte[] a = com_read("spd", 14, 5000)\n'
+    v = run_packet('SerialPort spd = "COM2",115200\ncom_open("spd")\ncom_write("spd", "?")\n'
+                   'byte[] a = com_read("spd", 14, 5000)\n'
                    'string b = com_read_string("spd", newline, 1, 5000)\nbyte[] c = com_read("spd")\n'
                    'bool d = com_close("spd")')
     assert bytes(v.a) == HELLO and v.b == "$TM" and v.c == [] and v.d is True
@@ -141,9 +142,9 @@ def test_reads_from_the_received_buffer_l12500_l13192(robot) -> None:  # type: i
 
 def test_the_buffer_drops_the_oldest_bytes_when_full(robot, monkeypatch) -> None:  # type: ignore[no-untyped-def]
     monkeypatch.setattr(devices, "BUFFER_SIZE", 8)
-    peer = Peer(b"0123456789ABCDEF")
+    peer = Peer(b"0123456789ABCDEF", asked=True)
     attach_serial("COM2", peer.url)
-    v = run_packet('SerialPort spd = "COM2",115200\ncom_open("spd")\nbyte[] a = com_read("spd", "F", 0, 5000)\n'
+    v = run_packet('SerialPort spd = "COM2",115200\ncom_writeline("spd", "?")\nbyte[] a = com_read("spd", "F", 0, 5000)\n'
                    'string s = com_read_string("spd")')
     assert bytes(v.a) == b"89ABCDEF" and v.s == ""
 

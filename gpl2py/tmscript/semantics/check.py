@@ -18,7 +18,9 @@ from dataclasses import dataclass, field
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.tmscript import messages as M
-from gpl2py.tmscript.semantics.library import BUILTINS, CLASS_ARGUMENTS, CLASSES, OBJECTS, RETURNS
+from gpl2py.tmscript.semantics.library import (
+    BUILTINS, CLASS_ARGUMENTS, CLASSES, METHODS, METHODS_NOT_YET, OBJECTS, RETURNS,
+)
 from gpl2py.tmscript.syntax import ast as A
 
 INTEGER = frozenset({"byte", "int"})
@@ -300,6 +302,7 @@ class Checker:
         if isinstance(callee, A.Member):
             self.expr(callee.obj)
             self.info.calls[id(e)] = "method"
+            self.method(callee)
             return
         if not isinstance(callee, A.Name):
             self.sink.report(M.TM_UNKNOWN_FUNCTION, callee.span, name="(expression)")
@@ -328,6 +331,22 @@ class Checker:
                              s="" if expected == "1" else "s", given=len(e.args))
         if callee.name in RETURNS:
             self.info.types[id(e)] = RETURNS[callee.name]
+
+
+    def method(self, callee: A.Member) -> None:
+        """``var.Method(...)``: a method the variable's class has (L18366: ``mbus1.Preset``).  On
+        anything else (a bare word, a class without that method) it is reported here, where a
+        TM user reads it, rather than failing in Python at run time."""
+        obj = callee.obj
+        var = self.info.names.get(id(obj)) if isinstance(obj, A.Name) else None
+        if var is None or var.cls is None:
+            if isinstance(obj, A.Name):
+                self.sink.report(M.TM_UNKNOWN_FUNCTION, callee.span, name=f"{obj.name}.{callee.name}")
+            return
+        if callee.name in METHODS_NOT_YET.get(var.cls, ()):
+            self.sink.report(M.TM_UNSUPPORTED, callee.span, what=f"{var.cls}.{callee.name}()")
+        elif callee.name not in METHODS.get(var.cls, ()):
+            self.sink.report(M.TM_UNKNOWN_FUNCTION, callee.span, name=f"{var.cls}.{callee.name}")
 
 
 def check_script(tree: A.Script, sink: DiagnosticSink) -> Info:

@@ -77,6 +77,14 @@ CLASS_ARGUMENTS: dict[str, tuple[int, ...]] = {
 #: The device classes: closed when the block that declares them is left (L1320, L1335-L1345).
 DEVICES = frozenset(CLASS_ARGUMENTS)
 
+#: The member methods a class variable has in the runtime (``mbus1.Preset(...)``, L18366); the
+#: manual's others (``TBase.GetValue``/``SetValue``, L15169; ``IODDPreset`` is a script error at
+#: run time: not simulated) are reported as not supported, never a failure at run time.
+METHODS: dict[str, frozenset[str]] = {
+    "ModbusTCP": frozenset({"Preset", "IODDPreset"}), "ModbusRTU": frozenset({"Preset", "IODDPreset"})}
+#: The manual's member methods not implemented yet.
+METHODS_NOT_YET: dict[str, frozenset[str]] = {"TBase": frozenset({"GetValue", "SetValue"})}
+
 #: Parameterized objects: ``Item[index].Attribute`` without a declaration (L14355-L14860).
 OBJECTS = frozenset({"Point", "Base", "TCP", "VPoint", "IO", "Robot", "FT"})
 

@@ -36,7 +36,7 @@ from __future__ import annotations
 import threading
 from typing import Any
 
-from gplrt.io._blocking import POLL_SLICE, blocking_call, opened
+from gplrt.io._blocking import POLL_SLICE, blocking_call
 from gplrt.threads.scheduler import abort_point
 from gplrt.tm.conversions import GetBytes, write_span
 from gplrt.tm.devices import Device, find, take, text
@@ -136,9 +136,10 @@ class SerialPort(Device):
         if self.port is not None:
             return True
         self.port = port = self.settings.open(f'{what}("{self.name}")')
-        # an open line paces virtual time to real time, as an open socket does: what the peer
-        # sends takes real time to come (gplrt.io._blocking.opened)
-        self._release = opened()
+        # an open line paces the robot's virtual time to real time, as an open socket does: what
+        # the peer sends takes real time to come (whichever thread opened it: a script project's
+        # main runs on the caller's thread, not one of the scheduler's)
+        self._release = self.robot.sched.hold_real_time()
         start_thread(self.robot.sched, f"tm-serial-{self.name}", lambda: self._receive(port))
         return True
 
@@ -148,7 +149,7 @@ class SerialPort(Device):
             while self.port is port:
                 abort_point()
                 try:
-                    data = blocking_call(lambda: port.read(port.in_waiting or 1), POLL_SLICE)
+                    data = blocking_call(lambda: _read_some(port), POLL_SLICE)
                 except Exception:  # (closed meanwhile, or the link failed: the reader ends)
                     break
                 if data and self.port is port:
@@ -180,6 +181,15 @@ class SerialPort(Device):
         except Exception:
             return False
         return True
+
+
+def _read_some(port: Any) -> bytes:
+    """What the line has: waits up to the port's read slice for a first byte, then takes what
+    else is there (``in_waiting`` is only 0/1 for some URL handlers: ``socket://``)."""
+    data = bytes(port.read(port.in_waiting or 1))
+    while data and port.in_waiting:
+        data += port.read(port.in_waiting)
+    return data
 
 
 def _known(name: object, what: str) -> SerialPort:

@@ -48,7 +48,8 @@ class Socket(Device):
             return False
         client = TcpClient()
         try:
-            client.Connect(IPEndPoint(self.ip, self.port))  # type: ignore[arg-type]
+            with self.robot.sched.adopted():  # (so that the open connection paces the robot's time)
+                client.Connect(IPEndPoint(self.ip, self.port))  # type: ignore[arg-type]
         except GplException:
             client.Close()
             return False
