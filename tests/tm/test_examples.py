@@ -2,12 +2,34 @@
 the output the manual shows.
 
 Runnable (tests/tm/examples/, conversion artefacts of the seed repaired and said in each file's
-first line): E12, E13, E14, E15, E16, E17, E18, E19, E20, E36, E37, E38, E39, E40.
-Not runnable: E105 (force control: FTSensor/Force need a force sensor, not simulated); E21 is a
-compile-error example (tested: tests/tm/test_diagnostics.py GPL5300) and E22 shows a Socket closed
-when its block is left (not simulated; the Socket functions: tests/tm/test_tm_sockets.py); E24-E35 are function-level programs without ``main`` (their statements are covered by
-tests/tm/test_frontend.py); E41-E65 are statement snippets (tests/tm/test_library.py); E66-E104
-need vision, serial ports, sockets, teach points, Modbus, fieldbus or force control.
+first line): E12, E13, E14, E15, E16, E17, E18, E19, E20, E22 (a Socket closed when its block is
+left), E36, E37, E38, E39, E40, and snippets put in a ``main``: E66 (points2coord, ChangeBase,
+PTP), E69/E70 (SerialPort, com_write: the bytes the manual's comments give, on a virtual port),
+E71/E72 (socket_send: the same), E100 (Modbus presets, against a pymodbus slave).
+
+Not runnable here, and why:
+E105 (force control: FTSensor/Force need a force sensor, not simulated); E21 is a compile-error
+example (tested: tests/tm/test_diagnostics.py GPL5300); E24-E35 are function-level programs
+without ``main`` (their statements are covered by tests/tm/test_frontend.py); E41-E65 are
+statement snippets (tests/tm/test_library.py).  E66-E104:
+* E67, E68: file snippets with the files' listings between the lines; their values are
+  tests/tm/test_tm_files.py's.  E101: user-defined modbus_write lines without a device; their
+  results are tests/tm/test_tm_modbus.py's.
+* E73-E76 (Point, Base, IO, Robot[0] items): snippets that mix lines the manual marks "Return
+  error" or "invalid operation" with the rest, on points and bases a TMflow project would have
+  taught (E73 writes the joint-like {0,0,90,0,90,0} as a Cartesian point); E74 reads a vision
+  base (not simulated), E76 a force (TCPForce3D).
+* E77-E79 (TPoint declarations): declare, but E77's p4 "Return error - unable to calculate the
+  angle value" is not an error here (a TPoint's inverse is not solved at its declaration), and
+  E79 gives TBase and joint arrays 5 values (the manual's typo, an error).  E80 reads
+  ``Value[6]`` on purpose (an error).  E81 (TBase.GetValue/SetValue, vision multi-base) and E82
+  (TTCP MOI/MCF members) use members not simulated (GPL5314 for the methods).
+* E83, E97-E99: Listen-node packet transcripts, run as packets in tests/tm/test_listen_node.py.
+* E84-E91, E93, E94: one motion call each with no output to compare, their comments wrapped
+  into the code by the PDF (E84, E85, E87, E90, E91 do not compile as printed); the motions
+  are tests/tm/test_tm_motion.py's and test_techmanpy.py's.
+* E92 (ChangeBase of a vision base), E95, E96 (vision jobs), E102 (svr_read of TCP_Value and
+  project globals the simulated Ethernet Slave does not have), E103, E104 (force control).
 Thread ids differ from the manual's (they are the controller's), so their lines are compared by form.
 """
 
