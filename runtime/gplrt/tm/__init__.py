@@ -11,7 +11,6 @@ import sys
 
 from gplrt.lang.sourcemap import locate
 from gplrt.tm import context
-from gplrt.tm.devices import close_all
 from gplrt.tm.library import *  # noqa: F401,F403 (the TMscript names generated code calls)
 from gplrt.tm.library import ProjectExit
 from gplrt.tm.objects import IO, Robot
@@ -56,7 +55,7 @@ def run_project(main: object, closestop: object = None, errorstop: object = None
             failed = True
         except ProjectExit:
             failed = True
-    close_all(context.robot())  # the project stops: its devices close (L12494)
+    context.robot().close_devices()  # the project stops: its devices close (L12494)
     return 1 if failed else 0
 
 

@@ -15,7 +15,7 @@ Buffer and the reads from it, and its end (``Socket``, ``SerialPort``, ``ModbusT
   an error (L1320, L1335-L1345): the lowering writes the rest of the block as ``with
   tm.Socket(...) as bbb:`` and ``__exit__`` is :meth:`Device.release`.  Every device still open
   is closed when the project stops (L12494: "closes the opened Serial Port and clears the
-  receiving buffer"), by :func:`close_all`.
+  receiving buffer"), by ``Robot.close_devices``.
 """
 
 from __future__ import annotations
@@ -83,30 +83,22 @@ class Device:
 
 
 def registry(robot: object, kind: str) -> dict[str, Any]:
-    """The robot's table of ``kind`` devices by lower-case name."""
-    attr = f"_{kind}_devices"
-    found = getattr(robot, attr, None)
+    """The robot's table of ``kind`` devices by lower-case name (``robot._devices[kind]``, also
+    ``robot._<kind>_devices``); ``Robot.close_devices`` closes them all."""
+    tables = getattr(robot, "_devices", None)
+    if tables is None:
+        tables = {}
+        setattr(robot, "_devices", tables)
+    found = tables.get(kind)
     if found is None:
-        found = {}
-        setattr(robot, attr, found)
+        found = tables[kind] = {}
+        setattr(robot, f"_{kind}_devices", found)
     return found  # type: ignore[no-any-return]
 
 
 def find(kind: str, name: object) -> Any:
     """The current robot's ``kind`` device called ``name`` (spaces around it ignored), or None."""
     return registry(context.robot(), kind).get(to_string(name).strip().lower())
-
-
-def close_all(robot: object) -> None:
-    """The project stops: every device it declared is closed and forgotten (L12494)."""
-    for kind in ("socket", "serial", "modbus"):
-        table = registry(robot, kind)
-        for dev in list(table.values()):
-            try:
-                dev.close()
-            except Exception:  # (one device failing to close does not keep the others open)
-                pass
-        table.clear()
 
 
 # -- reads from the Received Buffer ---------------------------------------------------------------
@@ -209,4 +201,4 @@ def text(data: bytes) -> str:
     return data.decode("utf-8", errors="replace")
 
 
-__all__ = ["BUFFER_SIZE", "Device", "close_all", "find", "registry", "take", "text"]
+__all__ = ["BUFFER_SIZE", "Device", "find", "registry", "take", "text"]

@@ -152,10 +152,19 @@ class Robot:
         """End the robot's session: its executor and threads (``use_robot`` closes the robot it
         replaces, unless a server still serves it)."""
         self.servers = 0
-        from gplrt.tm.devices import close_all  # (devices need the context, which needs this module)
-
-        close_all(self)  # (the serial ports, sockets and Modbus links the scripts left open)
+        self.close_devices()  # (the serial ports, sockets and Modbus links the scripts left open)
         self.sim.close(grace=1.0)
+
+    def close_devices(self) -> None:
+        """The project stops: every device its scripts declared closes and is forgotten (L12494;
+        the tables are ``gplrt.tm.devices``': kind -> name -> device)."""
+        for table in getattr(self, "_devices", {}).values():
+            for dev in list(table.values()):
+                try:
+                    dev.close()
+                except Exception:  # (one device failing to close does not keep the others open)
+                    pass
+            table.clear()
 
     def drive(self) -> None:
         """A server (the Listen node, the Ethernet Slave) starts serving: keep the robot's
