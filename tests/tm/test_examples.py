@@ -4,7 +4,7 @@ the output the manual shows.
 Runnable (tests/tm/examples/, conversion artefacts of the seed repaired and said in each file's
 first line): E12, E13, E14, E15, E16, E17, E18, E19, E20, E22 (a Socket closed when its block is
 left), E36, E37, E38, E39, E40, and snippets put in a ``main``: E66 (points2coord, ChangeBase,
-PTP), E69/E70 (SerialPort, com_write: the bytes the manual's comments give, on a virtual port),
+PTP), E78 (TPoint with base and TCP names), E69/E70 (SerialPort, com_write: the bytes the manual's comments give, on a virtual port),
 E71/E72 (socket_send: the same), E100 (Modbus presets, against a pymodbus slave).
 
 Not runnable here, and why:
@@ -19,7 +19,7 @@ statement snippets (tests/tm/test_library.py).  E66-E104:
   error" or "invalid operation" with the rest, on points and bases a TMflow project would have
   taught (E73 writes the joint-like {0,0,90,0,90,0} as a Cartesian point); E74 reads a vision
   base (not simulated), E76 a force (TCPForce3D).
-* E77-E79 (TPoint declarations): declare, but E77's p4 "Return error - unable to calculate the
+* E77, E79 (TPoint declarations): declare, but E77's p4 "Return error - unable to calculate the
   angle value" is not an error here (a TPoint's inverse is not solved at its declaration), and
   E79 gives TBase and joint arrays 5 values (the manual's typo, an error).  E80 reads
   ``Value[6]`` on purpose (an error).  E81 (TBase.GetValue/SetValue, vision multi-base) and E82
@@ -68,6 +68,8 @@ EXPECTED = {
     "e36_return": (0, ["3"]),
     # the base the manual's comment gives, and the TCP on its origin after the PTP to {0,0,0,0,0,0} in it
     "e66_points2coord": (0, ["{389.9641,-4.797323,416.2175,-168.6551,-2.780696,99.9553}"] * 2),
+    # each point's base and TCP as the manual's comments give them; p00's "" is the current base1
+    "e78_tpoint_base_tcp": (0, ["RobotBase NOTOOL", "base1 NOTOOL", "RobotBase tcp1", "base1 tcp1", "base1 tcp1"]),
 }
 
 

@@ -395,6 +395,7 @@ def ChangeBase(*args: object) -> bool:
 
     def run() -> None:
         r.base, r.base_name = frame, label
+    r.script_base_name = label
     return r.enqueue(Command("call", run=run))
 
 
@@ -417,6 +418,7 @@ def ChangeTCP(*args: object) -> bool:
 
     def run() -> None:
         r.tcp, r.tcp_name, r.tool_mass = frame, label, mass
+    r.script_tcp_name = label
     return r.enqueue(Command("call", run=run))
 
 

@@ -110,6 +110,11 @@ class Robot:
     base_name: str = "RobotBase"
     tcp: pin.SE3 = field(default_factory=pin.SE3.Identity)
     tcp_name: str = "NOTOOL"
+    #: The base and TCP the script's next motions will use: set when ChangeBase/ChangeTCP is
+    #: called (their frames change when the queue reaches them); what a TPoint declared with
+    #: the name "" is recorded in ("by the current base1", L14978).
+    script_base_name: str = "RobotBase"
+    script_tcp_name: str = "NOTOOL"
     load: float = 0.0
     tool_mass: float = 0.0
     sim_time: float = 0.0  # seconds of motion executed (controller time spent moving)
@@ -327,6 +332,7 @@ class Robot:
         where the stop caught it."""
         with self.lock:
             self.queue.clear()
+            self.script_base_name, self.script_tcp_name = self.base_name, self.tcp_name  # (their changes dropped)
             for tag in [t for t, done in self.tags.items() if not done]:
                 del self.tags[tag]  # (cleared with the queue: never reported, L18243)
             if self.motion is not None:

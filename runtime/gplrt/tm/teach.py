@@ -45,8 +45,9 @@ class TPoint:
         self.kind = str(rest.pop(0)) if rest and isinstance(rest[0], str) and rest[0] in KINDS else "C"
         first = _values(rest, "TPoint")
         joints = _values(rest, "TPoint") if rest and isinstance(rest[0], (list, tuple)) else None
-        self.BaseName = to_string(rest.pop(0)) if rest else ""
-        self.TCPName = to_string(rest.pop(0)) if rest else ""
+        robot = context.robot()  # (a name not given, or "", is the current one, L14936, L14978)
+        self.BaseName = (to_string(rest.pop(0)) if rest else "") or robot.script_base_name
+        self.TCPName = (to_string(rest.pop(0)) if rest else "") or robot.script_tcp_name
         self._joint: list[float] | None = first if self.kind.startswith("J") else joints
         self._value: list[float] | None = None if self.kind.startswith("J") else first
         self._pose: list[int] | None = None  # the configuration asked for, when one was set
