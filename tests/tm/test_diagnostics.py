@@ -123,3 +123,20 @@ def test_blocks_nested_past_the_parsers_limit_are_one_error_and_the_rest_of_the_
     transpile(path, sink, language="tmscript")
     assert [(d.code, d.span.line) for d in sink.errors] == [("GPL5103", 53), ("GPL5302", 405)], \
         [d.header() for d in sink.errors]
+
+
+def test_a_device_declared_inside_twenty_loops_is_one_error_at_its_declaration(tmp_path: Path) -> None:
+    """The ``with`` block that closes a function's device at the end of its block counts as
+    CPython counts it: inside 19 loops it translates, inside 20 it is GPL5701 at the declaration,
+    the statement that opens the 21st block (unmeasured, the error fell on the loop around it)."""
+    def errors(depth: int) -> list[tuple[str, int]]:
+        opened = [f"for (int f{k} = 0; f{k} < 1; f{k}++) {{" for k in range(depth)]
+        path = tmp_path / f"deep{depth}.tms"
+        path.write_text("\n".join(["void F()", "{"] + opened + ['Socket s = "127.0.0.1", 1']
+                                  + ["}"] * depth + ["}", "main", "{", "F()", "}"]))
+        sink = DiagnosticSink()
+        transpile(path, sink, language="tmscript")
+        return [(d.code, d.span.line) for d in sink.errors]
+
+    assert errors(19) == []
+    assert errors(20) == [("GPL5701", 23)]
