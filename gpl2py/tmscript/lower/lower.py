@@ -142,6 +142,10 @@ class Lowerer:
             return f"{pyname(callee.name)}({', '.join(args)})"
         if args and (callee.name in DEFERRED or (callee.name in DEFERRED_WITH_TWO and len(args) == 2)):
             args[0] = self.deferred(e.args[0], args[0])
+        scope = self.info.scopes.get(id(e))
+        if scope is not None:  # (a name given at run time: the variables visible here, L6650)
+            pairs = ", ".join(f"{py_string(n)}: {self.var_ref(v)}" for n, v in sorted(scope.items()))
+            args.append(f"scope={{{pairs}}}")
         if callee.name == "GetString" and e.args and self.is_byte_scalar(e.args[0]):
             args.append("as_byte=True")  # (a byte and an int are both Python ints at run time)
         return f"tm.{callee.name}({', '.join(args)})"

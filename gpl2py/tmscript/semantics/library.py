@@ -26,7 +26,7 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "svr_read": (1, 1), "svr_write": (2, 2),
     # conversions, strings, arrays, checksums, time (L2066-L7446)
     "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetBytes": (1, 3), "GetNowStamp": (0, 2),
-    "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5), "GetAllTokens": (3, 4),
+    "GetNow": (0, 1), "GetVarValue": (1, 1), "VarSync": (1, None), "GetToken": (3, 5), "GetAllTokens": (3, 4),
     "ValueReverse": (1, 2),
     "String_ToInteger": (1, 2), "String_ToFloat": (1, 2), "String_ToDouble": (1, 2),
     "String_IndexOf": (2, 3), "String_LastIndexOf": (2, 3), "String_Substring": (2, 4),
@@ -59,6 +59,10 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "dist": (2, 2), "trans": (2, 3), "inversetrans": (1, 2), "applytrans": (2, 3), "changeref": (2, 3),
     "interpoint": (3, 3),
 }
+
+#: Built-ins that find variables by a name given at run time (L6650, L7626): the lowering passes
+#: them the variables visible at the call.
+BY_NAME = frozenset({"GetVarValue", "VarSync"})
 
 #: Built-ins whose first argument is a deferred statement or condition (spec §2).
 DEFERRED = frozenset({"ThreadRun"})

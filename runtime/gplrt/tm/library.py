@@ -787,6 +787,7 @@ from gplrt.tm.conversions import (  # noqa: E402
     CRC16, CRC32, SUM8, SUM16, SUM32, XOR8, Byte_Concat, Byte_ToDouble, Byte_ToFloat, Byte_ToInt16, Byte_ToInt32,
     Byte_ToString, GetBytes, String_ToByte, ValueReverse,
 )
+from gplrt.tm.manager import lookup, var_sync  # noqa: E402
 from gplrt.tm.files import (  # noqa: E402
     File_Copy, File_Delete, File_Exists, File_GetAllTokens, File_GetToken, File_Length, File_NextEOF, File_NextLine,
     File_ReadBytes, File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines,
@@ -832,13 +833,19 @@ def String_ToDouble(s: object, base: object = 10) -> object:
         return F64(0)
 
 
-def GetVarValue(name: object) -> object:
-    """The value of the variable named at run time (L6650); an error if there is none."""
-    n = context.node()
+def GetVarValue(name: object, scope: dict[str, object] | None = None) -> object:
+    """The value of the variable named at run time (L6650) among those visible at the call
+    (``scope``, given by the front end) or the Listen node's; an error if there is none."""
     key = to_string(name).strip()
-    if n is not None and hasattr(n.vars, key):
-        return getattr(n.vars, key)
-    raise TMError(f"GetVarValue: no variable {key!r}")
+    found, value = lookup(key, scope, context.node())
+    if not found:
+        raise TMError(f"GetVarValue: the variable {key!r} does not exist")
+    return value
+
+
+def VarSync(*args: object, scope: dict[str, object] | None = None) -> int:
+    """Send variables to the robot's TMmanager (L7626): ``gplrt.tm.manager.var_sync``."""
+    return var_sync(args, scope)
 
 
 _NOW_TOKENS = ("yyyy", "yy", "MMMM", "MMM", "MM", "M", "dddd", "ddd", "dd", "d", "HH", "H", "hh", "h", "mm", "m",
