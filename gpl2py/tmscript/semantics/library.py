@@ -42,8 +42,13 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "File_ReadBytes": (1, 1), "File_ReadText": (1, 1), "File_ReadLines": (1, 3), "File_NextLine": (0, 2),
     "File_NextEOF": (0, 0), "File_WriteBytes": (2, 5), "File_WriteText": (2, 5), "File_WriteLine": (2, 5),
     "File_WriteLines": (2, 5), "File_Exists": (1, 1), "File_Length": (1, 1), "File_Delete": (1, None),
-    "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5),
+    "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5), "File_CopyImage": (2, 4),
+    "File_GetImage": (0, 1),
     "File_GetAllTokens": (3, 4),
+    # vision jobs on the simulated vision backend (L17229-L17641)
+    "Vision_DoJob": (1, 1), "Vision_DoJob_PTP": (3, 4), "Vision_DoJob_Line": (2, 4),
+    "Vision_IsJobAvailable": (1, 1), "Vision_GetOutputArraySize": (1, 2), "Vision_GetOutputArrayValue": (2, 3),
+    "Vision_GetTriggerJobOutputCount": (1, 1), "Vision_GetTriggerJobOutputValue": (1, 1),
     # the Socket class's TCP client (L13396-L14356)
     "socket_open": (1, 1), "socket_close": (1, 1), "socket_read": (1, 5), "socket_read_string": (1, 5),
     "socket_send": (2, 4), "socket_sendline": (2, 4),

@@ -788,6 +788,11 @@ from gplrt.tm.conversions import (  # noqa: E402
     Byte_ToString, GetBytes, String_ToByte, ValueReverse,
 )
 from gplrt.tm.manager import lookup, var_sync  # noqa: E402
+from gplrt.tm.vision_functions import (  # noqa: E402,F401 (TMscript's names)
+    File_CopyImage, File_GetImage, Vision_DoJob, Vision_DoJob_Line, Vision_DoJob_PTP, Vision_GetOutputArraySize,
+    Vision_GetOutputArrayValue, Vision_GetTriggerJobOutputCount, Vision_GetTriggerJobOutputValue,
+    Vision_IsJobAvailable,
+)
 from gplrt.tm.files import (  # noqa: E402
     File_Copy, File_Delete, File_Exists, File_GetAllTokens, File_GetToken, File_Length, File_NextEOF, File_NextLine,
     File_ReadBytes, File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines,

@@ -39,6 +39,7 @@ from gplrt.motion.planner import plan_axes, plan_scalar
 from gplrt.sim import Simulation
 from gplrt.threads.scheduler import Scheduler, ThreadAbort, WaitQueue, controller_wait
 from gplrt.tm.manager import TMManager
+from gplrt.tm.vision import Vision
 from gplrt.tm.robot import TMArm, pose_to_se3, se3_to_pose
 from gplrt.tm.values import TMError
 
@@ -143,6 +144,9 @@ class Robot:
         self.history: deque[Motion] = deque(maxlen=HISTORY)
         #: The simulated TMmanager ``VarSync`` sends to (``gplrt.tm.manager``).
         self.manager = TMManager()
+        #: The vision backend the user fills (``gplrt.tm.vision``): jobs, outputs, images.
+        self.vision = Vision()
+        self.vision.on_change = self._notify
         self.tags: dict[int, bool] = {}  # tag -> done, the last TAGS_KEPT in order
         self.ctrl_do = [0] * 16
         self.ctrl_di = [0] * 16
@@ -327,6 +331,20 @@ class Robot:
             if tag not in self.tags:  # (cleared by StopAndClearBuffer while waited for)
                 return 0
             return 1 if done and self.tags[tag] else 0
+
+    def run_queued(self, work: Callable[[], object], cancelled: Callable[[], bool] = lambda: False) -> tuple[bool, object]:
+        """Queue ``work`` after what is queued (a vision job after its move, L17262), wait for it
+        as for a queue tag: (True, what it returned), or (False, None) when it never ran (the
+        queue cleared by ``StopAndClearBuffer``, the wait cancelled)."""
+        box: list[object] = []
+
+        def run() -> None:
+            box.append(work())
+        cmd = Command("call", run=run)
+        self.enqueue(cmd)
+        done = self._wait_for(lambda: bool(box) or (not any(c is cmd for c in self.queue) and not self.busy),
+                              None, cancelled)
+        return (True, box[0]) if done and box else (False, None)
 
     def idle(self) -> bool:
         with self.lock:
