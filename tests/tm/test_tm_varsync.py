@@ -139,3 +139,4 @@ def test_get_var_value_and_var_sync_in_listen_node_packets() -> None:
     assert robot.manager.variables == {"var_i": 5, "got": 5}
     with pytest.raises(Exception, match="does not exist"):
         run_packet('int x = GetVarValue("nothing")')
+
