@@ -5,6 +5,8 @@ A module of its own (as gpltest.py): test folders are not packages, tests/ is on
 from __future__ import annotations
 
 import socket
+from collections.abc import Callable
+from pathlib import Path
 
 from gpl2py.tmscript.pipeline import translate_packet
 from gplrt.tm.listen import Vars
@@ -55,3 +57,36 @@ class NodeClient:
 
     def close(self) -> None:
         self.sock.close()
+
+
+def run_project(source: Path, out: Path, robot: str = "TM5-900", speed: float = float("inf"),
+                display: Callable[[str], None] | None = None) -> tuple[int, list[str]]:
+    """Translate the script project ``source`` into ``out``, import it and ``run()`` it on a new
+    simulated ``robot`` (``speed``: a real clock at that speed; default the fast clock):
+    (status, the ``Display`` lines; or what ``display`` does with them)."""
+    import importlib.util
+    import sys
+
+    from gpl2py.diagnostics import DiagnosticSink
+    from gpl2py.output import write_package
+    from gpl2py.transpile import transpile
+    from gplrt.tm import context
+
+    sink = DiagnosticSink()
+    pkg = transpile(source, sink)
+    assert pkg is not None and not sink.has_errors(), [d.header() for d in sink]
+    write_package(pkg, out, sink)
+    name = f"tm_project_{pkg.package}_{abs(hash(str(out)))}"
+    spec = importlib.util.spec_from_file_location(name, out / pkg.package / f"{pkg.package}.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    context.use_robot(robot, speed=speed)
+    lines: list[str] = []
+    context.set_display(display or lines.append)
+    try:
+        status = module.run()
+    finally:
+        context.set_display(None)
+        sys.modules.pop(spec.name, None)
+    return status, lines

@@ -13,40 +13,19 @@ Thread ids differ from the manual's (they are the controller's), so their lines 
 
 from __future__ import annotations
 
-import importlib.util
 import re
-import sys
 from pathlib import Path
 
 import pytest
+from tmpacket import run_project
 
-from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.output import write_package
-from gpl2py.transpile import transpile
 from gplrt.tm import context
 
 EXAMPLES = Path(__file__).parent / "examples"
 
 
 def run_example(name: str, tmp_path: Path) -> tuple[int, list[str]]:
-    sink = DiagnosticSink()
-    out = transpile(EXAMPLES / f"{name}.tms", sink)
-    assert out is not None and not sink.has_errors(), [d.header() for d in sink]
-    write_package(out, tmp_path, sink)
-    module_path = tmp_path / out.package / f"{out.package}.py"
-    spec = importlib.util.spec_from_file_location(f"tm_example_{name}", module_path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    lines: list[str] = []
-    context.use_robot("TM5-900", speed=20.0)  # (threads that sleep need time to pass)
-    context.set_display(lines.append)
-    try:
-        status = module.run()
-    finally:
-        context.set_display(None)
-        sys.modules.pop(spec.name, None)
-    return status, lines
+    return run_project(EXAMPLES / f"{name}.tms", tmp_path, speed=20.0)  # (threads that sleep need time to pass)
 
 
 EXPECTED = {

@@ -6,44 +6,24 @@ fails is retried every interval of controller time."""
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from pathlib import Path
 
 import pytest
-from tmpacket import run_packet
+from tmpacket import run_packet, run_project
 
-from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.output import write_package
-from gpl2py.transpile import transpile
 from gplrt.tm import context
 
 
-def run_project(source: str, tmp_path: Path) -> tuple[int, list[str], object]:
+def run_source(source: str, tmp_path: Path) -> tuple[int, list[str], object]:
     """Translate and run a script project: (status, Display lines, the robot)."""
     src = tmp_path / "proj.tms"
     src.write_text(source)
-    sink = DiagnosticSink()
-    out = transpile(src, sink)
-    assert out is not None and not sink.has_errors(), [d.header() for d in sink]
-    write_package(out, tmp_path / "out", sink)
-    spec = importlib.util.spec_from_file_location("tm_varsync_proj", tmp_path / "out" / out.package / f"{out.package}.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    robot = context.use_robot("TM5-900")
-    lines: list[str] = []
-    context.set_display(lines.append)
-    try:
-        status = module.run()
-    finally:
-        context.set_display(None)
-        sys.modules.pop(spec.name, None)
-    return status, lines, robot
+    status, lines = run_project(src, tmp_path / "out")
+    return status, lines, context.robot()
 
 
 def test_get_var_value_in_a_script_project_l6650(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
-    status, lines, _ = run_project("""define
+    status, lines, _ = run_source("""define
 {
     string var_s1 = "Hello World"
     string var_s2 = "Hi TM Robot"
@@ -96,7 +76,7 @@ main
 
 
 def test_var_sync_sends_the_named_variables_to_the_tmmanager_l7626(tmp_path: Path) -> None:
-    status, lines, robot = run_project(SYNC, tmp_path)
+    status, lines, robot = run_source(SYNC, tmp_path)
     assert status == 0
     assert lines[:9] == ["1", "1", "1", "1", "1", "1", "0", "-9", "-9"]
     sent = [sync.values for sync in robot.manager.received]  # type: ignore[attr-defined]
