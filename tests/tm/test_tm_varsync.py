@@ -120,3 +120,15 @@ def test_get_var_value_and_var_sync_in_listen_node_packets() -> None:
     with pytest.raises(Exception, match="does not exist"):
         run_packet('int x = GetVarValue("nothing")')
 
+
+
+def test_the_variables_passed_by_name_keep_pep8_lines_and_take_python_keywords() -> None:
+    from gpl2py.tmscript.pipeline import translate_packet
+
+    names = [f"var_long_name_number_{i}" for i in range(12)]
+    script = "\r\n".join(f"int {n} = {i}" for i, n in enumerate(names)) + "\r\nint got = GetVarValue(\"var_long_name_number_7\")"
+    packet = translate_packet(script)
+    assert not packet.errors
+    assert max(len(line) for line in packet.python.splitlines()) <= 99
+    v = run_packet(script + '\r\nint pass = 3\r\nint k = GetVarValue("pass")')
+    assert (v.got, v.k) == (7, 3)
