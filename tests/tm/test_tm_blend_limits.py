@@ -16,6 +16,8 @@ from gplrt.tm import motion
 from gplrt.tm.packets import encode
 
 HOME = [0.0, 0.0, 90.0, 0.0, 90.0, 0.0]
+#: Controller seconds between the samples of the trajectory (a path's joints cost an inverse each).
+STEP = 4e-3
 
 
 def run(robot, port: int, text: str) -> tuple[float, float]:  # type: ignore[no-untyped-def]
@@ -34,10 +36,10 @@ def run(robot, port: int, text: str) -> tuple[float, float]:  # type: ignore[no-
 
 def fastest(robot, t0: float, t1: float) -> np.ndarray:  # type: ignore[no-untyped-def]
     """Each joint's highest speed between controller times t0 and t1, as a share of its limit,
-    from the robot's trajectory sampled every 0.25 ms."""
-    ts = np.arange(t0, t1, 2.5e-4)
+    from the robot's trajectory sampled every 4 ms."""
+    ts = np.arange(t0, t1, STEP)
     q = np.array([robot.trajectory(float(t)) for t in ts])
-    v = np.abs(np.diff(q, axis=0)) / 2.5e-4
+    v = np.abs(np.diff(q, axis=0)) / STEP
     return np.max(v, axis=0) / np.array(robot.arm.speed)
 
 

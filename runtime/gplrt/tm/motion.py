@@ -58,6 +58,8 @@ HISTORY = 64
 BLEND_START_STEPS = 8
 BLEND_CHECK_SAMPLES = 48
 BLEND_LIMIT_SAFETY = 0.98
+#: Steps of the grid each motion's joint rates are sampled on for that check.
+BLEND_GRID = 24
 #: Queue tags that are remembered (TMSTA 01 answers for the last 4, manual L17930).
 TAGS_KEPT = 4
 
@@ -524,25 +526,21 @@ class Robot:
         speeds, and the manual names no error for a blend (L15747, L15990), so the overlap is
         shortened (the robot passes closer to the via point), as the core does for GPL
         (``gplrt.motion.robot._blend_within_limits``).  Candidates close in on the end
-        geometrically; each is checked at ``BLEND_CHECK_SAMPLES`` moments of its overlap."""
+        geometrically; each is checked at ``BLEND_CHECK_SAMPLES`` moments of its overlap.  Each
+        motion's rates are sampled once on a grid of ``BLEND_GRID`` steps (a path's joints cost an
+        inverse kinematics each) and interpolated for the candidates."""
         limit = np.array(self.arm.speed) * BLEND_LIMIT_SAFETY
-        h = BLEND_DT
         span = duration - tb
         if span <= 0:
             return duration
-
-        def rate(f: Callable[[float], list[float]], t: float, end: float) -> np.ndarray:
-            lo, hi = max(0.0, t - h), min(end, t + h)
-            return (np.array(f(hi)) - np.array(f(lo))) / (hi - lo) if hi > lo else np.zeros(len(limit))
+        ta, va = _grid_rates(at_a, tb, duration)
+        tp, vp = _grid_rates(at_b, 0.0, min(d_b, span))
         for k in range(BLEND_START_STEPS):
             start = duration - span * 0.5 ** k
-            ok = True
-            for t in np.linspace(start, duration, BLEND_CHECK_SAMPLES):
-                va, vb = rate(at_a, float(t), duration), rate(at_b, float(t - start), d_b)
-                if np.any(np.abs(va + vb) > np.maximum(limit, np.maximum(np.abs(va), np.abs(vb)))):
-                    ok = False
-                    break
-            if ok:
+            ts = np.linspace(start, duration, BLEND_CHECK_SAMPLES)
+            a = np.stack([np.interp(ts, ta, va[:, j]) for j in range(va.shape[1])], axis=1)
+            b = np.stack([np.interp(ts - start, tp, vp[:, j], right=0.0) for j in range(vp.shape[1])], axis=1)
+            if not np.any(np.abs(a + b) > np.maximum(limit, np.maximum(np.abs(a), np.abs(b)))):
                 return start
         return duration
 
@@ -655,6 +653,16 @@ def _state(at: Callable[[float], list[float]], t: float, duration: float) -> tup
     v = [(b - a) / (2 * h) for a, b in zip(before, after)]
     acc = [(b - 2 * m + a) / (h * h) for a, m, b in zip(before, q, after)]
     return q, v, acc
+
+
+def _grid_rates(f: Callable[[float], list[float]], lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """Joint rates of ``f`` on [lo, hi]: the moments (the grid's midpoints, and both ends) and
+    the rates there, by differences between ``BLEND_GRID`` + 1 points."""
+    ts = np.linspace(lo, hi, BLEND_GRID + 1)
+    q = np.array([f(float(t)) for t in ts])
+    v = np.diff(q, axis=0) / max(1e-12, (hi - lo) / BLEND_GRID)
+    mids = (ts[:-1] + ts[1:]) / 2
+    return np.concatenate(([lo], mids, [hi])), np.vstack((v[:1], v, v[-1:]))
 
 
 def _origin(frame: object, depth: int = 8) -> tuple[tuple[str, int], ...]:
