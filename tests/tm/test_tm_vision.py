@@ -41,7 +41,7 @@ def test_registered_results_outputs_and_the_manuals_arrays_l17469(robot) -> None
     assert (v.a, v.r, v.var_count, v.var_length, list(v.var_ss), v.var_s) == (True, True, 3, 2, ["0", "1", "2"], "5")
     assert (v.r2, v.n2, v.r3) == (False, 0, False)  # the second result, then the last one again
     robot.vision.register("job2", outputs={BLOBS: [["0", "1", "2"], ["3", "4"], ["5"]]})
-    with pytest.raises(TMError, match="exceeds the access range"):
+    with pytest.raises(TMError, match=r"Exceeded the access range \(find object count: 3, index: 0 \.\. 2\)"):
         run_packet(f'bool r = Vision_DoJob("job2")\r\nstring var_se = Vision_GetOutputArrayValue("{BLOBS}", 3, 0)')
 
 

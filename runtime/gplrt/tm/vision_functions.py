@@ -95,8 +95,8 @@ def Vision_GetOutputArraySize(variable: object, row: object = None) -> int:
 
 def _row(rows: list[list[str]], i: int, variable: object) -> list[str]:
     if not 0 <= i < len(rows):
-        raise TMError(f"{to_string(variable)}: index {i} exceeds the access range (find object count: "
-                      f"{len(rows)}, index: 0 .. {len(rows) - 1})")
+        raise TMError(f"{to_string(variable)}[{i}]: Exceeded the access range (find object count: {len(rows)}, "
+                      f"index: 0 .. {len(rows) - 1})")  # (the manual's words, L17549)
     return rows[i]
 
 
@@ -108,7 +108,7 @@ def Vision_GetOutputArrayValue(variable: object, row: object, col: object = None
         return Array("string", list(r))
     c = to_int(col)
     if not 0 <= c < len(r):
-        raise TMError(f"{to_string(variable)}: column {c} exceeds the access range (0 .. {len(r) - 1})")
+        raise TMError(f"{to_string(variable)}[{to_int(row)}, {c}]: Exceeded the access range (index: 0 .. {len(r) - 1})")
     return r[c]
 
 
