@@ -172,8 +172,9 @@ _UNSAFE = re.compile(r"[^A-Za-z0-9_.-]")
 
 
 def _safe(name: str) -> str:
-    """A folder name made of the characters a file name can always hold."""
-    return _UNSAFE.sub("_", name) or "_"
+    """A folder name made of the characters a file name can always hold, never ``.``/``..``
+    nor hidden (a leading dot)."""
+    return _UNSAFE.sub("_", name).lstrip(".") or "_"
 
 
 def copy_image(vision: Vision, box: Sandbox, src: str, dst: str, name: str, option: int) -> bool:
