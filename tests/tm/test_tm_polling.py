@@ -61,9 +61,9 @@ def test_a_raw_client_polling_tag_status_and_joints_sees_the_motion_progress(clo
     sct, sta, svr = NodeClient(node.port), NodeClient(node.port), NodeClient(slave.port)
     try:
         # J1 by 30 degrees at 20 % of its speed, a tag queued and not waited for
+        t0 = robot.clock.now()
         ok = sct.ask(encode("TMSCT", b'1,PTP("JPP",30,0,90,0,90,0,20,200,0,false)\r\nQueueTag(1)'))
         assert ok == encode("TMSCT", b"1,OK")
-        t0 = robot.clock.now()
 
         def status() -> str:
             reply = sta.ask(encode("TMSTA", b"01,01")).decode()

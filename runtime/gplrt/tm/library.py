@@ -789,9 +789,9 @@ from gplrt.tm.conversions import (  # noqa: E402
 )
 from gplrt.tm.manager import lookup, var_sync  # noqa: E402
 from gplrt.tm.vision_functions import (  # noqa: E402,F401 (TMscript's names)
-    File_CopyImage, File_GetImage, Vision_DoJob, Vision_DoJob_Line, Vision_DoJob_PTP, Vision_GetOutputArraySize,
-    Vision_GetOutputArrayValue, Vision_GetTriggerJobOutputCount, Vision_GetTriggerJobOutputValue,
-    Vision_IsJobAvailable,
+    File_CopyImage, Vision_DoJob, Vision_GetOutputArraySize, Vision_GetOutputArrayValue,
+    Vision_GetTriggerJobOutputCount, Vision_GetTriggerJobOutputValue, Vision_IsJobAvailable, do_job_line,
+    do_job_ptp, get_image,
 )
 from gplrt.tm.files import (  # noqa: E402
     File_Copy, File_Delete, File_Exists, File_GetAllTokens, File_GetToken, File_Length, File_NextEOF, File_NextLine,
@@ -850,7 +850,22 @@ def GetVarValue(name: object, scope: dict[str, object] | None = None) -> object:
 
 def VarSync(*args: object, scope: dict[str, object] | None = None) -> int:
     """Send variables to the robot's TMmanager (L7626): ``gplrt.tm.manager.var_sync``."""
-    return var_sync(args, scope)
+    return var_sync(args, scope, context.robot(), context.node(), Sleep)
+
+
+def Vision_DoJob_PTP(job: object, speed: object, accel: object, smart_pose: object = False) -> bool:
+    """``gplrt.tm.vision_functions.do_job_ptp`` (L17262), ended by a priority command."""
+    return do_job_ptp(job, speed, accel, smart_pose, _cancelled)
+
+
+def Vision_DoJob_Line(job: object, speed: object, accel: object = None, link: object = True) -> bool:
+    """``gplrt.tm.vision_functions.do_job_line`` (L17319), ended by a priority command."""
+    return do_job_line(job, speed, accel, link, _cancelled)
+
+
+def File_GetImage(timeout_ms: object = -1) -> Array:
+    """``gplrt.tm.vision_functions.get_image`` (L11845), ended by a priority command."""
+    return get_image(timeout_ms, _cancelled)
 
 
 _NOW_TOKENS = ("yyyy", "yy", "MMMM", "MMM", "MM", "M", "dddd", "ddd", "dd", "d", "HH", "H", "hh", "h", "mm", "m",

@@ -14,6 +14,7 @@ passes them (``scope``), as a map from the TMscript name to its value.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -88,15 +89,15 @@ def _is_int(value: Any) -> bool:
     return isinstance(value, int) and not isinstance(value, bool)
 
 
-def var_sync(args: tuple[Any, ...], scope: dict[str, Any] | None) -> int:
-    """``VarSync([retries [, intervalMs],] names...)`` (L7626): send the variables named to the
-    robot's TMmanager, retrying a failed send every ``intervalMs`` of controller time up to
-    ``retries`` sends (<= 0: until it succeeds).  Returns the number of sends made when one
-    succeeded, 0 when every try failed or none of the names is a variable (nothing sent), -1 when
-    the TMmanager function is not enabled, -9 for invalid parameters (no name, or a name that is
-    not a string or string array)."""
-    from gplrt.tm import library  # (the library imports this module)
-
+def var_sync(args: tuple[Any, ...], scope: dict[str, Any] | None, robot: Any, node: Any,
+             sleep: Callable[[int], bool]) -> int:
+    """``VarSync([retries [, intervalMs],] names...)`` (L7626): send the variables named to
+    ``robot``'s TMmanager, retrying a failed send after ``sleep(intervalMs)`` (controller time;
+    false: interrupted) up to ``retries`` sends (<= 0: until it succeeds).  Returns the number of
+    sends made when one succeeded, 0 when every try failed or none of the names is a variable
+    (nothing sent), -1 when the TMmanager function is not enabled, -9 for invalid parameters (no
+    name, or a name that is not a string or string array).  ``node``: the Listen node whose
+    variables count too, or None."""
     rest = list(args)
     retries, interval = 0, DEFAULT_INTERVAL_MS
     if rest and _is_int(rest[0]):
@@ -113,11 +114,9 @@ def var_sync(args: tuple[Any, ...], scope: dict[str, Any] | None) -> int:
         names.extend(found)
     if not names:
         return -9
-    robot = library.context.robot()
     manager = robot.manager
     if not manager.enabled:
         return -1
-    node = library.context.node()
     values: dict[str, Any] = {}
     for name in names:
         ok, value = lookup(name, scope, node)
@@ -132,5 +131,5 @@ def var_sync(args: tuple[Any, ...], scope: dict[str, Any] | None) -> int:
             return sends
         if 0 < retries <= sends:
             return 0
-        if not library.Sleep(interval):
+        if not sleep(interval):
             return 0

@@ -2,7 +2,8 @@
 (L11737-L11895) on the robot's vision backend (``gplrt.tm.vision``, ``Robot.vision``).
 
 ``Vision_DoJob(job)`` runs a job without an initial position at once; ``Vision_DoJob_PTP`` and
-``Vision_DoJob_Line`` queue a move to the job's initial position (when it has one) and the job
+``Vision_DoJob_Line`` (``do_job_ptp``/``do_job_line``, which the library gives its script's
+cancellation) queue a move to the job's initial position (when it has one) and the job
 after it, with the motions, and return once the job has run (their result is the job's, L17280).
 False when the job fails, does not exist, or (``Vision_DoJob``) has an initial position (L17247).
 """
@@ -10,6 +11,7 @@ False when the job fails, does not exist, or (``Vision_DoJob``) has an initial p
 from __future__ import annotations
 
 import builtins
+from collections.abc import Callable
 
 from gplrt.tm import context
 from gplrt.tm.motion import CARTESIAN_SPEED, line_path
@@ -48,36 +50,38 @@ def Vision_DoJob(job: object) -> bool:
     return _apply(name, _run(name))
 
 
-def _queued(name: str, move: object) -> bool:
-    from gplrt.tm.library import _cancelled  # (the library imports this module)
-
+def _queued(name: str, move: object, cancelled: Callable[[], bool]) -> bool:
     r = context.robot()
     exists, initial = _vision().initial(name)
     if not exists:
         return False
     if initial is not None:
         r.enqueue(move(r, initial))  # type: ignore[operator]
-    ran, result = r.run_queued(lambda: _run(name), _cancelled)
+    ran, result = r.run_queued(lambda: _run(name), cancelled)
     return _apply(name, result if ran else None)  # type: ignore[arg-type]
 
 
-def Vision_DoJob_PTP(job: object, speed: object, accel: object, smart_pose: object = False) -> bool:
-    """PTP to the job's initial position (queued), then the job (L17262).  ``smart_pose``: the
-    arm keeps its configuration either way (no teaching pose is recorded here)."""
+def do_job_ptp(job: object, speed: object, accel: object, smart_pose: object = False,
+               cancelled: Callable[[], bool] = lambda: False) -> bool:
+    """``Vision_DoJob_PTP``: PTP to the job's initial position (queued), then the job (L17262).
+    ``smart_pose``: the arm keeps its configuration either way (no teaching pose is recorded
+    here).  ``cancelled``: the script's wait must end (a Listen node's priority command)."""
     to_bool(smart_pose)
     pct, ms = float(to_double(speed)), float(to_double(accel))
-    return _queued(to_string(job), lambda r, pose: r.ptp_pose(pose, pct, ms))
+    return _queued(to_string(job), lambda r, pose: r.ptp_pose(pose, pct, ms), cancelled)
 
 
-def Vision_DoJob_Line(job: object, speed: object, accel: object = None, link: object = True) -> bool:
-    """Line to the job's initial position (queued), then the job (L17319): ``(job, speed %)`` or
-    ``(job, mm/s, accel ms [, link to the project speed])``."""
+def do_job_line(job: object, speed: object, accel: object = None, link: object = True,
+                cancelled: Callable[[], bool] = lambda: False) -> bool:
+    """``Vision_DoJob_Line``: Line to the job's initial position (queued), then the job (L17319):
+    ``(job, speed %)`` or ``(job, mm/s, accel ms [, link to the project speed])``."""
     to_bool(link)
     if accel is None:
         mm_s, ms = CARTESIAN_SPEED * float(to_double(speed)) / 100.0, DEFAULT_ACCEL_MS
     else:
         mm_s, ms = float(to_double(speed)), float(to_double(accel))
-    return _queued(to_string(job), lambda r, pose: r.path_move(line_path(lambda: r.cartesian_target(pose)), mm_s, ms))
+    return _queued(to_string(job), lambda r, pose: r.path_move(line_path(lambda: r.cartesian_target(pose)), mm_s, ms),
+                   cancelled)
 
 
 def Vision_IsJobAvailable(job: object) -> bool:
@@ -127,11 +131,9 @@ def Vision_GetTriggerJobOutputValue(variable: object) -> Array:
         return Array("string", fifo.popleft() if fifo else [])
 
 
-def File_GetImage(timeout_ms: object = -1) -> Array:
-    """The oldest ``{source, result}`` image paths (L11845), waiting up to ``timeout_ms`` of
-    controller time (< 0: until one comes, 0: a look); ``{"", ""}`` when none."""
-    from gplrt.tm.library import _cancelled  # (the library imports this module)
-
+def get_image(timeout_ms: object = -1, cancelled: Callable[[], bool] = lambda: False) -> Array:
+    """``File_GetImage``: the oldest ``{source, result}`` image paths (L11845), waiting up to
+    ``timeout_ms`` of controller time (< 0: until one comes, 0: a look); ``{"", ""}`` when none."""
     r = context.robot()
     v = _vision()
     limit = to_int(timeout_ms)
@@ -141,7 +143,7 @@ def File_GetImage(timeout_ms: object = -1) -> Array:
             found = v.pop_image()
             if found is not None:
                 return Array("string", list(found))
-            if limit == 0 or (limit > 0 and r.clock.reached(end)) or _cancelled():
+            if limit == 0 or (limit > 0 and r.clock.reached(end)) or cancelled():
                 return Array("string", ["", ""])
             r.sched.wait(r.changed, None if limit < 0 else end)
 
