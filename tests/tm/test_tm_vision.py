@@ -101,3 +101,27 @@ def test_images_are_saved_popped_and_copied_to_the_usb_drive_only_l11737(robot) 
         run_packet('bool b = File_CopyImage("\\Vision\\nothing.png", "\\USB\\TMROBOT", 2)')
     with pytest.raises(TMError, match="not a saved vision image"):  # (never a path outside the images)
         run_packet('bool b = File_CopyImage("\\TextFiles\\..\\..\\secret", "\\USB\\TMROBOT", 2)')
+
+
+def test_vpoint_reads_and_moves_a_jobs_initial_position_l14559(robot) -> None:  # type: ignore[no-untyped-def]
+    home = robot.arm.fk([0.0, 0.0, 90.0, 0.0, 90.0, 0.0])
+    robot.vision.register("Job1", initial=home)
+    v = run_packet('float[] f = VPoint["Job1"].Value\r\nfloat f0 = VPoint["Job1"].Value[0]\r\n'
+                   'string s = VPoint["Job1"].BaseName\r\n'
+                   'VPoint["Job1"].Value[2] = 120\r\nfloat z = VPoint["Job1"].Value[2]\r\n'
+                   'float[] t = VPoint["Job1"].TeachValue')
+    assert list(v.f) == pytest.approx(home, abs=1e-4) and v.f0 == pytest.approx(home[0], abs=1e-4)
+    assert (v.s, v.z) == ("RobotBase", 120.0)
+    assert robot.vision.jobs["Job1"].initial[2] == 120.0  # the job now starts there
+    assert list(v.t) == pytest.approx(home, abs=1e-4)  # the position it was taught
+    with pytest.raises(TMError):
+        run_packet('float f6 = VPoint["Job1"].Value[6]')  # (exceeding the array's access range)
+    with pytest.raises(TMError, match='VPoint\\["nojob"\\] does not exist'):
+        run_packet('float[] g = VPoint["nojob"].Value')
+
+
+def test_an_element_written_through_a_points_value_reaches_the_point_l14445(robot) -> None:  # type: ignore[no-untyped-def]
+    v = run_packet('TPoint p1 = 400, 0, 300, 180, 0, 90\r\nPoint["p1"].Value[2] = 120\r\nfloat z = Point["p1"].Value[2]\r\n'
+                   'TBase b1 = 1, 2, 3, 4, 5, 6\r\nb1.Value[4] = 120\r\nfloat ry = Base["b1"].Value[4]\r\n'
+                   'TTCP t1 = 0, 0, 100, 0, 0, 0\r\nTCP["t1"].Value[0] = 10\r\nfloat x = t1.Value[0]')
+    assert (v.z, v.ry, v.x) == (120.0, 120.0, 10.0)  # (before: 300, 5, 0: the write was lost)

@@ -790,7 +790,7 @@ from gplrt.tm.conversions import (  # noqa: E402
 from gplrt.tm.manager import lookup, var_sync  # noqa: E402
 from gplrt.tm.vision_functions import (  # noqa: E402,F401 (TMscript's names)
     File_CopyImage, Vision_DoJob, Vision_GetOutputArraySize, Vision_GetOutputArrayValue,
-    Vision_GetTriggerJobOutputCount, Vision_GetTriggerJobOutputValue, Vision_IsJobAvailable, do_job_line,
+    Vision_GetTriggerJobOutputCount, Vision_GetTriggerJobOutputValue, Vision_IsJobAvailable, VPoint, do_job_line,
     do_job_ptp, get_image,
 )
 from gplrt.tm.files import (  # noqa: E402

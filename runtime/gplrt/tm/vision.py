@@ -57,6 +57,8 @@ class VisionJob:
     initial: list[float] | None = None
     results: deque[JobResult] = field(default_factory=deque)
     runs: int = 0
+    #: The initial position as registered (``VPoint[job].TeachValue``; ``Value`` may move it).
+    taught: list[float] | None = None
 
 
 class Vision:
@@ -81,6 +83,7 @@ class Vision:
             entry = self.jobs.setdefault(job, VisionJob(job))
             if initial is not None:
                 entry.initial = [float(v) for v in initial]
+                entry.taught = list(entry.initial)
             entry.results.append(JobResult(passed, dict(outputs or {}), source_image, result_image,
                                            None if base is None else [float(v) for v in base]))
             return entry

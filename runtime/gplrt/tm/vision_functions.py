@@ -15,7 +15,7 @@ from collections.abc import Callable
 
 from gplrt.tm import context
 from gplrt.tm.motion import CARTESIAN_SPEED, line_path
-from gplrt.tm.teach import TBase
+from gplrt.tm.teach import LiveArray, TBase
 from gplrt.tm.values import Array, TMError, to_bool, to_double, to_int, to_string
 from gplrt.tm.vision import JobResult, Vision, copy_image
 
@@ -160,3 +160,45 @@ def File_CopyImage(src: object, folder: object, *rest: object) -> bool:
             option = to_int(rest[1])
     r = context.robot()
     return copy_image(_vision(), r.sim.files.root().box, to_string(src), to_string(folder), name, option)
+
+
+class _VPoint:
+    """``VPoint[job]``: the initial position of a vision job (L14559): ``Value`` read and
+    written (the job then starts there), ``BaseName``, ``TeachValue`` (the position it was
+    registered with)."""
+
+    BaseName = "RobotBase"
+
+    def __init__(self, vision: Vision, job: str) -> None:
+        self._vision, self._job = vision, job
+
+    def _entry(self):  # type: ignore[no-untyped-def]
+        entry = self._vision.jobs.get(self._job)
+        if entry is None or entry.initial is None:
+            raise TMError(f'VPoint["{self._job}"] does not exist')
+        return entry
+
+    @property
+    def Value(self) -> Array:
+        return LiveArray("float", self._entry().initial, lambda vals: setattr(self, "Value", vals))
+
+    @Value.setter
+    def Value(self, v: object) -> None:
+        vals = [float(to_double(x)) for x in v] if isinstance(v, (list, tuple)) else []
+        if len(vals) != 6:
+            raise TMError(f'VPoint["{self._job}"].Value: six values are needed')
+        self._entry().initial = vals
+
+    @property
+    def TeachValue(self) -> Array:
+        entry = self._entry()
+        return Array("float", entry.taught if entry.taught is not None else entry.initial)
+
+
+class _VPoints:
+    def __getitem__(self, key: object) -> _VPoint:
+        return _VPoint(_vision(), to_string(key[0] if isinstance(key, tuple) else key))
+
+
+#: ``VPoint["job"]`` (L14559).
+VPoint = _VPoints()
