@@ -77,8 +77,19 @@ MAX_BLOCKS = 20
 #: The blocks CPython's compiler counts for the body of each construct the lowering emits: a loop
 #: body 1; a ``try`` body 1 (2 when the statement has both ``except`` and ``finally``); an
 #: ``except ... as`` handler 2 (its name is cleaned up; 3 inside a ``finally``); a ``finally``
-#: body 1.
-BLOCKS = {"loop": 1, "try": 1, "try+finally": 2, "except": 2, "except+finally": 3, "finally": 1}
+#: body 1; a ``with`` body 1.
+BLOCKS = {"loop": 1, "try": 1, "try+finally": 2, "except": 2, "except+finally": 3, "finally": 1, "with": 1}
+
+
+@dataclass(frozen=True, slots=True)
+class Nesting:
+    """What :meth:`Writer.begin_statement` remembers while one source statement is written: the
+    deepest nesting reached before it, and whether the statement itself starts where CPython still
+    compiles (if not, a statement around it is the one to blame)."""
+
+    outer_level: int
+    outer_blocks: int
+    starts_inside: bool
 
 
 @dataclass
@@ -119,6 +130,37 @@ class Writer:
         """Whether everything written so far nests within what CPython compiles."""
         level, blocks = self.deepest()
         return level <= MAX_INDENT and blocks <= MAX_BLOCKS
+
+    def begin_statement(self) -> Nesting:
+        """Start measuring the nesting of one source statement (its lines and its blocks').  Each
+        front end's statement lowering calls this before a statement and :meth:`too_deep` after
+        it, so that the innermost statement whose Python would nest deeper than CPython compiles
+        gets the error, once, wherever the limits are crossed (docs/security.md, "Nesting")."""
+        outer = Nesting(self.peak_level, self.peak_blocks, False)
+        self.peak_level, self.peak_blocks = self.level, self.blocks
+        return Nesting(outer.outer_level, outer.outer_blocks, self.fits_python())
+
+    def too_deep(self, begun: Nesting, blocks_are: str = "loop blocks of one program") -> str | None:
+        """After the statement: why its Python does not compile when it is the innermost statement
+        that does not fit ("its code would be ..."; ``blocks_are`` names the blocks in the source
+        language's words), else None."""
+        if not begun.starts_inside or self.fits_python():
+            return None
+        level, blocks = self.deepest()
+        if level > MAX_INDENT:
+            return f"its code would be indented {level} levels and Python allows {MAX_INDENT}"
+        return f"its code would be inside {blocks} {blocks_are} and Python allows {MAX_BLOCKS}"
+
+    def discard_since(self, start: int) -> None:
+        """Drop the lines written since ``start`` (a statement that did not fit, replaced by what
+        raises its error): the nesting is measured afresh from here."""
+        del self.lines[start:]
+        self.peak_level, self.peak_blocks = self.level, self.blocks
+
+    def end_statement(self, begun: Nesting) -> None:
+        """The statement is written: the deepest nesting so far includes the one before it."""
+        self.peak_level = max(begun.outer_level, self.peak_level)
+        self.peak_blocks = max(begun.outer_blocks, self.peak_blocks)
 
     def comments(self, comments: list[Comment]) -> None:
         for c in comments:

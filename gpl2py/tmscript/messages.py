@@ -54,3 +54,8 @@ TM_UNSUPPORTED = _error("GPL5314", "{what} is not supported yet by gpl2py")
 
 # --- lowering and loading (GPL5700-GPL5999) --------------------------------------------------
 TM_NO_SOURCES = _error("GPL5700", "{path} holds no TMscript source (.tms, .tmscript)")
+TM_NESTED_TOO_DEEPLY = _error(
+    "GPL5701", "this statement is nested too deeply for Python: {detail}",
+    "TMscript nests loops deeper than CPython compiles: at most 20 loops (while, for, do...while) "
+    "around a statement of one function, and 99 levels of indentation. Move the inner part into a "
+    "function of its own (docs/security.md, \"Nesting\").")

@@ -93,7 +93,7 @@ def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_g
             try:
                 text, gmap = lower_script(tree, info, Path(src.path).name)
             except Unsupported as exc:
-                sink.report(M.TM_UNSUPPORTED, exc.node.span, what=exc.what)
+                exc.report(sink)
                 continue
             mod = package_name(Path(src.path).stem)
             modules.append(mod)
@@ -150,7 +150,7 @@ def translate_packet(script: str, known: dict[str, Var] | None = None, name: str
             try:
                 out.python, out.lines = lower_packet(tree, info)
             except Unsupported as exc:
-                sink.report(M.TM_UNSUPPORTED, exc.node.span, what=exc.what)
+                exc.report(sink)
         out.declared = info.declared
     out.errors = list(sink.errors)
     out.warnings = list(sink.warnings)

@@ -115,6 +115,13 @@ GOTO_INTO_FOR = _error("GPL4700", "GOTO {label} jumps into a FOR loop from outsi
 EXIT_COUNT = _error("GPL4701", "{word} {count}: {reason}",
                     "EXIT n and NEXT n leave n nested FOR, DO or WHILE loops (the innermost is 1); n must "
                     "be a whole number no greater than the number of loops around the statement.")
+NESTED_TOO_DEEPLY = _error(
+    "GPL4702", "this statement is nested too deeply for Python: {detail}",
+    "V+ nests loops deeper than CPython compiles: at most 20 loop blocks around a statement of one "
+    "function (a FOR, WHILE or DO loop is one; with REACTE in the project every instruction that can "
+    "fail is one more, and a program with GOTOs runs in a loop of its own) and 99 levels of "
+    "indentation. Move the inner part into a program of its own and CALL it (docs/security.md, "
+    "\"Nesting\").")
 
 # --- what a line kept with an error raises -----------------------------------------------------------
 #: A line translated despite one of these errors (--keep-going, or the error ignored) raises, when
@@ -131,4 +138,5 @@ RUNTIME_CODES: dict[str, int] = {
     "GPL4300": -402,  # *Undefined program or variable name* (L1224-1226), when the CALL runs
     "GPL4304": -407,  # *Data type mismatch*: a real stored into a location (L4009-4011)
     "GPL4700": -430,  # *Not implemented*: V+ runs it, gpl2py does not translate it
+    "GPL4702": -430,
 }

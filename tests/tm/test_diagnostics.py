@@ -37,6 +37,8 @@ CASES: dict[str, tuple[str | None, str | None, int, int]] = {
     "GPL5311": ("main\n{\n}\nmain\n{\n}\n", None, 4, 1),
     "GPL5314": (None, "int x = 1\nswitch (x)\n{\ncase 1\n  if (x > 0) break\n  Display(1)\n}", 5, 14),
     "GPL5700": ("", None, 0, 0),
+    # 21 nested loops: the 21st is the innermost Python would not compile
+    "GPL5701": (None, "int i = 0\n" + "while (i < 1) {\n" * 21 + "i = 1\n" + "}\n" * 21, 22, 1),
 }
 
 
@@ -64,3 +66,47 @@ def test_each_case_gives_its_code_where_it_is(code: str, tmp_path: Path) -> None
     if line:
         assert (hits[0].span.line, hits[0].span.col) == (line, col), hits[0].header()
     assert not any(d.code == "GPL9000" for d in found)
+
+
+def _loops(depth: int, kinds: tuple[str, ...] = ("while", "for", "do")) -> str:
+    """Statements of a packet: ``depth`` nested loops (while, for, do...while in turn), each run
+    once, around a Display."""
+    opened, closed = [], []
+    for k in range(depth):
+        kind = kinds[k % len(kinds)]
+        if kind == "while":
+            opened += [f"int w{k} = 1", f"while (w{k} == 1) {{", f"w{k} = 0"]
+            closed.append("}")
+        elif kind == "for":
+            opened.append(f"for (int f{k} = 0; f{k} < 1; f{k}++) {{")
+            closed.append("}")
+        else:
+            opened.append("do {")
+            closed.append("} while (false)")
+    return "\n".join(opened + ['Display("inside")'] + closed[::-1])
+
+
+def test_loops_nest_as_deep_as_python_compiles_and_one_more_is_one_error_at_the_innermost() -> None:
+    """TMscript nests loops deeper than CPython compiles (20 loops in one function): 20 translate
+    to Python that compiles, 21 are GPL5701 once, at the 21st loop, and never an internal error."""
+    ok = translate_packet(_loops(20))
+    assert not ok.errors, [d.header() for d in ok.errors]
+    compile(ok.python, "packet", "exec")
+    deep = translate_packet(_loops(21))
+    assert [d.code for d in deep.errors] == ["GPL5701"], [d.header() for d in deep.errors]
+    line = [n for n, text in enumerate(_loops(21).splitlines(), 1)
+            if text.startswith(("while", "for", "do"))][20]
+    assert deep.errors[0].span.line == line
+
+
+def test_blocks_nested_past_the_parsers_limit_are_one_error_and_the_rest_of_the_script_is_read(
+        tmp_path: Path) -> None:
+    """Braces nested 200 deep: one GPL5103 at the first brace past the limit, the block skipped to
+    its closing brace, and the script after it read as usual (an error there is still found)."""
+    body = "if (i == 0) {\n" * 200 + 'Display("x")\n' + "}\n" * 200
+    path = tmp_path / "deep.tms"
+    path.write_text("main\n{\nint i = 0\n" + body + "Nope(1)\n}\n")
+    sink = DiagnosticSink()
+    transpile(path, sink, language="tmscript")
+    assert [(d.code, d.span.line) for d in sink.errors] == [("GPL5103", 53), ("GPL5302", 405)], \
+        [d.header() for d in sink.errors]

@@ -39,6 +39,8 @@ CASES: dict[str, tuple[str, int]] = {  # code -> (source, line of the diagnostic
     "GPL4311": None,  # type: ignore[dict-item]
     "GPL4700": (P + "  GOTO 5\n  FOR i = 1 TO 3\n5   x = 1\n  END\n.END\n", 2),
     "GPL4701": (P + "  WHILE x DO\n    EXIT 2\n  END\n.END\n", 3),
+    "GPL4702": (P + "".join(f"  FOR i{k} = 1 TO 1\n" for k in range(21)) + "  TYPE 1\n" + "  END\n" * 21
+                + ".END\n", 22),
 }
 #: (GPL4311 is about --start: tests/vplus/test_run.py; GPL4112 about a folder: below.)
 

@@ -363,6 +363,60 @@ def test_exit_n_and_next_n_leave_n_nested_loops(tmp_path: Path) -> None:
     assert r.stdout.splitlines() == ["i 1 done", "after: i=2 j=2 k=2", "m 1", "m 1", "m 1", "n=3 m=2"]
 
 
+def _nested_loops(depth: int, reacte: bool) -> str:
+    """A FOR, WHILE and DO nest of ``depth`` loops around a TYPE, each loop run once."""
+    kinds = ["FOR", "WHILE", "DO"]
+    head = [".PROGRAM main()"] + (["        REACTE trap"] if reacte else []) + ['        TYPE "start"']
+    opened, closed = [], []
+    for k in range(depth):
+        kind = kinds[k % 3]
+        if kind == "FOR":
+            opened.append(f"        FOR i{k} = 1 TO 1")
+            closed.append("        END")
+        elif kind == "WHILE":
+            opened += [f"        w{k} = 1", f"        WHILE w{k} DO", f"            w{k} = 0"]
+            closed.append("        END")
+        else:
+            opened.append("        DO")
+            closed.append("        UNTIL TRUE")
+    tail = ['        TYPE "end"', ".END", ".PROGRAM trap()", '        TYPE "trapped ", ERROR(-1)', ".END"]
+    return "\n".join(head + opened + ['        TYPE "inside"'] + closed[::-1] + tail) + "\n"
+
+
+def _loop_line(text: str, nth: int) -> int:
+    """The line of the ``nth`` loop statement (1-based) of ``_nested_loops``' text."""
+    loops = [n for n, line in enumerate(text.splitlines(), 1) if line.split()[:1] in (["FOR"], ["WHILE"], ["DO"])]
+    return loops[nth - 1]
+
+
+def test_loops_nest_as_deep_as_python_compiles_and_one_more_is_an_error_that_raises_when_reached(
+        tmp_path: Path) -> None:
+    """V+ nests loops deeper than CPython compiles (20 loop and with blocks in one function); the
+    deepest nest that fits runs, and one loop more is GPL4702 at the innermost loop Python would
+    refuse (not an internal error), whose line raises *Not implemented* under --ignore (or
+    --keep-going), where REACTE traps it.  Under REACTE every instruction that can fail is a
+    ``with`` block of its own, so one loop fewer fits."""
+    for reacte, deepest in ((False, 20), (True, 19)):
+        r = _run(_write(tmp_path, _nested_loops(deepest, reacte), f"ok{reacte}.v2"))
+        assert r.returncode == 0, r.stderr
+        assert r.stdout.splitlines() == ["start", "inside", "end"]
+        text = _nested_loops(deepest + 1, reacte)
+        deep = _write(tmp_path, text, f"deep{reacte}.v2")
+        sink = DiagnosticSink()
+        transpile(deep, sink, keep_modules=False)
+        assert [d.code for d in sink] == ["GPL4702"], [d.header() for d in sink]
+        innermost = _loop_line(text, deepest + 1)
+        assert sink.errors[0].span is not None and sink.errors[0].span.line == innermost
+        r = _run(deep, "--ignore", "GPL4702")
+        if reacte:
+            assert r.returncode == 0, r.stderr
+            assert r.stdout.splitlines() == ["start", "trapped -430", "end"]
+        else:
+            assert r.returncode == 3
+            assert r.stdout.splitlines() == ["start"]
+            assert f"{deep}:{innermost}: error -430 in thread task 0: *Not implemented* - GPL4702" in r.stderr
+
+
 KEPT_ERRORS = """\
 .PROGRAM main()
         REACTE trap

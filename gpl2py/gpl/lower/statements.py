@@ -16,7 +16,7 @@ from typing import Any
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink, InternalError
 from gpl2py.gpl.lower.context import ModuleContext
-from gpl2py.pywriter.emit import BLOCKS, MAX_BLOCKS, MAX_INDENT, Writer
+from gpl2py.pywriter.emit import BLOCKS, Writer
 from gpl2py.gpl.lower.expressions import (
     BYREF,
     CONV,
@@ -404,9 +404,7 @@ class ProcLowerer(ExprLowerer):
         w.gpl_line = s.span.line
         w.comments(s.leading_comments)
         start = w.mark()
-        outer = (w.peak_level, w.peak_blocks)
-        w.peak_level, w.peak_blocks = w.level, w.blocks
-        fits = w.fits_python()  # else the statement around it is the one to blame
+        begun = w.begin_statement()
         visit = _STMT_VISIT.get(type(s))
         if visit is None:  # a gap in gpl2py: GPL9000 at the statement, never a statement dropped
             raise InternalError(s.span, f"no lowering for the statement {type(s).__name__}")
@@ -414,9 +412,10 @@ class ProcLowerer(ExprLowerer):
         if not self.kept_error(s):
             visit(self, s)
         self.current = outer_stmt
-        if fits and not w.fits_python():
-            self.too_deep(s, start)
-        w.peak_level, w.peak_blocks = max(outer[0], w.peak_level), max(outer[1], w.peak_blocks)
+        detail = w.too_deep(begun, "loop and Try blocks of one procedure")
+        if detail is not None:
+            self.too_deep(s, start, detail)
+        w.end_statement(begun)
         w.trailing(s.trailing_comment, start)
 
     def kept_error(self, s: A.Stmt) -> bool:
@@ -433,22 +432,14 @@ class ProcLowerer(ExprLowerer):
         self.w.line(self.fault(s))
         return simple
 
-    def too_deep(self, s: A.Stmt, start: int) -> None:
+    def too_deep(self, s: A.Stmt, start: int, detail: str) -> None:
         """``s`` is the innermost statement whose Python would nest deeper than CPython compiles
         (emit.MAX_INDENT, emit.MAX_BLOCKS): an error at it, and in its place the call that raises
         the error when reached (gpl2py/kept.py), so that code which keeps the error compiles."""
-        w = self.w
-        level, blocks = w.deepest()
-        if level > MAX_INDENT:
-            detail = f"its code would be indented {level} levels and Python allows {MAX_INDENT}"
-        else:
-            detail = (f"its code would be inside {blocks} loop and Try blocks of one procedure and Python "
-                      f"allows {MAX_BLOCKS}")
         self.sink.report(M.NESTED_TOO_DEEPLY, s.span, detail=detail)
         self.too_deep_seen = True
-        del w.lines[start:]
-        w.line(self.fault(s))
-        w.peak_level, w.peak_blocks = w.level, w.blocks
+        self.w.discard_since(start)
+        self.w.line(self.fault(s))
 
     def s_misplaced(self, s: A.Stmt) -> None:
         """A line of a procedure body the parser reported -- a declaration that cannot be there, or

@@ -14,8 +14,10 @@ from __future__ import annotations
 
 import keyword
 
+from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.pywriter.emit import Writer
 from gpl2py.pywriter.text import escape, py_string
+from gpl2py.tmscript import messages as M
 from gpl2py.tmscript.semantics.check import Info, Var, pyname
 from gpl2py.tmscript.semantics.library import DEFERRED, DEFERRED_WITH_TWO, OBJECTS
 from gpl2py.tmscript.syntax import ast as A
@@ -30,11 +32,22 @@ BOOLEAN_OPS = frozenset({"==", "!=", "<", "<=", ">", ">=", "&&", "||"})
 
 
 class Unsupported(Exception):
-    """A construct the lowering does not translate yet (reported by the pipeline)."""
+    """A construct the lowering does not translate (reported by the pipeline: :meth:`report`)."""
 
     def __init__(self, node: A.Node, what: str) -> None:
         super().__init__(what)
         self.node, self.what = node, what
+
+    def report(self, sink: DiagnosticSink) -> None:
+        sink.report(M.TM_UNSUPPORTED, self.node.span, what=self.what)
+
+
+class NestedTooDeeply(Unsupported):
+    """``node`` is the innermost statement whose Python would nest deeper than CPython compiles
+    (docs/security.md, "Nesting"): ``what`` says how deep."""
+
+    def report(self, sink: DiagnosticSink) -> None:
+        sink.report(M.TM_NESTED_TOO_DEEPLY, self.node.span, detail=self.what)
 
 
 class Lowerer:
@@ -269,6 +282,14 @@ class Lowerer:
         self.w.ensure_body(start)
 
     def statement(self, st: A.Node) -> None:
+        begun = self.w.begin_statement()
+        self._statement(st)
+        detail = self.w.too_deep(begun, "loop blocks of one function")
+        if detail is not None:
+            raise NestedTooDeeply(st, detail)
+        self.w.end_statement(begun)
+
+    def _statement(self, st: A.Node) -> None:  # noqa: C901 (one dispatch over the statement kinds)
         if isinstance(st, A.Decl):
             for d in st.declarators:
                 var = self.info.names[id(d)]

@@ -162,6 +162,10 @@ class Parser:
     # --- statements -----------------------------------------------------------------------------
     def block(self) -> A.Block:
         start = self.expect_op("{")
+        if self.depth >= MAX_DEPTH:  # one error for the whole block, and on after its '}'
+            self.sink.report(M.TM_NOT_HERE, start.span, what="nesting this deep", where=f"(more than {MAX_DEPTH} levels)")
+            self.skip_block()
+            raise _Bail
         self.nested(start.span)
         body: list[A.Node] = []
         self.skip_nl()
@@ -174,6 +178,18 @@ class Parser:
         end = self.next()
         self.depth -= 1
         return A.Block(start.span.to(end.span), body)
+
+    def skip_block(self) -> None:
+        """Skip to just after the '}' that closes the block whose '{' was just read (or to the end)."""
+        open_braces = 1
+        while self.tok.kind != "eof":
+            t = self.next()
+            if t.is_op("{"):
+                open_braces += 1
+            elif t.is_op("}"):
+                open_braces -= 1
+                if not open_braces:
+                    return
 
     def statement_line(self) -> list[A.Node]:
         """One statement and the end of its line; [] after a reported error."""

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.kept import KeptErrors
-from gpl2py.pywriter.emit import Writer
+from gpl2py.pywriter.emit import BLOCKS, MAX_BLOCKS, Writer
 from gpl2py.pywriter.text import py_string
 from gpl2py.vplus import messages as M
 from gpl2py.vplus.lower.expressions import Exprs
@@ -62,6 +62,9 @@ class ProgramLowerer:
         #: GOTO goes elsewhere (then the program needs its dispatch loop)
         self.for_labels: dict[int, frozenset[int]] = {}
         self.jumps_out = False
+        #: the statements replaced because Python would not compile them, with why (reported
+        #: once the body is written: see ``_too_deep``)
+        self.too_deep: list[tuple[A.Stmt, str]] = []
 
     # --- names ----------------------------------------------------------------------------------
 
@@ -97,6 +100,8 @@ class ProgramLowerer:
         start = w.mark()
         w.comments(prog.comments)  # (those above .PROGRAM and on its line)
         body = self._body_text()
+        for s, detail in self.too_deep:
+            self.sink.report(M.NESTED_TOO_DEEPLY, s.span, detail=detail)
         self._declarations()
         w.extend(body)
         w.ensure_body(start)
@@ -244,15 +249,20 @@ class ProgramLowerer:
         after = [c for c in s.comments if c.span.line >= s.span.line]
         w.comments(before)
         start = w.mark()
+        begun = w.begin_statement()
         if self.kept.any() and self.kept.on_lines(s.span, whole=False):
             self._kept(s)
         elif self.steps and isinstance(s, _RESUMABLE) and (not isinstance(s, A.Instr) or s.word):
             w.line(f"with vp.step({s.span.line}):")
-            w.indent()
+            w.indent(BLOCKS["with"])
             self._simple(s)
             w.dedent()
         else:
             self._simple(s)
+        detail = w.too_deep(begun)
+        if detail is not None:
+            self._too_deep(s, start, detail)
+        w.end_statement(begun)
         if s.label is not None and w.mark() > start:
             first = w.lines[start]
             first.attach(f"# step {s.label}")
@@ -261,15 +271,35 @@ class ProgramLowerer:
 
     def _kept(self, s: A.Stmt) -> None:
         """A statement translated despite an error on its line (``--keep-going``, or the error
-        ignored): it raises V+'s error for the fault when reached (gpl2py.kept), in a step of its
-        own so that REACTE traps it and RETURNE goes on after it (a block with it)."""
-        code, subject = self.kept.at(s.span)
-        if self.steps:
+        ignored): it raises V+'s error for the fault when reached (gpl2py.kept)."""
+        self._raise(s, *self.kept.at(s.span))
+
+    def _raise(self, s: A.Stmt, code: int, subject: str) -> None:
+        """The line that raises V+ error ``code`` in place of ``s``, in a step of its own so that
+        REACTE traps it and RETURNE goes on after it (a block with it) -- unless the step's block
+        would itself be one more than Python compiles (``s`` nested too deeply, replaced by this
+        line at the depth where it starts)."""
+        step = self.steps and self.w.blocks + BLOCKS["with"] <= MAX_BLOCKS
+        if step:
             self.w.line(f"with vp.step({s.span.line}):")
-            self.w.indent()
+            self.w.indent(BLOCKS["with"])
         self.w.line(f"vp.compile_error({code}, {py_string(subject)})")
-        if self.steps:
+        if step:
             self.w.dedent()
+
+    def _too_deep(self, s: A.Stmt, start: int, detail: str) -> None:
+        """``s`` is the innermost statement whose Python would nest deeper than CPython compiles:
+        its code is replaced by the line that raises *Not implemented* when reached, and GPL4702
+        is reported at it when the program is written -- unless a statement around it is replaced
+        too (its own header's step block can be the one too many), which then has the one error."""
+        w = self.w
+        w.discard_since(start)
+        inside = _nested_ids(s)
+        self.too_deep = [(t, d) for t, d in self.too_deep if id(t) not in inside]
+        self.too_deep.append((s, detail))
+        w.gpl_line = s.span.line
+        self._raise(s, M.RUNTIME_CODES[M.NESTED_TOO_DEEPLY.code],
+                    f"{M.NESTED_TOO_DEEPLY.code}: {M.NESTED_TOO_DEEPLY.format(detail=detail)}")
 
     def _simple(self, s: A.Stmt) -> None:  # noqa: C901 (one dispatch over the statement kinds)
         w, x = self.w, self.x
@@ -357,7 +387,7 @@ class ProgramLowerer:
             self.w.line(f"if _into not in {_labels_text(skip)}:")
             self.w.indent()
         self.w.line(f"with vp.step({line}):")
-        self.w.indent()
+        self.w.indent(BLOCKS["with"])
         self.w.line(f"{temp} = {self.x.condition(cond)}")
         self.w.dedent()
         if skip:
@@ -692,3 +722,15 @@ def _has_goto(body: list[A.Stmt]) -> bool:
         if any(_has_goto(b) for b in blocks(s)):
             return True
     return False
+
+
+def _nested_ids(s: A.Stmt) -> set[int]:
+    """The ids of the statements in the blocks of ``s``, at any depth."""
+    found: set[int] = set()
+    todo = [s]
+    while todo:
+        for b in blocks(todo.pop()):
+            for inner in b:
+                found.add(id(inner))
+                todo.append(inner)
+    return found
