@@ -37,24 +37,31 @@ def run_packet(script: str) -> Vars:
     return v
 
 
-def run_project(source: Path, out: Path, display: Callable[[str], object]) -> int:
-    """Translate the script project ``source`` into ``out``, import it and run it on the current
-    robot (``context.use_robot`` first), its ``Display`` lines going to ``display``; its status."""
+def run_project(source: Path, out: Path, robot: str | None = "TM5-900", speed: float = float("inf"),
+                display: Callable[[str], object] | None = None) -> tuple[int, list[str]]:
+    """Translate the script project ``source`` into ``out``, import it and ``run()`` it on a new
+    simulated ``robot`` (``speed``: a real clock at that speed; default the fast clock), or on the
+    current one when ``robot`` is None (a test that attached devices to it first): (status, the
+    ``Display`` lines; or what ``display`` does with them)."""
     sink = DiagnosticSink()
-    result = transpile(source, sink)
-    assert result is not None and not sink.has_errors(), [d.header() for d in sink]
-    write_package(result, out, sink)
-    module_path = out / result.package / f"{result.package}.py"
-    spec = importlib.util.spec_from_file_location(f"tm_project_{source.stem}", module_path)
+    pkg = transpile(source, sink)
+    assert pkg is not None and not sink.has_errors(), [d.header() for d in sink]
+    write_package(pkg, out, sink)
+    name = f"tm_project_{pkg.package}_{abs(hash(str(out)))}"
+    spec = importlib.util.spec_from_file_location(name, out / pkg.package / f"{pkg.package}.py")
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    context.set_display(display)
+    if robot is not None:
+        context.use_robot(robot, speed=speed)
+    lines: list[str] = []
+    context.set_display(display or lines.append)
     try:
-        return int(module.run())
+        status = int(module.run())
     finally:
         context.set_display(None)
         sys.modules.pop(spec.name, None)
+    return status, lines
 
 
 def packet_values(script: str, *names: str) -> list[str]:

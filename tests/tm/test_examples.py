@@ -50,9 +50,8 @@ EXAMPLES = Path(__file__).parent / "examples"
 
 
 def run_example(name: str, tmp_path: Path) -> tuple[int, list[str]]:
-    lines: list[str] = []
     context.use_robot("TM5-900", speed=20.0)  # (threads that sleep need time to pass)
-    return run_project(EXAMPLES / f"{name}.tms", tmp_path, lines.append), lines
+    return run_project(EXAMPLES / f"{name}.tms", tmp_path, robot=None)
 
 
 EXPECTED = {
@@ -133,7 +132,7 @@ def test_e22_block_scope_closes_the_socket(tmp_path: Path) -> None:
     threading.Thread(target=peer, daemon=True).start()
     lines: list[str] = []
     context.use_robot("TM5-900", speed=20.0)  # (15 s of Sleep in 0.75 s)
-    assert run_project(tmp_path / "e22_block_scope.tms", tmp_path / "out", lines.append) == 0
+    assert run_project(tmp_path / "e22_block_scope.tms", tmp_path / "out", robot=None, display=lines.append)[0] == 0
     assert lines == ["A Value: 10", "B Value: b"] and closed.wait(30)
 
 
@@ -170,7 +169,7 @@ def test_e72_socket_send_sends_the_manuals_bytes(tmp_path: Path) -> None:
     (tmp_path / "e72_socket_send.tms").write_text(
         text.replace('"192.168.1.10", 12345', f'"127.0.0.1", {peer.port}'), encoding="utf-8")
     context.use_robot("TM5-900")
-    assert run_project(tmp_path / "e72_socket_send.tms", tmp_path / "out", print) == 0
+    assert run_project(tmp_path / "e72_socket_send.tms", tmp_path / "out", robot=None, display=print)[0] == 0
     assert peer.wait_for(len(want)) == want
 
 
@@ -188,5 +187,6 @@ def test_e100_modbus_presets(tmp_path: Path) -> None:
             text.replace('ModbusTCP mbus1 = "127.0.0.1"', f'ModbusTCP mbus1 = "127.0.0.1", {port}'), encoding="utf-8")
         lines: list[str] = []
         context.use_robot("TM5-900")
-        status = run_project(tmp_path / "e100_modbus_preset.tms", tmp_path / "out", lines.append)
+        status, _ = run_project(tmp_path / "e100_modbus_preset.tms", tmp_path / "out", robot=None,
+                                   display=lines.append)
     assert (status, lines) == (0, ["false", "true", "1234", "HelloWorld", "1234oWorld"])

@@ -157,7 +157,7 @@ def test_the_end_of_the_project_closes_the_port(robot, tmp_path: Path) -> None: 
     src.write_text('define\n{\n    SerialPort spd = "COM2",115200\n}\nmain\n{\n    com_open("spd")\n'
                    '    com_writeline("spd", "bye")\n}\n')
     lines: list[str] = []
-    assert run_project(src, tmp_path / "out", lines.append) == 0
+    assert run_project(src, tmp_path / "out", robot=None, display=lines.append)[0] == 0
     assert peer.closed.wait(30) and peer.wait_for(5) == b"bye\r\n"
     assert robot._serial_devices == {}
 

@@ -133,6 +133,6 @@ def test_a_socket_declared_in_a_block_is_closed_when_the_block_is_left_e22(robot
         else:
             seen.append((line, False))
 
-    assert run_project(src, tmp_path / "out", display) == 1
+    assert run_project(src, tmp_path / "out", robot=None, display=display)[0] == 1
     assert seen == [("after the block", True), ("-3", False), ("errorstop", True)]
     assert peers[0].wait_for(2) == b"hi"

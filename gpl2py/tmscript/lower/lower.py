@@ -12,6 +12,8 @@ a bool.  Built-ins are ``tm.Name``; a deferred argument (``ThreadRun(f())``, ``W
 
 from __future__ import annotations
 
+import keyword
+
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.pywriter.emit import Writer
 from gpl2py.pywriter.text import escape, py_string
@@ -155,9 +157,21 @@ class Lowerer:
             return f"{pyname(callee.name)}({', '.join(args)})"
         if args and (callee.name in DEFERRED or (callee.name in DEFERRED_WITH_TWO and len(args) == 2)):
             args[0] = self.deferred(e.args[0], args[0])
+        scope = self.info.scopes.get(id(e))
+        if scope is not None:  # (a name given at run time: the variables visible here, L6650)
+            args.append(f"scope={self.scope_map(scope)}")
         if callee.name == "GetString" and e.args and self.is_byte_scalar(e.args[0]):
             args.append("as_byte=True")  # (a byte and an int are both Python ints at run time)
         return f"tm.{callee.name}({', '.join(args)})"
+
+    def scope_map(self, scope: dict[str, Var]) -> str:
+        """The variables ``scope`` as a Python map from their TMscript names: ``dict(a=a, ...)``
+        (the writer packs a call's arguments on lines of PEP 8 length), or a ``{"a": a}`` literal
+        when a name is a Python keyword."""
+        items = sorted(scope.items())
+        if all(n.isidentifier() and not keyword.iskeyword(n) for n, _ in items):
+            return "dict(" + ", ".join(f"{n}={self.var_ref(v)}" for n, v in items) + ")"
+        return "{" + ", ".join(f"{py_string(n)}: {self.var_ref(v)}" for n, v in items) + "}"
 
     def is_byte_scalar(self, node: A.Node) -> bool:
         """Whether ``node`` is a variable declared ``byte`` (not an array): ``GetString`` shows its

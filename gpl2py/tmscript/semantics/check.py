@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.tmscript import messages as M
 from gpl2py.tmscript.semantics.library import (
-    BUILTINS, CLASS_ARGUMENTS, CLASSES, METHODS, METHODS_NOT_YET, OBJECTS, RETURNS,
+    BUILTINS, BY_NAME, CLASS_ARGUMENTS, CLASSES, METHODS, METHODS_NOT_YET, OBJECTS, RETURNS,
 )
 from gpl2py.tmscript.syntax import ast as A
 
@@ -52,6 +52,8 @@ class Info:
     types: dict[int, str] = field(default_factory=dict)  # static types known (decls, literals)
     #: a string literal's single-quoted variable names: (start, end, variable) in its text (L628)
     interpolations: dict[int, list[tuple[int, int, Var]]] = field(default_factory=dict)
+    #: a by-name built-in's call (``GetVarValue``, ``VarSync``): the variables visible there
+    scopes: dict[int, dict[str, Var]] = field(default_factory=dict)
 
 
 #: Python names a TMscript name must not become (the generated code's own names and Python's).
@@ -322,6 +324,11 @@ class Checker:
             self.sink.report(M.TM_UNKNOWN_FUNCTION, callee.span, name=callee.name)
             return
         self.info.calls[id(e)] = "builtin"
+        if callee.name in BY_NAME:
+            visible: dict[str, Var] = {}
+            for scope in self.blocks:
+                visible.update(scope)
+            self.info.scopes[id(e)] = {n: v for n, v in visible.items() if v.cls is None}
         if self.packet and callee.name in PRIORITY and e.args and not isinstance(e.args[0], A.Num):
             self.sink.report(M.TM_PRIORITY_ARGUMENT, e.args[0].span, name=callee.name, allowed=PRIORITY[callee.name])
         lo, hi = arity

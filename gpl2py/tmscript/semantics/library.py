@@ -26,7 +26,7 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "svr_read": (1, 1), "svr_write": (2, 2),
     # conversions, strings, arrays, checksums, time (L2066-L7446)
     "Length": (1, 1), "Ctrl": (1, 1), "GetString": (1, 5), "GetBytes": (1, 3), "GetNowStamp": (0, 2),
-    "GetNow": (0, 1), "GetVarValue": (1, 1), "GetToken": (3, 5), "GetAllTokens": (3, 4),
+    "GetNow": (0, 1), "GetVarValue": (1, 1), "VarSync": (1, None), "GetToken": (3, 5), "GetAllTokens": (3, 4),
     "ValueReverse": (1, 2),
     "String_ToInteger": (1, 2), "String_ToFloat": (1, 2), "String_ToDouble": (1, 2),
     "String_IndexOf": (2, 3), "String_LastIndexOf": (2, 3), "String_Substring": (2, 4),
@@ -42,11 +42,16 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "File_ReadBytes": (1, 1), "File_ReadText": (1, 1), "File_ReadLines": (1, 3), "File_NextLine": (0, 2),
     "File_NextEOF": (0, 0), "File_WriteBytes": (2, 5), "File_WriteText": (2, 5), "File_WriteLine": (2, 5),
     "File_WriteLines": (2, 5), "File_Exists": (1, 1), "File_Length": (1, 1), "File_Delete": (1, None),
-    "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5),
+    "File_Copy": (2, 3), "File_Replace": (3, 3), "File_GetToken": (3, 5), "File_CopyImage": (2, 4),
+    "File_GetImage": (0, 1),
     "File_GetAllTokens": (3, 4),
     # the SerialPort class on the simulated robot's virtual ports (L12367-L13395)
     "com_open": (1, 1), "com_close": (1, 1), "com_read": (1, 5), "com_read_string": (1, 5),
     "com_write": (2, 4), "com_writeline": (2, 4),
+    # vision jobs on the simulated vision backend (L17229-L17641)
+    "Vision_DoJob": (1, 1), "Vision_DoJob_PTP": (3, 4), "Vision_DoJob_Line": (2, 4),
+    "Vision_IsJobAvailable": (1, 1), "Vision_GetOutputArraySize": (1, 2), "Vision_GetOutputArrayValue": (2, 3),
+    "Vision_GetTriggerJobOutputCount": (1, 1), "Vision_GetTriggerJobOutputValue": (1, 1),
     # the Socket class's TCP client (L13396-L14356)
     "socket_open": (1, 1), "socket_close": (1, 1), "socket_read": (1, 5), "socket_read_string": (1, 5),
     "socket_send": (2, 4), "socket_sendline": (2, 4),
@@ -62,6 +67,10 @@ BUILTINS: dict[str, tuple[int, int | None]] = {
     "dist": (2, 2), "trans": (2, 3), "inversetrans": (1, 2), "applytrans": (2, 3), "changeref": (2, 3),
     "interpoint": (3, 3), "points2coord": (3, 9), "intercoord": (2, 2),
 }
+
+#: Built-ins that find variables by a name given at run time (L6650, L7626): the lowering passes
+#: them the variables visible at the call.
+BY_NAME = frozenset({"GetVarValue", "VarSync"})
 
 #: Built-ins whose first argument is a deferred statement or condition (spec §2).
 DEFERRED = frozenset({"ThreadRun"})

@@ -789,6 +789,12 @@ from gplrt.tm.conversions import (  # noqa: E402
     CRC16, CRC32, SUM8, SUM16, SUM32, XOR8, Byte_Concat, Byte_ToDouble, Byte_ToFloat, Byte_ToInt16, Byte_ToInt32,
     Byte_ToString, GetBytes, String_ToByte, ValueReverse,
 )
+from gplrt.tm.manager import lookup, var_sync  # noqa: E402
+from gplrt.tm.vision_functions import (  # noqa: E402,F401 (TMscript's names)
+    File_CopyImage, Vision_DoJob, Vision_GetOutputArraySize, Vision_GetOutputArrayValue,
+    Vision_GetTriggerJobOutputCount, Vision_GetTriggerJobOutputValue, Vision_IsJobAvailable, VPoint, do_job_line,
+    do_job_ptp, get_image,
+)
 from gplrt.tm.files import (  # noqa: E402
     File_Copy, File_Delete, File_Exists, File_GetAllTokens, File_GetToken, File_Length, File_NextEOF, File_NextLine,
     File_ReadBytes, File_ReadLines, File_ReadText, File_Replace, File_WriteBytes, File_WriteLine, File_WriteLines,
@@ -839,13 +845,34 @@ def String_ToDouble(s: object, base: object = 10) -> object:
         return F64(0)
 
 
-def GetVarValue(name: object) -> object:
-    """The value of the variable named at run time (L6650); an error if there is none."""
-    n = context.node()
+def GetVarValue(name: object, scope: dict[str, object] | None = None) -> object:
+    """The value of the variable named at run time (L6650) among those visible at the call
+    (``scope``, given by the front end) or the Listen node's; an error if there is none."""
     key = to_string(name).strip()
-    if n is not None and hasattr(n.vars, key):
-        return getattr(n.vars, key)
-    raise TMError(f"GetVarValue: no variable {key!r}")
+    found, value = lookup(key, scope, context.node())
+    if not found:
+        raise TMError(f"GetVarValue: the variable {key!r} does not exist")
+    return value
+
+
+def VarSync(*args: object, scope: dict[str, object] | None = None) -> int:
+    """Send variables to the robot's TMmanager (L7626): ``gplrt.tm.manager.var_sync``."""
+    return var_sync(args, scope, context.robot(), context.node(), Sleep)
+
+
+def Vision_DoJob_PTP(job: object, speed: object, accel: object, smart_pose: object = False) -> bool:
+    """``gplrt.tm.vision_functions.do_job_ptp`` (L17262), ended by a priority command."""
+    return do_job_ptp(job, speed, accel, smart_pose, _cancelled)
+
+
+def Vision_DoJob_Line(job: object, speed: object, accel: object = None, link: object = True) -> bool:
+    """``gplrt.tm.vision_functions.do_job_line`` (L17319), ended by a priority command."""
+    return do_job_line(job, speed, accel, link, _cancelled)
+
+
+def File_GetImage(timeout_ms: object = -1) -> Array:
+    """``gplrt.tm.vision_functions.get_image`` (L11845), ended by a priority command."""
+    return get_image(timeout_ms, _cancelled)
 
 
 _NOW_TOKENS = ("yyyy", "yy", "MMMM", "MMM", "MM", "M", "dddd", "ddd", "dd", "d", "HH", "H", "hh", "h", "mm", "m",

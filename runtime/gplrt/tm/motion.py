@@ -38,6 +38,8 @@ from gplrt.motion.limits import AxisLimits
 from gplrt.motion.planner import plan_axes, plan_scalar
 from gplrt.sim import Simulation
 from gplrt.threads.scheduler import Scheduler, ThreadAbort, WaitQueue, controller_wait
+from gplrt.tm.manager import TMManager
+from gplrt.tm.vision import Vision
 from gplrt.tm.robot import TMArm, pose_to_se3, se3_to_pose
 from gplrt.tm.values import TMError
 
@@ -48,6 +50,16 @@ CARTESIAN_SPEED = 1000.0
 BLEND_SAMPLES = 200
 #: Time step (s) of the differences that give a blend's hand-over velocity and acceleration.
 BLEND_DT = 1e-4
+#: Motions kept in ``Robot.history``.
+HISTORY = 64
+#: Blend into a path (``_blend_within_limits``): start candidates tried, samples of the overlap
+#: checked per candidate, and the share of the joint speeds the sum may use where it is faster
+#: than either motion alone (the samples are discrete: a margin for the moments between them).
+BLEND_START_STEPS = 8
+BLEND_CHECK_SAMPLES = 48
+BLEND_LIMIT_SAFETY = 0.98
+#: Steps of the grid each motion's joint rates are sampled on for that check.
+BLEND_GRID = 24
 #: Queue tags that are remembered (TMSTA 01 answers for the last 4, manual L17930).
 TAGS_KEPT = 4
 
@@ -134,6 +146,14 @@ class Robot:
         #: Notified whenever the queue, a motion, a tag, pause or stop changes.
         self.changed = WaitQueue("tm-robot")
         self.motion: Motion | None = None
+        #: The last motions run, as they were set (a blend's merged motion after the one it cut
+        #: short): ``trajectory(t)`` reads where the robot was at controller time ``t``.
+        self.history: deque[Motion] = deque(maxlen=HISTORY)
+        #: The simulated TMmanager ``VarSync`` sends to (``gplrt.tm.manager``).
+        self.manager = TMManager()
+        #: The vision backend the user fills (``gplrt.tm.vision``): jobs, outputs, images.
+        self.vision = Vision()
+        self.vision.on_change = self._notify
         self.tags: dict[int, bool] = {}  # tag -> done, the last TAGS_KEPT in order
         self.ctrl_do = [0] * 16
         self.ctrl_di = [0] * 16
@@ -226,6 +246,17 @@ class Robot:
     # --- state ----------------------------------------------------------------------------------
     def _elapsed(self, m: Motion) -> float:
         return min(m.duration, max(0.0, self.clock.now() - m.t0))
+
+    def trajectory(self, t: float) -> list[float] | None:
+        """Where the robot was (or will be) at controller time ``t`` by the motions in ``history``:
+        the last one started by ``t``; None before the first.  (A blend's merged motion replaces the
+        motion it cut from its own start on.)"""
+        with self.lock:
+            found = None
+            for m in self.history:
+                if m.t0 <= t + 1e-12:
+                    found = m
+            return None if found is None else found.at(min(found.duration, t - found.t0))
 
     def current_joints(self) -> list[float]:
         with self.lock:
@@ -320,6 +351,20 @@ class Robot:
                 return 0
             return 1 if done and self.tags[tag] else 0
 
+    def run_queued(self, work: Callable[[], object], cancelled: Callable[[], bool] = lambda: False) -> tuple[bool, object]:
+        """Queue ``work`` after what is queued (a vision job after its move, L17262), wait for it
+        as for a queue tag: (True, what it returned), or (False, None) when it never ran (the
+        queue cleared by ``StopAndClearBuffer``, the wait cancelled)."""
+        box: list[object] = []
+
+        def run() -> None:
+            box.append(work())
+        cmd = Command("call", run=run)
+        self.enqueue(cmd)
+        done = self._wait_for(lambda: bool(box) or (not any(c is cmd for c in self.queue) and not self.busy),
+                              None, cancelled)
+        return (True, box[0]) if done and box else (False, None)
+
     def idle(self) -> bool:
         with self.lock:
             return not self.queue and not self.busy
@@ -410,6 +455,7 @@ class Robot:
         while True:
             with self.lock:
                 self.motion = motion = Motion(t0, duration, at, end)
+                self.history.append(motion)
             self._notify()  # the waiters renew their controller_wait to this motion's end
             cut = self._blend_start(blend, at, duration, start, end) if blend else None
             if cut is None or not self._wait_until(t0 + cut):
@@ -467,7 +513,11 @@ class Robot:
             with self.lock:
                 self.queue.appendleft(nxt)
             return None
-        tb = max(cut, duration - d_b)
+        tb = self._blend_within_limits(at, at_b, max(cut, duration - d_b), duration, d_b)
+        if tb >= duration:  # no overlap keeps the joints within their speeds: run after it
+            with self.lock:
+                self.queue.appendleft(nxt)
+            return None
         if not self._wait_until(t0 + tb):
             return None
         rest = duration - tb
@@ -482,6 +532,35 @@ class Robot:
             self.sim_time += tb
             self.joints = merged(0.0)
         return t0 + tb, max(d_b, rest), merged, merged(0.0), end_b, nxt.blend
+
+    def _blend_within_limits(self, at_a: Callable[[float], list[float]], at_b: Callable[[float], list[float]],
+                             tb: float, duration: float, d_b: float) -> float:
+        """The earliest start from ``tb`` on (s after the blending motion's start) at which the
+        superposed motion keeps every joint within its speed (the URDF's, 100 %; where the sum is
+        faster than either motion alone, within ``BLEND_LIMIT_SAFETY`` of it); ``duration`` (no
+        overlap) if none does.  In joint space the blended rate is exactly the sum of the two
+        motions' rates, so a path that moves a joint the same way the blending motion still
+        drives it can ask for up to twice its speed: a real robot does not exceed its joint
+        speeds, and the manual names no error for a blend (L15747, L15990), so the overlap is
+        shortened (the robot passes closer to the via point), as the core does for GPL
+        (``gplrt.motion.robot._blend_within_limits``).  Candidates close in on the end
+        geometrically; each is checked at ``BLEND_CHECK_SAMPLES`` moments of its overlap.  Each
+        motion's rates are sampled once on a grid of ``BLEND_GRID`` steps (a path's joints cost an
+        inverse kinematics each) and interpolated for the candidates."""
+        limit = np.array(self.arm.speed) * BLEND_LIMIT_SAFETY
+        span = duration - tb
+        if span <= 0:
+            return duration
+        ta, va = _grid_rates(at_a, tb, duration)
+        tp, vp = _grid_rates(at_b, 0.0, min(d_b, span))
+        for k in range(BLEND_START_STEPS):
+            start = duration - span * 0.5 ** k
+            ts = np.linspace(start, duration, BLEND_CHECK_SAMPLES)
+            a = np.stack([np.interp(ts, ta, va[:, j]) for j in range(va.shape[1])], axis=1)
+            b = np.stack([np.interp(ts - start, tp, vp[:, j], right=0.0) for j in range(vp.shape[1])], axis=1)
+            if not np.any(np.abs(a + b) > np.maximum(limit, np.maximum(np.abs(a), np.abs(b)))):
+                return start
+        return duration
 
     def _next_blendable(self) -> Command | None:
         """The motion a blend hands over to: the next command, if it is a motion queued before
@@ -592,6 +671,16 @@ def _state(at: Callable[[float], list[float]], t: float, duration: float) -> tup
     v = [(b - a) / (2 * h) for a, b in zip(before, after)]
     acc = [(b - 2 * m + a) / (h * h) for a, m, b in zip(before, q, after)]
     return q, v, acc
+
+
+def _grid_rates(f: Callable[[float], list[float]], lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """Joint rates of ``f`` on [lo, hi]: the moments (the grid's midpoints, and both ends) and
+    the rates there, by differences between ``BLEND_GRID`` + 1 points."""
+    ts = np.linspace(lo, hi, BLEND_GRID + 1)
+    q = np.array([f(float(t)) for t in ts])
+    v = np.diff(q, axis=0) / max(1e-12, (hi - lo) / BLEND_GRID)
+    mids = (ts[:-1] + ts[1:]) / 2
+    return np.concatenate(([lo], mids, [hi])), np.vstack((v[:1], v, v[-1:]))
 
 
 def _origin(frame: object, depth: int = 8) -> tuple[tuple[str, int], ...]:

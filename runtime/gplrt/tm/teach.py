@@ -9,6 +9,8 @@ are accepted and not written back (there is no TMflow point file).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
+
 from gplrt.tm import context
 from gplrt.tm.robot import config_bits, pose_to_se3, se3_to_pose
 from gplrt.tm.values import Array, TMError, to_double, to_string
@@ -28,6 +30,21 @@ def _values(args: list[object], name: str) -> list[float]:
     if len(vals) != 6:
         raise TMError(f"{name}: six values are needed, not {len(vals)}")
     return vals
+
+
+class LiveArray(Array):
+    """An attribute's array whose element writes reach the attribute: ``Point["P1"].Value[2] =
+    120`` replaces the point's Z alone (L14445, L14496, L14551, L14599, L15058)."""
+
+    __slots__ = ("_write",)
+
+    def __init__(self, type_name: str, items: Iterable[object], write: Callable[[list[object]], None]) -> None:
+        super().__init__(type_name, items)
+        self._write = write
+
+    def __setitem__(self, i, v):  # type: ignore[no-untyped-def]
+        super().__setitem__(i, v)
+        self._write(list(self))
 
 
 def _registry(kind: str) -> dict[str, object]:
@@ -58,7 +75,7 @@ class TPoint:
         if self._value is None:
             assert self._joint is not None
             self._value = se3_to_pose(context.robot().arm.fk_se3(self._joint))
-        return Array("float", self._value)
+        return LiveArray("float", self._value, lambda vals: setattr(self, "Value", vals))
 
     @Value.setter
     def Value(self, v: object) -> None:
@@ -70,7 +87,7 @@ class TPoint:
             r = context.robot()
             assert self._value is not None
             self._joint = r.arm.ik(self._value, r.current_joints(), self._pose)  # an error when unreachable (L14427)
-        return Array("float", self._joint)
+        return LiveArray("float", self._joint, lambda vals: setattr(self, "Joint", vals))
 
     @property
     def Pose(self) -> Array:
@@ -104,7 +121,7 @@ class TBase:
 
     @property
     def Value(self) -> Array:
-        return Array("float", self._value)
+        return LiveArray("float", self._value, lambda vals: setattr(self, "Value", vals))
 
     @Value.setter
     def Value(self, v: object) -> None:
@@ -124,7 +141,7 @@ class TTCP:
 
     @property
     def Value(self) -> Array:
-        return Array("float", self._value)
+        return LiveArray("float", self._value, lambda vals: setattr(self, "Value", vals))
 
     @Value.setter
     def Value(self, v: object) -> None:
