@@ -28,8 +28,11 @@ statement snippets (tests/tm/test_library.py).  E66-E104:
 * E84-E91, E93, E94: one motion call each with no output to compare, their comments wrapped
   into the code by the PDF (E84, E85, E87, E90, E91 do not compile as printed); the motions
   are tests/tm/test_tm_motion.py's and test_techmanpy.py's.
-* E92 (ChangeBase of a vision base), E95, E96 (vision jobs), E102 (svr_read of TCP_Value and
-  project globals the simulated Ethernet Slave does not have), E103, E104 (force control).
+* E95, E96 (vision jobs): what a job finds comes from a camera; on results registered as the
+  manual describes them (E96's three objects) the calls give the manual's values in
+  tests/tm/test_tm_vision.py.  E92 (ChangeBase to the 2nd base of a vision job: multi-base
+  vision is not simulated), E102 (svr_read of TCP_Value and project globals the simulated
+  Ethernet Slave does not have), E103, E104 (force control: no force sensor is simulated).
 Thread ids differ from the manual's (they are the controller's), so their lines are compared by form.
 """
 
