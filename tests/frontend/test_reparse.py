@@ -139,3 +139,13 @@ def test_enter_after_every_line_of_a_real_procedure() -> None:
         edited = "\n".join(lines[:i + 1] + ["        "] + lines[i + 1:])
         got = again(text, edited)
         assert got is not None and got == full(edited), lines[i]
+
+
+def test_a_long_chain_of_operators_below_the_edit_moves_too() -> None:
+    """A run of 64 operators or more is one Chain node keeping its literal operands' lines in an
+    array (ast.py): moved with the rest."""
+    chain = "        Return " + " + ".join(["1"] * 70) + " + _\n            " + " + ".join(["2"] * 70) + "\n"
+    text = TEXT.replace("        Return 1\n", chain, 1)
+    edited = text.replace("        Dim x As Integer = a\n", "        Dim x As Integer = a\n\n\n", 1)
+    assert again(text, edited) == full(edited)
+    assert again(edited, text) == full(text)
