@@ -108,24 +108,16 @@ def test_a_front_end_without_texts_and_memo_is_called_as_before(tmp_path: Path,
     assert calls == [(tmp_path, False)] and list(sink) == []
 
 
-def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_does(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """The guard of the warm semantic pass (gpl2py/gpl/semantics/warm.py): after a series of edits
-    -- bodies, with and without errors (syntax errors typed inside a line too), one shifting every
-    later line of its file, a Public Const's
-    value, a parameter's type, a Public declaration other files use renamed, a protected name used
-    for the first time -- each check's diagnostics equal a cold check of the same texts; an edit
-    that leaves every declaration as it was checks only the edited file (only the edited procedure
-    when the file keeps its number of lines), and one that changes a declaration's type only the
-    files that name it."""
+def counted(monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], list[str], list[int]]:
+    """What the semantic pass does, as it goes: the files whose members it checks, the members'
+    names, and a 1 each time it collects the declarations."""
     from gpl2py.gpl.semantics.check import Checker
     from gpl2py.gpl.semantics.symbols import ModuleSym
 
-    tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
-    memo: dict[object, object] = {}
     checked: list[str] = []
     members: list[str] = []
-    real = Checker.check_members
+    collected: list[int] = []
+    real, real_collect = Checker.check_members, Checker.collect
 
     def check_members(self: Checker, mod: ModuleSym, items: list[object]) -> None:
         # (a top-level class is checked alone: the file is its own, not its synthetic module's)
@@ -134,9 +126,23 @@ def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_doe
         real(self, mod, items)
 
     monkeypatch.setattr(Checker, "check_members", check_members)
-    collected: list[int] = []
-    real_collect = Checker.collect
     monkeypatch.setattr(Checker, "collect", lambda self, units: collected.append(1) or real_collect(self, units))
+    return checked, members, collected
+
+
+def test_edits_check_again_only_the_edited_file_and_report_what_a_cold_check_does(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The guard of the warm semantic pass (gpl2py/gpl/semantics/warm.py): after a series of edits
+    -- bodies, with and without errors (syntax errors typed inside a line too), one shifting every
+    later line of its file, a Public Const's
+    value, a parameter's type, a Public declaration other files use renamed, a protected name used
+    for the first time -- each check's diagnostics equal a cold check of the same texts; an edit
+    that leaves every declaration as it was checks only the edited file (only the edited procedure
+    when the edit is inside one), and one that changes a declaration's type only the files that
+    name it."""
+    tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
+    memo: dict[object, object] = {}
+    checked, members, collected = counted(monkeypatch)
     texts = {name: (tcs / name).read_text()
              for name in ("Cmd.gpl", "Main.gpl", "Globals.gpl", "Functions.gpl", "Class_command.gpl")}
 
@@ -245,8 +251,6 @@ def test_edits_that_add_or_remove_lines_check_one_procedure_and_move_what_is_bel
     are where a cold check puts them; hover, definition and references below the edit answer what
     a cold server does."""
     from gpl2py.config import Config
-    from gpl2py.gpl.semantics.check import Checker
-    from gpl2py.gpl.semantics.symbols import ModuleSym
     from gpl2py.lsp.projects import ProjectState
 
     tcs = shutil.copytree(corpus_dir() / "tcs-3.0C1-pa", tmp_path / "tcs")
@@ -254,17 +258,7 @@ def test_edits_that_add_or_remove_lines_check_one_procedure_and_move_what_is_bel
     real_parse = pipeline.parse
     monkeypatch.setattr(pipeline, "parse",
                         lambda src, sink: parsed.append(Path(src.path).name) or real_parse(src, sink))
-    members: list[str] = []
-    real_check = Checker.check_members
-
-    def check_members(self: Checker, mod: ModuleSym, items: list[object]) -> None:
-        members.extend(str(getattr(m, "name", "?")) for m in items)
-        real_check(self, mod, items)
-
-    monkeypatch.setattr(Checker, "check_members", check_members)
-    collected: list[int] = []
-    real_collect = Checker.collect
-    monkeypatch.setattr(Checker, "collect", lambda self, units: collected.append(1) or real_collect(self, units))
+    _files, members, collected = counted(monkeypatch)
 
     robot = os.path.abspath(tcs / "PARobot.gpl")
     main = os.path.abspath(tcs / "Main.gpl")
