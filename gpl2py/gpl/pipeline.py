@@ -32,9 +32,10 @@ from gpl2py.gpl.semantics.catalogue import load_catalogue
 from gpl2py.gpl.semantics.check import Model, analyze
 from gpl2py.gpl.semantics.resolve import TOP_MODULE
 from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
-from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm
+from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm, shift_analysis
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.gpl.syntax.reparse import reparse_procedure
+from gpl2py.gpl.syntax.shift import Shift
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files, swap_texts
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
@@ -125,11 +126,32 @@ def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[obje
         again = reparse_procedure(*kept, src) if isinstance(kept, tuple) else None  # (one procedure changed)
         if again is None:
             parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
-            again = parse(src, parsed), list(parsed)
-        unit, diags = again
+            unit, diags = parse(src, parsed), list(parsed)
+        else:
+            unit, diags, shift = again
+            if shift is not None:  # (lines added or removed: the nodes below moved, kept/old_unit too)
+                _shift_memo(memo, kept[1], shift)  # type: ignore[index]
         memo[key] = (src.text, unit, diags)
     sink.extend(diags)
     return unit
+
+
+def _shift_memo(memo: MutableMapping[object, object], old_unit: A.SourceUnit, shift: Shift) -> None:
+    """Move what the later phases kept of ``old_unit``'s file below an edit that added or removed
+    lines (``syntax/reparse.py`` moved the nodes): the warm analysis's symbols and diagnostics,
+    the diagnostics of each declaration's last lowering.  A warm analysis of other trees than
+    ``old_unit`` (its last check did not finish) is dropped: the next check is a cold one."""
+    warm = memo.get(WARM_KEY)
+    if isinstance(warm, WarmAnalysis) and not shift_analysis(warm, old_unit, shift):
+        del memo[WARM_KEY]
+    for key, kept in memo.items():
+        if isinstance(key, tuple) and key[0] == "gpl-lower" and isinstance(kept, tuple):
+            trees, diags, entries, decls = kept
+            for node, lowered in decls.items():
+                moved = shift.diagnostics(lowered.diags)
+                if moved is not lowered.diags:
+                    decls[node] = lowered._replace(diags=moved)
+            memo[key] = (trees, shift.diagnostics(diags), entries, decls)
 
 
 def _lower_memo(model: Model, names: ProjectNames, mod: ModuleSym, sink: DiagnosticSink,

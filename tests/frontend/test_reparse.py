@@ -35,16 +35,36 @@ End Class
 '''
 
 
-def full(text: str) -> tuple[str, list[str]]:
+def positions(unit: A.SourceUnit) -> list[tuple[object, ...]]:
+    """Where every node starts and ends, and every comment, in tree order (``dump`` shows where
+    nodes start only)."""
+    out: list[tuple[object, ...]] = []
+    stack: list[A.Node] = [unit]
+    while stack:
+        node = stack.pop()
+        out.append((type(node).__name__, node._line, node._col, node._end_line, node._end_col))
+        for name in ("leading_comments", "trailing_comment", "header_comment", "end_comments", "end_comment"):
+            value = getattr(node, name, None)
+            for c in (value if isinstance(value, tuple) else (value,) if value is not None else ()):
+                out.append((name, *c.span[1:]))
+        if isinstance(node, A.Chain):
+            out.append(tuple(node.lines))
+        stack.extend(reversed(list(node.children())))
+    return out
+
+
+def full(text: str) -> tuple[str, list[str], list[tuple[object, ...]], list[object]]:
     sink = DiagnosticSink()
-    return A.dump(parse(SourceFile("demo.gpl", text), sink)), [d.header() for d in sink]
+    unit = parse(SourceFile("demo.gpl", text), sink)
+    return A.dump(unit), [d.header() for d in sink], positions(unit), [tuple(d.span) for d in sink]
 
 
-def again(old: str, new: str) -> tuple[str, list[str]] | None:
+def again(old: str, new: str) -> tuple[str, list[str], list[tuple[object, ...]], list[object]] | None:
     sink = DiagnosticSink()
     unit = parse(SourceFile("demo.gpl", old), sink)
     got = reparse_procedure(old, unit, list(sink), SourceFile("demo.gpl", new))
-    return None if got is None else (A.dump(got[0]), [d.header() for d in got[1]])
+    return None if got is None else (A.dump(got[0]), [d.header() for d in got[1]], positions(got[0]),
+                                     [tuple(d.span) for d in got[1]])
 
 
 @pytest.mark.parametrize("old, new", [
@@ -62,12 +82,34 @@ def test_one_procedure_parsed_again_is_a_full_parse(old: str, new: str) -> None:
 
 
 @pytest.mark.parametrize("old, new", [
-    ("        Dim x As Integer = a\n", "        Dim x As Integer = a\n\n"),  # a line added
+    ("        Dim x As Integer = a\n", "        Dim x As Integer = a\n\n"),  # Enter
+    ("        Dim x As Integer = a\n", "        Dim x As Integer = a\n        x = (1 +\n\n"),  # Enter, typing
+    # a pasted block
+    ("        Dim x As Integer = a\n", "        Dim x As Integer = a\n        If x > 1 Then ' big\n"
+                                      "            x = 1\n        Else\n            x = 2\n        End If\n"),
+    ("        Dim x As Integer = a\n", ""),  # a line deleted
+    ("        Dim x As Integer = a\n        x = x + b   ' sum\n", ""),  # every line of its body deleted
+    ("        Return 1\n", "        Return 1\n\n"),  # in the module's last procedure: its End line moves
+    ("        n = 2\n", "\n        n = 2 +\n"),  # a method of the class at the end of the file
+])
+def test_lines_added_or_removed_in_one_procedure_move_what_is_below(old: str, new: str) -> None:
+    """The procedure parsed again, what is below it moved (syntax/shift.py): a full parse's tree,
+    every position and comment included, and its diagnostics, the syntax errors below included."""
+    text = TEXT.replace("        Return 1\n", "        Return (1 ' unclosed\n", 1) if "Return 1" not in old else TEXT
+    text = text.replace("        n = 2\n", "        n = 2 * (\n", 1) if "n = 2" not in old else text
+    edited = text.replace(old, new, 1)
+    assert old in text and again(text, edited) == full(edited)
+    assert again(edited, text) == full(text)  # (and back)
+
+
+@pytest.mark.parametrize("old, new", [
     ("    Public Sub First(ByVal a As Integer, _", "    Public Sub Firsts(ByVal a As Integer, _"),  # its first line
     ("    End Sub\n\n    Function", "    End Function\n\n    Function"),  # its End line
     ("        x = x + b   ' sum", "    End Sub"),  # a line that closes it early
     ("        x = x + b   ' sum", "    End Module"),  # a line that closes its module
     ("    ' the first one", "    ' the very first one"),  # outside any procedure
+    ("    ' the first one\n", ""),  # a line removed outside any procedure
+    ("        x = x + b   ' sum\n", "        x = x + b   ' sum\n    End Sub\n    Sub Third()\n"),  # a procedure added
 ])
 def test_what_it_cannot_be_sure_of_is_parsed_whole(old: str, new: str) -> None:
     assert again(TEXT, TEXT.replace(old, new, 1)) is None
@@ -83,3 +125,27 @@ def test_every_line_of_a_real_procedure(tmp_path: object) -> None:
         edited = "\n".join(lines[:i] + [lines[i] + " +"] + lines[i + 1:])
         got = again(text, edited)
         assert got is not None and got == full(edited), lines[i]
+
+
+def test_enter_after_every_line_of_a_real_procedure() -> None:
+    """Enter after each line inside a procedure of the corpus's Cmd.gpl (2,102 lines, the
+    procedure near the top; every third line, a full parse of the file each): the procedure parsed
+    again, everything below it moved, a full parse."""
+    text = (corpus_dir() / "tcs-3.0C1-pa" / "Cmd.gpl").read_text(errors="replace")
+    lines = text.split("\n")
+    start = next(i for i, line in enumerate(lines) if "Public Sub Cmd_Version(" in line)
+    end = next(i for i in range(start, len(lines)) if lines[i].strip() == "End Sub")
+    for i in range(start, end, 3):
+        edited = "\n".join(lines[:i + 1] + ["        "] + lines[i + 1:])
+        got = again(text, edited)
+        assert got is not None and got == full(edited), lines[i]
+
+
+def test_a_long_chain_of_operators_below_the_edit_moves_too() -> None:
+    """A run of 64 operators or more is one Chain node keeping its literal operands' lines in an
+    array (ast.py): moved with the rest."""
+    chain = "        Return " + " + ".join(["1"] * 70) + " + _\n            " + " + ".join(["2"] * 70) + "\n"
+    text = TEXT.replace("        Return 1\n", chain, 1)
+    edited = text.replace("        Dim x As Integer = a\n", "        Dim x As Integer = a\n\n\n", 1)
+    assert again(text, edited) == full(edited)
+    assert again(edited, text) == full(text)

@@ -188,3 +188,29 @@ def test_a_tmscript_file_gets_checks_diagnostics_through_the_same_door(tmp_path:
         s.wait_diagnostics(script)
         assert published(s) == expected
         assert "internal error" not in " ".join(s.logs)
+
+
+def test_a_check_publishes_the_files_whose_diagnostics_changed(tmp_path: Path) -> None:
+    """After an edit, the edited document's diagnostics are published (its new version) and those
+    of a file the edit changed, not those of the files whose diagnostics are what they were."""
+    folder = project(tmp_path, {"Main.gpl": MAIN, "Helper.gpl": HELPER.replace("Return x * 2", "Return y * 2"),
+                                "Tools.gpl": "Module Tools\n    Sub Nop()\n    End Sub\nEnd Module\n"})
+    main, helper = folder / "Main.gpl", folder / "Helper.gpl"
+    with Session(tmp_path) as s:
+        s.open(main)
+        s.wait_diagnostics(folder / "Tools.gpl", after=0)  # (the last in sorted order)
+        assert s.wait_diagnostics(main) == [] and len(s.diagnostics[uri(helper)]) == 1
+        mark = len(s.published)
+        s.change(main, MAIN.replace("CStr(n)", "CStr(n + 1)"))  # nothing else changes
+        assert s.wait_diagnostics(main) == []
+        s.settle()
+        assert [p for _, p, _ in s.published[mark:]] == [uri(main)]
+        mark = len(s.published)
+        s.change(main, MAIN.replace("Helper.Twice(3)", "Helper.Twice(3, 4)"))  # Main's diagnostics change
+        assert [d.code for d in s.wait_diagnostics(main)] != []
+        s.open(helper)  # (an open document: its version is published)
+        s.change(helper, HELPER)  # Helper's error fixed: Helper's diagnostics change, Tools's do not
+        assert s.wait_diagnostics(helper) == []
+        s.settle()
+        assert uri(folder / "Tools.gpl") not in [p for _, p, _ in s.published[mark:]]
+        assert s.diagnostics[uri(helper)] == []

@@ -49,6 +49,7 @@ from dataclasses import dataclass, field
 from functools import cache
 from itertools import islice
 
+from gpl2py import messages as M
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink, Severity
 from gpl2py.gpl.semantics.catalogue import Catalogue
 from gpl2py.gpl.semantics.check import Checker, InfoTable, Model
@@ -65,6 +66,7 @@ from gpl2py.gpl.semantics.symbols import (
     VarSym,
 )
 from gpl2py.gpl.syntax import ast as A
+from gpl2py.gpl.syntax.shift import Shift
 from gpl2py.source import Span
 
 #: The Model's tables keyed by syntax nodes, which a member's check fills for its nodes.
@@ -103,6 +105,11 @@ class WarmAnalysis:
     how: str = "cold"
     #: what the last call checked: the files (cold), the members' names (warm)
     checked: list[str] = field(default_factory=list)
+
+    #: members to check again whatever changed: their diagnostics name a line that an edit moved
+    #: (:func:`shift_analysis`); and whether the declarations must be collected again for that
+    stale: set[object] = field(default_factory=set)
+    recollect: bool = False
 
     #: whether the Infos of each declaration of a module (each top-level class) hold one of
     #: ``info.DYNAMIC_MEMBERS``, by the id of its node
@@ -151,10 +158,12 @@ def analyze_warm(units: list[A.SourceUnit], catalogue: Catalogue, project_name: 
     :meth:`WarmAnalysis.diagnostics` (not reported to a sink: the caller replays them through its
     filter), equal to a cold analysis's."""
     settings = (project_name, start, start_span, protected, strict, sources_missing, id(catalogue))
-    if kept is not None and kept.settings == settings and len(kept.units) == len(units) and _rebind(kept, units):
+    if kept is not None and kept.settings == settings and len(kept.units) == len(units) and not kept.recollect \
+            and _rebind(kept, units):
         # (only procedures parsed again, their declarations as they were: no need to collect again)
         if _recheck(kept, None, units, kept.collected, start, start_span, texts):
             return kept
+        kept = None  # (a stub met: the whole project; and ``kept`` may be half changed already)
     sink = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
     fresh = Checker(ProjectSyms(project_name), catalogue, sink,
                     StubTable(sink, protected=protected, strict=strict, provider=stub_provider))
@@ -194,7 +203,7 @@ def _recheck(kept: WarmAnalysis, fresh: Checker | None, units: list[A.SourceUnit
                            re.IGNORECASE)
         again |= {i for i, u in enumerate(units) if i not in changed and named.search(texts.get(u.path, "x"))}
     members = _members(old)
-    redo = _changed_members(members, kept.units, units, changed)
+    redo = _changed_members(members, kept.units, units, changed) | kept.stale
     for i in again - changed:  # (the files naming a changed declaration: all their members)
         nodes = _member_nodes(units[i])
         redo.update(m for _mod, m in members if any(id(n) in nodes for n in _nodes_of(m)))
@@ -231,6 +240,7 @@ def _recheck(kept: WarmAnalysis, fresh: Checker | None, units: list[A.SourceUnit
     kept.finished = _finish(old, start, start_span)
     model.errors_reported = any(d.severity is Severity.ERROR for d in kept.diagnostics())
     kept.how = "warm"
+    kept.stale, kept.recollect = set(), False
     kept.checked = [_name_of(m) for _mod, m in members if m in redo]
     return True
 
@@ -464,9 +474,11 @@ def _plan(model: Model, old: list[A.Stmt], new: list[A.Stmt], plan: list[tuple[o
 
 
 def _header(d: A.ProcDecl) -> tuple[object, ...]:
-    """A procedure's declaration as the symbol tables see it, positions included."""
+    """A procedure's declaration as the symbol tables see it, where it starts included (not where
+    it ends: Enter in its body moves its End line, and :func:`_rebind` gives the symbol the new
+    span)."""
     return (d.kind, d.name, tuple(d.modifiers), tuple(A.dump(p) for p in d.params),
-            A.dump(d.return_type) if d.return_type is not None else None, tuple(d.span))
+            A.dump(d.return_type) if d.return_type is not None else None, d._file, d._line, d._col)
 
 
 def _same_node(old: object, new: object) -> bool:
@@ -480,6 +492,69 @@ def _same_node(old: object, new: object) -> bool:
                     and isinstance(old.declared_at, A.Node) else getattr(new, "decl", None))
 
 
+# -- lines added or removed -------------------------------------------------------------------------
+
+
+def shift_analysis(kept: WarmAnalysis, old_unit: A.SourceUnit, shift: Shift) -> bool:
+    """Move what ``kept`` copied out of the nodes of ``old_unit``'s file that an edit adding or
+    removing lines moved (``syntax/reparse.py`` moved the nodes themselves, in place): the spans of
+    the symbols (a ProcSym's, a ClassSym's ... a VarSym reads its node's), the kept diagnostics,
+    the stubs' first uses.  False when ``kept`` is not the analysis of ``old_unit`` (its last check
+    did not finish): it cannot be moved and must be dropped.
+
+    A diagnostic whose message names a line (a duplicate declaration's "line 12") cannot be moved
+    without being made again: its member is checked again (``stale``), and when it is one of the
+    collection's, the declarations are collected again (``recollect``)."""
+    if not any(u is old_unit for u in kept.units):
+        return False
+    for sym in _symbols(kept.model.project):
+        if isinstance(sym, VarSym):
+            if isinstance(sym.declared_at, Span):
+                sym.declared_at = shift.span(sym.declared_at)
+        else:
+            sym.span = shift.span(sym.span)  # type: ignore[attr-defined]
+    for member, item in kept.items.items():
+        if any(_names_a_line(d) and shift.moves(d.span) for d in item.diags):
+            kept.stale.add(member)
+        item.diags = shift.diagnostics(item.diags)
+    if any(_names_a_line(d) and shift.moves(d.span) for d in kept.collected):
+        kept.recollect = True
+    kept.collected = shift.diagnostics(kept.collected)
+    kept.finished = shift.diagnostics(kept.finished)
+    for stub in kept.checker.stubs.stubs.values():
+        stub.span = shift.span(stub.span)
+    return True
+
+
+def _names_a_line(d: Diagnostic) -> bool:
+    """Whether the message of ``d`` names a line (which moving its span would leave stale)."""
+    return d.code == M.DUPLICATE_DECLARATION.code
+
+
+def _symbols(project: ProjectSyms) -> list[object]:
+    """Every symbol of a project but the locals (whose positions are their nodes')."""
+    out: list[object] = []
+    stack: list[object] = [*project.modules.values(), *project.procs, *project.classes]
+    seen: set[int] = set()
+    while stack:
+        sym = stack.pop()
+        if id(sym) in seen:
+            continue
+        seen.add(id(sym))
+        out.append(sym)
+        if isinstance(sym, (ModuleSym, ClassSym)):
+            stack.extend(sym.members.values())
+            if isinstance(sym, ClassSym):
+                stack.extend(sym.ctors)
+        elif isinstance(sym, (ProcSym, DelegateSym)):
+            stack.extend(sym.params)
+        elif isinstance(sym, OverloadSet):
+            stack.extend(sym.procs)
+        elif isinstance(sym, PropSym):
+            stack.extend(p for p in (sym.getter, sym.setter) if p is not None)
+    return out
+
+
 @cache
 def _facts(kind: type) -> tuple[str, ...]:
     """The fields of a symbol class that :func:`_transplant` copies (a dataclass's fields, or the
@@ -488,4 +563,4 @@ def _facts(kind: type) -> tuple[str, ...]:
     return tuple(name for name in names if name not in _LINKS)
 
 
-__all__ = ["WarmAnalysis", "analyze_warm"]
+__all__ = ["WarmAnalysis", "analyze_warm", "shift_analysis"]

@@ -7,12 +7,20 @@ file's), inside a container of the same kind, and gives a tree that is the old o
 procedure replaced: every other node of the file is the old node, which is what lets the later
 phases (semantics/warm.py, the lowering's memo) redo only that procedure.
 
+The changed lines are found as what is left between the longest common head and the longest
+common tail of the old and new lines.  When the edit added or removed lines (Enter, a pasted block,
+a deleted line), every node below the procedure is moved that many lines, in place
+(``syntax/shift.py``): nothing else about them changes, so they stay the nodes the later phases
+know, and the :class:`~gpl2py.gpl.syntax.shift.Shift` returned tells those phases what to move in
+what they copied from them (symbols' spans, kept diagnostics).
+
 It declines (returns None, and the caller parses the whole file) unless the result is sure to be a
-full parse's: the file has as many lines as before, every changed line is strictly inside one
-procedure of a Module or Class (neither its first line nor its ``End`` line changed), and the
-procedure parsed alone ends on the line it ended on, with every diagnostic of its parse on its
-lines.  A procedure's parse depends on nothing before its first line (a declaration starts a line)
-nor after its ``End`` line (which closes it), so then it is the one a full parse makes.
+full parse's: every changed line is strictly inside one procedure of a Module or Class (neither
+its first line nor its ``End`` line changed), and the procedure parsed alone ends on the line its
+``End`` line has moved to, with every diagnostic of its parse on its lines.  A procedure's parse
+depends on nothing before its first line (a declaration starts a line) nor after its ``End`` line
+(which closes it), so then it is the one a full parse makes; and what follows the ``End`` line
+parses as it did, only lower or higher.
 """
 
 from __future__ import annotations
@@ -22,22 +30,32 @@ import copy
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink
 from gpl2py.gpl.syntax import ast as A
 from gpl2py.gpl.syntax.parser import parse
+from gpl2py.gpl.syntax.shift import Shift, shift_comments, shift_nodes
 from gpl2py.source import LINE_BREAK, SourceFile
 
 
 def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Diagnostic],
-                      source: SourceFile) -> tuple[A.SourceUnit, list[Diagnostic]] | None:
+                      source: SourceFile) -> tuple[A.SourceUnit, list[Diagnostic], Shift | None] | None:
     """The tree and diagnostics of ``source`` made from those of the same file's previous text
     (``old_text``, parsed as ``old_unit`` with ``old_diags``) by parsing the one procedure that
-    changed, or None when that is not sure to equal a full parse (module docstring)."""
+    changed, or None when that is not sure to equal a full parse (module docstring).  When the
+    edit added or removed lines, the nodes below the procedure are moved in place (the old tree's
+    too: they are shared) and the third item says how (:class:`~gpl2py.gpl.syntax.shift.Shift`),
+    for the later phases to move what they copied from them; else it is None."""
     old_lines = LINE_BREAK.split(old_text.removeprefix("\ufeff"))
     new_lines = LINE_BREAK.split(source.text.removeprefix("\ufeff"))
-    if len(old_lines) != len(new_lines):
-        return None
-    changed = [i + 1 for i, (a, b) in enumerate(zip(old_lines, new_lines)) if a != b]
-    if not changed:
-        return None
-    chain = _enclosing(old_unit, changed[0], changed[-1])
+    delta = len(new_lines) - len(old_lines)
+    # the changed lines, old_lines[same:old_end] -> new_lines[same:old_end + delta]: the longest
+    # common head, then the longest common tail of what is left
+    same = next((i for i, (a, b) in enumerate(zip(old_lines, new_lines)) if a != b),
+                min(len(old_lines), len(new_lines)))
+    old_end = len(old_lines)
+    while old_end > same and old_end + delta > same and old_lines[old_end - 1] == new_lines[old_end + delta - 1]:
+        old_end -= 1
+    if delta == 0 and same == old_end:
+        return None  # (the same text)
+    # the changed lines of the old text, 1-based: same + 1 .. old_end (none when lines were only added)
+    chain = _enclosing(old_unit, same + 1, old_end)
     if chain is None:
         return None
     proc = chain[-1]
@@ -48,7 +66,8 @@ def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Dia
     container = chain[-2]
     header = "Module Reparsed" if isinstance(container, A.ModuleDecl) else "Class Reparsed"
     closer = "End Module" if isinstance(container, A.ModuleDecl) else "End Class"
-    text = "\n" * (first - 2) + header + "\n" + "\n".join(new_lines[first - 1:last]) + "\n" + closer + "\n"
+    new_last = last + delta
+    text = "\n" * (first - 2) + header + "\n" + "\n".join(new_lines[first - 1:new_last]) + "\n" + closer + "\n"
     sink = DiagnosticSink()
     unit = parse(SourceFile(source.path, text), sink)
     found = unit.members[0].members if len(unit.members) == 1 and isinstance(
@@ -56,11 +75,13 @@ def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Dia
     if len(found) != 1 or not isinstance(found[0], A.ProcDecl):
         return None
     new = found[0]
-    if (new.span.line, new.span.end_line) != (first, last) or any(
-            d.span is None or not first <= d.span.line <= last for d in sink):
+    if (new.span.line, new.span.end_line) != (first, new_last) or any(
+            d.span is None or not first <= d.span.line <= new_last for d in sink):
         return None
     new.leading_comments = proc.leading_comments  # (the comments above it, which were not parsed)
-    return _replaced(old_unit, chain, new), _spliced(old_diags, list(sink), source.path, first, last)
+    shift = Shift(source.path, old_end, delta) if delta else None
+    diags = _spliced(old_diags, list(sink), source.path, first, last, shift)
+    return _replaced(old_unit, chain, new, delta), diags, shift
 
 
 def _enclosing(unit: A.SourceUnit, first: int, last: int) -> list[A.Node] | None:
@@ -81,26 +102,40 @@ def _enclosing(unit: A.SourceUnit, first: int, last: int) -> list[A.Node] | None
         return None
 
 
-def _replaced(unit: A.SourceUnit, chain: list[A.Node], new: A.ProcDecl) -> A.SourceUnit:
+def _replaced(unit: A.SourceUnit, chain: list[A.Node], new: A.ProcDecl, delta: int) -> A.SourceUnit:
     """A copy of ``unit`` with ``new`` in place of the last node of ``chain``: the containers on
-    the way are new nodes (so whoever compares trees sees which changed), the rest is shared."""
+    the way are new nodes (so whoever compares trees sees which changed), the rest is shared.
+    ``delta``: lines the edit added (removed, negative): the containers on the way end that many
+    lines further, and what follows the procedure in them is moved (in place: it is shared)."""
     replacement: A.Node = new
+    seen: set[int] = set()
     for parent, child in zip(reversed(chain[:-1]), reversed(chain[1:])):
         twin = copy.copy(parent)
-        twin.members = [replacement if m is child else m for m in parent.members]  # type: ignore[attr-defined]
+        members = parent.members  # type: ignore[attr-defined]
+        twin.members = [replacement if m is child else m for m in members]  # type: ignore[attr-defined]
+        if delta:
+            shift_nodes(members[members.index(child) + 1:], delta, seen)
+            twin._end_line += delta
+            # (its comments after the procedure: those above its End line, the one on that line)
+            twin.end_comments = shift_comments(twin.end_comments, delta)  # type: ignore[attr-defined]
+            if getattr(twin, "end_comment", None) is not None:
+                twin.end_comment = shift_comments((twin.end_comment,), delta)[0]  # type: ignore[attr-defined]
         replacement = twin
     assert isinstance(replacement, A.SourceUnit)
     return replacement
 
 
-def _spliced(old: list[Diagnostic], new: list[Diagnostic], path: str, first: int, last: int) -> list[Diagnostic]:
-    """The old diagnostics with those on lines ``first``..``last`` of ``path`` replaced by ``new``."""
+def _spliced(old: list[Diagnostic], new: list[Diagnostic], path: str, first: int, last: int,
+             shift: Shift | None) -> list[Diagnostic]:
+    """The old diagnostics with those on lines ``first``..``last`` of ``path`` replaced by ``new``,
+    those below moved by ``shift``."""
     def place(d: Diagnostic) -> int:  # -1 before those lines, 0 on them, 1 after (or elsewhere)
         if d.span is None or d.span.file != path or d.span.line > last:
             return 1
         return -1 if d.span.line < first else 0
 
-    return [d for d in old if place(d) < 0] + new + [d for d in old if place(d) > 0]
+    after = [d for d in old if place(d) > 0]
+    return [d for d in old if place(d) < 0] + new + (shift.diagnostics(after) if shift is not None else after)
 
 
 __all__ = ["reparse_procedure"]
