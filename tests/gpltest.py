@@ -155,6 +155,16 @@ def transpile_to(root: Path, sources: dict[str, str] | str, start: str = "Main",
     return out.package, out.files, sink
 
 
+def translation_of(root: Path, text: str) -> tuple[dict[str, str], list[str]]:
+    """The files and diagnostics of the one-file project ``text`` (``--keep-going``), the project's
+    own name and folder (a fresh one each call) taken out: what two ways of holding one program
+    must give alike (tests/frontend/test_chain.py, test_compact_dim.py)."""
+    package, files, sink = transpile_to(root, text, keep_going=True)
+    name = re.compile(re.escape(package), re.IGNORECASE)
+    return ({name.sub("P", path): name.sub("P", body) for path, body in files.items()},
+            [d.header().replace(str(root), "").split("Main.gpl", 1)[-1] for d in sink.sorted()])
+
+
 def run_gpl(root: Path, sources: dict[str, str] | str, start: str = "Main",
             setup: Callable[[Simulation], object] | None = None, slice_checkpoints: int = 1000,
             ignore: tuple[str, ...] = (), keep_going: bool = False) -> RunResult:

@@ -9,7 +9,6 @@ every chain in them (so the parser builds Binary nodes as before the Chain exist
 from __future__ import annotations
 
 import random
-import re
 from pathlib import Path
 
 import pytest
@@ -18,7 +17,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.gpl.syntax import ast as A
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.source import SourceFile
-from gpltest import module_src, run_gpl, transpile_to
+from gpltest import module_src, run_gpl, translation_of
 
 _OPS = ["+", "-", "*", "/", "\\", "Mod", "^", "<<", ">>", "And", "Or", "Xor", "&", "=", "<>", "<", ">",
         "<=", ">=", "AndAlso", "OrElse"]
@@ -59,23 +58,13 @@ def _program(seed: int) -> str:
 """ + "\n".join(stmts) + "\n    End Sub")
 
 
-def _translate(tmp_path: Path, text: str) -> tuple[dict[str, str], list[str]]:
-    """The files and diagnostics of ``text`` (``--keep-going``), the project's own name and
-    folder (a fresh one each call) taken out."""
-    package, files, sink = transpile_to(tmp_path, text, keep_going=True)
-    folder = str(tmp_path)
-    name = re.compile(re.escape(package), re.IGNORECASE)
-    return ({name.sub("P", path): name.sub("P", body) for path, body in files.items()},
-            [d.header().replace(folder, "").split("Main.gpl", 1)[-1] for d in sink.sorted()])
-
-
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_a_chain_translates_as_the_nested_binary_nodes_do(seed: int, tmp_path: Path,
                                                           monkeypatch: pytest.MonkeyPatch) -> None:
     text = _program(seed)
-    files, diags = _translate(tmp_path / "chain", text)
+    files, diags = translation_of(tmp_path / "chain", text)
     monkeypatch.setattr(A, "CHAIN_MIN", 10**9)
-    nested_files, nested_diags = _translate(tmp_path / "nested", text)
+    nested_files, nested_diags = translation_of(tmp_path / "nested", text)
     assert diags == nested_diags
     assert files == nested_files
 

@@ -118,8 +118,8 @@ def test_breaking_a_long_generated_line_keeps_its_tokens_small() -> None:
 
 
 #: The one-statement shapes of issue 20 that held an object per operand or name, and their size
-#: here (MB: 25,000 terms; 26,000 names).  ``1+1+...`` is a Chain (28x); the 30x bound is still
-#: open for the Dim (54x, was 113x: docs/security.md, "One long token, one long statement").
+#: here (MB: 25,000 terms; 26,000 names).  ``1+1+...`` is a Chain (28x), the Dim's declarators a
+#: CompactDeclarators and its locals a LocalRun (was 113x, then 54x: docs/security.md, "Input size").
 LONG_STATEMENTS = {"sum": 0.05, "dim": 0.2}
 #: ``gpl2py PROJECT -o OUT`` on ``1+1+...``: 330x before the line's tokens went into arrays, ~185x
 #: after; 28x as a Chain, with the generated line tokenized step by step
@@ -159,8 +159,7 @@ def test_a_long_dim_makes_no_table_of_its_names_beside_its_symbols(tmp_path: Pat
 
 @pytest.mark.parametrize("shape", [
     "sum",  # a Chain: operators in a byte each, literal operands as values (was 186x the source)
-    pytest.param("dim", marks=pytest.mark.xfail(strict=True, reason="open (issue 20, item 3): a Dim "
-                                                "holds a declarator and a VarSym per name (54x; was 114x)")),
+    "dim",  # names and positions in arrays, a symbol only for a name used (was 113x, then 54x)
 ])
 def test_one_long_statement_takes_at_most_30_times_the_source(shape: str, tmp_path: Path) -> None:
     ratio = _traced_check(shape, tmp_path)

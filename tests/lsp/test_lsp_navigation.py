@@ -266,3 +266,34 @@ def test_a_request_right_after_an_edit_sees_the_edited_text(tmp_path: Path) -> N
         assert hover is not None and "Dim total As Integer" in hover.contents.value
         edit = s.rename(main, *at(shifted, "total", 1), "count")
         assert apply_edits(shifted, edit.changes[uri(main)]).count("count") == 5
+
+
+def test_navigation_in_a_long_dim(tmp_path: Path) -> None:
+    """A Dim of 300 names (held compactly, a symbol made only for a name used: issue 20): hover,
+    definition, highlight, completion and rename find its names as they find a short Dim's, used
+    or not."""
+    names = [f"n{k}" for k in range(300)]
+    text = MAIN.replace("        Dim total As Integer\n",
+                        "        Dim " + ", ".join(names[:150]) + " As Integer, " + ", ".join(names[150:])
+                        + " As String, total As Integer\n        n7 = 5\n        n200 = CStr(n7)\n")
+    folder = write(tmp_path, {"Main.gpl": text, "Helper.gpl": HELPER, "Tools.gpl": TOOLS})
+    main = folder / "Main.gpl"
+    with Session(tmp_path) as s:
+        s.open(main)
+        assert s.wait_diagnostics(main) == []
+        dim = at(text, "Dim n0")[0]
+        hover = s.hover(main, *at(text, "n7 = 5")).contents.value
+        assert "Dim n7 As Integer" in hover and f"Main.gpl:{dim + 1}:{at(text, 'n7,')[1] + 1}" in hover
+        assert "Dim n200 As String" in s.hover(main, *at(text, "n200 =")).contents.value
+        [loc] = s.definition(main, *at(text, "CStr(n7)", 0, 5))
+        assert loc.range.start == T.Position(*at(text, "n7,"))
+        assert [h.range.start.line for h in s.highlight(main, *at(text, "n7 = 5"))] == [dim, dim + 1, dim + 2]
+        assert [h.range.start.line for h in s.highlight(main, *at(text, "n9,"))] == [dim]  # (never used)
+        assert {"n0", "n299", "total"} <= set(completion_labels(s, main, text.replace("n7 = 5", "n"), dim + 1, 9))
+        s.change(main, text)
+        s.wait_diagnostics(main)
+        for needle, count in (("n7,", 3), ("n9,", 1)):
+            edit = s.rename(main, *at(text, needle), "renamed")
+            assert edit is not None and len(edit.changes[uri(main)]) == count, needle
+        renamed = apply_edits(text, edit.changes[uri(main)])
+        assert "n8, renamed, n10" in renamed

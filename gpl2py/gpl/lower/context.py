@@ -101,7 +101,7 @@ class ProjectNames:
         bases = {"_top_classes", *(module_base(mod.name) for mod in model.project.module_list),
                  *(module_base(spelled) for spelled in (stubs.modules.values() if stubs is not None else ()))}
         for p in model.project.procs:
-            taken.update(x for x in map(py_ident, (v.name for v in p.locals.values()))
+            taken.update(x for x in map(py_ident, p.locals.names())
                          if x in names.runtime or _stem_in(x, "_mod", bases) or _stem_in(x, "_", wanted))
         for table in tables:
             for m in table.values():

@@ -214,7 +214,7 @@ class ProcLowerer(ExprLowerer):
             flag = self.fresh("enter")
             self.entry_flag[stmt] = flag
             self.flags.append(flag)
-        for v in p.locals.values():
+        for v in p.locals.made():  # (a name of a long Dim nothing names has no symbol: a Dim's, not static)
             if v.storage == "static":
                 self.ctx.statics.append((self.static_name(v), default_code(v.type)))
         body = self.w
@@ -291,7 +291,7 @@ class ProcLowerer(ExprLowerer):
                 box = box or self.rt(BYREF, "Box")
                 lines.append(f"{py_ident(v.name)} = {box}({py_ident(v.name)})")
         assigned_first = _assigned_before_use(p)
-        for v in p.locals.values():
+        for v in p.locals.made():  # (one nothing looked up is neither read nor boxed)
             if v.storage != "local" or not (v.read or v.boxed):
                 continue
             if v in assigned_first:
@@ -455,6 +455,8 @@ class ProcLowerer(ExprLowerer):
     def s_VarDecl(self, s: A.VarDecl) -> None:
         p = self.proc
         assert p is not None
+        if s.compact:
+            return  # (simple names: no value to store, and a local's default is the prologue's)
         for d in s.declarators:
             v = self.model.local_of(d, p)
             if v is None:
@@ -1266,7 +1268,7 @@ def _assigned_before_use(p: ProcSym) -> set[VarSym]:
         if isinstance(s, A.Assign) and s.op == "=" and isinstance(s.target, A.Name):
             targets.append((s.target.name.lower(), s.value))
         elif isinstance(s, A.VarDecl) and s.keyword != "Static":
-            for d in s.declarators:
+            for d in s.declarators if not s.compact else ():  # (simple names store nothing)
                 if d.initializer is not None and not d.bounds and not d.new:
                     targets.append((d.name.lower(), d.initializer))
                 elif (d.bounds and all(b is not None for b in d.bounds)) or d.new:
@@ -1364,7 +1366,7 @@ def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
     decl = p.decl
     if decl is None:
         return set()
-    cands = {v for v in p.locals.values()
+    cands = {v for v in p.locals.made()  # (one nothing looked up is untouched)
              if v.storage == "local" and not v.boxed and v.type in _INT_TYPES and not _untouched(v)}
     if not cands:
         return set()
@@ -1397,7 +1399,7 @@ def _counters(p: ProcSym, info: Mapping[A.Node, object]) -> set[VarSym]:
             v = target(s.var)
             if v is not None:
                 out.discard(v)
-        elif isinstance(s, A.VarDecl):
+        elif isinstance(s, A.VarDecl) and not s.compact:  # (simple names: no value stored)
             for d in s.declarators:
                 v = declared.get(d)
                 if v is not None and v in out and d.initializer is not None and not keeps_sign(v, "=", d.initializer):

@@ -76,6 +76,7 @@ from gpl2py.gpl.semantics.stubs import Stub, StubTable
 from gpl2py.gpl.semantics.symbols import (
     ClassSym,
     DelegateSym,
+    LocalRun,
     ModuleSym,
     OverloadSet,
     ProcSym,
@@ -214,7 +215,7 @@ class Model:
         if v is not None:
             return v
         v = proc.locals.get(d.name.lower())
-        return v if v is not None and v.decl is d else None
+        return v if v is not None and v.decl == d else None  # (== : a CompactDeclarator is made anew when asked)
 
 
 def _pinfo(params: Iterable[VarSym | Param]) -> tuple[ParamInfo, ...]:
@@ -528,32 +529,16 @@ class Checker:
         chain = [*outer, block]
         for s in block.statements:
             if isinstance(s, A.VarDecl):
-                storage = "static" if s.keyword == "Static" else "local"
+                if s.compact and not outer:
+                    self._declare_run(s, p, ctx, chain, seen)
+                    continue
                 for d in s.declarators:
                     if not d.name:
                         continue
                     typ = self.r.resolve_type(d.type, ctx.module, ctx.cls)
                     if d.bounds is not None and typ is not t.ERROR:
                         typ = t.ArrayType(typ, len(d.bounds))
-                    v = VarSym(d.name, d, typ, storage, owner=p, const=s.is_const, decl=d)
-                    key = intern(d.name.lower())  # (one string per name, not one per local)
-                    earlier = seen.get(key)
-                    if earlier is None and key in p.locals and p.locals[key].decl is not None:
-                        earlier = _FIRST_IN_BODY  # (a name declared first in the body: no record)
-                    elif earlier is None and not outer and key not in p.locals:
-                        p.locals[key] = v  # any later declaration of it is a duplicate
-                        continue
-                    here = _LocalDecl(v, s.keyword, chain, earlier)
-                    if key in p.locals:
-                        prev = p.locals[key]
-                        if self._redeclares(here):
-                            self.model.redeclared[d] = prev
-                        else:
-                            self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
-                                             line=prev.span.line if prev.span else 0)
-                    else:
-                        p.locals[key] = v
-                    seen[key] = here
+                    self._declare_local(d, typ, s, p, outer, chain, seen)
             elif isinstance(s, A.Label):
                 key = s.name.lower()
                 if key in p.labels:
@@ -566,6 +551,55 @@ class Checker:
                 if key not in p.locals:
                     typ = self.r.resolve_type(s.catch.type, ctx.module, ctx.cls)
                     p.locals[key] = VarSym(s.catch.variable, s.catch, typ, "local", owner=p)
+
+    def _declare_local(self, d: A.VarDeclarator, typ: t.GplType, s: A.VarDecl, p: ProcSym, outer: list[A.Block],
+                       chain: list[A.Block], seen: dict[str, _LocalDecl]) -> None:
+        """Declare the local of ``d`` (of type ``typ``), or report it a duplicate, or record it
+        as the same variable declared again (:meth:`_declare_locals`)."""
+        storage = "static" if s.keyword == "Static" else "local"
+        v = VarSym(d.name, d, typ, storage, owner=p, const=s.is_const, decl=d)
+        key = intern(d.name.lower())  # (one string per name, not one per local)
+        earlier = seen.get(key)
+        if earlier is None and key in p.locals and p.locals[key].decl is not None:
+            earlier = _FIRST_IN_BODY  # (a name declared first in the body: no record)
+        elif earlier is None and not outer and key not in p.locals:
+            p.locals[key] = v  # any later declaration of it is a duplicate
+            return
+        here = _LocalDecl(v, s.keyword, chain, earlier)
+        if key in p.locals:
+            prev = p.locals[key]
+            if self._redeclares(here):
+                self.model.redeclared[d] = prev
+            else:
+                self.sink.report(M.DUPLICATE_DECLARATION, d.span, name=d.name, scope="procedure",
+                                 line=prev.span.line if prev.span else 0)
+        else:
+            p.locals[key] = v
+        seen[key] = here
+
+    def _declare_run(self, s: A.VarDecl, p: ProcSym, ctx: _Ctx, chain: list[A.Block],
+                     seen: dict[str, _LocalDecl]) -> None:
+        """Declare the locals of a long Dim of simple names in the procedure's own block
+        (``s.declarators`` a CompactDeclarators) as a :class:`LocalRun`: no symbol per name, but
+        for a name the procedure declared before (a duplicate, or a parameter's name), which is
+        declared as a list's declarator is (:meth:`_declare_local`)."""
+        decls = s.declarators
+        assert isinstance(decls, A.CompactDeclarators)
+        run = LocalRun(decls, [], p)
+        p.locals.add_run(run)
+        for start, end, ref in decls.groups():
+            typ = None
+            for i in range(start, end):
+                # (resolved per name, as for a list: an unknown type is reported at each)
+                typ_i = self.r.resolve_type(ref, ctx.module, ctx.cls)
+                if typ is None:
+                    typ = typ_i
+                    run.types.append(typ)
+                key = decls.name(i).lower()
+                if key in p.locals:
+                    self._declare_local(decls[i], typ_i, s, p, [], chain, seen)
+                else:
+                    run.add(i, key)
 
     @staticmethod
     def _redeclares(here: _LocalDecl) -> bool:
@@ -604,6 +638,8 @@ class Checker:
         p = ctx.proc
         assert p is not None
         if isinstance(s, A.VarDecl):
+            if s.compact:
+                return  # (simple names: nothing to check but their declaration)
             for d in s.declarators:
                 v = self.model.local_of(d, p)
                 if v is not None:

@@ -8,8 +8,10 @@ Python uses everywhere.
 
 from __future__ import annotations
 
+from array import array
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Union
+from typing import TypeVar, Union
 
 from gpl2py.gpl.semantics import types as t
 from gpl2py.source import Span
@@ -85,6 +87,164 @@ class VarSym:
         return at.span if isinstance(at, A.Node) else at
 
 
+T = TypeVar("T")
+
+
+class LocalRun:
+    """The locals a long ``Dim`` of simple names declares (its declarators a
+    :class:`~gpl2py.gpl.syntax.ast.CompactDeclarators`), found by name without a symbol each: an
+    open-addressing table of the names' indices, keyed by the hash of the lower-cased name.  The
+    :class:`VarSym` of a name is made when it is looked up (the names the program uses), one kept
+    per name.  A name the Dim declares again, or one the procedure declared before it, is not in
+    the table: it was declared the way a short Dim's is (``Checker._declare_locals``).
+
+    Why: a ``Dim`` of 26,000 names held a VarSym, a dict entry and an interned name per name, a
+    third of its memory (issue 20, docs/security.md "Input size"); a name costs eight bytes of
+    the table here."""
+
+    __slots__ = ("decls", "types", "owner", "_table", "_declared", "_made")
+
+    def __init__(self, decls: A.CompactDeclarators, types: list[t.GplType], owner: ProcSym) -> None:
+        self.decls = decls
+        self.types = types  # each group's
+        self.owner = owner
+        size = 8
+        while size < 2 * len(decls):
+            size *= 2
+        self._table = array("i", [-1]) * size
+        self._declared = bytearray(len(decls))  # 1 for a name in the table
+        self._made: dict[int, VarSym] = {}
+
+    def _slot(self, key: str) -> tuple[int, int]:
+        """The slot of ``key`` (lower-case) in the table, and the index there (-1: not there)."""
+        table, decls = self._table, self.decls
+        mask = len(table) - 1
+        slot = hash(key) & mask
+        while True:
+            i = table[slot]
+            if i < 0 or decls.name(i).lower() == key:
+                return slot, i
+            slot = (slot + 1) & mask
+
+    def add(self, i: int, key: str) -> None:
+        """Name ``i`` (``key`` lower-cased) is declared here; it is not yet."""
+        self._table[self._slot(key)[0]] = i
+        self._declared[i] = 1
+
+    def __contains__(self, key: str) -> bool:
+        return self._slot(key)[1] >= 0
+
+    def get(self, key: str) -> VarSym | None:
+        i = self._slot(key)[1]
+        return None if i < 0 else self.var(i)
+
+    def var(self, i: int) -> VarSym:
+        """The variable of name ``i`` (made on first use)."""
+        v = self._made.get(i)
+        if v is None:
+            d = self.decls[i]
+            v = self._made[i] = VarSym(d.name, d, self.types[self.decls.group(i)], "local", owner=self.owner,
+                                       decl=d)
+        return v
+
+    def indices(self) -> Iterator[int]:
+        """The indices of the names declared here, in order (one at a time: a list of them was a
+        quarter of the lowering's peak)."""
+        declared = self._declared
+        return (i for i in range(len(declared)) if declared[i])
+
+    def __len__(self) -> int:
+        return self._declared.count(1)
+
+    def made(self) -> list[VarSym]:
+        """The variables made so far, in declaration order."""
+        return [self._made[i] for i in sorted(self._made)]
+
+
+class Locals:
+    """A procedure's parameters and locals by lower-cased name, in declaration order: a dict of
+    symbols and the :class:`LocalRun` of each long ``Dim``, which makes a symbol only for a name
+    looked up.  It answers as the dict of every symbol would (``get``, ``[]``, ``in``,
+    ``values``), and :meth:`made` gives only the symbols that exist: a name no statement names
+    has none, so it was never read, assigned or passed ByRef (what the lowering asks)."""
+
+    __slots__ = ("_vars", "_runs")
+
+    def __init__(self, items: Iterable[tuple[str, VarSym]] = ()) -> None:
+        self._vars: dict[str, VarSym] = dict(items)
+        self._runs: list[tuple[int, LocalRun]] = []  # each run, after how many of _vars
+
+    def get(self, key: str, default: VarSym | None = None) -> VarSym | None:
+        v = self._vars.get(key)
+        if v is not None:
+            return v
+        for _, run in self._runs:  # (a procedure has none, but for a long Dim)
+            v = run.get(key)
+            if v is not None:
+                return v
+        return default
+
+    def __getitem__(self, key: str) -> VarSym:
+        v = self.get(key)
+        if v is None:
+            raise KeyError(key)
+        return v
+
+    def __setitem__(self, key: str, v: VarSym) -> None:
+        self._vars[key] = v
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._vars or any(key in run for _, run in self._runs)
+
+    def add_run(self, run: LocalRun) -> None:
+        """The locals of a long Dim, declared after those declared so far."""
+        self._runs.append((len(self._vars), run))
+
+    def _in_order(self, of_item: Callable[[str, VarSym], T],
+                  of_run: Callable[[LocalRun], Iterable[T]]) -> Iterator[T]:
+        """What ``of_item`` gives of each name and symbol and ``of_run`` of each run, in declaration
+        order."""
+        runs = iter(self._runs)
+        at, run = next(runs, (-1, None))
+        for k, (key, v) in enumerate(self._vars.items()):
+            while run is not None and at == k:
+                yield from of_run(run)
+                at, run = next(runs, (-1, None))
+            yield of_item(key, v)
+        while run is not None:
+            yield from of_run(run)
+            at, run = next(runs, (-1, None))
+
+    def values(self) -> Iterator[VarSym]:
+        """Every local, in declaration order (a symbol made for each name of a long Dim)."""
+        return self._in_order(lambda _, v: v, lambda run: map(run.var, run.indices()))
+
+    def items(self) -> Iterator[tuple[str, VarSym]]:
+        return self._in_order(lambda key, v: (key, v),
+                              lambda run: ((run.decls.name(i).lower(), run.var(i)) for i in run.indices()))
+
+    def __iter__(self) -> Iterator[str]:
+        """The lower-cased names, in declaration order."""
+        return self._in_order(lambda key, _: key, lambda run: (run.decls.name(i).lower() for i in run.indices()))
+
+    keys = __iter__
+
+    def __len__(self) -> int:
+        return len(self._vars) + sum(len(run) for _, run in self._runs)
+
+    def made(self) -> Iterator[VarSym]:
+        """The locals that have a symbol, in declaration order: all but the names of a long Dim
+        that nothing looked up (so nothing reads, assigns or passes them)."""
+        return self._in_order(lambda _, v: v, LocalRun.made)
+
+    def names(self) -> Iterator[str]:
+        """The spelling of every local, in declaration order, without making a symbol."""
+        return self._in_order(lambda _, v: v.name, lambda run: map(run.decls.name, run.indices()))
+
+    def __repr__(self) -> str:
+        return f"Locals({list(self._vars)!r}, runs={len(self._runs)})"
+
+
 @dataclass(eq=False)
 class ProcSym:
     """A Sub, Function, constructor (``New``) or property accessor (kind ``Get``/``Set``)."""
@@ -98,7 +258,7 @@ class ProcSym:
     public: bool = False
     shared: bool = False
     decl: A.ProcDecl | A.Accessor | None = None
-    locals: dict[str, VarSym] = field(default_factory=dict)
+    locals: Locals = field(default_factory=Locals)
     labels: dict[str, A.Label] = field(default_factory=dict)
     uses_result: bool = False
     prop: PropSym | None = None

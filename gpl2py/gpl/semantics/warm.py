@@ -58,6 +58,7 @@ from gpl2py.gpl.semantics.stubs import Stub, StubTable
 from gpl2py.gpl.semantics.symbols import (
     ClassSym,
     DelegateSym,
+    Locals,
     ModuleSym,
     OverloadSet,
     ProcSym,
@@ -214,7 +215,7 @@ def _recheck(kept: WarmAnalysis, fresh: Checker | None, units: list[A.SourceUnit
     _transplant(pairs)
     for m in redo:  # (checked again: each procedure starts from its parameters, as collected)
         for proc in _procs_under(m):
-            proc.locals = {v.name.lower(): v for v in proc.params}
+            proc.locals = Locals((v.name.lower(), v) for v in proc.params)
             proc.labels = {}
             proc.uses_result = False
     model = old.model

@@ -15,6 +15,9 @@ Conventions
 * A run of :data:`CHAIN_MIN` binary operators of one precedence level or more is one
   :class:`Chain` (operators and literal operands in arrays), which means the nested
   :class:`Binary` nodes it stands for; a walker of left spines reads both (``chain_left``).
+* A ``Dim`` in a procedure of :data:`DIM_MIN` simple names or more (``Dim v0, v1, ... As Integer``)
+  holds its declarators as one :class:`CompactDeclarators` (names and positions in arrays), which
+  makes each :class:`VarDeclarator` when asked and means the list of them.
 
 Comments
 --------
@@ -33,6 +36,7 @@ the syntax tree of dense code: docs/security.md, "Input size").
 from __future__ import annotations
 
 from array import array
+from bisect import bisect_right
 from dataclasses import KW_ONLY, MISSING, Field, InitVar, dataclass, field, fields
 from typing import Any, ClassVar, Iterator
 
@@ -599,12 +603,167 @@ class VarDecl(Stmt):
 
     keyword: str | None
     modifiers: list[str]
-    declarators: list[VarDeclarator]
+    declarators: list[VarDeclarator] | CompactDeclarators
     _children: ClassVar[tuple[str, ...]] = ("declarators",)
 
     @property
     def is_const(self) -> bool:
         return self.keyword == "Const"
+
+    def children(self) -> Iterator[Node]:
+        """The declarators; of a compact list, the type of each group (the nodes it holds): its
+        names are made declarators only when asked, through ``declarators``, as a Chain's literal
+        operands are (a walker that stacked a declarator per name held them all at once)."""
+        decls = self.declarators
+        if type(decls) is CompactDeclarators:
+            return (type_ for _, _, type_ in decls.groups())
+        return iter(decls)
+
+    @property
+    def compact(self) -> bool:
+        """Whether the declarators are a :class:`CompactDeclarators` (every one simple)."""
+        return type(self.declarators) is CompactDeclarators
+
+    def expanded(self) -> VarDecl:
+        """This declaration with its declarators in a list (``dump`` shows that form)."""
+        if not self.compact:
+            return self
+        return VarDecl(self.span, self.keyword, self.modifiers, list(self.declarators),
+                       leading_comments=self.leading_comments, trailing_comment=self.trailing_comment)
+
+
+#: A ``Dim`` in a procedure body of this many names or more, every one simple (no bounds, no
+#: ``New``, no value), is parsed into a :class:`CompactDeclarators` (fewer stay a list of
+#: :class:`VarDeclarator`: every declaration a person writes keeps its tree).
+DIM_MIN = 64
+
+
+class CompactDeclarator(VarDeclarator):
+    """A declarator of a :class:`CompactDeclarators`, made when asked.  Each ask makes a new one,
+    so it compares and hashes by its position (its file, line and column, which no other
+    declarator of the file has): every one made for the same name is the same declarator, as a
+    key of the analysis's tables (``Model.redeclared``) and as a variable's ``decl``."""
+
+    __slots__ = ()
+
+    def __eq__(self, other: object) -> bool:
+        return self is other or (type(other) is CompactDeclarator and self._line == other._line
+                                 and self._col == other._col and self._file == other._file)
+
+    def __hash__(self) -> int:
+        return hash((self._line, self._col, self._file))
+
+
+class CompactDeclarators:
+    """The declarators of a long ``Dim`` of simple names (``Dim v0, v1, ... As Integer``; groups
+    of names, each group with its type), held compactly: the names in one string, a name's line
+    and column in arrays; a :class:`CompactDeclarator` is made only when a consumer asks for it
+    (indexing, iteration), one at a time.
+
+    Why: a ``Dim`` of 26,000 names held a VarDeclarator (120 bytes), an interned name (55) and a
+    column number per name, 35 times the source (issue 20, docs/security.md "Input size").  A
+    name costs its characters and twelve bytes here.  It means the list of declarators exactly:
+    declarator ``i`` is ``VarDeclarator(span, name, None, type)``, its span from its name to the
+    end of its group's type, as the parser gives a declarator of a list.
+
+    The parser fills it (:meth:`add`, :meth:`close_group`, :meth:`done`); it has at least one
+    name and every name has a group (a type)."""
+
+    __slots__ = ("file", "_names", "_parts", "_chunks", "_starts", "lines", "cols", "_group_ends", "_group_types",
+                 "_group_pos")
+
+    def __init__(self, file: str) -> None:
+        self.file = file
+        self._names = ""  # every name, one after the other (:meth:`done`)
+        self._parts: list[str] = []  # the names added since the last chunk was joined
+        self._chunks: list[str] = []  # the names added before, 1,024 a string
+        self._starts = array("I", [0])  # where name i starts in _names; one past the end last
+        self.lines = array("I")
+        self.cols = array("I")
+        self._group_ends = array("I")  # one past the last name of each group
+        self._group_types: list[TypeRef] = []
+        self._group_pos = array("I")  # each group's end: line, column
+
+    # -- built by the parser
+
+    def add(self, name: str, line: int, col: int) -> None:
+        parts = self._parts
+        parts.append(name)
+        self._starts.append(self._starts[-1] + len(name))
+        self.lines.append(line)
+        self.cols.append(col)
+        if len(parts) >= 1024:  # (a list of the names' strings would cost what the declarators did)
+            self._chunks.append("".join(parts))
+            parts.clear()
+
+    def close_group(self, type_: TypeRef, end_line: int, end_col: int) -> None:
+        """The names added since the last group are declared ``As type_``, which ends there."""
+        self._group_ends.append(len(self.lines))
+        self._group_types.append(type_)
+        self._group_pos.extend((end_line, end_col))
+
+    def done(self) -> CompactDeclarators:
+        """Join the names added so far (the parser calls it when the list ends)."""
+        if self._parts or self._chunks:
+            self._names += "".join(self._chunks) + "".join(self._parts)
+            self._chunks.clear()
+            self._parts.clear()
+        return self
+
+    def typed(self) -> int:
+        """How many names have their group (a type) yet."""
+        return self._group_ends[-1] if self._group_ends else 0
+
+    # -- read
+
+    def __len__(self) -> int:
+        return len(self.lines)
+
+    def name(self, i: int) -> str:
+        return self._names[self._starts[i]:self._starts[i + 1]]
+
+    def group(self, i: int) -> int:
+        """The group of name ``i``."""
+        return bisect_right(self._group_ends, i)
+
+    def type(self, i: int) -> TypeRef:
+        return self._group_types[self.group(i)]
+
+    def groups(self) -> Iterator[tuple[int, int, TypeRef]]:
+        """Each group: the index of its first name, one past its last, its type."""
+        start = 0
+        for end, type_ in zip(self._group_ends, self._group_types):
+            yield start, end, type_
+            start = end
+
+    def __getitem__(self, i: int) -> CompactDeclarator:
+        if not 0 <= i < len(self.lines):
+            raise IndexError(i)
+        g = self.group(i)
+        line, col = self.lines[i], self.cols[i]
+        span = _new_tuple(Span, (self.file, line, col, self._group_pos[2 * g], self._group_pos[2 * g + 1]))
+        return CompactDeclarator(span, self.name(i), None, self._group_types[g])
+
+    def __iter__(self) -> Iterator[CompactDeclarator]:
+        return (self[i] for i in range(len(self.lines)))
+
+    def declarators(self) -> tuple[list[VarDeclarator], list[VarDeclarator]]:
+        """The names as plain VarDeclarators, as the parser made them before it knew the list was
+        long: those of the closed groups (typed, their spans to the group's end) and those still
+        waiting for their type (their spans the name alone).  (A name with bounds, ``New`` or a
+        value, or a list that ends without a type, turns a list back into declarators.)"""
+        self.done()
+        typed = self.typed()
+        done: list[VarDeclarator] = []
+        for i in range(typed):
+            d = self[i]
+            done.append(VarDeclarator(d.span, d.name, None, d.type))
+        waiting: list[VarDeclarator] = []
+        for i in range(typed, len(self.lines)):
+            name, line, col = self.name(i), self.lines[i], self.cols[i]
+            span = _new_tuple(Span, (self.file, line, col, line, col + len(name)))
+            waiting.append(VarDeclarator(span, name, None, None))
+        return done, waiting
 
 
 @dataclass(slots=True, eq=False, init=False)
@@ -845,6 +1004,8 @@ def _dump_node(
     render at a depth, and literal lines such as field headings and closing comments)."""
     if isinstance(node, Chain):
         node = node.nested()
+    elif isinstance(node, VarDecl):
+        node = node.expanded()
     pad = "  " * depth
     if comments:
         for c in getattr(node, "leading_comments", ()):
@@ -866,7 +1027,7 @@ def _dump_node(
             continue  # unset optional parts and fields at their default stay out of the way
         else:
             scalars.append(f"{f.name}={value!r}")
-    head = f"{pad}{type(node).__name__}"
+    head = f"{pad}{'VarDeclarator' if isinstance(node, VarDeclarator) else type(node).__name__}"
     if scalars:
         head += " " + " ".join(scalars)
     if positions:

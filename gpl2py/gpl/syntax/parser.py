@@ -732,7 +732,7 @@ class Parser:
         return None
 
     def _member_var(self, start: RawToken, keyword: str | None, mods: list[str]) -> A.VarDecl:
-        node = self.var_decl(start, keyword, mods)
+        node = self.var_decl(start, keyword, mods, compact=keyword == "Dim" and not mods)
         self.end_of_line(node)
         return node
 
@@ -774,11 +774,18 @@ class Parser:
             parts.append(w[TEXT])
         return A.TypeRef(self.span_from(first), ".".join(parts))
 
-    def var_decl(self, start: RawToken, keyword: str | None, mods: list[str]) -> A.VarDecl:
-        """``[mods] [Dim|Static|Const] name[(bounds)] {, …} As [New] T [= init] {, group}``."""
+    def var_decl(self, start: RawToken, keyword: str | None, mods: list[str],
+                 compact: bool = False) -> A.VarDecl:
+        """``[mods] [Dim|Static|Const] name[(bounds)] {, …} As [New] T [= init] {, group}``.
+
+        ``compact``: a ``Dim`` in a procedure, whose declarators are held as one
+        :class:`~gpl2py.gpl.syntax.ast.CompactDeclarators` once it has ``DIM_MIN`` names, every
+        one simple so far (no bounds, ``New`` or value: a name that has one turns them back into
+        a list)."""
         declarators: list[A.VarDeclarator] = []
         pending: list[A.VarDeclarator] = []
         is_const = keyword == "Const"
+        run: A.CompactDeclarators | None = None  # the names so far, compactly
         while True:
             name = self.ident("a variable name")
             if name is None:
@@ -788,8 +795,19 @@ class Parser:
                 bounds = self.array_suffix()
                 if len(bounds) > 4:
                     self.error(M.PARSE_ARRAY_RANK, name, name=name[TEXT], rank=len(bounds))
-            d = A.VarDeclarator(self.span_from(name), name[TEXT], bounds, None)
-            pending.append(d)
+                if run is not None:
+                    declarators, pending = run.declarators()
+                    run = None
+                compact = False
+            if run is not None:
+                at = name[SPAN]
+                run.add(name[TEXT], at[1], at[2])
+            else:
+                d = A.VarDeclarator(self.span_from(name), name[TEXT], bounds, None)
+                pending.append(d)
+                if compact and len(declarators) + len(pending) >= A.DIM_MIN:
+                    run = self._compact(declarators, pending)
+                    declarators, pending = [], []
             k = self.kind
             if k is K.COMMA:
                 self.next()
@@ -812,6 +830,17 @@ class Parser:
                     init = self.expression()
                 elif is_const:
                     self.error(M.PARSE_EXPECTED, self.tok, expected="'=' and the constant's value", found=describe(self.tok))
+                if run is not None and not group_new and init is None and type_ is not None:
+                    end = self.prev[SPAN]
+                    run.close_group(type_, end[3], end[4])
+                    if self.kind is K.COMMA:
+                        self.next()
+                        continue
+                    break
+                if run is not None:
+                    declarators, pending = run.declarators()
+                    run = None
+                compact = compact and not group_new and init is None and type_ is not None
                 if (group_new or init is not None) and len(pending) > 1:
                     self.error(M.PARSE_NEW_NEEDS_ONE_NAME, pending[0].span)
                 for p in pending:
@@ -830,6 +859,10 @@ class Parser:
                     continue
                 break
             break
+        if run is not None:
+            if run.typed() == len(run):
+                return A.VarDecl(self.span_from(start), keyword, mods, run.done())
+            declarators, pending = run.declarators()
         if pending:
             self.error(M.PARSE_MISSING_TYPE, pending[-1].span, name=pending[-1].name)
             if self.kind is K.EQ:  # 'Const x = 1': parse the value anyway
@@ -838,6 +871,19 @@ class Parser:
             declarators.extend(pending)
         node = A.VarDecl(self.span_from(start), keyword, mods, declarators)
         return node
+
+    def _compact(self, declarators: list[A.VarDeclarator], pending: list[A.VarDeclarator]) -> A.CompactDeclarators:
+        """The simple declarators so far, those of closed groups and those waiting for their type,
+        as a :class:`~gpl2py.gpl.syntax.ast.CompactDeclarators`."""
+        run = A.CompactDeclarators(self.source.path)
+        for i, d in enumerate(declarators):
+            run.add(d.name, d._line, d._col)
+            if i + 1 == len(declarators) or declarators[i + 1].type is not d.type:
+                assert d.type is not None
+                run.close_group(d.type, d._end_line, d._end_col)
+        for d in pending:
+            run.add(d.name, d._line, d._col)
+        return run
 
     def array_suffix(self) -> list[A.Expr | None]:
         self.next()  # (
@@ -1157,7 +1203,7 @@ class Parser:
             keyword = None
         # a declaration inside a block (If, Select, For, Try ...) is legal: real code does it and the
         # controller compiles it (docs/design/real-code.md); it has procedure scope (semantics)
-        node = self.var_decl(start, keyword, mods)
+        node = self.var_decl(start, keyword, mods, compact=keyword == "Dim" and not mods)
         self.end_of_line(node)
         return node
 

@@ -242,7 +242,7 @@ class _Builder:
                     member = owner.members.get(node.name.lower()) if owner is not None else None
                     sym = member if isinstance(member, VarSym) and member.declared_at is node else None
                 if sym is not None:
-                    self.name(node, node.name, sym, decl=sym.declared_at is node)
+                    self.name(node, node.name, sym, decl=sym.declared_at == node)  # (== : CompactDeclarator)
             elif isinstance(node, A.Label) and proc is not None:
                 if proc.labels.get(node.name.lower()) is node:
                     self.name(node, node.name, node, decl=True)
@@ -258,7 +258,8 @@ class _Builder:
                     self.name(node, node.parts[-1], named[0], from_end=True)
             elif isinstance(node, A.Expr):
                 self.expr(node)
-            for child in reversed(list(node.children())):
+            # (a long Dim's declarators are made when asked: its children are only their types)
+            for child in reversed(list(node.declarators if isinstance(node, A.VarDecl) else node.children())):
                 stack.append((child, proc, cls, mod))
 
     def expr(self, e: A.Expr) -> None:
