@@ -149,3 +149,18 @@ def test_a_long_chain_of_operators_below_the_edit_moves_too() -> None:
     edited = text.replace("        Dim x As Integer = a\n", "        Dim x As Integer = a\n\n\n", 1)
     assert again(text, edited) == full(edited)
     assert again(edited, text) == full(text)
+
+
+def test_lines_added_above_a_long_dim_parse_the_file_whole_and_an_edit_beside_it_does_not() -> None:
+    """A Dim of 64 simple names or more keeps its names' positions in arrays and makes its
+    declarators when asked (ast.CompactDeclarators), which the analysis keeps as its variables'
+    nodes: they are not moved in place, so lines added or removed above one parse the file whole.
+    Lines added below it, or changed without adding any, still parse one procedure again."""
+    dim = "        Dim " + ", ".join(f"v{k}" for k in range(70)) + " As Integer\n        v3 = 4\n"
+    text = TEXT.replace("        Return 1\n", dim + "        Return v3\n", 1)
+    above = text.replace("        x = x + b   ' sum\n", "        x = x + b   ' sum\n\n", 1)
+    assert again(text, above) is None and again(above, text) is None
+    below = text.replace("        n = 2\n", "        n = 2\n\n", 1)
+    assert again(text, below) == full(below)
+    beside = text.replace("        x = x + b   ' sum\n", "        x = x - b\n", 1)
+    assert again(text, beside) == full(beside)

@@ -352,3 +352,38 @@ def test_what_the_symbols_hold_of_a_position_moves_with_the_lines(tmp_path: Path
         # (the procedure below the edit is the node it was: moved, not parsed again)
         assert after is not before and after.members[0].members[1] is before.members[0].members[1]
         assert warm(text) == cold(text)
+
+
+def test_lines_added_above_a_long_dim_report_what_a_cold_check_does(tmp_path: Path) -> None:
+    """Enter above a procedure whose Dim of 70 names is held compactly (issue 20): its variables'
+    uses and a misuse below the edit are where a cold check reports them (the moved positions
+    were a crash of the language server's re-check)."""
+    folder = tmp_path / "cell"
+    folder.mkdir()
+    (folder / "Project.gpr").write_text('ProjectBegin\nProjectName="cell"\nProjectStart="Main"\n'
+                                        'ProjectSource="Main.gpl"\nProjectEnd\n')
+    main = folder / "Main.gpl"
+    names = ", ".join(f"v{k}" for k in range(70))
+    text = ("Module Main\n    Public Sub First()\n        Dim i As Integer\n        i = 1\n    End Sub\n\n"
+            f"    Public Sub Main()\n        Dim {names} As Integer\n        v7.X = 1\n        First()\n"
+            "        v8 = v7 + w\n    End Sub\nEnd Module\n")
+    main.write_text(text)
+    memo: dict[object, object] = {}
+
+    def warm(text: str) -> list[tuple[str, tuple[object, ...]]]:
+        sink = DiagnosticSink()
+        transpile(folder, sink, keep_modules=False, texts={os.path.abspath(main): text}, memo=memo)
+        return [(d.header(), tuple(d.span)) for d in sink.sorted()]
+
+    def cold(text: str) -> list[tuple[str, tuple[object, ...]]]:
+        main.write_text(text)
+        sink = DiagnosticSink()
+        transpile(folder, sink, keep_modules=False)
+        return [(d.header(), tuple(d.span)) for d in sink.sorted()]
+
+    first = warm(text)
+    assert first == cold(text) and len(first) >= 2  # (v7 has no member X, w is not declared)
+    for edited in (text.replace("        i = 1\n", "        i = 1\n\n\n", 1), text.replace("        i = 1\n", "", 1)):
+        assert warm(edited) == cold(edited)
+        assert warm(text) == cold(text)
+

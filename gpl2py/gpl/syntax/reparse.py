@@ -78,6 +78,8 @@ def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Dia
     if (new.span.line, new.span.end_line) != (first, new_last) or any(
             d.span is None or not first <= d.span.line <= new_last for d in sink):
         return None
+    if delta and _compact_dim_below(chain):
+        return None
     new.leading_comments = proc.leading_comments  # (the comments above it, which were not parsed)
     shift = Shift(source.path, old_end, delta) if delta else None
     diags = _spliced(old_diags, list(sink), source.path, first, last, shift)
@@ -100,6 +102,26 @@ def _enclosing(unit: A.SourceUnit, first: int, last: int) -> list[A.Node] | None
             chain.append(inside)
             return chain
         return None
+
+
+def _compact_dim_below(chain: list[A.Node]) -> bool:
+    """Whether a long Dim held compactly (``A.CompactDeclarators``) is below the procedure the
+    edit is in, among what an edit adding or removing lines moves.  Those are not moved in place:
+    their positions are in arrays, and the declarators made of them when asked (which the
+    analysis keeps as its variables' nodes, and compares by position) would keep the old lines;
+    the file is parsed whole instead.  Statements only are walked: a Dim is one."""
+    stack: list[A.Node] = []
+    for parent, child in zip(chain[:-1], chain[1:]):
+        members = parent.members  # type: ignore[attr-defined]
+        stack.extend(members[members.index(child) + 1:])
+    while stack:
+        node = stack.pop()
+        if isinstance(node, A.VarDecl):
+            if node.compact:
+                return True
+            continue
+        stack.extend(c for c in node.children() if not isinstance(c, A.Expr))
+    return False
 
 
 def _replaced(unit: A.SourceUnit, chain: list[A.Node], new: A.ProcDecl, delta: int) -> A.SourceUnit:
