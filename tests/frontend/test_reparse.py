@@ -151,16 +151,22 @@ def test_a_long_chain_of_operators_below_the_edit_moves_too() -> None:
     assert again(edited, text) == full(text)
 
 
-def test_lines_added_above_a_long_dim_parse_the_file_whole_and_an_edit_beside_it_does_not() -> None:
+def test_lines_added_in_a_file_with_a_long_dim_parse_it_whole_and_other_edits_do_not() -> None:
     """A Dim of 64 simple names or more keeps its names' positions in arrays and makes its
     declarators when asked (ast.CompactDeclarators), which the analysis keeps as its variables'
-    nodes: they are not moved in place, so lines added or removed above one parse the file whole.
-    Lines added below it, or changed without adding any, still parse one procedure again."""
+    nodes: they are not moved in place, so lines added or removed in a file with one parse the
+    file whole.  An edit that adds no line still parses one procedure again, the Dim's too."""
     dim = "        Dim " + ", ".join(f"v{k}" for k in range(70)) + " As Integer\n        v3 = 4\n"
     text = TEXT.replace("        Return 1\n", dim + "        Return v3\n", 1)
     above = text.replace("        x = x + b   ' sum\n", "        x = x + b   ' sum\n\n", 1)
     assert again(text, above) is None and again(above, text) is None
-    below = text.replace("        n = 2\n", "        n = 2\n\n", 1)
-    assert again(text, below) == full(below)
     beside = text.replace("        x = x + b   ' sum\n", "        x = x - b\n", 1)
     assert again(text, beside) == full(beside)
+    inside = text.replace("        v3 = 4\n", "        v3 = 5\n", 1)
+    assert again(text, inside) == full(inside)
+    # (a Dim made long by an edit marks the file too)
+    short = TEXT.replace("        Return 1\n", "        Dim v0 As Integer\n        Return v0\n", 1)
+    sink = DiagnosticSink()
+    got = reparse_procedure(short, parse(SourceFile("demo.gpl", short), sink), list(sink),
+                            SourceFile("demo.gpl", text.replace("        v3 = 4\n", "        v3 = 5\n", 1)))
+    assert got is not None and got[0].compact_dims

@@ -853,11 +853,16 @@ class ModuleDecl(Stmt):
 @dataclass(slots=True, eq=False, init=False)
 class SourceUnit(Node):
     """One parsed file: its modules (and top-level classes, AMB-1).  Members that were misplaced at
-    the top level (reported) are kept too, so later errors can still be found."""
+    the top level (reported) are kept too, so later errors can still be found.
+
+    ``compact_dims``: whether a Dim of the file holds its declarators compactly (or did, before
+    an edit: :class:`CompactDeclarators`), which the language server's moving of lines cannot
+    move (``syntax/reparse.py``)."""
 
     path: str
     members: list[Stmt]
     end_comments: tuple[Comment, ...] = ()
+    compact_dims: bool = False
     _children: ClassVar[tuple[str, ...]] = ("members",)
 
 
@@ -972,7 +977,8 @@ class NodeTransformer(NodeVisitor):
 
 
 _DUMP_SKIP = frozenset(
-    {"_file", "_line", "_col", "_end_line", "_end_col", "_info", "leading_comments", "trailing_comment", "end_comment", "end_comments", "header_comment"}
+    {"_file", "_line", "_col", "_end_line", "_end_col", "_info", "leading_comments", "trailing_comment", "end_comment", "end_comments", "header_comment",
+     "compact_dims"}
 )
 
 

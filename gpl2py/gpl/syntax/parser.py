@@ -265,6 +265,7 @@ class Parser:
     def __init__(self, source: SourceFile, sink: DiagnosticSink) -> None:
         self.source = source
         self.sink = sink
+        self.compact_dims = False  # a Dim was held compactly (:meth:`_compact`)
         # The tokens are a window onto the lexer's output (token_chunks): the current token, the
         # ones peeked at, and back to the last token that is not layout (for prev).  The
         # window slides in next(), so the file's tokens never all live at once.
@@ -610,7 +611,8 @@ class Parser:
             if member is not None:
                 member.leading_comments = comments + member.leading_comments
                 members.append(member)
-        return A.SourceUnit(self.span_from(start), self.source.path, members, end_comments=comments)
+        return A.SourceUnit(self.span_from(start), self.source.path, members, end_comments=comments,
+                            compact_dims=self.compact_dims)
 
     def members(self, container: str, start: RawToken, node: A.Stmt) -> list[A.Stmt]:
         """Members of a Module or Class up to its ``End``; sets ``node.end_comments``."""
@@ -876,6 +878,7 @@ class Parser:
         """The simple declarators so far, those of closed groups and those waiting for their type,
         as a :class:`~gpl2py.gpl.syntax.ast.CompactDeclarators`."""
         run = A.CompactDeclarators(self.source.path)
+        self.compact_dims = True
         for i, d in enumerate(declarators):
             run.add(d.name, d._line, d._col)
             if i + 1 == len(declarators) or declarators[i + 1].type is not d.type:

@@ -78,12 +78,14 @@ def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Dia
     if (new.span.line, new.span.end_line) != (first, new_last) or any(
             d.span is None or not first <= d.span.line <= new_last for d in sink):
         return None
-    if delta and _compact_dim_below(chain):
-        return None
+    if delta and old_unit.compact_dims:
+        return None  # (see _replaced)
     new.leading_comments = proc.leading_comments  # (the comments above it, which were not parsed)
     shift = Shift(source.path, old_end, delta) if delta else None
     diags = _spliced(old_diags, list(sink), source.path, first, last, shift)
-    return _replaced(old_unit, chain, new, delta), diags, shift
+    replaced = _replaced(old_unit, chain, new, delta)
+    replaced.compact_dims = old_unit.compact_dims or unit.compact_dims
+    return replaced, diags, shift
 
 
 def _enclosing(unit: A.SourceUnit, first: int, last: int) -> list[A.Node] | None:
@@ -104,31 +106,16 @@ def _enclosing(unit: A.SourceUnit, first: int, last: int) -> list[A.Node] | None
         return None
 
 
-def _compact_dim_below(chain: list[A.Node]) -> bool:
-    """Whether a long Dim held compactly (``A.CompactDeclarators``) is below the procedure the
-    edit is in, among what an edit adding or removing lines moves.  Those are not moved in place:
-    their positions are in arrays, and the declarators made of them when asked (which the
-    analysis keeps as its variables' nodes, and compares by position) would keep the old lines;
-    the file is parsed whole instead.  Statements only are walked: a Dim is one."""
-    stack: list[A.Node] = []
-    for parent, child in zip(chain[:-1], chain[1:]):
-        members = parent.members  # type: ignore[attr-defined]
-        stack.extend(members[members.index(child) + 1:])
-    while stack:
-        node = stack.pop()
-        if isinstance(node, A.VarDecl):
-            if node.compact:
-                return True
-            continue
-        stack.extend(c for c in node.children() if not isinstance(c, A.Expr))
-    return False
-
-
 def _replaced(unit: A.SourceUnit, chain: list[A.Node], new: A.ProcDecl, delta: int) -> A.SourceUnit:
     """A copy of ``unit`` with ``new`` in place of the last node of ``chain``: the containers on
     the way are new nodes (so whoever compares trees sees which changed), the rest is shared.
     ``delta``: lines the edit added (removed, negative): the containers on the way end that many
-    lines further, and what follows the procedure in them is moved (in place: it is shared)."""
+    lines further, and what follows the procedure in them is moved (in place: it is shared).
+
+    Not when the file holds a long Dim compactly (``unit.compact_dims``, ast.CompactDeclarators):
+    its positions are in arrays, and the declarators made of them when asked (which the analysis
+    keeps as its variables' nodes, compared by position) would keep the old lines; a file with one
+    is parsed whole when lines are added or removed (:func:`reparse_procedure`)."""
     replacement: A.Node = new
     seen: set[int] = set()
     for parent, child in zip(reversed(chain[:-1]), reversed(chain[1:])):
