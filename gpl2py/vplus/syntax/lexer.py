@@ -65,7 +65,7 @@ def _lex_line(path: str, n: int, line: str, out: Lexed, sink: DiagnosticSink) ->
         if c == ";":
             out.comments.append(Comment(span(i, end), line[i + 1:]))
             break
-        if c == "." and first and i + 1 < end and line[i + 1].isalpha():
+        if c == "." and first and i + 1 < end and line[i + 1].isascii() and line[i + 1].isalpha():
             m = _NAME.match(line, i + 1)
             assert m is not None
             toks.append(Token(Kind.DIRECTIVE, m.group(), span(i, m.end()), spaced=spaced))
