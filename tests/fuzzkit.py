@@ -22,6 +22,7 @@ import re
 import shutil
 import sys
 import tempfile
+import threading
 import time
 import warnings
 from collections.abc import Callable
@@ -65,6 +66,7 @@ WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
 PATH_CODES = {"GPL1400", "GPL1401", "GPL1402", "GPL4112", "GPL5700"}  # about the path given: nothing else to point at
 HEADER = re.compile(r"^(?P<file>.+):(?P<line>\d+):(?P<col>\d+): (error|warning|note) GPL\d{4}: \S")
 
+_watch_thread = [0]  # the thread whose writes are watched (the fuzz's)
 _watch: list[list[str]] = []  # while a batch runs: the paths written to (the audit hook's record)
 #: What importing a generated package must never do (audit events): run programs, open
 #: connections, load native code.
@@ -82,8 +84,8 @@ _DIR_FD = {"os.mkdir": {0: 2}, "os.remove": {0: 1}, "os.rmdir": {0: 1}, "os.rena
 def _audit(event: str, args: tuple[object, ...]) -> None:
     if _forbidden and event.startswith(FORBIDDEN):
         _forbidden[-1].append(f"{event}{args!r:.200}")
-    if not _watch:
-        return
+    if not _watch or threading.get_ident() != _watch_thread[0]:
+        return  # (another thread's write: a server an earlier test left running in this process)
     if event == "open":
         path, mode, flags = args
         if isinstance(path, int) or path is None:
@@ -222,6 +224,7 @@ def run_part(label: str, part: int, seed: int, inputs: int, make: Callable[[int]
     while fed < inputs:
         batch = tmp_path_factory.mktemp("fuzz")
         written: list[str] = []
+        _watch_thread[0] = threading.get_ident()
         _watch.append(written)
         try:
             for _ in range(min(BATCH, inputs - fed)):

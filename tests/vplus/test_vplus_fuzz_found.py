@@ -101,3 +101,10 @@ def test_a_dot_and_a_letter_of_another_alphabet_starting_a_line_is_an_error_not_
     ``é``) and failed its own assertion that a V+ name follows."""
     out, diags = _translate(tmp_path, ".PROGRAM m()\n.\u00e9t\u00e9\n.END\n")
     assert out is None and diags and all(":2:" in d for d in diags), diags
+
+
+def test_a_digit_of_another_script_is_an_error_not_an_assertion(tmp_path: Path) -> None:
+    """``x = ²`` (or an Arabic-Indic digit): ``isdigit`` is true of it, and the lexer failed its
+    own assertion that a V+ number follows."""
+    out, diags = _translate(tmp_path, ".PROGRAM m()\n  x = \u00b2\n  y = \u0663\n.END\n")
+    assert out is None and diags and all(":2:" in d or ":3:" in d for d in diags), diags

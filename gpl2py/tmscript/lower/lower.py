@@ -316,7 +316,11 @@ class Lowerer:
         elif isinstance(st, A.Switch):
             self.switch(st)
         elif isinstance(st, A.Jump):
-            if st.word == "continue":
+            if not self.steps and (st.word == "continue" or not self.in_switch):
+                # outside every loop (and switch): GPL5307, reported by the checks; --keep-going
+                # output had a 'continue' Python refuses to compile
+                self.line("pass", st)
+            elif st.word == "continue":
                 step = next((s for s in reversed(self.steps)), None)
                 for s in step or []:
                     self.expr_statement(s)
@@ -352,7 +356,12 @@ class Lowerer:
                 value = self.convert(var, value, e.value if e.op == "=" else None)
                 self.line(f"{self.var_ref(var)} = {value}", e)
                 return
-            self.line(f"{self.expr(e.target)} = {value}", e)
+            if isinstance(e.target, A.Index | A.Member):
+                self.line(f"{self.expr(e.target)} = {value}", e)
+                return
+            # anything else is GPL5104, reported by the checks; --keep-going output evaluates the
+            # value and stores nothing (it was '"num" = ...', which does not compile)
+            self.line(value, e)
             return
         if isinstance(e, (A.Postfix, A.Unary)) and e.op in ("++", "--"):
             var = self.target_var(e.operand)
@@ -461,7 +470,8 @@ def lower_script(tree: A.Script, info: Info, title: str) -> tuple[str, list[int]
     w.line("from gplrt import tm", 0)
     w.blank(2)
     for st in tree.define:
-        lo.statement(st)
+        if isinstance(st, A.Decl | A.ClassDecl):  # (a statement there is GPL5103, reported by the checks)
+            lo.statement(st)
     if tree.define:
         w.blank(2)
     for name in ("main", "closestop", "errorstop"):
