@@ -119,6 +119,7 @@ def test_blocks_nested_past_the_parsers_limit_are_one_error_and_the_rest_of_the_
     ("main\n{\n  num = 10\n  3 = 4\n}\n", "GPL5104"),  # kept-going Python was '"num" = 10': no module
     ("define\n{\n  {\n    int x = 1\n  }\n}\nmain\n{\n}\n", "GPL5103"),  # a block in define: KeyError (GPL9000)
     ("main\n{\n  if (true)\n  {\n    continue\n  }\n  break\n}\n", "GPL5307"),  # 'continue' Python refuses
+    ("main\n{\n  lambda(1)\n}\n", "GPL5302"),  # 'tm.lambda(1)'
 ])
 def test_keep_going_output_of_an_erroneous_script_compiles(tmp_path: Path, text: str, code: str) -> None:
     src = tmp_path / "bad.tms"
