@@ -33,6 +33,7 @@ import pytest
 
 from gpl2py.cli import main as cli_main
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.output import Output, write_package
 from gpl2py.run import import_package
 
 FUZZ_SEED = os.environ.get("GPL2PY_FUZZ_SEED", "12")
@@ -309,3 +310,35 @@ class TextMutations:
             return text
         i = self.rng.randrange(len(text))
         return text[:i] + chr(ord(text[i]) ^ (1 << self.rng.randrange(7))) + text[i + 1:]
+
+    def mutate_piece(self, text: str, piece: re.Pattern[str], replacements: list[str]) -> str:
+        """One piece of ``text`` (as ``piece`` cuts it: words, operators, blanks) deleted,
+        duplicated, swapped with another, or replaced by one of ``replacements``."""
+        pieces = piece.findall(text)
+        if not pieces:
+            return text
+        rng = self.rng
+        i = rng.randrange(len(pieces))
+        r = rng.random()
+        if r < 0.3:
+            del pieces[i]
+        elif r < 0.5:
+            pieces.insert(i, pieces[i])
+        elif r < 0.65:
+            j = rng.randrange(len(pieces))
+            pieces[i], pieces[j] = pieces[j], pieces[i]
+        else:
+            pieces[i] = rng.choice(replacements)
+        return "".join(pieces)
+
+
+def check_translated(out: Output, sink: DiagnosticSink, root: Path) -> None:
+    """A translation without errors: its files compile (warnings are errors), it writes below
+    ``root / "out"``, and the package imports without doing anything forbidden."""
+    assert not sink.has_errors(), [d.header() for d in sink]
+    compile_all(out.files)
+    written = root / "out"
+    assert write_package(out, written, sink), [d.header() for d in sink]
+    for py in written.rglob("*.py"):
+        compile_py(py.read_text(encoding="utf-8"), str(py))
+    import_generated(written / out.package)

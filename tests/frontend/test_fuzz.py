@@ -57,8 +57,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from fuzzkit import (HOSTILE_FILES, FuzzInput, TextMutations, check_diagnostics, check_matches_translate,
-                     compile_all, compile_py, import_generated, part_inputs, part_rng, run_part, write_input)
+from fuzzkit import (FuzzInput, HOSTILE_FILES, TextMutations, check_diagnostics, check_matches_translate,
+                     check_translated, compile_all, part_inputs, part_rng, run_part, write_input)
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.gpl.lower.names import RUNTIME_NAMES
 from gpl2py.selection import Selection
@@ -66,7 +66,7 @@ from gpl2py.source import SourceFile
 from gpl2py.gpl.syntax.lexer import tokenize
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.gpl.syntax.tokens import KEYWORDS, TokenKind
-from gpl2py.transpile import transpile, write_package
+from gpl2py.transpile import transpile
 from gpltest import corpus_dir
 
 EXAMPLES = Path(__file__).parent / "examples"
@@ -582,13 +582,7 @@ def run_input(item: FuzzInput, root: Path) -> bool:
     out = transpile(folder, sink, keep_going=False)
     check_diagnostics(sink, folder)
     if out is not None:
-        assert not sink.has_errors()
-        compile_all(out.files)
-        written = root / "out"
-        assert write_package(out, written, sink), [d.header() for d in sink]
-        for py in written.rglob("*.py"):
-            compile_py(py.read_text(encoding="utf-8"), str(py))
-        import_generated(written / out.package)
+        check_translated(out, sink, root)
     elif item.keep_going:
         kept = DiagnosticSink()
         out = transpile(folder, kept, keep_going=True)

@@ -35,14 +35,14 @@ from pathlib import Path
 import pytest
 
 import gplrt.tm  # noqa: F401  # (its first import loads native code: before the audit of generated packages)
-from fuzzkit import (BUILTIN_NAMES, HOSTILE_FILES, PYTHON_HOSTILE, FuzzInput, TextMutations, check_diagnostics,
-                     check_matches_translate, compile_all, compile_py, import_generated, part_inputs, part_rng,
+from fuzzkit import (BUILTIN_NAMES, FuzzInput, HOSTILE_FILES, PYTHON_HOSTILE, TextMutations, check_diagnostics,
+                     check_matches_translate, check_translated, compile_all, compile_py, part_inputs, part_rng,
                      run_part, write_input)
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.tmscript.pipeline import translate_packet
 from gpl2py.tmscript.semantics.library import BUILTINS
 from gpl2py.tmscript.syntax.lexer import KEYWORDS
-from gpl2py.transpile import transpile, write_package
+from gpl2py.transpile import transpile
 
 FUZZ_INPUTS = int(os.environ.get("GPL2PY_TM_FUZZ_INPUTS", "1500"))
 FUZZ_PARTS = 4
@@ -138,22 +138,7 @@ class Mutator(TextMutations):
         return self._rename(self._rename(text, first, base), second, base + "_")
 
     def op_token(self, text: str, declared: list[str]) -> str:
-        pieces = TOKEN.findall(text)
-        if not pieces:
-            return text
-        rng = self.rng
-        i = rng.randrange(len(pieces))
-        r = rng.random()
-        if r < 0.3:
-            del pieces[i]
-        elif r < 0.5:
-            pieces.insert(i, pieces[i])
-        elif r < 0.65:
-            j = rng.randrange(len(pieces))
-            pieces[i], pieces[j] = pieces[j], pieces[i]
-        else:
-            pieces[i] = rng.choice(REPLACEMENTS)
-        return "".join(pieces)
+        return self.mutate_piece(text, TOKEN, REPLACEMENTS)
 
     def op_token_hostile(self, text: str, declared: list[str]) -> str:
         words = list(re.finditer(r"(?<![A-Za-z0-9_\"])[A-Za-z_][A-Za-z0-9_]*", text))
@@ -293,13 +278,7 @@ def run_input(item: FuzzInput, root: Path) -> bool:
     out = transpile(target, sink, keep_going=False, language="tmscript")
     check_diagnostics(sink, folder)
     if out is not None:
-        assert not sink.has_errors(), [d.header() for d in sink]
-        compile_all(out.files)
-        written = root / "out"
-        assert write_package(out, written, sink), [d.header() for d in sink]
-        for py in written.rglob("*.py"):
-            compile_py(py.read_text(encoding="utf-8"), str(py))
-        import_generated(written / out.package)
+        check_translated(out, sink, root)
     elif item.keep_going:
         kept = DiagnosticSink()
         out = transpile(target, kept, keep_going=True, language="tmscript")

@@ -33,11 +33,11 @@ from pathlib import Path
 import pytest
 
 import gplrt.vplus  # noqa: F401  (its first import loads native code: before the audit of generated packages)
-from fuzzkit import (BUILTIN_NAMES, HOSTILE_FILES, PYTHON_HOSTILE, FuzzInput, TextMutations, check_diagnostics,
-                     check_matches_translate, compile_all, compile_py, import_generated, part_inputs, part_rng,
-                     run_part, write_input)
+from fuzzkit import (BUILTIN_NAMES, FuzzInput, HOSTILE_FILES, PYTHON_HOSTILE, TextMutations, check_diagnostics,
+                     check_matches_translate, check_translated, compile_all, part_inputs, part_rng, run_part,
+                     write_input)
 from gpl2py.diagnostics import DiagnosticSink
-from gpl2py.transpile import transpile, write_package
+from gpl2py.transpile import transpile
 from gpl2py.vplus.syntax.keywords import GENERIC, STRUCTURE, TIER3, ZERO_ARG
 from gpltest import corpus_dir
 
@@ -157,22 +157,7 @@ class Mutator(TextMutations):
 
     # -- words
     def op_token(self, text: str, declared: list[str]) -> str:
-        pieces = PIECE.findall(text)
-        if not pieces:
-            return text
-        rng = self.rng
-        i = rng.randrange(len(pieces))
-        r = rng.random()
-        if r < 0.3:
-            del pieces[i]
-        elif r < 0.5:
-            pieces.insert(i, pieces[i])
-        elif r < 0.65:
-            j = rng.randrange(len(pieces))
-            pieces[i], pieces[j] = pieces[j], pieces[i]
-        else:
-            pieces[i] = rng.choice(REPLACEMENTS)
-        return "".join(pieces)
+        return self.mutate_piece(text, PIECE, REPLACEMENTS)
 
     def op_token_hostile(self, text: str, declared: list[str]) -> str:
         words = [m for m in NAME.finditer(text)]
@@ -330,13 +315,7 @@ def run_input(item: FuzzInput, root: Path) -> bool:
     out = transpile(target, sink, keep_going=False, start=item.start)
     check_diagnostics(sink, folder, START if item.start is not None else frozenset())
     if out is not None:
-        assert not sink.has_errors(), [d.header() for d in sink]
-        compile_all(out.files)
-        written = root / "out"
-        assert write_package(out, written, sink), [d.header() for d in sink]
-        for py in written.rglob("*.py"):
-            compile_py(py.read_text(encoding="utf-8"), str(py))
-        import_generated(written / out.package)
+        check_translated(out, sink, root)
     elif item.keep_going:
         kept = DiagnosticSink()
         out = transpile(target, kept, keep_going=True, start=item.start)
