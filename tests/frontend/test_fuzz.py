@@ -38,43 +38,35 @@ repeatable (``GPL2PY_FUZZ_SEED`` to explore others; a failure names its seed, pa
 and keeps the failing project).  The inputs come in ``FUZZ_PARTS`` tests of their own, each drawing
 from its own random stream (the seed and the part's number), so that a parallel run (``pytest -n``)
 spreads them over the cores.  Each part runs in batches sharing one temporary folder each, and
-prints the slowest input's time (CPU and wall; never asserted: the machine may be shared).
+prints the slowest input's time (CPU and wall; never asserted: the machine may be shared).  The
+machinery the V+ and TMscript fuzzes share with this one (the audit hook, the checks, the batch loop,
+line and byte mutations) is in ``tests/fuzzkit.py``.
 """
 
 from __future__ import annotations
 
-import contextlib
-import importlib
-import io
-import itertools
-import json
 import keyword
 import os
 import random
 import re
-import shutil
-import sys
-import tempfile
-import time
-import warnings
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gpl2py.cli import main as cli_main
+from fuzzkit import (FuzzInput, HOSTILE_FILES, TextMutations, check_diagnostics, check_matches_translate,
+                     check_translated, compile_all, part_inputs, part_rng, run_part, write_input)
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.gpl.lower.names import RUNTIME_NAMES
-from gpl2py.run import import_package
 from gpl2py.selection import Selection
 from gpl2py.source import SourceFile
 from gpl2py.gpl.syntax.lexer import tokenize
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.gpl.syntax.tokens import KEYWORDS, TokenKind
-from gpl2py.transpile import transpile, write_package
+from gpl2py.transpile import transpile
 from gpltest import corpus_dir
 
 EXAMPLES = Path(__file__).parent / "examples"
@@ -284,9 +276,7 @@ def test_random_text_never_crashes() -> None:
 
 
 FUZZ_INPUTS = int(os.environ.get("GPL2PY_FUZZ_INPUTS", "5000"))
-FUZZ_SEED = os.environ.get("GPL2PY_FUZZ_SEED", "12")
 FUZZ_PARTS = 10  # tests the inputs are shared among (each with its own random stream)
-BATCH = 250  # inputs sharing one temporary folder (and one check that nothing was written outside it)
 
 #: Names the generated Python must never confuse with a GPL name: Python keywords that are not GPL
 #: keywords, builtins, names of the runtime and of what gpl2py generates, dunders, and the same
@@ -306,12 +296,6 @@ HOSTILE_NAMES = sorted({
 })
 HOSTILE_NAMES = [n for n in HOSTILE_NAMES if re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*|_+[A-Za-z0-9][A-Za-z0-9_]*", n)
                  and n.lower() not in KEYWORDS]  # a GPL keyword would only make a syntax error
-#: File and folder names a project may carry (Linux allows all of these).
-HOSTILE_FILES = [
-    "Main", "sys", "os", "numpy", "gplrt", "__init__", "__main__", "_stubs", "_sourcemap", "con", "nul",
-    "a b", "x'y", 'x"y', "x\\y", "-rf", "..x", ".hidden", "é", "中文", "x" * 200, "a\nb", "a\tb", "$HOME",
-    "`id`", "$(id)", "x;y", "x%s", "{x}", "x\"\"\"y", "'''", "Print", "List_", "ChkInt32", "Current",
-]
 #: ProjectName / ProjectStart values.
 HOSTILE_VALUES = [
     'x""";import os;os.system("id");"""', "'''", "\\N", "\\", "numpy", "gplrt", "sys", "__init__", "..",
@@ -326,53 +310,6 @@ ONE_LINE_NAMES = re.compile(r"(?i)(?:\b(?:byval|byref|dim)[ \t]+|,[ \t]*)([A-Za-
 SUB = re.compile(r"(?im)^[ \t]*public[ \t]+sub[ \t]+([A-Za-z_][A-Za-z0-9_]*)[ \t]*(?:\([ \t]*\))?[ \t]*(?:'.*)?$")
 PROCEDURE = re.compile(r"(?ims)^[ \t]*(?:public[ \t]+|private[ \t]+)?(?:shared[ \t]+)?(sub|function)[ \t].*?"
                        r"^[ \t]*end[ \t]+\1\b[^\n]*\n")
-WRITE_EVENTS = {"os.mkdir", "os.rename", "os.replace", "os.remove", "os.rmdir", "os.symlink", "os.link",
-                "os.truncate", "os.chmod", "os.utime", "shutil.copyfile", "shutil.copymode", "shutil.move",
-                "shutil.rmtree"}
-WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_TRUNC
-PATH_CODES = {"GPL1400", "GPL1401", "GPL1402"}  # about the path given: nothing else to point at
-HEADER = re.compile(r"^(?P<file>.+):(?P<line>\d+):(?P<col>\d+): (error|warning|note) GPL\d{4}: \S")
-
-_watch: list[list[str]] = []  # while a batch runs: the paths written to (the audit hook's record)
-#: What importing a generated package must never do (audit events): run programs, open
-#: connections, load native code.
-FORBIDDEN = ("os.system", "os.exec", "os.posix_spawn", "os.spawn", "os.fork", "os.kill", "subprocess.",
-             "socket.", "ctypes.", "webbrowser.", "os.startfile")
-_forbidden: list[list[str]] = []  # while a generated package is imported: forbidden events seen
-
-
-# the argument positions of the folder descriptors a path of these events is relative to
-_DIR_FD = {"os.mkdir": {0: 2}, "os.remove": {0: 1}, "os.rmdir": {0: 1}, "os.rename": {0: 2, 1: 3},
-           "os.replace": {0: 2, 1: 3}, "os.symlink": {1: 2}, "os.link": {0: 2, 1: 3}, "os.chmod": {0: 2},
-           "os.utime": {0: 3}}
-
-
-def _audit(event: str, args: tuple[object, ...]) -> None:
-    if _forbidden and event.startswith(FORBIDDEN):
-        _forbidden[-1].append(f"{event}{args!r:.200}")
-    if not _watch:
-        return
-    if event == "open":
-        path, mode, flags = args
-        if isinstance(path, int) or path is None:
-            return
-        writes = any(c in mode for c in "wax+") if isinstance(mode, str) else bool(int(flags or 0) & WRITE_FLAGS)
-        if writes:
-            _watch[-1].append(os.path.abspath(os.fsdecode(path)))  # type: ignore[arg-type]
-    elif event in WRITE_EVENTS:
-        fds = _DIR_FD.get(event, {})
-        for i, a in enumerate(args[:2]):
-            if isinstance(a, (str, bytes, os.PathLike)):
-                path = os.fsdecode(a)
-                fd = args[fds[i]] if i in fds and fds[i] < len(args) else None
-                if isinstance(fd, int) and not os.path.isabs(path):  # relative to an open folder
-                    path = os.path.join(os.readlink(f"/proc/self/fd/{fd}"), path)
-                _watch[-1].append(os.path.abspath(path))
-
-
-sys.addaudithook(_audit)
-
-
 @dataclass
 class Seed:
     """One corpus source file: its text, and the names it declares."""
@@ -380,17 +317,6 @@ class Seed:
     name: str
     text: str
     declared: list[str]
-
-
-@dataclass
-class FuzzProject:
-    """One input: the files of a project folder (relative path -> bytes), and how to run it."""
-
-    folder: str
-    files: dict[str, bytes]
-    keep_going: bool = False
-    check_cli: bool = False
-    what: list[str] = field(default_factory=list)  # the mutations, for the failure message
 
 
 def corpus_seeds() -> tuple[list[Seed], list[Path]]:
@@ -429,12 +355,13 @@ def _utf8(data: bytes) -> bool:
     return True
 
 
-class Mutator:
+class Mutator(TextMutations):
     """Mutations of real GPL by lines, tokens and bytes, and hostile renames."""
 
     def __init__(self, rng: random.Random, seeds: list[Seed], clean: list[Seed]) -> None:
         self.rng = rng
         self.seeds = seeds
+        self.donors = [s.text for s in seeds]
         self.clean = clean or seeds
         self.small = [s for s in seeds if s.text.count("\n") <= 700]
         self.procedures = [m.group(0) for s in seeds for m in PROCEDURE.finditer(s.text)]
@@ -499,34 +426,6 @@ class Mutator:
         elif r < 0.25:
             name = name.upper() if rng.random() < 0.5 else name.capitalize()
         return name
-
-    # -- lines
-    def op_line_del(self, text: str, declared: list[str]) -> str:
-        lines = text.splitlines(keepends=True)
-        if lines:
-            del lines[self.rng.randrange(len(lines))]
-        return "".join(lines)
-
-    def op_line_dup(self, text: str, declared: list[str]) -> str:
-        lines = text.splitlines(keepends=True)
-        if lines:
-            i = self.rng.randrange(len(lines))
-            lines.insert(i, lines[i])
-        return "".join(lines)
-
-    def op_line_swap(self, text: str, declared: list[str]) -> str:
-        lines = text.splitlines(keepends=True)
-        if len(lines) > 1:
-            i, j = self.rng.randrange(len(lines)), self.rng.randrange(len(lines))
-            lines[i], lines[j] = lines[j], lines[i]
-        return "".join(lines)
-
-    def op_line_donor(self, text: str, declared: list[str]) -> str:
-        donor = self.rng.choice(self.seeds).text.splitlines(keepends=True)
-        lines = text.splitlines(keepends=True)
-        if donor:
-            lines.insert(self.rng.randrange(len(lines) + 1), self.rng.choice(donor))
-        return "".join(lines)
 
     # -- tokens
     def op_token(self, text: str, declared: list[str]) -> str:
@@ -626,27 +525,8 @@ class Mutator:
         at = self.rng.choice(heads)
         return text[:at] + line + text[at:]
 
-    # -- bytes
-    def op_byte_ins(self, text: str, declared: list[str]) -> str:
-        data = bytearray(text.encode("latin-1", errors="replace"))
-        i = self.rng.randrange(len(data) + 1)
-        data[i:i] = bytes(self.rng.randrange(256) for _ in range(self.rng.randint(1, 4)))
-        return data.decode("latin-1")
-
-    def op_byte_del(self, text: str, declared: list[str]) -> str:
-        if not text:
-            return text
-        i = self.rng.randrange(len(text))
-        return text[:i] + text[i + self.rng.randint(1, 8):]
-
-    def op_byte_flip(self, text: str, declared: list[str]) -> str:
-        if not text:
-            return text
-        i = self.rng.randrange(len(text))
-        return text[:i] + chr(ord(text[i]) ^ (1 << self.rng.randrange(7))) + text[i + 1:]
-
     # -- projects
-    def project(self, number: int, whole: list[Path]) -> FuzzProject:
+    def project(self, number: int, whole: list[Path]) -> FuzzInput:
         rng = self.rng
         what: list[str] = []
         kind = rng.choices(["one", "several", "folder", "tcs"], weights=[70, 20, 8, 2])[0]
@@ -677,7 +557,7 @@ class Mutator:
             subs = [m.group(1) for data in files.values() for m in SUB.finditer(data.decode("latin-1"))]
             files["Project.gpr"] = self.gpr(names, subs, what)
         folder = rng.choice(HOSTILE_FILES) if rng.random() < 0.3 else f"P{number}"
-        return FuzzProject(folder.replace("\n", "_") if kind == "folder" else folder, files,
+        return FuzzInput(folder.replace("\n", "_") if kind == "folder" else folder, files,
                            keep_going=rng.random() < 0.5, check_cli=rng.random() < 0.1, what=what)
 
     def gpr(self, names: list[str], subs: list[str], what: list[str]) -> bytes:
@@ -695,78 +575,14 @@ class Mutator:
         return text.encode("utf-8", errors="replace")
 
 
-def check_diagnostics(sink: DiagnosticSink, project: Path) -> None:
-    """Every diagnostic is ``file:line:col: severity GPLnnnn: message`` about a file of the project."""
-    for d in sink:
-        assert d.code != "GPL9000", d.header()
-        if d.code in PATH_CODES:
-            continue
-        assert d.span is not None, f"no position: {d.header()}"
-        header = d.header()
-        assert header.isprintable(), header  # one line, whatever the names in it (one_line)
-        m = HEADER.match(header)
-        assert m is not None and d.span.line >= 1 and d.span.col >= 1, header
-        assert Path(d.span.file).resolve().is_relative_to(project.resolve()), header
-        d.render()
-
-
-def compile_py(text: str, name: str, strict: bool = True) -> None:
-    """compile(); ``strict``: its warnings ("is" with a literal, invalid escapes) are errors (the
-    output of a translation without errors; --keep-going output of an erroneous program may
-    compare with a literal where the program did)."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("error" if strict else "ignore")
-        compile(text, name, "exec", dont_inherit=True)
-
-
-def compile_all(files: dict[str, str], strict: bool = True) -> None:
-    for name, text in files.items():
-        if name.endswith(".py"):
-            compile_py(text, name, strict)
-        elif name.endswith(".json"):
-            json.loads(text)
-
-
-_imports = itertools.count()
-
-
-def import_generated(folder: Path) -> None:
-    """Import the package (module code runs: definitions, registrations) and forget it; it must
-    neither fail (two names in one __slots__, a helper hidden by a module) nor do anything of
-    FORBIDDEN."""
-    name = f"_fuzz_pkg_{next(_imports)}"
-    seen: list[str] = []
-    _forbidden.append(seen)
-    try:
-        package = import_package(folder, name)
-        for sub in sorted(folder.glob("*.py")):
-            if sub.stem not in ("__init__", "__main__"):
-                importlib.import_module(f"{name}.{sub.stem}")
-        del package
-    finally:
-        _forbidden.pop()
-        for mod in [m for m in sys.modules if m == name or m.startswith(name + ".")]:
-            del sys.modules[mod]
-    assert seen == [], seen
-
-
-def run_input(item: FuzzProject, root: Path) -> None:
+def run_input(item: FuzzInput, root: Path) -> bool:
     """Write the project below ``root``, translate it in-process and check the properties."""
-    folder = root / item.folder
-    folder.mkdir()
-    for rel, data in item.files.items():
-        (folder / rel).write_bytes(data)
+    folder = write_input(item, root)
     sink = DiagnosticSink()
     out = transpile(folder, sink, keep_going=False)
     check_diagnostics(sink, folder)
     if out is not None:
-        assert not sink.has_errors()
-        compile_all(out.files)
-        written = root / "out"
-        assert write_package(out, written, sink), [d.header() for d in sink]
-        for py in written.rglob("*.py"):
-            compile_py(py.read_text(encoding="utf-8"), str(py))
-        import_generated(written / out.package)
+        check_translated(out, sink, root)
     elif item.keep_going:
         kept = DiagnosticSink()
         out = transpile(folder, kept, keep_going=True)
@@ -784,17 +600,8 @@ def run_input(item: FuzzProject, root: Path) -> None:
         if out is not None:
             compile_all(out.files, strict=False)
     if item.check_cli:
-        stdout, stderr = io.StringIO(), io.StringIO()
-        with contextlib.redirect_stdout(stdout), contextlib.redirect_stderr(stderr):
-            status = cli_main(["check", "--json", "--no-config", str(folder)])
-        assert status in (0, 1), stderr.getvalue()
-        checked = json.loads(stdout.getvalue())["diagnostics"]
-        for d in checked:
-            assert d["code"] != "GPL9000", d
-            assert d["code"] in PATH_CODES or (d["file"] and d["line"] >= 1 and d["column"] >= 1), d
-        # check reports exactly what translate reported
-        assert sorted(json.dumps(d, sort_keys=True) for d in checked) == \
-            sorted(json.dumps(d.to_json(), sort_keys=True) for d in sink)
+        check_matches_translate(folder, sink)
+    return (root / "out").is_dir()
 
 
 #: The error codes the pipeline fuzz translated with the error ignored (printed: the codes walked).
@@ -805,47 +612,12 @@ IGNORED_CODES: set[str] = set()
 def test_pipeline_fuzz_seeded_from_the_corpus(part: int, tmp_path_factory: pytest.TempPathFactory,
                                               monkeypatch: pytest.MonkeyPatch) -> None:
     seeds, whole = corpus_seeds()
-    seed = random.randrange(2**32) if FUZZ_SEED == "random" else int(FUZZ_SEED)
-    rng = random.Random(f"{seed}/{part}")  # a str seed is hashed with SHA-512: the same stream everywhere
-    inputs = FUZZ_INPUTS // FUZZ_PARTS + (part < FUZZ_INPUTS % FUZZ_PARTS)
+    seed, rng = part_rng(part)
+    inputs = part_inputs(FUZZ_INPUTS, FUZZ_PARTS, part)
     mutator = Mutator(rng, seeds, clean_seeds(seeds, tmp_path_factory.mktemp("seeds")))
     monkeypatch.setenv("GPL2PY_TRACEBACK", "1")  # a bug is an exception here, not a GPL9000
     monkeypatch.delenv("GPL2PY_MAX_SOURCE_MB", raising=False)
-    fed = 0
-    translated = 0
-    slowest: tuple[tuple[float, float], int, list[str]] = ((0.0, 0.0), -1, [])
-    while fed < inputs:
-        batch = tmp_path_factory.mktemp("fuzz")
-        written: list[str] = []
-        _watch.append(written)
-        try:
-            for _ in range(min(BATCH, inputs - fed)):
-                item = mutator.project(fed, whole)
-                root = batch / f"i{fed}"
-                root.mkdir()
-                started, cpu = time.perf_counter(), time.process_time()
-                try:
-                    run_input(item, root)
-                except BaseException as exc:
-                    kept = Path(tempfile.mkdtemp(prefix=f"gpl2py-fuzz-{seed}-{part}-{fed}-"))
-                    shutil.copytree(root, kept, dirs_exist_ok=True, symlinks=True)
-                    raise AssertionError(f"fuzz input {fed} of part {part} (GPL2PY_FUZZ_SEED={seed}, mutations {item.what}) "
-                                         f"failed; the project is kept in {kept / item.folder!r}: "
-                                         f"{type(exc).__name__}: {exc}") from exc
-                # (reported, never asserted: the machine is shared; CPU time says what the input cost)
-                seconds = (time.process_time() - cpu, time.perf_counter() - started)
-                if seconds > slowest[0]:
-                    slowest = (seconds, fed, item.what)
-                translated += (root / "out").is_dir()
-                fed += 1
-                shutil.rmtree(root, ignore_errors=True)
-        finally:
-            _watch.pop()
-        outside = sorted({p for p in written if not Path(p).resolve().is_relative_to(batch.resolve())})
-        assert outside == [], f"written outside the temporary folder (seed {seed}, part {part}): {outside[:10]}"
-    print(f"pipeline fuzz, part {part}: {fed} inputs (seed {seed}), {translated} translated without errors; "
-          f"{len(IGNORED_CODES)} error codes translated ignored ({', '.join(sorted(IGNORED_CODES))}); "
-          f"slowest input {slowest[1]}: {slowest[0][0]:.2f} s of CPU, {slowest[0][1]:.2f} s wall "
-          f"({', '.join(slowest[2])})")
-    assert fed == inputs
+    translated = run_part("pipeline fuzz", part, seed, inputs, lambda n: mutator.project(n, whole), run_input,
+                          tmp_path_factory)
+    print(f"{len(IGNORED_CODES)} error codes translated ignored ({', '.join(sorted(IGNORED_CODES))})")
     assert translated > 0  # some inputs reached the end of the pipeline

@@ -140,3 +140,53 @@ def test_a_device_declared_inside_twenty_loops_is_one_error_at_its_declaration(t
 
     assert errors(19) == []
     assert errors(20) == [("GPL5701", 23)]
+
+
+# what the TMscript fuzz (tests/tm/test_tm_fuzz.py) found
+
+
+@pytest.mark.parametrize("text, code", [
+    ("main\n{\n  num = 10\n  3 = 4\n}\n", "GPL5104"),  # kept-going Python was '"num" = 10': no module
+    ("define\n{\n  {\n    int x = 1\n  }\n}\nmain\n{\n}\n", "GPL5103"),  # a block in define: KeyError (GPL9000)
+    ("main\n{\n  if (true)\n  {\n    continue\n  }\n  break\n}\n", "GPL5307"),  # 'continue' Python refuses
+    ("main\n{\n  lambda(1)\n}\n", "GPL5302"),  # 'tm.lambda(1)'
+])
+def test_keep_going_output_of_an_erroneous_script_compiles(tmp_path: Path, text: str, code: str) -> None:
+    src = tmp_path / "bad.tms"
+    src.write_text(text)
+    sink = DiagnosticSink()
+    out = transpile(src, sink, keep_going=True)
+    assert code in [d.code for d in sink.errors] and "GPL9000" not in [d.code for d in sink], \
+        [d.header() for d in sink]
+    assert out is not None
+    for name, py in out.files.items():
+        if name.endswith(".py"):
+            compile(py, name, "exec")
+
+
+def test_a_chain_past_the_limit_is_one_error_and_one_within_it_is_python_that_compiles() -> None:
+    """Each binary operator is a call in the Python (``tm.add(a, b)``): a chain of 200 ``&&``
+    gave a packet without errors whose Python does not compile (too many nested parentheses)."""
+    ok = translate_packet("bool fz = " + " && ".join(["1"] * 100))
+    assert not ok.errors, [d.header() for d in ok.errors]
+    compile(ok.python, "packet", "exec")
+    long = translate_packet("bool fz = " + " && ".join(["1"] * 200))
+    assert [d.code for d in long.errors] == ["GPL5103"], [d.header() for d in long.errors]
+
+
+@pytest.mark.parametrize("text", [
+    "int x = 1\n" + "switch (x)\n{\ncase 1\n" * 300 + "Display(1)\n" + "}\n" * 300,  # RecursionError
+    "int x = " + "1 ? 2 : " * 2000 + "3",  # RecursionError
+])
+def test_switches_and_conditionals_past_the_limits_are_an_error_not_a_recursion_error(text: str) -> None:
+    found = translate_packet(text).errors
+    assert [d.code for d in found] and all(d.code == "GPL5103" for d in found), [d.header() for d in found]
+
+
+def test_names_that_python_reserves_and_the_same_with_an_underscore_stay_two_names() -> None:
+    """``v`` is ``v_`` in the Python (the node's variables are ``v``), and ``v_`` was ``v_`` too: two
+    TMscript variables were one Python name (in parameters, a function Python refuses)."""
+    p = translate_packet("int v = 1\r\nint v_ = 2\r\nint list = 3\r\nint list_ = 4\r\nDisplay(v + \" \" + v_ + list + list_)")
+    assert not p.errors, [d.header() for d in p.errors]
+    compile(p.python, "packet", "exec")
+    assert {"v_", "v__", "list_", "list__"} <= {var.pyname for var in p.declared.values()}

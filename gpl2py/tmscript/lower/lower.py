@@ -152,7 +152,8 @@ class Lowerer:
         callee = e.callee
         if kind == "method" and isinstance(callee, A.Member):
             return f"{self.expr(callee.obj)}.{callee.name}({', '.join(args)})"
-        assert isinstance(callee, A.Name)
+        if not isinstance(callee, A.Name):  # ('(x)(1)': an error the checks reported; Python that compiles)
+            return f"{self.expr(callee)}({', '.join(args)})"
         if kind == "user":
             return f"{pyname(callee.name)}({', '.join(args)})"
         if args and (callee.name in DEFERRED or (callee.name in DEFERRED_WITH_TWO and len(args) == 2)):
@@ -162,7 +163,9 @@ class Lowerer:
             args.append(f"scope={self.scope_map(scope)}")
         if callee.name == "GetString" and e.args and self.is_byte_scalar(e.args[0]):
             args.append("as_byte=True")  # (a byte and an int are both Python ints at run time)
-        return f"tm.{callee.name}({', '.join(args)})"
+        # (pyname: a function no one declared is an error the checks reported, and 'tm.lambda(1)'
+        # in --keep-going output was Python that does not compile)
+        return f"tm.{pyname(callee.name)}({', '.join(args)})"
 
     def scope_map(self, scope: dict[str, Var]) -> str:
         """The variables ``scope`` as a Python map from their TMscript names: ``dict(a=a, ...)``
@@ -361,7 +364,11 @@ class Lowerer:
         elif isinstance(st, A.Switch):
             self.switch(st)
         elif isinstance(st, A.Jump):
-            if st.word == "continue":
+            if not self.steps and (st.word == "continue" or not self.in_switch):
+                # outside every loop (and switch): GPL5307, reported by the checks; --keep-going
+                # output had a 'continue' Python refuses to compile
+                self.line("pass", st)
+            elif st.word == "continue":
                 step = next((s for s in reversed(self.steps)), None)
                 for s in step or []:
                     self.expr_statement(s)
@@ -397,7 +404,12 @@ class Lowerer:
                 value = self.convert(var, value, e.value if e.op == "=" else None)
                 self.line(f"{self.var_ref(var)} = {value}", e)
                 return
-            self.line(f"{self.expr(e.target)} = {value}", e)
+            if isinstance(e.target, A.Index | A.Member):
+                self.line(f"{self.expr(e.target)} = {value}", e)
+                return
+            # anything else is GPL5104, reported by the checks; --keep-going output evaluates the
+            # value and stores nothing (it was '"num" = ...', which does not compile)
+            self.line(value, e)
             return
         if isinstance(e, (A.Postfix, A.Unary)) and e.op in ("++", "--"):
             var = self.target_var(e.operand)
@@ -506,7 +518,8 @@ def lower_script(tree: A.Script, info: Info, title: str) -> tuple[str, list[int]
     w.line("from gplrt import tm", 0)
     w.blank(2)
     for st in tree.define:
-        lo.statement(st)
+        if isinstance(st, A.Decl | A.ClassDecl):  # (a statement there is GPL5103, reported by the checks)
+            lo.statement(st)
     if tree.define:
         w.blank(2)
     for name in ("main", "closestop", "errorstop"):

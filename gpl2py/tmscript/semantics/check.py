@@ -62,8 +62,10 @@ RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | {
 
 
 def pyname(name: str) -> str:
-    """The Python name of a TMscript name (``name_`` when it would clash)."""
-    return name + "_" if name in RESERVED or name.startswith("_") else name
+    """The Python name of a TMscript name (``name_`` when it would clash).  One to one: ``v_``
+    becomes ``v__`` because ``v`` becomes ``v_`` (two parameters ``v`` and ``v_`` were one Python
+    name, a function Python refused)."""
+    return name + "_" if name.rstrip("_") in RESERVED or name.startswith("_") else name
 
 
 class Checker:

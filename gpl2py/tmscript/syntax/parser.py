@@ -24,9 +24,11 @@ PRECEDENCE = {op: level for level, ops in enumerate(LEVELS) for op in ops}
 RELATIONAL = frozenset({"<", "<=", ">", ">=", "==", "!="})
 #: How deep parentheses, unary operators and blocks may nest, and how many binary operators one
 #: chain may have, before the parser refuses: the later phases recurse on the tree, and a
-#: translation has a fixed stack (gpl2py.transpile.PIPELINE_FRAMES).  Not limits of TMscript's.
+#: translation has a fixed stack (gpl2py.transpile.PIPELINE_FRAMES); and each operator is a call in
+#: the Python, whose parser takes at most 200 nested parentheses (a chain of 200 ``&&`` was Python
+#: that did not compile).  Not limits of TMscript's.
 MAX_DEPTH = 50
-MAX_CHAIN = 300
+MAX_CHAIN = 100
 
 
 class _Bail(Exception):
@@ -325,7 +327,18 @@ class Parser:
         t = self.next()
         subject = self.paren_expr()
         self.skip_nl()
-        self.expect_op("{")
+        start = self.expect_op("{")
+        if self.depth >= MAX_DEPTH:  # (as a block: a switch in a switch recursed without a limit)
+            self.sink.report(M.TM_NOT_HERE, start.span, what="nesting this deep", where=f"(more than {MAX_DEPTH} levels)")
+            self.skip_block()
+            raise _Bail
+        self.nested(start.span)
+        try:
+            return self._switch_body(t, subject)
+        finally:
+            self.depth -= 1
+
+    def _switch_body(self, t: Token, subject: A.Node) -> A.Switch:
         self.skip_nl()
         cases: list[A.Case] = []
         while not self.tok.is_op("}"):
@@ -369,7 +382,11 @@ class Parser:
 
     def conditional(self) -> A.Node:
         cond = self.binary(0)
+        q = self.tok
         if self.accept_op("?"):
+            self.chain += 1  # (a ? b : c ? d : ... recurses once per '?': a chain like the operators')
+            if self.chain > MAX_CHAIN:
+                self.fail(M.TM_NOT_HERE, q.span, what="an expression this long", where=f"(more than {MAX_CHAIN} operators)")
             then = self.expression()
             self.expect_op(":")
             other = self.conditional()

@@ -40,10 +40,10 @@ def lower_project(project: Project, modules: list[A.Module], model: Model, sink:
     """The generated files of an analysed V+ project."""
     package = "vp_" + py_name("", project.name) if not project.name[:1].isalpha() else py_name("", project.name)
     out = Output(package, project=project)
-    mod_names = Names({"vp", "main", "init", "PROJECT"})
+    mod_names = Names(_PACKAGE_NAMES)
     module_of: dict[str, str] = {}
     for mod in modules:
-        module_of[mod.path] = mod_names.name(mod.path, "", Path(mod.path).stem.replace(".", "_") or "module")
+        module_of[mod.path] = mod_names.name(mod.path, "", _module_stem(Path(mod.path).stem))
     program_module: dict[str, str] = {}  # program key -> its module
     function: dict[str, str] = {}  # program key -> its function's name
     fn_names: dict[str, Names] = {m: Names({"vp", "_data", "_GoTo"}) for m in module_of.values()}
@@ -64,6 +64,20 @@ def lower_project(project: Project, modules: list[A.Module], model: Model, sink:
     out.files[f"{package}/__main__.py"] = _package_main()
     out.files[f"{package}/_sourcemap.json"] = sourcemap_json(smap)
     return out
+
+
+#: The names of the package's ``__init__`` and its files, which no module of a V+ file may take:
+#: a file ``__init__.v2`` or ``__main__.pg`` overwrote the package's own, and ``current.v2`` hid
+#: the function ``init()`` calls.
+_PACKAGE_NAMES = frozenset({"vp", "main", "init", "PROJECT", "__init__", "__main__", "_sourcemap", "register_package",
+                            "Simulation", "current", "start_program", "_session"})
+
+
+def _module_stem(stem: str) -> str:
+    """The name a V+ file's module is made from: its stem, with ``m_`` before one that would
+    make no module name (``1st.v2``) or a dunder (``__main__.pg``, ``__builtins__.v2``)."""
+    base = py_name("", stem.replace(".", "_") or "module")
+    return "m_" + stem if base[:1].isdigit() or base.startswith("__") else stem.replace(".", "_") or "module"
 
 
 def _file_span(path: str):  # type: ignore[no-untyped-def]

@@ -438,6 +438,16 @@ class _Analysis:
             return got
         return self.expr(e)
 
+    def operand(self, e: A.Expr, t: T) -> None:
+        """An operand already typed by :meth:`expr` that its operator wants to be ``t``: a variable
+        (in parentheses or not) takes the type.  Anything else is not walked again -- walking each
+        operand twice made a chain of n operators cost 2**n (a 100-term sum never finished)."""
+        inner = e
+        while isinstance(inner, A.Paren):
+            inner = inner.inner
+        if isinstance(inner, A.Var):
+            self.expect(e, t)
+
     def expr(self, e: A.Expr) -> T:
         t = self._expr(e)
         self.model.type_of[id(e)] = t
@@ -467,13 +477,11 @@ class _Analysis:
                 return T.TRANS
             lt = self.expr(e.left)
             rt = self.expr(e.right)
-            if e.op in ("+", "==", "<>", "<", ">", "<=", ">=", "=<", "=>") and T.STRING in (lt, rt):
-                self.expect(e.left, T.STRING)
-                self.expect(e.right, T.STRING)
-                return T.STRING if e.op == "+" else T.REAL
-            self.expect(e.left, T.REAL)
-            self.expect(e.right, T.REAL)
-            return T.REAL
+            want = T.STRING if e.op in ("+", "==", "<>", "<", ">", "<=", ">=", "=<", "=>") and T.STRING in (lt, rt) \
+                else T.REAL
+            self.operand(e.left, want)
+            self.operand(e.right, want)
+            return T.STRING if want is T.STRING and e.op == "+" else T.REAL
         if isinstance(e, A.Call):
             return self.function(e)
         return T.UNKNOWN

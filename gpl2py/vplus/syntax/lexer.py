@@ -18,6 +18,7 @@ from gpl2py.source import LINE_BREAK, SourceFile, make_span
 from gpl2py.vplus import messages as M
 from gpl2py.vplus.syntax.tokens import Comment, Kind, Token
 
+_DIGITS = frozenset("0123456789")
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9._]*")
 _DECIMAL = re.compile(r"(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _OPS2 = ("==", "<=", "=<", ">=", "=>", "<>")
@@ -65,7 +66,7 @@ def _lex_line(path: str, n: int, line: str, out: Lexed, sink: DiagnosticSink) ->
         if c == ";":
             out.comments.append(Comment(span(i, end), line[i + 1:]))
             break
-        if c == "." and first and i + 1 < end and line[i + 1].isalpha():
+        if c == "." and first and i + 1 < end and line[i + 1].isascii() and line[i + 1].isalpha():
             m = _NAME.match(line, i + 1)
             assert m is not None
             toks.append(Token(Kind.DIRECTIVE, m.group(), span(i, m.end()), spaced=spaced))
@@ -80,7 +81,7 @@ def _lex_line(path: str, n: int, line: str, out: Lexed, sink: DiagnosticSink) ->
             assert m is not None
             toks.append(Token(Kind.NAME, m.group(), span(i, m.end()), sigil=c, spaced=spaced))
             i = m.end()
-        elif c.isdigit() or (c == "." and i + 1 < end and line[i + 1].isdigit()):
+        elif c in _DIGITS or (c == "." and i + 1 < end and line[i + 1] in _DIGITS):  # (not "²": isdigit is true of it)
             m = _DECIMAL.match(line, i)
             assert m is not None
             j = m.end()

@@ -32,8 +32,25 @@ _LOGICAL = frozenset(("AND", "OR", "XOR"))
 _SECTIONS = frozenset(("LOCATIONS", "REALS", "DOUBLES", "STRINGS"))
 _DECL = frozenset(("AUTO", "LOCAL", "GLOBAL"))
 _QUALIFIERS = frozenset(("DOUBLE", "REAL", "LOC"))
-#: How deep an expression may nest before it is refused (the parser recurses per level).
-MAX_DEPTH = 100
+#: How deep an expression may nest (parentheses, arguments, indices, unary operators) before it is
+#: refused: the parser recurses about 12 frames per level, within the pipeline's 990 frames
+#: (with MAX_BLOCKS blocks around it).
+MAX_DEPTH = 40
+#: How many binary operators an expression may chain (in all its nesting levels together): the
+#: parser loops over a chain, but the tree is as deep as the chain and the checks and the lowering
+#: walk it recursively.
+MAX_CHAIN = 120
+
+
+#: How many blocks may nest in a program (as TMscript's parser allows): the parser and the later
+#: passes recurse per block, about 6 frames a level here, and an expression at the innermost
+#: level still needs its own (MAX_DEPTH); CPython compiles at most 20 loops around a statement
+#: anyway (the lowering's GPL4702).
+MAX_BLOCKS = 50
+
+
+class _TooDeep(Exception):
+    """Abandons a program whose blocks nest past :data:`MAX_BLOCKS`, after its one error."""
 
 
 class _LineError(Exception):
@@ -64,6 +81,7 @@ class _Parser:
         self.toks: list[Token] = []
         self.i = 0
         self.depth = 0
+        self.chain = 0  # binary operators on the way to the current operand (MAX_CHAIN)
         self.pending: list[Comment] = []  # full-line comments waiting for the next statement
         self.nested = 0  # how many blocks enclose the current line
         self.no_compose = False  # in a VALUE list, where ':' ends the list
@@ -187,7 +205,19 @@ class _Parser:
             pass
         self.n += 1
         prog = A.Program(head.span, name, name_span, params, [], [], comments)
-        body, end = self._block(set(), prog)
+        try:
+            body, end = self._block(set(), prog)
+        except _TooDeep:  # (one error; the rest of the program is skipped to its .END)
+            body, end = [], None
+            while self.n < len(self.lines):
+                toks = self.lines[self.n]
+                if toks and toks[0].kind is Kind.DIRECTIVE:
+                    if toks[0].upper == "END":
+                        self.n += 1
+                        end = toks[0]
+                    break
+                self.n += 1
+            self.pending = []
         if end is None:
             self._error(M.MISSING_DOT_END, name_span, name=name or ".PROGRAM")
         else:
@@ -296,6 +326,11 @@ class _Parser:
         """Lines up to one whose first word is in ``stop`` (returned, the line not consumed) or up
         to ``.END`` (returned as the terminator, consumed when ``stop`` is empty)."""
         body: list[A.Stmt] = []
+        if stop and self.nested >= MAX_BLOCKS:
+            head = self.lines[self.n - 1] if 0 < self.n <= len(self.lines) else []
+            self._error(M.NESTED_TOO_DEEPLY, head[0].span if head else self.tok.span,
+                        detail=f"blocks nested more than {MAX_BLOCKS} deep")
+            raise _TooDeep
         self.nested += bool(stop)
         try:
             return self._lines(stop, prog, body)
@@ -811,15 +846,32 @@ class _Parser:
 
     def _relation(self) -> A.Expr:
         left = self._additive()
-        while self.tok.kind is Kind.OP and self.tok.text in _REL:
-            op = self._next().text
-            right = self._additive()
-            for side in (left, right):
-                if isinstance(side, A.Binary) and side.op in _LOGICAL:
-                    self._error(M.PRECEDENCE, side.span, op=side.op, rel=op, left=_shown(side.left))
-                    break
-            left = A.Binary(left.span.to(right.span), op, left, right)
+        ops = 0
+        try:
+            while self.tok.kind is Kind.OP and self.tok.text in _REL:
+                op_tok = self._next()
+                op = op_tok.text
+                ops += self._deeper(op_tok)
+                right = self._additive()
+                for side in (left, right):
+                    if isinstance(side, A.Binary) and side.op in _LOGICAL:
+                        self._error(M.PRECEDENCE, side.span, op=side.op, rel=op, left=_shown(side.left))
+                        break
+                left = A.Binary(left.span.to(right.span), op, left, right)
+        finally:
+            self.chain -= ops
         return left
+
+    def _deeper(self, at: Token) -> int:
+        """One more operator in a chain: the tree is one level deeper (``a + b + c`` is
+        ``(a + b) + c``), and every later pass walks it recursively: :data:`MAX_CHAIN` (a
+        1,000-term sum was a RecursionError)."""
+        self.chain += 1
+        if self.chain > MAX_CHAIN:
+            self.chain -= 1
+            self._error(M.TOO_DEEP, at.span)
+            raise _LineError
+        return 1
 
     def _binop(self, ops: frozenset[str]) -> str | None:
         t = self.tok
@@ -838,10 +890,14 @@ class _Parser:
     def _level(self, ops: frozenset[str], operand: Callable[[], A.Expr]) -> A.Expr:
         """One level of the precedence table: operands joined left to right by ``ops``."""
         left = operand()
-        while (op := self._binop(ops)) is not None:
-            self._next()
-            right = operand()
-            left = A.Binary(left.span.to(right.span), op, left, right)
+        count = 0
+        try:
+            while (op := self._binop(ops)) is not None:
+                count += self._deeper(self._next())
+                right = operand()
+                left = A.Binary(left.span.to(right.span), op, left, right)
+        finally:
+            self.chain -= count
         return left
 
     def _unary(self) -> A.Expr:
@@ -863,10 +919,14 @@ class _Parser:
 
     def _compose(self) -> A.Expr:
         left = self._primary()
-        while self.tok.is_op(":") and not self.no_compose:
-            self._next()
-            right = self._primary()
-            left = A.Binary(left.span.to(right.span), ":", left, right)
+        count = 0
+        try:
+            while self.tok.is_op(":") and not self.no_compose:
+                count += self._deeper(self._next())
+                right = self._primary()
+                left = A.Binary(left.span.to(right.span), ":", left, right)
+        finally:
+            self.chain -= count
         return left
 
     def _primary(self) -> A.Expr:
