@@ -51,6 +51,11 @@ TM_INTERPOLATION = _warning(
     "A variable's name in single quotes inside a string is its value, for compatibility (manual L628-L656); "
     "write \"...\" + {name} + \"...\" instead.")
 TM_UNSUPPORTED = _error("GPL5314", "{what} is not supported yet by gpl2py")
+TM_NOT_INDEXABLE = _error(
+    "GPL5316", "{what} cannot be indexed: only an array variable or a parameterized object can",
+    "Brackets follow an array (a[2]), a string's characters are not indexed, and the parameterized "
+    "objects take a name (IO[\"ControlBox\"], Point[\"P1\"], manual L14365). An undeclared word is "
+    "a string (GPL5301), not an object.")
 
 # --- lowering and loading (GPL5700-GPL5999) --------------------------------------------------
 TM_NO_SOURCES = _error("GPL5700", "{path} holds no TMscript source (.tms, .tmscript)")

@@ -38,6 +38,7 @@ CASES: dict[str, tuple[str | None, str | None, int, int]] = {
     "GPL5314": (None, "int x = 1\nswitch (x)\n{\ncase 1\n  if (x > 0) break\n  Display(1)\n}", 5, 14),
     "GPL5700": ("", None, 0, 0),
     # 21 nested loops: the 21st is the innermost Python would not compile
+    "GPL5316": (None, 'Nope["ControlBox"].DO[0] = 1', 1, 1),
     "GPL5701": (None, "int i = 0\n" + "while (i < 1) {\n" * 21 + "i = 1\n" + "}\n" * 21, 22, 1),
 }
 
@@ -190,3 +191,22 @@ def test_names_that_python_reserves_and_the_same_with_an_underscore_stay_two_nam
     assert not p.errors, [d.header() for d in p.errors]
     compile(p.python, "packet", "exec")
     assert {"v_", "v__", "list_", "list__"} <= {var.pyname for var in p.declared.values()}
+
+
+def test_numbers_past_a_double_are_the_scripts_error_not_python_s() -> None:
+    """A literal past the double's range (1e400; an integer of 200 digits into a double) gave
+    Python a bare ``inf`` or an OverflowError from inside the runtime; they are the script's error
+    now, in the runtime's words, and the packet's Python compiles."""
+    from gplrt.tm.values import TMError, to_double, to_float
+
+    for text in ("double d = 1e400", "double d = " + "9" * 200, "float f = " + "9" * 60):
+        p = translate_packet(text)
+        assert not p.errors, [d.header() for d in p.errors]
+        compile(p.python, "packet", "exec")
+    with pytest.raises(TMError, match="out of the range of a double"):
+        to_double(10 ** 400)
+    with pytest.raises(TMError, match="out of the range of a float"):
+        to_float(10 ** 39)
+    with pytest.raises(TMError, match="cannot be converted to double"):
+        to_double(float("inf"))
+

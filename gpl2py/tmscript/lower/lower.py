@@ -13,6 +13,7 @@ a bool.  Built-ins are ``tm.Name``; a deferred argument (``ThreadRun(f())``, ``W
 from __future__ import annotations
 
 import keyword
+import math
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.pywriter.emit import Writer
@@ -68,7 +69,10 @@ class Lowerer:
 
     def expr(self, e: A.Node) -> str:
         if isinstance(e, A.Num):
-            return repr(e.value) if isinstance(e.value, int) else repr(float(e.value))
+            if isinstance(e.value, int):
+                return repr(e.value)
+            value = float(e.value)  # (a literal past the double's range is inf: the conversion rejects it)
+            return repr(value) if math.isfinite(value) else f'float("{value}")'
         if isinstance(e, A.Str):
             parts = self.info.interpolations.get(id(e))
             if not parts:

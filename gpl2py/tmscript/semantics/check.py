@@ -255,6 +255,10 @@ class Checker:
             self.call(e)
         elif isinstance(e, A.Index):
             self.expr(e.obj)
+            if isinstance(e.obj, (A.Str, A.Num, A.Bool)) or (
+                    isinstance(e.obj, A.Name) and self.info.names.get(id(e.obj)) is None and e.obj.name not in OBJECTS):
+                what = f"'{e.obj.name}'" if isinstance(e.obj, A.Name) else "a literal"
+                self.sink.report(M.TM_NOT_INDEXABLE, e.obj.span, what=what)
             self.expr(e.index)
             if e.index2 is not None:
                 self.expr(e.index2)

@@ -91,7 +91,7 @@ def to_float(x: object) -> np.float32:
     if type(x) is F32:
         return x  # type: ignore[return-value]
     v = _number(x, "float")
-    if isinstance(v, float) and abs(v) > 3.4028234663852886e38:
+    if abs(v) > 3.4028234663852886e38:
         raise TMError(f"{v} is out of the range of a float")
     return F32(v)
 
@@ -101,7 +101,10 @@ def to_double(x: object) -> np.float64:
         return x  # type: ignore[return-value]
     if type(x) is F32:
         return F64(x)
-    return F64(_number(x, "double"))
+    v = _number(x, "double")
+    if isinstance(v, int) and abs(v) > 1.7976931348623157e308:  # (an int past the double's range)
+        raise TMError(f"{v} is out of the range of a double")
+    return F64(v)
 
 
 def to_bool(x: object) -> bool:
