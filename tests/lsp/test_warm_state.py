@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -318,19 +319,21 @@ def test_edits_that_add_or_remove_lines_check_one_procedure_and_move_what_is_bel
     assert step((init + "\n\n", init))[:2] == ([], ["Init", "Cmd_GetActiveGripper"])
 
 
-def test_what_the_symbols_hold_of_a_position_moves_with_the_lines(tmp_path: Path) -> None:
-    """After Enter in a procedure, a diagnostic reported at a symbol's span, not at a node's (the
-    start procedure should be Public: reported at its procedure's symbol on every check), is where
-    a cold check reports it, and its range ends on the moved End line."""
+Checked = Callable[[str], list[tuple[str, tuple[object, ...]]]]
+
+
+def one_file_cell(tmp_path: Path, text: str) -> tuple[Path, dict[object, object], Checked, Checked]:
+    """A project of one module, Main.gpl holding ``text``: its path, the memo of its warm checks,
+    and two checks of a text giving each diagnostic's header and range: ``warm`` (the text
+    given as the editor's, the memo kept) and ``cold`` (the text written, checked afresh)."""
     folder = tmp_path / "cell"
     folder.mkdir()
     (folder / "Project.gpr").write_text('ProjectBegin\nProjectName="cell"\nProjectStart="Main"\n'
                                         'ProjectSource="Main.gpl"\nProjectEnd\n')
     main = folder / "Main.gpl"
-    text = ("Module Main\n    Public Sub First()\n        Dim i As Integer\n        i = 1\n    End Sub\n\n"
-            "    Sub Main()\n        First()\n    End Sub\nEnd Module\n")
     main.write_text(text)
     memo: dict[object, object] = {}
+
     def warm(text: str) -> list[tuple[str, tuple[object, ...]]]:
         sink = DiagnosticSink()
         transpile(folder, sink, keep_modules=False, texts={os.path.abspath(main): text}, memo=memo)
@@ -342,6 +345,16 @@ def test_what_the_symbols_hold_of_a_position_moves_with_the_lines(tmp_path: Path
         transpile(folder, sink, keep_modules=False)
         return [(d.header(), tuple(d.span)) for d in sink.sorted()]
 
+    return main, memo, warm, cold
+
+
+def test_what_the_symbols_hold_of_a_position_moves_with_the_lines(tmp_path: Path) -> None:
+    """After Enter in a procedure, a diagnostic reported at a symbol's span, not at a node's (the
+    start procedure should be Public: reported at its procedure's symbol on every check), is where
+    a cold check reports it, and its range ends on the moved End line."""
+    text = ("Module Main\n    Public Sub First()\n        Dim i As Integer\n        i = 1\n    End Sub\n\n"
+            "    Sub Main()\n        First()\n    End Sub\nEnd Module\n")
+    main, memo, warm, cold = one_file_cell(tmp_path, text)
     first = warm(text)
     assert first == cold(text) and any("GPL2025" in h for h, _ in first)
     for edited in (text.replace("        i = 1\n", "        i = 1\n\n\n", 1),  # Enter twice
@@ -358,29 +371,11 @@ def test_lines_added_above_a_long_dim_report_what_a_cold_check_does(tmp_path: Pa
     """Enter above a procedure whose Dim of 70 names is held compactly (issue 20): its variables'
     uses and a misuse below the edit are where a cold check reports them (the moved positions
     were a crash of the language server's re-check)."""
-    folder = tmp_path / "cell"
-    folder.mkdir()
-    (folder / "Project.gpr").write_text('ProjectBegin\nProjectName="cell"\nProjectStart="Main"\n'
-                                        'ProjectSource="Main.gpl"\nProjectEnd\n')
-    main = folder / "Main.gpl"
     names = ", ".join(f"v{k}" for k in range(70))
     text = ("Module Main\n    Public Sub First()\n        Dim i As Integer\n        i = 1\n    End Sub\n\n"
             f"    Public Sub Main()\n        Dim {names} As Integer\n        v7.X = 1\n        First()\n"
             "        v8 = v7 + w\n    End Sub\nEnd Module\n")
-    main.write_text(text)
-    memo: dict[object, object] = {}
-
-    def warm(text: str) -> list[tuple[str, tuple[object, ...]]]:
-        sink = DiagnosticSink()
-        transpile(folder, sink, keep_modules=False, texts={os.path.abspath(main): text}, memo=memo)
-        return [(d.header(), tuple(d.span)) for d in sink.sorted()]
-
-    def cold(text: str) -> list[tuple[str, tuple[object, ...]]]:
-        main.write_text(text)
-        sink = DiagnosticSink()
-        transpile(folder, sink, keep_modules=False)
-        return [(d.header(), tuple(d.span)) for d in sink.sorted()]
-
+    _, _, warm, cold = one_file_cell(tmp_path, text)
     first = warm(text)
     assert first == cold(text) and len(first) >= 2  # (v7 has no member X, w is not declared)
     for edited in (text.replace("        i = 1\n", "        i = 1\n\n\n", 1), text.replace("        i = 1\n", "", 1)):
