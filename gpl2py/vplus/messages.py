@@ -49,6 +49,10 @@ UNKNOWN_SECTION = _error("GPL4110", "unknown section {name}",
                          "A V+ file holds .PROGRAM, .LOCATIONS, .REALS, .DOUBLES and .STRINGS sections.")
 TOO_DEEP = _error("GPL4111", "expression nested too deeply")
 NO_SOURCES = _error("GPL4112", "no V+ source files (.v2, .pg) in {path}")
+BLOCKS_TOO_DEEP = _error("GPL4113", "blocks nested more than {limit} deep",
+                         "gpl2py reads IF, CASE, WHILE, DO and FOR blocks nested at most {limit} deep (deeper ones "
+                         "would exhaust the parser's stack); the rest of the program is skipped to its .END. "
+                         "Move the inner part into a program of its own and CALL it.".replace("{limit}", "50"))
 
 DIALECT_IF_THEN = _warning("GPL4120", "IF without THEN is the robot-sandbox dialect, not V+: read as IF ... THEN",
                            "The V+ simulator robot-sandbox accepted IF without THEN; a controller "
@@ -138,5 +142,6 @@ RUNTIME_CODES: dict[str, int] = {
     "GPL4300": -402,  # *Undefined program or variable name* (L1224-1226), when the CALL runs
     "GPL4304": -407,  # *Data type mismatch*: a real stored into a location (L4009-4011)
     "GPL4700": -430,  # *Not implemented*: V+ runs it, gpl2py does not translate it
+    "GPL4113": -430,
     "GPL4702": -430,
 }

@@ -29,6 +29,7 @@ CASES: dict[str, tuple[str, int]] = {  # code -> (source, line of the diagnostic
     "GPL4108": (P + "  10 x = 1\n  10 y = 2\n.END\n", 3),
     "GPL4109": (P + ".END\n.REALS\nx 1 2\n.END\n", 4),
     "GPL4110": (P + ".END\n.NOTES\n.END\n", 3),
+    "GPL4113": (P + "  IF x THEN\n" * 51 + "  TYPE 1\n" + "  END\n" * 51 + ".END\n", 52),
     "GPL4111": (P + "  x = " + "(" * 150 + "1" + ")" * 150 + "\n.END\n", 2),
     "GPL4300": (P + "  CALL nothing()\n.END\n", 2),
     "GPL4303": (P + "  CALL sub(1, 2)\n.END\n.PROGRAM sub(a)\n.END\n", 2),

@@ -62,14 +62,14 @@ def test_expressions_just_inside_the_limits_translate_at_the_deepest_block(tmp_p
                                         ("FOR i = 1 TO 2", "END"), ("CASE x OF\nVALUE 1:", "END")])
 def test_blocks_nested_past_fifty_are_one_error_and_the_next_program_is_read(tmp_path: Path, head: str,
                                                                            tail: str) -> None:
-    """200 nested blocks were a RecursionError in the parser: now one GPL4702 at the 51st block's
+    """200 nested blocks were a RecursionError in the parser: now one GPL4113 at the 51st block's
     line, the rest of the program skipped to its .END, and the next program still checked."""
     lines = [".PROGRAM m()", "  x = 0"] + [head] * 200 + ["TYPE 1"] + [tail] * 200 + [".END",
                                                                                    ".PROGRAM q()", "  FROB 3", ".END"]
     text = "\n".join(lines) + "\n"
     out, diags = _translate(tmp_path, text)
     assert out is None
-    deep = [d for d in diags if "GPL4702" in d]
+    deep = [d for d in diags if "GPL4113" in d]
     assert len(deep) == 1 and "blocks nested more than 50 deep" in deep[0], diags
     heads_before = 2 + 51 * (head.count("\n") + 1)
     assert f":{heads_before - head.count(chr(10))}:" in deep[0], deep

@@ -328,8 +328,7 @@ class _Parser:
         body: list[A.Stmt] = []
         if stop and self.nested >= MAX_BLOCKS:
             head = self.lines[self.n - 1] if 0 < self.n <= len(self.lines) else []
-            self._error(M.NESTED_TOO_DEEPLY, head[0].span if head else self.tok.span,
-                        detail=f"blocks nested more than {MAX_BLOCKS} deep")
+            self._error(M.BLOCKS_TOO_DEEP, head[0].span if head else self.tok.span, limit=MAX_BLOCKS)
             raise _TooDeep
         self.nested += bool(stop)
         try:
