@@ -35,7 +35,7 @@ from gpl2py.gpl.semantics.symbols import ClassSym, ModuleSym
 from gpl2py.gpl.semantics.warm import WarmAnalysis, analyze_warm, shift_analysis
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.gpl.syntax.reparse import reparse_procedure
-from gpl2py.gpl.syntax.shift import Shift
+from gpl2py.gpl.syntax.shift import Moves, Shift
 from gpl2py.output import Output, Progress
 from gpl2py.project import Limits, Project, load_project, read_data_files, swap_texts
 from gpl2py.pywriter.sourcemap import runs_json, sourcemap_json
@@ -123,15 +123,16 @@ def _parse_memo(src: SourceFile, sink: DiagnosticSink, memo: MutableMapping[obje
     if isinstance(kept, tuple) and kept[0] == src.text:
         unit, diags = kept[1], kept[2]
     else:
-        again = reparse_procedure(*kept, src) if isinstance(kept, tuple) else None  # (one procedure changed)
+        # (one procedure changed; the Moves keep the walks of what edits adding lines moved)
+        again = reparse_procedure(kept[0], kept[1], kept[2], src, kept[3]) if isinstance(kept, tuple) else None
         if again is None:
             parsed = DiagnosticSink()  # unfiltered: the caller's filter applies when they are replayed
-            unit, diags = parse(src, parsed), list(parsed)
+            unit, diags, moves = parse(src, parsed), list(parsed), Moves()
         else:
-            unit, diags, shift = again
+            (unit, diags, shift), moves = again, kept[3]  # type: ignore[index]
             if shift is not None:  # (lines added or removed: the nodes below moved, kept/old_unit too)
                 _shift_memo(memo, kept[1], shift)  # type: ignore[index]
-        memo[key] = (src.text, unit, diags)
+        memo[key] = (src.text, unit, diags, moves)
     sink.extend(diags)
     return unit
 

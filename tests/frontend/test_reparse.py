@@ -10,6 +10,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.gpl.syntax import ast as A
 from gpl2py.gpl.syntax.parser import parse
 from gpl2py.gpl.syntax.reparse import reparse_procedure
+from gpl2py.gpl.syntax.shift import Moves
 from gpl2py.source import SourceFile
 from gpltest import corpus_dir
 
@@ -100,6 +101,32 @@ def test_lines_added_or_removed_in_one_procedure_move_what_is_below(old: str, ne
     edited = text.replace(old, new, 1)
     assert old in text and again(text, edited) == full(edited)
     assert again(edited, text) == full(text)  # (and back)
+
+
+def test_edits_in_a_row_moving_what_earlier_edits_moved_are_full_parses() -> None:
+    """Lines added and removed again and again, in one procedure then in others, each edit made
+    on the last one's tree with the walks the earlier moves kept (``shift.Moves``, as the
+    pipeline keeps them): every tree is a full parse's, positions and comments included.  The
+    walks kept must follow the edits: a procedure parsed again and the containers copied on the
+    way are not the file's any more, and a member moved whole once (the class, below the module)
+    is moved again after an edit inside it made it a new node."""
+    first, fill, second = "        Dim x As Integer = a\n", "        n = 2\n", "        Return 1\n"
+    edits = [(first, first + "\n"), (first, first + "\n\n"), (fill, fill + "        ' more\n"),
+             ("        x = x + b   ' sum\n", ""), (second, second + "\n"), (fill, ""), (first, first + "        x = 1 ' one\n"),
+             (second, "")]
+    moves = Moves()
+    text = TEXT
+    sink = DiagnosticSink()
+    unit = parse(SourceFile("demo.gpl", text), sink)
+    diags = list(sink)
+    for old, new in edits:
+        assert old in text
+        edited = text.replace(old, new, 1)
+        got = reparse_procedure(text, unit, diags, SourceFile("demo.gpl", edited), moves)
+        assert got is not None and got[2] is not None, (old, new)  # (one procedure, lines moved)
+        unit, diags, _ = got
+        assert (A.dump(unit), [d.header() for d in diags], positions(unit)) == full(edited)[:3], (old, new)
+        text = edited
 
 
 @pytest.mark.parametrize("old, new", [

@@ -43,9 +43,11 @@ from typing import Any, ClassVar, Iterator
 from gpl2py.source import Span
 
 
-@dataclass(slots=True, frozen=True)
+@dataclass(slots=True)
 class Comment:
-    """One comment. ``text`` excludes the leading ``'``; ``directive`` marks a kept ``#`` line."""
+    """One comment. ``text`` excludes the leading ``'``; ``directive`` marks a kept ``#`` line.
+    Not frozen: like a node's position, its ``span`` is moved in place when an edit adds lines
+    above it (``syntax/shift.py``; making each comment again was more than half of that move)."""
 
     span: Span
     text: str
