@@ -106,6 +106,7 @@ class Project:
     limits: Limits = field(default_factory=Limits)
     bytes_read: int = 0  # of the sources, against limits.project
     listings: dict[Path, dict[str, list[Path]]] = field(default_factory=dict, repr=False)  # while loading
+    real_root: Path | None = field(default=None, repr=False)  # root resolved, while loading
 
     def source(self, path: str) -> SourceFile | None:
         """The loaded file whose diagnostic path is ``path`` (Project.gpr included)."""
@@ -194,8 +195,9 @@ def load_sources(path: str | os.PathLike[str], sink: DiagnosticSink, limits: Lim
         sink.report(msg.CANNOT_READ, None, path=str(p), reason=exc.strerror or str(exc))
         return project
     candidates = [e for e in entries if e.suffix.lower() in suffixes and not e.is_dir()]
+    real = _resolved(p)
     for entry in candidates:
-        if _inside(p, entry, str(entry), None, sink):
+        if _inside(p, entry, str(entry), None, sink, real):
             _add_source(project, entry, str(entry), None, sink)
     return project  # (no sources: the front end says so in its own words)
 
@@ -214,8 +216,9 @@ def _load_folder(folder: Path, sink: DiagnosticSink, limits: Limits) -> Project:
         e for e in entries
         if e.suffix.lower() in SOURCE_SUFFIXES + (PROTECTED_SUFFIX,) and not e.is_dir()
     ]
+    real = _resolved(folder)
     for entry in candidates:
-        if _inside(folder, entry, str(entry), None, sink):
+        if _inside(folder, entry, str(entry), None, sink, real):
             _add_source(project, entry, str(entry), None, sink)
     if not candidates:
         sink.report(msg.NO_SOURCES, None, path=str(folder))
@@ -268,6 +271,7 @@ def _load_gpr(gpr: Path, sink: DiagnosticSink, limits: Limits) -> Project | None
     if source_count == 0:
         sink.report(msg.GPR_NO_SOURCES, whole_file)
     project.listings.clear()
+    project.real_root = None
     return project
 
 
@@ -291,7 +295,9 @@ def _add_listed_source(project: Project, entry: _GprEntry, sink: DiagnosticSink)
             )
             return
         current = found
-    if _inside(project.root, current, entry.value, entry.value_span, sink):
+    if project.real_root is None:  # (resolved once for every listed source)
+        project.real_root = _resolved(project.root)
+    if _inside(project.root, current, entry.value, entry.value_span, sink, project.real_root):
         _add_source(project, current, str(current), entry.value_span, sink)
 
 
@@ -425,12 +431,22 @@ def _find_case_insensitive(
     return chosen
 
 
-def _inside(root: Path, path: Path, shown: str, cause: Span | None, sink: DiagnosticSink) -> bool:
+def _resolved(folder: Path) -> Path | None:
+    """``folder`` resolved, or None when it cannot be (then :func:`_inside` reports why)."""
+    try:
+        return folder.resolve()
+    except (OSError, RuntimeError):
+        return None
+
+
+def _inside(root: Path, path: Path, shown: str, cause: Span | None, sink: DiagnosticSink,
+            real_root: Path | None = None) -> bool:
     """Whether ``path``, a file the project names, really lies in the project folder ``root``
-    (a link may point anywhere); reported when it does not."""
+    (``real_root``: ``root`` resolved, when the caller has it); a link may point anywhere.
+    Reported when it does not."""
     try:
         target = path.resolve()
-        inside = target.is_relative_to(root.resolve())
+        inside = target.is_relative_to(real_root or root.resolve())
     except (OSError, RuntimeError) as exc:  # a loop of links, a path the OS refuses
         sink.report(msg.CANNOT_READ, cause or _file_start(str(path)), path=shown,
                     reason=getattr(exc, "strerror", None) or str(exc))

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from gpl2py import messages as M
 from gpl2py.diagnostics import DiagnosticSink, contained
-from gpl2py.gpl.lower.context import ProjectNames
+from gpl2py.gpl.lower.context import LocalsTaken, ProjectNames
 from gpl2py.gpl.lower.module import lower_module
 from gpl2py.gpl.lower.names import package_name
 from gpl2py.gpl.lower.package import package_init, package_main
@@ -47,6 +47,8 @@ from gpl2py.source import SourceFile, make_span
 MODEL_KEY = "gpl-model"
 #: Where it keeps the analysis it checks again after an edit (``semantics.warm.WarmAnalysis``).
 WARM_KEY = "gpl-warm"
+#: Where the lowering keeps which locals' names each procedure keeps from the package's names.
+LOCALS_KEY = "gpl-locals"
 
 
 def transpile_project(path: str | os.PathLike[str], sink: DiagnosticSink, keep_going: bool,
@@ -204,8 +206,10 @@ def lower(project: Project, model: Model, sink: DiagnosticSink,
         # no ProjectStart: the package will run the only Public Sub Main (semantics/check.py)
         sink.report(M.START_ASSUMED_MAIN, start.span, name=f"{start.module.name}.{start.name}")
     warm = memo.get(WARM_KEY) if memo is not None else None
+    taken = memo.setdefault(LOCALS_KEY, LocalsTaken()) if memo is not None else None
     names = ProjectNames.build(model, warm.dynamic_members()
-                               if isinstance(warm, WarmAnalysis) and warm.model is model else None)
+                               if isinstance(warm, WarmAnalysis) and warm.model is model else None,
+                               taken if isinstance(taken, LocalsTaken) else None)
     package = package_name(project.name)
     out = Output(package, project=project)
     smap: dict[str, tuple[str, str]] = {}

@@ -12,6 +12,7 @@ rules for single names are in ``lower/names.py``.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from collections.abc import Iterable
 from typing import AbstractSet, Any
 
 from gpl2py.gpl.lower.names import (
@@ -29,7 +30,9 @@ from gpl2py.gpl.semantics.check import Model
 from gpl2py.gpl.semantics.info import DYNAMIC_MEMBERS
 from gpl2py.gpl.semantics.resolve import TOP_MODULE
 from gpl2py.gpl.semantics.stubs import Stub
-from gpl2py.gpl.semantics.symbols import ClassSym, DelegateSym, ModuleSym, OverloadSet, ProcSym, PropSym, VarSym
+from gpl2py.gpl.semantics.symbols import (
+    ClassSym, DelegateSym, Locals, ModuleSym, OverloadSet, ProcSym, PropSym, VarSym,
+)
 
 
 
@@ -80,9 +83,11 @@ class ProjectNames:
         return self.overload_py.get(p) or py_ident(p.name)
 
     @classmethod
-    def build(cls, model: Model, dynamic_members: bool | None = None) -> ProjectNames:
+    def build(cls, model: Model, dynamic_members: bool | None = None,
+              kept: LocalsTaken | None = None) -> ProjectNames:
         """The names of ``model``'s project; ``dynamic_members``, when the caller knows it (the
-        language server's warm analysis, semantics/warm.py), saves walking every expression."""
+        language server's warm analysis, semantics/warm.py), saves walking every expression;
+        ``kept``, what an earlier build found among each procedure's locals (the same caller's)."""
         names = cls()
         names.runtime = runtime_names(builtin_names())
         taken: set[str] = set()
@@ -100,9 +105,9 @@ class ProjectNames:
         stubs = model.stubs
         bases = {"_top_classes", *(module_base(mod.name) for mod in model.project.module_list),
                  *(module_base(spelled) for spelled in (stubs.modules.values() if stubs is not None else ()))}
-        for p in model.project.procs:
-            taken.update(x for x in map(py_ident, p.locals.names())
-                         if x in names.runtime or _stem_in(x, "_mod", bases) or _stem_in(x, "_", wanted))
+        found = kept if kept is not None else LocalsTaken()
+        for x in found.update(model.project.procs, names.runtime, bases, wanted):
+            taken.update(x)
         for table in tables:
             for m in table.values():
                 if isinstance(m, OverloadSet):
@@ -158,6 +163,39 @@ class ProjectNames:
 def _overload_wanted(group: OverloadSet) -> list[str]:
     """The Python name each overload of ``group`` prefers (names.overload_names)."""
     return overload_names(group.name, [[str(v.type) for v in p.params] for p in group.procs])
+
+
+class LocalsTaken:
+    """Which Python names of each procedure's locals :meth:`ProjectNames.build` must keep out of
+    the package's names, kept between builds (the language server's, one per project).
+
+    A procedure's locals table is made again whenever its procedure is checked again
+    (``semantics/warm.py``) and is not changed after its check, so what was found among its
+    names holds as long as the table is the same object and the names asked about are the same;
+    walking every local of the project on each edit was a tenth of an edit's check."""
+
+    def __init__(self) -> None:
+        self._asked: tuple[frozenset[str], frozenset[str], frozenset[str]] | None = None
+        self._found: dict[int, tuple[Locals, int, frozenset[str]]] = {}  # id(locals) -> what, of how many
+
+    def update(self, procs: Iterable[ProcSym], runtime: frozenset[str], bases: AbstractSet[str],
+               wanted: AbstractSet[str]) -> list[frozenset[str]]:
+        """For each of ``procs``, the names of its locals that are runtime names or one of
+        ``bases`` followed by ``_mod``s or one of ``wanted`` followed by ``_``s."""
+        asked = (runtime, frozenset(bases), frozenset(wanted))
+        old = self._found if asked == self._asked else {}
+        self._asked, self._found = asked, {}
+        out = []
+        for p in procs:
+            table = p.locals
+            hit = old.get(id(table))
+            if hit is None or hit[0] is not table or hit[1] != len(table):
+                hit = (table, len(table), frozenset(
+                    x for x in map(py_ident, table.names())
+                    if x in runtime or _stem_in(x, "_mod", bases) or _stem_in(x, "_", wanted)))
+            self._found[id(table)] = hit
+            out.append(hit[2])
+        return out
 
 
 def _stem_in(name: str, suffix: str, stems: AbstractSet[str]) -> bool:

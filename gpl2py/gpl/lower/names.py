@@ -127,9 +127,12 @@ def module_base(name: str) -> str:
     package's own (``init``, ``main``), a runtime import (``chk_int32``, ``current``), ``sys``
     or a Windows device name.  The project's scope table (lower/context.py) makes it unique."""
     base = _short(snake_case(name), name)
-    if base.rstrip("_") in PACKAGE_NAMES | RUNTIME_NAMES | DEVICE_NAMES | {"sys"}:
+    if base.rstrip("_") in _NOT_MODULE_NAMES:
         base += "_mod"
     return base
+
+
+_NOT_MODULE_NAMES = PACKAGE_NAMES | RUNTIME_NAMES | DEVICE_NAMES | {"sys"}
 
 
 def package_name(project_name: str) -> str:
@@ -160,9 +163,12 @@ def snake_case(name: str) -> str:
     s = re.sub(r"[^0-9A-Za-z_]", "_", s).lower().strip("_") or "module"
     if s[0].isdigit():
         s = "m_" + s
-    if keyword.iskeyword(s) or s in dir(builtins):
+    if keyword.iskeyword(s) or s in _BUILTINS:
         s += "_"
     return s
+
+
+_BUILTINS = frozenset(dir(builtins))
 
 
 def py_literal(value: object) -> str:

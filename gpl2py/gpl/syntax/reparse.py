@@ -26,6 +26,8 @@ parses as it did, only lower or higher.
 from __future__ import annotations
 
 import copy
+from itertools import compress, count
+from operator import ne
 
 from gpl2py.diagnostics import Diagnostic, DiagnosticSink
 from gpl2py.gpl.syntax import ast as A
@@ -50,11 +52,8 @@ def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Dia
     delta = len(new_lines) - len(old_lines)
     # the changed lines, old_lines[same:old_end] -> new_lines[same:old_end + delta]: the longest
     # common head, then the longest common tail of what is left
-    same = next((i for i, (a, b) in enumerate(zip(old_lines, new_lines)) if a != b),
-                min(len(old_lines), len(new_lines)))
-    old_end = len(old_lines)
-    while old_end > same and old_end + delta > same and old_lines[old_end - 1] == new_lines[old_end + delta - 1]:
-        old_end -= 1
+    same = _common(old_lines, new_lines, min(len(old_lines), len(new_lines)), head=True)
+    old_end = len(old_lines) - _common(old_lines, new_lines, min(len(old_lines), len(new_lines)) - same, head=False)
     if delta == 0 and same == old_end:
         return None  # (the same text)
     # the changed lines of the old text, 1-based: same + 1 .. old_end (none when lines were only added)
@@ -89,6 +88,14 @@ def reparse_procedure(old_text: str, old_unit: A.SourceUnit, old_diags: list[Dia
     replaced = _replaced(old_unit, chain, new, delta, moves if moves is not None else Moves())
     replaced.compact_dims = old_unit.compact_dims or unit.compact_dims
     return replaced, diags, shift
+
+
+def _common(a: list[str], b: list[str], most: int, head: bool) -> int:
+    """How many lines ``a`` and ``b`` have in common at their head (at their tail when not
+    ``head``), at most ``most``.  The first unequal pair is found by iterators that run in C
+    (a loop over the lines of a large file in Python took a quarter of parsing one procedure)."""
+    unequal = map(ne, a, b) if head else map(ne, reversed(a), reversed(b))
+    return min(next(compress(count(), unequal), most), most)
 
 
 def _lines(text: str) -> list[str]:
