@@ -5,12 +5,17 @@ from __future__ import annotations
 
 import importlib
 import keyword
+import os
+from pathlib import Path
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gpl2py.gpl.lower.context import Scope, builtin_names
+from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.gpl.lower.context import ProjectNames, Scope, builtin_names
 from gpl2py.gpl.lower.names import PYTHON_NAMES, RUNTIME_IMPORTS, module_base, package_name, py_ident
+from gpl2py.gpl.pipeline import LOCALS_KEY, MODEL_KEY
+from gpl2py.transpile import transpile
 
 # GPL identifiers: a letter or underscore, then letters, digits and underscores; hostile ones
 # are Python keywords, builtins and dunders with underscores added anywhere
@@ -70,3 +75,25 @@ def test_packages_avoid_standard_and_runtime_modules() -> None:
 def test_scope_hands_out_each_name_once_in_claim_order() -> None:
     scope = Scope({"a"})
     assert [scope.claim(n) for n in ["a", "a", "b", "a_2", "b"]] == ["a_2", "a_3", "b", "a_2_2", "b_2"]
+
+
+def test_names_kept_between_checks_follow_a_procedure_checked_again(tmp_path: Path) -> None:
+    """The language server's lowering keeps what it found among each procedure's locals
+    (``LocalsTaken``, in the memo): after an edit adds a local named as a runtime import
+    (``chk_int32``) or removes it again, the names a build keeps from the package's are a fresh
+    build's -- the procedure checked again has a new locals table."""
+    src = tmp_path / "M.gpl"
+    plain = "Module M\n    Public Sub Main()\n        Dim a As Integer\n        a = 1\n    End Sub\nEnd Module\n"
+    hiding = plain.replace("        a = 1\n", "        Dim chk_int32 As Integer\n        a = 1\n")
+    src.write_text(plain)
+    memo: dict[object, object] = {}
+    seen = []
+    for text in (plain, hiding, plain, hiding):
+        sink = DiagnosticSink()
+        transpile(tmp_path, sink, keep_modules=False, texts={os.path.abspath(src): text}, memo=memo)
+        assert not sink.has_errors(), [d.header() for d in sink]
+        model = memo[MODEL_KEY][2]  # type: ignore[index]
+        kept = ProjectNames.build(model, kept=memo[LOCALS_KEY])  # type: ignore[arg-type]
+        assert kept.taken == ProjectNames.build(model).taken
+        seen.append("chk_int32" in kept.taken)
+    assert seen == [False, True, False, True]
