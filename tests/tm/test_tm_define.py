@@ -11,6 +11,7 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+from types import ModuleType
 
 import pytest
 from tmpacket import load_project, modbus_slave, run_loaded
@@ -39,47 +40,45 @@ int Announce()
 """
 
 
-def test_define_runs_at_each_run_from_its_initial_values(tmp_path: Path) -> None:
-    src = tmp_path / "counter.tms"
-    src.write_text(COUNTER)
+def loaded(tmp_path: Path, text: str) -> ModuleType:
+    """The project ``text`` translated and imported (nothing of it runs: a ``Display`` at import
+    would be seen), and a new robot for its runs."""
+    src = tmp_path / "project.tms"
+    src.write_text(text)
     shown: list[str] = []
     context.set_display(shown.append)
     try:
-        module = load_project(src, tmp_path / "out")  # (import: nothing of the script runs)
+        module = load_project(src, tmp_path / "out")
     finally:
         context.set_display(None)
     assert shown == []
     context.use_robot("TM5-900")
+    return module
+
+
+def test_define_runs_at_each_run_from_its_initial_values(tmp_path: Path) -> None:
+    module = loaded(tmp_path, COUNTER)
     assert run_loaded(module) == (0, ["define ran", "run 1 first 8"])
     assert run_loaded(module) == (0, ["define ran", "run 1 first 8"])  # (not "run 2 first 9")
 
 
 def test_two_runs_each_start_from_the_initial_values(tmp_path: Path) -> None:
-    src = tmp_path / "twice.tms"
-    src.write_text('define\n{\n  int runs = 0\n  string seen = "a"\n}\nmain\n{\n  runs++\n  seen = seen + runs\n'
-                   '  Display(seen)\n}\n')
-    module = load_project(src, tmp_path / "out")
-    context.use_robot("TM5-900")
+    module = loaded(tmp_path, 'define\n{\n  int runs = 0\n  string seen = "a"\n}\nmain\n{\n  runs++\n'
+                    '  seen = seen + runs\n  Display(seen)\n}\n')
     assert [run_loaded(module), run_loaded(module)] == [(0, ["a1"]), (0, ["a1"])]  # (not "a12")
 
 
 def test_a_global_or_function_named_run_is_not_the_projects_run(tmp_path: Path) -> None:
     """``run`` is the generated module's own name: the script's ``run`` is ``run_``."""
-    src = tmp_path / "named.tms"
-    src.write_text('define\n{\n  int run = 3\n}\nmain\n{\n  Display("run " + run + " " + twice(run))\n}\n'
-                   'int twice(int run)\n{\n  return 2 * run\n}\n')
-    module = load_project(src, tmp_path / "out")
-    context.use_robot("TM5-900")
+    module = loaded(tmp_path, 'define\n{\n  int run = 3\n}\nmain\n{\n  Display("run " + run + " " + twice(run))\n}\n'
+                    'int twice(int run)\n{\n  return 2 * run\n}\n')
     assert [run_loaded(module), run_loaded(module)] == [(0, ["run 3 6"]), (0, ["run 3 6"])]
 
 
 def test_an_initialiser_may_assign_a_global(tmp_path: Path) -> None:
     """``int w = (n = 5) + 1``: the checks crashed on it (GPL9000: no function to note the
     assigned global in); in ``define()`` the assignment reaches the global."""
-    src = tmp_path / "assign.tms"
-    src.write_text('define\n{\n  int n = 1\n  int w = (n = 5) + 1\n}\nmain\n{\n  Display(n + " " + w)\n}\n')
-    module = load_project(src, tmp_path / "out")
-    context.use_robot("TM5-900")
+    module = loaded(tmp_path, 'define\n{\n  int n = 1\n  int w = (n = 5) + 1\n}\nmain\n{\n  Display(n + " " + w)\n}\n')
     assert run_loaded(module) == (0, ["5 6"])
 
 
@@ -103,10 +102,7 @@ errorstop
 
 
 def test_an_initialisers_error_is_the_runs_not_the_imports(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    src = tmp_path / "failing.tms"
-    src.write_text(FAILING)
-    module = load_project(src, tmp_path / "out")  # (does not raise)
-    context.use_robot("TM5-900")
+    module = loaded(tmp_path, FAILING)  # (does not raise)
     # main does not run; errorstop does, and reads every global: those the failed initialiser
     # and the ones after it did not set have their type's default
     assert run_loaded(module) == (1, ['errorstop n=1 bad=0 after='])
@@ -149,17 +145,14 @@ def test_a_define_read_uses_the_device_attached_before_the_run(tmp_path: Path) -
     from pymodbus import FramerType
     from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock
 
-    src = tmp_path / "device.tms"
-    src.write_text(DEVICE)
     attach_serial("COM2", None)
-    module = load_project(src, tmp_path / "out")  # (COM2 is not attached yet)
+    module = loaded(tmp_path, DEVICE)  # (COM2 is not attached yet)
     holding = [0] * 9100
     holding[9000:9002] = [0, 1234]  # (an int32, big endian)
     device = ModbusDeviceContext(hr=ModbusSequentialDataBlock(1, holding))
     with modbus_slave(device, FramerType.RTU) as port:
         attach_serial("COM2", f"socket://127.0.0.1:{port}")
         try:
-            context.use_robot("TM5-900")
             assert run_loaded(module) == (0, ["preset 1234"])
             assert run_loaded(module) == (0, ["preset 1235"])
         finally:
