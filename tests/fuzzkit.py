@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import builtins
 import contextlib
+import gc
 import importlib
 import io
 import itertools
@@ -225,6 +226,10 @@ def run_part(label: str, part: int, seed: int, inputs: int, make: Callable[[int]
     while fed < inputs:
         batch = tmp_path_factory.mktemp("fuzz")
         written: list[str] = []
+        # (an earlier test's garbage is collected now, not while the batch is watched: a simulated
+        # robot's temporary flash folder is deleted by its finalizer, on whichever thread the
+        # collection happens to run)
+        gc.collect()
         _watch_thread[0] = threading.get_ident()
         _watch.append(written)
         try:
