@@ -8,11 +8,11 @@ import asyncio
 import contextlib
 import importlib.util
 import socket
-import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from types import ModuleType
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.output import write_package
@@ -37,12 +37,8 @@ def run_packet(script: str) -> Vars:
     return v
 
 
-def run_project(source: Path, out: Path, robot: str | None = "TM5-900", speed: float = float("inf"),
-                display: Callable[[str], object] | None = None) -> tuple[int, list[str]]:
-    """Translate the script project ``source`` into ``out``, import it and ``run()`` it on a new
-    simulated ``robot`` (``speed``: a real clock at that speed; default the fast clock), or on the
-    current one when ``robot`` is None (a test that attached devices to it first): (status, the
-    ``Display`` lines; or what ``display`` does with them)."""
+def load_project(source: Path, out: Path) -> ModuleType:
+    """Translate the script project ``source`` into ``out`` and import its module (not run)."""
     sink = DiagnosticSink()
     pkg = transpile(source, sink)
     assert pkg is not None and not sink.has_errors(), [d.header() for d in sink]
@@ -52,16 +48,31 @@ def run_project(source: Path, out: Path, robot: str | None = "TM5-900", speed: f
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    if robot is not None:
-        context.use_robot(robot, speed=speed)
+    return module
+
+
+def run_loaded(module: ModuleType, display: Callable[[str], object] | None = None) -> tuple[int, list[str]]:
+    """``run()`` an imported project on the current robot: (status, the ``Display`` lines; or what
+    ``display`` does with them)."""
     lines: list[str] = []
     context.set_display(display or lines.append)
     try:
         status = int(module.run())
     finally:
         context.set_display(None)
-        sys.modules.pop(spec.name, None)
     return status, lines
+
+
+def run_project(source: Path, out: Path, robot: str | None = "TM5-900", speed: float = float("inf"),
+                display: Callable[[str], object] | None = None) -> tuple[int, list[str]]:
+    """Translate the script project ``source`` into ``out``, import it and ``run()`` it on a new
+    simulated ``robot`` (``speed``: a real clock at that speed; default the fast clock), or on the
+    current one when ``robot`` is None (a test that attached devices to it first): (status, the
+    ``Display`` lines; or what ``display`` does with them)."""
+    module = load_project(source, out)
+    if robot is not None:
+        context.use_robot(robot, speed=speed)
+    return run_loaded(module, display)
 
 
 def packet_values(script: str, *names: str) -> list[str]:

@@ -1,7 +1,8 @@
 """The checked TMscript tree -> Python text, through the shared writer (``gpl2py.pywriter``).
 
-A script project becomes a module: ``define`` globals at module level, ``main``/``closestop``/
-``errorstop`` and the functions as ``def``s, and a ``run()`` that runs them as the controller does.
+A script project becomes a module: ``define`` (which sets the globals: it runs when the project
+runs, not at import, L996), ``main``/``closestop``/``errorstop`` and the functions as ``def``s,
+and a ``run()`` that runs them as the controller does.
 A Listen-node packet becomes ``def script(v):`` whose node variables are attributes of ``v`` (they
 outlive the packet, L17838).  Values follow ``gplrt.tm.values``: every store converts to the
 declared type (``tm.to_int``, ``tm.Array``), arithmetic goes through ``tm.add``/``tm.div``/... (int
@@ -14,6 +15,7 @@ from __future__ import annotations
 
 import keyword
 import math
+from collections.abc import Iterator
 
 from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.pywriter.emit import Writer
@@ -208,9 +210,7 @@ class Lowerer:
 
     def assigned_vars(self, node: A.Node) -> list[Var]:
         out: list[Var] = []
-        stack = [node]
-        while stack:
-            n = stack.pop()
+        for n in walk(node):
             target = None
             if isinstance(n, A.Assign):
                 target = n.target
@@ -219,10 +219,6 @@ class Lowerer:
             var = self.target_var(target) if target is not None else None
             if var is not None:
                 out.append(var)
-            stack.extend(v for v in vars(n).values() if isinstance(v, A.Node))
-            for v in vars(n).values():
-                if isinstance(v, list):
-                    stack.extend(x for x in v if isinstance(x, A.Node))
         return out
 
     def convert(self, var: Var, value: str, node: A.Node | None = None) -> str:
@@ -486,6 +482,80 @@ class Lowerer:
         self.w.dedent()
 
     # --- units ----------------------------------------------------------------------------------
+    def define_def(self, tree: A.Script) -> bool:
+        """The ``define`` section as ``def define():``, which ``run()`` calls first: "When the
+        project is running, it prioritizes all the variables in the definition section" (L996),
+        before ``main``, "the first function to call when the project is running" (L1015).  So
+        importing the module runs nothing of the script (an initialiser may read a device that is
+        attached only for the run, or fail), each run starts from the initial values, and an
+        initialiser's error is a run-time error of the project, which runs ``errorstop``.
+        ``errorstop``/``closestop`` may read a global whose initialiser did not run: such a global
+        first gets its type's default (a class variable ``tm.Unset``, whose use is an error).
+        Whether there was a section to write."""
+        decls = [st for st in tree.define if isinstance(st, A.Decl | A.ClassDecl)]  # (else GPL5103)
+        if not decls:
+            return False
+        section = tree.sections.get("define", decls[0])
+        declared = [d for st in decls for d in (st.declarators if isinstance(st, A.Decl) else [st])]
+        names = list(dict.fromkeys(self.declared_var(d).pyname for d in declared))
+        self.line("def define():", section)
+        self.w.indent()
+        self.line('"""The define section: run() sets the globals anew each time the project runs."""', section)
+        self.line(f"global {', '.join(names)}", section)
+        read = self.read_after_error(tree)
+        unset = False
+        defaults: list[tuple[Var, A.Node]] = []
+        for d in declared:
+            var = self.declared_var(d)
+            unset = unset or self.runs_code(var, d)
+            if unset and var.pyname in read:
+                defaults.append((var, d))
+        if defaults:
+            self.line("# (what errorstop reads if an initialiser before these fails)", section)
+        for var, d in defaults:
+            default = (f"tm.Unset({py_string(var.name)})" if var.cls is not None else
+                       f'tm.Array("{var.type}")' if var.array else DEFAULTS[var.type])
+            self.line(f"{var.pyname} = {default}", d)
+        self.statements(decls)
+        self.w.dedent()
+        self.w.blank(2)
+        return True
+
+    def declared_var(self, node: A.Node) -> Var:
+        var = self.info.names[id(node)]
+        assert var is not None
+        return var
+
+    def runs_code(self, var: Var, d: A.Node) -> bool:
+        """Whether the initialiser of ``var`` (declared by ``d``) is more than a literal it
+        stores as written: only such an initialiser can fail."""
+        init = d.init if isinstance(d, A.Declarator) else d
+        if init is None:
+            return False
+        if not isinstance(init, A.Num | A.Str | A.Bool) or self.info.interpolations.get(id(init)):
+            return True
+        value = self.expr(init)
+        return self.convert(var, value, init) != value
+
+    def read_after_error(self, tree: A.Script) -> set[str]:
+        """The globals ``errorstop`` and ``closestop`` (and the functions they call) read: their
+        Python names."""
+        out: set[str] = set()
+        todo: list[A.Node] = [tree.sections[n] for n in ("errorstop", "closestop") if n in tree.sections]
+        seen: set[str] = set()
+        while todo:
+            for n in walk(todo.pop()):
+                var = self.info.names.get(id(n)) if isinstance(n, A.Name) else None
+                if var is not None and var.storage == "global":
+                    out.add(var.pyname)
+                out.update(v.pyname for v in self.info.scopes.get(id(n), {}).values() if v.storage == "global")
+                if isinstance(n, A.Call) and isinstance(n.callee, A.Name) and self.info.calls.get(id(n)) == "user":
+                    fn = self.info.functions.get(n.callee.name)
+                    if fn is not None and fn.name not in seen:
+                        seen.add(fn.name)
+                        todo.append(fn.body)
+        return out
+
     def function_def(self, name: str, params: list[A.Param], body: A.Block, node: A.Node, fn: A.Function | None) -> None:
         self.function = fn
         names = ", ".join(pyname(p.name) for p in params)
@@ -501,6 +571,19 @@ class Lowerer:
         self.w.dedent()
         self.w.blank(2)
         self.function = None
+
+
+def walk(node: A.Node) -> Iterator[A.Node]:
+    """``node`` and every node below it."""
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        yield n
+        for v in vars(n).values():
+            if isinstance(v, A.Node):
+                stack.append(v)
+            elif isinstance(v, list):
+                stack.extend(x for x in v if isinstance(x, A.Node))
 
 
 def lower_packet(tree: A.Script, info: Info) -> tuple[str, list[int]]:
@@ -521,11 +604,7 @@ def lower_script(tree: A.Script, info: Info, title: str) -> tuple[str, list[int]
     w.blank()
     w.line("from gplrt import tm", 0)
     w.blank(2)
-    for st in tree.define:
-        if isinstance(st, A.Decl | A.ClassDecl):  # (a statement there is GPL5103, reported by the checks)
-            lo.statement(st)
-    if tree.define:
-        w.blank(2)
+    has_define = lo.define_def(tree)
     for name in ("main", "closestop", "errorstop"):
         block = tree.sections.get(name)
         if block is not None:
@@ -535,8 +614,9 @@ def lower_script(tree: A.Script, info: Info, title: str) -> tuple[str, list[int]
     stops = ", ".join(f"{n}={n if n in tree.sections else 'None'}" for n in ("closestop", "errorstop"))
     w.line("def run():", 0)
     w.indent()
-    w.line('"""Run the project as the robot does: main, then closestop or errorstop."""', 0)
-    w.line(f"return tm.run_project({'main' if 'main' in tree.sections else 'None'}, {stops})", 0)
+    w.line('"""Run the project as the robot does: define, main, then closestop or errorstop."""', 0)
+    define = ", define=define" if has_define else ""
+    w.line(f"return tm.run_project({'main' if 'main' in tree.sections else 'None'}, {stops}{define})", 0)
     w.dedent()
     w.blank(2)
     w.line('if __name__ == "__main__":', 0)

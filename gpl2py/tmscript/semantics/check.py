@@ -58,7 +58,7 @@ class Info:
 
 #: Python names a TMscript name must not become (the generated code's own names and Python's).
 RESERVED = frozenset(keyword.kwlist) | frozenset(keyword.softkwlist) | {
-    "tm", "v", "print", "len", "list", "str", "int", "float", "bool", "range", "object", "type"}
+    "tm", "v", "run", "print", "len", "list", "str", "int", "float", "bool", "range", "object", "type"}
 
 
 def pyname(name: str) -> str:
@@ -87,6 +87,7 @@ class Checker:
                 self.sink.report(M.TM_REDECLARED, fn.span, name=fn.name, where=" as a function")
             self.info.functions[fn.name] = fn
         self.blocks = [self.globals]
+        self.current = "define"  # (an initialiser may assign a global: ``int w = (n = 5) + 1``)
         for st in tree.define:
             if isinstance(st, (A.Decl, A.ClassDecl)):
                 self.declare_stmt(st, "global")

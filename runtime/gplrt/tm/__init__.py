@@ -15,7 +15,7 @@ from gplrt.tm.library import *  # noqa: F401,F403 (the TMscript names generated 
 from gplrt.tm.library import ProjectExit
 from gplrt.tm.objects import IO, Robot
 from gplrt.tm.values import (  # noqa: F401
-    BINARY, Array, TMError, add, bit_and, bit_or, bit_xor, cast, div, eq, format_value, i32, invert, mod,
+    BINARY, Array, TMError, Unset, add, bit_and, bit_or, bit_xor, cast, div, eq, format_value, i32, invert, mod,
     mul, neg, shl, shr, store, sub, to_bool, to_byte, to_double, to_float, to_int, to_string, truth,
 )
 
@@ -31,11 +31,15 @@ def setitem(obj: object, index: object, value: object) -> object:
     return obj[index]  # type: ignore[index]
 
 
-def run_project(main: object, closestop: object = None, errorstop: object = None) -> int:
-    """Run a script project as TMflow does: ``main``, then ``closestop`` when it ends without error
-    or by ``Exit(code >= 0)``, ``errorstop`` after an error (L1045-L1148); 0 or 1."""
+def run_project(main: object, closestop: object = None, errorstop: object = None, define: object = None) -> int:
+    """Run a script project as TMflow does: ``define`` (the globals' initial values, L996) and
+    ``main`` (L1015), then ``closestop`` when they end without error or by ``Exit(code >= 0)``,
+    ``errorstop`` after an error (L1045-L1148); 0 or 1.  ``define`` runs here, at each run on the
+    current robot, not when the project's module is imported."""
     failed = False
     try:
+        if callable(define):
+            define()
         if callable(main):
             main()
         context.robot().wait_idle()

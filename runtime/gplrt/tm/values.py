@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+from typing import NoReturn
 
 import numpy as np
 
@@ -26,6 +27,37 @@ class TMError(Exception):
 
     #: ``"file.tms:line"`` when known otherwise than from the traceback (a queued motion's line).
     where: str | None = None
+
+
+class Unset:
+    """A ``define`` global of a class type (``TPoint P1 = ...``) whose declaration has not run
+    because an earlier initialiser of the section failed, as ``errorstop`` may see it: any use
+    is the script's error (a primitive global has its type's default instead)."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name: str) -> None:
+        object.__setattr__(self, "name", name)
+
+    def _fail(self) -> NoReturn:
+        raise TMError(f"'{self.name}' has no value: the define section failed before its declaration")
+
+    def __getattr__(self, attr: str) -> NoReturn:
+        if attr.startswith("__"):  # (Python's own protocol look-ups: not the script's)
+            raise AttributeError(attr)
+        self._fail()
+
+    def __setattr__(self, attr: str, value: object) -> NoReturn:
+        self._fail()
+
+    def __getitem__(self, key: object) -> NoReturn:
+        self._fail()
+
+    def __setitem__(self, key: object, value: object) -> NoReturn:
+        self._fail()
+
+    def __str__(self) -> str:
+        self._fail()
 
 
 # --- conversions --------------------------------------------------------------------------------
