@@ -9,6 +9,13 @@ declared type (``tm.to_int``, ``tm.Array``), arithmetic goes through ``tm.add``/
 wrap, binary32 floats, text concatenation), conditions through ``tm.truth`` unless they are already
 a bool.  Built-ins are ``tm.Name``; a deferred argument (``ThreadRun(f())``, ``WaitFor(c, ms)``) is a
 ``lambda``.  Each line records its TMscript line, so a run-time error names the script's line.
+
+Comments go where the parser attached them (``syntax/ast.py``), through the writer's comment
+facilities (``Writer.comments``, ``Writer.trailing``): those before a statement on lines of their
+own above its Python, one on its line at the end of the statement's first line (the writer moves it
+above when the two do not fit), those of a ``{`` line at the end of the ``if``/``while``/``def``
+line, those ending a block (or the file) after its last statement.  A comment line keeps its own
+TMscript line in the source map; statements keep theirs.
 """
 
 from __future__ import annotations
@@ -24,6 +31,7 @@ from gpl2py.tmscript import messages as M
 from gpl2py.tmscript.semantics.check import Info, Var, pyname
 from gpl2py.tmscript.semantics.library import DEFERRED, DEFERRED_WITH_TWO, DEVICES, OBJECTS
 from gpl2py.tmscript.syntax import ast as A
+from gpl2py.tmscript.syntax.lexer import Comment
 
 ARITH = {"+": "add", "-": "sub", "*": "mul", "/": "div", "%": "mod", "&": "bit_and", "|": "bit_or",
          "^": "bit_xor", "<<": "shl", ">>": "shr"}
@@ -274,12 +282,38 @@ class Lowerer:
         back = "tm.sub" if op == "++" else "tm.add"
         return f"tm.{CONVERT[var.type]}({back}({setter}, 1))"
 
+    # --- comments -------------------------------------------------------------------------------
+    def carry(self, comments: tuple[Comment, ...] | list[Comment], head: int | None) -> None:
+        """``comments`` that follow the start of a statement: each at the end of line ``head``
+        (the statement's first), the later lines of a ``/* */`` comment on lines of their own after
+        what is written (as they are in the script); with no ``head``, every one on its own line."""
+        for c in comments:
+            if head is None or c.cont:
+                self.w.comments([c])
+            else:
+                self.w.trailing(c, head)
+
+    def head(self, start: int) -> int | None:
+        """The index of the first line of the statement written since ``start`` at the current
+        indentation: past comments, blank lines and the ``def`` a deferred argument puts above it."""
+        lines, level = self.w.lines, self.w.level
+        for i in range(start, len(lines)):
+            ln = lines[i]
+            if ln.text and ln.indent == level and not ln.text.startswith(("#", "def ")):
+                return i
+        return None
+
     # --- statements -----------------------------------------------------------------------------
     def line(self, text: str, node: A.Node) -> None:
         self.w.line(text, node.span.line)
 
-    def statements(self, body: list[A.Node]) -> None:
+    def statements(self, body: list[A.Node], block: A.Block | None = None, header: int | None = None) -> None:
+        """``body``'s Python at the current indentation; ``block``: the block it is the body of,
+        whose opening comments go at the end of line ``header`` (the ``if``, ``while`` or ``def``
+        above) and whose closing ones after the last statement."""
         start = self.w.mark()
+        if block is not None:
+            self.carry(block.opening, header)
         scoped: list[int] = []  # the marks of the ``with`` bodies opened for devices
         for st in body:
             if self.scoped_device(st):
@@ -289,8 +323,11 @@ class Lowerer:
                 args = ", ".join([py_string(st.name)] + [self.expr(a) for a in st.args])
                 used = any(v is var for k, v in self.info.names.items() if k != id(st))
                 target = f" as {var.pyname}" if used else ""  # (the functions name it by its text)
+                before, after = split(st)
+                self.w.comments(before)
                 begun = self.w.begin_statement()
                 self.line(f"with tm.{st.cls}({args}){target}:", st)
+                self.carry(after, self.w.mark() - 1)
                 self.w.indent(blocks=1)  # (a with body is a block as CPython counts them)
                 detail = self.w.too_deep(begun, "loop blocks of one function")
                 if detail is not None:
@@ -299,6 +336,8 @@ class Lowerer:
                 scoped.append(self.w.mark())
             else:
                 self.statement(st)
+        if block is not None:
+            self.w.comments(block.closing)
         for mark in reversed(scoped):
             self.w.ensure_body(mark)
             self.w.dedent()
@@ -316,14 +355,21 @@ class Lowerer:
         return var is not None and var.storage == "local"
 
     def statement(self, st: A.Node) -> None:
+        before, after = split(st)
+        self.w.comments(before)
+        start = self.w.mark()
         begun = self.w.begin_statement()
-        self._statement(st)
+        head = self._statement(st)
         detail = self.w.too_deep(begun, "loop blocks of one function")
         if detail is not None:
             raise NestedTooDeeply(st, detail)
         self.w.end_statement(begun)
+        self.carry(after, self.head(start) if head is None else head)
 
-    def _statement(self, st: A.Node) -> None:  # noqa: C901 (one dispatch over the statement kinds)
+    def _statement(self, st: A.Node) -> int | None:  # noqa: C901 (one dispatch over the statement kinds)
+        """Writes ``st``; the index of its head line when that is not its first (a ``for``'s
+        ``while`` after its initialisation)."""
+        head: int | None = None
         if isinstance(st, A.Decl):
             for d in st.declarators:
                 var = self.info.names[id(d)]
@@ -341,7 +387,7 @@ class Lowerer:
         elif isinstance(st, A.ExprStmt):
             self.expr_statement(st.expr)
         elif isinstance(st, A.Block):
-            self.statements(st.body)
+            self.statements(st.body, st)
         elif isinstance(st, A.If):
             self.if_chain(st, "if")
         elif isinstance(st, A.While):
@@ -351,15 +397,17 @@ class Lowerer:
             first = self.temp("first")
             self.line(f"{first} = True", st)
             self.line(f"while {first} or {self.cond(st.cond)}:", st)
+            head = self.w.mark() - 1
             self.w.indent(blocks=1)
             self.line(f"{first} = False", st)
             self.w.dedent()
-            self.loop_body(st.body, None)
+            self.loop_body(st.body, None, head)
         elif isinstance(st, A.For):
             for s in st.init:
                 self.statement(s) if isinstance(s, A.Decl) else self.expr_statement(s)
             cond = "True" if st.cond is None else self.cond(st.cond)
             self.line(f"while {cond}:", st)
+            head = self.w.mark() - 1
             self.loop_body(st.body, st.step)
         elif isinstance(st, A.Switch):
             self.switch(st)
@@ -384,6 +432,7 @@ class Lowerer:
                 self.line(f"return {self.return_value(st.value)}", st)
         else:
             raise Unsupported(st, type(st).__name__)
+        return head
 
     def return_value(self, value: A.Node) -> str:
         fn = self.function
@@ -431,11 +480,18 @@ class Lowerer:
             self.body(other)
 
     def body(self, st: A.Node) -> None:
+        """The body of the line just written (``if ...:``, ``else:``)."""
+        header = self.w.mark() - 1
         self.w.indent()
-        self.statements(st.body if isinstance(st, A.Block) else [st])
+        if isinstance(st, A.Block):
+            self.statements(st.body, st, header)
+        else:
+            self.statements([st])
         self.w.dedent()
 
-    def loop_body(self, body: A.Node, step: list[A.Node] | None) -> None:
+    def loop_body(self, body: A.Node, step: list[A.Node] | None, header: int | None = None) -> None:
+        """The body of a loop whose ``while`` line is ``header`` (by default the line just written)."""
+        header = self.w.mark() - 1 if header is None else header
         self.w.indent(blocks=1)
         self.steps.append(step)
         self.in_switch.append(False)
@@ -444,7 +500,10 @@ class Lowerer:
         # connections, other threads get their turn: TM threads run one at a time, as GPL's), and
         # where a Listen node's priority command ends a looping script.
         self.line("tm.tick()", body)
-        self.statements(body.body if isinstance(body, A.Block) else [body])
+        if isinstance(body, A.Block):
+            self.statements(body.body, body, header)
+        else:
+            self.statements([body])
         for s in step or []:
             self.expr_statement(s)
         self.w.ensure_body(start)
@@ -464,20 +523,29 @@ class Lowerer:
             label = self.expr(c.label)
             test = f"tm.eq({subject}, {label})" if c.op in (None, "==") else (
                 f"not tm.eq({subject}, {label})" if c.op == "!=" else f"{subject} {c.op} {label}")
-            self.line(f"{word} {test}:", c)
+            self.case_line(f"{word} {test}:", c)
             self.case_body(c)
             word = "elif"
         if default is not None:
-            self.line("else:" if word == "elif" else "if True:", default)
+            self.case_line("else:" if word == "elif" else "if True:", default)
             self.case_body(default)
+        self.w.comments(st.closing)
+
+    def case_line(self, text: str, c: A.Case) -> None:
+        """A case's ``if``/``elif``/``else`` line with the case's comments."""
+        before, after = split(c)
+        self.w.comments(before)
+        self.line(text, c)
+        self.carry(after, self.w.mark() - 1)
 
     def case_body(self, c: A.Case) -> None:
         body = list(c.body)
+        end: tuple[Comment, ...] = ()
         if body and isinstance(body[-1], A.Jump) and body[-1].word == "break":
-            body.pop()  # the case's end (fall-through is not documented, spec §2.1)
+            end = body.pop().comments  # the case's end (fall-through is not documented, spec §2.1)
         self.w.indent()
         self.in_switch.append(True)
-        self.statements(body)
+        self.statements(body, A.Block(c.span, body, closing=end))  # (the comments of its 'break' kept)
         self.in_switch.pop()
         self.w.dedent()
 
@@ -493,11 +561,18 @@ class Lowerer:
         first gets its type's default (a class variable ``tm.Unset``, whose use is an error).
         Whether there was a section to write."""
         decls = [st for st in tree.define if isinstance(st, A.Decl | A.ClassDecl)]  # (else GPL5103)
+        block = tree.sections.get("define")
         if not decls:
+            if block is not None and (block.comments or block.opening or block.closing):
+                self.w.comments([*block.comments, *block.opening, *block.closing])  # (a define of comments)
+                self.w.blank(2)
             return False
-        section = tree.sections.get("define", decls[0])
+        section = block if block is not None else decls[0]
         declared = [d for st in decls for d in (st.declarators if isinstance(st, A.Decl) else [st])]
         names = list(dict.fromkeys(self.declared_var(d).pyname for d in declared))
+        if block is not None:
+            self.w.comments(block.comments)  # (those above 'define')
+        header = self.w.mark()
         self.line("def define():", section)
         self.w.indent()
         self.line('"""The define section: run() sets the globals anew each time the project runs."""', section)
@@ -516,7 +591,7 @@ class Lowerer:
             default = (f"tm.Unset({py_string(var.name)})" if var.cls is not None else
                        f'tm.Array("{var.type}")' if var.array else DEFAULTS[var.type])
             self.line(f"{var.pyname} = {default}", d)
-        self.statements(decls)
+        self.statements(decls, block, header)
         self.w.dedent()
         self.w.blank(2)
         return True
@@ -559,6 +634,8 @@ class Lowerer:
     def function_def(self, name: str, params: list[A.Param], body: A.Block, node: A.Node, fn: A.Function | None) -> None:
         self.function = fn
         names = ", ".join(pyname(p.name) for p in params)
+        self.w.comments(node.comments)  # (those above it in the script)
+        header = self.w.mark()
         self.line(f"def {pyname(name)}({names}):", node)
         self.w.indent()
         assigned = sorted(self.info.globals_assigned.get(name, set()))
@@ -567,10 +644,17 @@ class Lowerer:
         for p in params:
             conv = f'tm.Array("{p.type}", {pyname(p.name)})' if p.array else f"tm.{CONVERT[p.type]}({pyname(p.name)})"
             self.line(f"{pyname(p.name)} = {conv}", p)
-        self.statements(body.body)
+        self.statements(body.body, body, header)
         self.w.dedent()
         self.w.blank(2)
         self.function = None
+
+
+def split(node: A.Node) -> tuple[list[Comment], list[Comment]]:
+    """``node``'s comments: those before its first token, and those after it."""
+    start = (node.span.line, node.span.col)
+    before = [c for c in node.comments if (c.span.line, c.span.col) < start]
+    return before, list(node.comments[len(before):])
 
 
 def walk(node: A.Node) -> Iterator[A.Node]:
@@ -591,7 +675,7 @@ def lower_packet(tree: A.Script, info: Info) -> tuple[str, list[int]]:
     lo = Lowerer(info, packet=True)
     lo.w.line("def script(v):", 0)
     lo.w.indent()
-    lo.statements(tree.statements)
+    lo.statements(tree.statements, A.Block(tree.span, tree.statements, closing=tree.closing))
     lo.w.dedent()
     return lo.w.render()
 
@@ -611,6 +695,9 @@ def lower_script(tree: A.Script, info: Info, title: str) -> tuple[str, list[int]
             lo.function_def(name, [], block, block, None)
     for fn in tree.functions:
         lo.function_def(fn.name, fn.params, fn.body, fn, fn)
+    if tree.closing:  # (the comments after the script's last item)
+        w.comments(tree.closing)
+        w.blank(2)
     stops = ", ".join(f"{n}={n if n in tree.sections else 'None'}" for n in ("closestop", "errorstop"))
     w.line("def run():", 0)
     w.indent()

@@ -2,6 +2,12 @@
 
 Nodes carry their span so that every diagnostic and every generated line names its source line.
 The tree says what is written; types and names are the semantics' business.
+
+A statement (and a function, a section's block, a switch case) carries the comments the parser
+attached to it in ``comments``: those before its first token (the lowering writes them on lines
+of their own above it) and those on its line after it (a trailing comment).  A block's
+``opening`` comments are those after its ``{`` on the line (or between its statement's head and
+the ``{``), its ``closing`` ones those after its last statement up to the end of the ``}`` line.
 """
 
 from __future__ import annotations
@@ -9,11 +15,13 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from gpl2py.source import Span
+from gpl2py.tmscript.syntax.lexer import Comment
 
 
 @dataclass(eq=False)
 class Node:
     span: Span
+    comments: tuple[Comment, ...] = field(default=(), kw_only=True)
 
 
 # --- expressions ------------------------------------------------------------------------------
@@ -131,6 +139,8 @@ class ExprStmt(Node):
 @dataclass(eq=False)
 class Block(Node):
     body: list[Node]
+    opening: tuple[Comment, ...] = ()
+    closing: tuple[Comment, ...] = ()
 
 
 @dataclass(eq=False)
@@ -151,6 +161,7 @@ class Case(Node):
 class Switch(Node):
     subject: Node
     cases: list[Case]
+    closing: tuple[Comment, ...] = ()  # after the last case, up to the end of the '}' line
 
 
 @dataclass(eq=False)
@@ -209,6 +220,7 @@ class Script(Node):
     sections: dict[str, Block] = field(default_factory=dict)
     functions: list[Function] = field(default_factory=list)
     statements: list[Node] = field(default_factory=list)
+    closing: tuple[Comment, ...] = ()  # after the last item: the comments that end the file
 
 
 CLASS_TYPES = ("SerialPort", "Socket", "ModbusTCP", "ModbusRTU", "TPoint", "TBase", "TTCP", "FTSensor", "Force")

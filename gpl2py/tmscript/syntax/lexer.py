@@ -6,6 +6,11 @@ quote (L580-L600); numbers are decimal, ``0x``/``0b`` integers or decimals with 
 (L498-L512).  A newline inside ``( )`` or ``[ ]`` does not end the statement (multi-line
 argument lists in the manual's examples).  Errors are diagnostics; the lexer
 never raises on input.
+
+Comments are no tokens: when the caller asks for them they are collected apart, in order, as
+:class:`Comment` (the parser attaches them to statements, the lowering carries them into the
+Python), one per source line, so a ``/* */`` over three lines is three ``#`` lines each mapped
+to its own line.
 """
 
 from __future__ import annotations
@@ -48,6 +53,18 @@ class Token:
         return self.kind == "kw" and self.text == text
 
 
+@dataclass(slots=True, frozen=True)
+class Comment:
+    """A ``//`` comment, or one line of a ``/* */`` comment: its text without the ``//``, ``/*``
+    or ``*/``, and where it is (the Python writer's Comment).  ``cont``: a line after the first
+    of a ``/* */`` comment (it stays with the line before it)."""
+
+    span: Span
+    text: str
+    cont: bool = False
+    directive: bool = False
+
+
 def describe(tok: Token) -> str:
     """A token as a message names it."""
     if tok.kind == "eof":
@@ -57,8 +74,10 @@ def describe(tok: Token) -> str:
     return f"'{tok.text}'"
 
 
-def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1) -> list[Token]:
-    """The tokens of ``text``; positions in ``file`` from line ``first_line``."""
+def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1,
+             comments: list[Comment] | None = None) -> list[Token]:
+    """The tokens of ``text``; positions in ``file`` from line ``first_line``.  Its comments are
+    appended to ``comments`` when it is given."""
     toks: list[Token] = []
     i, n = 0, len(text)
     line, col0 = first_line, 0  # col0: index of the current line's first character
@@ -93,8 +112,11 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1) ->
                 line, col0 = line + 1, i
                 continue
         if text.startswith("//", i):
+            start = i
             while i < n and text[i] not in "\r\n":
                 i += 1
+            if comments is not None:
+                comments.append(Comment(span(start, line, col0), text[start + 2:i]))
             continue
         if text.startswith("/*", i):
             sline, scol0, start = line, col0, i
@@ -103,10 +125,22 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1) ->
                 i = n
                 sink.report(M.TM_UNTERMINATED_COMMENT, make_span(file, sline, start - scol0 + 1, sline, start - scol0 + 3))
                 break
-            for k in range(i, end):
-                if text[k] == "\n" or (text[k] == "\r" and not text.startswith("\r\n", k)):
+            piece = i + 2  # (where the text of the comment's current line starts)
+            k = i
+            while k < end:
+                if text[k] == "\n" or text[k] == "\r":
+                    if comments is not None:
+                        _block_line(comments, file, line, col0, text[piece:k], piece == start + 2, start - scol0,
+                                    start if piece == start + 2 else col0, k)
+                    if text.startswith("\r\n", k):
+                        k += 1
                     line, col0 = line + 1, k + 1
+                    piece = k + 1
+                k += 1
             i = end + 2
+            if comments is not None:
+                _block_line(comments, file, line, col0, text[piece:end], piece == start + 2, start - scol0,
+                            start if piece == start + 2 else col0, i)
             continue
         start, sline, scol0 = i, line, col0
         if c == '"':
@@ -160,6 +194,18 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1) ->
         toks.append(Token("nl", "\n", make_span(file, line, i - col0 + 1, line, i - col0 + 1)))
     toks.append(Token("eof", "", make_span(file, line, i - col0 + 1, line, i - col0 + 1)))
     return toks
+
+
+def _block_line(comments: list[Comment], file: str, line: int, col0: int, body: str, first: bool,
+                indent: int, start: int, end: int) -> None:
+    """One line of a ``/* */`` comment: ``body`` on ``line`` (whose first character is at index
+    ``col0``), from index ``start`` to ``end``.  A line after the ``first`` loses up to ``indent``
+    columns of leading blanks, the indentation of the ``/*``: the lines keep their alignment under
+    the Python's own indentation."""
+    if not first:
+        lead = len(body) - len(body.lstrip(" \t"))
+        body = body[min(lead, indent):]
+    comments.append(Comment(make_span(file, line, start - col0 + 1, line, end - col0 + 1), body, cont=not first))
 
 
 def _number_end(text: str, i: int) -> int:

@@ -4,6 +4,12 @@ Two entry points: :func:`parse_script` for a script project (``define``, ``main`
 ``errorstop``, functions) and :func:`parse_packet` for a statement list (a Listen-node packet, a
 Script node).  A syntax error is reported and the parser skips to the next line, so one run
 reports every bad line (the Listen node replies ``ERROR;`` with all of them, manual L17813).
+
+Comments (the lexer's, in order) are attached as the parse meets them (:meth:`Parser.take`): a
+statement takes those before its first token and those after it on its last line; a block those
+after its ``{`` on that line (``opening``) and those after its last statement through its ``}``
+line (``closing``); a top-level item those before it; the script those after its last item.  So
+every comment lands on exactly one node, in source order (see ``ast``'s module doc).
 """
 
 from __future__ import annotations
@@ -12,7 +18,7 @@ from gpl2py.diagnostics import DiagnosticSink
 from gpl2py.source import Span
 from gpl2py.tmscript import messages as M
 from gpl2py.tmscript.syntax import ast as A
-from gpl2py.tmscript.syntax.lexer import PRIMITIVE_TYPES, Token, describe, tokenize
+from gpl2py.tmscript.syntax.lexer import PRIMITIVE_TYPES, Comment, Token, describe, tokenize
 
 ASSIGN_OPS = frozenset({"=", "+=", "-=", "*=", "/=", "%=", "<<=", ">>=", "&=", "^=", "|="})
 #: Binary operators by precedence level, loosest first (spec §1.7).
@@ -36,8 +42,29 @@ class _Bail(Exception):
 
 
 class Parser:
-    def __init__(self, toks: list[Token], sink: DiagnosticSink) -> None:
+    def __init__(self, toks: list[Token], sink: DiagnosticSink, comments: list[Comment] | None = None) -> None:
         self.toks, self.pos, self.sink, self.depth, self.chain = toks, 0, sink, 0, 0
+        self.comments = comments or []
+        self.taken = 0  # comments[:taken] are attached
+
+    # --- comments -------------------------------------------------------------------------------
+    def take(self, before: Token | None = None, through: int | None = None) -> tuple[Comment, ...]:
+        """The comments not attached yet that start before ``before`` and on line ``through`` or
+        above (no bound for None), with the rest of a ``/* */`` comment whose first line is
+        taken."""
+        cs, i = self.comments, self.taken
+        first = i
+        while i < len(cs):
+            span = cs[i].span
+            if before is not None and (span.line, span.col) >= (before.span.line, before.span.col):
+                break
+            if through is not None and span.line > through:
+                break
+            i += 1
+        while first < i < len(cs) and cs[i].cont:
+            i += 1
+        self.taken = i
+        return tuple(cs[first:i]) if i > first else ()
 
     # --- tokens ---------------------------------------------------------------------------------
     @property
@@ -95,12 +122,15 @@ class Parser:
         out = A.Script(span, packet=False)
         self.skip_nl()
         while self.tok.kind != "eof":
+            taken = self.taken
             try:
                 self.top_item(out)
             except _Bail:
                 self.depth = 0
+                self.taken = taken  # (the comments of what was skipped go with what follows)
                 self.recover()
             self.skip_nl()
+        out.closing = self.take()
         return out
 
     def packet(self, span: Span) -> A.Script:
@@ -109,16 +139,19 @@ class Parser:
         while self.tok.kind != "eof":
             out.statements.extend(self.statement_line())
             self.skip_nl()
+        out.closing = self.take()
         return out
 
     def top_item(self, out: A.Script) -> None:
         t = self.tok
         if t.kind == "kw" and t.text in A.SECTIONS and not self.peek().is_op("("):
+            lead = self.take(t)
             self.next()
             self.skip_nl()
             if t.text in out.sections or (t.text == "define" and out.define):
                 self.sink.report(M.TM_SECTION_TWICE, t.span, name=t.text)
             block = self.block()
+            block.comments = lead
             if t.text == "define":
                 out.define.extend(block.body)
                 out.sections.setdefault("define", block)
@@ -126,7 +159,10 @@ class Parser:
                 out.sections[t.text] = block
             return
         if (t.is_kw("void") or t.text in PRIMITIVE_TYPES) and t.kind == "kw":
-            out.functions.append(self.function())
+            lead = self.take(t)
+            fn = self.function()
+            fn.comments = lead
+            out.functions.append(fn)
             return
         self.fail(M.TM_EXPECTED, t.span, expected="'define', 'main', 'closestop', 'errorstop' or a function",
                   found=describe(t))
@@ -171,15 +207,17 @@ class Parser:
         self.nested(start.span)
         body: list[A.Node] = []
         self.skip_nl()
+        opening = self.take(self.tok, start.span.line)
         while not self.tok.is_op("}"):
             if self.tok.kind == "eof":
                 self.depth -= 1
                 self.fail(M.TM_EXPECTED, self.tok.span, expected="'}'", found=describe(self.tok))
             body.extend(self.statement_line())
             self.skip_nl()
+        closing = self.take(self.tok)
         end = self.next()
         self.depth -= 1
-        return A.Block(start.span.to(end.span), body)
+        return A.Block(start.span.to(end.span), body, opening, closing + self.take(self.tok, end.span.line))
 
     def skip_block(self) -> None:
         """Skip to just after the '}' that closes the block whose '{' was just read (or to the end)."""
@@ -196,13 +234,14 @@ class Parser:
     def statement_line(self) -> list[A.Node]:
         """One statement and the end of its line; [] after a reported error."""
         self.chain = 0
-        depth = self.depth
+        depth, taken = self.depth, self.taken
         try:
             st = self.statement()
             self.end_line()
             return [st]
         except _Bail:
             self.depth = depth
+            self.taken = taken  # (the comments of the line skipped go with what follows)
             self.recover()
             return []
 
@@ -214,6 +253,13 @@ class Parser:
         return self.statement()
 
     def statement(self) -> A.Node:
+        """One statement with its comments: those before it, and those after it on its last line."""
+        lead = self.take(self.tok)
+        st = self._statement()
+        st.comments = lead + st.comments + self.take(self.tok, st.span.end_line)
+        return st
+
+    def _statement(self) -> A.Node:
         t = self.tok
         if t.is_op("{"):
             return self.block()
@@ -339,9 +385,11 @@ class Parser:
             self.depth -= 1
 
     def _switch_body(self, t: Token, subject: A.Node) -> A.Switch:
+        opening = self.take(self.tok, self.toks[self.pos - 1].span.line)  # (on the '{' line)
         self.skip_nl()
         cases: list[A.Case] = []
         while not self.tok.is_op("}"):
+            lead = self.take(self.tok)
             c = self.tok
             if c.is_kw("case"):
                 self.next()
@@ -357,14 +405,17 @@ class Parser:
             else:
                 self.fail(M.TM_EXPECTED, c.span, expected="'case' or 'default'", found=describe(c))
             self.accept_op(":")  # (the manual writes none; a C habit is tolerated)
+            lead += self.take(self.tok, self.toks[self.pos - 1].span.line)
             self.skip_nl()
             body: list[A.Node] = []
             while not (self.tok.is_kw("case") or self.tok.is_kw("default") or self.tok.is_op("}") or self.tok.kind == "eof"):
                 body.extend(self.statement_line())
                 self.skip_nl()
-            cases.append(A.Case(c.span, op, label, body))
+            cases.append(A.Case(c.span, op, label, body, comments=lead))
+        closing = self.take(self.tok)
         end = self.next()
-        return A.Switch(t.span.to(end.span), subject, cases)
+        return A.Switch(t.span.to(end.span), subject, cases, closing + self.take(self.tok, end.span.line),
+                        comments=opening)
 
     # --- expressions ----------------------------------------------------------------------------
     def expression(self) -> A.Node:
@@ -512,11 +563,13 @@ class Parser:
 
 def parse_script(text: str, file: str, sink: DiagnosticSink) -> A.Script:
     """A script project's tree."""
-    toks = tokenize(text, file, sink)
-    return Parser(toks, sink).script(toks[0].span)
+    comments: list[Comment] = []
+    toks = tokenize(text, file, sink, comments=comments)
+    return Parser(toks, sink, comments).script(toks[0].span)
 
 
 def parse_packet(text: str, file: str, sink: DiagnosticSink) -> A.Script:
     """A statement list's tree (a Listen-node packet's SCRIPT, a Script node)."""
-    toks = tokenize(text, file, sink)
-    return Parser(toks, sink).packet(toks[0].span)
+    comments: list[Comment] = []
+    toks = tokenize(text, file, sink, comments=comments)
+    return Parser(toks, sink, comments).packet(toks[0].span)
