@@ -222,8 +222,8 @@ def test_a_trailing_block_comment_over_lines_keeps_one_line_per_line(tmp_path: P
 
 
 def test_a_block_of_comments_only_is_a_block(tmp_path: Path) -> None:
-    py, _ = translated(tmp_path, "main\n{\n  if (true) {\n    // nothing yet\n  }\n  while (false) { /* later */ }\n}\n"
-                       "void later()\n{\n  // to do\n}\n")
+    py, _ = translated(tmp_path, "main\n{\n  if (true) {\n    // nothing yet\n  }\n"
+                       "  while (false) { /* later */ }\n}\nvoid later()\n{\n  // to do\n}\n")
     assert "    if True:\n        # nothing yet\n        pass\n" in py
     assert "    while False:  # later\n        tm.tick()\n" in py
     assert "def later():\n    # to do\n    pass\n" in py
@@ -244,3 +244,58 @@ def test_hostile_comment_text_stays_a_comment(tmp_path: Path) -> None:
     module = load_project(tmp_path / "project.tms", tmp_path / "out")
     context.use_robot("TM5-900")
     assert run_loaded(module) == (0, ["6"])
+
+
+def test_comments_of_heads_without_braces_and_else_parts(tmp_path: Path) -> None:
+    """A comment after ``if (...)``, ``while (...)``, ``for (...)`` whose statement is on the next
+    line ends the ``if``/``while`` line; an ``else if``'s ends its ``elif`` line; comments between a
+    block's ``}`` and its ``else`` and after a one-line block stay in order."""
+    text = """main
+{
+  int a = 1
+  if (a > 0)  // positive
+    a = 2     // now two
+  else        // not positive
+    a = 3
+  if (a == 1) {
+    a = 4
+  }
+  // otherwise
+  else if (a == 2)  // two
+    a = 5
+  else { a = 6 }  // six
+  int n = 0
+  while (n < 2)  // twice
+    n++
+  for (int i = 0; i < 2; i++)  // two more
+    n++
+  Display("a=" + a + // the value
+          " n=" + n) // and the count
+}
+"""
+    py, line_map = translated(tmp_path, text)
+    assert """    if (a > 0):  # positive
+        a = 2  # now two
+    else:
+        # not positive
+        a = 3
+    if tm.eq(a, 1):
+        a = 4
+    # otherwise
+    elif tm.eq(a, 2):  # two
+        a = 5
+    else:
+        a = 6
+        # six
+    n = 0
+    while (n < 2):  # twice
+        tm.tick()
+        n = tm.to_int(tm.add(n, 1))
+    i = 0
+    while (i < 2):  # two more
+""" in py
+    assert '    tm.Display(tm.add(tm.add(tm.add("a=", a), " n="), n))  # the value  # and the count\n' in py
+    assert at(py, line_map, "    # otherwise") == 11 and at(py, line_map, "    elif tm.eq(a, 2):  # two") == 12
+    module = load_project(tmp_path / "project.tms", tmp_path / "out")
+    context.use_robot("TM5-900")
+    assert run_loaded(module) == (0, ["a=5 n=4"])

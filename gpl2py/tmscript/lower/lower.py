@@ -470,7 +470,11 @@ class Lowerer:
         self.line(self.expr(e), e)
 
     def if_chain(self, st: A.If, word: str) -> None:
+        """``if`` (its comments are the statement's) or ``elif`` with its comments."""
+        before, after = split(st) if word == "elif" else ([], [])
+        self.w.comments(before)
         self.line(f"{word} {self.cond(st.cond)}:", st)
+        self.carry(after, self.w.mark() - 1)
         self.body(st.then)
         other = st.other
         if isinstance(other, A.If):

@@ -245,12 +245,17 @@ class Parser:
             self.recover()
             return []
 
-    def body(self) -> A.Node:
-        """A braced block, or one statement on this or the next line (L1633, L1754)."""
+    def body(self) -> tuple[A.Node, tuple[Comment, ...]]:
+        """A braced block, or one statement on this or the next line (L1633, L1754); and the
+        comments after the head (``if (x)``) on its line when the statement is on the next line
+        (they go at the end of the head's line; a block keeps them as its opening ones)."""
+        head = self.take(self.tok) if self.tok.kind == "nl" else ()
         self.skip_nl()
         if self.tok.is_op("{"):
-            return self.block()
-        return self.statement()
+            block = self.block()
+            block.opening = head + block.opening
+            return block, ()
+        return self.statement(), head
 
     def statement(self) -> A.Node:
         """One statement with its comments: those before it, and those after it on its last line."""
@@ -272,8 +277,8 @@ class Parser:
             if word == "while":
                 self.next()
                 cond = self.paren_expr()
-                body = self.body()
-                return A.While(t.span.to(body.span), cond, body)
+                body, head = self.body()
+                return A.While(t.span.to(body.span), cond, body, comments=head)
             if word == "do":
                 self.next()
                 self.skip_nl()
@@ -335,16 +340,20 @@ class Parser:
     def if_stmt(self) -> A.If:
         t = self.next()
         cond = self.paren_expr()
-        then = self.body()
-        other = None
+        then, head = self.body()
+        other: A.Node | None = None
         save = self.pos
         self.skip_nl()
         if self.tok.is_kw("else"):
             self.next()
-            other = self.if_stmt() if self.tok.is_kw("if") else self.body()
+            if self.tok.is_kw("if"):
+                other = self.if_stmt()
+            else:
+                other, else_head = self.body()
+                other.comments = else_head + other.comments  # (above it, in the else part)
         else:
             self.pos = save
-        return A.If(t.span.to((other or then).span), cond, then, other)
+        return A.If(t.span.to((other or then).span), cond, then, other, comments=head)
 
     def for_stmt(self) -> A.For:
         t = self.next()
@@ -360,8 +369,8 @@ class Parser:
         self.expect_op(";")
         step = [] if self.tok.is_op(")") else self.expr_list()
         self.expect_op(")")
-        body = self.body()
-        return A.For(t.span.to(body.span), init, cond, step, body)
+        body, head = self.body()
+        return A.For(t.span.to(body.span), init, cond, step, body, comments=head)
 
     def expr_list(self) -> list[A.Node]:
         out = [self.expression()]
