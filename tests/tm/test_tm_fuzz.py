@@ -28,8 +28,10 @@ parts with a random stream each), ``GPL2PY_FUZZ_SEED`` (fixed by default; ``rand
 from __future__ import annotations
 
 import ast
+import io
 import os
 import re
+import tokenize
 from pathlib import Path
 
 import pytest
@@ -59,6 +61,14 @@ REPLACEMENTS = ["if", "else", "while", "do", "for", "switch", "case", "default",
                 "{", "}", "(", ")", "[", "]", ";", ",", ":", "?", "=", "==", "+", "-", "*", "/", "%", "++", "--",
                 "<<", ">>=", "&&", "||", "!", "~", '"', "'", "\\", "//", "/*", "*/", "0x", "0b", "1e", "1e400",
                 ".5", "\n", "\r\n", "\t", "é", "\x00", "Display", "ThreadRun", "IO", "Robot", "[0]", "\"\\\"\""]
+#: What the comments the fuzz adds say after their marker: what could end a line in Python or an
+#: editor, code, quotes, backslashes, long words and long sentences, a lone CR (a line end for
+#: TMscript: the rest is code).
+COMMENT_TEXTS = ["", " note", "\x0bimport os", "\u2028y = 1", "\x0c\x1c\x1d\x1e\x85z", '";__import__("os").system("x")',
+                 '"""', "\\", " \\", "\t\ttabs", "\x00\x01\x7f", "é" * 50, " word" * 40, "x" * 300, "*", "/", "#",
+                 " # noqa", "\rDisplay(1)", " {", " }", " else", "\u00a0nbsp", "\uffff"]
+#: The marker each added comment starts with (``fzc12_``): the check finds them in the Python.
+MARKER = re.compile(r"fzc\d+_")
 TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*|\d+(?:\.\d*)?|\"(?:[^\"\\\n]|\\.)*\"|[ \t]+|\r?\n|.", re.DOTALL)
 DECLARED = re.compile(r"(?m)\b(?:byte|int|float|double|bool|string|void)(?:\[\])?[ \t]+([A-Za-z_][A-Za-z0-9_]*)")
 
@@ -118,7 +128,31 @@ class Mutator(TextMutations):
                 weights=[8, 3, 3, 2, 2, 2, 5, 2, 1, 1, 1, 2, 1, 1, 1])[0]
             what.append(op)
             text = getattr(self, "op_" + op)(text, declared)
+        if rng.random() < 0.3:  # (last: no later mutation moves a comment into code)
+            what.append("comment")
+            text = self.add_comments(text)
         return text
+
+    def add_comments(self, text: str) -> str:
+        """One to three comments, each starting with a marker of its own: a ``//`` line, a ``//`` at
+        the end of a line, a ``/* */`` on a line or over three lines."""
+        rng = self.rng
+        lines = text.split("\n")
+        for _ in range(rng.choice([1, 1, 2, 3])):
+            marker = f"fzc{rng.randrange(10**6)}_"
+            body = marker + rng.choice(COMMENT_TEXTS)
+            at = rng.randrange(len(lines) + 1)
+            form = rng.choice(["line", "end", "block", "lines"])
+            if form == "end" and at < len(lines):
+                cr = "\r" if lines[at].endswith("\r") else ""
+                lines[at] = lines[at][:len(lines[at]) - len(cr)] + " // " + body + cr
+            elif form == "block":
+                lines.insert(at, f"/* {body} */")
+            elif form == "lines":
+                lines.insert(at, f"  /* {body}\n   {marker}more\n */")
+            else:
+                lines.insert(at, f"// {body}")
+        return "\n".join(lines)
 
     def hostile_name(self) -> str:
         name = self.rng.choice(HOSTILE_NAMES)
@@ -263,9 +297,26 @@ def run_packets(item: FuzzInput) -> bool:
         if not packet.errors:
             assert packet.python, "a packet without errors and without Python"
             compile_py(packet.python, name)
+            if "comment" in item.what:
+                check_comments({name: script}, {f"{name}.py": packet.python})
             known.update(packet.declared)
             ok = True
     return ok
+
+
+def check_comments(sources: dict[str, str], generated: dict[str, str]) -> None:
+    """Each comment the fuzz added (its marker) is in the Python of a translation without errors,
+    and only ever inside a Python comment (never code nor a string: its text cannot escape)."""
+    markers = {m for text in sources.values() for m in MARKER.findall(text)}
+    carried: set[str] = set()
+    for name, py in generated.items():
+        if not name.endswith(".py"):
+            continue
+        in_comments = [m for t in tokenize.generate_tokens(io.StringIO(py).readline) if t.type == tokenize.COMMENT
+                       for m in MARKER.findall(t.string)]
+        assert len(in_comments) == len(MARKER.findall(py)), (name, "a comment's text outside a comment")
+        carried.update(in_comments)
+    assert markers <= carried, ("comments lost", sorted(markers - carried))
 
 
 def run_input(item: FuzzInput, root: Path) -> bool:
@@ -279,6 +330,8 @@ def run_input(item: FuzzInput, root: Path) -> bool:
     check_diagnostics(sink, folder)
     if out is not None:
         check_translated(out, sink, root)
+        if "comment" in item.what:
+            check_comments({n: d.decode("utf-8", "replace") for n, d in item.files.items()}, out.files)
     elif item.keep_going:
         kept = DiagnosticSink()
         out = transpile(target, kept, keep_going=True, language="tmscript")
