@@ -364,7 +364,8 @@ class Lowerer:
         if detail is not None:
             raise NestedTooDeeply(st, detail)
         self.w.end_statement(begun)
-        self.carry(after, self.head(start) if head is None else head)
+        if after:
+            self.carry(after, self.head(start) if head is None else head)
 
     def _statement(self, st: A.Node) -> int | None:  # noqa: C901 (one dispatch over the statement kinds)
         """Writes ``st``; the index of its head line when that is not its first (a ``for``'s
@@ -656,6 +657,8 @@ class Lowerer:
 
 def split(node: A.Node) -> tuple[list[Comment], list[Comment]]:
     """``node``'s comments: those before its first token, and those after it."""
+    if not node.comments:
+        return [], []
     start = (node.span.line, node.span.col)
     before = [c for c in node.comments if (c.span.line, c.span.col) < start]
     return before, list(node.comments[len(before):])

@@ -53,6 +53,8 @@ class Parser:
         above (no bound for None), with the rest of a ``/* */`` comment whose first line is
         taken."""
         cs, i = self.comments, self.taken
+        if i == len(cs):
+            return ()
         first = i
         while i < len(cs):
             span = cs[i].span
