@@ -12,11 +12,10 @@ members are those of what its index gives (``tm.Point.item``).  A name the runti
 
 from __future__ import annotations
 
-import argparse
 import importlib
-import sys
 from pathlib import Path
 
+from gpl2py import datamodule
 from gpl2py.tmscript.semantics.library import CLASSES, OBJECTS
 
 REGENERATE = "python -m gpl2py.tmscript.semantics.members_gen"
@@ -59,20 +58,8 @@ def data_path() -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog=REGENERATE, description="Write the TMscript members the runtime "
-                                 "implements to gpl2py's data module.")
-    ap.add_argument("--check", action="store_true", help="write nothing; exit 1 if the data module is out of date")
-    args = ap.parse_args(argv)
-    text, path = generate(), data_path()
-    current = path.read_text(encoding="utf-8") if path.exists() else None
-    if args.check:
-        if current != text:
-            print(f"{path} is out of date: run {REGENERATE}", file=sys.stderr)
-            return 1
-        return 0
-    if current != text:
-        path.write_text(text, encoding="utf-8")
-    return 0
+    return datamodule.main(REGENERATE, "Write the TMscript members the runtime implements to gpl2py's data module.",
+                           generate, data_path(), argv)
 
 
 if __name__ == "__main__":
