@@ -56,6 +56,14 @@ TM_NOT_INDEXABLE = _error(
     "Brackets follow an array (a[2]), a string's characters are not indexed, and the parameterized "
     "objects take a name (IO[\"ControlBox\"], Point[\"P1\"], manual L14365). An undeclared word is "
     "a string (GPL5301), not an object.")
+TM_UNKNOWN_MEMBER = _error(
+    "GPL5317", "'{name}' is not a member of {owner}",
+    "The members of the teach classes (TPoint, TBase, TTCP) and of the parameterized objects (Point[...], "
+    "Base[...], TCP[...], VPoint[...], IO[...], Robot[0], FT[...]) are the manual's tables (L14397-L15514); "
+    "the other types have none.")
+TM_READ_ONLY_MEMBER = _warning(
+    "GPL5318", "{owner}.{name} is read only: assigning it is an invalid operation and changes nothing",
+    "The manual marks the read-only members' writes \"Read only, invalid operation\" (L14433, L14481).")
 
 # --- lowering and loading (GPL5700-GPL5999) --------------------------------------------------
 TM_NO_SOURCES = _error("GPL5700", "{path} holds no TMscript source (.tms, .tmscript)")

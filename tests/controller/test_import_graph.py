@@ -41,6 +41,8 @@ GPL2PY_USES_GPLRT = {
     "gpl2py.deploy": "the compiler of the simulated controller's console: translates, imports, hands gplrt a Program",
     "gpl2py.serve": "run --console/--ftp: starts the runtime's Telnet and FTP servers on the run's Simulation",
     "gpl2py.tmscript.node": "run --listen-node: starts the runtime's TM Listen node with the TMscript front end",
+    "gpl2py.tmscript.semantics.members_gen": "writes members_data.py from the runtime's TM classes (a developer's "
+                                             "command; the checks read the data module, not gplrt)",
     "gpl2py.sweep.worker": "sweep: runs one parameter set on a Simulation, on a Dask worker or in the loop",
 }
 

@@ -36,6 +36,7 @@ CASES: dict[str, tuple[str | None, str | None, int, int]] = {
     "GPL5310": ("define\n{\n  int a = 1\n}\n", None, 1, 1),
     "GPL5311": ("main\n{\n}\nmain\n{\n}\n", None, 4, 1),
     "GPL5314": (None, "int x = 1\nswitch (x)\n{\ncase 1\n  if (x > 0) break\n  Display(1)\n}", 5, 14),
+    "GPL5317": (None, "int i = 1\nint k = i.Value", 2, 11),
     "GPL5700": ("", None, 0, 0),
     # 21 nested loops: the 21st is the innermost Python would not compile
     "GPL5316": (None, 'Nope["ControlBox"].DO[0] = 1', 1, 1),

@@ -23,7 +23,8 @@ statement snippets (tests/tm/test_library.py).  E66-E104:
   angle value" is not an error here (a TPoint's inverse is not solved at its declaration), and
   E79 gives TBase and joint arrays 5 values (the manual's typo, an error).  E80 reads
   ``Value[6]`` on purpose (an error).  E81 (TBase.GetValue/SetValue, vision multi-base) and E82
-  (TTCP MOI/MCF members) use members not simulated (GPL5314 for the methods).
+  (TTCP MOI/MCF members) use members not simulated: GPL5314 at compile time, for the methods and
+  the attributes alike (E82: tests/tm/test_tm_members.py).
 * E83, E97-E99: Listen-node packet transcripts, run as packets in tests/tm/test_listen_node.py.
 * E84-E91, E93, E94: one motion call each with no output to compare, their comments wrapped
   into the code by the PDF (E84, E85, E87, E90, E91 do not compile as printed); the motions

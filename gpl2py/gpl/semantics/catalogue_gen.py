@@ -29,15 +29,14 @@ without importing the runtime.  The conventions read here:
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import inspect
-import sys
 import typing
 from pathlib import Path
 from types import ModuleType
 from typing import Any, Callable
 
+from gpl2py import datamodule
 from gpl2py.gpl.semantics import types as t
 from gpl2py.gpl.semantics.catalogue import (
     DATA_MODULE,
@@ -354,26 +353,8 @@ def generate(module_name: str = "gplrt.builtins") -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m gpl2py.gpl.semantics.catalogue_gen",
-                                 description="Write the built-in catalogue read from the runtime "
-                                 "to gpl2py's data module.")
-    ap.add_argument("--check", action="store_true",
-                    help="write nothing; exit status 1 if the data module is out of date")
-    args = ap.parse_args(argv)
-    text = generate()
-    path = data_path()
-    current = path.read_text(encoding="utf-8") if path.exists() else None
-    if args.check:
-        if current != text:
-            print(f"{path} is out of date: run {REGENERATE}", file=sys.stderr)
-            return 1
-        return 0
-    if current != text:
-        path.write_text(text, encoding="utf-8")
-        print(f"wrote {path}")
-    else:
-        print(f"{path} is up to date")
-    return 0
+    return datamodule.main(REGENERATE, "Write the built-in catalogue read from the runtime to gpl2py's data module.",
+                           generate, data_path(), argv)
 
 
 if __name__ == "__main__":

@@ -17,10 +17,12 @@ import re
 from dataclasses import dataclass, field
 
 from gpl2py.diagnostics import DiagnosticSink
+from gpl2py.source import Span, make_span
 from gpl2py.tmscript import messages as M
 from gpl2py.tmscript.semantics.library import (
-    BUILTINS, BY_NAME, CLASS_ARGUMENTS, CLASSES, METHODS, METHODS_NOT_YET, OBJECTS, RETURNS,
+    BUILTINS, BY_NAME, CLASS_ARGUMENTS, CLASSES, DOCUMENTED_MEMBERS, DOCUMENTED_METHODS, OBJECTS, RETURNS,
 )
+from gpl2py.tmscript.semantics.members_data import MEMBERS
 from gpl2py.tmscript.syntax import ast as A
 
 INTEGER = frozenset({"byte", "int"})
@@ -79,6 +81,7 @@ class Checker:
         self.loops = 0
         self.switches = 0
         self.packet = False
+        self.written: set[int] = set()  # the members assigned (``Robot[0].Joint = ...``)
 
     # --- entry points ---------------------------------------------------------------------------
     def script(self, tree: A.Script) -> Info:
@@ -265,6 +268,7 @@ class Checker:
                 self.expr(e.index2)
         elif isinstance(e, A.Member):
             self.expr(e.obj)
+            self.member(e)
         elif isinstance(e, (A.Unary, A.Postfix)):
             self.expr(e.operand)
             if e.op in ("++", "--"):
@@ -283,6 +287,8 @@ class Checker:
             self.expr(e.other)
         elif isinstance(e, A.Assign):
             self.expr(e.value)
+            if isinstance(e.target, A.Member):
+                self.written.add(id(e.target))
             self.expr(e.target)
             self.assignable(e.target, e.op)
             if isinstance(e.target, A.Name):
@@ -348,19 +354,70 @@ class Checker:
 
 
     def method(self, callee: A.Member) -> None:
-        """``var.Method(...)``: a method the variable's class has (L18366: ``mbus1.Preset``).  On
-        anything else (a bare word, a class without that method) it is reported here, where a
-        TM user reads it, rather than failing in Python at run time."""
+        """``var.Method(...)``: a method the variable's class has in the runtime (L18366:
+        ``mbus1.Preset``).  On anything else (a bare word, a class without that method) it is
+        reported here, where a TM user reads it, rather than failing in Python at run time: a
+        method the manual documents and the runtime lacks (``TBase.GetValue``) is not supported
+        yet."""
         obj = callee.obj
         var = self.info.names.get(id(obj)) if isinstance(obj, A.Name) else None
         if var is None or var.cls is None:
             if isinstance(obj, A.Name):
                 self.sink.report(M.TM_UNKNOWN_FUNCTION, callee.span, name=f"{obj.name}.{callee.name}")
             return
-        if callee.name in METHODS_NOT_YET.get(var.cls, ()):
+        if var.cls not in CLASSES:
+            return  # (the declaration's class is reported, GPL5314)
+        if MEMBERS.get(var.cls, {}).get(callee.name) == "method":
+            return
+        if callee.name in DOCUMENTED_METHODS.get(var.cls, ()):
             self.sink.report(M.TM_UNSUPPORTED, callee.span, what=f"{var.cls}.{callee.name}()")
-        elif callee.name not in METHODS.get(var.cls, ()):
+        else:
             self.sink.report(M.TM_UNKNOWN_FUNCTION, callee.span, name=f"{var.cls}.{callee.name}")
+
+    def member(self, e: A.Member) -> None:
+        """``obj.Name`` read or assigned: a member the runtime implements (its classes, through
+        ``members_data``); one the manual documents and the runtime lacks (``tcp1.MCF``, E82) is
+        not supported yet; anything else is not a member.  Reported at the member's name, so no
+        member reaches Python that the runtime does not have."""
+        owner, label = self.owner(e.obj)
+        if label is None:
+            return
+        name, span = e.name, self.name_span(e)
+        if owner is not None:
+            mode = MEMBERS.get(owner, {}).get(name)
+            if mode == "R" and id(e) in self.written:
+                self.sink.report(M.TM_READ_ONLY_MEMBER, span, owner=label, name=name)
+            if mode in ("R", "RW"):
+                return
+            if name in DOCUMENTED_MEMBERS.get(owner, {}):
+                self.sink.report(M.TM_UNSUPPORTED, span, what=f"the member {label}.{name}")
+                return
+        self.sink.report(M.TM_UNKNOWN_MEMBER, span, name=name, owner=label)
+
+    def owner(self, obj: A.Node) -> tuple[str | None, str | None]:
+        """Whose members ``obj`` has: (the class or parameterized object, how messages name it),
+        (None, a description) for a value without members, (None, None) when it was reported
+        already (a class not supported)."""
+        if isinstance(obj, A.Name):
+            var = self.info.names.get(id(obj))
+            if var is None:
+                return None, f"{obj.name} without an index" if obj.name in OBJECTS else f'the string "{obj.name}"'
+            if var.cls is None:
+                return None, f"the {var.type}{'[]' if var.array else ''} variable {var.name}"
+            return (var.cls, var.cls) if var.cls in CLASSES else (None, None)
+        if isinstance(obj, A.Index) and isinstance(obj.obj, A.Name) and self.info.names.get(id(obj.obj)) is None:
+            if obj.obj.name in OBJECTS:
+                return obj.obj.name, f"{obj.obj.name}[...]"
+            return None, None  # (a bare word indexed: GPL5316)
+        if isinstance(obj, A.Index) and isinstance(obj.obj, (A.Str, A.Num, A.Bool)):
+            return None, None  # (GPL5316)
+        return None, "this value"
+
+    @staticmethod
+    def name_span(e: A.Member) -> Span:
+        """The span of the member's name (``e``'s ends with it)."""
+        s = e.span
+        return make_span(s.file, s.end_line, max(1, s.end_col - len(e.name)), s.end_line, s.end_col)
 
 
 def check_script(tree: A.Script, sink: DiagnosticSink) -> Info:

@@ -31,17 +31,16 @@ BUFFER_SIZE = 1024 * 1024
 
 
 class Device:
-    """A named device of the current robot.  ``KIND`` names its class's table (``socket``,
+    """A named device of the current robot.  ``kind`` names its class's table (``socket``,
     ``serial``, ``modbus``); subclasses implement :meth:`close`."""
 
-    KIND = "device"
-    CLASS = "Device"
+    kind = "device"
 
     def __init__(self, name: str) -> None:
         self.name = name
         self.robot = context.robot()
         self.buffer = bytearray()
-        registry(self.robot, self.KIND)[name.lower()] = self
+        registry(self.robot, self.kind)[name.lower()] = self
 
     # -- the block that declared it (L1320) --------------------------------------------------
     def __enter__(self) -> Any:
@@ -56,7 +55,7 @@ class Device:
         try:
             self.close()
         finally:
-            table = registry(self.robot, self.KIND)
+            table = registry(self.robot, self.kind)
             if table.get(self.name.lower()) is self:
                 del table[self.name.lower()]
 

@@ -57,7 +57,7 @@ class Preset:
 class ModbusDevice(Device):
     """What ``ModbusTCP`` and ``ModbusRTU`` share: the master, the presets."""
 
-    KIND = "modbus"
+    kind = "modbus"
 
     def __init__(self, name: str, master: Modbus, timeout: int) -> None:
         self.master = master

@@ -10,11 +10,14 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from gplrt.tm import context
+from gplrt.tm.members import Members
 from gplrt.tm.motion import Command
 from gplrt.tm.values import Array, TMError, to_byte, to_float
 
 
-class _RobotItem:
+class _RobotItem(Members):
+    tm_name = "Robot[0]"
+
     @property
     def Joint(self) -> Array:
         return Array("float", context.robot().current_joints())
@@ -37,6 +40,8 @@ class _RobotItem:
 
 
 class _Robots:
+    item = _RobotItem  # (what ``Robot[0]`` gives: the front end checks its members)
+
     def __getitem__(self, i: object) -> _RobotItem:
         if i != 0:
             raise TMError(f"Robot[{i}] does not exist (only Robot[0])")
@@ -80,37 +85,56 @@ class _Channels:
         return iter(list(self.get()))
 
 
-class _Module:
-    """``IO["ControlBox"]``: its tables; assigning a whole array (``IO[m].DO = {0,0,…}``, L1112)
-    writes every channel (queued for DO/AO)."""
+def _table(key: str, writable: bool) -> property:
+    """The table ``key`` of a module; when ``writable``, assigning a whole array (``IO[m].DO =
+    {0,0,…}``, L1112) writes every channel (queued for DO/AO).  A read-only one has no setter:
+    assigning it is an invalid operation, ignored (L14433)."""
 
-    def __setattr__(self, name: str, value: object) -> None:
-        current = self.__dict__.get(name)
-        if isinstance(current, _Channels) and isinstance(value, (list, tuple)):
-            if not current.writable:
-                return  # read only: an invalid operation, ignored (L14433)
-            if len(value) > len(current):
-                raise TMError(f'IO["{self.name}"].{name} has {len(current)} channels, not {len(value)}')
-            for i, v in enumerate(value):
-                current[i] = v
-            return
-        object.__setattr__(self, name, value)
+    def get(self: _Module) -> _Channels:
+        return self._tables[key]
+
+    def put(self: _Module, value: object) -> None:
+        current = self._tables[key]
+        if not isinstance(value, (list, tuple)):
+            raise TMError(f'IO["{self._name}"].{key} is an array: assign it an array')
+        if len(value) > len(current):
+            raise TMError(f'IO["{self._name}"].{key} has {len(current)} channels, not {len(value)}')
+        for i, v in enumerate(value):
+            current[i] = v
+    return property(get, put if writable else None)
+
+
+class _Module(Members):
+    """``IO["ControlBox"]``, ``IO["EndModule"]``: their I/O tables."""
 
     def __init__(self, name: str) -> None:
-        self.name = name
+        self._name = name
+        self.tm_name = f'IO["{name}"]'
         prefix = "ctrl" if name == "ControlBox" else "end"
         r = context.robot
-        self.DI = _Channels(lambda: getattr(r(), f"{prefix}_di"), to_byte, False, False, "DI")
-        self.InstantDI = self.DI
-        self.AI = _Channels(lambda: getattr(r(), f"{prefix}_ai"), to_float, False, False, "AI")
-        self.InstantAI = self.AI
-        self.DO = _Channels(lambda: getattr(r(), f"{prefix}_do"), to_byte, True, True, "DO")
-        self.InstantDO = _Channels(lambda: getattr(r(), f"{prefix}_do"), to_byte, False, True, "InstantDO")
-        self.AO = _Channels(lambda: getattr(r(), f"{prefix}_ao"), to_float, True, True, "AO")
-        self.InstantAO = _Channels(lambda: getattr(r(), f"{prefix}_ao"), to_float, False, True, "InstantAO")
+        di = _Channels(lambda: getattr(r(), f"{prefix}_di"), to_byte, False, False, "DI")
+        ai = _Channels(lambda: getattr(r(), f"{prefix}_ai"), to_float, False, False, "AI")
+        self._tables = {
+            "DI": di, "InstantDI": di, "AI": ai, "InstantAI": ai,
+            "DO": _Channels(lambda: getattr(r(), f"{prefix}_do"), to_byte, True, True, "DO"),
+            "InstantDO": _Channels(lambda: getattr(r(), f"{prefix}_do"), to_byte, False, True, "InstantDO"),
+            "AO": _Channels(lambda: getattr(r(), f"{prefix}_ao"), to_float, True, True, "AO"),
+            "InstantAO": _Channels(lambda: getattr(r(), f"{prefix}_ao"), to_float, False, True, "InstantAO"),
+        }
+
+    DI = _table("DI", False)
+    InstantDI = _table("InstantDI", False)
+    AI = _table("AI", False)
+    InstantAI = _table("InstantAI", False)
+    DO = _table("DO", True)
+    InstantDO = _table("InstantDO", True)
+    AO = _table("AO", True)
+    InstantAO = _table("InstantAO", True)
 
 
 class _IOs:
+    item = _Module  # (what ``IO[name]`` gives)
+
     def __getitem__(self, name: object) -> _Module:
         if name not in ("ControlBox", "EndModule"):
             raise TMError(f'IO["{name}"] is not simulated (ControlBox, EndModule)')

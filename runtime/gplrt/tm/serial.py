@@ -122,7 +122,7 @@ class SerialSettings:
 class SerialPort(Device):
     """A serial device ``name`` on the virtual port its declaration names (L12369)."""
 
-    KIND = "serial"
+    kind = "serial"
 
     def __init__(self, name: str, *args: object) -> None:
         if len(args) not in (2, 5, 6, 9):

@@ -31,7 +31,7 @@ class Socket(Device):
     """A TCP client device ``name`` to ``ip``:``port``; ``timeout`` ms for reads and writes
     (0-10000, default 10000, L13410)."""
 
-    KIND = "socket"
+    kind = "socket"
 
     def __init__(self, name: str, ip: object, port: object, timeout: object = 10000) -> None:
         self.ip, self.port = to_string(ip), to_int(port)

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from gplrt.tm import context
+from gplrt.tm.members import Members
 from gplrt.tm.robot import config_bits, pose_to_se3, se3_to_pose
 from gplrt.tm.values import Array, TMError, to_double, to_string
 
@@ -53,8 +54,10 @@ def _registry(kind: str) -> dict[str, object]:
     return reg[kind]  # type: ignore[no-any-return]
 
 
-class TPoint:
+class TPoint(Members):
     """``TPoint p = [kind,] float[6]|6 floats [, joints] [, base, tcp]`` (L14859-L15023)."""
+
+    tm_name = "TPoint"
 
     def __init__(self, name: str, *args: object) -> None:
         rest = list(args)
@@ -63,12 +66,20 @@ class TPoint:
         first = _values(rest, "TPoint")
         joints = _values(rest, "TPoint") if rest and isinstance(rest[0], (list, tuple)) else None
         robot = context.robot()  # (a name not given, or "", is the current one, L14936, L14978)
-        self.BaseName = (to_string(rest.pop(0)) if rest else "") or robot.script_base_name
-        self.TCPName = (to_string(rest.pop(0)) if rest else "") or robot.script_tcp_name
+        self._base_name = (to_string(rest.pop(0)) if rest else "") or robot.script_base_name
+        self._tcp_name = (to_string(rest.pop(0)) if rest else "") or robot.script_tcp_name
         self._joint: list[float] | None = first if self.kind.startswith("J") else joints
         self._value: list[float] | None = None if self.kind.startswith("J") else first
         self._pose: list[int] | None = None  # the configuration asked for, when one was set
         _registry("point")[name] = self
+
+    @property
+    def BaseName(self) -> str:
+        return self._base_name
+
+    @property
+    def TCPName(self) -> str:
+        return self._tcp_name
 
     @property
     def Value(self) -> Array:
@@ -109,15 +120,21 @@ class TPoint:
         self._joint, self._value, self._pose = _values([v], "Point.Joint"), None, None
 
 
-class TBase:
+class TBase(Members):
     """``TBase b = [kind,] float[6]|6 floats`` (L15065)."""
+
+    tm_name = "TBase"
 
     def __init__(self, name: str, *args: object) -> None:
         rest = list(args)
-        self.Type = str(rest.pop(0)) if rest and isinstance(rest[0], str) and rest[0] in KINDS else "C"
+        self._type = str(rest.pop(0)) if rest and isinstance(rest[0], str) and rest[0] in KINDS else "C"
         self._value = _values(rest, "TBase")
         if name != "RobotBase":
             _registry("base")[name] = self
+
+    @property
+    def Type(self) -> str:
+        return self._type
 
     @property
     def Value(self) -> Array:
@@ -128,16 +145,27 @@ class TBase:
         self._value = _values([v], "Base.Value")
 
 
-class TTCP:
-    """``TTCP t = [kind,] float[6]|6 floats [, mass]`` (L15278)."""
+class TTCP(Members):
+    """``TTCP t = [kind,] float[6]|6 floats [, mass]`` (L15278).  Its kind is kept but is no member
+    (the manual's TTCP has none: L15467)."""
+
+    tm_name = "TTCP"
 
     def __init__(self, name: str, *args: object) -> None:
         rest = list(args)
-        self.Type = str(rest.pop(0)) if rest and isinstance(rest[0], str) and rest[0] in KINDS else "C"
+        self._type = str(rest.pop(0)) if rest and isinstance(rest[0], str) and rest[0] in KINDS else "C"
         self._value = _values(rest, "TTCP")
-        self.Mass = float(to_double(rest.pop(0))) if rest else 0.0
+        self._mass = float(to_double(rest.pop(0))) if rest else 0.0
         if name not in ("NOTOOL", "HandCamera"):
             _registry("tcp")[name] = self
+
+    @property
+    def Mass(self) -> float:
+        return self._mass
+
+    @Mass.setter
+    def Mass(self, v: object) -> None:
+        self._mass = float(to_double(v))
 
     @property
     def Value(self) -> Array:
@@ -149,8 +177,11 @@ class TTCP:
 
 
 class _Named:
-    def __init__(self, kind: str, builtin: dict[str, object]) -> None:
-        self.kind, self.builtin = kind, builtin
+    """``Point[name]``, ``Base[name]``, ``TCP[name]``; ``item`` is the class of what they give (the
+    front end checks their members against it)."""
+
+    def __init__(self, kind: str, builtin: dict[str, object], item: type) -> None:
+        self.kind, self.builtin, self.item = kind, builtin, item
 
     def __getitem__(self, key: object) -> object:
         name = key[0] if isinstance(key, tuple) else key
@@ -160,10 +191,23 @@ class _Named:
         return found
 
 
-class _Fixed:
-    """``Base["RobotBase"]``, ``TCP["NOTOOL"]``: read only, all zeros."""
+class _FixedBase(Members):
+    """``Base["RobotBase"]``: read only, all zeros, the members of a TBase (writing one is an
+    invalid operation, L14481)."""
 
+    tm_name = 'Base["RobotBase"]'
     Type = "R"
+
+    @property
+    def Value(self) -> Array:
+        return Array("float", [0.0] * 6)
+
+
+class _FixedTCP(Members):
+    """``TCP["NOTOOL"]``, ``TCP["HandCamera"]``: read only, all zeros, the members of a TTCP
+    (L14535)."""
+
+    tm_name = "a system TCP"
     Mass = 0.0
 
     @property
@@ -171,9 +215,9 @@ class _Fixed:
         return Array("float", [0.0] * 6)
 
 
-Point = _Named("point", {})
-Base = _Named("base", {"RobotBase": _Fixed()})
-TCP = _Named("tcp", {"NOTOOL": _Fixed(), "HandCamera": _Fixed()})
+Point = _Named("point", {}, TPoint)
+Base = _Named("base", {"RobotBase": _FixedBase()}, TBase)
+TCP = _Named("tcp", {"NOTOOL": _FixedTCP(), "HandCamera": _FixedTCP()}, TTCP)
 
 
 def frame_of(kind: str, name: str) -> tuple[object, float] | None:
@@ -181,4 +225,5 @@ def frame_of(kind: str, name: str) -> tuple[object, float] | None:
     found = _registry(kind).get(name)
     if found is None:
         return None
-    return pose_to_se3(found._value), float(getattr(found, "Mass", 0.0))  # type: ignore[attr-defined]
+    mass = float(found.Mass) if isinstance(found, TTCP) else 0.0
+    return pose_to_se3(found._value), mass  # type: ignore[attr-defined]

@@ -15,6 +15,7 @@ from collections.abc import Callable
 
 from gplrt.tm import context
 from gplrt.tm.motion import CARTESIAN_SPEED, line_path
+from gplrt.tm.members import Members
 from gplrt.tm.teach import LiveArray, TBase
 from gplrt.tm.values import Array, TMError, to_bool, to_double, to_int, to_string
 from gplrt.tm.vision import JobResult, Vision, copy_image
@@ -162,7 +163,7 @@ def File_CopyImage(src: object, folder: object, *rest: object) -> bool:
     return copy_image(_vision(), r.sim.files.root().box, to_string(src), to_string(folder), name, option)
 
 
-class _VPoint:
+class _VPoint(Members):
     """``VPoint[job]``: the initial position of a vision job (L14559): ``Value`` read and
     written (the job then starts there), ``BaseName``, ``TeachValue`` (the position it was
     registered with)."""
@@ -171,6 +172,7 @@ class _VPoint:
 
     def __init__(self, vision: Vision, job: str) -> None:
         self._vision, self._job = vision, job
+        self.tm_name = f'VPoint["{job}"]'
 
     def _entry(self):  # type: ignore[no-untyped-def]
         entry = self._vision.jobs.get(self._job)
@@ -196,6 +198,8 @@ class _VPoint:
 
 
 class _VPoints:
+    item = _VPoint  # (what ``VPoint[job]`` gives)
+
     def __getitem__(self, key: object) -> _VPoint:
         return _VPoint(_vision(), to_string(key[0] if isinstance(key, tuple) else key))
 
