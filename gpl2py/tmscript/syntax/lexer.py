@@ -130,8 +130,7 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1,
             while k < end:
                 if text[k] == "\n" or text[k] == "\r":
                     if comments is not None:
-                        _block_line(comments, file, line, col0, text[piece:k], piece == start + 2, start - scol0,
-                                    start if piece == start + 2 else col0, k)
+                        _block_line(comments, text, file, (line, col0), (start, scol0), piece, k, k)
                     if text.startswith("\r\n", k):
                         k += 1
                     line, col0 = line + 1, k + 1
@@ -139,8 +138,7 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1,
                 k += 1
             i = end + 2
             if comments is not None:
-                _block_line(comments, file, line, col0, text[piece:end], piece == start + 2, start - scol0,
-                            start if piece == start + 2 else col0, i)
+                _block_line(comments, text, file, (line, col0), (start, scol0), piece, end, i)
             continue
         start, sline, scol0 = i, line, col0
         if c == '"':
@@ -196,15 +194,20 @@ def tokenize(text: str, file: str, sink: DiagnosticSink, first_line: int = 1,
     return toks
 
 
-def _block_line(comments: list[Comment], file: str, line: int, col0: int, body: str, first: bool,
-                indent: int, start: int, end: int) -> None:
-    """One line of a ``/* */`` comment: ``body`` on ``line`` (whose first character is at index
-    ``col0``), from index ``start`` to ``end``.  A line after the ``first`` loses up to ``indent``
-    columns of leading blanks, the indentation of the ``/*``: the lines keep their alignment under
-    the Python's own indentation."""
+def _block_line(comments: list[Comment], text: str, file: str, at: tuple[int, int], opener: tuple[int, int],
+                piece: int, stop: int, end: int) -> None:
+    """One line of the ``/* */`` comment whose ``/*`` is at ``opener`` (its index, and the index
+    where its line starts): ``text[piece:stop]``, on the line ``at`` (its number, and the index
+    where it starts), which ends at index ``end`` (past the ``*/`` on the last line).  A line
+    after the first loses up to as many leading blanks as the ``/*`` had columns before it: the
+    lines keep their alignment under the Python's own indentation."""
+    line, col0 = at
+    start, first = opener[0], piece == opener[0] + 2
+    body = text[piece:stop]
     if not first:
         lead = len(body) - len(body.lstrip(" \t"))
-        body = body[min(lead, indent):]
+        body = body[min(lead, opener[0] - opener[1]):]
+        start = col0
     comments.append(Comment(make_span(file, line, start - col0 + 1, line, end - col0 + 1), body, cont=not first))
 
 
