@@ -299,3 +299,30 @@ def test_comments_of_heads_without_braces_and_else_parts(tmp_path: Path) -> None
     module = load_project(tmp_path / "project.tms", tmp_path / "out")
     context.use_robot("TM5-900")
     assert run_loaded(module) == (0, ["a=5 n=4"])
+
+
+def test_comments_of_a_device_a_deferred_argument_and_an_empty_define(tmp_path: Path) -> None:
+    """A device declaration's comment ends its ``with`` line; a statement whose deferred argument
+    puts a ``def`` above it keeps its comment on its own line, not the ``def``'s; a ``define``
+    section of comments only keeps them."""
+    py, line_map = translated(tmp_path, """define
+{
+  // nothing declared yet
+}
+main
+{
+  int st = 0
+  // the server
+  Socket s = "127.0.0.1", 5890  // not opened here
+  bool ok = WaitFor((st = ThreadState(0)) == 0, 10)  // waits
+  Display("done")
+}
+""")
+    assert "\n# nothing declared yet\n\n\ndef main():\n" in py
+    assert ('    # the server\n    with tm.Socket("s", "127.0.0.1", 5890):  # not opened here\n\n'
+            '        def _deferred1():\n') in py
+    assert "        ok = tm.to_bool(tm.WaitFor(_deferred1, 10))  # waits\n" in py
+    assert at(py, line_map, "        ok = tm.to_bool(tm.WaitFor(_deferred1, 10))  # waits") == 10
+    module = load_project(tmp_path / "project.tms", tmp_path / "out")
+    context.use_robot("TM5-900")
+    assert run_loaded(module) == (0, ["done"])
