@@ -108,6 +108,19 @@ def seeds() -> tuple[list[str], list[str]]:
     return scripts, packets
 
 
+#: The blocks ``op_deep`` nests: a head (``{i}`` the depth, ``{o}`` the opening brace, on the head's
+#: line or its own) and the tail that closes it.
+_NESTED = {
+    "if": ("if (i == {i}){o}", "}\n"),
+    "ifelse": ("if (i == {i}){o}", "}\nelse\n{\nDisplay(1)\n}\n"),
+    "while": ("while (i < {i}){o}", "}\n"),
+    "do": ("do{o}", "} while (false)\n"),
+    "for": ("for (int f{i} = 0; f{i} < 1; f{i}++){o}", "}\n"),
+    "switch": ("switch (i){o}case {i}:\n", "break\n}\n"),
+    "brace": ("{{\n", "}\n"),
+}
+
+
 class Mutator(TextMutations):
     """Mutations of TMscript by lines, tokens and bytes, hostile renames, and deep or long shapes."""
 
@@ -202,22 +215,9 @@ class Mutator(TextMutations):
         brace_line = rng.random() < 0.5  # "{" on its own line, or at the end of the head
         heads, tails = [], []
         for i in range(n):
-            k = rng.choice(kinds) if kind == "mix" else kind
-            o = "\n{\n" if brace_line else " {\n"
-            if k == "if":
-                heads.append(f"if (i == {i}){o}"), tails.append("}\n")
-            elif k == "ifelse":
-                heads.append(f"if (i == {i}){o}"), tails.append("}\nelse\n{\nDisplay(1)\n}\n")
-            elif k == "while":
-                heads.append(f"while (i < {i}){o}"), tails.append("}\n")
-            elif k == "do":
-                heads.append(f"do{o}"), tails.append("} while (false)\n")
-            elif k == "for":
-                heads.append(f"for (int f{i} = 0; f{i} < 1; f{i}++){o}"), tails.append("}\n")
-            elif k == "switch":
-                heads.append(f"switch (i){o}case {i}:\n"), tails.append("break\n}\n")
-            else:
-                heads.append("{\n"), tails.append("}\n")
+            head, tail = _NESTED[rng.choice(kinds) if kind == "mix" else kind]
+            heads.append(head.format(i=i, o="\n{\n" if brace_line else " {\n"))
+            tails.append(tail)
         inner = rng.choice(["Display(\"x\")\n", "break\n", "continue\n", "return\n", "i++\n", ""])
         body = "int i = 0\n" + "".join(heads) + inner + "".join(reversed(tails))
         if rng.random() < 0.2:
