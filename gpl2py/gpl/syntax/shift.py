@@ -3,7 +3,7 @@
 When an edit inside one procedure changes a file's number of lines, ``syntax/reparse.py`` parses
 that procedure again, and every line below it moves by the same number of lines: nothing else
 about the nodes there changes (columns change only on the edited lines, which are in the
-procedure).  A :class:`Shift` says which lines moved and by how much; :func:`shift_nodes` moves
+procedure).  A :class:`Shift` says which lines moved and by how much; :class:`Moves` moves
 the nodes in place -- the same objects, so whatever later phases keyed by them (the semantic
 pass's symbols and Infos, the lowering's memo) still holds -- and :meth:`Shift.diagnostics` moves
 the diagnostics kept for them.  The later phases move the positions they copied out of the nodes
@@ -97,12 +97,6 @@ class Moves:
             del self._flat[id(member)]
 
 
-def shift_nodes(nodes: list[A.Node], delta: int) -> None:
-    """Move ``nodes`` and everything under them (their comments too) ``delta`` lines, in place
-    (once: :class:`Moves` keeps the walk for the next time)."""
-    _flatten(nodes).move(delta)
-
-
 class _Flat(NamedTuple):
     """Every position under some nodes: the nodes (each once: the parser gives the declarators
     of ``Dim a, b As T`` one TypeRef, the one kind of node it shares), their comments, and the
@@ -193,4 +187,4 @@ def _plan(cls: type) -> tuple[tuple[str, ...], tuple[str, ...], str | None]:
     return plan
 
 
-__all__ = ["Moves", "Shift", "shift_comments", "shift_nodes"]
+__all__ = ["Moves", "Shift", "shift_comments"]
